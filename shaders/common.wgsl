@@ -1,0 +1,52 @@
+// Shared declarations of every splinescope pipeline. Each struct mirrors a #[repr(C)]
+// Pod struct in src/gpu/layout.rs (named there with a `Gpu` prefix); a test checks with
+// naga that sizes and member offsets agree. This file is prepended to each pipeline's
+// shader (WGSL has no includes).
+
+// Twin: MAX_GPU_DEGREE in src/gpu/layout.rs.
+const MAX_DEGREE: u32 = 31u;
+// Twin: TESSELLATE_WORKGROUP_SIZE in src/gpu/layout.rs.
+const TESSELLATE_WORKGROUP_SIZE: u32 = 64u;
+
+// Twin: GpuVertex. A point with a tag (curve index for samples, style index for overlays).
+struct Vertex {
+    position: vec3<f32>,
+    id: u32,
+}
+
+// Twin: GpuSegment. One Bézier segment and where its samples go.
+struct Segment {
+    first_point: u32,
+    degree: u32,
+    curve: u32,
+    first_sample: u32,
+    sample_count: u32,
+    u0: f32,
+    u1: f32,
+    _padding: u32,
+}
+
+// Twin: GpuTessParams.
+struct TessParams {
+    segment_count: u32,
+    groups_x: u32,
+    _padding0: u32,
+    _padding1: u32,
+}
+
+// Twin: GpuCamera.
+struct Camera {
+    clip_from_world: mat4x4<f32>,
+    viewport_px: vec2<f32>,
+    width_scale: f32,
+    _padding: f32,
+}
+
+// Twin: GpuLineStyle.
+struct LineStyle {
+    color: vec4<f32>,
+    width_px: f32,
+    dash_px: f32,
+    _padding0: u32,
+    _padding1: u32,
+}

@@ -1,0 +1,103 @@
+// Anti-aliased polylines of a width in pixels, read straight from a storage buffer of
+// tagged vertices (the tessellator's samples, or CPU-made overlays). Instance i draws the
+// piece from vertex i to vertex i + 1 as a screen-space quad around a capsule (round caps
+// make round joins); pieces whose two vertices have different tags are skipped.
+
+@group(0) @binding(0) var<uniform> camera: Camera;
+@group(1) @binding(0) var<storage, read> vertices: array<Vertex>;
+@group(1) @binding(1) var<storage, read> styles: array<LineStyle>;
+
+struct LineOut {
+    @builtin(position) position: vec4<f32>,
+    @location(0) color: vec4<f32>,
+    // The fragment in the piece's frame: pixels along the piece from its start, across it.
+    @location(1) local_px: vec2<f32>,
+    @location(2) @interpolate(flat) length_px: f32,
+    @location(3) @interpolate(flat) half_width_px: f32,
+    @location(4) @interpolate(flat) dash_px: f32,
+}
+
+// Clip-space w below which a point counts as behind the eye.
+const NEAR_W: f32 = 1e-6;
+
+fn pixel_from_clip(c: vec4<f32>) -> vec2<f32> {
+    let ndc = c.xy / c.w;
+    return vec2<f32>((ndc.x * 0.5 + 0.5) * camera.viewport_px.x,
+                     (0.5 - ndc.y * 0.5) * camera.viewport_px.y);
+}
+
+fn clip_from_pixel(p: vec2<f32>) -> vec4<f32> {
+    let ndc = vec2<f32>(p.x / camera.viewport_px.x * 2.0 - 1.0,
+                        1.0 - p.y / camera.viewport_px.y * 2.0);
+    return vec4<f32>(ndc, 0.5, 1.0);
+}
+
+fn culled() -> LineOut {
+    var out: LineOut;
+    out.position = vec4<f32>(-4.0, -4.0, 0.5, 1.0);
+    return out;
+}
+
+@vertex
+fn vs_line(@builtin(vertex_index) corner: u32, @builtin(instance_index) piece: u32) -> LineOut {
+    let a = vertices[piece];
+    let b = vertices[piece + 1u];
+    if (a.id != b.id) {
+        return culled();
+    }
+    var ca = camera.clip_from_world * vec4<f32>(a.position, 1.0);
+    var cb = camera.clip_from_world * vec4<f32>(b.position, 1.0);
+    // Clip the piece against the plane in front of the eye (3D only; w = 1 in 2D).
+    if (ca.w < NEAR_W && cb.w < NEAR_W) {
+        return culled();
+    }
+    if (ca.w < NEAR_W) {
+        ca = mix(ca, cb, (NEAR_W - ca.w) / (cb.w - ca.w));
+    } else if (cb.w < NEAR_W) {
+        cb = mix(cb, ca, (NEAR_W - cb.w) / (ca.w - cb.w));
+    }
+    let style = styles[a.id];
+    let pa = pixel_from_clip(ca);
+    let pb = pixel_from_clip(cb);
+    let delta = pb - pa;
+    let len = length(delta);
+    var dir = vec2<f32>(1.0, 0.0);
+    if (len > 1e-6) {
+        dir = delta / len;
+    }
+    let normal = vec2<f32>(-dir.y, dir.x);
+    let half_width = 0.5 * style.width_px * camera.width_scale;
+    // One pixel of margin for the anti-aliased edge.
+    let r = half_width + 1.0;
+    // Two triangles: (start, -), (end, -), (start, +), (start, +), (end, -), (end, +).
+    let at_end = corner == 1u || corner == 4u || corner == 5u;
+    let side = select(-1.0, 1.0, corner == 2u || corner == 3u || corner == 5u);
+    var p = pa - dir * r;
+    if (at_end) {
+        p = pb + dir * r;
+    }
+    p += normal * side * r;
+    var out: LineOut;
+    out.position = clip_from_pixel(p);
+    out.color = style.color;
+    out.local_px = vec2<f32>(dot(p - pa, dir), dot(p - pa, normal));
+    out.length_px = len;
+    out.half_width_px = half_width;
+    out.dash_px = style.dash_px * camera.width_scale;
+    return out;
+}
+
+@fragment
+fn fs_line(in: LineOut) -> @location(0) vec4<f32> {
+    let along = clamp(in.local_px.x, 0.0, in.length_px);
+    let dist = length(vec2<f32>(in.local_px.x - along, in.local_px.y));
+    var coverage = clamp(in.half_width_px + 0.5 - dist, 0.0, 1.0);
+    if (in.dash_px > 0.0 && fract(along / in.dash_px) >= 0.5) {
+        coverage = 0.0;
+    }
+    if (coverage <= 0.0) {
+        discard;
+    }
+    let alpha = in.color.a * coverage;
+    return vec4<f32>(in.color.rgb * alpha, alpha);
+}

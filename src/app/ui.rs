@@ -1,0 +1,131 @@
+//! The viewer's side panel (egui).
+
+use std::collections::VecDeque;
+use std::time::Instant;
+
+use crate::camera::Camera;
+use crate::geom::{Lower, ParamCurve};
+use crate::scene::Scene;
+
+use super::Toggles;
+
+/// The panel's default width in points.
+pub(crate) const PANEL_WIDTH_POINTS: f64 = 260.0;
+/// The panel lists at most this many curves (stress scenes have millions).
+const LISTED_CURVES: usize = 200;
+
+/// What the panel shows.
+pub(crate) struct PanelInfo<'a> {
+    pub scene: &'a Scene,
+    pub adapter: &'a str,
+    pub fps: f64,
+    pub samples_per_frame: u64,
+    pub camera: &'a Camera,
+}
+
+/// What the user asked for this frame.
+#[derive(Debug, Default)]
+pub(crate) struct Actions {
+    pub fit: bool,
+}
+
+/// Frames per second over the last second.
+pub(crate) struct FpsCounter {
+    stamps: VecDeque<Instant>,
+}
+
+impl FpsCounter {
+    pub fn new(now: Instant) -> FpsCounter {
+        FpsCounter {
+            stamps: VecDeque::from([now]),
+        }
+    }
+
+    pub fn tick(&mut self, now: Instant) {
+        self.stamps.push_back(now);
+        while self.stamps.len() > 2 && now.duration_since(self.stamps[0]).as_secs_f64() > 1.0 {
+            self.stamps.pop_front();
+        }
+    }
+
+    pub fn fps(&self) -> f64 {
+        let (Some(first), Some(last)) = (self.stamps.front(), self.stamps.back()) else {
+            return 0.0;
+        };
+        let span = last.duration_since(*first).as_secs_f64();
+        if span > 0.0 {
+            (self.stamps.len() - 1) as f64 / span
+        } else {
+            0.0
+        }
+    }
+}
+
+/// Draws the panel; returns its width in points (0 when hidden).
+pub(crate) fn panel(
+    ui: &mut egui::Ui,
+    info: &PanelInfo<'_>,
+    toggles: &mut Toggles,
+    actions: &mut Actions,
+) -> f32 {
+    if !toggles.show_panel {
+        return 0.0;
+    }
+    let response = egui::Panel::left("splinescope-panel")
+        .default_size(PANEL_WIDTH_POINTS as f32)
+        .resizable(true)
+        .show(ui, |ui| {
+            ui.heading(info.scene.name.as_deref().unwrap_or("splinescope"));
+            ui.label(format!(
+                "{} curve(s) · {} samples/frame · {:.0} fps",
+                info.scene.curves.len(),
+                info.samples_per_frame,
+                info.fps
+            ));
+            ui.small(info.adapter);
+            ui.separator();
+            ui.checkbox(&mut toggles.show_polygons, "control polygons (P)");
+            ui.checkbox(&mut toggles.show_points, "control points (C)");
+            if ui.button("fit (F)").clicked() {
+                actions.fit = true;
+            }
+            ui.small(match info.camera {
+                Camera::Ortho2d(_) => "2D · drag: pan · wheel: zoom",
+                Camera::Orbit3d(_) => "3D · left drag: orbit · right drag: pan · wheel: zoom",
+            });
+            ui.small("H hides this panel · Esc quits");
+            ui.separator();
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                for (i, c) in info.scene.curves.iter().take(LISTED_CURVES).enumerate() {
+                    let segments = c.curve.lower();
+                    let degree = segments
+                        .iter()
+                        .map(|s| s.bezier.degree())
+                        .max()
+                        .unwrap_or(0);
+                    let (a, b) = c.curve.domain();
+                    let [r, g, bl, _] = c.style.color.0.map(|v| (v * 255.0).round() as u8);
+                    ui.horizontal(|ui| {
+                        ui.colored_label(egui::Color32::from_rgb(r, g, bl), "■");
+                        ui.label(format!(
+                            "{i}: {}",
+                            c.name.as_deref().unwrap_or(c.curve.family())
+                        ));
+                    })
+                    .response
+                    .on_hover_text(format!(
+                        "{} · domain [{a}, {b}] · {} segment(s), degree ≤ {degree}",
+                        c.curve.family(),
+                        segments.len()
+                    ));
+                }
+                if info.scene.curves.len() > LISTED_CURVES {
+                    ui.small(format!(
+                        "… and {} more",
+                        info.scene.curves.len() - LISTED_CURVES
+                    ));
+                }
+            });
+        });
+    response.response.rect.width()
+}

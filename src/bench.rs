@@ -1,0 +1,297 @@
+//! `splinescope bench`: tessellation throughput on the CPU (exact f64 path and the f32
+//! twin of the kernel, one thread each) and on the GPU (compute only, compute with
+//! readback, and whole frames drawn offscreen).
+
+use std::time::{Duration, Instant};
+
+use anyhow::Result;
+use glam::DVec2;
+use serde_json::json;
+
+use splinescope::geom::ParamCurve;
+use splinescope::gpu::GpuContext;
+use splinescope::gpu::layout::GpuVertex;
+use splinescope::gpu::offscreen::OFFSCREEN_FORMAT;
+use splinescope::gpu::pack::{ChunkLimits, prepare_scene};
+use splinescope::gpu::renderer::{Renderer, camera_uniform};
+use splinescope::gpu::tessellator::{Tessellator, read_buffer};
+use splinescope::gpu::twin;
+use splinescope::scene::generate::{StressOptions, random_bezier_scene};
+
+/// Options of `splinescope bench`.
+#[derive(Debug, clap::Args)]
+pub struct BenchArgs {
+    /// Number of random curves.
+    #[arg(long, default_value_t = 100_000, value_parser = clap::value_parser!(u64).range(1..=10_000_000))]
+    curves: u64,
+    /// Their degree.
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=31))]
+    degree: u64,
+    /// Samples per curve.
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(2..=4096))]
+    samples: u32,
+    /// Timed repetitions of each GPU measurement (after one warm-up).
+    #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=10_000))]
+    iterations: u32,
+    /// Also draw this many whole frames offscreen (compute + lines) at 1920×1080; 0 skips.
+    #[arg(long, default_value_t = 5)]
+    frames: u32,
+    /// Print the results as JSON instead of a table.
+    #[arg(long)]
+    json: bool,
+    #[command(flatten)]
+    gpu: super::GpuArgs,
+}
+
+fn rate(samples: u64, elapsed: Duration) -> f64 {
+    samples as f64 / elapsed.as_secs_f64().max(1e-12)
+}
+
+/// Runs the benchmark and prints its report.
+///
+/// # Errors
+/// GPU setup or readback errors.
+pub fn run(args: &BenchArgs) -> Result<()> {
+    let scene = random_bezier_scene(StressOptions {
+        curves: args.curves as usize,
+        degree: args.degree as usize,
+        samples: args.samples,
+        three_d: false,
+        seed: 7,
+    });
+    let total = args.curves * u64::from(args.samples);
+    let ctx = args.gpu.context()?;
+    let prepared = prepare_scene(
+        &scene,
+        ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
+    )?;
+
+    // CPU f64, one thread: at most 2M samples so it finishes quickly.
+    let cpu_curves = (2_000_000 / u64::from(args.samples)).clamp(1, args.curves) as usize;
+    let started = Instant::now();
+    let mut sink = glam::DVec3::ZERO;
+    let denominator = f64::from(args.samples - 1);
+    for c in &scene.curves[..cpu_curves] {
+        for j in 0..args.samples {
+            sink += c.curve.eval(f64::from(j) / denominator);
+        }
+    }
+    let cpu_f64 = rate(
+        cpu_curves as u64 * u64::from(args.samples),
+        started.elapsed(),
+    );
+    std::hint::black_box(sink);
+
+    // CPU twin (f32), one thread, over the first chunk's records (capped like above).
+    let chunk = &prepared.chunks[0];
+    let records = chunk
+        .segments
+        .len()
+        .min((2_000_000 / args.samples as usize).max(1));
+    let mut out = vec![
+        GpuVertex {
+            position: [0.0; 3],
+            id: 0
+        };
+        chunk.sample_count as usize
+    ];
+    let started = Instant::now();
+    twin::tessellate(&chunk.points, &chunk.segments[..records], &mut out);
+    let cpu_twin = rate(records as u64 * u64::from(args.samples), started.elapsed());
+    std::hint::black_box(&out);
+
+    // GPU compute only.
+    let tessellator = Tessellator::new(&ctx.device);
+    let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
+    let gpu_scene = renderer.upload(&ctx.device, &tessellator, &prepared);
+    let timestamps = Timestamps::new(&ctx);
+    let mut gpu_pass_ns = Vec::new();
+    let mut wall = Duration::ZERO;
+    for i in 0..=args.iterations {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        tessellator.encode(
+            &mut encoder,
+            gpu_scene.chunks.iter().map(|c| &c.buffers),
+            timestamps.as_ref().map(Timestamps::writes),
+        );
+        let started = Instant::now();
+        if let Some(ts) = &timestamps {
+            let ns = ts.resolve_and_read(&ctx, encoder)?;
+            if i > 0 {
+                gpu_pass_ns.push(ns);
+            }
+        } else {
+            ctx.queue.submit([encoder.finish()]);
+            ctx.device
+                .poll(wgpu::PollType::wait_indefinitely())
+                .map_err(|e| anyhow::anyhow!("{e}"))?;
+        }
+        if i > 0 {
+            wall += started.elapsed();
+        }
+    }
+    let gpu_wall = rate(total * u64::from(args.iterations), wall);
+    let gpu_pass = (!gpu_pass_ns.is_empty()).then(|| {
+        let mean = gpu_pass_ns.iter().sum::<f64>() / gpu_pass_ns.len() as f64;
+        total as f64 / (mean * 1e-9)
+    });
+
+    // GPU compute + readback of every sample.
+    let started = Instant::now();
+    let mut read = 0u64;
+    tessellator.tessellate_and_read(&ctx.device, &ctx.queue, &prepared.chunks, |_, s| {
+        read += s.len() as u64;
+    })?;
+    let gpu_readback = rate(read, started.elapsed());
+
+    // Whole frames offscreen.
+    let frame_fps = if args.frames > 0 {
+        Some(draw_frames(
+            &ctx,
+            &tessellator,
+            &renderer,
+            &gpu_scene,
+            &scene,
+            args.frames,
+        )?)
+    } else {
+        None
+    };
+
+    let report = json!({
+        "adapter": ctx.describe(),
+        "curves": args.curves,
+        "degree": args.degree,
+        "samples_per_curve": args.samples,
+        "chunks": prepared.chunks.len(),
+        "cpu_f64_one_thread_samples_per_s": cpu_f64,
+        "cpu_f32_twin_one_thread_samples_per_s": cpu_twin,
+        "gpu_compute_wall_samples_per_s": gpu_wall,
+        "gpu_compute_timestamp_samples_per_s": gpu_pass,
+        "gpu_compute_with_readback_samples_per_s": gpu_readback,
+        "frames_per_s_1920x1080": frame_fps,
+    });
+    if args.json {
+        println!("{report:#}");
+        return Ok(());
+    }
+    let m = |v: f64| format!("{:>10.1} M samples/s", v / 1e6);
+    println!(
+        "adapter: {}\n{} curves of degree {}, {} samples each ({} samples, {} chunk(s))",
+        ctx.describe(),
+        args.curves,
+        args.degree,
+        args.samples,
+        total,
+        prepared.chunks.len()
+    );
+    println!("  CPU f64 de Casteljau, 1 thread     {}", m(cpu_f64));
+    println!("  CPU f32 kernel twin, 1 thread      {}", m(cpu_twin));
+    println!("  GPU compute (wall, submit+wait)    {}", m(gpu_wall));
+    match gpu_pass {
+        Some(v) => println!("  GPU compute (timestamps)           {}", m(v)),
+        None => println!("  GPU compute (timestamps)           not supported by this adapter"),
+    }
+    println!("  GPU compute + readback             {}", m(gpu_readback));
+    if let Some(fps) = frame_fps {
+        println!(
+            "  whole frames 1920×1080 (compute + {} line pieces) {fps:.2} frames/s",
+            total.saturating_sub(args.curves)
+        );
+    }
+    Ok(())
+}
+
+fn draw_frames(
+    ctx: &GpuContext,
+    tessellator: &Tessellator,
+    renderer: &Renderer,
+    gpu_scene: &splinescope::gpu::renderer::GpuScene,
+    scene: &splinescope::scene::Scene,
+    frames: u32,
+) -> Result<f64> {
+    let (w, h) = (1920, 1080);
+    let viewport = DVec2::new(f64::from(w), f64::from(h));
+    renderer.set_camera(
+        &ctx.queue,
+        &camera_uniform(&scene.camera(viewport), viewport, 1.0),
+    );
+    let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("bench target"),
+        size: wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: OFFSCREEN_FORMAT,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+        view_formats: &[],
+    });
+    let view = texture.create_view(&Default::default());
+    let mut elapsed = Duration::ZERO;
+    for i in 0..=frames {
+        let started = Instant::now();
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        renderer.encode_frame(&mut encoder, tessellator, gpu_scene, &view);
+        ctx.queue.submit([encoder.finish()]);
+        ctx.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| anyhow::anyhow!("{e}"))?;
+        if i > 0 {
+            elapsed += started.elapsed();
+        }
+    }
+    Ok(f64::from(frames) / elapsed.as_secs_f64().max(1e-12))
+}
+
+/// GPU timestamps around the compute pass, when the adapter supports them.
+struct Timestamps {
+    set: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    period_ns: f32,
+}
+
+impl Timestamps {
+    fn new(ctx: &GpuContext) -> Option<Timestamps> {
+        if !ctx
+            .device
+            .features()
+            .contains(wgpu::Features::TIMESTAMP_QUERY)
+        {
+            return None;
+        }
+        Some(Timestamps {
+            set: ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("tessellate timestamps"),
+                ty: wgpu::QueryType::Timestamp,
+                count: 2,
+            }),
+            resolve: ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("timestamps"),
+                size: 16,
+                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
+            period_ns: ctx.queue.get_timestamp_period(),
+        })
+    }
+
+    fn writes(&self) -> wgpu::ComputePassTimestampWrites<'_> {
+        wgpu::ComputePassTimestampWrites {
+            query_set: &self.set,
+            beginning_of_pass_write_index: Some(0),
+            end_of_pass_write_index: Some(1),
+        }
+    }
+
+    /// Submits `encoder` with the timestamps resolved, waits, and returns the pass's
+    /// duration in nanoseconds.
+    fn resolve_and_read(&self, ctx: &GpuContext, mut encoder: wgpu::CommandEncoder) -> Result<f64> {
+        encoder.resolve_query_set(&self.set, 0..2, &self.resolve, 0);
+        let ticks: Vec<u64> = read_buffer(&ctx.device, &ctx.queue, &mut encoder, &self.resolve)?;
+        Ok(ticks[1].saturating_sub(ticks[0]) as f64 * f64::from(self.period_ns))
+    }
+}

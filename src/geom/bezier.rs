@@ -1,0 +1,445 @@
+//! Bézier curves of any degree (all three papers, MATH.md §0).
+
+use glam::DVec3;
+
+use super::{GeomError, ParamCurve};
+
+/// Degrees up to this size evaluate on the stack; higher degrees allocate once per call.
+const STACK_POINTS: usize = 32;
+
+/// A Bézier curve of degree `n` in 3D (planar curves have `z = 0`):
+///
+/// `P(t) = Σ_{i=0..n} P_i B_{i,n}(t)`, `t ∈ [0, 1]`, `B_{i,n}(t) = C(n,i) tⁱ (1−t)ⁿ⁻ⁱ`.
+///
+/// Evaluated by de Casteljau: `P_i⁰ = P_i`, `P_iʲ = (1−t) P_{i−1}ʲ⁻¹ + t P_iʲ⁻¹`,
+/// `P(t) = P_nⁿ` (paper 002, §3; used by papers 000 and 001 as well). Any degree `n ≥ 0` is
+/// valid here; the GPU has a maximum (see `gpu::layout::MAX_GPU_DEGREE`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bezier {
+    points: Vec<DVec3>,
+}
+
+/// An axis-aligned bounding box.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Aabb {
+    /// The smallest corner.
+    pub min: DVec3,
+    /// The largest corner.
+    pub max: DVec3,
+}
+
+impl Aabb {
+    /// The empty box (min = +∞, max = −∞): the identity of [`Aabb::union`].
+    pub const EMPTY: Aabb = Aabb {
+        min: DVec3::INFINITY,
+        max: DVec3::NEG_INFINITY,
+    };
+
+    /// The smallest box holding all `points` ([`Aabb::EMPTY`] for none).
+    #[must_use]
+    pub fn from_points(points: &[DVec3]) -> Aabb {
+        points.iter().fold(Aabb::EMPTY, |b, &p| b.including(p))
+    }
+
+    /// This box grown to hold `p`.
+    #[must_use]
+    pub fn including(self, p: DVec3) -> Aabb {
+        Aabb {
+            min: self.min.min(p),
+            max: self.max.max(p),
+        }
+    }
+
+    /// The smallest box holding both boxes.
+    #[must_use]
+    pub fn union(self, other: Aabb) -> Aabb {
+        Aabb {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
+    }
+
+    /// Whether the box holds no point.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.min.x > self.max.x || self.min.y > self.max.y || self.min.z > self.max.z
+    }
+
+    /// The length of the diagonal (0 for a point, 0 for the empty box).
+    #[must_use]
+    pub fn diagonal(&self) -> f64 {
+        if self.is_empty() {
+            0.0
+        } else {
+            (self.max - self.min).length()
+        }
+    }
+
+    /// The centre of the box.
+    #[must_use]
+    pub fn center(&self) -> DVec3 {
+        (self.min + self.max) * 0.5
+    }
+}
+
+/// Runs de Casteljau on a scratch copy of `points` at `t` and returns `P_nⁿ`.
+fn de_casteljau(points: &[DVec3], t: f64) -> DVec3 {
+    fn run(p: &mut [DVec3], t: f64) -> DVec3 {
+        let s = 1.0 - t;
+        let n = p.len() - 1;
+        for r in 1..=n {
+            for i in 0..=(n - r) {
+                p[i] = s * p[i] + t * p[i + 1];
+            }
+        }
+        p[0]
+    }
+    if points.is_empty() {
+        return DVec3::ZERO;
+    }
+    if points.len() <= STACK_POINTS {
+        let mut buf = [DVec3::ZERO; STACK_POINTS];
+        buf[..points.len()].copy_from_slice(points);
+        run(&mut buf[..points.len()], t)
+    } else {
+        run(&mut points.to_vec(), t)
+    }
+}
+
+impl Bezier {
+    /// A Bézier curve with the given control points (degree = `points.len() − 1`).
+    ///
+    /// # Errors
+    /// [`GeomError::TooFewPoints`] for an empty list, [`GeomError::NonFinitePoint`] for a
+    /// NaN or infinite coordinate.
+    pub fn try_new(points: Vec<DVec3>) -> Result<Bezier, GeomError> {
+        if points.is_empty() {
+            return Err(GeomError::TooFewPoints { min: 1, found: 0 });
+        }
+        check_finite(&points)?;
+        Ok(Bezier { points })
+    }
+
+    /// A Bézier curve from points known to be valid (non-empty, finite).
+    ///
+    /// # Panics
+    /// If `points` is empty: that is a bug in the caller. Use [`Bezier::try_new`] for data.
+    #[must_use]
+    pub fn new(points: Vec<DVec3>) -> Bezier {
+        assert!(
+            !points.is_empty(),
+            "a Bézier curve needs at least one point"
+        );
+        Bezier { points }
+    }
+
+    /// The degree `n` (number of control points − 1).
+    #[must_use]
+    pub fn degree(&self) -> usize {
+        self.points.len() - 1
+    }
+
+    /// The control points `P_0..P_n`.
+    #[must_use]
+    pub fn points(&self) -> &[DVec3] {
+        &self.points
+    }
+
+    /// Consumes the curve, returning its control points.
+    #[must_use]
+    pub fn into_points(self) -> Vec<DVec3> {
+        self.points
+    }
+
+    /// The point `P(t)` by de Casteljau (also valid for `t` outside `[0, 1]`, where it
+    /// extrapolates the polynomial).
+    #[must_use]
+    pub fn eval(&self, t: f64) -> DVec3 {
+        de_casteljau(&self.points, t)
+    }
+
+    /// The hodograph `P′` as a Bézier curve of degree `n − 1` with control points
+    /// `n (P_{i+1} − P_i)`; for `n = 0` the zero curve of degree 0.
+    #[must_use]
+    pub fn deriv(&self) -> Bezier {
+        let n = self.degree();
+        if n == 0 {
+            return Bezier::new(vec![DVec3::ZERO]);
+        }
+        let nf = n as f64;
+        Bezier::new(self.points.windows(2).map(|w| nf * (w[1] - w[0])).collect())
+    }
+
+    /// `P′(t) = n Σ (P_{i+1} − P_i) B_{i,n−1}(t)`.
+    #[must_use]
+    pub fn eval_deriv(&self, t: f64) -> DVec3 {
+        let n = self.degree();
+        if n == 0 {
+            return DVec3::ZERO;
+        }
+        let nf = n as f64;
+        if n < STACK_POINTS {
+            let mut buf = [DVec3::ZERO; STACK_POINTS];
+            for i in 0..n {
+                buf[i] = nf * (self.points[i + 1] - self.points[i]);
+            }
+            de_casteljau(&buf[..n], t)
+        } else {
+            self.deriv().eval(t)
+        }
+    }
+
+    /// `P″(t) = n(n−1) Σ (P_{i+2} − 2P_{i+1} + P_i) B_{i,n−2}(t)`.
+    #[must_use]
+    pub fn eval_second_deriv(&self, t: f64) -> DVec3 {
+        let n = self.degree();
+        if n < 2 {
+            return DVec3::ZERO;
+        }
+        let c = (n * (n - 1)) as f64;
+        let second: Vec<DVec3> = self
+            .points
+            .windows(3)
+            .map(|w| c * (w[2] - 2.0 * w[1] + w[0]))
+            .collect();
+        de_casteljau(&second, t)
+    }
+
+    /// Splits at `t` into the curves on `[0, t]` and `[t, 1]`, each reparametrised to
+    /// `[0, 1]`, from the de Casteljau triangle: the left polygon is the first point of
+    /// each column, the right polygon the last point of each column, reversed.
+    #[must_use]
+    pub fn split(&self, t: f64) -> (Bezier, Bezier) {
+        let n = self.degree();
+        let s = 1.0 - t;
+        let mut work = self.points.clone();
+        let mut left = Vec::with_capacity(n + 1);
+        let mut right = vec![DVec3::ZERO; n + 1];
+        left.push(work[0]);
+        right[n] = work[n];
+        for r in 1..=n {
+            for i in 0..=(n - r) {
+                work[i] = s * work[i] + t * work[i + 1];
+            }
+            left.push(work[0]);
+            right[n - r] = work[n - r];
+        }
+        (Bezier::new(left), Bezier::new(right))
+    }
+
+    /// The piece of the curve on `[t0, t1]` reparametrised to `[0, 1]`
+    /// (`Q(u) = P(t0 + u (t1 − t0))`). `t0 > t1` gives the reversed piece.
+    #[must_use]
+    pub fn subsegment(&self, t0: f64, t1: f64) -> Bezier {
+        if t0 == 0.0 && t1 == 1.0 {
+            return self.clone();
+        }
+        if t1 != 0.0 {
+            // The left piece L(u) = P(u t1); its right part from u = t0/t1 is
+            // L(t0/t1 + v (1 − t0/t1)) = P(t0 + v (t1 − t0)).
+            let (left, _) = self.split(t1);
+            left.split(t0 / t1).1
+        } else {
+            // Q(u) = P(t0 (1 − u)) = L(1 − u) with L(v) = P(v t0), the left piece at t0.
+            self.split(t0).0.reversed()
+        }
+    }
+
+    /// The same curve traversed backwards (`Q(t) = P(1 − t)`).
+    #[must_use]
+    pub fn reversed(&self) -> Bezier {
+        let mut points = self.points.clone();
+        points.reverse();
+        Bezier::new(points)
+    }
+
+    /// Degree elevation by one: `Q_i = (i/(n+1)) P_{i−1} + (1 − i/(n+1)) P_i`,
+    /// `i = 0..n+1`. The curve does not change.
+    #[must_use]
+    pub fn elevate(&self) -> Bezier {
+        let n = self.degree();
+        let m = (n + 1) as f64;
+        let mut q = Vec::with_capacity(n + 2);
+        q.push(self.points[0]);
+        for i in 1..=n {
+            let a = i as f64 / m;
+            q.push(a * self.points[i - 1] + (1.0 - a) * self.points[i]);
+        }
+        q.push(self.points[n]);
+        Bezier::new(q)
+    }
+
+    /// The curve elevated to `degree` (unchanged when `degree ≤ self.degree()`).
+    #[must_use]
+    pub fn elevated_to(&self, degree: usize) -> Bezier {
+        let mut b = self.clone();
+        while b.degree() < degree {
+            b = b.elevate();
+        }
+        b
+    }
+
+    /// The box of the control points: it holds the curve (convex hull property).
+    #[must_use]
+    pub fn control_box(&self) -> Aabb {
+        Aabb::from_points(&self.points)
+    }
+
+    /// The tight bounding box of the curve on `[0, 1]`: the end points and the points where
+    /// a coordinate's derivative vanishes. The roots are isolated by Bernstein subdivision
+    /// and refined to `1e-12` in `t`, so the box is exact to within
+    /// `1e-12 · max|P′|` per side.
+    #[must_use]
+    pub fn bounding_box(&self) -> Aabb {
+        let n = self.degree();
+        let mut bbox = Aabb::from_points(&[self.points[0], self.points[n]]);
+        if n < 2 {
+            return bbox;
+        }
+        let hodograph = self.deriv();
+        for axis in 0..3 {
+            let coeffs: Vec<f64> = hodograph.points.iter().map(|p| p[axis]).collect();
+            let mut roots = Vec::new();
+            bernstein_roots(&coeffs, 0.0, 1.0, 0, &mut roots);
+            for t in roots {
+                bbox = bbox.including(self.eval(t));
+            }
+        }
+        bbox
+    }
+}
+
+/// Pushes the roots in `(lo, hi)` of the polynomial with Bernstein coefficients `c` over
+/// `[lo, hi]` (variation diminishing: no sign change in `c` means no root).
+fn bernstein_roots(c: &[f64], lo: f64, hi: f64, depth: u32, out: &mut Vec<f64>) {
+    let scale = c.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    if scale == 0.0 {
+        return; // identically zero: the coordinate is constant here, no extremum needed
+    }
+    let eps = scale * 1e-14;
+    let positive = c.iter().all(|&v| v > eps);
+    let negative = c.iter().all(|&v| v < -eps);
+    if positive || negative {
+        return;
+    }
+    if hi - lo < 1e-12 || depth >= 48 {
+        out.push(0.5 * (lo + hi));
+        return;
+    }
+    // Split the Bernstein coefficients at 1/2 (de Casteljau on scalars).
+    let n = c.len() - 1;
+    let mut work = c.to_vec();
+    let mut left = Vec::with_capacity(n + 1);
+    let mut right = vec![0.0; n + 1];
+    left.push(work[0]);
+    right[n] = work[n];
+    for r in 1..=n {
+        for i in 0..=(n - r) {
+            work[i] = 0.5 * (work[i] + work[i + 1]);
+        }
+        left.push(work[0]);
+        right[n - r] = work[n - r];
+    }
+    let mid = 0.5 * (lo + hi);
+    bernstein_roots(&left, lo, mid, depth + 1, out);
+    bernstein_roots(&right, mid, hi, depth + 1, out);
+}
+
+/// Checks every coordinate of `points` is finite.
+pub(crate) fn check_finite(points: &[DVec3]) -> Result<(), GeomError> {
+    for (index, p) in points.iter().enumerate() {
+        for value in p.to_array() {
+            if !value.is_finite() {
+                return Err(GeomError::NonFinitePoint { index, value });
+            }
+        }
+    }
+    Ok(())
+}
+
+impl ParamCurve for Bezier {
+    fn domain(&self) -> (f64, f64) {
+        (0.0, 1.0)
+    }
+    fn eval(&self, t: f64) -> DVec3 {
+        Bezier::eval(self, t)
+    }
+    fn eval_deriv(&self, t: f64) -> DVec3 {
+        Bezier::eval_deriv(self, t)
+    }
+    fn eval_second_deriv(&self, t: f64) -> DVec3 {
+        Bezier::eval_second_deriv(self, t)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::bernstein::bernstein;
+
+    fn cubic() -> Bezier {
+        Bezier::new(vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 2.0, 0.0),
+            DVec3::new(3.0, 2.0, 1.0),
+            DVec3::new(4.0, 0.0, -1.0),
+        ])
+    }
+
+    #[test]
+    fn de_casteljau_matches_bernstein_sum() {
+        let b = cubic();
+        for k in 0..=16 {
+            let t = k as f64 / 16.0;
+            let want: DVec3 = b
+                .points()
+                .iter()
+                .enumerate()
+                .map(|(i, &p)| p * bernstein(i, 3, t))
+                .sum();
+            assert!((b.eval(t) - want).length() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn end_points_are_interpolated_exactly() {
+        let b = cubic();
+        assert_eq!(b.eval(0.0), b.points()[0]);
+        assert_eq!(b.eval(1.0), b.points()[3]);
+    }
+
+    #[test]
+    fn end_derivatives_are_n_times_the_end_legs() {
+        // Paper 002: Q'(0) = n (P1 − P0), Q'(1) = n (Pn − P_{n−1}).
+        let b = cubic();
+        let p = b.points();
+        assert_eq!(b.eval_deriv(0.0), 3.0 * (p[1] - p[0]));
+        assert_eq!(b.eval_deriv(1.0), 3.0 * (p[3] - p[2]));
+        assert_eq!(b.eval_second_deriv(0.0), 6.0 * (p[2] - 2.0 * p[1] + p[0]));
+    }
+
+    #[test]
+    fn bounding_box_of_a_parabola_is_exact() {
+        // P(t) = (2t, 4t(1−t)): y peaks at t = 1/2 with value 1.
+        let b = Bezier::new(vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 2.0, 0.0),
+            DVec3::new(2.0, 0.0, 0.0),
+        ]);
+        let bb = b.bounding_box();
+        assert!((bb.max.y - 1.0).abs() < 1e-12);
+        assert_eq!(bb.min.y, 0.0);
+        assert_eq!((bb.min.x, bb.max.x), (0.0, 2.0));
+        assert!(b.control_box().max.y == 2.0);
+    }
+
+    #[test]
+    fn empty_and_non_finite_points_are_errors() {
+        assert_eq!(
+            Bezier::try_new(vec![]),
+            Err(GeomError::TooFewPoints { min: 1, found: 0 })
+        );
+        let err = Bezier::try_new(vec![DVec3::ZERO, DVec3::new(0.0, f64::NAN, 0.0)]).unwrap_err();
+        assert_eq!(err.field(), "points[1]");
+    }
+}

@@ -1,0 +1,87 @@
+//! Lowering: every curve family becomes a list of Bézier segments, each with the
+//! parameter range it covers in the curve's own parameter. This list is the single
+//! representation the GPU tessellates.
+
+use super::{Bezier, ParamCurve};
+
+/// One Bézier piece of a lowered curve.
+///
+/// Curve parameter `t ∈ [t0, t1]` maps to the segment's own `u = (t − t0) / (t1 − t0)`;
+/// the curve there equals `bezier.eval(u)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BezierSegment {
+    /// The piece, parametrised over `[0, 1]`.
+    pub bezier: Bezier,
+    /// The curve parameter where the piece starts.
+    pub t0: f64,
+    /// The curve parameter where the piece ends (`t1 > t0`).
+    pub t1: f64,
+}
+
+impl BezierSegment {
+    /// The segment's own parameter `u` for curve parameter `t`.
+    #[must_use]
+    pub fn local_u(&self, t: f64) -> f64 {
+        (t - self.t0) / (self.t1 - self.t0)
+    }
+}
+
+/// A curve that can be written exactly as consecutive Bézier segments.
+pub trait Lower: ParamCurve {
+    /// The exact Bézier segments, in parameter order, covering the whole domain.
+    fn lower(&self) -> Vec<BezierSegment>;
+}
+
+/// Finds the segment holding curve parameter `t` and the local parameter there.
+///
+/// Segments are searched by their start parameter; a `t` on a joint belongs to the later
+/// segment, except the domain's end, which belongs to the last one. Parameters outside the
+/// domain extrapolate the first or last segment. Returns `None` for an empty list.
+#[must_use]
+pub fn locate(segments: &[BezierSegment], t: f64) -> Option<(usize, f64)> {
+    if segments.is_empty() {
+        return None;
+    }
+    // Index of the last segment whose t0 ≤ t (0 when t is before the first).
+    let index = segments
+        .partition_point(|s| s.t0 <= t)
+        .saturating_sub(1)
+        .min(segments.len() - 1);
+    Some((index, segments[index].local_u(t)))
+}
+
+impl Lower for Bezier {
+    fn lower(&self) -> Vec<BezierSegment> {
+        vec![BezierSegment {
+            bezier: self.clone(),
+            t0: 0.0,
+            t1: 1.0,
+        }]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    fn seg(t0: f64, t1: f64) -> BezierSegment {
+        BezierSegment {
+            bezier: Bezier::new(vec![DVec3::ZERO, DVec3::X]),
+            t0,
+            t1,
+        }
+    }
+
+    #[test]
+    fn locate_picks_the_later_segment_on_joints_and_the_last_at_the_end() {
+        let segs = vec![seg(0.0, 1.0), seg(1.0, 3.0), seg(3.0, 4.0)];
+        assert_eq!(locate(&segs, 0.0), Some((0, 0.0)));
+        assert_eq!(locate(&segs, 0.5), Some((0, 0.5)));
+        assert_eq!(locate(&segs, 1.0), Some((1, 0.0)));
+        assert_eq!(locate(&segs, 2.0), Some((1, 0.5)));
+        assert_eq!(locate(&segs, 4.0), Some((2, 1.0)));
+        assert_eq!(locate(&segs, -1.0), Some((0, -1.0)));
+        assert_eq!(locate(&[], 0.0), None);
+    }
+}

@@ -1,0 +1,32 @@
+//! Curve mathematics in `f64`: Bernstein polynomials, Bézier curves of any degree, and the
+//! lowering of every curve family to a list of Bézier segments (the one representation
+//! the GPU sees).
+//!
+//! Points are [`glam::DVec3`]; planar curves have `z = 0`. Nothing in this module knows
+//! about the GPU.
+
+pub mod bernstein;
+pub mod bezier;
+pub mod curve;
+pub mod error;
+pub mod lowering;
+
+pub use bezier::{Aabb, Bezier};
+pub use curve::{Curve, OverlayKind, OverlayPolyline};
+pub use error::GeomError;
+pub use lowering::{BezierSegment, Lower, locate};
+
+use glam::DVec3;
+
+/// A curve evaluated by a parameter over a closed domain (kurbo's `ParamCurve`, in 3D and
+/// `f64`).
+pub trait ParamCurve {
+    /// The parameter domain `[a, b]` of the curve.
+    fn domain(&self) -> (f64, f64);
+    /// The point at parameter `t` (`t` in [`ParamCurve::domain`]).
+    fn eval(&self, t: f64) -> DVec3;
+    /// The first derivative with respect to `t`.
+    fn eval_deriv(&self, t: f64) -> DVec3;
+    /// The second derivative with respect to `t`.
+    fn eval_second_deriv(&self, t: f64) -> DVec3;
+}

@@ -1,0 +1,227 @@
+//! Device setup, separate from the work (as in the wgpu examples) so that tests, headless
+//! runs, the viewer and benchmarks share one path.
+//!
+//! A hardware adapter is preferred (discrete, then integrated, then virtual); the software
+//! adapter (lavapipe on Vulkan, llvmpipe on GL) is taken when nothing else exists. The
+//! backend can be pinned with `--gpu-backend` or the `WGPU_BACKEND` environment variable,
+//! an adapter picked by name with `WGPU_ADAPTER_NAME`. The device gets the adapter's own
+//! limits, not the WebGPU defaults.
+
+use std::fmt;
+use std::str::FromStr;
+
+use super::GpuError;
+
+/// Which graphics API to use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum BackendChoice {
+    /// Every backend compiled in, or `WGPU_BACKEND` when set.
+    #[default]
+    Auto,
+    /// Vulkan (lavapipe is the software one).
+    Vulkan,
+    /// OpenGL / GLES (llvmpipe is the software one).
+    Gl,
+    /// Metal.
+    Metal,
+    /// Direct3D 12.
+    Dx12,
+}
+
+impl FromStr for BackendChoice {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.to_ascii_lowercase().as_str() {
+            "auto" => Ok(BackendChoice::Auto),
+            "vulkan" | "vk" => Ok(BackendChoice::Vulkan),
+            "gl" | "gles" | "opengl" => Ok(BackendChoice::Gl),
+            "metal" => Ok(BackendChoice::Metal),
+            "dx12" | "d3d12" => Ok(BackendChoice::Dx12),
+            other => Err(format!(
+                "unknown GPU backend {other:?} (expected auto, vulkan, gl, metal or dx12)"
+            )),
+        }
+    }
+}
+
+impl fmt::Display for BackendChoice {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            BackendChoice::Auto => "auto",
+            BackendChoice::Vulkan => "vulkan",
+            BackendChoice::Gl => "gl",
+            BackendChoice::Metal => "metal",
+            BackendChoice::Dx12 => "dx12",
+        })
+    }
+}
+
+impl BackendChoice {
+    /// The wgpu backends this choice allows.
+    #[must_use]
+    pub fn backends(self) -> wgpu::Backends {
+        match self {
+            BackendChoice::Auto => wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all()),
+            BackendChoice::Vulkan => wgpu::Backends::VULKAN,
+            BackendChoice::Gl => wgpu::Backends::GL,
+            BackendChoice::Metal => wgpu::Backends::METAL,
+            BackendChoice::Dx12 => wgpu::Backends::DX12,
+        }
+    }
+}
+
+/// How to choose the device.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct ContextOptions {
+    /// The backend.
+    pub backend: BackendChoice,
+    /// Only adapters whose name contains this (case-insensitive); defaults to
+    /// `WGPU_ADAPTER_NAME`.
+    pub adapter_name: Option<String>,
+}
+
+impl ContextOptions {
+    /// Options with the given backend and the adapter name from `WGPU_ADAPTER_NAME`.
+    #[must_use]
+    pub fn from_env(backend: BackendChoice) -> ContextOptions {
+        ContextOptions {
+            backend,
+            adapter_name: std::env::var("WGPU_ADAPTER_NAME")
+                .ok()
+                .filter(|s| !s.is_empty()),
+        }
+    }
+}
+
+/// An adapter, its device and queue.
+#[derive(Debug)]
+pub struct GpuContext {
+    /// The instance the adapter came from.
+    pub instance: wgpu::Instance,
+    /// The chosen adapter.
+    pub adapter: wgpu::Adapter,
+    /// The device, with the adapter's own limits.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+}
+
+/// The hint printed when no adapter exists.
+pub const INSTALL_HINT: &str = "install a Vulkan driver: on Debian/Ubuntu the software one is \
+`sudo apt-get install mesa-vulkan-drivers libvulkan1` (lavapipe); with a GPU, its vendor's \
+driver. Then pin it if needed: WGPU_BACKEND=vulkan \
+VK_DRIVER_FILES=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
+
+fn type_rank(t: wgpu::DeviceType) -> u8 {
+    match t {
+        wgpu::DeviceType::DiscreteGpu => 0,
+        wgpu::DeviceType::IntegratedGpu => 1,
+        wgpu::DeviceType::VirtualGpu => 2,
+        wgpu::DeviceType::Cpu => 3,
+        wgpu::DeviceType::Other => 4,
+    }
+}
+
+fn backend_rank(b: wgpu::Backend) -> u8 {
+    match b {
+        wgpu::Backend::Vulkan | wgpu::Backend::Metal | wgpu::Backend::Dx12 => 0,
+        wgpu::Backend::Gl => 1,
+        _ => 2,
+    }
+}
+
+/// A one-line description of an adapter: name, type, backend, driver.
+#[must_use]
+pub fn describe_adapter(info: &wgpu::AdapterInfo) -> String {
+    format!(
+        "{} ({:?}, {:?}{}{})",
+        info.name,
+        info.device_type,
+        info.backend,
+        if info.driver.is_empty() { "" } else { ", " },
+        info.driver
+    )
+}
+
+impl GpuContext {
+    /// A context for offscreen work (no window).
+    ///
+    /// # Errors
+    /// [`GpuError::NoAdapter`] with an installation hint, or the device request's error.
+    pub fn new(opts: &ContextOptions) -> Result<GpuContext, GpuError> {
+        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
+            backends: opts.backend.backends(),
+            ..wgpu::InstanceDescriptor::new_without_display_handle_from_env()
+        });
+        Self::with_instance(instance, opts, None)
+    }
+
+    /// A context from an existing instance, choosing an adapter that can present to
+    /// `surface` when one is given.
+    ///
+    /// # Errors
+    /// [`GpuError::NoAdapter`] with an installation hint, or the device request's error.
+    pub fn with_instance(
+        instance: wgpu::Instance,
+        opts: &ContextOptions,
+        surface: Option<&wgpu::Surface<'_>>,
+    ) -> Result<GpuContext, GpuError> {
+        let backends = opts.backend.backends();
+        let all = pollster::block_on(instance.enumerate_adapters(backends));
+        let seen: Vec<String> = all
+            .iter()
+            .map(|a| describe_adapter(&a.get_info()))
+            .collect();
+        let wanted = opts.adapter_name.as_ref().map(|n| n.to_lowercase());
+        let adapter = all
+            .into_iter()
+            .filter(|a| surface.is_none_or(|s| a.is_surface_supported(s)))
+            .filter(|a| {
+                wanted
+                    .as_ref()
+                    .is_none_or(|w| a.get_info().name.to_lowercase().contains(w))
+            })
+            .min_by_key(|a| {
+                let info = a.get_info();
+                (type_rank(info.device_type), backend_rank(info.backend))
+            })
+            .ok_or_else(|| GpuError::NoAdapter {
+                backends: format!("{backends:?}"),
+                wanted: opts.adapter_name.clone(),
+                seen: if seen.is_empty() {
+                    "none".into()
+                } else {
+                    seen.join("; ")
+                },
+            })?;
+        let wanted_features = wgpu::Features::TIMESTAMP_QUERY;
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("splinescope"),
+            required_features: adapter.features() & wanted_features,
+            required_limits: adapter.limits(),
+            experimental_features: wgpu::ExperimentalFeatures::disabled(),
+            memory_hints: wgpu::MemoryHints::Performance,
+            trace: wgpu::Trace::Off,
+        }))
+        .map_err(|e| GpuError::Device(e.to_string()))?;
+        Ok(GpuContext {
+            instance,
+            adapter,
+            device,
+            queue,
+        })
+    }
+
+    /// A one-line description of the adapter in use.
+    #[must_use]
+    pub fn describe(&self) -> String {
+        describe_adapter(&self.adapter.get_info())
+    }
+
+    /// The largest buffer one storage binding may use on this device.
+    #[must_use]
+    pub fn max_binding_bytes(&self) -> u64 {
+        let l = self.device.limits();
+        u64::from(l.max_storage_buffer_binding_size).min(l.max_buffer_size)
+    }
+}

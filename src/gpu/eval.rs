@@ -1,0 +1,87 @@
+//! Evaluating curves at given parameters with the GPU kernel (`eval --backend gpu`).
+//!
+//! Each requested parameter becomes a one-sample record of the segment that holds it, so
+//! the kernel evaluates exactly that parameter (rounded to `f32`); results are read back.
+
+use glam::DVec3;
+
+use super::GpuError;
+use super::context::GpuContext;
+use super::layout::GpuVertex;
+use super::pack::{ChunkBuilder, ChunkLimits, check_degrees};
+use super::tessellator::Tessellator;
+use crate::geom::{BezierSegment, locate};
+use crate::scene::Color;
+
+/// Evaluates each curve (given as its lowered segments, with its scene index for error
+/// messages) at its parameters, on the GPU.
+///
+/// # Errors
+/// [`GpuError::Pack`] for a degree over the GPU maximum, [`GpuError::Readback`] when
+/// reading fails or a sample was left unwritten.
+pub fn evaluate(
+    ctx: &GpuContext,
+    curves: &[(usize, Vec<BezierSegment>)],
+    params: &[Vec<f64>],
+) -> Result<Vec<Vec<DVec3>>, GpuError> {
+    evaluate_with_limits(
+        ctx,
+        curves,
+        params,
+        ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
+    )
+}
+
+/// [`evaluate`] with explicit chunk limits (tests use small ones to exercise chunking).
+///
+/// # Errors
+/// As [`evaluate`].
+pub fn evaluate_with_limits(
+    ctx: &GpuContext,
+    curves: &[(usize, Vec<BezierSegment>)],
+    params: &[Vec<f64>],
+    limits: ChunkLimits,
+) -> Result<Vec<Vec<DVec3>>, GpuError> {
+    let style = super::layout::GpuLineStyle::solid(Color::WHITE, 1.0);
+    let mut builder = ChunkBuilder::new(limits);
+    for (slot, ((index, segments), ts)) in curves.iter().zip(params).enumerate() {
+        check_degrees(*index, segments)?;
+        let mut open: Option<usize> = None;
+        for &t in ts {
+            let Some((s, u)) = locate(segments, t) else {
+                continue;
+            };
+            if open != Some(s) {
+                builder.begin_segment(slot, style, segments[s].bezier.points())?;
+                open = Some(s);
+            }
+            builder.add_samples(1, u, u);
+        }
+    }
+    let chunks = builder.finish();
+    let tessellator = Tessellator::new(&ctx.device);
+    let mut all: Vec<GpuVertex> = Vec::with_capacity(params.iter().map(Vec::len).sum());
+    tessellator.tessellate_and_read(&ctx.device, &ctx.queue, &chunks, |_, samples| {
+        all.extend_from_slice(samples);
+    })?;
+    if let Some(i) = all
+        .iter()
+        .position(|v| v.position.iter().any(|c| c.is_nan()))
+    {
+        return Err(GpuError::Readback(format!(
+            "sample {i} was not written by the kernel"
+        )));
+    }
+    let mut out = Vec::with_capacity(curves.len());
+    let mut it = all.into_iter();
+    for ((_, segments), ts) in curves.iter().zip(params) {
+        let n = if segments.is_empty() { 0 } else { ts.len() };
+        out.push(
+            it.by_ref()
+                .take(n)
+                .map(|v| glam::Vec3::from(v.position).as_dvec3())
+                .collect(),
+        );
+    }
+    Ok(out)
+}

@@ -1,0 +1,103 @@
+//! The data layout shared by Rust and WGSL.
+//!
+//! Every struct here is `#[repr(C)]`, `Pod`, with named `_padding` fields, and has a twin
+//! of the same name (less the `Gpu` prefix) in `shaders/common.wgsl`. A test parses the
+//! WGSL with naga and checks that sizes and member offsets agree.
+
+use bytemuck::{Pod, Zeroable};
+
+/// The highest Bézier degree the GPU kernel evaluates (its de Casteljau scratch holds
+/// `MAX_GPU_DEGREE + 1` points). Twin: `MAX_DEGREE` in `shaders/common.wgsl`. A scene
+/// whose lowered segments go over it is an error ([`super::PackError::DegreeTooHigh`]),
+/// never a silent clamp; the CPU evaluates any degree.
+pub const MAX_GPU_DEGREE: usize = 31;
+
+/// Threads per workgroup of the tessellation kernel. Twin:
+/// `TESSELLATE_WORKGROUP_SIZE` in `shaders/common.wgsl`.
+pub const TESSELLATE_WORKGROUP_SIZE: u32 = 64;
+
+/// A point with a 32-bit tag: control points (tag unused), tessellated samples (tag = the
+/// chunk-local curve index), overlay vertices (tag = index into the batch's style table).
+/// Consecutive vertices with different tags are not joined by a line.
+///
+/// Twin: `Vertex` in `shaders/common.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuVertex {
+    /// World position.
+    pub position: [f32; 3],
+    /// The tag (see the type's doc).
+    pub id: u32,
+}
+
+/// One Bézier segment to evaluate: its control points are
+/// `points[first_point ..= first_point + degree]`; sample `j < sample_count` is written
+/// to `samples[first_sample + j]` at the segment parameter
+/// `u = u0 (1 − f) + u1 f`, `f = j / (sample_count − 1)` (`f = 0` for a single sample).
+///
+/// Twin: `Segment` in `shaders/common.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuSegment {
+    /// Index of the first control point.
+    pub first_point: u32,
+    /// Degree `n` (`n + 1` control points), at most [`MAX_GPU_DEGREE`].
+    pub degree: u32,
+    /// Tag written with every sample (chunk-local curve index).
+    pub curve: u32,
+    /// Index of the first output sample.
+    pub first_sample: u32,
+    /// Number of samples.
+    pub sample_count: u32,
+    /// Segment parameter of the first sample.
+    pub u0: f32,
+    /// Segment parameter of the last sample.
+    pub u1: f32,
+    /// Keeps the size a multiple of 16 bytes.
+    pub _padding: u32,
+}
+
+/// The uniform of one tessellation dispatch. Twin: `TessParams` in
+/// `shaders/common.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuTessParams {
+    /// How many segments this dispatch evaluates.
+    pub segment_count: u32,
+    /// Workgroups along x of the 2D dispatch (the workgroup index is `x + y · groups_x`).
+    pub groups_x: u32,
+    /// Uniform structs are 16-byte aligned.
+    pub _padding0: u32,
+    /// Uniform structs are 16-byte aligned.
+    pub _padding1: u32,
+}
+
+/// The camera uniform. Twin: `Camera` in `shaders/common.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuCamera {
+    /// World to clip space, column-major.
+    pub clip_from_world: [[f32; 4]; 4],
+    /// Viewport size in physical pixels.
+    pub viewport_px: [f32; 2],
+    /// Physical pixels per logical pixel: style widths are multiplied by it.
+    pub width_scale: f32,
+    /// Uniform structs are 16-byte aligned.
+    pub _padding: f32,
+}
+
+/// How a tagged polyline or point is drawn. Twin: `LineStyle` in `shaders/common.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuLineStyle {
+    /// Straight-alpha sRGB colour.
+    pub color: [f32; 4],
+    /// Line width, or point diameter, in physical pixels.
+    pub width_px: f32,
+    /// Dash period in pixels along each line piece (0 = solid).
+    pub dash_px: f32,
+    /// Keeps the size a multiple of 16 bytes.
+    pub _padding0: u32,
+    /// Keeps the size a multiple of 16 bytes.
+    pub _padding1: u32,
+}

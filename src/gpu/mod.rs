@@ -1,0 +1,56 @@
+//! Everything that names `wgpu`: device setup, the data layout shared with the WGSL
+//! shaders, packing, the compute tessellator and its CPU twin, the renderer, offscreen
+//! capture and GPU evaluation.
+
+pub mod context;
+pub mod eval;
+pub mod layout;
+pub mod offscreen;
+pub mod pack;
+pub mod renderer;
+pub mod shaders;
+pub mod tessellator;
+pub mod twin;
+
+use thiserror::Error;
+
+pub use context::{BackendChoice, ContextOptions, GpuContext};
+pub use pack::PackError;
+
+/// Why GPU work failed.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum GpuError {
+    /// No adapter matched.
+    #[error(
+        "no GPU adapter found (backends {backends}{}; adapters seen: {seen}); {}",
+        wanted.as_ref().map(|w| format!(", name containing {w:?}")).unwrap_or_default(),
+        context::INSTALL_HINT
+    )]
+    NoAdapter {
+        /// The backends searched.
+        backends: String,
+        /// The name filter, if any.
+        wanted: Option<String>,
+        /// Every adapter found before filtering.
+        seen: String,
+    },
+    /// The adapter refused to give a device.
+    #[error("could not open the GPU device: {0}")]
+    Device(String),
+    /// Reading a buffer back failed.
+    #[error("reading GPU results back failed: {0}")]
+    Readback(String),
+    /// The scene does not fit the GPU layout.
+    #[error(transparent)]
+    Pack(#[from] PackError),
+    /// An image size the device cannot render.
+    #[error("image size {width}×{height} is not allowed (each side 1..={max} on this device)")]
+    ImageSize {
+        /// Requested width.
+        width: u32,
+        /// Requested height.
+        height: u32,
+        /// The device's `max_texture_dimension_2d`.
+        max: u32,
+    },
+}

@@ -1,0 +1,111 @@
+//! Rendering into a texture and reading it back as an image (for `render`, image tests
+//! and the headless gallery).
+
+use glam::DVec2;
+
+use super::GpuError;
+use super::context::GpuContext;
+use super::pack::{ChunkLimits, prepare_scene};
+use super::renderer::{Renderer, camera_uniform};
+use super::tessellator::{Tessellator, read_buffer};
+use crate::camera::Camera;
+use crate::image::RgbaImage;
+use crate::scene::Scene;
+
+/// The texture format offscreen images are drawn in: 8-bit RGBA, colours stored as given
+/// (sRGB values, blended as such, like the window's non-sRGB surface).
+pub const OFFSCREEN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+
+/// Draws `scene` with `camera` (the scene's own when `None`) into a `width × height`
+/// image.
+///
+/// # Errors
+/// [`GpuError::ImageSize`] for a size the device cannot hold, [`GpuError::Pack`] for a
+/// scene over the GPU limits, [`GpuError::Readback`] when reading fails.
+pub fn render_scene(
+    ctx: &GpuContext,
+    scene: &Scene,
+    camera: Option<Camera>,
+    width: u32,
+    height: u32,
+) -> Result<RgbaImage, GpuError> {
+    let max = ctx.device.limits().max_texture_dimension_2d;
+    if width == 0 || height == 0 || width > max || height > max {
+        return Err(GpuError::ImageSize { width, height, max });
+    }
+    let prepared = prepare_scene(
+        scene,
+        ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
+    )?;
+    let tessellator = Tessellator::new(&ctx.device);
+    let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
+    let gpu_scene = renderer.upload(&ctx.device, &tessellator, &prepared);
+    let viewport = DVec2::new(f64::from(width), f64::from(height));
+    let camera = camera.unwrap_or_else(|| scene.camera(viewport));
+    renderer.set_camera(&ctx.queue, &camera_uniform(&camera, viewport, 1.0));
+
+    let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("offscreen"),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: OFFSCREEN_FORMAT,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+    let mut encoder = ctx
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("offscreen"),
+        });
+    renderer.encode_frame(&mut encoder, &tessellator, &gpu_scene, &view);
+
+    // Rows of a texture copy are padded to 256 bytes.
+    let row = width * 4;
+    let padded =
+        row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("offscreen pixels"),
+        size: u64::from(padded) * u64::from(height),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    encoder.copy_texture_to_buffer(
+        wgpu::TexelCopyTextureInfo {
+            texture: &texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(height),
+            },
+        },
+        wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+    );
+    let bytes: Vec<u8> = read_buffer(&ctx.device, &ctx.queue, &mut encoder, &buffer)?;
+    let mut data = Vec::with_capacity((row * height) as usize);
+    for y in 0..height as usize {
+        let start = y * padded as usize;
+        data.extend_from_slice(&bytes[start..start + row as usize]);
+    }
+    Ok(RgbaImage {
+        width,
+        height,
+        data,
+    })
+}

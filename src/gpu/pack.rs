@@ -1,0 +1,517 @@
+//! Packing lowered curves into the GPU layout (`f32`, `Pod`), split into chunks that each
+//! fit the device's buffer-binding limits.
+//!
+//! Pure CPU code with no `wgpu` calls, so it is tested without an adapter. A chunk is
+//! self-contained: its segments index its own points and samples, and its samples' tags
+//! index its own style table.
+
+use glam::DVec3;
+use thiserror::Error;
+
+use super::layout::{GpuLineStyle, GpuSegment, GpuVertex, MAX_GPU_DEGREE};
+use crate::geom::{BezierSegment, Lower, OverlayKind};
+use crate::scene::{Color, Scene};
+
+/// Why a scene cannot be packed for the GPU.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum PackError {
+    /// A lowered segment's degree is over [`MAX_GPU_DEGREE`].
+    #[error(
+        "curves[{curve}]: Bézier segment {segment} has degree {degree}, over the GPU maximum of {max} (the CPU path, e.g. `eval --backend cpu`, takes any degree)"
+    )]
+    DegreeTooHigh {
+        /// The curve's index in the scene.
+        curve: usize,
+        /// The segment's index in the curve's lowering.
+        segment: usize,
+        /// Its degree.
+        degree: usize,
+        /// [`MAX_GPU_DEGREE`].
+        max: usize,
+    },
+    /// The chunk limits are too small to hold even one segment.
+    #[error("GPU buffer limits too small: one chunk holds {what}")]
+    LimitsTooSmall {
+        /// What did not fit.
+        what: String,
+    },
+}
+
+/// The most each chunk may hold, derived from the device's binding and buffer limits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ChunkLimits {
+    /// Output samples per chunk.
+    pub max_samples: usize,
+    /// Control points per chunk.
+    pub max_points: usize,
+    /// Segment records per chunk.
+    pub max_segments: usize,
+    /// Style-table entries per chunk.
+    pub max_styles: usize,
+}
+
+impl ChunkLimits {
+    /// Limits for buffers of at most `max_bytes` each (the smaller of the device's
+    /// `max_storage_buffer_binding_size` and `max_buffer_size`).
+    #[must_use]
+    pub fn for_binding_size(max_bytes: u64) -> ChunkLimits {
+        let per = |size: usize| (max_bytes / size as u64).min(u64::from(u32::MAX)) as usize;
+        ChunkLimits {
+            max_samples: per(size_of::<GpuVertex>()),
+            max_points: per(size_of::<GpuVertex>()),
+            max_segments: per(size_of::<GpuSegment>()),
+            max_styles: per(size_of::<GpuLineStyle>()),
+        }
+    }
+}
+
+/// One self-contained unit of tessellation work.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TessChunk {
+    /// Control points of this chunk's segments.
+    pub points: Vec<GpuVertex>,
+    /// Segment records (indices local to this chunk).
+    pub segments: Vec<GpuSegment>,
+    /// Number of samples the kernel writes.
+    pub sample_count: u32,
+    /// The scene index of the curve whose tag is 0 in this chunk.
+    pub first_curve: usize,
+    /// Style of each curve in the chunk, by local tag.
+    pub styles: Vec<GpuLineStyle>,
+}
+
+/// Builds chunks segment by segment, opening a new chunk whenever the next record would
+/// not fit.
+#[derive(Debug)]
+pub struct ChunkBuilder {
+    limits: ChunkLimits,
+    chunks: Vec<TessChunk>,
+    /// The open segment: its curve, style, control points, and where they start in the
+    /// current chunk (re-pushed when a run of samples spills into a new chunk).
+    open: Option<OpenSegment>,
+}
+
+#[derive(Debug, Clone)]
+struct OpenSegment {
+    curve: usize,
+    style: GpuLineStyle,
+    points: Vec<GpuVertex>,
+    first_point: u32,
+}
+
+impl ChunkBuilder {
+    /// A builder with the given limits.
+    #[must_use]
+    pub fn new(limits: ChunkLimits) -> ChunkBuilder {
+        ChunkBuilder {
+            limits,
+            chunks: vec![TessChunk::default()],
+            open: None,
+        }
+    }
+
+    fn current(&self) -> &TessChunk {
+        self.chunks
+            .last()
+            .unwrap_or_else(|| unreachable!("never empty"))
+    }
+
+    fn current_mut(&mut self) -> &mut TessChunk {
+        self.chunks
+            .last_mut()
+            .unwrap_or_else(|| unreachable!("never empty"))
+    }
+
+    /// Whether the current chunk can take `points` more control points and one more
+    /// record of at least `samples` samples for `curve`.
+    fn has_room(&self, curve: usize, points: usize, samples: usize) -> bool {
+        let l = self.limits;
+        let c = self.current();
+        let new_style = c.styles.is_empty() || curve - c.first_curve >= c.styles.len();
+        c.points.len() + points <= l.max_points
+            && c.segments.len() < l.max_segments
+            && c.sample_count as usize + samples <= l.max_samples
+            && (!new_style || c.styles.len() < l.max_styles)
+    }
+
+    /// Starts a segment of scene curve `curve` (curves come in non-decreasing order) with
+    /// the given control points, rounded to `f32`.
+    ///
+    /// # Errors
+    /// [`PackError::LimitsTooSmall`] when a segment does not fit an empty chunk.
+    pub fn begin_segment(
+        &mut self,
+        curve: usize,
+        style: GpuLineStyle,
+        points: &[DVec3],
+    ) -> Result<(), PackError> {
+        let l = self.limits;
+        if points.len() > l.max_points
+            || l.max_samples < 2
+            || l.max_segments == 0
+            || l.max_styles == 0
+        {
+            return Err(PackError::LimitsTooSmall {
+                what: format!(
+                    "{} control points, {} samples, {} segments, {} styles; a segment needs {} points",
+                    l.max_points,
+                    l.max_samples,
+                    l.max_segments,
+                    l.max_styles,
+                    points.len()
+                ),
+            });
+        }
+        let points: Vec<GpuVertex> = points
+            .iter()
+            .map(|p| GpuVertex {
+                position: p.as_vec3().to_array(),
+                id: 0,
+            })
+            .collect();
+        self.open = None;
+        if !self.has_room(curve, points.len(), 1) {
+            self.chunks.push(TessChunk::default());
+        }
+        let first_point = self.current().points.len() as u32;
+        self.current_mut().points.extend_from_slice(&points);
+        self.open = Some(OpenSegment {
+            curve,
+            style,
+            points,
+            first_point,
+        });
+        Ok(())
+    }
+
+    /// Opens a new chunk and re-pushes the open segment's control points there.
+    fn spill(&mut self) {
+        self.chunks.push(TessChunk::default());
+        let open = self
+            .open
+            .take()
+            .unwrap_or_else(|| unreachable!("spill needs an open segment"));
+        let first_point = self.current().points.len() as u32;
+        self.current_mut().points.extend_from_slice(&open.points);
+        self.open = Some(OpenSegment {
+            first_point,
+            ..open
+        });
+    }
+
+    /// Adds `count ≥ 1` samples of the open segment at parameters from `u0` to `u1` (see
+    /// [`GpuSegment`]). A run that does not fit the chunk continues in the next one,
+    /// repeating its last sample there so that polylines stay joined.
+    ///
+    /// # Panics
+    /// If no segment is open or `count` is 0 (bugs in the caller).
+    pub fn add_samples(&mut self, count: u32, u0: f64, u1: f64) {
+        assert!(count > 0, "add_samples needs at least one sample");
+        let at = |j: u32| {
+            if count > 1 {
+                u0 + (u1 - u0) * f64::from(j) / f64::from(count - 1)
+            } else {
+                u0
+            }
+        };
+        let mut start = 0u32;
+        loop {
+            let open = self.open.clone().expect("add_samples needs begin_segment");
+            let remaining = count - start;
+            // A partial run must write at least 2 samples to make progress (it repeats one).
+            if !self.has_room(open.curve, 0, remaining.min(2) as usize) {
+                self.spill();
+                continue;
+            }
+            let room = (self.limits.max_samples - self.current().sample_count as usize) as u32;
+            let take = remaining.min(room);
+            let (ua, ub) = if take == count {
+                (u0, u1)
+            } else {
+                (at(start), at(start + take - 1))
+            };
+            let c = self.current_mut();
+            if c.styles.is_empty() {
+                c.first_curve = open.curve;
+            }
+            let tag = open.curve - c.first_curve;
+            if tag >= c.styles.len() {
+                // Tags stay dense: a curve that lowered to no segment keeps its slot.
+                c.styles.resize(tag + 1, open.style);
+            }
+            c.segments.push(GpuSegment {
+                first_point: open.first_point,
+                degree: (open.points.len() - 1) as u32,
+                curve: tag as u32,
+                first_sample: c.sample_count,
+                sample_count: take,
+                u0: ua as f32,
+                u1: ub as f32,
+                _padding: 0,
+            });
+            c.sample_count += take;
+            if take == remaining {
+                return;
+            }
+            start += take - 1;
+            self.spill();
+        }
+    }
+
+    /// The chunks built, without empty ones.
+    #[must_use]
+    pub fn finish(self) -> Vec<TessChunk> {
+        self.chunks
+            .into_iter()
+            .filter(|c| !c.segments.is_empty())
+            .collect()
+    }
+}
+
+impl GpuLineStyle {
+    /// A solid style.
+    #[must_use]
+    pub fn solid(color: Color, width_px: f32) -> GpuLineStyle {
+        GpuLineStyle {
+            color: color.0,
+            width_px,
+            dash_px: 0.0,
+            _padding0: 0,
+            _padding1: 0,
+        }
+    }
+}
+
+/// Checks every segment's degree against [`MAX_GPU_DEGREE`].
+///
+/// # Errors
+/// [`PackError::DegreeTooHigh`] naming the curve and segment.
+pub fn check_degrees(curve: usize, segments: &[BezierSegment]) -> Result<(), PackError> {
+    for (segment, s) in segments.iter().enumerate() {
+        let degree = s.bezier.degree();
+        if degree > MAX_GPU_DEGREE {
+            return Err(PackError::DegreeTooHigh {
+                curve,
+                segment,
+                degree,
+                max: MAX_GPU_DEGREE,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Tagged polylines or points with their style table, split so each batch fits a
+/// binding.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct LineBatch {
+    /// The vertices; a change of tag separates polylines.
+    pub vertices: Vec<GpuVertex>,
+    /// Styles by tag.
+    pub styles: Vec<GpuLineStyle>,
+}
+
+/// Builds [`LineBatch`]es from polylines (or point sets), one style entry per polyline.
+#[derive(Debug)]
+pub struct BatchBuilder {
+    max_vertices: usize,
+    max_styles: usize,
+    batches: Vec<LineBatch>,
+}
+
+impl BatchBuilder {
+    /// A builder with per-batch limits.
+    #[must_use]
+    pub fn new(limits: ChunkLimits) -> BatchBuilder {
+        BatchBuilder {
+            max_vertices: limits.max_points.max(2),
+            max_styles: limits.max_styles.max(1),
+            batches: vec![LineBatch::default()],
+        }
+    }
+
+    /// Adds one polyline (or point set) drawn with `style`. Polylines longer than a batch
+    /// continue in the next one from their last vertex.
+    pub fn push(&mut self, points: &[DVec3], style: GpuLineStyle) {
+        let mut rest = points;
+        while !rest.is_empty() {
+            let full = {
+                let b = self
+                    .batches
+                    .last()
+                    .unwrap_or_else(|| unreachable!("never empty"));
+                b.styles.len() >= self.max_styles || b.vertices.len() + 2 > self.max_vertices
+            };
+            if full {
+                self.batches.push(LineBatch::default());
+            }
+            let b = self
+                .batches
+                .last_mut()
+                .unwrap_or_else(|| unreachable!("never empty"));
+            let tag = b.styles.len() as u32;
+            b.styles.push(style);
+            let take = rest.len().min(self.max_vertices - b.vertices.len());
+            b.vertices.extend(rest[..take].iter().map(|p| GpuVertex {
+                position: p.as_vec3().to_array(),
+                id: tag,
+            }));
+            if take == rest.len() {
+                break;
+            }
+            // Repeat the last vertex in the next batch so the polyline stays joined.
+            rest = &rest[take - 1..];
+        }
+    }
+
+    /// The batches built, without empty ones.
+    #[must_use]
+    pub fn finish(self) -> Vec<LineBatch> {
+        self.batches
+            .into_iter()
+            .filter(|b| !b.vertices.is_empty())
+            .collect()
+    }
+}
+
+/// Everything the GPU needs to draw a scene, packed on the CPU.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PreparedScene {
+    /// Curve tessellation work.
+    pub chunks: Vec<TessChunk>,
+    /// Overlay polylines (control polygons, …).
+    pub lines: Vec<LineBatch>,
+    /// Overlay points (control points, …).
+    pub points: Vec<LineBatch>,
+    /// The clear colour.
+    pub background: Color,
+}
+
+/// Width in pixels of control polygons.
+pub const POLYGON_WIDTH_PX: f32 = 1.25;
+/// Diameter in pixels of control points.
+pub const POINT_DIAMETER_PX: f32 = 7.0;
+
+/// The style of an overlay polyline of `kind` over a curve of colour `curve`.
+#[must_use]
+pub fn overlay_style(kind: OverlayKind, curve: Color) -> GpuLineStyle {
+    match kind {
+        OverlayKind::ControlPolygon => {
+            let mut c = curve.mix(Color([0.55, 0.55, 0.55, 1.0]), 0.55);
+            c.0[3] = 0.9;
+            GpuLineStyle::solid(c, POLYGON_WIDTH_PX)
+        }
+    }
+}
+
+/// Lowers and packs every curve of `scene` for drawing: each Bézier segment gets the
+/// curve's sample count, uniformly in its own parameter.
+///
+/// # Errors
+/// [`PackError`] when a segment's degree is over the GPU maximum.
+pub fn prepare_scene(scene: &Scene, limits: ChunkLimits) -> Result<PreparedScene, PackError> {
+    let mut chunks = ChunkBuilder::new(limits);
+    let mut lines = BatchBuilder::new(limits);
+    let mut points = BatchBuilder::new(limits);
+    for (index, sc) in scene.curves.iter().enumerate() {
+        let segments = sc.curve.lower();
+        check_degrees(index, &segments)?;
+        let style = GpuLineStyle::solid(sc.style.color, sc.style.width);
+        let samples = scene.samples_for(index);
+        for seg in &segments {
+            chunks.begin_segment(index, style, seg.bezier.points())?;
+            chunks.add_samples(samples, 0.0, 1.0);
+        }
+        if sc.style.show_polygon {
+            for overlay in sc.curve.overlays() {
+                lines.push(&overlay.points, overlay_style(overlay.kind, sc.style.color));
+            }
+        }
+        if sc.style.show_points {
+            let dot = sc.style.color.mix(Color([0.0, 0.0, 0.0, 1.0]), 0.15);
+            points.push(
+                sc.curve.control_points(),
+                GpuLineStyle::solid(dot, POINT_DIAMETER_PX),
+            );
+        }
+    }
+    Ok(PreparedScene {
+        chunks: chunks.finish(),
+        lines: lines.finish(),
+        points: points.finish(),
+        background: scene.background,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Bezier;
+
+    fn style() -> GpuLineStyle {
+        GpuLineStyle::solid(Color::WHITE, 1.0)
+    }
+
+    #[test]
+    fn runs_spill_into_new_chunks_repeating_the_joint_sample() {
+        let limits = ChunkLimits {
+            max_samples: 10,
+            max_points: 100,
+            max_segments: 100,
+            max_styles: 100,
+        };
+        let mut b = ChunkBuilder::new(limits);
+        let cubic = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::ONE];
+        b.begin_segment(0, style(), &cubic).unwrap();
+        b.add_samples(25, 0.0, 1.0);
+        let chunks = b.finish();
+        // 10 + 9 new + 6 new = 25 distinct samples over three chunks.
+        let counts: Vec<u32> = chunks.iter().map(|c| c.sample_count).collect();
+        assert_eq!(counts, vec![10, 10, 7]);
+        // The second chunk starts at the first chunk's last parameter (9/24).
+        assert_eq!(chunks[0].segments[0].u1, (9.0_f64 / 24.0) as f32);
+        assert_eq!(chunks[1].segments[0].u0, (9.0_f64 / 24.0) as f32);
+        assert_eq!(chunks[2].segments[0].u1, 1.0);
+        for c in &chunks {
+            assert_eq!(c.points.len(), 4, "each chunk carries the control points");
+            assert_eq!(c.styles.len(), 1);
+        }
+    }
+
+    #[test]
+    fn degree_over_the_gpu_maximum_is_an_error_not_a_clamp() {
+        let b = Bezier::new(vec![DVec3::ZERO; MAX_GPU_DEGREE + 2]);
+        let err = check_degrees(4, &b.lower()).unwrap_err();
+        assert_eq!(
+            err,
+            PackError::DegreeTooHigh {
+                curve: 4,
+                segment: 0,
+                degree: 32,
+                max: 31
+            }
+        );
+        assert!(err.to_string().starts_with("curves[4]: "));
+        let ok = Bezier::new(vec![DVec3::ZERO; MAX_GPU_DEGREE + 1]);
+        assert!(check_degrees(0, &ok.lower()).is_ok());
+    }
+
+    #[test]
+    fn batches_split_long_polylines_and_keep_them_joined() {
+        let limits = ChunkLimits {
+            max_samples: 4,
+            max_points: 4,
+            max_segments: 4,
+            max_styles: 4,
+        };
+        let mut b = BatchBuilder::new(limits);
+        let pts: Vec<DVec3> = (0..6).map(|i| DVec3::new(f64::from(i), 0.0, 0.0)).collect();
+        b.push(&pts, style());
+        let batches = b.finish();
+        let xs: Vec<Vec<f32>> = batches
+            .iter()
+            .map(|b| b.vertices.iter().map(|v| v.position[0]).collect())
+            .collect();
+        assert_eq!(xs, vec![vec![0.0, 1.0, 2.0, 3.0], vec![3.0, 4.0, 5.0]]);
+    }
+}

@@ -1,0 +1,328 @@
+//! The render pipelines (`shaders/lines.wgsl`, `shaders/points.wgsl`) and a scene as it
+//! lives on the GPU. Curves are drawn straight from the tessellator's sample buffers: no
+//! sample comes back to the CPU in a frame.
+
+use glam::DVec2;
+use wgpu::util::DeviceExt;
+
+use super::layout::{GpuCamera, GpuLineStyle, GpuVertex};
+use super::pack::{LineBatch, PreparedScene};
+use super::shaders;
+use super::tessellator::{ChunkBuffers, Tessellator};
+use crate::camera::Camera;
+
+/// Line and point pipelines for one colour target format, and the camera uniform.
+#[derive(Debug)]
+pub struct Renderer {
+    camera_buffer: wgpu::Buffer,
+    camera_bind_group: wgpu::BindGroup,
+    batch_layout: wgpu::BindGroupLayout,
+    line_pipeline: wgpu::RenderPipeline,
+    point_pipeline: wgpu::RenderPipeline,
+    format: wgpu::TextureFormat,
+}
+
+/// A drawable set of tagged vertices with their styles.
+#[derive(Debug)]
+pub struct DrawBatch {
+    bind_group: wgpu::BindGroup,
+    vertex_count: u32,
+    _buffers: Vec<wgpu::Buffer>,
+}
+
+/// A curve chunk on the GPU: the tessellator's buffers plus the draw bind group.
+#[derive(Debug)]
+pub struct GpuChunk {
+    /// The tessellation buffers (samples among them).
+    pub buffers: ChunkBuffers,
+    draw: DrawBatch,
+}
+
+/// A scene uploaded to the GPU.
+#[derive(Debug)]
+pub struct GpuScene {
+    /// The curve chunks: tessellated every frame, then drawn.
+    pub chunks: Vec<GpuChunk>,
+    lines: Vec<DrawBatch>,
+    points: Vec<DrawBatch>,
+    /// The clear colour.
+    pub background: wgpu::Color,
+}
+
+impl GpuScene {
+    /// Total samples the kernel writes per frame.
+    #[must_use]
+    pub fn sample_count(&self) -> u64 {
+        self.chunks
+            .iter()
+            .map(|c| u64::from(c.buffers.sample_count))
+            .sum()
+    }
+}
+
+fn batch_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::VERTEX,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: true },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+/// The camera uniform for `camera` on a `viewport` in physical pixels, with line widths
+/// scaled by `width_scale` (the window's scale factor; 1 offscreen).
+#[must_use]
+pub fn camera_uniform(camera: &Camera, viewport: DVec2, width_scale: f32) -> GpuCamera {
+    GpuCamera {
+        clip_from_world: camera
+            .clip_from_world(viewport)
+            .as_mat4()
+            .to_cols_array_2d(),
+        viewport_px: viewport.as_vec2().to_array(),
+        width_scale,
+        _padding: 0.0,
+    }
+}
+
+impl Renderer {
+    /// Builds the pipelines for targets of `format`.
+    #[must_use]
+    pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Renderer {
+        let camera_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("camera"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            }],
+        });
+        let batch_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("vertices and styles"),
+            entries: &[batch_entry(0), batch_entry(1)],
+        });
+        let camera_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("camera"),
+            size: size_of::<GpuCamera>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let camera_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("camera"),
+            layout: &camera_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: camera_buffer.as_entire_binding(),
+            }],
+        });
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("draw"),
+            bind_group_layouts: &[Some(&camera_layout), Some(&batch_layout)],
+            immediate_size: 0,
+        });
+        let pipeline = |source: shaders::ShaderSource, vs: &str, fs: &str| {
+            let module = source.module(device);
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(source.file),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some(vs),
+                    compilation_options: wgpu::PipelineCompilationOptions::default(),
+                    buffers: &[],
+                },
+                primitive: wgpu::PrimitiveState::default(),
+                depth_stencil: None,
+                multisample: wgpu::MultisampleState::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some(fs),
+                    compilation_options: wgpu::PipelineCompilationOptions::default(),
+                    targets: &[Some(wgpu::ColorTargetState {
+                        format,
+                        blend: Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING),
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let line_pipeline = pipeline(shaders::LINES, "vs_line", "fs_line");
+        let point_pipeline = pipeline(shaders::POINTS, "vs_point", "fs_point");
+        Renderer {
+            camera_buffer,
+            camera_bind_group,
+            batch_layout,
+            line_pipeline,
+            point_pipeline,
+            format,
+        }
+    }
+
+    /// The colour format the pipelines draw to.
+    #[must_use]
+    pub fn format(&self) -> wgpu::TextureFormat {
+        self.format
+    }
+
+    fn batch(
+        &self,
+        device: &wgpu::Device,
+        vertices: wgpu::Buffer,
+        vertex_count: u32,
+        styles: &[GpuLineStyle],
+    ) -> DrawBatch {
+        let styles = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("styles"),
+            contents: bytemuck::cast_slice(styles),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("vertices and styles"),
+            layout: &self.batch_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: vertices.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: styles.as_entire_binding(),
+                },
+            ],
+        });
+        DrawBatch {
+            bind_group,
+            vertex_count,
+            _buffers: vec![vertices, styles],
+        }
+    }
+
+    fn overlay_batch(&self, device: &wgpu::Device, batch: &LineBatch) -> DrawBatch {
+        let vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("overlay vertices"),
+            contents: bytemuck::cast_slice::<GpuVertex, u8>(&batch.vertices),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        self.batch(device, vertices, batch.vertices.len() as u32, &batch.styles)
+    }
+
+    /// Uploads a prepared scene.
+    #[must_use]
+    pub fn upload(
+        &self,
+        device: &wgpu::Device,
+        tessellator: &Tessellator,
+        prepared: &PreparedScene,
+    ) -> GpuScene {
+        let chunks = prepared
+            .chunks
+            .iter()
+            .map(|chunk| {
+                let buffers = tessellator.upload(device, chunk, wgpu::BufferUsages::COPY_SRC);
+                let draw = self.batch(
+                    device,
+                    buffers.samples.clone(),
+                    buffers.sample_count,
+                    &chunk.styles,
+                );
+                GpuChunk { buffers, draw }
+            })
+            .collect();
+        let [r, g, b, a] = prepared.background.0.map(f64::from);
+        GpuScene {
+            chunks,
+            lines: prepared
+                .lines
+                .iter()
+                .map(|b| self.overlay_batch(device, b))
+                .collect(),
+            points: prepared
+                .points
+                .iter()
+                .map(|b| self.overlay_batch(device, b))
+                .collect(),
+            background: wgpu::Color { r, g, b, a },
+        }
+    }
+
+    /// Sets the camera for the next frames.
+    pub fn set_camera(&self, queue: &wgpu::Queue, camera: &GpuCamera) {
+        queue.write_buffer(&self.camera_buffer, 0, bytemuck::bytes_of(camera));
+    }
+
+    /// Records the whole frame: the compute pass tessellating every chunk, then one render
+    /// pass clearing `target` and drawing overlays' polylines, the curves, and points on
+    /// top.
+    pub fn encode_frame(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        tessellator: &Tessellator,
+        scene: &GpuScene,
+        target: &wgpu::TextureView,
+    ) {
+        tessellator.encode(encoder, scene.chunks.iter().map(|c| &c.buffers), None);
+        let mut pass = self.begin_pass(encoder, target, wgpu::LoadOp::Clear(scene.background));
+        self.draw(&mut pass, scene);
+    }
+
+    /// Starts a render pass on `target` with the given load operation.
+    #[must_use]
+    pub fn begin_pass<'e>(
+        &self,
+        encoder: &'e mut wgpu::CommandEncoder,
+        target: &wgpu::TextureView,
+        load: wgpu::LoadOp<wgpu::Color>,
+    ) -> wgpu::RenderPass<'e> {
+        encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("draw"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: target,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load,
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        })
+    }
+
+    /// Draws an uploaded (and tessellated) scene into an open pass.
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
+        pass.set_bind_group(0, &self.camera_bind_group, &[]);
+        pass.set_pipeline(&self.line_pipeline);
+        for batch in &scene.lines {
+            draw_lines(pass, batch);
+        }
+        for chunk in &scene.chunks {
+            draw_lines(pass, &chunk.draw);
+        }
+        pass.set_pipeline(&self.point_pipeline);
+        for batch in &scene.points {
+            pass.set_bind_group(1, &batch.bind_group, &[]);
+            pass.draw(0..6, 0..batch.vertex_count);
+        }
+    }
+}
+
+fn draw_lines(pass: &mut wgpu::RenderPass<'_>, batch: &DrawBatch) {
+    if batch.vertex_count < 2 {
+        return;
+    }
+    pass.set_bind_group(1, &batch.bind_group, &[]);
+    pass.draw(0..6, 0..batch.vertex_count - 1);
+}

@@ -1,0 +1,274 @@
+//! The compute tessellator: uploads [`TessChunk`]s and dispatches
+//! `shaders/tessellate.wgsl` over them.
+
+use wgpu::util::DeviceExt;
+
+use super::GpuError;
+use super::layout::{GpuTessParams, GpuVertex};
+use super::pack::TessChunk;
+use super::shaders;
+
+/// The tessellation compute pipeline.
+#[derive(Debug)]
+pub struct Tessellator {
+    layout: wgpu::BindGroupLayout,
+    pipeline: wgpu::ComputePipeline,
+    max_groups_per_dim: u32,
+}
+
+/// One chunk's buffers on the GPU, ready to dispatch.
+#[derive(Debug)]
+pub struct ChunkBuffers {
+    /// The samples the kernel writes (`GpuVertex` each); also read by the line renderer.
+    pub samples: wgpu::Buffer,
+    /// How many samples.
+    pub sample_count: u32,
+    bind_group: wgpu::BindGroup,
+    groups: (u32, u32),
+    // Kept alive for the bind group.
+    _params: wgpu::Buffer,
+    _points: wgpu::Buffer,
+    _segments: wgpu::Buffer,
+}
+
+fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+/// The 2D workgroup grid covering `segments` workgroups: `x ≤ max_per_dim`.
+#[must_use]
+pub fn dispatch_grid(segments: u32, max_per_dim: u32) -> (u32, u32) {
+    if segments == 0 {
+        return (0, 0);
+    }
+    let x = segments.min(max_per_dim);
+    (x, segments.div_ceil(x))
+}
+
+impl Tessellator {
+    /// Builds the pipeline on `device`.
+    #[must_use]
+    pub fn new(device: &wgpu::Device) -> Tessellator {
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("tessellate"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+                storage_entry(1, true),
+                storage_entry(2, true),
+                storage_entry(3, false),
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("tessellate"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let module = shaders::TESSELLATE.module(device);
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("tessellate"),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some("tessellate"),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            cache: None,
+        });
+        Tessellator {
+            layout,
+            pipeline,
+            max_groups_per_dim: device.limits().max_compute_workgroups_per_dimension,
+        }
+    }
+
+    /// Uploads one chunk. `sample_usage` is added to the samples buffer's `STORAGE` usage
+    /// (`COPY_SRC` to read it back).
+    #[must_use]
+    pub fn upload(
+        &self,
+        device: &wgpu::Device,
+        chunk: &TessChunk,
+        sample_usage: wgpu::BufferUsages,
+    ) -> ChunkBuffers {
+        let segment_count = chunk.segments.len() as u32;
+        let groups = dispatch_grid(segment_count, self.max_groups_per_dim);
+        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("tessellate params"),
+            contents: bytemuck::bytes_of(&GpuTessParams {
+                segment_count,
+                groups_x: groups.0,
+                _padding0: 0,
+                _padding1: 0,
+            }),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let points = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("control points"),
+            contents: bytemuck::cast_slice(&chunk.points),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let segments = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("segments"),
+            contents: bytemuck::cast_slice(&chunk.segments),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let samples = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("samples"),
+            size: (u64::from(chunk.sample_count.max(1)) * size_of::<GpuVertex>() as u64),
+            usage: wgpu::BufferUsages::STORAGE | sample_usage,
+            mapped_at_creation: false,
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("tessellate"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: params.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: points.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: segments.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: samples.as_entire_binding(),
+                },
+            ],
+        });
+        ChunkBuffers {
+            samples,
+            sample_count: chunk.sample_count,
+            bind_group,
+            groups,
+            _params: params,
+            _points: points,
+            _segments: segments,
+        }
+    }
+
+    /// Records one compute pass dispatching the kernel over every chunk.
+    pub fn encode<'a>(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        chunks: impl IntoIterator<Item = &'a ChunkBuffers>,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("tessellate"),
+            timestamp_writes,
+        });
+        pass.set_pipeline(&self.pipeline);
+        for chunk in chunks {
+            if chunk.groups.0 == 0 {
+                continue;
+            }
+            pass.set_bind_group(0, &chunk.bind_group, &[]);
+            pass.dispatch_workgroups(chunk.groups.0, chunk.groups.1, 1);
+        }
+    }
+
+    /// Tessellates each chunk in turn and reads its samples back (one chunk's buffers
+    /// alive at a time, so memory stays bounded however many chunks there are). Every
+    /// sample buffer is first filled with a poison value, so a sample the kernel fails to
+    /// write shows up as `NaN` with tag `u32::MAX`.
+    ///
+    /// # Errors
+    /// [`GpuError::Readback`] when mapping fails.
+    pub fn tessellate_and_read(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        chunks: &[TessChunk],
+        mut sink: impl FnMut(usize, &[GpuVertex]),
+    ) -> Result<(), GpuError> {
+        for (index, chunk) in chunks.iter().enumerate() {
+            let buffers = self.upload(
+                device,
+                chunk,
+                wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            );
+            let poison = vec![POISON; chunk.sample_count as usize];
+            queue.write_buffer(&buffers.samples, 0, bytemuck::cast_slice(&poison));
+            let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("tessellate and read"),
+            });
+            self.encode(&mut encoder, [&buffers], None);
+            let samples: Vec<GpuVertex> =
+                read_buffer(device, queue, &mut encoder, &buffers.samples)?;
+            let _ = encoder;
+            sink(index, &samples[..chunk.sample_count as usize]);
+        }
+        Ok(())
+    }
+}
+
+/// What sample buffers hold before the kernel writes them (NaN, tag `u32::MAX`).
+pub const POISON: GpuVertex = GpuVertex {
+    position: [f32::NAN, f32::NAN, f32::NAN],
+    id: u32::MAX,
+};
+
+/// Copies `buffer` into a mappable one after the commands in `encoder`, submits, waits and
+/// returns its contents. The encoder is replaced by a fresh one.
+///
+/// # Errors
+/// [`GpuError::Readback`] when the wait or the mapping fails.
+pub fn read_buffer<T: bytemuck::Pod>(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    encoder: &mut wgpu::CommandEncoder,
+    buffer: &wgpu::Buffer,
+) -> Result<Vec<T>, GpuError> {
+    let size = buffer.size();
+    let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback"),
+        size,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
+    let done = std::mem::replace(
+        encoder,
+        device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None }),
+    );
+    queue.submit([done.finish()]);
+    let slice = staging.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    rx.recv()
+        .map_err(|e| GpuError::Readback(e.to_string()))?
+        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    let data = slice
+        .get_mapped_range()
+        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    let out = bytemuck::pod_collect_to_vec::<u8, T>(&data);
+    drop(data);
+    staging.unmap();
+    Ok(out)
+}

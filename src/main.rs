@@ -1,0 +1,387 @@
+//! The `splinescope` command line: view, render, eval, check and bench.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::{Context, Result, bail};
+use clap::{Parser, Subcommand, ValueEnum};
+use glam::DVec3;
+
+use splinescope::geom::{Lower, ParamCurve};
+use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext};
+use splinescope::scene::{Scene, gallery};
+
+mod bench;
+
+/// A GPU-rendered, real-time viewer and evaluation engine for families of parametric
+/// curves. With no command: the gallery in a window, or, with no display, a PNG of it.
+#[derive(Debug, Parser)]
+#[command(name = "splinescope", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Debug, clap::Args)]
+struct GpuArgs {
+    /// Graphics API: auto, vulkan, gl, metal or dx12 (default: WGPU_BACKEND, else auto).
+    #[arg(long = "gpu-backend", value_name = "API", default_value = "auto", value_parser = parse_backend)]
+    gpu_backend: BackendChoice,
+}
+
+fn parse_backend(s: &str) -> Result<BackendChoice, String> {
+    s.parse()
+}
+
+impl GpuArgs {
+    fn context(&self) -> Result<GpuContext> {
+        Ok(GpuContext::new(&ContextOptions::from_env(
+            self.gpu_backend,
+        ))?)
+    }
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Open a scene (default: the built-in gallery) in a window.
+    View {
+        /// Scene file (JSON); omit for the built-in gallery.
+        scene: Option<PathBuf>,
+        /// Exit after this many presented frames (smoke tests).
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+        frames: Option<u64>,
+        /// Instead of a scene, show this many random Bézier curves (stress mode).
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..=10_000_000), conflicts_with = "scene")]
+        stress: Option<u64>,
+        /// Degree of the stress curves.
+        #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=31), requires = "stress")]
+        degree: u64,
+        #[command(flatten)]
+        gpu: GpuArgs,
+    },
+    /// Render a scene (default: the built-in gallery) offscreen to a PNG.
+    Render {
+        /// Scene file (JSON); omit for the built-in gallery.
+        scene: Option<PathBuf>,
+        /// Output PNG.
+        #[arg(short, long, value_name = "PNG")]
+        output: PathBuf,
+        /// Image width in pixels.
+        #[arg(long, default_value_t = 1200, value_parser = clap::value_parser!(u32).range(1..=16384))]
+        width: u32,
+        /// Image height in pixels.
+        #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(1..=16384))]
+        height: u32,
+        #[command(flatten)]
+        gpu: GpuArgs,
+    },
+    /// Evaluate every curve of a scene and print the points as JSON.
+    Eval {
+        /// Scene file (JSON).
+        scene: PathBuf,
+        /// Number of uniform parameters over each curve's whole domain (ends included).
+        #[arg(long, value_parser = clap::value_parser!(u32).range(2..=10_000_000), conflicts_with = "params")]
+        samples: Option<u32>,
+        /// Comma-separated parameters, in each curve's own parameter.
+        #[arg(long, value_name = "T0,T1,...", allow_hyphen_values = true)]
+        params: Option<String>,
+        /// Where to evaluate: the exact f64 CPU path, or the GPU kernel (f32).
+        #[arg(long, value_enum, default_value_t = EvalBackend::Cpu)]
+        backend: EvalBackend,
+        /// Only this curve (index in the scene).
+        #[arg(long)]
+        curve: Option<usize>,
+        #[command(flatten)]
+        gpu: GpuArgs,
+    },
+    /// Validate a scene and summarise it (families, segments, GPU compatibility).
+    Check {
+        /// Scene file (JSON).
+        scene: PathBuf,
+    },
+    /// Measure tessellation throughput: CPU (f64 and the f32 twin, one thread) and GPU.
+    Bench(bench::BenchArgs),
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum EvalBackend {
+    /// Exact f64 evaluation of each family.
+    Cpu,
+    /// The WGSL de Casteljau kernel, read back (f32).
+    Gpu,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        None => default_job(),
+        Some(Command::View {
+            scene,
+            frames,
+            stress,
+            degree,
+            gpu,
+        }) => {
+            if !splinescope::app::display_available() {
+                bail!(
+                    "no display found (DISPLAY and WAYLAND_DISPLAY are unset); use `splinescope render` for a PNG, or run under xvfb-run"
+                );
+            }
+            let scene = match stress {
+                Some(n) => splinescope::scene::generate::random_bezier_scene(
+                    splinescope::scene::generate::StressOptions {
+                        curves: n as usize,
+                        degree: degree as usize,
+                        ..Default::default()
+                    },
+                ),
+                None => load_scene_or_gallery(scene.as_deref())?,
+            };
+            splinescope::app::run(splinescope::app::ViewOptions {
+                scene,
+                frames,
+                backend: gpu.gpu_backend,
+            })?;
+            Ok(())
+        }
+        Some(Command::Render {
+            scene,
+            output,
+            width,
+            height,
+            gpu,
+        }) => {
+            let scene = load_scene_or_gallery(scene.as_deref())?;
+            let ctx = gpu.context()?;
+            render_to(&ctx, &scene, &output, width, height)?;
+            println!(
+                "rendered {} curve(s) to {} ({width}×{height}, {})",
+                scene.curves.len(),
+                output.display(),
+                ctx.describe()
+            );
+            Ok(())
+        }
+        Some(Command::Eval {
+            scene,
+            samples,
+            params,
+            backend,
+            curve,
+            gpu,
+        }) => eval(&scene, samples, params.as_deref(), backend, curve, &gpu),
+        Some(Command::Check { scene }) => check(&scene),
+        Some(Command::Bench(args)) => bench::run(&args),
+    }
+}
+
+/// No arguments: the gallery in a window, or with no display a PNG of it.
+fn default_job() -> Result<()> {
+    let scene = gallery::gallery();
+    if splinescope::app::display_available() {
+        return Ok(splinescope::app::run(splinescope::app::ViewOptions {
+            scene,
+            frames: None,
+            backend: BackendChoice::Auto,
+        })?);
+    }
+    let ctx = GpuContext::new(&ContextOptions::from_env(BackendChoice::Auto))?;
+    let path = std::env::current_dir()
+        .context("cannot read the current directory")?
+        .join("splinescope-gallery.png");
+    render_to(&ctx, &scene, &path, 1600, 1000)?;
+    println!(
+        "no display found: rendered the gallery ({} curves) to {} (1600×1000, {}).\nOpen it with an image viewer, or run `splinescope view` where a display exists.",
+        scene.curves.len(),
+        path.display(),
+        ctx.describe()
+    );
+    Ok(())
+}
+
+fn load_scene_or_gallery(path: Option<&Path>) -> Result<Scene> {
+    match path {
+        None => Ok(gallery::gallery()),
+        Some(p) => Scene::load(p).with_context(|| format!("{}", p.display())),
+    }
+}
+
+fn render_to(ctx: &GpuContext, scene: &Scene, path: &Path, width: u32, height: u32) -> Result<()> {
+    let image = splinescope::gpu::offscreen::render_scene(ctx, scene, None, width, height)?;
+    image.write_png(path)?;
+    Ok(())
+}
+
+/// Parses `--params`: comma-separated finite numbers.
+fn parse_params(text: &str) -> Result<Vec<f64>> {
+    text.split(',')
+        .enumerate()
+        .map(|(i, item)| {
+            let item = item.trim();
+            match item.parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                Ok(v) => bail!("--params[{i}]: {v} is not a finite number"),
+                Err(_) => bail!("--params[{i}]: {item:?} is not a number"),
+            }
+        })
+        .collect()
+}
+
+fn eval(
+    path: &Path,
+    samples: Option<u32>,
+    params: Option<&str>,
+    backend: EvalBackend,
+    only: Option<usize>,
+    gpu: &GpuArgs,
+) -> Result<()> {
+    let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
+    let indices: Vec<usize> = match only {
+        Some(i) if i >= scene.curves.len() => bail!(
+            "--curve {i}: the scene has {} curve(s) (indices 0..{})",
+            scene.curves.len(),
+            scene.curves.len().saturating_sub(1)
+        ),
+        Some(i) => vec![i],
+        None => (0..scene.curves.len()).collect(),
+    };
+    let given = params.map(parse_params).transpose()?;
+    if given.is_none() && samples.is_none() {
+        bail!("give --samples N or --params T0,T1,...");
+    }
+    let mut per_curve = Vec::with_capacity(indices.len());
+    for &i in &indices {
+        let (a, b) = scene.curves[i].curve.domain();
+        let ts = match (&given, samples) {
+            (Some(ts), _) => {
+                for (k, &t) in ts.iter().enumerate() {
+                    if !(a..=b).contains(&t) {
+                        bail!(
+                            "--params[{k}] = {t} is outside the domain [{a}, {b}] of curves[{i}]"
+                        );
+                    }
+                }
+                ts.clone()
+            }
+            (None, Some(n)) => (0..n)
+                .map(|j| {
+                    if j + 1 == n {
+                        b
+                    } else {
+                        a + (b - a) * f64::from(j) / f64::from(n - 1)
+                    }
+                })
+                .collect(),
+            (None, None) => unreachable!("checked above"),
+        };
+        per_curve.push(ts);
+    }
+    let points: Vec<Vec<DVec3>> = match backend {
+        EvalBackend::Cpu => indices
+            .iter()
+            .zip(&per_curve)
+            .map(|(&i, ts)| ts.iter().map(|&t| scene.curves[i].curve.eval(t)).collect())
+            .collect(),
+        EvalBackend::Gpu => {
+            let ctx = gpu.context()?;
+            let lowered: Vec<_> = indices
+                .iter()
+                .map(|&i| (i, scene.curves[i].curve.lower()))
+                .collect();
+            splinescope::gpu::eval::evaluate(&ctx, &lowered, &per_curve)?
+        }
+    };
+    let stdout = std::io::stdout();
+    let mut out = std::io::BufWriter::new(stdout.lock());
+    write_eval_json(&mut out, &indices, &points, backend == EvalBackend::Gpu)?;
+    out.flush()?;
+    Ok(())
+}
+
+/// Writes `{"curves":[{"index":i,"samples":[[x,y,z],...]}]}`, streaming (scenes may be
+/// large). GPU values are `f32`: they are printed in their shortest `f32` form.
+fn write_eval_json(
+    out: &mut impl Write,
+    indices: &[usize],
+    points: &[Vec<DVec3>],
+    from_f32: bool,
+) -> Result<()> {
+    let num = |v: f64| -> String {
+        let v = if from_f32 {
+            // Shortest decimal that reads back as the same f32.
+            format!("{}", v as f32).parse::<f64>().unwrap_or(v)
+        } else {
+            v
+        };
+        serde_json::Number::from_f64(v).map_or_else(|| "null".to_owned(), |n| n.to_string())
+    };
+    write!(out, "{{\"curves\":[")?;
+    for (k, (&i, pts)) in indices.iter().zip(points).enumerate() {
+        if k > 0 {
+            write!(out, ",")?;
+        }
+        write!(out, "\n{{\"index\":{i},\"samples\":[")?;
+        for (j, p) in pts.iter().enumerate() {
+            if j > 0 {
+                write!(out, ",")?;
+            }
+            write!(out, "[{},{},{}]", num(p.x), num(p.y), num(p.z))?;
+        }
+        write!(out, "]}}")?;
+    }
+    writeln!(out, "\n]}}")?;
+    Ok(())
+}
+
+fn check(path: &Path) -> Result<()> {
+    let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
+    println!(
+        "{}: valid scene, {} curve(s){}",
+        path.display(),
+        scene.curves.len(),
+        scene
+            .name
+            .as_ref()
+            .map(|n| format!(" ({n})"))
+            .unwrap_or_default()
+    );
+    let mut gpu_problems = Vec::new();
+    for (i, c) in scene.curves.iter().enumerate() {
+        let segments = c.curve.lower();
+        let max_degree = segments
+            .iter()
+            .map(|s| s.bezier.degree())
+            .max()
+            .unwrap_or(0);
+        let (a, b) = c.curve.domain();
+        println!(
+            "  curves[{i}] {}{}: domain [{a}, {b}], {} Bézier segment(s), max degree {max_degree}",
+            c.curve.family(),
+            c.name
+                .as_ref()
+                .map(|n| format!(" {n:?}"))
+                .unwrap_or_default(),
+            segments.len()
+        );
+        if let Err(e) = splinescope::gpu::pack::check_degrees(i, &segments) {
+            gpu_problems.push(e.to_string());
+        }
+    }
+    if gpu_problems.is_empty() {
+        println!("every curve fits the GPU kernel");
+        Ok(())
+    } else {
+        bail!("not drawable on the GPU:\n  {}", gpu_problems.join("\n  "))
+    }
+}

@@ -1,0 +1,143 @@
+//! Deterministic generators of stress scenes (many random curves), for benchmarks, the
+//! viewer's stress mode and tests.
+
+use glam::DVec3;
+
+use super::{Color, DEFAULT_SAMPLES_PER_SEGMENT, Scene, SceneCurve, Style, ViewSpec};
+use crate::geom::{Bezier, Curve};
+
+/// A small, fast, seedable generator (SplitMix64): the same seed gives the same scene on
+/// every machine.
+#[derive(Debug, Clone)]
+pub struct Rng(u64);
+
+impl Rng {
+    /// A generator from a seed.
+    #[must_use]
+    pub fn new(seed: u64) -> Rng {
+        Rng(seed)
+    }
+
+    /// The next 64 random bits.
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// A uniform number in `[0, 1)`.
+    pub fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// A uniform number in `[lo, hi)`.
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
+    }
+
+    /// A uniform integer in `lo..=hi`.
+    pub fn int(&mut self, lo: usize, hi: usize) -> usize {
+        lo + (self.next_u64() % (hi - lo + 1) as u64) as usize
+    }
+}
+
+/// Options of [`random_bezier_scene`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StressOptions {
+    /// How many curves.
+    pub curves: usize,
+    /// Their degree.
+    pub degree: usize,
+    /// Samples per segment.
+    pub samples: u32,
+    /// 3D control points instead of planar.
+    pub three_d: bool,
+    /// The generator's seed.
+    pub seed: u64,
+}
+
+impl Default for StressOptions {
+    fn default() -> Self {
+        StressOptions {
+            curves: 10_000,
+            degree: 3,
+            samples: DEFAULT_SAMPLES_PER_SEGMENT,
+            three_d: false,
+            seed: 1,
+        }
+    }
+}
+
+/// Random Bézier curves of one degree, each wandering in a unit cell of a square grid,
+/// drawn thin without overlays (the viewer's stress mode and the throughput benchmark).
+#[must_use]
+pub fn random_bezier_scene(opts: StressOptions) -> Scene {
+    let mut rng = Rng::new(opts.seed);
+    let side = (opts.curves as f64).sqrt().ceil().max(1.0) as usize;
+    let curves = (0..opts.curves)
+        .map(|i| {
+            let origin = DVec3::new((i % side) as f64, (i / side) as f64, 0.0);
+            let points = (0..=opts.degree)
+                .map(|_| {
+                    let z = if opts.three_d {
+                        rng.range(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    origin + DVec3::new(rng.range(0.0, 1.0), rng.range(0.0, 1.0), z)
+                })
+                .collect();
+            let hue = rng.unit() as f32;
+            SceneCurve {
+                name: None,
+                curve: Curve::Bezier(Bezier::new(points)),
+                style: Style {
+                    color: Color([0.2 + 0.6 * hue, 0.3, 0.8 - 0.6 * hue, 1.0]),
+                    width: 1.0,
+                    show_polygon: false,
+                    show_points: false,
+                    samples: None,
+                },
+            }
+        })
+        .collect();
+    Scene {
+        name: Some(format!(
+            "{} random curves of degree {}",
+            opts.curves, opts.degree
+        )),
+        background: Color::WHITE,
+        samples_per_segment: opts.samples,
+        view: ViewSpec::Auto,
+        curves,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn same_seed_same_scene_and_points_in_their_cell() {
+        let opts = StressOptions {
+            curves: 50,
+            degree: 4,
+            ..StressOptions::default()
+        };
+        let a = random_bezier_scene(opts);
+        assert_eq!(a, random_bezier_scene(opts));
+        for (i, c) in a.curves.iter().enumerate() {
+            assert_eq!(c.curve.control_points().len(), 5);
+            let cell = DVec3::new((i % 8) as f64, (i / 8) as f64, 0.0);
+            for p in c.curve.control_points() {
+                let d = *p - cell;
+                assert!(
+                    (0.0..1.0).contains(&d.x) && (0.0..1.0).contains(&d.y),
+                    "{p}"
+                );
+            }
+        }
+    }
+}

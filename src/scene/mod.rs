@@ -1,0 +1,299 @@
+//! The scene model: a versioned JSON document listing curves with their styles, plus the
+//! view. Reading validates everything and reports the first problem as a [`SceneError`]
+//! naming the path of the offending value (`curves[3].points[2][1]: not a finite number`).
+//!
+//! The format is documented in `docs/scene-format.md`.
+
+pub mod gallery;
+pub mod generate;
+mod json;
+
+use std::path::Path;
+
+use glam::{DVec2, DVec3};
+use thiserror::Error;
+
+use crate::camera::{Camera, Camera2d, Camera3d};
+use crate::geom::{Aabb, Curve};
+
+pub use json::{from_json_str, to_json_string};
+
+/// The scene format version this build reads and writes.
+pub const FORMAT_VERSION: u32 = 1;
+/// Samples per Bézier segment when neither the scene nor the curve says otherwise.
+pub const DEFAULT_SAMPLES_PER_SEGMENT: u32 = 64;
+/// The most samples one segment may ask for.
+pub const MAX_SAMPLES_PER_SEGMENT: u32 = 4096;
+
+/// A colour with straight (not premultiplied) alpha, each channel in `[0, 1]`, sRGB.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Color(pub [f32; 4]);
+
+impl Color {
+    /// Opaque white.
+    pub const WHITE: Color = Color([1.0, 1.0, 1.0, 1.0]);
+
+    /// This colour mixed with `other` by `f` (`0` keeps `self`).
+    #[must_use]
+    pub fn mix(self, other: Color, f: f32) -> Color {
+        let mut c = self.0;
+        for (ch, o) in c.iter_mut().zip(other.0) {
+            *ch += (o - *ch) * f;
+        }
+        Color(c)
+    }
+
+    /// As `#rrggbb` or `#rrggbbaa` (alpha written only when not opaque).
+    #[must_use]
+    pub fn to_hex(self) -> String {
+        let b = self.0.map(|c| (c * 255.0).round() as u8);
+        if b[3] == 255 {
+            format!("#{:02x}{:02x}{:02x}", b[0], b[1], b[2])
+        } else {
+            format!("#{:02x}{:02x}{:02x}{:02x}", b[0], b[1], b[2], b[3])
+        }
+    }
+}
+
+/// The palette curves take their colour from, by index, when the scene gives none.
+pub const PALETTE: [Color; 8] = [
+    Color([0.12, 0.47, 0.71, 1.0]),
+    Color([0.84, 0.15, 0.16, 1.0]),
+    Color([0.17, 0.63, 0.17, 1.0]),
+    Color([1.0, 0.50, 0.05, 1.0]),
+    Color([0.58, 0.40, 0.74, 1.0]),
+    Color([0.55, 0.34, 0.29, 1.0]),
+    Color([0.89, 0.47, 0.76, 1.0]),
+    Color([0.09, 0.75, 0.81, 1.0]),
+];
+
+/// How one curve is drawn.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Style {
+    /// The curve's colour.
+    pub color: Color,
+    /// The curve's width in pixels (> 0).
+    pub width: f32,
+    /// Whether to draw the control polygon (and, per family, the other explaining
+    /// polylines).
+    pub show_polygon: bool,
+    /// Whether to draw the control points.
+    pub show_points: bool,
+    /// Samples per Bézier segment; `None` takes the scene's.
+    pub samples: Option<u32>,
+}
+
+impl Style {
+    /// The default style of the curve at `index`: a palette colour, 2.5 px, with its
+    /// control polygon and points.
+    #[must_use]
+    pub fn default_for(index: usize) -> Style {
+        Style {
+            color: PALETTE[index % PALETTE.len()],
+            width: 2.5,
+            show_polygon: true,
+            show_points: true,
+            samples: None,
+        }
+    }
+}
+
+/// One curve of a scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneCurve {
+    /// An optional label.
+    pub name: Option<String>,
+    /// The curve itself.
+    pub curve: Curve,
+    /// How it is drawn.
+    pub style: Style,
+}
+
+/// The view a scene opens with.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ViewSpec {
+    /// Fit everything: 2D when every point has `z = 0`, else 3D.
+    Auto,
+    /// A 2D view centred on `center` showing `height` world units vertically.
+    TwoD {
+        /// The centre of the view.
+        center: DVec2,
+        /// The visible height in world units (> 0).
+        height: f64,
+    },
+    /// A 3D orbit view.
+    ThreeD {
+        /// The point looked at.
+        target: DVec3,
+        /// Eye distance (> 0).
+        distance: f64,
+        /// Yaw in degrees.
+        yaw_deg: f64,
+        /// Pitch in degrees, inside (−89, 89).
+        pitch_deg: f64,
+        /// Vertical field of view in degrees, inside (1, 179).
+        fov_deg: f64,
+    },
+}
+
+/// A whole scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// An optional title.
+    pub name: Option<String>,
+    /// The background colour.
+    pub background: Color,
+    /// Samples per Bézier segment for curves that do not say.
+    pub samples_per_segment: u32,
+    /// The opening view.
+    pub view: ViewSpec,
+    /// The curves, drawn in order.
+    pub curves: Vec<SceneCurve>,
+}
+
+/// Why a scene could not be read: the path of the offending value and what is wrong.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("{path}: {kind}")]
+pub struct SceneError {
+    /// Where, as a JSON path from the document root (`curves[3].points[2]`), or `(root)`.
+    pub path: String,
+    /// What.
+    pub kind: SceneErrorKind,
+}
+
+/// What is wrong with a scene value.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum SceneErrorKind {
+    /// The file could not be read.
+    #[error("cannot read the file: {0}")]
+    Io(String),
+    /// The text is not JSON.
+    #[error("invalid JSON at line {line}, column {column}: {message}")]
+    Syntax {
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// The parser's message.
+        message: String,
+    },
+    /// A required field is absent.
+    #[error("missing (required)")]
+    Missing,
+    /// A field the format does not define.
+    #[error("unknown field (expected one of: {expected})")]
+    UnknownField {
+        /// The fields allowed here.
+        expected: String,
+    },
+    /// A value of the wrong JSON type.
+    #[error("expected {expected}, found {found}")]
+    WrongType {
+        /// What the format wants.
+        expected: String,
+        /// What the file has.
+        found: String,
+    },
+    /// NaN, an infinity or a number too large for `f64`.
+    #[error("not a finite number ({0})")]
+    NotFinite(String),
+    /// A value outside what the format allows.
+    #[error("{0}")]
+    Invalid(String),
+    /// A version this build does not read.
+    #[error("unsupported version {found} (this build reads version {supported})")]
+    Version {
+        /// The file's version.
+        found: String,
+        /// [`FORMAT_VERSION`].
+        supported: u32,
+    },
+}
+
+impl SceneError {
+    /// An error at `path`.
+    #[must_use]
+    pub fn new(path: impl Into<String>, kind: SceneErrorKind) -> SceneError {
+        SceneError {
+            path: path.into(),
+            kind,
+        }
+    }
+}
+
+impl Scene {
+    /// Reads and validates a scene file.
+    ///
+    /// # Errors
+    /// A [`SceneError`] naming the offending value (or the I/O problem).
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| SceneError::new("(root)", SceneErrorKind::Io(e.to_string())))?;
+        from_json_str(&text)
+    }
+
+    /// Writes the scene as JSON, atomically (temporary file, then rename).
+    ///
+    /// # Errors
+    /// The I/O error.
+    pub fn save(&self, path: &Path) -> std::io::Result<()> {
+        let tmp = path.with_file_name(format!(
+            ".{}.{}.tmp",
+            path.file_name()
+                .map_or("scene".into(), |n| n.to_string_lossy()),
+            std::process::id()
+        ));
+        std::fs::write(&tmp, to_json_string(self))?;
+        std::fs::rename(&tmp, path).inspect_err(|_| {
+            let _ = std::fs::remove_file(&tmp);
+        })
+    }
+
+    /// Samples per segment for curve `index` (its own, else the scene's).
+    #[must_use]
+    pub fn samples_for(&self, index: usize) -> u32 {
+        self.curves[index]
+            .style
+            .samples
+            .unwrap_or(self.samples_per_segment)
+    }
+
+    /// The box of every control point (holds every curve).
+    #[must_use]
+    pub fn bounds(&self) -> Aabb {
+        self.curves
+            .iter()
+            .fold(Aabb::EMPTY, |b, c| b.union(c.curve.control_box()))
+    }
+
+    /// Whether every curve is planar (`z = 0`).
+    #[must_use]
+    pub fn is_planar(&self) -> bool {
+        self.curves.iter().all(|c| c.curve.is_planar())
+    }
+
+    /// The camera the scene opens with for a viewport in pixels.
+    #[must_use]
+    pub fn camera(&self, viewport: DVec2) -> Camera {
+        match self.view {
+            ViewSpec::Auto => Camera::fit(self.bounds(), viewport, !self.is_planar()),
+            ViewSpec::TwoD { center, height } => Camera::Ortho2d(Camera2d {
+                center,
+                pixels_per_unit: viewport.y / height,
+            }),
+            ViewSpec::ThreeD {
+                target,
+                distance,
+                yaw_deg,
+                pitch_deg,
+                fov_deg,
+            } => Camera::Orbit3d(Camera3d {
+                target,
+                distance,
+                yaw: yaw_deg.to_radians(),
+                pitch: pitch_deg.to_radians(),
+                fov_y: fov_deg.to_radians(),
+            }),
+        }
+    }
+}
