@@ -23,15 +23,15 @@ struct Segment {
     sample_count: u32,
     u0: f32,
     u1: f32,
-    _padding: u32,
+    sample_offset: u32,
 }
 
 // Twin: GpuTessParams.
 struct TessParams {
-    segment_count: u32,
+    segment_start: u32,
+    segment_end: u32,
     groups_x: u32,
-    _padding0: u32,
-    _padding1: u32,
+    _padding: u32,
 }
 
 // Twin: GpuCamera.

@@ -1,6 +1,16 @@
 // Compute tessellation: every sample of every Bézier segment by de Casteljau.
-// One workgroup per segment (2D dispatch: index = x + y * groups_x); its threads stride
-// over the segment's samples. CPU twin: src/gpu/twin.rs (same layout, same loop).
+//
+// One workgroup per segment record (2D dispatch: record = segment_start + x + y * groups_x);
+// lane j of the workgroup evaluates sample sample_offset + j. Records hold at most
+// TESSELLATE_WORKGROUP_SIZE samples (packing splits longer runs), so no lane loops over
+// samples.
+//
+// There is one entry point per degree class. Packing sorts each chunk's records by class
+// and the tessellator dispatches each class's range with its own pipeline: the cubic and
+// quartic kernels are written out and stay in registers, while the general kernel's
+// scratch array (MAX_DEGREE + 1 points, indexed dynamically) would slow every invocation
+// that merely shares a pipeline with it. All three perform the same operations in the
+// same order. CPU twin: src/gpu/twin.rs.
 
 @group(0) @binding(0) var<uniform> params: TessParams;
 @group(0) @binding(1) var<storage, read> points: array<Vertex>;
@@ -17,30 +27,103 @@ fn sample_param(seg: Segment, j: u32) -> f32 {
     return seg.u0 * (1.0 - f) + seg.u1 * f;
 }
 
+// This invocation's record index, or segment_end when it has none.
+fn record_index(group: vec3<u32>) -> u32 {
+    let s = params.segment_start + group.x + group.y * params.groups_x;
+    return min(s, params.segment_end);
+}
+
+fn control_point(seg: Segment, i: u32) -> vec3<f32> {
+    return points[seg.first_point + i].position;
+}
+
 @compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
-fn tessellate(
+fn tessellate_cubic(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(local_invocation_index) lane: u32,
 ) {
-    let s = group.x + group.y * params.groups_x;
-    if (s >= params.segment_count) {
+    let s = record_index(group);
+    if (s >= params.segment_end) {
         return;
     }
     let seg = segments[s];
+    let j = seg.sample_offset + lane;
+    if (j >= seg.sample_count) {
+        return;
+    }
+    let u = sample_param(seg, j);
+    let v = 1.0 - u;
+    let p0 = control_point(seg, 0u);
+    let p1 = control_point(seg, 1u);
+    let p2 = control_point(seg, 2u);
+    let p3 = control_point(seg, 3u);
+    let q0 = v * p0 + u * p1;
+    let q1 = v * p1 + u * p2;
+    let q2 = v * p2 + u * p3;
+    let r0 = v * q0 + u * q1;
+    let r1 = v * q1 + u * q2;
+    samples[seg.first_sample + j] = Vertex(v * r0 + u * r1, seg.curve);
+}
+
+@compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
+fn tessellate_quartic(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let s = record_index(group);
+    if (s >= params.segment_end) {
+        return;
+    }
+    let seg = segments[s];
+    let j = seg.sample_offset + lane;
+    if (j >= seg.sample_count) {
+        return;
+    }
+    let u = sample_param(seg, j);
+    let v = 1.0 - u;
+    let p0 = control_point(seg, 0u);
+    let p1 = control_point(seg, 1u);
+    let p2 = control_point(seg, 2u);
+    let p3 = control_point(seg, 3u);
+    let p4 = control_point(seg, 4u);
+    let q0 = v * p0 + u * p1;
+    let q1 = v * p1 + u * p2;
+    let q2 = v * p2 + u * p3;
+    let q3 = v * p3 + u * p4;
+    let r0 = v * q0 + u * q1;
+    let r1 = v * q1 + u * q2;
+    let r2 = v * q2 + u * q3;
+    let s0 = v * r0 + u * r1;
+    let s1 = v * r1 + u * r2;
+    samples[seg.first_sample + j] = Vertex(v * s0 + u * s1, seg.curve);
+}
+
+@compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
+fn tessellate_any(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let s = record_index(group);
+    if (s >= params.segment_end) {
+        return;
+    }
+    let seg = segments[s];
+    let j = seg.sample_offset + lane;
+    if (j >= seg.sample_count) {
+        return;
+    }
+    let u = sample_param(seg, j);
+    let v = 1.0 - u;
     // Packing rejects degrees over MAX_DEGREE; the min only keeps p[] in bounds.
     let n = min(seg.degree, MAX_DEGREE);
-    for (var j = lane; j < seg.sample_count; j += TESSELLATE_WORKGROUP_SIZE) {
-        let u = sample_param(seg, j);
-        let v = 1.0 - u;
-        var p: array<vec3<f32>, 32>;
-        for (var i = 0u; i <= n; i++) {
-            p[i] = points[seg.first_point + i].position;
-        }
-        for (var r = 1u; r <= n; r++) {
-            for (var i = 0u; i <= n - r; i++) {
-                p[i] = v * p[i] + u * p[i + 1u];
-            }
-        }
-        samples[seg.first_sample + j] = Vertex(p[0], seg.curve);
+    var p: array<vec3<f32>, 32>;
+    for (var i = 0u; i <= n; i++) {
+        p[i] = control_point(seg, i);
     }
+    for (var r = 1u; r <= n; r++) {
+        for (var i = 0u; i <= n - r; i++) {
+            p[i] = v * p[i] + u * p[i + 1u];
+        }
+    }
+    samples[seg.first_sample + j] = Vertex(p[0], seg.curve);
 }

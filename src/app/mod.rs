@@ -122,6 +122,7 @@ struct Running {
     frames_presented: u64,
     fps: ui::FpsCounter,
     adapter: String,
+    summaries: Vec<ui::CurveSummary>,
 }
 
 impl App {
@@ -304,6 +305,7 @@ impl Running {
             frames_presented: 0,
             fps: ui::FpsCounter::new(Instant::now()),
             adapter,
+            summaries: ui::summarize(&opts.scene),
         };
         if running.scene.view == crate::scene::ViewSpec::Auto {
             running.fit();
@@ -389,6 +391,7 @@ impl Running {
         let mut actions = ui::Actions::default();
         let info = ui::PanelInfo {
             scene: &self.scene,
+            summaries: &self.summaries,
             adapter: &self.adapter,
             fps: self.fps.fps(),
             samples_per_frame: self.gpu_scene.sample_count(),

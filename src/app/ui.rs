@@ -14,9 +14,46 @@ pub(crate) const PANEL_WIDTH_POINTS: f64 = 260.0;
 /// The panel lists at most this many curves (stress scenes have millions).
 const LISTED_CURVES: usize = 200;
 
+/// One listed curve's label and hover text, computed once per scene (not per frame).
+pub(crate) struct CurveSummary {
+    pub label: String,
+    pub details: String,
+    pub color: egui::Color32,
+}
+
+/// Summaries of the first curves of `scene` (the panel lists at most that many).
+pub(crate) fn summarize(scene: &Scene) -> Vec<CurveSummary> {
+    scene
+        .curves
+        .iter()
+        .take(LISTED_CURVES)
+        .enumerate()
+        .map(|(i, c)| {
+            let segments = c.curve.lower();
+            let degree = segments
+                .iter()
+                .map(|s| s.bezier.degree())
+                .max()
+                .unwrap_or(0);
+            let (a, b) = c.curve.domain();
+            let [r, g, bl, _] = c.style.color.0.map(|v| (v * 255.0).round() as u8);
+            CurveSummary {
+                label: format!("{i}: {}", c.name.as_deref().unwrap_or(c.curve.family())),
+                details: format!(
+                    "{} · domain [{a}, {b}] · {} segment(s), degree ≤ {degree}",
+                    c.curve.family(),
+                    segments.len()
+                ),
+                color: egui::Color32::from_rgb(r, g, bl),
+            }
+        })
+        .collect()
+}
+
 /// What the panel shows.
 pub(crate) struct PanelInfo<'a> {
     pub scene: &'a Scene,
+    pub summaries: &'a [CurveSummary],
     pub adapter: &'a str,
     pub fps: f64,
     pub samples_per_frame: u64,
@@ -96,28 +133,15 @@ pub(crate) fn panel(
             ui.small("H hides this panel · Esc quits");
             ui.separator();
             egui::ScrollArea::vertical().show(ui, |ui| {
-                for (i, c) in info.scene.curves.iter().take(LISTED_CURVES).enumerate() {
-                    let segments = c.curve.lower();
-                    let degree = segments
-                        .iter()
-                        .map(|s| s.bezier.degree())
-                        .max()
-                        .unwrap_or(0);
-                    let (a, b) = c.curve.domain();
-                    let [r, g, bl, _] = c.style.color.0.map(|v| (v * 255.0).round() as u8);
+                for c in info.summaries {
                     ui.horizontal(|ui| {
-                        ui.colored_label(egui::Color32::from_rgb(r, g, bl), "■");
-                        ui.label(format!(
-                            "{i}: {}",
-                            c.name.as_deref().unwrap_or(c.curve.family())
-                        ));
+                        let (rect, _) =
+                            ui.allocate_exact_size(egui::vec2(10.0, 10.0), egui::Sense::hover());
+                        ui.painter().rect_filled(rect, 2.0, c.color);
+                        ui.label(&c.label);
                     })
                     .response
-                    .on_hover_text(format!(
-                        "{} · domain [{a}, {b}] · {} segment(s), degree ≤ {degree}",
-                        c.curve.family(),
-                        segments.len()
-                    ));
+                    .on_hover_text(&c.details);
                 }
                 if info.scene.curves.len() > LISTED_CURVES {
                     ui.small(format!(

@@ -41,9 +41,9 @@ pub fn bernstein_all_into(t: f64, out: &mut [f64]) {
     out[0] = 1.0;
     for j in 1..=n {
         let mut saved = 0.0;
-        for i in 0..j {
-            let tmp = out[i];
-            out[i] = saved + s * tmp;
+        for slot in out.iter_mut().take(j) {
+            let tmp = *slot;
+            *slot = saved + s * tmp;
             saved = t * tmp;
         }
         out[j] = saved;

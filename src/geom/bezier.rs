@@ -180,8 +180,8 @@ impl Bezier {
         let nf = n as f64;
         if n < STACK_POINTS {
             let mut buf = [DVec3::ZERO; STACK_POINTS];
-            for i in 0..n {
-                buf[i] = nf * (self.points[i + 1] - self.points[i]);
+            for (slot, w) in buf.iter_mut().zip(self.points.windows(2)) {
+                *slot = nf * (w[1] - w[0]);
             }
             de_casteljau(&buf[..n], t)
         } else {
@@ -234,14 +234,23 @@ impl Bezier {
         if t0 == 0.0 && t1 == 1.0 {
             return self.clone();
         }
+        if t0 > t1 {
+            // Interpolate on [t1, t0] (stable), then reverse.
+            return self.subsegment(t1, t0).reversed();
+        }
         if t1 != 0.0 {
-            // The left piece L(u) = P(u t1); its right part from u = t0/t1 is
+            // The left piece L(u) = P(u t1); its right part from u = t0/t1 ∈ [0, 1] is
             // L(t0/t1 + v (1 − t0/t1)) = P(t0 + v (t1 − t0)).
             let (left, _) = self.split(t1);
             left.split(t0 / t1).1
+        } else if t0 == 0.0 {
+            // t0 = t1 = 0: the piece is the point P(0).
+            Bezier::new(vec![self.points[0]; self.points.len()])
         } else {
-            // Q(u) = P(t0 (1 − u)) = L(1 − u) with L(v) = P(v t0), the left piece at t0.
-            self.split(t0).0.reversed()
+            // t0 < t1 = 0 (extrapolation): R(v) = P(t0 + v (1 − t0)) is the right piece at
+            // t0, and the wanted piece is R on [0, −t0 / (1 − t0)].
+            let (_, right) = self.split(t0);
+            right.split(-t0 / (1.0 - t0)).0
         }
     }
 

@@ -222,6 +222,6 @@ impl GpuContext {
     #[must_use]
     pub fn max_binding_bytes(&self) -> u64 {
         let l = self.device.limits();
-        u64::from(l.max_storage_buffer_binding_size).min(l.max_buffer_size)
+        l.max_storage_buffer_binding_size.min(l.max_buffer_size)
     }
 }

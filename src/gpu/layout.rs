@@ -30,10 +30,13 @@ pub struct GpuVertex {
     pub id: u32,
 }
 
-/// One Bézier segment to evaluate: its control points are
-/// `points[first_point ..= first_point + degree]`; sample `j < sample_count` is written
-/// to `samples[first_sample + j]` at the segment parameter
-/// `u = u0 (1 − f) + u1 f`, `f = j / (sample_count − 1)` (`f = 0` for a single sample).
+/// One record of tessellation work on a Bézier segment: its control points are
+/// `points[first_point ..= first_point + degree]`; of the run of `sample_count` samples
+/// at the segment parameters `u = u0 (1 − f) + u1 f`, `f = j / (sample_count − 1)`
+/// (`f = 0` for a single sample), this record evaluates
+/// `j = sample_offset .. min(sample_offset + TESSELLATE_WORKGROUP_SIZE, sample_count)`,
+/// writing sample `j` to `samples[first_sample + j]`. A run longer than one workgroup is
+/// several records differing only in `sample_offset`.
 ///
 /// Twin: `Segment` in `shaders/common.wgsl`.
 #[repr(C)]
@@ -47,14 +50,14 @@ pub struct GpuSegment {
     pub curve: u32,
     /// Index of the first output sample.
     pub first_sample: u32,
-    /// Number of samples.
+    /// Number of samples in the whole run.
     pub sample_count: u32,
-    /// Segment parameter of the first sample.
+    /// Segment parameter of the first sample of the run.
     pub u0: f32,
-    /// Segment parameter of the last sample.
+    /// Segment parameter of the last sample of the run.
     pub u1: f32,
-    /// Keeps the size a multiple of 16 bytes.
-    pub _padding: u32,
+    /// The first `j` of the run this record evaluates (a multiple of the workgroup size).
+    pub sample_offset: u32,
 }
 
 /// The uniform of one tessellation dispatch. Twin: `TessParams` in
@@ -62,14 +65,32 @@ pub struct GpuSegment {
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct GpuTessParams {
-    /// How many segments this dispatch evaluates.
-    pub segment_count: u32,
-    /// Workgroups along x of the 2D dispatch (the workgroup index is `x + y · groups_x`).
+    /// The first record this dispatch evaluates.
+    pub segment_start: u32,
+    /// One past the last record this dispatch evaluates.
+    pub segment_end: u32,
+    /// Workgroups along x of the 2D dispatch (record = `segment_start + x + y · groups_x`).
     pub groups_x: u32,
     /// Uniform structs are 16-byte aligned.
-    pub _padding0: u32,
-    /// Uniform structs are 16-byte aligned.
-    pub _padding1: u32,
+    pub _padding: u32,
+}
+
+/// The kernels of `shaders/tessellate.wgsl`, one per degree class: `(entry point, the one
+/// degree it evaluates, or None for any degree)`. Each chunk's records are sorted in this
+/// order and each class is dispatched with its own pipeline.
+pub const TESSELLATE_KERNELS: [(&str, Option<u32>); 3] = [
+    ("tessellate_cubic", Some(3)),
+    ("tessellate_quartic", Some(4)),
+    ("tessellate_any", None),
+];
+
+/// The index in [`TESSELLATE_KERNELS`] of the kernel that evaluates `degree`.
+#[must_use]
+pub fn kernel_class(degree: u32) -> usize {
+    TESSELLATE_KERNELS
+        .iter()
+        .position(|(_, d)| d.is_none_or(|d| d == degree))
+        .unwrap_or(TESSELLATE_KERNELS.len() - 1)
 }
 
 /// The camera uniform. Twin: `Camera` in `shaders/common.wgsl`.

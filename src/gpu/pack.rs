@@ -8,7 +8,10 @@
 use glam::DVec3;
 use thiserror::Error;
 
-use super::layout::{GpuLineStyle, GpuSegment, GpuVertex, MAX_GPU_DEGREE};
+use super::layout::{
+    GpuLineStyle, GpuSegment, GpuVertex, MAX_GPU_DEGREE, TESSELLATE_KERNELS,
+    TESSELLATE_WORKGROUP_SIZE as WORKGROUP, kernel_class,
+};
 use crate::geom::{BezierSegment, Lower, OverlayKind};
 use crate::scene::{Color, Scene};
 
@@ -70,8 +73,12 @@ impl ChunkLimits {
 pub struct TessChunk {
     /// Control points of this chunk's segments.
     pub points: Vec<GpuVertex>,
-    /// Segment records (indices local to this chunk).
+    /// Segment records (indices local to this chunk), sorted by kernel class (see
+    /// [`TESSELLATE_KERNELS`]).
     pub segments: Vec<GpuSegment>,
+    /// Where each kernel class's records end in `segments` (class `k` holds
+    /// `class_ends[k − 1] .. class_ends[k]`, class 0 starting at 0).
+    pub class_ends: [u32; TESSELLATE_KERNELS.len()],
     /// Number of samples the kernel writes.
     pub sample_count: u32,
     /// The scene index of the curve whose tag is 0 in this chunk.
@@ -223,8 +230,11 @@ impl ChunkBuilder {
                 self.spill();
                 continue;
             }
-            let room = (self.limits.max_samples - self.current().sample_count as usize) as u32;
-            let take = remaining.min(room);
+            let room_samples = self.limits.max_samples - self.current().sample_count as usize;
+            let room_records = self.limits.max_segments - self.current().segments.len();
+            let take = (remaining as usize)
+                .min(room_samples)
+                .min(room_records * WORKGROUP as usize) as u32;
             let (ua, ub) = if take == count {
                 (u0, u1)
             } else {
@@ -239,16 +249,19 @@ impl ChunkBuilder {
                 // Tags stay dense: a curve that lowered to no segment keeps its slot.
                 c.styles.resize(tag + 1, open.style);
             }
-            c.segments.push(GpuSegment {
-                first_point: open.first_point,
-                degree: (open.points.len() - 1) as u32,
-                curve: tag as u32,
-                first_sample: c.sample_count,
-                sample_count: take,
-                u0: ua as f32,
-                u1: ub as f32,
-                _padding: 0,
-            });
+            // One record per workgroup's worth of samples of this run.
+            for sample_offset in (0..take).step_by(WORKGROUP as usize) {
+                c.segments.push(GpuSegment {
+                    first_point: open.first_point,
+                    degree: (open.points.len() - 1) as u32,
+                    curve: tag as u32,
+                    first_sample: c.sample_count,
+                    sample_count: take,
+                    u0: ua as f32,
+                    u1: ub as f32,
+                    sample_offset,
+                });
+            }
             c.sample_count += take;
             if take == remaining {
                 return;
@@ -258,12 +271,26 @@ impl ChunkBuilder {
         }
     }
 
-    /// The chunks built, without empty ones.
+    /// The chunks built, without empty ones, their records sorted by kernel class.
     #[must_use]
     pub fn finish(self) -> Vec<TessChunk> {
         self.chunks
             .into_iter()
             .filter(|c| !c.segments.is_empty())
+            .map(|mut c| {
+                // Records are independent (each writes its own samples), so their order is
+                // free: group them by the kernel that evaluates them.
+                c.segments.sort_by_key(|s| kernel_class(s.degree));
+                let mut ends = [0u32; TESSELLATE_KERNELS.len()];
+                for s in &c.segments {
+                    ends[kernel_class(s.degree)] += 1;
+                }
+                for k in 1..ends.len() {
+                    ends[k] += ends[k - 1];
+                }
+                c.class_ends = ends;
+                c
+            })
             .collect()
     }
 }
@@ -476,6 +503,56 @@ mod tests {
             assert_eq!(c.points.len(), 4, "each chunk carries the control points");
             assert_eq!(c.styles.len(), 1);
         }
+    }
+
+    #[test]
+    fn long_runs_become_one_record_per_workgroup() {
+        let mut b = ChunkBuilder::new(ChunkLimits::for_binding_size(1 << 20));
+        b.begin_segment(0, style(), &[DVec3::ZERO, DVec3::X])
+            .unwrap();
+        b.add_samples(150, 0.0, 1.0);
+        b.begin_segment(1, style(), &[DVec3::ZERO, DVec3::Y])
+            .unwrap();
+        b.add_samples(64, 0.0, 1.0);
+        let chunks = b.finish();
+        let records: Vec<(u32, u32, u32, u32)> = chunks[0]
+            .segments
+            .iter()
+            .map(|s| (s.curve, s.first_sample, s.sample_count, s.sample_offset))
+            .collect();
+        assert_eq!(
+            records,
+            vec![
+                (0, 0, 150, 0),
+                (0, 0, 150, 64),
+                (0, 0, 150, 128),
+                (1, 150, 64, 0)
+            ]
+        );
+        assert_eq!(chunks[0].sample_count, 214);
+        // Both are degree 1: all records in the general class.
+        assert_eq!(chunks[0].class_ends, [0, 0, 4]);
+    }
+
+    #[test]
+    fn records_are_grouped_by_kernel_class() {
+        let mut b = ChunkBuilder::new(ChunkLimits::for_binding_size(1 << 20));
+        for (curve, degree) in [5usize, 3, 4, 3, 1].into_iter().enumerate() {
+            b.begin_segment(curve, style(), &vec![DVec3::ZERO; degree + 1])
+                .unwrap();
+            b.add_samples(8, 0.0, 1.0);
+        }
+        let chunks = b.finish();
+        let degrees: Vec<u32> = chunks[0].segments.iter().map(|s| s.degree).collect();
+        assert_eq!(degrees, vec![3, 3, 4, 5, 1]);
+        assert_eq!(chunks[0].class_ends, [2, 3, 5]);
+        // Each record still writes its own curve's samples.
+        let firsts: Vec<(u32, u32)> = chunks[0]
+            .segments
+            .iter()
+            .map(|s| (s.curve, s.first_sample))
+            .collect();
+        assert_eq!(firsts, vec![(1, 8), (3, 24), (2, 16), (0, 0), (4, 32)]);
     }
 
     #[test]

@@ -4,29 +4,36 @@
 use wgpu::util::DeviceExt;
 
 use super::GpuError;
-use super::layout::{GpuTessParams, GpuVertex};
+use super::layout::{GpuTessParams, GpuVertex, TESSELLATE_KERNELS};
 use super::pack::TessChunk;
 use super::shaders;
 
-/// The tessellation compute pipeline.
+/// The tessellation compute pipelines, one per kernel of [`TESSELLATE_KERNELS`].
 #[derive(Debug)]
 pub struct Tessellator {
     layout: wgpu::BindGroupLayout,
-    pipeline: wgpu::ComputePipeline,
+    pipelines: Vec<wgpu::ComputePipeline>,
     max_groups_per_dim: u32,
+}
+
+/// One dispatch: a kernel over a range of a chunk's records.
+#[derive(Debug)]
+struct Dispatch {
+    kernel: usize,
+    bind_group: wgpu::BindGroup,
+    groups: (u32, u32),
+    _params: wgpu::Buffer,
 }
 
 /// One chunk's buffers on the GPU, ready to dispatch.
 #[derive(Debug)]
 pub struct ChunkBuffers {
-    /// The samples the kernel writes (`GpuVertex` each); also read by the line renderer.
+    /// The samples the kernels write (`GpuVertex` each); also read by the line renderer.
     pub samples: wgpu::Buffer,
     /// How many samples.
     pub sample_count: u32,
-    bind_group: wgpu::BindGroup,
-    groups: (u32, u32),
-    // Kept alive for the bind group.
-    _params: wgpu::Buffer,
+    dispatches: Vec<Dispatch>,
+    // Kept alive for the bind groups.
     _points: wgpu::Buffer,
     _segments: wgpu::Buffer,
 }
@@ -82,17 +89,22 @@ impl Tessellator {
             immediate_size: 0,
         });
         let module = shaders::TESSELLATE.module(device);
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("tessellate"),
-            layout: Some(&pipeline_layout),
-            module: &module,
-            entry_point: Some("tessellate"),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
-            cache: None,
-        });
+        let pipelines = TESSELLATE_KERNELS
+            .iter()
+            .map(|(entry, _)| {
+                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some(entry),
+                    layout: Some(&pipeline_layout),
+                    module: &module,
+                    entry_point: Some(entry),
+                    compilation_options: wgpu::PipelineCompilationOptions::default(),
+                    cache: None,
+                })
+            })
+            .collect();
         Tessellator {
             layout,
-            pipeline,
+            pipelines,
             max_groups_per_dim: device.limits().max_compute_workgroups_per_dimension,
         }
     }
@@ -106,18 +118,6 @@ impl Tessellator {
         chunk: &TessChunk,
         sample_usage: wgpu::BufferUsages,
     ) -> ChunkBuffers {
-        let segment_count = chunk.segments.len() as u32;
-        let groups = dispatch_grid(segment_count, self.max_groups_per_dim);
-        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("tessellate params"),
-            contents: bytemuck::bytes_of(&GpuTessParams {
-                segment_count,
-                groups_x: groups.0,
-                _padding0: 0,
-                _padding1: 0,
-            }),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
         let points = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("control points"),
             contents: bytemuck::cast_slice(&chunk.points),
@@ -134,40 +134,62 @@ impl Tessellator {
             usage: wgpu::BufferUsages::STORAGE | sample_usage,
             mapped_at_creation: false,
         });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("tessellate"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: params.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: points.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: segments.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: samples.as_entire_binding(),
-                },
-            ],
-        });
+        let mut dispatches = Vec::new();
+        let mut start = 0u32;
+        for (kernel, &end) in chunk.class_ends.iter().enumerate() {
+            if end > start {
+                let groups = dispatch_grid(end - start, self.max_groups_per_dim);
+                let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("tessellate params"),
+                    contents: bytemuck::bytes_of(&GpuTessParams {
+                        segment_start: start,
+                        segment_end: end,
+                        groups_x: groups.0,
+                        _padding: 0,
+                    }),
+                    usage: wgpu::BufferUsages::UNIFORM,
+                });
+                let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some(TESSELLATE_KERNELS[kernel].0),
+                    layout: &self.layout,
+                    entries: &[
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: params.as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 1,
+                            resource: points.as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 2,
+                            resource: segments.as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 3,
+                            resource: samples.as_entire_binding(),
+                        },
+                    ],
+                });
+                dispatches.push(Dispatch {
+                    kernel,
+                    bind_group,
+                    groups,
+                    _params: params,
+                });
+            }
+            start = start.max(end);
+        }
         ChunkBuffers {
             samples,
             sample_count: chunk.sample_count,
-            bind_group,
-            groups,
-            _params: params,
+            dispatches,
             _points: points,
             _segments: segments,
         }
     }
 
-    /// Records one compute pass dispatching the kernel over every chunk.
+    /// Records one compute pass dispatching each chunk's kernel classes.
     pub fn encode<'a>(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -178,13 +200,12 @@ impl Tessellator {
             label: Some("tessellate"),
             timestamp_writes,
         });
-        pass.set_pipeline(&self.pipeline);
         for chunk in chunks {
-            if chunk.groups.0 == 0 {
-                continue;
+            for d in &chunk.dispatches {
+                pass.set_pipeline(&self.pipelines[d.kernel]);
+                pass.set_bind_group(0, &d.bind_group, &[]);
+                pass.dispatch_workgroups(d.groups.0, d.groups.1, 1);
             }
-            pass.set_bind_group(0, &chunk.bind_group, &[]);
-            pass.dispatch_workgroups(chunk.groups.0, chunk.groups.1, 1);
         }
     }
 

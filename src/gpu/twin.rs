@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use super::layout::{GpuSegment, GpuVertex, MAX_GPU_DEGREE};
+use super::layout::{GpuSegment, GpuVertex, MAX_GPU_DEGREE, TESSELLATE_WORKGROUP_SIZE};
 
 /// `sample_param` of the shader: `u0 (1 − f) + u1 f`, `f = j / (count − 1)`.
 #[must_use]
@@ -16,27 +16,39 @@ pub fn sample_param(seg: &GpuSegment, j: u32) -> f32 {
     seg.u0 * (1.0 - f) + seg.u1 * f
 }
 
-/// Evaluates every sample of every segment into `samples`, exactly as the kernel does.
+/// The kernels' de Casteljau: degree `n` from `points[first ..= first + n]` at `u`.
+/// `tessellate_any` is this loop; `tessellate_cubic` and `tessellate_quartic` write it out
+/// for one degree, with exactly this loop's operations in this order.
+#[must_use]
+pub fn de_casteljau(points: &[GpuVertex], first: u32, n: u32, u: f32) -> Vec3 {
+    let v = 1.0 - u;
+    let m = (n as usize).min(MAX_GPU_DEGREE);
+    let mut p = [Vec3::ZERO; MAX_GPU_DEGREE + 1];
+    for (i, slot) in p.iter_mut().enumerate().take(m + 1) {
+        *slot = Vec3::from(points[first as usize + i].position);
+    }
+    for r in 1..=m {
+        for i in 0..=(m - r) {
+            p[i] = v * p[i] + u * p[i + 1];
+        }
+    }
+    p[0]
+}
+
+/// Runs the kernels' body for every lane of every record, writing into `samples`.
 ///
 /// # Panics
 /// When a record points outside `points` or `samples` (a packing bug).
 pub fn tessellate(points: &[GpuVertex], segments: &[GpuSegment], samples: &mut [GpuVertex]) {
     for seg in segments {
-        let n = (seg.degree as usize).min(MAX_GPU_DEGREE);
-        for j in 0..seg.sample_count {
+        for lane in 0..TESSELLATE_WORKGROUP_SIZE {
+            let j = seg.sample_offset + lane;
+            if j >= seg.sample_count {
+                break;
+            }
             let u = sample_param(seg, j);
-            let v = 1.0 - u;
-            let mut p = [Vec3::ZERO; MAX_GPU_DEGREE + 1];
-            for (i, slot) in p.iter_mut().enumerate().take(n + 1) {
-                *slot = Vec3::from(points[seg.first_point as usize + i].position);
-            }
-            for r in 1..=n {
-                for i in 0..=(n - r) {
-                    p[i] = v * p[i] + u * p[i + 1];
-                }
-            }
             samples[(seg.first_sample + j) as usize] = GpuVertex {
-                position: p[0].to_array(),
+                position: de_casteljau(points, seg.first_point, seg.degree, u).to_array(),
                 id: seg.curve,
             };
         }

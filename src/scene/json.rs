@@ -76,8 +76,8 @@ fn mark_non_finite_literals(text: &str) -> Option<String> {
         } else if c == '"' {
             in_string = true;
         } else if let Some(word) = WORDS.iter().find(|w| rest.starts_with(**w)) {
-            out.push('"');
-            out.push(NON_FINITE_MARK);
+            // JSON strings cannot hold a raw control character: write its escape.
+            out.push_str("\"\\u0001");
             out.push_str(word);
             out.push('"');
             rest = &rest[word.len()..];

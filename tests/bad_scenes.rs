@@ -1,0 +1,181 @@
+//! The bad-input corpus (`tests/bad_scenes/*.json`): each malformed scene gives its typed
+//! error naming the offending path, in the library and through the CLI, never a panic.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use splinescope::scene::{Scene, SceneErrorKind};
+
+/// (file, path the error must name, fragment its message must contain).
+const EXPECTED: &[(&str, &str, &str)] = &[
+    (
+        "not-json",
+        "(root)",
+        "invalid JSON at line 2, column 0: EOF while parsing a list",
+    ),
+    ("empty-file", "(root)", "invalid JSON"),
+    (
+        "root-is-array",
+        "(root)",
+        "expected an object, found an array of 2 items",
+    ),
+    ("missing-version", "version", "missing"),
+    (
+        "wrong-version",
+        "version",
+        "unsupported version the number 2",
+    ),
+    ("missing-curves", "curves", "missing"),
+    (
+        "curves-not-array",
+        "curves",
+        "expected an array, found an object",
+    ),
+    (
+        "unknown-root-field",
+        "colour",
+        "unknown field (expected one of: version, name",
+    ),
+    (
+        "curve-not-object",
+        "curves[0]",
+        "expected a curve object, found the number 5",
+    ),
+    ("curve-missing-type", "curves[0].type", "missing"),
+    (
+        "unknown-curve-type",
+        "curves[0].type",
+        "unknown curve type \"nurbs\"",
+    ),
+    (
+        "too-few-points",
+        "curves[1].points",
+        "needs at least 2 points, found 1",
+    ),
+    (
+        "points-not-array",
+        "curves[0].points",
+        "expected an array, found the number 5",
+    ),
+    (
+        "point-wrong-arity",
+        "curves[0].points[1]",
+        "a point has 2 or 3 coordinates, found 4",
+    ),
+    (
+        "coordinate-is-string",
+        "curves[0].points[0][0]",
+        "expected a number, found the string \"1\"",
+    ),
+    (
+        "nan-literal",
+        "curves[1].points[2][1]",
+        "not a finite number (NaN)",
+    ),
+    (
+        "infinity-literal",
+        "curves[0].points[1][0]",
+        "not a finite number (-Infinity)",
+    ),
+    (
+        "number-overflows",
+        "curves[0].points[0][1]",
+        "not a finite number (1e+400)",
+    ),
+    (
+        "bad-hex-colour",
+        "curves[0].style.color",
+        "\"#12345\" is not a colour",
+    ),
+    (
+        "colour-channel-out-of-range",
+        "curves[0].style.color[0]",
+        "colour channel 1.2 is outside [0, 1]",
+    ),
+    (
+        "negative-width",
+        "curves[0].style.width",
+        "must be greater than 0, found -2",
+    ),
+    (
+        "unknown-style-field",
+        "curves[0].style.dashed",
+        "unknown field",
+    ),
+    ("samples-too-few", "samples", "1 is outside 2..=4096"),
+    (
+        "samples-not-integer",
+        "samples",
+        "expected an integer in 2..=4096, found the number 64.5",
+    ),
+    ("view-unknown-kind", "view.kind", "unknown view kind \"4d\""),
+    (
+        "view-zero-height",
+        "view.height",
+        "must be greater than 0, found 0",
+    ),
+    (
+        "unknown-curve-field",
+        "curves[0].weights",
+        "unknown field (expected one of: type, name, style, points)",
+    ),
+];
+
+fn corpus() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad_scenes")
+}
+
+#[test]
+fn every_file_of_the_corpus_is_listed() {
+    let mut files: Vec<String> = std::fs::read_dir(corpus())
+        .expect("corpus dir")
+        .map(|e| {
+            e.expect("entry")
+                .path()
+                .file_stem()
+                .expect("stem")
+                .to_string_lossy()
+                .into_owned()
+        })
+        .collect();
+    files.sort();
+    let mut listed: Vec<String> = EXPECTED.iter().map(|e| e.0.to_owned()).collect();
+    listed.sort();
+    assert_eq!(files, listed);
+    assert!(EXPECTED.len() >= 15);
+}
+
+#[test]
+fn each_bad_scene_gives_its_typed_error() {
+    for (file, path, fragment) in EXPECTED {
+        let err = Scene::load(&corpus().join(format!("{file}.json")))
+            .expect_err(&format!("{file} must be rejected"));
+        assert_eq!(err.path, *path, "{file}: {err}");
+        let text = err.to_string();
+        assert!(
+            text.contains(fragment),
+            "{file}: {text:?} lacks {fragment:?}"
+        );
+        assert!(
+            !matches!(err.kind, SceneErrorKind::Io(_)),
+            "{file}: must be a content error, got {err}"
+        );
+    }
+}
+
+#[test]
+fn the_cli_reports_each_bad_scene_and_exits_1_without_panicking() {
+    for (file, path, fragment) in EXPECTED {
+        let scene = corpus().join(format!("{file}.json"));
+        let out = Command::new(env!("CARGO_BIN_EXE_splinescope"))
+            .arg("check")
+            .arg(&scene)
+            .output()
+            .expect("run splinescope");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{file}: {stderr}");
+        assert!(stderr.contains(&format!("{path}: ")), "{file}: {stderr}");
+        assert!(stderr.contains(fragment), "{file}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{file}: {stderr}");
+    }
+}

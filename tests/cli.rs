@@ -1,0 +1,309 @@
+//! The command line end to end: eval on both backends, render, check, the default job and
+//! bad arguments.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::Value;
+use splinescope::geom::{Aabb, ParamCurve};
+use splinescope::image::RgbaImage;
+use splinescope::scene::Scene;
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_splinescope"))
+}
+
+fn run(args: &[&str]) -> Output {
+    bin().args(args).output().expect("run splinescope")
+}
+
+fn scene_path(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(name)
+        .to_string_lossy()
+        .into_owned()
+}
+
+fn stdout_json(out: &Output) -> Value {
+    assert!(
+        out.status.success(),
+        "exit {:?}: {}",
+        out.status.code(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("stdout is JSON")
+}
+
+fn samples(v: &Value, curve: usize) -> Vec<[f64; 3]> {
+    v["curves"][curve]["samples"]
+        .as_array()
+        .expect("samples")
+        .iter()
+        .map(|p| {
+            let a = p.as_array().expect("point");
+            [0, 1, 2].map(|i| a[i].as_f64().expect("number"))
+        })
+        .collect()
+}
+
+#[test]
+fn eval_cpu_prints_exact_samples_over_the_domain() {
+    let out = run(&["eval", &scene_path("gallery.json"), "--samples", "5"]);
+    let v = stdout_json(&out);
+    let scene = Scene::load(Path::new(&scene_path("gallery.json"))).unwrap();
+    let curves = v["curves"].as_array().unwrap();
+    assert_eq!(curves.len(), scene.curves.len());
+    for (i, c) in scene.curves.iter().enumerate() {
+        assert_eq!(curves[i]["index"], i);
+        let s = samples(&v, i);
+        assert_eq!(s.len(), 5);
+        // End points are interpolated exactly; the middle is P(1/2).
+        let pts = c.curve.control_points();
+        assert_eq!(s[0], pts[0].to_array());
+        assert_eq!(s[4], pts[pts.len() - 1].to_array());
+        assert_eq!(s[2], c.curve.eval(0.5).to_array());
+    }
+}
+
+#[test]
+fn eval_gpu_agrees_with_cpu_within_the_bound() {
+    let Some(_) = common::gpu("eval_gpu_agrees_with_cpu_within_the_bound") else {
+        return;
+    };
+    let path = scene_path("gallery.json");
+    let cpu = stdout_json(&run(&["eval", &path, "--samples", "257"]));
+    let gpu = stdout_json(&run(&[
+        "eval",
+        &path,
+        "--samples",
+        "257",
+        "--backend",
+        "gpu",
+    ]));
+    let scene = Scene::load(Path::new(&path)).unwrap();
+    for (i, c) in scene.curves.iter().enumerate() {
+        let pts = c.curve.control_points();
+        let extent = Aabb::from_points(pts).diagonal();
+        let radius = pts.iter().map(|p| p.length()).fold(0.0, f64::max);
+        let degree = pts.len() - 1;
+        // The bound of tests/gpu_tessellation.rs.
+        let bound = 1e-6 * extent.max(radius) * (degree.max(12) as f64 / 12.0);
+        for (a, b) in samples(&cpu, i).iter().zip(samples(&gpu, i)) {
+            let d = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+            assert!(d <= bound, "curve {i}: |cpu − gpu| = {d:e} > {bound:e}");
+        }
+    }
+}
+
+#[test]
+fn eval_params_evaluate_at_the_given_parameters_on_both_backends() {
+    let path = scene_path("bezier3d.json");
+    let v = stdout_json(&run(&[
+        "eval", &path, "--params", "0.25,0.5", "--curve", "1",
+    ]));
+    let scene = Scene::load(Path::new(&path)).unwrap();
+    assert_eq!(v["curves"].as_array().unwrap().len(), 1);
+    assert_eq!(v["curves"][0]["index"], 1);
+    let s = samples(&v, 0);
+    assert_eq!(s[0], scene.curves[1].curve.eval(0.25).to_array());
+    assert_eq!(s[1], scene.curves[1].curve.eval(0.5).to_array());
+    if common::gpu("eval_params (gpu half)").is_some() {
+        let g = stdout_json(&run(&[
+            "eval",
+            &path,
+            "--params",
+            "0.25,0.5",
+            "--curve",
+            "1",
+            "--backend",
+            "gpu",
+        ]));
+        for (a, b) in s.iter().zip(samples(&g, 0)) {
+            for k in 0..3 {
+                assert!((a[k] - b[k]).abs() < 1e-5, "{a:?} vs {b:?}");
+            }
+        }
+    }
+}
+
+fn stderr_of(args: &[&str]) -> (Option<i32>, String) {
+    let out = run(args);
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn bad_eval_arguments_name_the_offending_value() {
+    let path = scene_path("gallery.json");
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["eval", &path, "--params", "0.5,1.5"],
+            "--params[1] = 1.5 is outside the domain [0, 1] of curves[0]",
+        ),
+        (
+            &["eval", &path, "--params", "0.5,abc"],
+            "--params[1]: \"abc\" is not a number",
+        ),
+        (
+            &["eval", &path, "--params", "nan"],
+            "--params[0]: NaN is not a finite number",
+        ),
+        (&["eval", &path], "give --samples N or --params"),
+        (
+            &["eval", &path, "--samples", "3", "--curve", "99"],
+            "--curve 99: the scene has 6 curve(s)",
+        ),
+        (
+            &["eval", "/nonexistent/scene.json", "--samples", "3"],
+            "/nonexistent/scene.json: (root): cannot read the file",
+        ),
+    ];
+    for (args, want) in cases {
+        let (code, err) = stderr_of(args);
+        assert_eq!(code, Some(1), "{args:?}: {err}");
+        assert!(err.contains(want), "{args:?}: {err:?} lacks {want:?}");
+    }
+    // Argument syntax errors are clap's (exit 2), naming the argument.
+    for (args, want) in [
+        (vec!["eval", path.as_str(), "--samples", "1"], "--samples"),
+        (vec!["render", "-o", "x.png", "--width", "0"], "--width"),
+        (
+            vec!["eval", path.as_str(), "--samples", "3", "--backend", "tpu"],
+            "--backend",
+        ),
+        (
+            vec!["render", "-o", "x.png", "--gpu-backend", "glide"],
+            "unknown GPU backend \"glide\"",
+        ),
+    ] {
+        let (code, err) = stderr_of(&args);
+        assert_eq!(code, Some(2), "{args:?}: {err}");
+        assert!(err.contains(want), "{args:?}: {err}");
+    }
+}
+
+fn out_dir() -> PathBuf {
+    common::out_dir("cli")
+}
+
+fn write_degree_40_scene() -> PathBuf {
+    let pts: Vec<String> = (0..=40)
+        .map(|i| format!("[{}, {}]", i, if i % 2 == 0 { 0 } else { 1 }))
+        .collect();
+    let path = out_dir().join("degree40.json");
+    std::fs::write(
+        &path,
+        format!(
+            "{{\"version\": 1, \"curves\": [{{\"type\": \"bezier\", \"points\": [{}]}}]}}",
+            pts.join(", ")
+        ),
+    )
+    .unwrap();
+    path
+}
+
+#[test]
+fn a_degree_over_the_gpu_maximum_is_an_error_on_the_gpu_and_fine_on_the_cpu() {
+    let scene = write_degree_40_scene();
+    let s = scene.to_string_lossy();
+    let want = "curves[0]: Bézier segment 0 has degree 40, over the GPU maximum of 31";
+    let (code, err) = stderr_of(&["check", &s]);
+    assert_eq!(code, Some(1));
+    assert!(err.contains(want), "{err}");
+    let v = stdout_json(&run(&["eval", &s, "--samples", "3"]));
+    assert_eq!(samples(&v, 0)[2], [40.0, 0.0, 0.0]);
+    if common::gpu("degree over max (gpu half)").is_some() {
+        let out_png = out_dir().join("degree40.png");
+        let (code, err) = stderr_of(&["render", &s, "-o", &out_png.to_string_lossy()]);
+        assert_eq!(code, Some(1));
+        assert!(err.contains(want), "{err}");
+        let (code, err) = stderr_of(&["eval", &s, "--samples", "3", "--backend", "gpu"]);
+        assert_eq!(code, Some(1));
+        assert!(err.contains(want), "{err}");
+    }
+}
+
+#[test]
+fn render_writes_a_png_of_the_requested_size() {
+    let Some(_) = common::gpu("render_writes_a_png_of_the_requested_size") else {
+        return;
+    };
+    let png = out_dir().join("render.png");
+    let _ = std::fs::remove_file(&png);
+    let out = run(&[
+        "render",
+        &scene_path("gallery.json"),
+        "-o",
+        &png.to_string_lossy(),
+        "--width",
+        "321",
+        "--height",
+        "123",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let img = RgbaImage::read_png(&png).expect("png");
+    assert_eq!((img.width, img.height), (321, 123));
+    // Something other than the white background was drawn.
+    assert!(img.data.chunks_exact(4).any(|p| p[0] < 128));
+}
+
+#[test]
+fn no_arguments_and_no_display_render_the_gallery_and_say_where() {
+    let Some(_) = common::gpu("no_arguments_and_no_display_render_the_gallery_and_say_where")
+    else {
+        return;
+    };
+    let dir = out_dir().join("headless");
+    std::fs::create_dir_all(&dir).unwrap();
+    let png = dir.join("splinescope-gallery.png");
+    let _ = std::fs::remove_file(&png);
+    let out = bin()
+        .current_dir(&dir)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("run");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(stdout.contains("no display found"), "{stdout}");
+    assert!(
+        stdout.contains(&png.to_string_lossy().into_owned()),
+        "{stdout}"
+    );
+    let img = RgbaImage::read_png(&png).expect("png");
+    assert_eq!((img.width, img.height), (1600, 1000));
+}
+
+#[test]
+fn view_without_a_display_is_a_clear_error() {
+    let out = bin()
+        .args(["view", "--frames", "1"])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("run");
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no display found"));
+}
+
+#[test]
+fn check_summarises_a_valid_scene() {
+    let out = run(&["check", &scene_path("gallery.json")]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("valid scene, 6 curve(s)"), "{text}");
+    assert!(text.contains("every curve fits the GPU kernel"), "{text}");
+}

@@ -1,0 +1,244 @@
+//! The WGSL kernel against the exact f64 curves and its f32 CPU twin, on the adapter the
+//! machine has (lavapipe in CI).
+//!
+//! Bound: max |GPU − CPU f64| ≤ 1e-6 · S for degree ≤ 12, with S = max(E, R): E the
+//! diagonal of the control points' box (the control polygon's extent), R the largest
+//! |P_i|. For curves whose box holds the origin R ≤ E, so S = E; for curves far from the
+//! origin no f32 computation can do better than ε·R (ε = 2⁻²⁴), hence the max.
+//! Above degree 12 the bound grows linearly: 1e-6 · S · n / 12. Why: f32 de Casteljau forms
+//! n levels of convex combinations; each level adds at most a few roundings of size ε·R,
+//! and the f32 parameter adds |P′| ε ≤ n · E · ε, so the worst-case error grows linearly in
+//! n; scaling the degree-12 bound by n / 12 keeps the same margin.
+
+mod common;
+
+use glam::{DVec3, Vec3};
+use splinescope::geom::{Bezier, ParamCurve};
+use splinescope::gpu::layout::{GpuLineStyle, GpuVertex, MAX_GPU_DEGREE};
+use splinescope::gpu::pack::{ChunkBuilder, ChunkLimits, TessChunk, prepare_scene};
+use splinescope::gpu::tessellator::Tessellator;
+use splinescope::gpu::twin;
+use splinescope::scene::Color;
+use splinescope::scene::generate::{Rng, StressOptions, random_bezier_scene};
+
+/// The bound for a curve of `degree` with control points `points` (see the module doc).
+fn bound(degree: usize, points: &[DVec3]) -> f64 {
+    let extent = splinescope::geom::Aabb::from_points(points).diagonal();
+    let radius = points.iter().map(|p| p.length()).fold(0.0, f64::max);
+    1e-6 * extent.max(radius) * (degree.max(12) as f64 / 12.0)
+}
+
+fn random_curve(rng: &mut Rng, degree: usize, three_d: bool) -> Bezier {
+    Bezier::new(
+        (0..=degree)
+            .map(|_| {
+                DVec3::new(
+                    rng.range(-1.0, 1.0),
+                    rng.range(-1.0, 1.0),
+                    if three_d { rng.range(-1.0, 1.0) } else { 0.0 },
+                )
+            })
+            .collect(),
+    )
+}
+
+struct Case {
+    curve: Bezier,
+    samples: u32,
+}
+
+fn pack(cases: &[Case], limits: ChunkLimits) -> Vec<TessChunk> {
+    let mut b = ChunkBuilder::new(limits);
+    for (i, c) in cases.iter().enumerate() {
+        b.begin_segment(i, GpuLineStyle::solid(Color::WHITE, 1.0), c.curve.points())
+            .expect("fits");
+        b.add_samples(c.samples, 0.0, 1.0);
+    }
+    b.finish()
+}
+
+/// Runs the kernel over `chunks`, checks every sample was written with the right tag and
+/// lies within the bound of the f64 curve and close to the f32 twin. Returns the largest
+/// error relative to each curve's extent.
+fn check(ctx: &splinescope::gpu::GpuContext, cases: &[Case], chunks: &[TessChunk]) -> f64 {
+    let tess = Tessellator::new(&ctx.device);
+    let mut worst = 0.0_f64;
+    tess.tessellate_and_read(&ctx.device, &ctx.queue, chunks, |k, gpu| {
+        let chunk = &chunks[k];
+        let mut cpu = vec![
+            GpuVertex {
+                position: [0.0; 3],
+                id: 0
+            };
+            gpu.len()
+        ];
+        twin::tessellate(&chunk.points, &chunk.segments, &mut cpu);
+        for seg in &chunk.segments {
+            let case = &cases[chunk.first_curve + seg.curve as usize];
+            let extent = case.curve.control_box().diagonal();
+            let n = case.curve.degree();
+            let bound = bound(n, case.curve.points());
+            let lanes = seg.sample_offset..(seg.sample_offset + 64).min(seg.sample_count);
+            for j in lanes {
+                let s = gpu[(seg.first_sample + j) as usize];
+                assert_eq!(s.id, seg.curve, "sample {j} not written or mis-tagged");
+                let g = Vec3::from(s.position).as_dvec3();
+                assert!(
+                    g.is_finite(),
+                    "sample {j} of a degree-{n} curve not written"
+                );
+                // The kernel's parameter, then the exact curve there.
+                let t = f64::from(seg.u0)
+                    + (f64::from(seg.u1) - f64::from(seg.u0))
+                        * if seg.sample_count > 1 {
+                            f64::from(j) / f64::from(seg.sample_count - 1)
+                        } else {
+                            0.0
+                        };
+                let exact = case.curve.eval(t);
+                let err = (g - exact).length();
+                assert!(
+                    err <= bound,
+                    "degree {n}, sample {j}/{}: |GPU − f64| = {err:e} > {bound:e}",
+                    seg.sample_count,
+                );
+                let twin_err = (g - Vec3::from(cpu[(seg.first_sample + j) as usize].position)
+                    .as_dvec3())
+                .length();
+                assert!(twin_err <= bound, "GPU vs twin {twin_err:e}");
+                worst = worst.max(err / extent);
+            }
+        }
+    })
+    .expect("readback");
+    worst
+}
+
+#[test]
+fn kernel_matches_the_exact_curves_for_every_degree_2d_and_3d() {
+    let Some(ctx) = common::gpu("kernel_matches_the_exact_curves_for_every_degree_2d_and_3d")
+    else {
+        return;
+    };
+    let mut rng = Rng::new(2024);
+    let mut cases = Vec::new();
+    for degree in 1..=MAX_GPU_DEGREE {
+        for three_d in [false, true] {
+            for _ in 0..4 {
+                cases.push(Case {
+                    curve: random_curve(&mut rng, degree, three_d),
+                    samples: rng.int(2, 300) as u32,
+                });
+            }
+        }
+    }
+    let chunks = pack(
+        &cases,
+        ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
+    );
+    assert_eq!(chunks.len(), 1);
+    let worst = check(ctx, &cases, &chunks);
+    eprintln!("largest |GPU − f64| / extent over degrees 1..=31: {worst:e}");
+}
+
+#[test]
+fn tiny_chunks_split_runs_and_still_write_every_sample() {
+    let Some(ctx) = common::gpu("tiny_chunks_split_runs_and_still_write_every_sample") else {
+        return;
+    };
+    let mut rng = Rng::new(5);
+    let cases: Vec<Case> = (0..40)
+        .map(|i| Case {
+            curve: random_curve(&mut rng, 1 + i % 9, i % 2 == 0),
+            samples: rng.int(2, 120) as u32,
+        })
+        .collect();
+    let limits = ChunkLimits {
+        max_samples: 97,
+        max_points: 40,
+        max_segments: 7,
+        max_styles: 5,
+    };
+    let chunks = pack(&cases, limits);
+    assert!(
+        chunks.len() >= 15,
+        "limits must force many chunks, got {}",
+        chunks.len()
+    );
+    for c in &chunks {
+        assert!(c.sample_count as usize <= limits.max_samples);
+        assert!(c.points.len() <= limits.max_points);
+        assert!(c.segments.len() <= limits.max_segments);
+        assert!(c.styles.len() <= limits.max_styles);
+    }
+    check(ctx, &cases, &chunks);
+}
+
+#[test]
+fn dispatch_grid_covers_more_segments_than_one_dimension_allows() {
+    use splinescope::gpu::tessellator::dispatch_grid;
+    assert_eq!(dispatch_grid(0, 65535), (0, 0));
+    assert_eq!(dispatch_grid(10, 65535), (10, 1));
+    let (x, y) = dispatch_grid(1_000_000, 65535);
+    assert!(x <= 65535 && y <= 65535 && u64::from(x) * u64::from(y) >= 1_000_000);
+}
+
+#[test]
+fn one_million_cubics_tessellate_correctly_in_chunks() {
+    let Some(ctx) = common::gpu("one_million_cubics_tessellate_correctly_in_chunks") else {
+        return;
+    };
+    let scene = random_bezier_scene(StressOptions {
+        curves: 1_000_000,
+        degree: 3,
+        samples: 64,
+        three_d: false,
+        seed: 99,
+    });
+    let limits = ChunkLimits::for_binding_size(ctx.max_binding_bytes());
+    let prepared = prepare_scene(&scene, limits).expect("packs");
+    let total: u64 = prepared
+        .chunks
+        .iter()
+        .map(|c| u64::from(c.sample_count))
+        .sum();
+    assert_eq!(total, 64_000_000);
+    // 64M samples × 16 B = 1 GiB: more than one 128 MiB binding, so several chunks.
+    assert!(
+        prepared.chunks.len() >= 8,
+        "{} chunks",
+        prepared.chunks.len()
+    );
+    // More workgroups than one dispatch dimension allows, so the 2D grid is used.
+    assert!(prepared.chunks[0].segments.len() > 65_535);
+    let tess = Tessellator::new(&ctx.device);
+    let mut checked = 0u64;
+    let mut seen = 0u64;
+    tess.tessellate_and_read(&ctx.device, &ctx.queue, &prepared.chunks, |k, gpu| {
+        let chunk = &prepared.chunks[k];
+        // Every sample written (the buffer was poisoned with NaN / u32::MAX)…
+        for (i, s) in gpu.iter().enumerate() {
+            assert!(
+                s.id != u32::MAX && !s.position[0].is_nan(),
+                "chunk {k}: sample {i} not written"
+            );
+        }
+        seen += gpu.len() as u64;
+        // …and a spread of them equal to the exact curves.
+        for seg in chunk.segments.iter().step_by(97) {
+            let curve = chunk.first_curve + seg.curve as usize;
+            let b = &scene.curves[curve].curve;
+            let bound = bound(3, b.control_points());
+            for j in [0, 17, 63] {
+                let s = gpu[(seg.first_sample + j) as usize];
+                let t = f64::from(j) / 63.0;
+                let err = (Vec3::from(s.position).as_dvec3() - b.eval(t)).length();
+                assert!(err <= bound, "curve {curve}: {err:e} > {bound:e}");
+                checked += 1;
+            }
+        }
+    })
+    .expect("readback");
+    assert_eq!(seen, 64_000_000);
+    assert!(checked > 30_000, "{checked}");
+}

@@ -1,0 +1,211 @@
+//! Offscreen images: golden references with a stated tolerance, and checks against
+//! analytic truth that need no reference at all.
+//!
+//! Golden tolerance: a pixel counts as different when any channel differs by more than
+//! 24/255; at most 0.5 % of the pixels may differ. The references were made on lavapipe
+//! (Mesa 22.3, Vulkan); rasterisers differ slightly in coverage at edges, which the
+//! tolerance absorbs, while a missing, moved or recoloured curve changes far more pixels.
+//! On failure the actual image and a diff (differing pixels in red) are written to
+//! `target/test-output/images/`. `SPLINESCOPE_BLESS=1` writes new references instead.
+
+mod common;
+
+use std::path::PathBuf;
+
+use glam::{DVec2, DVec3};
+use splinescope::camera::Camera;
+use splinescope::geom::{Bezier, Curve};
+use splinescope::gpu::offscreen::render_scene;
+use splinescope::image::{RgbaImage, compare};
+use splinescope::scene::{Color, Scene, SceneCurve, Style, ViewSpec, gallery};
+
+const CHANNEL_TOLERANCE: u8 = 24;
+const MAX_DIFFERING_FRACTION: f64 = 0.005;
+
+fn golden(name: &str, image: &RgbaImage) {
+    let reference = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/golden")
+        .join(format!("{name}.png"));
+    if std::env::var("SPLINESCOPE_BLESS").is_ok_and(|v| v == "1") {
+        image.write_png(&reference).expect("write reference");
+        eprintln!("blessed {}", reference.display());
+        return;
+    }
+    let want = RgbaImage::read_png(&reference)
+        .unwrap_or_else(|e| panic!("{e}; run with SPLINESCOPE_BLESS=1 to create the reference"));
+    let out = common::out_dir("images");
+    let diff = compare(image, &want, CHANNEL_TOLERANCE);
+    let fail = |why: String| {
+        let actual = out.join(format!("{name}.actual.png"));
+        image.write_png(&actual).expect("write actual");
+        if let Some(d) = &diff {
+            d.diff_image
+                .write_png(&out.join(format!("{name}.diff.png")))
+                .expect("write diff");
+        }
+        panic!(
+            "{name}: {why}; actual and diff images in {} (SPLINESCOPE_BLESS=1 accepts the new image)",
+            out.display()
+        );
+    };
+    let Some(d) = &diff else {
+        fail(format!(
+            "size {}×{} differs from the reference {}×{}",
+            image.width, image.height, want.width, want.height
+        ));
+        return;
+    };
+    let fraction = d.pixels_over as f64 / f64::from(image.width * image.height);
+    if fraction > MAX_DIFFERING_FRACTION {
+        fail(format!(
+            "{} pixels ({:.3} %) differ by more than {CHANNEL_TOLERANCE}/255 (largest difference {})",
+            d.pixels_over,
+            fraction * 100.0,
+            d.max_channel_diff
+        ));
+    }
+}
+
+#[test]
+fn gallery_matches_its_golden_image() {
+    let Some(ctx) = common::gpu("gallery_matches_its_golden_image") else {
+        return;
+    };
+    let image = render_scene(ctx, &gallery::gallery(), None, 480, 320).expect("render");
+    golden("gallery", &image);
+}
+
+#[test]
+fn three_d_scene_matches_its_golden_image() {
+    let Some(ctx) = common::gpu("three_d_scene_matches_its_golden_image") else {
+        return;
+    };
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes/bezier3d.json");
+    let scene = Scene::load(&path).expect("scene");
+    let image = render_scene(ctx, &scene, None, 320, 240).expect("render");
+    golden("bezier3d", &image);
+}
+
+/// A scene of one curve, no overlays, black on white, seen by a 2D view.
+fn single(curve: Bezier, width: f32, samples: u32) -> Scene {
+    Scene {
+        name: None,
+        background: Color::WHITE,
+        samples_per_segment: samples,
+        view: ViewSpec::TwoD {
+            center: glam::DVec2::new(0.0, 0.0),
+            height: 10.0,
+        },
+        curves: vec![SceneCurve {
+            name: None,
+            curve: Curve::Bezier(curve),
+            style: Style {
+                color: Color([0.0, 0.0, 0.0, 1.0]),
+                width,
+                show_polygon: false,
+                show_points: false,
+                samples: None,
+            },
+        }],
+    }
+}
+
+/// Distance in pixels from `c` to the segment `a`–`b`.
+fn segment_distance(c: DVec2, a: DVec2, b: DVec2) -> f64 {
+    let ab = b - a;
+    let t = ((c - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
+    (a + t * ab - c).length()
+}
+
+#[test]
+fn a_straight_line_has_exactly_the_analytic_coverage() {
+    let Some(ctx) = common::gpu("a_straight_line_has_exactly_the_analytic_coverage") else {
+        return;
+    };
+    // A line of width 3 px at an odd angle; with 2 samples it is one capsule, whose
+    // coverage at a pixel centre at distance d is clamp(w/2 + 0.5 − d, 0, 1).
+    let (w, h) = (200u32, 160u32);
+    let line = Bezier::new(vec![DVec3::new(-5.1, -3.3, 0.0), DVec3::new(4.3, 2.9, 0.0)]);
+    let scene = single(line.clone(), 3.0, 2);
+    let viewport = DVec2::new(f64::from(w), f64::from(h));
+    let camera: Camera = scene.camera(viewport);
+    let image = render_scene(ctx, &scene, Some(camera), w, h).expect("render");
+    let a = camera.pixel_from_world(line.points()[0], viewport).unwrap();
+    let b = camera.pixel_from_world(line.points()[1], viewport).unwrap();
+    let mut worst = 0.0_f64;
+    let mut inked = 0;
+    for y in 0..h {
+        for x in 0..w {
+            let centre = DVec2::new(f64::from(x) + 0.5, f64::from(y) + 0.5);
+            let coverage = (1.5 + 0.5 - segment_distance(centre, a, b)).clamp(0.0, 1.0);
+            let want = 255.0 * (1.0 - coverage);
+            let got = f64::from(image.pixel(x, y)[0]);
+            worst = worst.max((got - want).abs());
+            if coverage > 0.0 {
+                inked += 1;
+            }
+        }
+    }
+    // f32 geometry in the shader and 8-bit rounding: within 3/255 of the model.
+    assert!(
+        worst <= 3.0,
+        "largest deviation from the analytic coverage: {worst}/255"
+    );
+    assert!(inked > 300, "the line must cover pixels ({inked})");
+}
+
+#[test]
+fn curve_pixels_hug_the_exact_curve() {
+    let Some(ctx) = common::gpu("curve_pixels_hug_the_exact_curve") else {
+        return;
+    };
+    let (w, h) = (240u32, 180u32);
+    let cubic = Bezier::new(vec![
+        DVec3::new(-6.0, -3.0, 0.0),
+        DVec3::new(-3.0, 5.5, 0.0),
+        DVec3::new(3.5, -5.0, 0.0),
+        DVec3::new(6.0, 3.0, 0.0),
+    ]);
+    let width = 4.0;
+    let scene = single(cubic.clone(), width as f32, 512);
+    let viewport = DVec2::new(f64::from(w), f64::from(h));
+    let camera = scene.camera(viewport);
+    let image = render_scene(ctx, &scene, Some(camera), w, h).expect("render");
+    // The exact curve, densely, in pixels.
+    let dense: Vec<DVec2> = (0..=20_000)
+        .map(|k| {
+            camera
+                .pixel_from_world(cubic.eval(f64::from(k) / 20_000.0), viewport)
+                .unwrap()
+        })
+        .collect();
+    let (mut inside, mut outside) = (0, 0);
+    for y in 0..h {
+        for x in 0..w {
+            let c = DVec2::new(f64::from(x) + 0.5, f64::from(y) + 0.5);
+            let d = dense
+                .windows(2)
+                .map(|p| segment_distance(c, p[0], p[1]))
+                .fold(f64::INFINITY, f64::min);
+            let v = image.pixel(x, y)[0];
+            // Well inside the stroke: fully inked; well outside: untouched background.
+            if d <= width / 2.0 - 1.0 {
+                assert!(
+                    v <= 4,
+                    "pixel ({x},{y}) at {d:.2} px from the curve is {v}, want ink"
+                );
+                inside += 1;
+            } else if d >= width / 2.0 + 1.0 {
+                assert_eq!(
+                    v, 255,
+                    "pixel ({x},{y}) at {d:.2} px from the curve is inked"
+                );
+                outside += 1;
+            }
+        }
+    }
+    assert!(
+        inside > 200 && outside > 10_000,
+        "{inside} inside, {outside} outside"
+    );
+}

@@ -1,0 +1,157 @@
+//! The Rust GPU structs against naga's layout of their WGSL twins, and every shader
+//! validated with naga (no adapter needed).
+
+use naga::{Module, TypeInner};
+use splinescope::gpu::layout::{
+    GpuCamera, GpuLineStyle, GpuSegment, GpuTessParams, GpuVertex, MAX_GPU_DEGREE,
+    TESSELLATE_KERNELS, TESSELLATE_WORKGROUP_SIZE,
+};
+use splinescope::gpu::shaders::{self, ALL};
+
+/// The WGSL struct `name`: its size and its members' (name, offset).
+fn wgsl_struct(module: &Module, name: &str) -> (usize, Vec<(String, usize)>) {
+    let ty = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("struct {name} not in the WGSL"))
+        .1;
+    match &ty.inner {
+        TypeInner::Struct { members, span } => (
+            *span as usize,
+            members
+                .iter()
+                .map(|m| (m.name.clone().unwrap_or_default(), m.offset as usize))
+                .collect(),
+        ),
+        other => panic!("{name} is not a struct: {other:?}"),
+    }
+}
+
+macro_rules! assert_twin {
+    ($module:expr, $wgsl:literal, $rust:ty, [$($field:ident),* $(,)?]) => {{
+        let (span, members) = wgsl_struct($module, $wgsl);
+        assert_eq!(span, size_of::<$rust>(), "size of {} vs {}", $wgsl, stringify!($rust));
+        let rust: Vec<(String, usize)> =
+            vec![$((stringify!($field).to_owned(), std::mem::offset_of!($rust, $field))),*];
+        assert_eq!(members, rust, "members of {} vs {}", $wgsl, stringify!($rust));
+    }};
+}
+
+fn constant_u32(module: &Module, name: &str) -> u32 {
+    let c = module
+        .constants
+        .iter()
+        .find(|(_, c)| c.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("const {name} not in the WGSL"))
+        .1;
+    match module.global_expressions[c.init] {
+        naga::Expression::Literal(naga::Literal::U32(v)) => v,
+        ref other => panic!("{name} is not a u32 literal: {other:?}"),
+    }
+}
+
+#[test]
+fn every_shader_validates() {
+    for source in ALL {
+        if let Err(e) = source.validate() {
+            panic!("{e}");
+        }
+    }
+}
+
+#[test]
+fn gpu_structs_match_their_wgsl_twins() {
+    // Each pipeline composes the shared declarations, so check them in every module.
+    for source in ALL {
+        let (module, _) = source.validate().expect("valid");
+        let m = &module;
+        assert_twin!(m, "Vertex", GpuVertex, [position, id]);
+        assert_twin!(
+            m,
+            "Segment",
+            GpuSegment,
+            [
+                first_point,
+                degree,
+                curve,
+                first_sample,
+                sample_count,
+                u0,
+                u1,
+                sample_offset
+            ]
+        );
+        assert_twin!(
+            m,
+            "TessParams",
+            GpuTessParams,
+            [segment_start, segment_end, groups_x, _padding]
+        );
+        assert_twin!(
+            m,
+            "Camera",
+            GpuCamera,
+            [clip_from_world, viewport_px, width_scale, _padding]
+        );
+        assert_twin!(
+            m,
+            "LineStyle",
+            GpuLineStyle,
+            [color, width_px, dash_px, _padding0, _padding1]
+        );
+        assert_eq!(constant_u32(m, "MAX_DEGREE") as usize, MAX_GPU_DEGREE);
+        assert_eq!(
+            constant_u32(m, "TESSELLATE_WORKGROUP_SIZE"),
+            TESSELLATE_WORKGROUP_SIZE
+        );
+    }
+}
+
+#[test]
+fn kernel_workgroup_and_scratch_match_the_rust_constants() {
+    let (module, _) = shaders::TESSELLATE.validate().expect("valid");
+    for (entry, _) in TESSELLATE_KERNELS {
+        let ep = module
+            .entry_points
+            .iter()
+            .find(|e| e.name == entry)
+            .unwrap_or_else(|| panic!("entry point {entry}"));
+        assert_eq!(
+            ep.workgroup_size,
+            [TESSELLATE_WORKGROUP_SIZE, 1, 1],
+            "{entry}"
+        );
+    }
+    // The general kernel's private scratch must hold MAX_GPU_DEGREE + 1 points.
+    let any = module
+        .entry_points
+        .iter()
+        .find(|e| e.name == "tessellate_any")
+        .expect("general kernel");
+    let scratch = any
+        .function
+        .local_variables
+        .iter()
+        .find(|(_, v)| v.name.as_deref() == Some("p"))
+        .expect("scratch array p")
+        .1;
+    match module.types[scratch.ty].inner {
+        TypeInner::Array {
+            size: naga::ArraySize::Constant(n),
+            ..
+        } => assert_eq!(n.get() as usize, MAX_GPU_DEGREE + 1),
+        ref other => panic!("p is not a fixed array: {other:?}"),
+    }
+}
+
+#[test]
+fn a_broken_shader_is_reported_with_its_file_and_span() {
+    let broken = shaders::ShaderSource {
+        file: "broken.wgsl",
+        body: "fn f() -> f32 { return undefined_name; }",
+    };
+    let err = broken.validate().expect_err("must fail").to_string();
+    assert!(err.contains("broken.wgsl"), "{err}");
+    assert!(err.contains("undefined_name"), "{err}");
+}
