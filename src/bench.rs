@@ -2,11 +2,14 @@
 //! twin of the kernel, one thread each) and on the GPU (compute only, compute with
 //! readback, and whole frames drawn offscreen).
 
+use std::io::Write;
 use std::time::{Duration, Instant};
 
 use anyhow::Result;
 use glam::DVec2;
 use serde_json::json;
+
+use super::say;
 
 use splinescope::geom::ParamCurve;
 use splinescope::gpu::GpuContext;
@@ -172,11 +175,11 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         "frames_per_s_1920x1080": frame_fps,
     });
     if args.json {
-        println!("{report:#}");
+        say!("{report:#}");
         return Ok(());
     }
     let m = |v: f64| format!("{:>10.1} M samples/s", v / 1e6);
-    println!(
+    say!(
         "adapter: {}\n{} curves of degree {}, {} samples each ({} samples, {} chunk(s))",
         ctx.describe(),
         args.curves,
@@ -185,16 +188,16 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         total,
         prepared.chunks.len()
     );
-    println!("  CPU f64 de Casteljau, 1 thread     {}", m(cpu_f64));
-    println!("  CPU f32 kernel twin, 1 thread      {}", m(cpu_twin));
-    println!("  GPU compute (wall, submit+wait)    {}", m(gpu_wall));
+    say!("  CPU f64 de Casteljau, 1 thread     {}", m(cpu_f64));
+    say!("  CPU f32 kernel twin, 1 thread      {}", m(cpu_twin));
+    say!("  GPU compute (wall, submit+wait)    {}", m(gpu_wall));
     match gpu_pass {
-        Some(v) => println!("  GPU compute (timestamps)           {}", m(v)),
-        None => println!("  GPU compute (timestamps)           not supported by this adapter"),
+        Some(v) => say!("  GPU compute (timestamps)           {}", m(v)),
+        None => say!("  GPU compute (timestamps)           not supported by this adapter"),
     }
-    println!("  GPU compute + readback             {}", m(gpu_readback));
+    say!("  GPU compute + readback             {}", m(gpu_readback));
     if let Some(fps) = frame_fps {
-        println!(
+        say!(
             "  whole frames 1920×1080 (compute + {} line pieces) {fps:.2} frames/s",
             total.saturating_sub(args.curves)
         );

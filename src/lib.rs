@@ -21,4 +21,5 @@ pub mod camera;
 pub mod geom;
 pub mod gpu;
 pub mod image;
+pub mod inspect;
 pub mod scene;

@@ -14,6 +14,14 @@ use splinescope::scene::{Scene, gallery};
 
 mod bench;
 
+/// `println!` that returns the I/O error instead of panicking (a closed pipe, say).
+macro_rules! say {
+    ($($arg:tt)*) => {
+        writeln!(std::io::stdout(), $($arg)*)?
+    };
+}
+pub(crate) use say;
+
 /// A GPU-rendered, real-time viewer and evaluation engine for families of parametric
 /// curves. With no command: the gallery in a window, or, with no display, a PNG of it.
 #[derive(Debug, Parser)]
@@ -95,6 +103,15 @@ enum Command {
         #[command(flatten)]
         gpu: GpuArgs,
     },
+    /// Print each curve's derived data as JSON: Bézier segments, tangents and inner points,
+    /// refined knots, elevation coefficients, groups, dual points, VD values, ranges.
+    Inspect {
+        /// Scene file (JSON).
+        scene: PathBuf,
+        /// Only this curve (index in the scene).
+        #[arg(long)]
+        curve: Option<usize>,
+    },
     /// Validate a scene and summarise it (families, segments, GPU compatibility).
     Check {
         /// Scene file (JSON).
@@ -116,11 +133,21 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
+        // The reader went away (`splinescope eval … | head`): nothing left to say.
+        Err(e) if is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
             ExitCode::FAILURE
         }
     }
+}
+
+fn is_broken_pipe(e: &anyhow::Error) -> bool {
+    e.chain().any(|cause| {
+        cause
+            .downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+    })
 }
 
 fn run(cli: Cli) -> Result<()> {
@@ -165,7 +192,7 @@ fn run(cli: Cli) -> Result<()> {
             let scene = load_scene_or_gallery(scene.as_deref())?;
             let ctx = gpu.context()?;
             render_to(&ctx, &scene, &output, width, height)?;
-            println!(
+            say!(
                 "rendered {} curve(s) to {} ({width}×{height}, {})",
                 scene.curves.len(),
                 output.display(),
@@ -182,6 +209,7 @@ fn run(cli: Cli) -> Result<()> {
             gpu,
         }) => eval(&scene, samples, params.as_deref(), backend, curve, &gpu),
         Some(Command::Check { scene }) => check(&scene),
+        Some(Command::Inspect { scene, curve }) => inspect(&scene, curve),
         Some(Command::Bench(args)) => bench::run(&args),
     }
 }
@@ -201,7 +229,7 @@ fn default_job() -> Result<()> {
         .context("cannot read the current directory")?
         .join("splinescope-gallery.png");
     render_to(&ctx, &scene, &path, 1600, 1000)?;
-    println!(
+    say!(
         "no display found: rendered the gallery ({} curves) to {} (1600×1000, {}).\nOpen it with an image viewer, or run `splinescope view` where a display exists.",
         scene.curves.len(),
         path.display(),
@@ -238,6 +266,32 @@ fn parse_params(text: &str) -> Result<Vec<f64>> {
         .collect()
 }
 
+/// The indices `--curve` selects (all when absent), or an error naming the value.
+fn select_curves(scene: &Scene, only: Option<usize>) -> Result<Vec<usize>> {
+    match only {
+        Some(i) if i >= scene.curves.len() => bail!(
+            "--curve {i}: the scene has {} curve(s) (indices 0..{})",
+            scene.curves.len(),
+            scene.curves.len().saturating_sub(1)
+        ),
+        Some(i) => Ok(vec![i]),
+        None => Ok((0..scene.curves.len()).collect()),
+    }
+}
+
+fn inspect(path: &Path, only: Option<usize>) -> Result<()> {
+    let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
+    let curves: Vec<serde_json::Value> = select_curves(&scene, only)?
+        .into_iter()
+        .map(|i| {
+            let c = &scene.curves[i];
+            splinescope::inspect::curve_report(i, c.name.as_deref(), &c.curve)
+        })
+        .collect();
+    say!("{:#}", serde_json::json!({ "curves": curves }));
+    Ok(())
+}
+
 fn eval(
     path: &Path,
     samples: Option<u32>,
@@ -247,15 +301,7 @@ fn eval(
     gpu: &GpuArgs,
 ) -> Result<()> {
     let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
-    let indices: Vec<usize> = match only {
-        Some(i) if i >= scene.curves.len() => bail!(
-            "--curve {i}: the scene has {} curve(s) (indices 0..{})",
-            scene.curves.len(),
-            scene.curves.len().saturating_sub(1)
-        ),
-        Some(i) => vec![i],
-        None => (0..scene.curves.len()).collect(),
-    };
+    let indices = select_curves(&scene, only)?;
     let given = params.map(parse_params).transpose()?;
     if given.is_none() && samples.is_none() {
         bail!("give --samples N or --params T0,T1,...");
@@ -346,7 +392,7 @@ fn write_eval_json(
 
 fn check(path: &Path) -> Result<()> {
     let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
-    println!(
+    say!(
         "{}: valid scene, {} curve(s){}",
         path.display(),
         scene.curves.len(),
@@ -365,7 +411,7 @@ fn check(path: &Path) -> Result<()> {
             .max()
             .unwrap_or(0);
         let (a, b) = c.curve.domain();
-        println!(
+        say!(
             "  curves[{i}] {}{}: domain [{a}, {b}], {} Bézier segment(s), max degree {max_degree}",
             c.curve.family(),
             c.name
@@ -379,7 +425,7 @@ fn check(path: &Path) -> Result<()> {
         }
     }
     if gpu_problems.is_empty() {
-        println!("every curve fits the GPU kernel");
+        say!("every curve fits the GPU kernel");
         Ok(())
     } else {
         bail!("not drawable on the GPU:\n  {}", gpu_problems.join("\n  "))

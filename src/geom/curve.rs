@@ -2,14 +2,25 @@
 
 use glam::DVec3;
 
-use super::{Aabb, Bezier, BezierSegment, Lower, ParamCurve};
+use super::{
+    Aabb, BSpline, Bezier, BezierSegment, CubicInterpolation, Lower, ModifiedBezier, Nubmp,
+    ParamCurve,
+};
 
 /// Every curve family splinescope knows. Each one evaluates exactly in `f64`
 /// ([`ParamCurve`]) and lowers exactly to Bézier segments ([`Lower`]).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Curve {
-    /// A Bézier curve of any degree (see [`Bezier`]).
+    /// A Bézier curve of any degree (all papers).
     Bezier(Bezier),
+    /// `R(t) = Q(t) + S(t) v` (paper 002, §4).
+    Modified(ModifiedBezier),
+    /// Cubic Bézier interpolation, plain or modified (paper 002, §5).
+    Interpolation(CubicInterpolation),
+    /// A non-uniform B-spline of any order (paper 001, §2).
+    BSpline(BSpline),
+    /// A B-spline with multiple shape parameters (paper 001, §3–5).
+    Nubmp(Nubmp),
 }
 
 /// What an overlay polyline shows, so that the renderer can style it.
@@ -17,6 +28,12 @@ pub enum Curve {
 pub enum OverlayKind {
     /// The control polygon the user edits.
     ControlPolygon,
+    /// The dual control polygon of a NUBMP curve (`P*_j`).
+    DualPolygon,
+    /// An interpolation piece's inner Bézier points, joined to its ends (tangent handles).
+    TangentHandles,
+    /// The vector `v` of a modified curve, drawn from `Q(t*)` to `R(t*) = Q(t*) + v`.
+    BumpVector,
 }
 
 /// A polyline drawn over a curve to explain it (control polygon, dual polygon, …).
@@ -28,73 +45,129 @@ pub struct OverlayPolyline {
     pub points: Vec<DVec3>,
 }
 
+/// Calls `$body` with `$c` bound to the family inside a [`Curve`].
+macro_rules! each_family {
+    ($curve:expr, $c:ident => $body:expr) => {
+        match $curve {
+            Curve::Bezier($c) => $body,
+            Curve::Modified($c) => $body,
+            Curve::Interpolation($c) => $body,
+            Curve::BSpline($c) => $body,
+            Curve::Nubmp($c) => $body,
+        }
+    };
+}
+
 impl Curve {
     /// The family's name as written in scene files (`"bezier"`, …).
     #[must_use]
     pub fn family(&self) -> &'static str {
         match self {
             Curve::Bezier(_) => "bezier",
+            Curve::Modified(_) => "modified_bezier",
+            Curve::Interpolation(_) => "interpolation",
+            Curve::BSpline(_) => "bspline",
+            Curve::Nubmp(_) => "nubmp",
         }
     }
 
-    /// The control points the user places (drawn as dots).
+    /// The points the user places (drawn as dots): control points, or the interpolated
+    /// points.
     #[must_use]
     pub fn control_points(&self) -> &[DVec3] {
         match self {
             Curve::Bezier(b) => b.points(),
+            Curve::Modified(m) => m.base().points(),
+            Curve::Interpolation(c) => c.points(),
+            Curve::BSpline(b) => b.points(),
+            Curve::Nubmp(n) => n.points(),
         }
     }
 
-    /// The polylines that explain the curve: its control polygon, and per family more.
+    /// The polylines that explain the curve: its control polygon, and per family more
+    /// (the dual polygon, tangent handles, the bump vector).
     #[must_use]
     pub fn overlays(&self) -> Vec<OverlayPolyline> {
-        vec![OverlayPolyline {
+        let polygon = |points: &[DVec3]| OverlayPolyline {
             kind: OverlayKind::ControlPolygon,
-            points: self.control_points().to_vec(),
-        }]
+            points: points.to_vec(),
+        };
+        match self {
+            Curve::Bezier(b) => vec![polygon(b.points())],
+            Curve::BSpline(b) => vec![polygon(b.points())],
+            Curve::Modified(m) => {
+                let q = m.base().eval(m.t_star());
+                vec![
+                    polygon(m.base().points()),
+                    OverlayPolyline {
+                        kind: OverlayKind::BumpVector,
+                        points: vec![q, q + m.v()],
+                    },
+                ]
+            }
+            Curve::Interpolation(c) => c
+                .pieces()
+                .iter()
+                .map(|p| OverlayPolyline {
+                    kind: OverlayKind::TangentHandles,
+                    points: p.points().to_vec(),
+                })
+                .collect(),
+            Curve::Nubmp(n) => vec![
+                polygon(n.points()),
+                OverlayPolyline {
+                    kind: OverlayKind::DualPolygon,
+                    points: n.dual_points().to_vec(),
+                },
+            ],
+        }
     }
 
-    /// A box holding the whole curve (the control points' box: the curve lies in their
-    /// convex hull for every family here).
+    /// A box holding the whole curve. Bézier, B-spline and NUBMP curves lie in the convex
+    /// hull of their control points; the modified and interpolating curves are bounded by
+    /// their lowered pieces' control points.
     #[must_use]
     pub fn control_box(&self) -> Aabb {
-        Aabb::from_points(self.control_points())
+        match self {
+            Curve::Modified(_) | Curve::Interpolation(_) => self
+                .lower()
+                .iter()
+                .fold(Aabb::EMPTY, |b, s| b.union(s.bezier.control_box())),
+            _ => Aabb::from_points(self.control_points()),
+        }
     }
 
     /// Whether every point has `z = 0`.
     #[must_use]
     pub fn is_planar(&self) -> bool {
-        self.control_points().iter().all(|p| p.z == 0.0)
+        let planar = |pts: &[DVec3]| pts.iter().all(|p| p.z == 0.0);
+        match self {
+            Curve::Modified(m) => planar(m.base().points()) && m.v().z == 0.0,
+            Curve::Interpolation(c) => {
+                planar(c.points()) && c.modification().is_none_or(|m| m.v.z == 0.0)
+            }
+            _ => planar(self.control_points()),
+        }
     }
 }
 
 impl ParamCurve for Curve {
     fn domain(&self) -> (f64, f64) {
-        match self {
-            Curve::Bezier(b) => b.domain(),
-        }
+        each_family!(self, c => c.domain())
     }
     fn eval(&self, t: f64) -> DVec3 {
-        match self {
-            Curve::Bezier(b) => b.eval(t),
-        }
+        each_family!(self, c => ParamCurve::eval(c, t))
     }
     fn eval_deriv(&self, t: f64) -> DVec3 {
-        match self {
-            Curve::Bezier(b) => b.eval_deriv(t),
-        }
+        each_family!(self, c => ParamCurve::eval_deriv(c, t))
     }
     fn eval_second_deriv(&self, t: f64) -> DVec3 {
-        match self {
-            Curve::Bezier(b) => b.eval_second_deriv(t),
-        }
+        each_family!(self, c => ParamCurve::eval_second_deriv(c, t))
     }
 }
 
 impl Lower for Curve {
     fn lower(&self) -> Vec<BezierSegment> {
-        match self {
-            Curve::Bezier(b) => b.lower(),
-        }
+        each_family!(self, c => c.lower())
     }
 }

@@ -1,11 +1,11 @@
-//! The error type of curve construction.
+//! The error type of curve construction and editing.
 
 use thiserror::Error;
 
-/// Why a curve could not be built from its data.
+/// Why a curve could not be built from its data, or an edit was refused.
 ///
 /// Each variant knows the field it concerns, relative to the curve ([`GeomError::field`]),
-/// so that the scene layer can name the full path, e.g. `curves[3].points[2]`.
+/// so that the scene layer can name the full path, e.g. `curves[3].knots[5]`.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum GeomError {
     /// A list of control points is shorter than the family requires.
@@ -24,15 +24,207 @@ pub enum GeomError {
         /// The offending value.
         value: f64,
     },
+    /// `t*` of a modified curve is not inside `(0, 1)`.
+    #[error("t* = {value} is not inside the open interval (0, 1)")]
+    TStarOutside {
+        /// The value given.
+        value: f64,
+    },
+    /// The vector `v` of a modified curve has a non-finite coordinate.
+    #[error("not a finite number ({value})")]
+    NonFiniteVector {
+        /// The value given.
+        value: f64,
+    },
+    /// Interpolation parameters do not match the points.
+    #[error("{found} parameters for {expected} points")]
+    ParamCount {
+        /// The number of points.
+        expected: usize,
+        /// The number of parameters.
+        found: usize,
+    },
+    /// Interpolation parameters are not strictly increasing.
+    #[error("parameters must increase strictly: {value} follows {previous}")]
+    ParamsNotIncreasing {
+        /// Index of the offending parameter.
+        index: usize,
+        /// Its value.
+        value: f64,
+        /// The one before it.
+        previous: f64,
+    },
+    /// An interpolation parameter is NaN or infinite.
+    #[error("not a finite number ({value})")]
+    NonFiniteParam {
+        /// Index of the offending parameter.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// The order of a B-spline is below 2.
+    #[error("order {order} is below 2 (order = degree + 1)")]
+    OrderTooLow {
+        /// The order given.
+        order: usize,
+    },
+    /// The knot count does not match `n + k`.
+    #[error(
+        "{found} knots for {points} control points of order {order}: expected n + k = {expected}"
+    )]
+    KnotCount {
+        /// `n + k`.
+        expected: usize,
+        /// The count given.
+        found: usize,
+        /// `n`.
+        points: usize,
+        /// `k`.
+        order: usize,
+    },
+    /// A knot is NaN or infinite.
+    #[error("not a finite number ({value})")]
+    NonFiniteKnot {
+        /// Index of the offending knot.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// Knots decrease.
+    #[error("knots must not decrease: {value} follows {previous}")]
+    KnotsDecreasing {
+        /// Index of the offending knot.
+        index: usize,
+        /// Its value.
+        value: f64,
+        /// The knot before it.
+        previous: f64,
+    },
+    /// A knot repeats too often.
+    #[error(
+        "knot {value} has multiplicity {multiplicity}; at most {max} allowed {}",
+        if *interior { "inside the domain (order − 1 keeps the curve continuous)" } else { "at the domain's ends (the order)" }
+    )]
+    KnotMultiplicity {
+        /// Index of the first copy over the limit.
+        index: usize,
+        /// The knot's value.
+        value: f64,
+        /// How many copies there are.
+        multiplicity: usize,
+        /// How many are allowed.
+        max: usize,
+        /// Whether the knot is strictly inside the domain.
+        interior: bool,
+    },
+    /// The domain `[t_{k−1}, t_n]` is empty.
+    #[error("the domain [t_(k-1), t_n] = [{start}, {end}] is empty")]
+    EmptyDomain {
+        /// `t_{k−1}`.
+        start: f64,
+        /// `t_n`.
+        end: f64,
+    },
+    /// A knot to insert lies outside the domain.
+    #[error("{value} is outside the domain [{start}, {end}]")]
+    KnotOutsideDomain {
+        /// The knot.
+        value: f64,
+        /// The domain's start.
+        start: f64,
+        /// The domain's end.
+        end: f64,
+    },
+    /// A shape parameter group index does not exist.
+    #[error("group {group} does not exist (groups 0..{groups})")]
+    NoSuchGroup {
+        /// The index given.
+        group: usize,
+        /// How many groups there are.
+        groups: usize,
+    },
+    /// A shape parameter is addressed by a control point that is not in the group.
+    #[error("control point {member} is not in group {group} (members: {members})")]
+    NotInGroup {
+        /// The group.
+        group: usize,
+        /// The control point index given.
+        member: usize,
+        /// The members, listed.
+        members: String,
+    },
+    /// A group's values have the wrong count.
+    #[error("group {group} has {expected} parameters, found {found} values")]
+    GroupSize {
+        /// The group.
+        group: usize,
+        /// Its size.
+        expected: usize,
+        /// The values given.
+        found: usize,
+    },
+    /// A shape parameter is negative or not finite.
+    #[error("shape parameter a^{member}_{group} = {value} must be finite and ≥ 0")]
+    NegativeParameter {
+        /// The group.
+        group: usize,
+        /// The control point index.
+        member: usize,
+        /// The value.
+        value: f64,
+    },
+    /// A group's parameters do not sum to 1.
+    #[error("group {group} sums to {sum}, not 1 (tolerance {tolerance})")]
+    GroupSum {
+        /// The group.
+        group: usize,
+        /// Its sum.
+        sum: f64,
+        /// The tolerance used.
+        tolerance: f64,
+    },
+    /// A one-parameter edit named the same member to change and to absorb.
+    #[error("the absorbing member must differ from the changed one (both {member})")]
+    SameAbsorber {
+        /// The member.
+        member: usize,
+    },
+    /// A group lies wholly outside the curve's domain (unclamped knots): its parameters do
+    /// not change the curve and are kept at their standard values.
+    #[error("group {group} does not affect the curve on its domain (unclamped knots)")]
+    GroupOutsideDomain {
+        /// The group.
+        group: usize,
+    },
 }
 
 impl GeomError {
-    /// The field this error concerns, relative to the curve (e.g. `points[2]`).
+    /// The field this error concerns, relative to the curve (e.g. `points[2]`, `knots[5]`).
     #[must_use]
     pub fn field(&self) -> String {
         match self {
             GeomError::TooFewPoints { .. } => "points".to_owned(),
             GeomError::NonFinitePoint { index, .. } => format!("points[{index}]"),
+            GeomError::TStarOutside { .. } => "t_star".to_owned(),
+            GeomError::NonFiniteVector { .. } => "v".to_owned(),
+            GeomError::ParamCount { .. } => "params".to_owned(),
+            GeomError::ParamsNotIncreasing { index, .. }
+            | GeomError::NonFiniteParam { index, .. } => {
+                format!("params[{index}]")
+            }
+            GeomError::OrderTooLow { .. } => "order".to_owned(),
+            GeomError::KnotCount { .. } | GeomError::EmptyDomain { .. } => "knots".to_owned(),
+            GeomError::NonFiniteKnot { index, .. }
+            | GeomError::KnotsDecreasing { index, .. }
+            | GeomError::KnotMultiplicity { index, .. } => format!("knots[{index}]"),
+            GeomError::KnotOutsideDomain { .. } => "knots".to_owned(),
+            GeomError::NoSuchGroup { .. }
+            | GeomError::NotInGroup { .. }
+            | GeomError::GroupSize { .. }
+            | GeomError::NegativeParameter { .. }
+            | GeomError::GroupSum { .. }
+            | GeomError::SameAbsorber { .. }
+            | GeomError::GroupOutsideDomain { .. } => "shape".to_owned(),
         }
     }
 }

@@ -1,20 +1,32 @@
-//! Curve mathematics in `f64`: Bernstein polynomials, Bézier curves of any degree, and the
-//! lowering of every curve family to a list of Bézier segments (the one representation
-//! the GPU sees).
+//! Curve mathematics in `f64`: Bernstein polynomials, Bézier curves of any degree, the
+//! modified Bézier curve and cubic interpolation of paper 002, non-uniform B-splines and
+//! the NUBMP curves of paper 001, and the lowering of every family to a list of Bézier
+//! segments (the one representation the GPU sees).
 //!
 //! Points are [`glam::DVec3`]; planar curves have `z = 0`. Nothing in this module knows
 //! about the GPU.
 
 pub mod bernstein;
 pub mod bezier;
+pub mod bspline;
 pub mod curve;
 pub mod error;
+pub mod exact;
+pub mod interp;
+pub mod knots;
 pub mod lowering;
+pub mod modified;
+pub mod nubmp;
 
 pub use bezier::{Aabb, Bezier};
+pub use bspline::BSpline;
 pub use curve::{Curve, OverlayKind, OverlayPolyline};
 pub use error::GeomError;
+pub use interp::{CubicInterpolation, Modification, Reading};
+pub use knots::KnotVector;
 pub use lowering::{BezierSegment, Lower, locate};
+pub use modified::ModifiedBezier;
+pub use nubmp::Nubmp;
 
 use glam::DVec3;
 

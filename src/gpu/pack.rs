@@ -419,15 +419,49 @@ pub const POLYGON_WIDTH_PX: f32 = 1.25;
 /// Diameter in pixels of control points.
 pub const POINT_DIAMETER_PX: f32 = 7.0;
 
+/// Diameter in pixels of derived points (dual control points, inner Bézier points).
+pub const DERIVED_POINT_DIAMETER_PX: f32 = 5.0;
+/// The colour of NUBMP dual polygons and points.
+pub const DUAL_COLOR: Color = Color([0.95, 0.55, 0.05, 0.95]);
+
 /// The style of an overlay polyline of `kind` over a curve of colour `curve`.
 #[must_use]
 pub fn overlay_style(kind: OverlayKind, curve: Color) -> GpuLineStyle {
+    let grey = Color([0.55, 0.55, 0.55, 1.0]);
     match kind {
         OverlayKind::ControlPolygon => {
-            let mut c = curve.mix(Color([0.55, 0.55, 0.55, 1.0]), 0.55);
+            let mut c = curve.mix(grey, 0.55);
             c.0[3] = 0.9;
             GpuLineStyle::solid(c, POLYGON_WIDTH_PX)
         }
+        OverlayKind::DualPolygon => GpuLineStyle {
+            dash_px: 8.0,
+            ..GpuLineStyle::solid(DUAL_COLOR, POLYGON_WIDTH_PX)
+        },
+        OverlayKind::TangentHandles => {
+            let mut c = curve.mix(grey, 0.7);
+            c.0[3] = 0.85;
+            GpuLineStyle::solid(c, 1.0)
+        }
+        OverlayKind::BumpVector => GpuLineStyle {
+            dash_px: 6.0,
+            ..GpuLineStyle::solid(curve.mix(Color([0.0, 0.0, 0.0, 1.0]), 0.3), 2.0)
+        },
+    }
+}
+
+/// The style of the derived points shown with an overlay of `kind`, if any.
+#[must_use]
+pub fn overlay_point_style(kind: OverlayKind, curve: Color) -> Option<GpuLineStyle> {
+    match kind {
+        OverlayKind::DualPolygon => {
+            Some(GpuLineStyle::solid(DUAL_COLOR, DERIVED_POINT_DIAMETER_PX))
+        }
+        OverlayKind::TangentHandles => Some(GpuLineStyle::solid(
+            curve.mix(Color([0.55, 0.55, 0.55, 1.0]), 0.6),
+            DERIVED_POINT_DIAMETER_PX - 1.0,
+        )),
+        OverlayKind::ControlPolygon | OverlayKind::BumpVector => None,
     }
 }
 
@@ -452,6 +486,9 @@ pub fn prepare_scene(scene: &Scene, limits: ChunkLimits) -> Result<PreparedScene
         if sc.style.show_polygon {
             for overlay in sc.curve.overlays() {
                 lines.push(&overlay.points, overlay_style(overlay.kind, sc.style.color));
+                if let Some(style) = overlay_point_style(overlay.kind, sc.style.color) {
+                    points.push(&overlay.points, style);
+                }
             }
         }
         if sc.style.show_points {

@@ -12,7 +12,11 @@ use super::{
     Color, FORMAT_VERSION, MAX_SAMPLES_PER_SEGMENT, Scene, SceneCurve, SceneError, SceneErrorKind,
     Style, ViewSpec,
 };
-use crate::geom::{Bezier, Curve, GeomError};
+use crate::geom::exact::{Rational, parse_decimal};
+use crate::geom::{
+    BSpline, Bezier, CubicInterpolation, Curve, GeomError, KnotVector, Modification,
+    ModifiedBezier, Nubmp, Reading,
+};
 
 /// Marks a non-finite literal rewritten into a string before parsing.
 const NON_FINITE_MARK: char = '\u{1}';
@@ -247,6 +251,10 @@ impl<'a> Node<'a> {
         Ok(DVec3::from_array(p))
     }
 
+    fn numbers(&self) -> Result<Vec<f64>, SceneError> {
+        self.array()?.iter().map(Node::f64).collect()
+    }
+
     fn points(&self, min: usize) -> Result<Vec<DVec3>, SceneError> {
         let items = self.array()?;
         if items.len() < min {
@@ -455,9 +463,55 @@ fn decode_curve(node: &Node<'_>, index: usize) -> Result<SceneCurve, SceneError>
     let (curve, obj) = match family {
         "bezier" => {
             let obj = node.object(&with_common(&["points"]))?;
-            let points = obj.req("points")?;
-            let curve = Bezier::try_new(points.points(2)?).map_err(|e| geom_error(node, &e))?;
+            let points = obj.req("points")?.points(2)?;
+            let curve = Bezier::try_new(points).map_err(|e| geom_error(node, "", &e))?;
             (Curve::Bezier(curve), obj)
+        }
+        "modified_bezier" => {
+            let obj = node.object(&with_common(&["points", "t_star", "v"]))?;
+            let points = obj.req("points")?.points(2)?;
+            let t_star = obj.req("t_star")?.f64()?;
+            let v = obj.req("v")?.point()?;
+            let base = Bezier::try_new(points).map_err(|e| geom_error(node, "", &e))?;
+            let curve =
+                ModifiedBezier::try_new(base, t_star, v).map_err(|e| geom_error(node, "", &e))?;
+            (Curve::Modified(curve), obj)
+        }
+        "interpolation" => {
+            let obj = node.object(&with_common(&["points", "params", "modification"]))?;
+            let points = obj.req("points")?.points(2)?;
+            let params = obj.get("params").map(|n| n.numbers()).transpose()?;
+            let modification = obj
+                .get("modification")
+                .map(|n| decode_modification(&n))
+                .transpose()?;
+            let curve = CubicInterpolation::try_new(points, params, modification).map_err(|e| {
+                let prefix = match e {
+                    GeomError::TStarOutside { .. } | GeomError::NonFiniteVector { .. } => {
+                        "modification."
+                    }
+                    _ => "",
+                };
+                geom_error(node, prefix, &e)
+            })?;
+            (Curve::Interpolation(curve), obj)
+        }
+        "bspline" => {
+            let obj = node.object(&with_common(&["points", "knots", "order"]))?;
+            let (points, knots) = decode_spline_parts(node, &obj)?;
+            let curve = BSpline::from_parts(points, knots).map_err(|e| geom_error(node, "", &e))?;
+            (Curve::BSpline(curve), obj)
+        }
+        "nubmp" => {
+            let obj = node.object(&with_common(&["points", "knots", "order", "shape"]))?;
+            let (points, knots) = decode_spline_parts(node, &obj)?;
+            let mut curve = Nubmp::standard(points, knots);
+            if let Some(shape) = obj.get("shape") {
+                for setting in shape.array()? {
+                    apply_shape_setting(&mut curve, &setting)?;
+                }
+            }
+            (Curve::Nubmp(curve), obj)
         }
         other => {
             return Err(ty.invalid(format!(
@@ -478,15 +532,141 @@ fn decode_curve(node: &Node<'_>, index: usize) -> Result<SceneCurve, SceneError>
 }
 
 /// The curve types the format knows.
-const FAMILIES: [&str; 1] = ["bezier"];
+const FAMILIES: [&str; 5] = [
+    "bezier",
+    "modified_bezier",
+    "interpolation",
+    "bspline",
+    "nubmp",
+];
+
+fn decode_modification(node: &Node<'_>) -> Result<Modification, SceneError> {
+    let obj = node.object(&["t_star", "v", "reading"])?;
+    let reading = match obj.get("reading") {
+        None => Reading::Paper,
+        Some(n) => match n.string()? {
+            "paper" => Reading::Paper,
+            "bump_added" => Reading::BumpAdded,
+            other => {
+                return Err(n.invalid(format!(
+                    "unknown reading {other:?} (expected \"paper\" or \"bump_added\")"
+                )));
+            }
+        },
+    };
+    Ok(Modification {
+        t_star: obj.req("t_star")?.f64()?,
+        v: obj.req("v")?.point()?,
+        reading,
+    })
+}
+
+/// Points and validated knots, with the knots' exact decimal values recorded.
+fn decode_spline_parts(
+    node: &Node<'_>,
+    obj: &Obj<'_>,
+) -> Result<(Vec<glam::DVec3>, KnotVector), SceneError> {
+    let points = obj.req("points")?.points(2)?;
+    let order_node = obj.req("order")?;
+    let order = order_node.u32_in(0, u32::MAX)? as usize;
+    let knots_node = obj.req("knots")?;
+    let knots = match knots_node.value {
+        Value::String(s) if s == "clamped_uniform" => {
+            KnotVector::clamped_uniform(order, points.len())
+                .map_err(|e| geom_error(node, "", &e))?
+        }
+        Value::String(s) if !s.starts_with(NON_FINITE_MARK) => {
+            return Err(knots_node.invalid(format!(
+                "unknown knot vector {s:?} (expected an array of numbers or \"clamped_uniform\")"
+            )));
+        }
+        _ => {
+            let items = knots_node.array()?;
+            let values = items.iter().map(Node::f64).collect::<Result<Vec<_>, _>>()?;
+            let exact: Option<Vec<Rational>> = items
+                .iter()
+                .map(|n| match n.value {
+                    Value::Number(x) => parse_decimal(&x.to_string()),
+                    _ => None,
+                })
+                .collect();
+            let kv = KnotVector::try_new(values, order, points.len())
+                .map_err(|e| geom_error(node, "", &e))?;
+            match exact {
+                Some(exact) => kv.with_exact(exact),
+                None => kv,
+            }
+        }
+    };
+    Ok((points, knots))
+}
+
+/// Applies one entry of a NUBMP `shape` list: `{"group": j, "values": [...]}` or
+/// `{"group": j, "member": i, "value": x, "absorber": l}`.
+fn apply_shape_setting(curve: &mut Nubmp, node: &Node<'_>) -> Result<(), SceneError> {
+    let obj = node.object(&["group", "values", "member", "value", "absorber"])?;
+    let group = obj.req("group")?.u32_in(0, u32::MAX)? as usize;
+    let at =
+        |field: &str| SceneError::new(format!("{}.{field}", node.path), SceneErrorKind::Missing);
+    let err = |field: String, e: &GeomError| {
+        SceneError::new(
+            format!("{}.{field}", node.path),
+            SceneErrorKind::Invalid(e.to_string()),
+        )
+    };
+    if let Some(values_node) = obj.get("values") {
+        for extra in ["member", "value", "absorber"] {
+            if obj.get(extra).is_some() {
+                return Err(SceneError::new(
+                    format!("{}.{extra}", node.path),
+                    SceneErrorKind::Invalid(
+                        "give either \"values\" (the whole group) or \"member\", \"value\" and \"absorber\"".into(),
+                    ),
+                ));
+            }
+        }
+        let values = values_node.numbers()?;
+        return curve.set_group(group, &values).map_err(|e| {
+            let field = match &e {
+                GeomError::NoSuchGroup { .. } | GeomError::GroupOutsideDomain { .. } => {
+                    "group".into()
+                }
+                GeomError::NegativeParameter { member, .. } => curve.groups()[group]
+                    .position(*member)
+                    .map_or("values".into(), |p| format!("values[{p}]")),
+                _ => "values".into(),
+            };
+            err(field, &e)
+        });
+    }
+    let member_node = obj.get("member").ok_or_else(|| at("member"))?;
+    let member = member_node.u32_in(0, u32::MAX)? as usize;
+    let value = obj.get("value").ok_or_else(|| at("value"))?.f64()?;
+    let absorber = obj
+        .get("absorber")
+        .ok_or_else(|| at("absorber"))?
+        .u32_in(0, u32::MAX)? as usize;
+    curve
+        .set_parameter(group, member, value, absorber)
+        .map_err(|e| {
+            let field = match &e {
+                GeomError::NoSuchGroup { .. } | GeomError::GroupOutsideDomain { .. } => "group",
+                GeomError::NotInGroup { member: m, .. } if *m == member => "member",
+                GeomError::NotInGroup { .. } | GeomError::SameAbsorber { .. } => "absorber",
+                // A negative result (for either member) comes from the value asked for.
+                _ => "value",
+            };
+            err(field.into(), &e)
+        })
+}
 
 fn with_common(fields: &[&'static str]) -> Vec<&'static str> {
     COMMON_CURVE_FIELDS.iter().chain(fields).copied().collect()
 }
 
-fn geom_error(curve: &Node<'_>, e: &GeomError) -> SceneError {
+fn geom_error(curve: &Node<'_>, prefix: &str, e: &GeomError) -> SceneError {
     SceneError::new(
-        format!("{}.{}", curve.path, e.field()),
+        format!("{}.{prefix}{}", curve.path, e.field()),
         SceneErrorKind::Invalid(e.to_string()),
     )
 }
@@ -537,6 +717,43 @@ fn curve_json(c: &SceneCurve) -> Value {
     match &c.curve {
         Curve::Bezier(b) => {
             obj.insert("points".into(), points_json(b.points()));
+        }
+        Curve::Modified(m) => {
+            obj.insert("points".into(), points_json(m.base().points()));
+            obj.insert("t_star".into(), m.t_star().into());
+            obj.insert("v".into(), point_json(m.v()));
+        }
+        Curve::Interpolation(ip) => {
+            obj.insert("points".into(), points_json(ip.points()));
+            obj.insert("params".into(), ip.params().to_vec().into());
+            if let Some(m) = ip.modification() {
+                obj.insert(
+                    "modification".into(),
+                    serde_json::json!({
+                        "t_star": m.t_star, "v": point_json(m.v), "reading": m.reading.name()
+                    }),
+                );
+            }
+        }
+        Curve::BSpline(b) => {
+            obj.insert("points".into(), points_json(b.points()));
+            obj.insert("knots".into(), b.knots().knots().to_vec().into());
+            obj.insert("order".into(), b.order().into());
+        }
+        Curve::Nubmp(n) => {
+            obj.insert("points".into(), points_json(n.points()));
+            obj.insert("knots".into(), n.knots().knots().to_vec().into());
+            obj.insert("order".into(), n.order().into());
+            let shape: Vec<Value> = n
+                .groups()
+                .iter()
+                .enumerate()
+                .filter(|(_, g)| g.values != g.standard)
+                .map(|(j, g)| serde_json::json!({"group": j, "values": g.values}))
+                .collect();
+            if !shape.is_empty() {
+                obj.insert("shape".into(), Value::Array(shape));
+            }
         }
     }
     let s = &c.style;

@@ -1,0 +1,227 @@
+//! The modified Bézier curve of paper 002 (Bożek & Sroda, "Modyfikacja wielomianowych
+//! krzywych Béziera"): a Bézier curve plus a C¹ bump times a vector.
+
+use glam::DVec3;
+
+use super::{Bezier, BezierSegment, GeomError, Lower, ParamCurve};
+
+/// The bump `S` of paper 002 for `t* ∈ (0, 1)`:
+///
+/// `S(t) = (2 t t* − t²) / t*²` on `[0, t*]`,
+/// `S(t) = (2 t t* − t² − 2t* + 1) / (t* − 1)²` on `[t*, 1]`.
+///
+/// `S` is C¹ with `S(0) = S(1) = 0`, `S(t*) = 1`, `S′(t*) = 0`.
+#[must_use]
+pub fn bump(t: f64, t_star: f64) -> f64 {
+    if t <= t_star {
+        (2.0 * t * t_star - t * t) / (t_star * t_star)
+    } else {
+        (2.0 * t * t_star - t * t - 2.0 * t_star + 1.0) / ((t_star - 1.0) * (t_star - 1.0))
+    }
+}
+
+/// `S′(t)`: `(2t* − 2t)/t*²` on `[0, t*]`, `(2t* − 2t)/(t* − 1)²` on `[t*, 1]`.
+#[must_use]
+pub fn bump_deriv(t: f64, t_star: f64) -> f64 {
+    let d = if t <= t_star {
+        t_star * t_star
+    } else {
+        (t_star - 1.0) * (t_star - 1.0)
+    };
+    (2.0 * t_star - 2.0 * t) / d
+}
+
+/// `S″(t)`: `−2/t*²` on `[0, t*)`, `−2/(t* − 1)²` on `(t*, 1]` (the right value at `t*`).
+#[must_use]
+pub fn bump_second_deriv(t: f64, t_star: f64) -> f64 {
+    if t < t_star {
+        -2.0 / (t_star * t_star)
+    } else {
+        -2.0 / ((t_star - 1.0) * (t_star - 1.0))
+    }
+}
+
+/// Checks `t* ∈ (0, 1)`.
+pub(crate) fn check_t_star(t_star: f64) -> Result<(), GeomError> {
+    if t_star > 0.0 && t_star < 1.0 {
+        Ok(())
+    } else {
+        Err(GeomError::TStarOutside { value: t_star })
+    }
+}
+
+/// Checks every coordinate of `v` is finite.
+pub(crate) fn check_vector(v: DVec3) -> Result<(), GeomError> {
+    match v.to_array().into_iter().find(|c| !c.is_finite()) {
+        Some(value) => Err(GeomError::NonFiniteVector { value }),
+        None => Ok(()),
+    }
+}
+
+/// The modified Bézier curve of paper 002, §4:
+///
+/// `R(t) = Q(t) + S(t) v`, `t ∈ [0, 1]`,
+///
+/// with `Q` a Bézier curve of degree `n`, `S` the C¹ [`bump`] peaking at `t* ∈ (0, 1)` and
+/// `v` a vector. `R(0) = P_0`, `R(1) = P_n`, `R′(0) = n(P_1 − P_0) + (2/t*) v`,
+/// `R′(1) = n(P_n − P_{n−1}) + (2/(t* − 1)) v`.
+///
+/// `R` is exactly two Bézier pieces: `Q` split at `t*`, plus `v` times the bump, whose
+/// quadratic Bernstein coefficients are `(0, 1, 1)` on `[0, t*]` and `(1, 1, 0)` on
+/// `[t*, 1]`, both elevated to degree `max(n, 2)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModifiedBezier {
+    base: Bezier,
+    t_star: f64,
+    v: DVec3,
+}
+
+impl ModifiedBezier {
+    /// `R = Q + S v`.
+    ///
+    /// # Errors
+    /// [`GeomError::TStarOutside`] unless `0 < t* < 1`; [`GeomError::NonFiniteVector`].
+    pub fn try_new(base: Bezier, t_star: f64, v: DVec3) -> Result<ModifiedBezier, GeomError> {
+        check_t_star(t_star)?;
+        check_vector(v)?;
+        Ok(ModifiedBezier { base, t_star, v })
+    }
+
+    /// The Bézier curve `Q`.
+    #[must_use]
+    pub fn base(&self) -> &Bezier {
+        &self.base
+    }
+
+    /// `t*`.
+    #[must_use]
+    pub fn t_star(&self) -> f64 {
+        self.t_star
+    }
+
+    /// `v`.
+    #[must_use]
+    pub fn v(&self) -> DVec3 {
+        self.v
+    }
+
+    /// The two exact Bézier pieces, on `[0, t*]` and `[t*, 1]`, of degree `max(n, 2)`.
+    #[must_use]
+    pub fn pieces(&self) -> [Bezier; 2] {
+        let m = self.base.degree().max(2);
+        let (left, right) = self.base.split(self.t_star);
+        let add_bump = |piece: Bezier, coeffs: [f64; 3]| {
+            let bump =
+                Bezier::new(coeffs.iter().map(|&c| DVec3::splat(c)).collect()).elevated_to(m);
+            let pts = piece
+                .elevated_to(m)
+                .points()
+                .iter()
+                .zip(bump.points())
+                .map(|(&p, b)| p + b.x * self.v)
+                .collect();
+            Bezier::new(pts)
+        };
+        [
+            add_bump(left, [0.0, 1.0, 1.0]),
+            add_bump(right, [1.0, 1.0, 0.0]),
+        ]
+    }
+}
+
+impl ParamCurve for ModifiedBezier {
+    fn domain(&self) -> (f64, f64) {
+        (0.0, 1.0)
+    }
+    fn eval(&self, t: f64) -> DVec3 {
+        self.base.eval(t) + bump(t, self.t_star) * self.v
+    }
+    fn eval_deriv(&self, t: f64) -> DVec3 {
+        self.base.eval_deriv(t) + bump_deriv(t, self.t_star) * self.v
+    }
+    fn eval_second_deriv(&self, t: f64) -> DVec3 {
+        self.base.eval_second_deriv(t) + bump_second_deriv(t, self.t_star) * self.v
+    }
+}
+
+impl Lower for ModifiedBezier {
+    fn lower(&self) -> Vec<BezierSegment> {
+        let [left, right] = self.pieces();
+        vec![
+            BezierSegment {
+                bezier: left,
+                t0: 0.0,
+                t1: self.t_star,
+            },
+            BezierSegment {
+                bezier: right,
+                t0: self.t_star,
+                t1: 1.0,
+            },
+        ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bump_meets_its_c1_conditions() {
+        for &ts in &[0.1, 0.25, 0.5, 0.7, 0.93] {
+            assert_eq!(bump(0.0, ts), 0.0);
+            assert!(bump(1.0, ts).abs() < 1e-15);
+            assert!((bump(ts, ts) - 1.0).abs() < 1e-15);
+            assert!((bump_deriv(0.0, ts) - 2.0 / ts).abs() < 1e-12);
+            assert_eq!(bump_deriv(ts, ts), 0.0);
+            assert!((bump_deriv(1.0, ts) - 2.0 / (ts - 1.0)).abs() < 1e-12);
+            // Both formulas agree at t* (value and slope): C¹ across the joint.
+            let right_value =
+                (2.0 * ts * ts - ts * ts - 2.0 * ts + 1.0) / ((ts - 1.0) * (ts - 1.0));
+            assert!((right_value - 1.0).abs() < 1e-14);
+            // The derivative matches central differences on both sides.
+            for &t in &[0.3 * ts, ts + 0.4 * (1.0 - ts)] {
+                let h = 1e-6;
+                let fd = (bump(t + h, ts) - bump(t - h, ts)) / (2.0 * h);
+                assert!((fd - bump_deriv(t, ts)).abs() < 1e-7);
+            }
+        }
+    }
+
+    #[test]
+    fn modified_curve_end_conditions_match_the_paper() {
+        // Paper 002, Fig. 1 control points.
+        let pts = [
+            (-1., 1.),
+            (-2., 1.),
+            (3., 3.),
+            (5., 2.),
+            (7., 0.),
+            (4., -1.),
+        ]
+        .map(|(x, y)| DVec3::new(x, y, 0.0));
+        let q = Bezier::new(pts.to_vec());
+        let v = DVec3::new(1.0, 2.0, 0.0);
+        let r = ModifiedBezier::try_new(q.clone(), 0.4, v).unwrap();
+        assert_eq!(r.eval(0.0), pts[0]);
+        assert!((r.eval(1.0) - pts[5]).length() < 1e-14);
+        let n = 5.0;
+        assert!((r.eval_deriv(0.0) - (n * (pts[1] - pts[0]) + (2.0 / 0.4) * v)).length() < 1e-12);
+        assert!(
+            (r.eval_deriv(1.0) - (n * (pts[5] - pts[4]) + (2.0 / (0.4 - 1.0)) * v)).length()
+                < 1e-12
+        );
+        assert!((r.eval(0.4) - (q.eval(0.4) + v)).length() < 1e-14);
+    }
+
+    #[test]
+    fn t_star_outside_the_open_interval_is_an_error() {
+        let q = Bezier::new(vec![DVec3::ZERO, DVec3::X]);
+        for bad in [0.0, 1.0, -0.2, 1.5, f64::NAN] {
+            assert!(matches!(
+                ModifiedBezier::try_new(q.clone(), bad, DVec3::Y),
+                Err(GeomError::TStarOutside { .. })
+            ));
+        }
+    }
+}

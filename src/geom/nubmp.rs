@@ -1,0 +1,666 @@
+//! Non-uniform B-splines with multiple shape parameters (NUBMP) — paper 001 (Cao, Wang,
+//! Li, Chen, "Non-uniform B-spline curves with multiple shape parameters", J. Zhejiang
+//! Univ.-Sci. C 12(10), 2011).
+
+use glam::DVec3;
+
+use super::bezier::check_finite;
+use super::bspline::{Elevation, elevation_coefficients};
+use super::exact::{Rational, format_rational};
+use super::{BSpline, BezierSegment, GeomError, KnotVector, Lower, ParamCurve};
+
+/// How far a group's sum may be from 1 and still be accepted.
+pub const GROUP_SUM_TOLERANCE: f64 = 1e-9;
+
+/// One group `A_j`: the shape parameters `a^i_j` of the members `i` whose B-spline
+/// `N_{i,k}` uses the dual B-spline `N*_{j,k+1}`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Group {
+    /// The members `i` (control point indices), increasing.
+    pub members: Vec<usize>,
+    /// The standard values `c^i_j` (the ordinary B-spline), by member.
+    pub standard: Vec<f64>,
+    /// The current values `a^i_j`, by member.
+    pub values: Vec<f64>,
+    /// Whether `N*_j` is non-zero somewhere inside the domain. Always true for clamped
+    /// knots; with unclamped knots the groups wholly outside the domain keep their standard
+    /// values and cannot be set (they do not change the curve).
+    pub effective: bool,
+}
+
+impl Group {
+    /// The position of member `i` in [`Group::members`].
+    #[must_use]
+    pub fn position(&self, i: usize) -> Option<usize> {
+        self.members.iter().position(|&m| m == i)
+    }
+
+    /// `a^i_j` for member `i`.
+    #[must_use]
+    pub fn value(&self, i: usize) -> Option<f64> {
+        self.position(i).map(|p| self.values[p])
+    }
+}
+
+/// A NUBMP curve of order `k` (paper 001, Definitions 1–2):
+///
+/// `P(t) = Σ_{i=0..n−1} Ñ_{i,k}(t) P_i`, `Ñ_{i,k} = Σ_j a^i_j N*_{j,k+1}`,
+///
+/// where `N*_{j,k+1}` are the order-`k+1` B-splines on the refined knots `T*` (each distinct
+/// knot once more) and the shape parameters satisfy `a^i_j ≥ 0` and, for each group
+/// `A_j = {a^i_j : i}`, `Σ_i a^i_j = 1`. With `a = c`, the exact degree-elevation
+/// coefficients, the curve is the ordinary B-spline (the *standard curve*).
+///
+/// Equivalently (the dual form, Eq. 9) it is the order-`k+1` B-spline on `T*` with dual
+/// control points `P*_j = Σ_i a^i_j P_i`: that is how it is evaluated, and lowered (Bézier
+/// extraction of the dual B-spline).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Nubmp {
+    points: Vec<DVec3>,
+    knots: KnotVector,
+    refined: KnotVector,
+    groups: Vec<Group>,
+    dual: BSpline,
+}
+
+/// The result of a permissible-range query.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PermissibleRange {
+    /// The smallest permissible value of the parameter.
+    pub min: f64,
+    /// The largest.
+    pub max: f64,
+}
+
+impl Nubmp {
+    /// The standard NUBMP curve (all `a = c`) on `points`, `knots` and `order`.
+    ///
+    /// # Errors
+    /// [`GeomError`] for invalid knots or points.
+    pub fn try_new(points: Vec<DVec3>, knots: Vec<f64>, order: usize) -> Result<Nubmp, GeomError> {
+        check_finite(&points)?;
+        let knots = KnotVector::try_new(knots, order, points.len())?;
+        Ok(Nubmp::standard(points, knots))
+    }
+
+    /// The standard curve from validated parts.
+    ///
+    /// # Panics
+    /// If `points.len()` differs from the knot vector's point count (a bug in the caller).
+    #[must_use]
+    pub fn standard(points: Vec<DVec3>, knots: KnotVector) -> Nubmp {
+        assert_eq!(
+            points.len(),
+            knots.n_points(),
+            "points must match the knots"
+        );
+        let k = knots.order();
+        let e: Elevation<f64> = elevation_coefficients(knots.knots(), k);
+        let n_star = e.refined.len() - (k + 1);
+        let refined = KnotVector::try_new(e.refined.clone(), k + 1, n_star)
+            .unwrap_or_else(|err| unreachable!("refined knots are valid: {err}"));
+        let (a, b) = knots.domain();
+        let rt = refined.knots();
+        let mut groups: Vec<Group> = (0..n_star)
+            .map(|j| Group {
+                members: Vec::new(),
+                standard: Vec::new(),
+                values: Vec::new(),
+                effective: rt[j] < b && rt[j + k + 1] > a,
+            })
+            .collect();
+        for (i, row) in e.rows.iter().enumerate() {
+            for (jj, &c) in row.values.iter().enumerate() {
+                let g = &mut groups[row.first + jj];
+                g.members.push(i);
+                g.standard.push(c);
+                g.values.push(c);
+            }
+        }
+        let dual = dual_spline(&points, &groups, &refined);
+        Nubmp {
+            points,
+            knots,
+            refined,
+            groups,
+            dual,
+        }
+    }
+
+    /// The control points `P_i`.
+    #[must_use]
+    pub fn points(&self) -> &[DVec3] {
+        &self.points
+    }
+
+    /// The knot vector `T` (order `k`).
+    #[must_use]
+    pub fn knots(&self) -> &KnotVector {
+        &self.knots
+    }
+
+    /// The refined knot vector `T*` (order `k + 1`).
+    #[must_use]
+    pub fn refined_knots(&self) -> &KnotVector {
+        &self.refined
+    }
+
+    /// The order `k`.
+    #[must_use]
+    pub fn order(&self) -> usize {
+        self.knots.order()
+    }
+
+    /// The groups `A_j`, `j = 0..n*`.
+    #[must_use]
+    pub fn groups(&self) -> &[Group] {
+        &self.groups
+    }
+
+    /// The number of free shape parameters `Σ_j (#A_j − 1)` over the effective groups
+    /// (paper 001, Eq. 8).
+    #[must_use]
+    pub fn free_parameter_count(&self) -> usize {
+        self.groups
+            .iter()
+            .filter(|g| g.effective)
+            .map(|g| g.members.len() - 1)
+            .sum()
+    }
+
+    /// The dual control points `P*_j = Σ_i a^i_j P_i`.
+    #[must_use]
+    pub fn dual_points(&self) -> &[DVec3] {
+        self.dual.points()
+    }
+
+    /// The dual curve: the order-`k+1` B-spline on `T*` with the dual control points.
+    #[must_use]
+    pub fn dual_spline(&self) -> &BSpline {
+        &self.dual
+    }
+
+    /// Whether every parameter has its standard value.
+    #[must_use]
+    pub fn is_standard(&self) -> bool {
+        self.groups.iter().all(|g| g.values == g.standard)
+    }
+
+    fn group(&self, j: usize) -> Result<&Group, GeomError> {
+        self.groups.get(j).ok_or(GeomError::NoSuchGroup {
+            group: j,
+            groups: self.groups.len(),
+        })
+    }
+
+    fn member_position(&self, j: usize, i: usize) -> Result<usize, GeomError> {
+        let g = self.group(j)?;
+        g.position(i).ok_or_else(|| GeomError::NotInGroup {
+            group: j,
+            member: i,
+            members: g
+                .members
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join(", "),
+        })
+    }
+
+    /// Sets all parameters of group `j` (in member order).
+    ///
+    /// # Errors
+    /// [`GeomError`] when the group does not exist or lies outside the domain, the count is
+    /// wrong, a value is negative or not finite, or the sum is not 1 within
+    /// [`GROUP_SUM_TOLERANCE`]. Nothing changes on error.
+    pub fn set_group(&mut self, j: usize, values: &[f64]) -> Result<(), GeomError> {
+        let g = self.group(j)?;
+        if values.len() != g.members.len() {
+            return Err(GeomError::GroupSize {
+                group: j,
+                expected: g.members.len(),
+                found: values.len(),
+            });
+        }
+        for (&member, &value) in g.members.iter().zip(values) {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(GeomError::NegativeParameter {
+                    group: j,
+                    member,
+                    value,
+                });
+            }
+        }
+        let sum: f64 = values.iter().sum();
+        if (sum - 1.0).abs() > GROUP_SUM_TOLERANCE {
+            return Err(GeomError::GroupSum {
+                group: j,
+                sum,
+                tolerance: GROUP_SUM_TOLERANCE,
+            });
+        }
+        if !g.effective && values != g.standard.as_slice() {
+            return Err(GeomError::GroupOutsideDomain { group: j });
+        }
+        self.groups[j].values = values.to_vec();
+        self.update_dual();
+        Ok(())
+    }
+
+    /// Sets `a^i_j = value`, member `absorber` of the same group taking the difference so
+    /// the group still sums to 1 (paper 001, Eq. 10–11).
+    ///
+    /// # Errors
+    /// [`GeomError`] when a member is not in the group, the two are the same, or a
+    /// resulting value would be negative. Nothing changes on error.
+    pub fn set_parameter(
+        &mut self,
+        j: usize,
+        i: usize,
+        value: f64,
+        absorber: usize,
+    ) -> Result<(), GeomError> {
+        let pi = self.member_position(j, i)?;
+        let pa = self.member_position(j, absorber)?;
+        if pi == pa {
+            return Err(GeomError::SameAbsorber { member: i });
+        }
+        let mut values = self.groups[j].values.clone();
+        let pair = values[pi] + values[pa];
+        if !(value.is_finite() && value >= 0.0) {
+            return Err(GeomError::NegativeParameter {
+                group: j,
+                member: i,
+                value,
+            });
+        }
+        if value > pair {
+            return Err(GeomError::NegativeParameter {
+                group: j,
+                member: absorber,
+                value: pair - value,
+            });
+        }
+        values[pi] = value;
+        values[pa] = pair - value;
+        self.set_group(j, &values)
+    }
+
+    fn update_dual(&mut self) {
+        self.dual = dual_spline(&self.points, &self.groups, &self.refined);
+    }
+
+    /// The NUBMP basis functions `Ñ_{i,k}(t) = Σ_j a^i_j N*_{j,k+1}(t)` that are non-zero at
+    /// `t`, as `(i, value)`.
+    #[must_use]
+    pub fn basis(&self, t: f64) -> Vec<(usize, f64)> {
+        let (mu, n_star) = self.refined.basis(t);
+        let k1 = self.refined.order();
+        let mut out: Vec<(usize, f64)> = Vec::new();
+        for (r, &nj) in n_star.iter().enumerate() {
+            let j = mu + 1 - k1 + r;
+            let g = &self.groups[j];
+            for (&i, &a) in g.members.iter().zip(&g.values) {
+                match out.iter_mut().find(|(m, _)| *m == i) {
+                    Some(slot) => slot.1 += a * nj,
+                    None => out.push((i, a * nj)),
+                }
+            }
+        }
+        out.sort_by_key(|&(i, _)| i);
+        out
+    }
+
+    /// `P(t) = Σ_i Ñ_{i,k}(t) P_i` through the original basis (the dual form,
+    /// [`ParamCurve::eval`], is the same curve).
+    #[must_use]
+    pub fn eval_by_basis(&self, t: f64) -> DVec3 {
+        self.basis(t)
+            .into_iter()
+            .map(|(i, w)| w * self.points[i])
+            .sum()
+    }
+
+    /// `N*_{j,k+1}(t)`.
+    #[must_use]
+    pub fn dual_basis_value(&self, j: usize, t: f64) -> f64 {
+        let (mu, n_star) = self.refined.basis(t);
+        let k1 = self.refined.order();
+        if j + k1 > mu && j <= mu {
+            n_star[j + k1 - 1 - mu]
+        } else {
+            0.0
+        }
+    }
+
+    /// The knot spans of `T` (as parameter intervals inside the domain) on which group `j`'s
+    /// parameters change the curve: the support of `N*_j` (paper 001, §4: at most
+    /// `⌊k/2⌋ + 1` spans).
+    #[must_use]
+    pub fn affected_spans(&self, j: usize) -> Vec<(f64, f64)> {
+        let rt = self.refined.knots();
+        let k1 = self.refined.order();
+        let (lo, hi) = (rt[j], rt[j + k1]);
+        let bps = self.knots.breakpoints();
+        bps.windows(2)
+            .map(|w| (w[0], w[1]))
+            .filter(|&(a, b)| a >= lo && b <= hi)
+            .collect()
+    }
+
+    /// The groups whose dual B-spline is non-zero at `τ` (those that can move `P(τ)`).
+    #[must_use]
+    pub fn groups_at(&self, tau: f64) -> Vec<usize> {
+        (0..self.groups.len())
+            .filter(|&j| self.groups[j].effective && self.dual_basis_value(j, tau) > 0.0)
+            .collect()
+    }
+
+    /// The vertices of the region `P(τ)` reaches when group `j`'s parameters vary over the
+    /// simplex (others fixed): `P(τ) + N*_j(τ)(P_i − P*_j)` for each member `i` — a point,
+    /// a segment (two members), a triangle (three), … (paper 001, §4, Eq. 14).
+    ///
+    /// # Errors
+    /// [`GeomError::NoSuchGroup`].
+    pub fn reachable_region(&self, tau: f64, j: usize) -> Result<Vec<DVec3>, GeomError> {
+        let g = self.group(j)?;
+        let p = self.eval(tau);
+        let w = self.dual_basis_value(j, tau);
+        let dual = self.dual.points()[j];
+        Ok(g.members
+            .iter()
+            .map(|&i| p + w * (self.points[i] - dual))
+            .collect())
+    }
+
+    /// For order 4 and a group of three members `(m, m+1, m+2)`, the left side of paper
+    /// 001's Theorem 1: `a^m_j / a^m_{j−1} + a^{m+2}_j / a^{m+2}_{j+1}` (the VD property is
+    /// guaranteed when every such value is ≤ 1). `None` for other groups or orders.
+    #[must_use]
+    pub fn vd_value(&self, j: usize) -> Option<f64> {
+        let [a, b, c, d] = self.vd_terms(j, &|g, i| self.groups[g].value(i))?;
+        Some(ratio(a, b) + ratio(c, d))
+    }
+
+    /// The four parameters of group `j`'s Theorem 1 condition `A/B + C/D ≤ 1`:
+    /// `[a^m_j, a^m_{j−1}, a^{m+2}_j, a^{m+2}_{j+1}]`, read through `value`.
+    fn vd_terms(&self, j: usize, value: &dyn Fn(usize, usize) -> Option<f64>) -> Option<[f64; 4]> {
+        if self.order() != 4 {
+            return None;
+        }
+        let g = self.groups.get(j)?;
+        if g.members.len() != 3 || j == 0 || j + 1 >= self.groups.len() {
+            return None;
+        }
+        let m = g.members[0];
+        Some([
+            value(j, m)?,
+            value(j - 1, m)?,
+            value(j, m + 2)?,
+            value(j + 1, m + 2)?,
+        ])
+    }
+
+    /// For order 4, the interval of values of `a^i_j` (with member `absorber` of the same
+    /// group taking the difference, every other parameter fixed) on which every affected
+    /// Theorem 1 condition holds and both parameters stay ≥ 0: the connected interval
+    /// containing the current value. `None` when the order is not 4 or the current value
+    /// itself violates a condition.
+    ///
+    /// Each condition `A/B + C/D ≤ 1` has `A, B, C, D` affine in the parameter `s`; with
+    /// `B, D > 0` it is the quadratic inequality `A D + C B − B D ≤ 0`, so the interval's
+    /// ends are roots of such quadratics (or zeros of a denominator, or 0 and the pair's
+    /// sum): they are computed in closed form and the pieces between them tested.
+    ///
+    /// # Errors
+    /// [`GeomError`] when a member is not in the group or the two are the same.
+    pub fn permissible_range(
+        &self,
+        j: usize,
+        i: usize,
+        absorber: usize,
+    ) -> Result<Option<PermissibleRange>, GeomError> {
+        let pi = self.member_position(j, i)?;
+        let pa = self.member_position(j, absorber)?;
+        if pi == pa {
+            return Err(GeomError::SameAbsorber { member: i });
+        }
+        if self.order() != 4 {
+            return Ok(None);
+        }
+        let g = &self.groups[j];
+        let pair = g.values[pi] + g.values[pa];
+        let current = g.values[pi];
+        let value_at = |s: f64| {
+            move |grp: usize, mem: usize| -> Option<f64> {
+                if grp == j && mem == i {
+                    Some(s)
+                } else if grp == j && mem == absorber {
+                    Some(pair - s)
+                } else {
+                    self.groups[grp].value(mem)
+                }
+            }
+        };
+        let terms_at = |h: usize, s: f64| self.vd_terms(h, &value_at(s));
+        // The conditions whose terms change with s.
+        let involved: Vec<usize> = (0..self.groups.len())
+            .filter(|&h| match (terms_at(h, 0.0), terms_at(h, pair)) {
+                (Some(x), Some(y)) => x != y,
+                _ => false,
+            })
+            .collect();
+        let holds = |s: f64| {
+            involved.iter().all(|&h| {
+                terms_at(h, s).is_some_and(|[a, b, c, d]| ratio(a, b) + ratio(c, d) <= 1.0 + 1e-12)
+            })
+        };
+        if !holds(current) {
+            return Ok(None);
+        }
+        let mut cuts = vec![0.0, pair];
+        for &h in &involved {
+            let q = |s: f64| {
+                let [a, b, c, d] = terms_at(h, s).unwrap_or([0.0; 4]);
+                a * d + c * b - b * d
+            };
+            // Exact quadratic through three samples.
+            let (q0, qm, q1) = (q(0.0), q(0.5 * pair), q(pair));
+            let qa = 2.0 * (q1 - 2.0 * qm + q0) / (pair * pair);
+            let qb = (q1 - q0) / pair - qa * pair;
+            cuts.extend(quadratic_roots(qa, qb, q0));
+            // Zeros of the denominators B and D (affine in s).
+            for idx in [1, 3] {
+                let (b0, b1) = (
+                    terms_at(h, 0.0).map_or(0.0, |t| t[idx]),
+                    terms_at(h, pair).map_or(0.0, |t| t[idx]),
+                );
+                if b1 != b0 {
+                    cuts.push(-b0 * pair / (b1 - b0));
+                }
+            }
+        }
+        cuts.retain(|&c| (0.0..=pair).contains(&c));
+        cuts.push(current);
+        cuts.sort_by(f64::total_cmp);
+        cuts.dedup();
+        let at = cuts.iter().position(|&c| c == current).unwrap_or(0);
+        let mut lo = at;
+        while lo > 0 && holds(0.5 * (cuts[lo - 1] + cuts[lo])) && holds(cuts[lo - 1]) {
+            lo -= 1;
+        }
+        let mut hi = at;
+        while hi + 1 < cuts.len() && holds(0.5 * (cuts[hi] + cuts[hi + 1])) && holds(cuts[hi + 1]) {
+            hi += 1;
+        }
+        Ok(Some(PermissibleRange {
+            min: cuts[lo],
+            max: cuts[hi],
+        }))
+    }
+
+    /// The exact elevation coefficients `c^i_j` as rationals, from the knots' exact values
+    /// ([`KnotVector::exact_knots`]). Rows as in [`elevation_coefficients`].
+    #[must_use]
+    pub fn exact_coefficients(&self) -> Elevation<Rational> {
+        elevation_coefficients(&self.knots.exact_knots(), self.order())
+    }
+
+    /// `c` as text, e.g. `"7/20"`.
+    #[must_use]
+    pub fn format_exact(r: &Rational) -> String {
+        format_rational(r)
+    }
+}
+
+/// `num / den` with `0/0 = 0` and `x/0 = ∞` (a zero parameter over a zero parameter adds
+/// nothing to a Theorem 1 sum; a positive one over zero violates it).
+fn ratio(num: f64, den: f64) -> f64 {
+    if num == 0.0 {
+        0.0
+    } else if den == 0.0 {
+        f64::INFINITY
+    } else {
+        num / den
+    }
+}
+
+/// The real roots of `a s² + b s + c` (the linear or constant case when `a` vanishes),
+/// by the cancellation-free formula.
+fn quadratic_roots(a: f64, b: f64, c: f64) -> Vec<f64> {
+    let scale = a.abs().max(b.abs()).max(c.abs());
+    if scale == 0.0 {
+        return Vec::new();
+    }
+    if a.abs() <= 1e-14 * scale {
+        return if b == 0.0 { Vec::new() } else { vec![-c / b] };
+    }
+    let disc = b * b - 4.0 * a * c;
+    if disc < 0.0 {
+        return Vec::new();
+    }
+    let q = -0.5 * (b + b.signum() * disc.sqrt());
+    if q == 0.0 {
+        return vec![0.0];
+    }
+    vec![q / a, c / q]
+}
+
+fn dual_spline(points: &[DVec3], groups: &[Group], refined: &KnotVector) -> BSpline {
+    let dual: Vec<DVec3> = groups
+        .iter()
+        .map(|g| {
+            g.members
+                .iter()
+                .zip(&g.values)
+                .map(|(&i, &a)| a * points[i])
+                .sum()
+        })
+        .collect();
+    BSpline::from_parts(dual, refined.clone())
+        .unwrap_or_else(|e| unreachable!("one dual point per refined B-spline: {e}"))
+}
+
+impl ParamCurve for Nubmp {
+    fn domain(&self) -> (f64, f64) {
+        self.knots.domain()
+    }
+    fn eval(&self, t: f64) -> DVec3 {
+        self.dual.eval(t)
+    }
+    fn eval_deriv(&self, t: f64) -> DVec3 {
+        self.dual.eval_deriv(t)
+    }
+    fn eval_second_deriv(&self, t: f64) -> DVec3 {
+        self.dual.eval_second_deriv(t)
+    }
+}
+
+impl Lower for Nubmp {
+    fn lower(&self) -> Vec<BezierSegment> {
+        self.dual.bezier_segments()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn paper() -> Nubmp {
+        let pts = [
+            (0., 0.),
+            (1., 2.),
+            (2., 2.5),
+            (3., 0.5),
+            (4., 2.),
+            (5., 2.5),
+            (6., 0.),
+        ]
+        .map(|(x, y)| DVec3::new(x, y, 0.0));
+        Nubmp::try_new(
+            pts.to_vec(),
+            vec![0., 0., 0., 0., 0.3, 0.5, 0.89, 1., 1., 1., 1.],
+            4,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn standard_curve_is_the_bspline() {
+        let n = paper();
+        let b = BSpline::try_new(n.points().to_vec(), n.knots().knots().to_vec(), 4).unwrap();
+        for k in 0..=200 {
+            let t = f64::from(k) / 200.0;
+            assert!((n.eval(t) - b.eval(t)).length() < 1e-13);
+            assert!((n.eval_by_basis(t) - b.eval(t)).length() < 1e-13);
+        }
+        assert!(n.is_standard());
+    }
+
+    #[test]
+    fn groups_sum_to_one_and_are_non_negative() {
+        let n = paper();
+        assert_eq!(n.groups().len(), 11);
+        for g in n.groups() {
+            assert!(g.effective);
+            let s: f64 = g.standard.iter().sum();
+            assert!((s - 1.0).abs() < 1e-14, "{g:?}");
+            assert!(g.standard.iter().all(|&c| c > 0.0));
+        }
+    }
+
+    #[test]
+    fn setting_a_parameter_moves_one_dual_point_along_a_leg() {
+        let mut n = paper();
+        let j = (0..11).find(|&j| n.groups()[j].members.len() == 2).unwrap();
+        let (i0, i1) = (n.groups()[j].members[0], n.groups()[j].members[1]);
+        let before = n.dual_points().to_vec();
+        n.set_parameter(j, i0, 0.9, i1).unwrap();
+        let after = n.dual_points();
+        for (jj, (a, b)) in before.iter().zip(after).enumerate() {
+            if jj == j {
+                let want = 0.9 * n.points()[i0] + 0.1 * n.points()[i1];
+                assert!((*b - want).length() < 1e-14);
+            } else {
+                assert_eq!(a, b);
+            }
+        }
+        // Errors leave the curve as it was.
+        let snapshot = n.clone();
+        assert!(n.set_parameter(j, i0, 1.5, i1).is_err());
+        assert!(n.set_parameter(j, i0, -0.1, i1).is_err());
+        assert!(matches!(
+            n.set_parameter(j, 99, 0.5, i1),
+            Err(GeomError::NotInGroup { .. })
+        ));
+        assert!(matches!(
+            n.set_group(j, &[0.5, 0.6]),
+            Err(GeomError::GroupSum { .. })
+        ));
+        assert!(matches!(
+            n.set_group(99, &[1.0]),
+            Err(GeomError::NoSuchGroup { .. })
+        ));
+        assert_eq!(n, snapshot);
+    }
+}

@@ -1,0 +1,179 @@
+//! The derived data of each curve as JSON (`splinescope inspect`): its Bézier segments and,
+//! per family, what the papers define on it. The format is documented in
+//! `docs/inspect-format.md`.
+
+use glam::DVec3;
+use serde_json::{Map, Value, json};
+
+use crate::geom::exact::format_rational;
+use crate::geom::{Curve, KnotVector, Lower, Nubmp, ParamCurve};
+
+fn point(p: DVec3) -> Value {
+    json!([p.x, p.y, p.z])
+}
+
+fn points(ps: &[DVec3]) -> Value {
+    Value::Array(ps.iter().copied().map(point).collect())
+}
+
+/// The report of one curve.
+#[must_use]
+pub fn curve_report(index: usize, name: Option<&str>, curve: &Curve) -> Value {
+    let mut obj = Map::new();
+    obj.insert("index".into(), index.into());
+    obj.insert("family".into(), curve.family().into());
+    if let Some(n) = name {
+        obj.insert("name".into(), n.into());
+    }
+    let (a, b) = curve.domain();
+    obj.insert("domain".into(), json!([a, b]));
+    obj.insert(
+        "segments".into(),
+        Value::Array(
+            curve
+                .lower()
+                .iter()
+                .map(|s| {
+                    json!({
+                        "t0": s.t0, "t1": s.t1, "degree": s.bezier.degree(),
+                        "points": points(s.bezier.points())
+                    })
+                })
+                .collect(),
+        ),
+    );
+    match curve {
+        Curve::Bezier(bz) => {
+            obj.insert("degree".into(), bz.degree().into());
+        }
+        Curve::Modified(m) => {
+            obj.insert("degree".into(), m.base().degree().into());
+            obj.insert("t_star".into(), m.t_star().into());
+            obj.insert("v".into(), point(m.v()));
+            obj.insert("peak".into(), json!({"t": m.t_star(), "q": point(m.base().eval(m.t_star())), "r": point(curve.eval(m.t_star()))}));
+        }
+        Curve::Interpolation(c) => {
+            obj.insert("params".into(), c.params().to_vec().into());
+            obj.insert("tangents".into(), points(c.tangents()));
+            obj.insert(
+                "inner_points".into(),
+                Value::Array(
+                    c.pieces()
+                        .iter()
+                        .map(|p| json!([point(p.points()[1]), point(p.points()[2])]))
+                        .collect(),
+                ),
+            );
+            if let Some(m) = c.modification() {
+                obj.insert(
+                    "modification".into(),
+                    json!({"t_star": m.t_star, "v": point(m.v), "reading": m.reading.name()}),
+                );
+            }
+        }
+        Curve::BSpline(bs) => {
+            spline_fields(&mut obj, bs.knots());
+            // A B-spline is the standard NUBMP curve on its knots: report that structure.
+            nubmp_fields(
+                &mut obj,
+                &Nubmp::standard(bs.points().to_vec(), bs.knots().clone()),
+            );
+        }
+        Curve::Nubmp(n) => {
+            spline_fields(&mut obj, n.knots());
+            nubmp_fields(&mut obj, n);
+        }
+    }
+    Value::Object(obj)
+}
+
+fn spline_fields(obj: &mut Map<String, Value>, knots: &KnotVector) {
+    obj.insert("order".into(), knots.order().into());
+    obj.insert("knots".into(), knots.knots().to_vec().into());
+    obj.insert("clamped".into(), knots.is_clamped().into());
+}
+
+fn nubmp_fields(obj: &mut Map<String, Value>, n: &Nubmp) {
+    obj.insert(
+        "refined_knots".into(),
+        n.refined_knots().knots().to_vec().into(),
+    );
+    let exact = n.exact_coefficients();
+    obj.insert(
+        "exact_from".into(),
+        if n.knots().has_exact() {
+            "decimal knots"
+        } else {
+            "binary f64 knots"
+        }
+        .into(),
+    );
+    let f64_rows = crate::geom::bspline::elevation_coefficients(n.knots().knots(), n.order()).rows;
+    obj.insert(
+        "coefficients".into(),
+        Value::Array(
+            exact
+                .rows
+                .iter()
+                .zip(&f64_rows)
+                .enumerate()
+                .map(|(i, (row, frow))| {
+                    json!({
+                        "i": i,
+                        "first_group": row.first,
+                        "values": frow.values,
+                        "exact": row.values.iter().map(format_rational).collect::<Vec<_>>(),
+                    })
+                })
+                .collect(),
+        ),
+    );
+    obj.insert("free_parameters".into(), n.free_parameter_count().into());
+    obj.insert("dual_points".into(), points(n.dual_points()));
+    let groups: Vec<Value> = n
+        .groups()
+        .iter()
+        .enumerate()
+        .map(|(j, g)| {
+            let mut gobj = Map::new();
+            gobj.insert("group".into(), j.into());
+            gobj.insert("members".into(), g.members.clone().into());
+            gobj.insert("standard".into(), g.standard.clone().into());
+            gobj.insert("values".into(), g.values.clone().into());
+            gobj.insert("effective".into(), g.effective.into());
+            gobj.insert(
+                "affected_spans".into(),
+                Value::Array(
+                    n.affected_spans(j)
+                        .iter()
+                        .map(|(a, b)| json!([a, b]))
+                        .collect(),
+                ),
+            );
+            if n.order() == 4 {
+                gobj.insert("vd".into(), n.vd_value(j).map_or(Value::Null, Value::from));
+                let mut ranges = Vec::new();
+                for &i in &g.members {
+                    for &l in &g.members {
+                        if i == l {
+                            continue;
+                        }
+                        if let Ok(r) = n.permissible_range(j, i, l) {
+                            ranges.push(match r {
+                                Some(r) => {
+                                    json!({"member": i, "absorber": l, "min": r.min, "max": r.max})
+                                }
+                                None => {
+                                    json!({"member": i, "absorber": l, "min": null, "max": null})
+                                }
+                            });
+                        }
+                    }
+                }
+                gobj.insert("permissible_ranges".into(), Value::Array(ranges));
+            }
+            Value::Object(gobj)
+        })
+        .collect();
+    obj.insert("groups".into(), Value::Array(groups));
+}
