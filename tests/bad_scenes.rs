@@ -119,6 +119,149 @@ const EXPECTED: &[(&str, &str, &str)] = &[
         "curves[0].weights",
         "unknown field (expected one of: type, name, style, points)",
     ),
+    (
+        "modified-t-star-zero",
+        "curves[0].t_star",
+        "t* = 0 is not inside the open interval (0, 1)",
+    ),
+    (
+        "modified-t-star-one",
+        "curves[0].t_star",
+        "t* = 1 is not inside the open interval (0, 1)",
+    ),
+    (
+        "modified-t-star-negative",
+        "curves[0].t_star",
+        "t* = -0.5 is not inside",
+    ),
+    ("modified-missing-v", "curves[0].v", "missing"),
+    (
+        "modified-v-nan",
+        "curves[0].v[0]",
+        "not a finite number (NaN)",
+    ),
+    (
+        "interp-one-point",
+        "curves[0].points",
+        "needs at least 2 points, found 1",
+    ),
+    (
+        "interp-params-repeated",
+        "curves[0].params[2]",
+        "parameters must increase strictly: 1 follows 1",
+    ),
+    (
+        "interp-params-decreasing",
+        "curves[0].params[2]",
+        "parameters must increase strictly: 1 follows 2",
+    ),
+    (
+        "interp-params-count",
+        "curves[0].params",
+        "3 parameters for 4 points",
+    ),
+    (
+        "interp-params-infinite",
+        "curves[0].params[3]",
+        "not a finite number (Infinity)",
+    ),
+    (
+        "interp-unknown-reading",
+        "curves[0].modification.reading",
+        "unknown reading \"sideways\"",
+    ),
+    (
+        "interp-t-star-outside",
+        "curves[0].modification.t_star",
+        "t* = 1.5 is not inside the open interval (0, 1)",
+    ),
+    (
+        "bspline-knots-decreasing",
+        "curves[0].knots[5]",
+        "knots must not decrease: 0.4 follows 0.5",
+    ),
+    (
+        "bspline-interior-multiplicity",
+        "curves[0].knots[5]",
+        "knot 0.5 has multiplicity 3; at most 2 allowed inside the domain",
+    ),
+    (
+        "bspline-end-multiplicity",
+        "curves[0].knots[4]",
+        "knot 0 has multiplicity 5; at most 4 allowed at the domain's ends",
+    ),
+    (
+        "bspline-knot-count",
+        "curves[0].knots",
+        "9 knots for 7 control points of order 4: expected n + k = 11",
+    ),
+    ("bspline-order-one", "curves[0].order", "order 1 is below 2"),
+    ("bspline-missing-order", "curves[0].order", "missing"),
+    (
+        "bspline-knot-nan",
+        "curves[0].knots[4]",
+        "not a finite number (NaN)",
+    ),
+    (
+        "bspline-unknown-knot-kind",
+        "curves[0].knots",
+        "unknown knot vector \"uniformish\"",
+    ),
+    (
+        "bspline-too-few-points",
+        "curves[0].points",
+        "needs at least 4 points, found 3",
+    ),
+    (
+        "bspline-empty-domain",
+        "curves[0].knots",
+        "the domain [t_(k-1), t_n] = [1, 1] is empty",
+    ),
+    (
+        "nubmp-negative-parameter",
+        "curves[0].shape[0].values[0]",
+        "shape parameter a^0_1 = -0.2 must be finite and ≥ 0",
+    ),
+    (
+        "nubmp-group-sum",
+        "curves[0].shape[0].values",
+        "group 1 sums to 1.1, not 1 (tolerance 1e-9)",
+    ),
+    (
+        "nubmp-not-in-group",
+        "curves[0].shape[0].member",
+        "control point 5 is not in group 1 (members: 0, 1)",
+    ),
+    (
+        "nubmp-no-such-group",
+        "curves[0].shape[0].group",
+        "group 99 does not exist (groups 0..11)",
+    ),
+    (
+        "nubmp-value-too-large",
+        "curves[0].shape[0].value",
+        "the absorbing a^1_1 would become negative",
+    ),
+    (
+        "nubmp-same-absorber",
+        "curves[0].shape[0].absorber",
+        "the absorbing member must differ from the changed one",
+    ),
+    (
+        "nubmp-values-count",
+        "curves[0].shape[0].values",
+        "group 1 has 2 parameters, found 3 values",
+    ),
+    (
+        "nubmp-mixed-forms",
+        "curves[0].shape[0].member",
+        "give either \"values\"",
+    ),
+    (
+        "nubmp-absorber-missing",
+        "curves[0].shape[0].absorber",
+        "missing",
+    ),
 ];
 
 fn corpus() -> PathBuf {
@@ -142,7 +285,7 @@ fn every_file_of_the_corpus_is_listed() {
     let mut listed: Vec<String> = EXPECTED.iter().map(|e| e.0.to_owned()).collect();
     listed.sort();
     assert_eq!(files, listed);
-    assert!(EXPECTED.len() >= 15);
+    assert!(EXPECTED.len() >= 15 + 20);
 }
 
 #[test]

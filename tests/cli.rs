@@ -60,11 +60,17 @@ fn eval_cpu_prints_exact_samples_over_the_domain() {
         assert_eq!(curves[i]["index"], i);
         let s = samples(&v, i);
         assert_eq!(s.len(), 5);
-        // End points are interpolated exactly; the middle is P(1/2).
-        let pts = c.curve.control_points();
-        assert_eq!(s[0], pts[0].to_array());
-        assert_eq!(s[4], pts[pts.len() - 1].to_array());
-        assert_eq!(s[2], c.curve.eval(0.5).to_array());
+        // Uniform over the curve's own domain, ends included.
+        let (a, b) = c.curve.domain();
+        assert_eq!(s[0], c.curve.eval(a).to_array());
+        assert_eq!(s[2], c.curve.eval(a + 0.5 * (b - a)).to_array());
+        assert_eq!(s[4], c.curve.eval(b).to_array());
+        // Bézier curves interpolate their end control points exactly.
+        if c.curve.family() == "bezier" {
+            let pts = c.curve.control_points();
+            assert_eq!(s[0], pts[0].to_array());
+            assert_eq!(s[4], pts[pts.len() - 1].to_array());
+        }
     }
 }
 
@@ -156,7 +162,7 @@ fn bad_eval_arguments_name_the_offending_value() {
         (&["eval", &path], "give --samples N or --params"),
         (
             &["eval", &path, "--samples", "3", "--curve", "99"],
-            "--curve 99: the scene has 6 curve(s)",
+            "--curve 99: the scene has 19 curve(s) (indices 0..18)",
         ),
         (
             &["eval", "/nonexistent/scene.json", "--samples", "3"],
@@ -304,6 +310,144 @@ fn check_summarises_a_valid_scene() {
     let out = run(&["check", &scene_path("gallery.json")]);
     assert!(out.status.success());
     let text = String::from_utf8_lossy(&out.stdout);
-    assert!(text.contains("valid scene, 6 curve(s)"), "{text}");
+    let n = Scene::load(Path::new(&scene_path("gallery.json")))
+        .unwrap()
+        .curves
+        .len();
+    assert!(
+        text.contains(&format!("valid scene, {n} curve(s)")),
+        "{text}"
+    );
     assert!(text.contains("every curve fits the GPU kernel"), "{text}");
+}
+
+#[test]
+fn eval_samples_cover_each_familys_own_domain() {
+    // Interpolation over [t_0, t_k] = [0, 3]: 4 samples land on the interpolated points.
+    let v = stdout_json(&run(&[
+        "eval",
+        &scene_path("paper002_examples.json"),
+        "--samples",
+        "4",
+    ]));
+    for curve in 0..3 {
+        let s = samples(&v, curve);
+        let want = [
+            [0.0, 0.0, 0.0],
+            [0.0, 6.0, 0.0],
+            [6.0, 6.0, 0.0],
+            [6.0, 0.0, 0.0],
+        ];
+        for (got, want) in s.iter().zip(want) {
+            for k in 0..3 {
+                assert!(
+                    (got[k] - want[k]).abs() < 1e-12,
+                    "curve {curve}: {got:?} vs {want:?}"
+                );
+            }
+        }
+    }
+    // A clamped B-spline / NUBMP starts and ends at its end control points; --params is
+    // in the curve's own parameter (here the domain is [0, 1]).
+    let v = stdout_json(&run(&[
+        "eval",
+        &scene_path("paper001_fig1.json"),
+        "--params",
+        "0,1",
+    ]));
+    let scene = Scene::load(Path::new(&scene_path("paper001_fig1.json"))).unwrap();
+    for (i, c) in scene.curves.iter().enumerate() {
+        let pts = c.curve.control_points();
+        let s = samples(&v, i);
+        assert_eq!(s[0], pts[0].to_array());
+        let last = pts[pts.len() - 1].to_array();
+        for k in 0..3 {
+            assert!((s[1][k] - last[k]).abs() < 1e-12);
+        }
+    }
+    // The unclamped B-spline's domain is [t_(k-1), t_n] = [2, 7].
+    let (code, err) = stderr_of(&[
+        "eval",
+        &scene_path("bsplines.json"),
+        "--curve",
+        "1",
+        "--params",
+        "1",
+    ]);
+    assert_eq!(code, Some(1));
+    assert!(
+        err.contains("--params[0] = 1 is outside the domain [2, 7] of curves[1]"),
+        "{err}"
+    );
+}
+
+#[test]
+fn inspect_reports_the_papers_derived_data() {
+    let v = stdout_json(&run(&[
+        "inspect",
+        &scene_path("paper001_fig1.json"),
+        "--curve",
+        "0",
+    ]));
+    let c = &v["curves"][0];
+    assert_eq!(c["family"], "nubmp");
+    assert_eq!(c["free_parameters"], 12);
+    assert_eq!(c["exact_from"], "decimal knots");
+    assert_eq!(c["refined_knots"].as_array().unwrap().len(), 16);
+    // Exact coefficients of N_1 (checked against exact Cox–de Boor in tests/families.rs).
+    assert_eq!(
+        c["coefficients"][1]["exact"],
+        serde_json::json!(["3/4", "7/10", "1/10"])
+    );
+    let g4 = &c["groups"][4];
+    assert_eq!(g4["members"], serde_json::json!([2, 3]));
+    let r = &g4["permissible_ranges"][0];
+    assert_eq!(
+        (r["member"].as_u64(), r["absorber"].as_u64()),
+        (Some(2), Some(3))
+    );
+    assert!((r["min"].as_f64().unwrap() - 0.125427).abs() < 1e-6);
+    assert!((r["max"].as_f64().unwrap() - 0.901685).abs() < 1e-6);
+    assert_eq!(c["segments"].as_array().unwrap().len(), 4);
+    assert_eq!(c["segments"][0]["degree"], 4);
+    // Interpolation: tangents and inner points of paper 002's Example 1.
+    let v = stdout_json(&run(&[
+        "inspect",
+        &scene_path("paper002_examples.json"),
+        "--curve",
+        "0",
+    ]));
+    assert_eq!(
+        v["curves"][0]["inner_points"][0],
+        serde_json::json!([[-1.0, 3.0, 0.0], [-1.0, 5.0, 0.0]])
+    );
+}
+
+#[test]
+fn a_degree_over_the_maximum_after_lowering_is_caught() {
+    // Order 33 lowers to degree-32 Bézier segments; NUBMP of order 32 too (its dual spline
+    // has order 33).
+    let path = out_dir().join("order33.json");
+    let pts: Vec<String> = (0..33).map(|i| format!("[{i}, {}]", i % 3)).collect();
+    std::fs::write(
+        &path,
+        format!(
+            "{{\"version\": 1, \"curves\": [{{\"type\": \"bspline\", \"points\": [{p}], \"knots\": \"clamped_uniform\", \"order\": 33}}, {{\"type\": \"nubmp\", \"points\": [{p}], \"knots\": \"clamped_uniform\", \"order\": 32}}]}}",
+            p = pts.join(", ")
+        ),
+    )
+    .unwrap();
+    let (code, err) = stderr_of(&["check", &path.to_string_lossy()]);
+    assert_eq!(code, Some(1));
+    assert!(
+        err.contains("curves[0]: Bézier segment 0 has degree 32, over the GPU maximum of 31"),
+        "{err}"
+    );
+    assert!(
+        err.contains("curves[1]: Bézier segment 0 has degree 32"),
+        "{err}"
+    );
+    // The CPU evaluates it.
+    let v = stdout_json(&run(&["eval", &path.to_string_lossy(), "--samples", "2"]));
+    assert_eq!(samples(&v, 0)[1], [32.0, 2.0, 0.0]);
 }

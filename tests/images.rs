@@ -75,15 +75,40 @@ fn gallery_matches_its_golden_image() {
     golden("gallery", &image);
 }
 
-#[test]
-fn three_d_scene_matches_its_golden_image() {
-    let Some(ctx) = common::gpu("three_d_scene_matches_its_golden_image") else {
+/// Renders `scenes/{name}.json` at 320×240 and compares it with its golden image.
+fn scene_golden(name: &str) {
+    let Some(ctx) = common::gpu(&format!("{name} golden image")) else {
         return;
     };
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes/bezier3d.json");
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{name}.json"));
     let scene = Scene::load(&path).expect("scene");
     let image = render_scene(ctx, &scene, None, 320, 240).expect("render");
-    golden("bezier3d", &image);
+    golden(name, &image);
+}
+
+#[test]
+fn three_d_bezier_scene_matches_its_golden_image() {
+    scene_golden("bezier3d");
+}
+
+#[test]
+fn modified_bezier_scene_matches_its_golden_image() {
+    scene_golden("paper002_fig1");
+}
+
+#[test]
+fn interpolation_scene_matches_its_golden_image() {
+    scene_golden("paper002_examples");
+}
+
+#[test]
+fn bspline_scene_matches_its_golden_image() {
+    scene_golden("bsplines");
+}
+
+#[test]
+fn nubmp_scene_matches_its_golden_image() {
+    scene_golden("paper001_fig1");
 }
 
 /// A scene of one curve, no overlays, black on white, seen by a 2D view.

@@ -174,7 +174,7 @@ pub enum GeomError {
         value: f64,
     },
     /// A group's parameters do not sum to 1.
-    #[error("group {group} sums to {sum}, not 1 (tolerance {tolerance})")]
+    #[error("group {group} sums to {sum}, not 1 (tolerance {tolerance:e})")]
     GroupSum {
         /// The group.
         group: usize,
@@ -182,6 +182,22 @@ pub enum GeomError {
         sum: f64,
         /// The tolerance used.
         tolerance: f64,
+    },
+    /// A one-parameter edit asks for more than the two members hold together.
+    #[error(
+        "a^{member}_{group} = {value} is more than a^{member}_{group} + a^{absorber}_{group} = {pair}: the absorbing a^{absorber}_{group} would become negative"
+    )]
+    AbsorberNegative {
+        /// The group.
+        group: usize,
+        /// The changed member.
+        member: usize,
+        /// The absorbing member.
+        absorber: usize,
+        /// The value asked for.
+        value: f64,
+        /// The two members' sum.
+        pair: f64,
     },
     /// A one-parameter edit named the same member to change and to absorb.
     #[error("the absorbing member must differ from the changed one (both {member})")]
@@ -224,6 +240,7 @@ impl GeomError {
             | GeomError::NegativeParameter { .. }
             | GeomError::GroupSum { .. }
             | GeomError::SameAbsorber { .. }
+            | GeomError::AbsorberNegative { .. }
             | GeomError::GroupOutsideDomain { .. } => "shape".to_owned(),
         }
     }

@@ -275,10 +275,12 @@ impl Nubmp {
             });
         }
         if value > pair {
-            return Err(GeomError::NegativeParameter {
+            return Err(GeomError::AbsorberNegative {
                 group: j,
-                member: absorber,
-                value: pair - value,
+                member: i,
+                absorber,
+                value,
+                pair,
             });
         }
         values[pi] = value;

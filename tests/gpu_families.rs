@@ -1,0 +1,184 @@
+//! Every curve family through the one GPU kernel: the lowered Bézier segments evaluated by
+//! `shaders/tessellate.wgsl` agree with each family's exact `f64` evaluation within the
+//! bound of `tests/gpu_tessellation.rs` (1e-6 · S · max(n, 12)/12, with S the larger of the
+//! segments' control extent and largest coordinate, n their largest degree).
+
+mod common;
+
+use std::path::Path;
+
+use glam::DVec3;
+use splinescope::geom::{
+    Aabb, BSpline, Bezier, CubicInterpolation, Curve, Lower, Modification, ModifiedBezier, Nubmp,
+    ParamCurve, Reading,
+};
+use splinescope::gpu::GpuContext;
+use splinescope::gpu::eval::evaluate;
+use splinescope::scene::Scene;
+use splinescope::scene::generate::Rng;
+
+fn bound(curve: &Curve) -> f64 {
+    let segs = curve.lower();
+    let pts: Vec<DVec3> = segs
+        .iter()
+        .flat_map(|s| s.bezier.points().to_vec())
+        .collect();
+    let degree = segs.iter().map(|s| s.bezier.degree()).max().unwrap_or(0);
+    let extent = Aabb::from_points(&pts).diagonal();
+    let radius = pts.iter().map(|p| p.length()).fold(0.0, f64::max);
+    1e-6 * extent.max(radius) * (degree.max(12) as f64 / 12.0)
+}
+
+/// Evaluates `curves` on the GPU at 301 parameters over each domain (ends and interior
+/// breakpoints included) and compares with the CPU.
+fn check(ctx: &GpuContext, curves: &[(String, Curve)]) {
+    let lowered: Vec<_> = curves
+        .iter()
+        .enumerate()
+        .map(|(i, (_, c))| (i, c.lower()))
+        .collect();
+    let params: Vec<Vec<f64>> = curves
+        .iter()
+        .map(|(_, c)| {
+            let (a, b) = c.domain();
+            let mut ts: Vec<f64> = (0..=300)
+                .map(|k| a + (b - a) * f64::from(k) / 300.0)
+                .collect();
+            ts.extend(c.lower().iter().map(|s| s.t0));
+            ts
+        })
+        .collect();
+    let gpu = evaluate(ctx, &lowered, &params).expect("GPU evaluation");
+    for ((name, curve), (ts, got)) in curves.iter().zip(params.iter().zip(&gpu)) {
+        assert_eq!(ts.len(), got.len(), "{name}: every parameter evaluated");
+        let bound = bound(curve);
+        for (&t, g) in ts.iter().zip(got) {
+            let err = (*g - curve.eval(t)).length();
+            assert!(
+                err <= bound,
+                "{name} ({}) at t={t}: |GPU − CPU| = {err:e} > {bound:e}",
+                curve.family()
+            );
+        }
+    }
+}
+
+#[test]
+fn every_scene_curve_matches_on_the_gpu() {
+    let Some(ctx) = common::gpu("every_scene_curve_matches_on_the_gpu") else {
+        return;
+    };
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let mut curves = Vec::new();
+    for entry in std::fs::read_dir(&dir).expect("scenes") {
+        let path = entry.expect("entry").path();
+        if path.extension().is_some_and(|e| e == "json") {
+            let scene = Scene::load(&path).expect("valid scene");
+            for (i, c) in scene.curves.into_iter().enumerate() {
+                curves.push((format!("{}: curves[{i}]", path.display()), c.curve));
+            }
+        }
+    }
+    let families: std::collections::BTreeSet<&str> =
+        curves.iter().map(|(_, c)| c.family()).collect();
+    assert_eq!(
+        families.len(),
+        5,
+        "the scenes cover every family: {families:?}"
+    );
+    check(ctx, &curves);
+}
+
+fn random_points(rng: &mut Rng, n: usize, three_d: bool) -> Vec<DVec3> {
+    (0..n)
+        .map(|_| {
+            DVec3::new(
+                rng.range(-3.0, 3.0),
+                rng.range(-3.0, 3.0),
+                if three_d { rng.range(-3.0, 3.0) } else { 0.0 },
+            )
+        })
+        .collect()
+}
+
+fn random_knots(rng: &mut Rng, order: usize, n: usize) -> Vec<f64> {
+    let interior = n - order;
+    let mut t = 0.0;
+    let mut knots = vec![0.0; order];
+    for _ in 0..interior {
+        t += rng.range(0.05, 1.0);
+        knots.push(t);
+    }
+    knots.extend(std::iter::repeat_n(t + rng.range(0.05, 1.0), order));
+    knots
+}
+
+#[test]
+fn random_curves_of_every_family_match_up_to_the_maximum_degree() {
+    let Some(ctx) = common::gpu("random_curves_of_every_family_match_up_to_the_maximum_degree")
+    else {
+        return;
+    };
+    let mut rng = Rng::new(77);
+    let mut curves = Vec::new();
+    for three_d in [false, true] {
+        for n in [1usize, 2, 3, 5, 9, 20, 31] {
+            let pts = random_points(&mut rng, n + 1, three_d);
+            let v = random_points(&mut rng, 1, three_d)[0];
+            let t_star = rng.range(0.05, 0.95);
+            curves.push((
+                format!("modified degree {n}"),
+                Curve::Modified(
+                    ModifiedBezier::try_new(Bezier::new(pts), t_star, v).expect("valid"),
+                ),
+            ));
+        }
+        for reading in [None, Some(Reading::Paper), Some(Reading::BumpAdded)] {
+            let pts = random_points(&mut rng, 9, three_d);
+            let mut t = 0.0;
+            let params: Vec<f64> = (0..9)
+                .map(|_| {
+                    t += rng.range(0.1, 2.0);
+                    t
+                })
+                .collect();
+            let modification = reading.map(|reading| Modification {
+                t_star: rng.range(0.1, 0.9),
+                v: random_points(&mut rng, 1, three_d)[0],
+                reading,
+            });
+            curves.push((
+                format!("interpolation {reading:?}"),
+                Curve::Interpolation(
+                    CubicInterpolation::try_new(pts, Some(params), modification).expect("valid"),
+                ),
+            ));
+        }
+        // B-splines of orders 2..=32 (degree ≤ 31 after lowering), NUBMP of orders 2..=31
+        // (the dual spline has degree = order).
+        for order in [2usize, 3, 4, 5, 8, 16, 32] {
+            let n = order + rng.int(0, 6);
+            let knots = random_knots(&mut rng, order, n);
+            let pts = random_points(&mut rng, n, three_d);
+            curves.push((
+                format!("bspline order {order}"),
+                Curve::BSpline(BSpline::try_new(pts, knots, order).expect("valid")),
+            ));
+        }
+        for order in [2usize, 3, 4, 5, 7, 12, 31] {
+            let n = order + rng.int(0, 5);
+            let knots = random_knots(&mut rng, order, n);
+            let pts = random_points(&mut rng, n, three_d);
+            let mut nub = Nubmp::try_new(pts, knots, order).expect("valid");
+            for j in 0..nub.groups().len() {
+                let size = nub.groups()[j].members.len();
+                let raw: Vec<f64> = (0..size).map(|_| rng.range(0.05, 1.0)).collect();
+                let sum: f64 = raw.iter().sum();
+                nub.set_group(j, &raw.iter().map(|r| r / sum).collect::<Vec<_>>())
+                    .expect("valid parameters");
+            }
+            curves.push((format!("nubmp order {order}"), Curve::Nubmp(nub)));
+        }
+    }
+    check(ctx, &curves);
+}
