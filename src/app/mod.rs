@@ -118,6 +118,9 @@ struct Running {
     egui_renderer: egui_wgpu::Renderer,
     cursor: DVec2,
     dragging: Option<MouseButton>,
+    /// Keep fitting the scene (to the area the panel leaves) until the user moves the
+    /// camera; `F` turns it back on.
+    auto_fit: bool,
     panel_width_px: f64,
     frames_presented: u64,
     fps: ui::FpsCounter,
@@ -183,6 +186,9 @@ impl ApplicationHandler for App {
                     Some(_) => r.camera.pan(delta, viewport),
                     None => {}
                 }
+                if r.dragging.is_some() {
+                    r.auto_fit = false;
+                }
             }
             WindowEvent::MouseInput { state, button, .. } => match state {
                 ElementState::Pressed if !consumed => r.dragging = Some(button),
@@ -196,13 +202,17 @@ impl ApplicationHandler for App {
                 };
                 let viewport = r.viewport();
                 r.camera.zoom_at(1.15_f64.powf(lines), r.cursor, viewport);
+                r.auto_fit = false;
             }
             WindowEvent::KeyboardInput { event, .. }
                 if !consumed && event.state == ElementState::Pressed =>
             {
                 match event.logical_key.as_ref() {
                     Key::Named(NamedKey::Escape) => event_loop.exit(),
-                    Key::Character("f" | "F") => r.fit(),
+                    Key::Character("f" | "F") => {
+                        r.auto_fit = true;
+                        r.fit();
+                    }
                     Key::Character("p" | "P") => r.toggles.show_polygons ^= true,
                     Key::Character("c" | "C") => r.toggles.show_points ^= true,
                     Key::Character("h" | "H") => r.toggles.show_panel ^= true,
@@ -301,13 +311,14 @@ impl Running {
             egui_renderer,
             cursor: DVec2::ZERO,
             dragging: None,
+            auto_fit: opts.scene.view == crate::scene::ViewSpec::Auto,
             panel_width_px: ui::PANEL_WIDTH_POINTS,
             frames_presented: 0,
             fps: ui::FpsCounter::new(Instant::now()),
             adapter,
             summaries: ui::summarize(&opts.scene),
         };
-        if running.scene.view == crate::scene::ViewSpec::Auto {
+        if running.auto_fit {
             running.fit();
         }
         Ok(running)
@@ -457,6 +468,10 @@ impl Running {
             self.egui_renderer.free_texture(id);
         }
         if actions.fit {
+            self.auto_fit = true;
+        }
+        if self.auto_fit {
+            // The panel's width is known only after it is drawn: fit to what it leaves.
             self.fit();
         }
         Ok(true)

@@ -110,6 +110,7 @@ pub(crate) fn panel(
     }
     let response = egui::Panel::left("splinescope-panel")
         .default_size(PANEL_WIDTH_POINTS as f32)
+        .max_size(PANEL_WIDTH_POINTS as f32 * 1.6)
         .resizable(true)
         .show(ui, |ui| {
             ui.heading(info.scene.name.as_deref().unwrap_or("splinescope"));
@@ -138,7 +139,7 @@ pub(crate) fn panel(
                         let (rect, _) =
                             ui.allocate_exact_size(egui::vec2(10.0, 10.0), egui::Sense::hover());
                         ui.painter().rect_filled(rect, 2.0, c.color);
-                        ui.label(&c.label);
+                        ui.add(egui::Label::new(&c.label).truncate());
                     })
                     .response
                     .on_hover_text(&c.details);
