@@ -10,11 +10,16 @@
 //! * [`gpu`] — the only layer that names `wgpu`: device setup, the `#[repr(C)]` layout
 //!   shared with the WGSL shaders, the compute tessellator (and its CPU twin), the
 //!   renderer and offscreen capture.
+//! * [`solve`] — the CPU solvers: closest points, least-squares shape modification of
+//!   Bézier curves (paper 000), constrained modification of NUBMP curves (paper 001), and
+//!   parallel batches. No GPU types.
 //! * [`app`] — the interactive `winit` viewer.
 //!
 //! The road through the program: scene → curve families → lowering to Bézier segments →
 //! packing (f32) → compute de Casteljau (`shaders/tessellate.wgsl`) → render pass →
 //! window or PNG.
+
+#![forbid(unsafe_code)]
 
 pub mod app;
 pub mod camera;
@@ -23,3 +28,4 @@ pub mod gpu;
 pub mod image;
 pub mod inspect;
 pub mod scene;
+pub mod solve;

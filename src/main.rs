@@ -1,5 +1,7 @@
 //! The `splinescope` command line: view, render, eval, check and bench.
 
+#![forbid(unsafe_code)]
+
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;

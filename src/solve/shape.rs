@@ -1,0 +1,741 @@
+//! Least-squares shape modification of Bézier curves (paper 000: "Optimal shape
+//! modification of Bézier curves by geometric constraints"): move control points by the
+//! least `Σ‖ε_i‖²` so that the curve passes through target points, with the end points
+//! fixed and optionally the end tangents kept.
+
+use glam::{DVec2, DVec3};
+use nalgebra::DMatrix;
+
+use super::SolveError;
+use super::linalg::min_norm_solve;
+use super::project::nearest;
+use crate::geom::bernstein::bernstein_all;
+use crate::geom::{Aabb, Bezier};
+
+/// How [`single_target`] chooses its start point and moved control points.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SingleTargetOptions {
+    /// `t_s`, the parameter of the start point `S = P(t_s)`; `None` projects the target
+    /// onto the curve.
+    pub t_s: Option<f64>,
+    /// `(l, m)`: move `P_l..P_{l+m−1}` (`1 ≤ l`, `l + m − 1 ≤ n − 1`). `None`: `m =
+    /// min(3, n − 1)` consecutive interior points, the window with the largest
+    /// `Σ B_{i,n}(t_s)²` (the one needing the least movement).
+    pub window: Option<(usize, usize)>,
+    /// Projection accuracy (absolute distance); `None`: relative `1e-12`.
+    pub accuracy: Option<f64>,
+}
+
+/// The default number of moved points of [`single_target`].
+pub const DEFAULT_WINDOW: usize = 3;
+
+/// The result of [`single_target`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct SingleTargetSolution {
+    /// The modified curve.
+    pub curve: Bezier,
+    /// `t_s`.
+    pub t_s: f64,
+    /// `S = P(t_s)` on the original curve.
+    pub start: DVec3,
+    /// `l`: the first moved control point.
+    pub first: usize,
+    /// `ε_l..ε_{l+m−1}`.
+    pub deltas: Vec<DVec3>,
+    /// `|P̃(t_s) − T|` (0 up to rounding).
+    pub residual: f64,
+}
+
+fn check_target(index: usize, t: DVec3) -> Result<(), SolveError> {
+    match t.to_array().into_iter().find(|c| !c.is_finite()) {
+        Some(value) => Err(SolveError::NonFiniteTarget { index, value }),
+        None => Ok(()),
+    }
+}
+
+/// `t_s`: given (checked to be strictly inside `(0, 1)`), or found by projecting the
+/// target (an error when it projects onto a fixed end).
+fn start_parameter(
+    curve: &Bezier,
+    target: DVec3,
+    index: usize,
+    given: Option<f64>,
+    accuracy: Option<f64>,
+) -> Result<f64, SolveError> {
+    match given {
+        Some(t) if !(0.0..=1.0).contains(&t) || !t.is_finite() => {
+            Err(SolveError::ParameterOutsideDomain {
+                value: t,
+                start: 0.0,
+                end: 1.0,
+            })
+        }
+        Some(t) if t == 0.0 || t == 1.0 => Err(SolveError::ParameterAtEnd { index, value: t }),
+        Some(t) => Ok(t),
+        None => {
+            let n = nearest(curve, target, accuracy);
+            if n.t <= 0.0 || n.t >= 1.0 {
+                Err(SolveError::TargetAtEnd { index, t: n.t })
+            } else {
+                Ok(n.t)
+            }
+        }
+    }
+}
+
+/// Paper 000, §2.1, Eq. 8: moves `P_l..P_{l+m−1}` (ends fixed) so that the curve passes
+/// through `T` at `t_s`, minimising `Σ‖ε_i‖²`:
+///
+/// `ε_i = B_{i,n}(t_s) / (Σ_{j=l}^{l+m−1} B_{j,n}(t_s)²) · (T − S)`,
+///
+/// the minimum-norm solution of `Σ ε_i B_{i,n}(t_s) = T − S`.
+///
+/// # Errors
+/// [`SolveError`] for a non-finite target, degree < 2, `t_s` at an end or outside `[0, 1]`,
+/// a window outside `1..=n−1`, or a target that projects onto a fixed end.
+pub fn single_target(
+    curve: &Bezier,
+    target: DVec3,
+    opts: &SingleTargetOptions,
+) -> Result<SingleTargetSolution, SolveError> {
+    check_target(0, target)?;
+    let n = curve.degree();
+    if n < 2 {
+        return Err(SolveError::DegreeTooLow {
+            method: "single_target",
+            degree: n,
+            min: 2,
+        });
+    }
+    let t_s = start_parameter(curve, target, 0, opts.t_s, opts.accuracy)?;
+    let b = bernstein_all(n, t_s);
+    let (first, count) = match opts.window {
+        Some((l, m)) => {
+            if l < 1 || m < 1 || l + m - 1 > n - 1 {
+                return Err(SolveError::WindowOutOfRange {
+                    first: l,
+                    count: m,
+                    max: n - 1,
+                });
+            }
+            (l, m)
+        }
+        None => {
+            let m = DEFAULT_WINDOW.min(n - 1);
+            let l = (1..=n - m)
+                .max_by(|&x, &y| {
+                    let w = |l: usize| b[l..l + m].iter().map(|v| v * v).sum::<f64>();
+                    w(x).total_cmp(&w(y))
+                })
+                .unwrap_or(1);
+            (l, m)
+        }
+    };
+    let denom: f64 = b[first..first + count].iter().map(|v| v * v).sum();
+    if denom <= 0.0 {
+        return Err(SolveError::ParameterAtEnd {
+            index: 0,
+            value: t_s,
+        });
+    }
+    let start = curve.eval(t_s);
+    let diff = target - start;
+    let deltas: Vec<DVec3> = (first..first + count)
+        .map(|i| b[i] / denom * diff)
+        .collect();
+    let mut pts = curve.points().to_vec();
+    for (k, d) in deltas.iter().enumerate() {
+        pts[first + k] += *d;
+    }
+    let modified = Bezier::new(pts);
+    let residual = (modified.eval(t_s) - target).length();
+    Ok(SingleTargetSolution {
+        curve: modified,
+        t_s,
+        start,
+        first,
+        deltas,
+        residual,
+    })
+}
+
+/// The result of [`tangent_kept`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct TangentKeptSolution {
+    /// The modified curve.
+    pub curve: Bezier,
+    /// `t_s`.
+    pub t_s: f64,
+    /// `μ_1, μ_2`: `P′_1 = P_1 + μ_1 e_1`, `P′_{n−1} = P_{n−1} + μ_2 e_2`.
+    pub mu: [f64; 2],
+    /// The unit directions `e_1 = unit(P_1 − P_0)`, `e_2 = unit(P_{n−1} − P_n)`.
+    pub directions: [DVec3; 2],
+    /// `ε_2..ε_{n−2}`.
+    pub deltas: Vec<DVec3>,
+    /// `|P̃(t_s) − T|`: 0 up to rounding, unless the system is over-determined (a cubic in
+    /// 3D with a target off its plane) and solved in least squares.
+    pub residual: f64,
+    /// Whether the system was solved in least squares (fewer free parameters than
+    /// conditions, or rank-deficient).
+    pub least_squares: bool,
+}
+
+/// The unit end-tangent directions `e_1 = unit(P_1 − P_0)`, `e_2 = unit(P_{n−1} − P_n)`.
+///
+/// # Errors
+/// [`SolveError::NoTangent`] when an end point coincides with its neighbour.
+pub fn end_directions(curve: &Bezier) -> Result<[DVec3; 2], SolveError> {
+    let p = curve.points();
+    let n = p.len() - 1;
+    let e1 = (p[1] - p[0]).try_normalize().ok_or(SolveError::NoTangent {
+        end: "start (P_0 = P_1)",
+    })?;
+    let e2 = (p[n - 1] - p[n])
+        .try_normalize()
+        .ok_or(SolveError::NoTangent {
+            end: "end (P_n = P_(n-1))",
+        })?;
+    Ok([e1, e2])
+}
+
+/// Paper 000, §2.2: keeps `P_0`, `P_n` and the end tangents (`P_1` slides on the line
+/// `P_0P_1`, `P_{n−1}` on `P_nP_{n−1}`), moves `P_2..P_{n−2}` freely, and passes through `T`
+/// at `t_s`, minimising `Σ_{i=2}^{n−2}‖ε_i‖² + μ_1² + μ_2²` — the minimum-norm solution of
+///
+/// `μ_1 B_{1,n}(t_s) e_1 + μ_2 B_{n−1,n}(t_s) e_2 + Σ_{i=2}^{n−2} ε_i B_{i,n}(t_s) = T − S`.
+///
+/// For a cubic only `μ_1, μ_2` are free: square in the plane, over-determined in 3D (solved
+/// in least squares, with the residual reported).
+///
+/// # Errors
+/// [`SolveError`] for degree < 3, a missing tangent direction, a non-finite target, `t_s`
+/// at an end or outside `[0, 1]`.
+pub fn tangent_kept(
+    curve: &Bezier,
+    target: DVec3,
+    t_s: Option<f64>,
+    accuracy: Option<f64>,
+) -> Result<TangentKeptSolution, SolveError> {
+    check_target(0, target)?;
+    let n = curve.degree();
+    if n < 3 {
+        return Err(SolveError::DegreeTooLow {
+            method: "tangent_kept",
+            degree: n,
+            min: 3,
+        });
+    }
+    let [e1, e2] = end_directions(curve)?;
+    let t_s = start_parameter(curve, target, 0, t_s, accuracy)?;
+    let b = bernstein_all(n, t_s);
+    let start = curve.eval(t_s);
+    let diff = target - start;
+    // Planar curve and target: two equations (x, y); otherwise three.
+    let planar = curve.points().iter().all(|p| p.z == 0.0) && target.z == 0.0;
+    let d = if planar { 2 } else { 3 };
+    let free = n - 3; // ε_2..ε_{n−2}
+    let cols = 2 + d * free;
+    let mut a = DMatrix::zeros(d, cols);
+    for row in 0..d {
+        a[(row, 0)] = b[1] * e1[row];
+        a[(row, 1)] = b[n - 1] * e2[row];
+        for k in 0..free {
+            a[(row, 2 + d * k + row)] = b[2 + k];
+        }
+    }
+    let rhs = DMatrix::from_iterator(d, 1, (0..d).map(|row| diff[row]));
+    let sol = min_norm_solve(&a, &rhs);
+    let mu = [sol.x[(0, 0)], sol.x[(1, 0)]];
+    let deltas: Vec<DVec3> = (0..free)
+        .map(|k| {
+            let mut v = DVec3::ZERO;
+            for row in 0..d {
+                v[row] = sol.x[(2 + d * k + row, 0)];
+            }
+            v
+        })
+        .collect();
+    let mut pts = curve.points().to_vec();
+    pts[1] += mu[0] * e1;
+    pts[n - 1] += mu[1] * e2;
+    for (k, dv) in deltas.iter().enumerate() {
+        pts[2 + k] += *dv;
+    }
+    let modified = Bezier::new(pts);
+    let residual = (modified.eval(t_s) - target).length();
+    Ok(TangentKeptSolution {
+        curve: modified,
+        t_s,
+        mu,
+        directions: [e1, e2],
+        deltas,
+        residual,
+        least_squares: sol.rank < d,
+    })
+}
+
+/// The result of [`multi_target`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct MultiTargetSolution {
+    /// The modified curve.
+    pub curve: Bezier,
+    /// The parameter of each target.
+    pub params: Vec<f64>,
+    /// `ε_1..ε_{n−1}`.
+    pub deltas: Vec<DVec3>,
+    /// `|P̃(t_l) − T_l|` per target.
+    pub residuals: Vec<f64>,
+    /// The rank of the system matrix `B_{i,n}(t_l)`.
+    pub rank: usize,
+    /// Whether the targets could not all be met exactly (more conditions than the rank).
+    pub least_squares: bool,
+}
+
+/// Paper 000, §3: moves every interior point (`P_1..P_{n−1}`) so that the curve passes
+/// through the targets `T_l` at their parameters `t_l` (given, or found by projecting each
+/// target onto the current curve), minimising `Σ‖ε_i‖²`: the minimum-norm solution of
+/// `Σ_i ε_i B_{i,n}(t_l) = T_l − P(t_l)`, by SVD. With more targets than the rank allows
+/// (more than `n − 1`, or two sharing a parameter) it is solved in least squares and the
+/// residuals say how far each target stays.
+///
+/// # Errors
+/// [`SolveError`] for no targets, a non-finite target, degree < 2, parameters outside
+/// `[0, 1]` or of the wrong count, or a target whose parameter is a (fixed) end.
+pub fn multi_target(
+    curve: &Bezier,
+    targets: &[DVec3],
+    params: Option<&[f64]>,
+    accuracy: Option<f64>,
+) -> Result<MultiTargetSolution, SolveError> {
+    if targets.is_empty() {
+        return Err(SolveError::NoTargets);
+    }
+    for (i, t) in targets.iter().enumerate() {
+        check_target(i, *t)?;
+    }
+    let n = curve.degree();
+    if n < 2 {
+        return Err(SolveError::DegreeTooLow {
+            method: "multi_target",
+            degree: n,
+            min: 2,
+        });
+    }
+    if let Some(p) = params
+        && p.len() != targets.len()
+    {
+        return Err(SolveError::ParamCount {
+            targets: targets.len(),
+            params: p.len(),
+        });
+    }
+    let params: Vec<f64> = targets
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| start_parameter(curve, t, i, params.map(|p| p[i]), accuracy))
+        .collect::<Result<_, _>>()?;
+    let rows = targets.len();
+    let mut m = DMatrix::zeros(rows, n - 1);
+    let mut r = DMatrix::zeros(rows, 3);
+    for (l, (&t, &target)) in params.iter().zip(targets).enumerate() {
+        let b = bernstein_all(n, t);
+        for i in 1..n {
+            m[(l, i - 1)] = b[i];
+        }
+        let d = target - curve.eval(t);
+        for c in 0..3 {
+            r[(l, c)] = d[c];
+        }
+    }
+    let sol = min_norm_solve(&m, &r);
+    let deltas: Vec<DVec3> = (0..n - 1)
+        .map(|i| DVec3::new(sol.x[(i, 0)], sol.x[(i, 1)], sol.x[(i, 2)]))
+        .collect();
+    let mut pts = curve.points().to_vec();
+    for (i, d) in deltas.iter().enumerate() {
+        pts[i + 1] += *d;
+    }
+    let modified = Bezier::new(pts);
+    let residuals: Vec<f64> = params
+        .iter()
+        .zip(targets)
+        .map(|(&t, &target)| (modified.eval(t) - target).length())
+        .collect();
+    Ok(MultiTargetSolution {
+        curve: modified,
+        params,
+        deltas,
+        residuals,
+        rank: sol.rank,
+        least_squares: sol.rank < rows,
+    })
+}
+
+/// The three kinds of cubic control polygon of paper 000, §2.3 (Fig. 2).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PolygonType {
+    /// Type 1: the legs `P_0P_1` and `P_3P_2` are parallel.
+    Parallel,
+    /// Type 2: the legs' lines meet at `apex` ahead of both legs (`apex = P_0 + s e_1 =
+    /// P_3 + r e_2`, `s, r > 0`).
+    Converging {
+        /// The intersection `X`.
+        apex: DVec3,
+    },
+    /// Type 3: the lines meet behind a leg, or (in 3D) do not meet.
+    Diverging,
+}
+
+impl PolygonType {
+    /// The paper's number: 1, 2 or 3.
+    #[must_use]
+    pub fn number(&self) -> u8 {
+        match self {
+            PolygonType::Parallel => 1,
+            PolygonType::Converging { .. } => 2,
+            PolygonType::Diverging => 3,
+        }
+    }
+}
+
+/// The targets a cubic can reach while keeping its end points and end tangent directions
+/// (paper 000, §2.3): `P′_1 = P_0 + s e_1`, `P′_2 = P_3 + r e_2` with `s, r ≥ 0` (the
+/// tangents keep their direction). The reachable set is the open segment `P_0P_3` plus the
+/// cone of `e_1, e_2`: every point `P_0 + λ(P_3 − P_0) + a e_1 + b e_2`, `λ ∈ (0, 1)`,
+/// `a, b ≥ 0` — a strip or half-strip for type 1, a sector for types 2 and 3. For type 2
+/// with the slides limited to `[P_0, X]` and `[P_3, X]` the region is the area between the
+/// segment `P_0P_3` and the cubic `(P_0, X, X, P_3)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CubicRegion {
+    /// The polygon's type.
+    pub kind: PolygonType,
+    /// `P_0`.
+    pub p0: DVec3,
+    /// `P_3`.
+    pub p3: DVec3,
+    /// `e_1 = unit(P_1 − P_0)`.
+    pub e1: DVec3,
+    /// `e_2 = unit(P_2 − P_3)`.
+    pub e2: DVec3,
+}
+
+/// Relative tolerance of the region's geometric tests.
+const REGION_TOLERANCE: f64 = 1e-9;
+
+/// Classifies a cubic's control polygon and returns its reachable region.
+///
+/// # Errors
+/// [`SolveError::DegreeTooLow`]/`DegreeNotCubic` unless the degree is 3;
+/// [`SolveError::NoTangent`] for coincident end points.
+pub fn cubic_region(curve: &Bezier) -> Result<CubicRegion, SolveError> {
+    if curve.degree() != 3 {
+        return Err(SolveError::NotCubic {
+            degree: curve.degree(),
+        });
+    }
+    let [e1, e2] = end_directions(curve)?;
+    let p = curve.points();
+    let (p0, p3) = (p[0], p[3]);
+    let scale = (p3 - p0)
+        .length()
+        .max(p[1].length())
+        .max(p[2].length())
+        .max(1.0);
+    let cross = e1.cross(e2);
+    let kind = if cross.length() <= REGION_TOLERANCE {
+        PolygonType::Parallel
+    } else {
+        // Closest points of the two lines: P0 + s e1 and P3 + r e2.
+        let w = p0 - p3;
+        let (a, b, c) = (1.0, e1.dot(e2), 1.0);
+        let (d, e) = (e1.dot(w), e2.dot(w));
+        let den = a * c - b * b;
+        let s = (b * e - c * d) / den;
+        let r = (a * e - b * d) / den;
+        let x1 = p0 + s * e1;
+        let x2 = p3 + r * e2;
+        if (x1 - x2).length() <= REGION_TOLERANCE * scale && s > 0.0 && r > 0.0 {
+            PolygonType::Converging {
+                apex: 0.5 * (x1 + x2),
+            }
+        } else {
+            PolygonType::Diverging
+        }
+    };
+    Ok(CubicRegion {
+        kind,
+        p0,
+        p3,
+        e1,
+        e2,
+    })
+}
+
+/// An orthonormal basis `(u, v)` of the plane through `P_0` holding `d`, `e_1`, `e_2`, when
+/// they are coplanar.
+fn plane_basis(d: DVec3, e1: DVec3, e2: DVec3) -> Option<(DVec3, DVec3)> {
+    let normal = [d.cross(e1), d.cross(e2), e1.cross(e2)]
+        .into_iter()
+        .max_by(|a, b| a.length().total_cmp(&b.length()))
+        .and_then(|v| v.try_normalize())?;
+    let coplanar = [d.normalize_or_zero(), e1, e2]
+        .iter()
+        .all(|v| v.dot(normal).abs() <= 1e-9);
+    if !coplanar {
+        return None;
+    }
+    let u = e1;
+    let v = normal.cross(u).normalize();
+    Some((u, v))
+}
+
+impl CubicRegion {
+    fn scale(&self) -> f64 {
+        (self.p3 - self.p0).length().max(1e-300)
+    }
+
+    /// Whether `target` is reachable (slides unlimited, `s, r ≥ 0`). Points within
+    /// `1e-9 · |P_3 − P_0|` of the boundary count as inside.
+    #[must_use]
+    pub fn contains(&self, target: DVec3) -> bool {
+        let d = self.p3 - self.p0;
+        let w = target - self.p0;
+        let tol = REGION_TOLERANCE;
+        let inside = |lambda: f64, a: f64, b: f64| {
+            lambda > -tol
+                && lambda < 1.0 + tol
+                && a >= -tol * self.scale()
+                && b >= -tol * self.scale()
+        };
+        // Coplanar: 2D coordinates in the plane; otherwise a 3×3 solve.
+        let Some((u, v)) = plane_basis(d, self.e1, self.e2) else {
+            let m = glam::DMat3::from_cols(d, self.e1, self.e2);
+            if m.determinant().abs() <= 1e-12 {
+                return false;
+            }
+            let x = m.inverse() * w;
+            return inside(x.x, x.y, x.z);
+        };
+        let to2 = |x: DVec3| DVec2::new(x.dot(u), x.dot(v));
+        // Off the plane: unreachable.
+        if (w - u * w.dot(u) - v * w.dot(v)).length() > tol * self.scale().max(w.length()) {
+            return false;
+        }
+        let (d2, e1, e2, w2) = (to2(d), to2(self.e1), to2(self.e2), to2(w));
+        let det = e1.perp_dot(e2);
+        if det.abs() > 1e-12 {
+            // (a, b) = [e1 e2]⁻¹ (w − λ d), affine in λ: find λ ∈ (0, 1) with a, b ≥ 0.
+            let solve = |q: DVec2| DVec2::new(q.perp_dot(e2) / det, e1.perp_dot(q) / det);
+            let at0 = solve(w2);
+            let slope = -solve(d2);
+            let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
+            for (c0, c1) in [(at0.x, slope.x), (at0.y, slope.y)] {
+                // c0 + c1 λ ≥ −tol
+                let floor = -tol * self.scale();
+                if c1.abs() < 1e-15 {
+                    if c0 < floor {
+                        return false;
+                    }
+                } else if c1 > 0.0 {
+                    lo = lo.max((floor - c0) / c1);
+                } else {
+                    hi = hi.min((floor - c0) / c1);
+                }
+            }
+            return lo <= hi + tol;
+        }
+        // Parallel legs: the cone is a ray (same direction) or a line (opposite).
+        let n = DVec2::new(-e1.y, e1.x);
+        let nd = n.dot(d2);
+        if nd.abs() <= 1e-15 {
+            // P0P3 parallel to the legs: only the line itself.
+            return n.dot(w2).abs() <= tol * self.scale();
+        }
+        let lambda = n.dot(w2) / nd;
+        if !(lambda > -tol && lambda < 1.0 + tol) {
+            return false;
+        }
+        let along = e1.dot(w2 - lambda * d2);
+        e1.dot(e2) < 0.0 || along >= -tol * self.scale()
+    }
+
+    /// Whether `target` is reachable with the slides of a type-2 polygon limited to
+    /// `[P_0, X]` and `[P_3, X]`: inside the area between the segment `P_0P_3` and the cubic
+    /// `(P_0, X, X, P_3)`. `None` unless the polygon is of type 2.
+    #[must_use]
+    pub fn contains_limited(&self, target: DVec3) -> Option<bool> {
+        let PolygonType::Converging { apex } = self.kind else {
+            return None;
+        };
+        let boundary = self.limited_boundary(apex, 1e-9 * self.scale());
+        let (u, v) = plane_basis(self.p3 - self.p0, self.e1, self.e2)?;
+        let to2 = |x: DVec3| DVec2::new((x - self.p0).dot(u), (x - self.p0).dot(v));
+        let w = target - self.p0;
+        if (w - u * w.dot(u) - v * w.dot(v)).length()
+            > REGION_TOLERANCE * self.scale().max(w.length())
+        {
+            return Some(false);
+        }
+        let q = to2(target);
+        let poly: Vec<DVec2> = boundary.iter().map(|&p| to2(p)).collect();
+        // Even-odd rule.
+        let mut inside = false;
+        for k in 0..poly.len() {
+            let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+            if (a.y > q.y) != (b.y > q.y) {
+                let x = a.x + (q.y - a.y) / (b.y - a.y) * (b.x - a.x);
+                if q.x < x {
+                    inside = !inside;
+                }
+            }
+        }
+        Some(inside)
+    }
+
+    /// The closed boundary of the limited type-2 region: the cubic `(P_0, X, X, P_3)`
+    /// flattened to `tolerance`, closed by the segment `P_3P_0`.
+    fn limited_boundary(&self, apex: DVec3, tolerance: f64) -> Vec<DVec3> {
+        let c = Bezier::new(vec![self.p0, apex, apex, self.p3]);
+        let mut out = vec![self.p0];
+        flatten(&c, 0.0, 1.0, tolerance, 0, &mut out);
+        out
+    }
+
+    /// Polylines outlining the region for drawing. Unlimited: the region clipped at
+    /// `reach` from the end points (a strip, half-strip or sector). With `limited` and a
+    /// type-2 polygon: the segment and the cubic `(P_0, X, X, P_3)`.
+    #[must_use]
+    pub fn boundary(&self, limited: bool, reach: f64) -> Vec<Vec<DVec3>> {
+        if let (true, PolygonType::Converging { apex }) = (limited, self.kind) {
+            let mut b = self.limited_boundary(apex, 1e-4 * self.scale());
+            b.push(self.p0);
+            return vec![b];
+        }
+        let far = [
+            self.p0 + reach * self.e1,
+            self.p0 + reach * self.e2,
+            self.p3 + reach * self.e1,
+            self.p3 + reach * self.e2,
+        ];
+        let Some((u, v)) = plane_basis(self.p3 - self.p0, self.e1, self.e2) else {
+            // 3D: the segment and the four rays.
+            let mut lines = vec![vec![self.p0, self.p3]];
+            lines.push(vec![self.p0, far[0]]);
+            lines.push(vec![self.p0, far[1]]);
+            lines.push(vec![self.p3, far[2]]);
+            lines.push(vec![self.p3, far[3]]);
+            return lines;
+        };
+        let mut pts: Vec<DVec3> = vec![self.p0, self.p3];
+        pts.extend(far);
+        let hull = convex_hull(&pts, u, v, self.p0);
+        let mut closed = hull.clone();
+        if let Some(&first) = hull.first() {
+            closed.push(first);
+        }
+        vec![closed]
+    }
+
+    /// A box around the region's drawn boundary.
+    #[must_use]
+    pub fn bounds(&self, reach: f64) -> Aabb {
+        self.boundary(false, reach)
+            .iter()
+            .fold(Aabb::EMPTY, |b, l| b.union(Aabb::from_points(l)))
+    }
+}
+
+/// Appends the flattened points of `c` on `(t0, t1]` to `out`.
+fn flatten(c: &Bezier, t0: f64, t1: f64, tol: f64, depth: u32, out: &mut Vec<DVec3>) {
+    let piece = c.subsegment(t0, t1);
+    let p = piece.points();
+    let chord = p[3] - p[0];
+    let dev = p[1..3]
+        .iter()
+        .map(|q| {
+            let w = *q - p[0];
+            if chord.length_squared() > 0.0 {
+                (w - chord * (w.dot(chord) / chord.length_squared())).length()
+            } else {
+                w.length()
+            }
+        })
+        .fold(0.0, f64::max);
+    if dev <= tol || depth >= 24 {
+        out.push(p[3]);
+    } else {
+        let mid = 0.5 * (t0 + t1);
+        flatten(c, t0, mid, tol, depth + 1, out);
+        flatten(c, mid, t1, tol, depth + 1, out);
+    }
+}
+
+/// The convex hull (counter-clockwise) of points lying in the plane through `origin`
+/// spanned by the orthonormal `u`, `v`.
+fn convex_hull(points: &[DVec3], u: DVec3, v: DVec3, origin: DVec3) -> Vec<DVec3> {
+    let mut pts: Vec<(DVec2, DVec3)> = points
+        .iter()
+        .map(|&p| (DVec2::new((p - origin).dot(u), (p - origin).dot(v)), p))
+        .collect();
+    pts.sort_by(|a, b| a.0.x.total_cmp(&b.0.x).then(a.0.y.total_cmp(&b.0.y)));
+    pts.dedup_by(|a, b| (a.0 - b.0).length() < 1e-12);
+    if pts.len() < 3 {
+        return pts.into_iter().map(|p| p.1).collect();
+    }
+    let cross = |o: DVec2, a: DVec2, b: DVec2| (a - o).perp_dot(b - o);
+    let mut lower: Vec<(DVec2, DVec3)> = Vec::new();
+    for &p in &pts {
+        while lower.len() >= 2
+            && cross(lower[lower.len() - 2].0, lower[lower.len() - 1].0, p.0) <= 0.0
+        {
+            lower.pop();
+        }
+        lower.push(p);
+    }
+    let mut upper: Vec<(DVec2, DVec3)> = Vec::new();
+    for &p in pts.iter().rev() {
+        while upper.len() >= 2
+            && cross(upper[upper.len() - 2].0, upper[upper.len() - 1].0, p.0) <= 0.0
+        {
+            upper.pop();
+        }
+        upper.push(p);
+    }
+    lower.pop();
+    upper.pop();
+    lower.into_iter().chain(upper).map(|p| p.1).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p2(x: f64, y: f64) -> DVec3 {
+        DVec3::new(x, y, 0.0)
+    }
+
+    #[test]
+    fn polygon_types_are_classified() {
+        let parallel = Bezier::new(vec![p2(0., 0.), p2(0., 1.), p2(3., 1.), p2(3., 0.)]);
+        assert_eq!(cubic_region(&parallel).unwrap().kind, PolygonType::Parallel);
+        let converging = Bezier::new(vec![p2(0., 0.), p2(1., 1.), p2(3., 1.), p2(4., 0.)]);
+        match cubic_region(&converging).unwrap().kind {
+            PolygonType::Converging { apex } => assert!((apex - p2(2., 2.)).length() < 1e-12),
+            other => panic!("{other:?}"),
+        }
+        let diverging = Bezier::new(vec![p2(0., 0.), p2(-1., 1.), p2(5., 1.), p2(4., 0.)]);
+        assert_eq!(
+            cubic_region(&diverging).unwrap().kind,
+            PolygonType::Diverging
+        );
+    }
+
+    #[test]
+    fn coincident_end_points_have_no_tangent() {
+        let b = Bezier::new(vec![p2(0., 0.), p2(0., 0.), p2(3., 1.), p2(3., 0.)]);
+        assert!(matches!(
+            tangent_kept(&b, p2(1., 1.), Some(0.5), None),
+            Err(SolveError::NoTangent { .. })
+        ));
+    }
+}
