@@ -27,5 +27,7 @@ pub mod geom;
 pub mod gpu;
 pub mod image;
 pub mod inspect;
+mod jsonread;
+pub mod request;
 pub mod scene;
 pub mod solve;

@@ -114,6 +114,20 @@ enum Command {
         #[arg(long)]
         curve: Option<usize>,
     },
+    /// Apply a solve request (docs/solve-format.md) to a scene: print a JSON report and,
+    /// with -o, write the modified scene.
+    Solve {
+        /// Scene file (JSON).
+        scene: PathBuf,
+        /// Request file (JSON): one request or an array of them, applied in order.
+        request: PathBuf,
+        /// Where to write the modified scene (written atomically; nothing on error).
+        #[arg(short, long, value_name = "SCENE")]
+        output: Option<PathBuf>,
+        /// Also write the report to this file.
+        #[arg(long, value_name = "JSON")]
+        report: Option<PathBuf>,
+    },
     /// Validate a scene and summarise it (families, segments, GPU compatibility).
     Check {
         /// Scene file (JSON).
@@ -211,6 +225,12 @@ fn run(cli: Cli) -> Result<()> {
             gpu,
         }) => eval(&scene, samples, params.as_deref(), backend, curve, &gpu),
         Some(Command::Check { scene }) => check(&scene),
+        Some(Command::Solve {
+            scene,
+            request,
+            output,
+            report,
+        }) => solve(&scene, &request, output.as_deref(), report.as_deref()),
         Some(Command::Inspect { scene, curve }) => inspect(&scene, curve),
         Some(Command::Bench(args)) => bench::run(&args),
     }
@@ -281,6 +301,29 @@ fn select_curves(scene: &Scene, only: Option<usize>) -> Result<Vec<usize>> {
     }
 }
 
+fn solve(path: &Path, request: &Path, output: Option<&Path>, report: Option<&Path>) -> Result<()> {
+    let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
+    let text = std::fs::read_to_string(request)
+        .with_context(|| format!("{}: cannot read the request", request.display()))?;
+    let outcome = splinescope::request::apply_text(&scene, &text)
+        .with_context(|| format!("{}", request.display()))?;
+    let text = splinescope::scene::pretty_json(&serde_json::json!({ "reports": outcome.reports }));
+    if let Some(out) = output {
+        outcome
+            .scene
+            .save(out)
+            .with_context(|| format!("{}: cannot write the scene", out.display()))?;
+    }
+    if let Some(r) = report {
+        let tmp = r.with_extension("json.tmp");
+        std::fs::write(&tmp, format!("{text}\n"))
+            .and_then(|()| std::fs::rename(&tmp, r))
+            .with_context(|| format!("{}: cannot write the report", r.display()))?;
+    }
+    say!("{text}");
+    Ok(())
+}
+
 fn inspect(path: &Path, only: Option<usize>) -> Result<()> {
     let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
     let curves: Vec<serde_json::Value> = select_curves(&scene, only)?
@@ -290,7 +333,10 @@ fn inspect(path: &Path, only: Option<usize>) -> Result<()> {
             splinescope::inspect::curve_report(i, c.name.as_deref(), &c.curve)
         })
         .collect();
-    say!("{:#}", serde_json::json!({ "curves": curves }));
+    say!(
+        "{}",
+        splinescope::scene::pretty_json(&serde_json::json!({ "curves": curves }))
+    );
     Ok(())
 }
 

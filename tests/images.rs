@@ -132,6 +132,7 @@ fn single(curve: Bezier, width: f32, samples: u32) -> Scene {
                 samples: None,
             },
         }],
+        annotations: Vec::new(),
     }
 }
 

@@ -13,7 +13,7 @@ use super::layout::{
     TESSELLATE_WORKGROUP_SIZE as WORKGROUP, kernel_class,
 };
 use crate::geom::{BezierSegment, Lower, OverlayKind};
-use crate::scene::{Color, Scene};
+use crate::scene::{AnnotationShape, Color, Scene};
 
 /// Why a scene cannot be packed for the GPU.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -497,6 +497,13 @@ pub fn prepare_scene(scene: &Scene, limits: ChunkLimits) -> Result<PreparedScene
                 sc.curve.control_points(),
                 GpuLineStyle::solid(dot, POINT_DIAMETER_PX),
             );
+        }
+    }
+    for a in &scene.annotations {
+        let style = GpuLineStyle::solid(a.color, a.width);
+        match &a.shape {
+            AnnotationShape::Polyline(p) => lines.push(p, style),
+            AnnotationShape::Points(p) => points.push(p, style),
         }
     }
     Ok(PreparedScene {

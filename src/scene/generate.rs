@@ -112,6 +112,7 @@ pub fn random_bezier_scene(opts: StressOptions) -> Scene {
         samples_per_segment: opts.samples,
         view: ViewSpec::Auto,
         curves,
+        annotations: Vec::new(),
     }
 }
 

@@ -1,16 +1,14 @@
-//! Reading and writing the JSON scene format with path-naming errors.
-//!
-//! The text is parsed into a `serde_json::Value` and then walked by hand, carrying the
-//! JSON path of every value, so each error names exactly where it is. JSON has no NaN or
-//! Infinity; files written by tools that emit them anyway (Python's `json.dumps` does) get
-//! a `not a finite number` error at the value's path rather than a bare syntax error.
+//! Reading and writing the JSON scene format with path-naming errors (the reader walks the
+//! parsed value with [`crate::jsonread`]).
 
 use glam::{DVec2, DVec3};
 use serde_json::{Map, Value};
 
+use crate::jsonread::{NON_FINITE_MARK, Node, Obj, describe, parse_document};
+
 use super::{
-    Color, FORMAT_VERSION, MAX_SAMPLES_PER_SEGMENT, Scene, SceneCurve, SceneError, SceneErrorKind,
-    Style, ViewSpec,
+    Annotation, AnnotationShape, Color, FORMAT_VERSION, MAX_SAMPLES_PER_SEGMENT, Scene, SceneCurve,
+    SceneError, SceneErrorKind, Style, ViewSpec,
 };
 use crate::geom::exact::{Rational, parse_decimal};
 use crate::geom::{
@@ -18,329 +16,25 @@ use crate::geom::{
     ModifiedBezier, Nubmp, Reading,
 };
 
-/// Marks a non-finite literal rewritten into a string before parsing.
-const NON_FINITE_MARK: char = '\u{1}';
-
 /// Parses and validates a scene from JSON text.
 ///
 /// # Errors
 /// The first problem found, as a [`SceneError`] naming its path.
 pub fn from_json_str(text: &str) -> Result<Scene, SceneError> {
-    let value: Value = match serde_json::from_str(text) {
-        Ok(v) => v,
-        Err(original) => {
-            // Retry with NaN/Infinity literals turned into marked strings, so that the
-            // decoder can name their path; otherwise report the original syntax error.
-            let marked = mark_non_finite_literals(text);
-            match (marked.as_deref(), original) {
-                (Some(m), original) => {
-                    serde_json::from_str(m).map_err(|_| syntax_error(&original))?
-                }
-                (None, original) => return Err(syntax_error(&original)),
-            }
-        }
-    };
+    let value = parse_document(text)?;
     decode_scene(&Node::root(&value))
 }
 
-fn syntax_error(e: &serde_json::Error) -> SceneError {
-    let full = e.to_string();
-    let message = match full.rfind(" at line ") {
-        Some(i) => full[..i].to_owned(),
-        None => full,
-    };
-    SceneError::new(
-        "(root)",
-        SceneErrorKind::Syntax {
-            line: e.line(),
-            column: e.column(),
-            message,
-        },
-    )
-}
-
-/// Rewrites the bare words `NaN`, `Infinity`, `-Infinity`, `+Infinity` outside strings
-/// into marked strings. `None` when there are none.
-fn mark_non_finite_literals(text: &str) -> Option<String> {
-    const WORDS: [&str; 4] = ["-Infinity", "+Infinity", "Infinity", "NaN"];
-    let mut out = String::with_capacity(text.len() + 16);
-    let mut in_string = false;
-    let mut escaped = false;
-    let mut changed = false;
-    let mut rest = text;
-    while let Some(c) = rest.chars().next() {
-        if in_string {
-            if escaped {
-                escaped = false;
-            } else if c == '\\' {
-                escaped = true;
-            } else if c == '"' {
-                in_string = false;
-            }
-        } else if c == '"' {
-            in_string = true;
-        } else if let Some(word) = WORDS.iter().find(|w| rest.starts_with(**w)) {
-            // JSON strings cannot hold a raw control character: write its escape.
-            out.push_str("\"\\u0001");
-            out.push_str(word);
-            out.push('"');
-            rest = &rest[word.len()..];
-            changed = true;
-            continue;
-        }
-        out.push(c);
-        rest = &rest[c.len_utf8()..];
-    }
-    changed.then_some(out)
-}
-
-/// A JSON value with its path from the document root.
-struct Node<'a> {
-    value: &'a Value,
-    path: String,
-}
-
-/// A JSON object whose keys were checked against the allowed ones.
-struct Obj<'a> {
-    map: &'a Map<String, Value>,
-    path: String,
-}
-
-fn describe(v: &Value) -> String {
-    match v {
-        Value::Null => "null".into(),
-        Value::Bool(b) => format!("the boolean {b}"),
-        Value::Number(n) => format!("the number {n}"),
-        Value::String(s) if s.starts_with(NON_FINITE_MARK) => s[1..].to_owned(),
-        Value::String(s) => format!("the string {s:?}"),
-        Value::Array(a) => format!("an array of {} items", a.len()),
-        Value::Object(_) => "an object".into(),
-    }
-}
-
-impl<'a> Node<'a> {
-    fn root(value: &'a Value) -> Node<'a> {
-        Node {
-            value,
-            path: String::new(),
-        }
-    }
-
-    fn display_path(&self) -> String {
-        if self.path.is_empty() {
-            "(root)".into()
-        } else {
-            self.path.clone()
-        }
-    }
-
-    fn err(&self, kind: SceneErrorKind) -> SceneError {
-        SceneError::new(self.display_path(), kind)
-    }
-
-    fn invalid(&self, message: impl Into<String>) -> SceneError {
-        self.err(SceneErrorKind::Invalid(message.into()))
-    }
-
-    fn wrong_type(&self, expected: &str) -> SceneError {
-        if let Value::String(s) = self.value
-            && s.starts_with(NON_FINITE_MARK)
-        {
-            return self.err(SceneErrorKind::NotFinite(s[1..].to_owned()));
-        }
-        self.err(SceneErrorKind::WrongType {
-            expected: expected.into(),
-            found: describe(self.value),
-        })
-    }
-
-    fn index(&self, i: usize, value: &'a Value) -> Node<'a> {
-        Node {
-            value,
-            path: format!("{}[{i}]", self.path),
-        }
-    }
-
-    fn object(&self, allowed: &[&str]) -> Result<Obj<'a>, SceneError> {
-        let Value::Object(map) = self.value else {
-            return Err(self.wrong_type("an object"));
-        };
-        let obj = Obj {
-            map,
-            path: self.path.clone(),
-        };
-        for key in map.keys() {
-            if !allowed.contains(&key.as_str()) {
-                return Err(obj.node(key, &map[key]).err(SceneErrorKind::UnknownField {
-                    expected: allowed.join(", "),
-                }));
-            }
-        }
-        Ok(obj)
-    }
-
-    fn array(&self) -> Result<Vec<Node<'a>>, SceneError> {
-        let Value::Array(items) = self.value else {
-            return Err(self.wrong_type("an array"));
-        };
-        Ok(items
-            .iter()
-            .enumerate()
-            .map(|(i, v)| self.index(i, v))
-            .collect())
-    }
-
-    fn f64(&self) -> Result<f64, SceneError> {
-        let Value::Number(n) = self.value else {
-            return Err(self.wrong_type("a number"));
-        };
-        match n.as_f64() {
-            Some(x) if x.is_finite() => Ok(x),
-            _ => Err(self.err(SceneErrorKind::NotFinite(n.to_string()))),
-        }
-    }
-
-    fn positive_f64(&self) -> Result<f64, SceneError> {
-        let x = self.f64()?;
-        if x > 0.0 {
-            Ok(x)
-        } else {
-            Err(self.invalid(format!("must be greater than 0, found {x}")))
-        }
-    }
-
-    fn u32_in(&self, lo: u32, hi: u32) -> Result<u32, SceneError> {
-        let Value::Number(n) = self.value else {
-            return Err(self.wrong_type("an integer"));
-        };
-        let Some(v) = n.as_u64() else {
-            return Err(self.wrong_type(&format!("an integer in {lo}..={hi}")));
-        };
-        if v < u64::from(lo) || v > u64::from(hi) {
-            return Err(self.invalid(format!("{v} is outside {lo}..={hi}")));
-        }
-        Ok(v as u32)
-    }
-
-    fn bool(&self) -> Result<bool, SceneError> {
-        self.value
-            .as_bool()
-            .ok_or_else(|| self.wrong_type("true or false"))
-    }
-
-    fn string(&self) -> Result<&'a str, SceneError> {
-        match self.value {
-            Value::String(s) if !s.starts_with(NON_FINITE_MARK) => Ok(s),
-            _ => Err(self.wrong_type("a string")),
-        }
-    }
-
-    /// A point: an array of 2 (`z = 0`) or 3 finite numbers.
-    fn point(&self) -> Result<DVec3, SceneError> {
-        let items = self.array()?;
-        if !(2..=3).contains(&items.len()) {
-            return Err(self.invalid(format!(
-                "a point has 2 or 3 coordinates, found {}",
-                items.len()
-            )));
-        }
-        let mut p = [0.0; 3];
-        for (slot, item) in p.iter_mut().zip(&items) {
-            *slot = item.f64()?;
-        }
-        Ok(DVec3::from_array(p))
-    }
-
-    fn numbers(&self) -> Result<Vec<f64>, SceneError> {
-        self.array()?.iter().map(Node::f64).collect()
-    }
-
-    fn points(&self, min: usize) -> Result<Vec<DVec3>, SceneError> {
-        let items = self.array()?;
-        if items.len() < min {
-            return Err(self.invalid(format!(
-                "needs at least {min} points, found {}",
-                items.len()
-            )));
-        }
-        items.iter().map(Node::point).collect()
-    }
-
-    fn color(&self) -> Result<Color, SceneError> {
-        match self.value {
-            Value::String(s) if !s.starts_with(NON_FINITE_MARK) => parse_hex_color(s)
-                .ok_or_else(|| {
-                    self.invalid(format!(
-                        "{s:?} is not a colour (use \"#rrggbb\", \"#rrggbbaa\" or [r, g, b(, a)] in [0, 1])"
-                    ))
-                }),
-            Value::Array(_) => {
-                let items = self.array()?;
-                if !(3..=4).contains(&items.len()) {
-                    return Err(self.invalid(format!(
-                        "a colour has 3 or 4 channels, found {}",
-                        items.len()
-                    )));
-                }
-                let mut c = [1.0_f32; 4];
-                for (slot, item) in c.iter_mut().zip(&items) {
-                    let v = item.f64()?;
-                    if !(0.0..=1.0).contains(&v) {
-                        return Err(item.invalid(format!("colour channel {v} is outside [0, 1]")));
-                    }
-                    *slot = v as f32;
-                }
-                Ok(Color(c))
-            }
-            _ => Err(self.wrong_type("a colour (\"#rrggbb\" or [r, g, b(, a)])")),
-        }
-    }
-}
-
-impl<'a> Obj<'a> {
-    fn node(&self, key: &str, value: &'a Value) -> Node<'a> {
-        Node {
-            value,
-            path: if self.path.is_empty() {
-                key.to_owned()
-            } else {
-                format!("{}.{key}", self.path)
-            },
-        }
-    }
-
-    fn get(&self, key: &str) -> Option<Node<'a>> {
-        self.map.get(key).map(|v| self.node(key, v))
-    }
-
-    fn req(&self, key: &str) -> Result<Node<'a>, SceneError> {
-        self.get(key).ok_or_else(|| {
-            SceneError::new(
-                if self.path.is_empty() {
-                    key.to_owned()
-                } else {
-                    format!("{}.{key}", self.path)
-                },
-                SceneErrorKind::Missing,
-            )
-        })
-    }
-}
-
-fn parse_hex_color(s: &str) -> Option<Color> {
-    let hex = s.strip_prefix('#')?;
-    if !(hex.len() == 6 || hex.len() == 8) || !hex.chars().all(|c| c.is_ascii_hexdigit()) {
-        return None;
-    }
-    let mut c = [1.0_f32; 4];
-    for (i, slot) in c.iter_mut().enumerate().take(hex.len() / 2) {
-        *slot = f32::from(u8::from_str_radix(&hex[2 * i..2 * i + 2], 16).ok()?) / 255.0;
-    }
-    Some(Color(c))
-}
-
 fn decode_scene(root: &Node<'_>) -> Result<Scene, SceneError> {
-    let obj = root.object(&["version", "name", "background", "samples", "view", "curves"])?;
+    let obj = root.object(&[
+        "version",
+        "name",
+        "background",
+        "samples",
+        "view",
+        "curves",
+        "annotations",
+    ])?;
     let version = obj.req("version")?;
     match version.value.as_u64() {
         Some(v) if v == u64::from(FORMAT_VERSION) => {}
@@ -368,12 +62,66 @@ fn decode_scene(root: &Node<'_>) -> Result<Scene, SceneError> {
         .enumerate()
         .map(|(i, n)| decode_curve(n, i))
         .collect::<Result<Vec<_>, _>>()?;
+    let annotations = match obj.get("annotations") {
+        None => Vec::new(),
+        Some(n) => n
+            .array()?
+            .iter()
+            .map(decode_annotation)
+            .collect::<Result<Vec<_>, _>>()?,
+    };
     Ok(Scene {
         name,
         background: background.unwrap_or(Color::WHITE),
         samples_per_segment: samples.unwrap_or(super::DEFAULT_SAMPLES_PER_SEGMENT),
         view: view.unwrap_or(ViewSpec::Auto),
         curves,
+        annotations,
+    })
+}
+
+/// The default colour of annotations.
+const ANNOTATION_COLOR: Color = Color([0.35, 0.35, 0.35, 0.9]);
+
+fn decode_annotation(node: &Node<'_>) -> Result<Annotation, SceneError> {
+    let obj = node.object(&["polyline", "points", "color", "width", "label"])?;
+    let shape = match (obj.get("polyline"), obj.get("points")) {
+        (Some(p), None) => AnnotationShape::Polyline(p.points(2)?),
+        (None, Some(p)) => AnnotationShape::Points(p.points(1)?),
+        (Some(_), Some(p)) => {
+            return Err(p.invalid("an annotation is either a \"polyline\" or \"points\", not both"));
+        }
+        (None, None) => {
+            return Err(node.invalid("an annotation needs \"polyline\" or \"points\""));
+        }
+    };
+    let color = obj
+        .get("color")
+        .map(|n| n.color())
+        .transpose()?
+        .unwrap_or(ANNOTATION_COLOR);
+    let width = match obj.get("width") {
+        Some(n) => {
+            let w = n.positive_f64()?;
+            if w > 1000.0 {
+                return Err(n.invalid(format!("width {w} px is over the maximum of 1000")));
+            }
+            w as f32
+        }
+        None => match shape {
+            AnnotationShape::Polyline(_) => 1.5,
+            AnnotationShape::Points(_) => 9.0,
+        },
+    };
+    let label = obj
+        .get("label")
+        .map(|n| n.string().map(str::to_owned))
+        .transpose()?;
+    Ok(Annotation {
+        shape,
+        color,
+        width,
+        label,
     })
 }
 
@@ -800,6 +548,26 @@ pub fn to_json_string(scene: &Scene) -> String {
         "curves".into(),
         Value::Array(scene.curves.iter().map(curve_json).collect()),
     );
+    if !scene.annotations.is_empty() {
+        let annotations = scene
+            .annotations
+            .iter()
+            .map(|a| {
+                let mut m = Map::new();
+                match &a.shape {
+                    AnnotationShape::Polyline(p) => m.insert("polyline".into(), points_json(p)),
+                    AnnotationShape::Points(p) => m.insert("points".into(), points_json(p)),
+                };
+                m.insert("color".into(), a.color.to_hex().into());
+                m.insert("width".into(), f64::from(a.width).into());
+                if let Some(l) = &a.label {
+                    m.insert("label".into(), l.clone().into());
+                }
+                Value::Object(m)
+            })
+            .collect();
+        obj.insert("annotations".into(), Value::Array(annotations));
+    }
     let mut text = String::new();
     write_pretty(&Value::Object(obj), 0, &mut text);
     text.push('\n');
@@ -808,6 +576,14 @@ pub fn to_json_string(scene: &Scene) -> String {
 
 /// Pretty JSON with two-space indents, except that arrays holding only numbers (points,
 /// colours, knots) stay on one line.
+#[must_use]
+pub fn pretty_json(value: &Value) -> String {
+    let mut out = String::new();
+    write_pretty(value, 0, &mut out);
+    out
+}
+
+/// Writes `v` as [`pretty_json`] does, at `indent`.
 pub(crate) fn write_pretty(v: &Value, indent: usize, out: &mut String) {
     let pad = |n: usize, out: &mut String| out.extend(std::iter::repeat_n(' ', n));
     match v {

@@ -16,7 +16,7 @@ use thiserror::Error;
 use crate::camera::{Camera, Camera2d, Camera3d};
 use crate::geom::{Aabb, Curve};
 
-pub use json::{from_json_str, to_json_string};
+pub use json::{from_json_str, pretty_json, to_json_string};
 
 /// The scene format version this build reads and writes.
 pub const FORMAT_VERSION: u32 = 1;
@@ -149,6 +149,31 @@ pub struct Scene {
     pub view: ViewSpec,
     /// The curves, drawn in order.
     pub curves: Vec<SceneCurve>,
+    /// Marks drawn over the curves (targets, reachable regions, notes).
+    pub annotations: Vec<Annotation>,
+}
+
+/// What an annotation draws.
+#[derive(Debug, Clone, PartialEq)]
+pub enum AnnotationShape {
+    /// A polyline through the points.
+    Polyline(Vec<DVec3>),
+    /// Separate points (drawn as discs).
+    Points(Vec<DVec3>),
+}
+
+/// A mark drawn over the curves: a polyline or a set of points, with a colour and a width
+/// (line width or disc diameter, in pixels).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Annotation {
+    /// What to draw.
+    pub shape: AnnotationShape,
+    /// Its colour.
+    pub color: Color,
+    /// Line width or disc diameter in pixels (> 0).
+    pub width: f32,
+    /// An optional label.
+    pub label: Option<String>,
 }
 
 /// Why a scene could not be read: the path of the offending value and what is wrong.
@@ -258,12 +283,18 @@ impl Scene {
             .unwrap_or(self.samples_per_segment)
     }
 
-    /// The box of every control point (holds every curve).
+    /// The box of every control point (holds every curve) and every annotation.
     #[must_use]
     pub fn bounds(&self) -> Aabb {
-        self.curves
+        let curves = self
+            .curves
             .iter()
-            .fold(Aabb::EMPTY, |b, c| b.union(c.curve.control_box()))
+            .fold(Aabb::EMPTY, |b, c| b.union(c.curve.control_box()));
+        self.annotations.iter().fold(curves, |b, a| match &a.shape {
+            AnnotationShape::Polyline(p) | AnnotationShape::Points(p) => {
+                b.union(Aabb::from_points(p))
+            }
+        })
     }
 
     /// Whether every curve is planar (`z = 0`).

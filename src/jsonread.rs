@@ -1,0 +1,334 @@
+//! Reading JSON documents (scenes, solve requests) with the path of every value, so that
+//! each error names exactly where it is (`curves[3].points[2][1]: not a finite number`).
+//!
+//! JSON has no NaN or Infinity; files written by tools that emit them anyway (Python's
+//! `json.dumps` does) get a `not a finite number` error at the value's path rather than a
+//! bare syntax error.
+
+use glam::DVec3;
+use serde_json::{Map, Value};
+
+use crate::scene::{Color, SceneError, SceneErrorKind};
+
+/// Marks a non-finite literal rewritten into a string before parsing.
+pub(crate) const NON_FINITE_MARK: char = '\u{1}';
+
+/// Parses JSON text into a value. Bare `NaN`/`Infinity` literals (not JSON, but written by
+/// some tools) become marked strings, so that readers can report them at their path.
+///
+/// # Errors
+/// The syntax error, at `(root)`, with line and column.
+pub(crate) fn parse_document(text: &str) -> Result<Value, SceneError> {
+    let value: Value = match serde_json::from_str(text) {
+        Ok(v) => v,
+        Err(original) => {
+            // Retry with NaN/Infinity literals turned into marked strings, so that the
+            // decoder can name their path; otherwise report the original syntax error.
+            let marked = mark_non_finite_literals(text);
+            match (marked.as_deref(), original) {
+                (Some(m), original) => {
+                    serde_json::from_str(m).map_err(|_| syntax_error(&original))?
+                }
+                (None, original) => return Err(syntax_error(&original)),
+            }
+        }
+    };
+    Ok(value)
+}
+
+fn syntax_error(e: &serde_json::Error) -> SceneError {
+    let full = e.to_string();
+    let message = match full.rfind(" at line ") {
+        Some(i) => full[..i].to_owned(),
+        None => full,
+    };
+    SceneError::new(
+        "(root)",
+        SceneErrorKind::Syntax {
+            line: e.line(),
+            column: e.column(),
+            message,
+        },
+    )
+}
+
+/// Rewrites the bare words `NaN`, `Infinity`, `-Infinity`, `+Infinity` outside strings
+/// into marked strings. `None` when there are none.
+fn mark_non_finite_literals(text: &str) -> Option<String> {
+    const WORDS: [&str; 4] = ["-Infinity", "+Infinity", "Infinity", "NaN"];
+    let mut out = String::with_capacity(text.len() + 16);
+    let mut in_string = false;
+    let mut escaped = false;
+    let mut changed = false;
+    let mut rest = text;
+    while let Some(c) = rest.chars().next() {
+        if in_string {
+            if escaped {
+                escaped = false;
+            } else if c == '\\' {
+                escaped = true;
+            } else if c == '"' {
+                in_string = false;
+            }
+        } else if c == '"' {
+            in_string = true;
+        } else if let Some(word) = WORDS.iter().find(|w| rest.starts_with(**w)) {
+            // JSON strings cannot hold a raw control character: write its escape.
+            out.push_str("\"\\u0001");
+            out.push_str(word);
+            out.push('"');
+            rest = &rest[word.len()..];
+            changed = true;
+            continue;
+        }
+        out.push(c);
+        rest = &rest[c.len_utf8()..];
+    }
+    changed.then_some(out)
+}
+
+/// A JSON value with its path from the document root.
+pub(crate) struct Node<'a> {
+    pub(crate) value: &'a Value,
+    pub(crate) path: String,
+}
+
+/// A JSON object whose keys were checked against the allowed ones.
+pub(crate) struct Obj<'a> {
+    pub(crate) map: &'a Map<String, Value>,
+    pub(crate) path: String,
+}
+
+pub(crate) fn describe(v: &Value) -> String {
+    match v {
+        Value::Null => "null".into(),
+        Value::Bool(b) => format!("the boolean {b}"),
+        Value::Number(n) => format!("the number {n}"),
+        Value::String(s) if s.starts_with(NON_FINITE_MARK) => s[1..].to_owned(),
+        Value::String(s) => format!("the string {s:?}"),
+        Value::Array(a) => format!("an array of {} items", a.len()),
+        Value::Object(_) => "an object".into(),
+    }
+}
+
+impl<'a> Node<'a> {
+    pub(crate) fn root(value: &'a Value) -> Node<'a> {
+        Node {
+            value,
+            path: String::new(),
+        }
+    }
+
+    pub(crate) fn display_path(&self) -> String {
+        if self.path.is_empty() {
+            "(root)".into()
+        } else {
+            self.path.clone()
+        }
+    }
+
+    pub(crate) fn err(&self, kind: SceneErrorKind) -> SceneError {
+        SceneError::new(self.display_path(), kind)
+    }
+
+    pub(crate) fn invalid(&self, message: impl Into<String>) -> SceneError {
+        self.err(SceneErrorKind::Invalid(message.into()))
+    }
+
+    pub(crate) fn wrong_type(&self, expected: &str) -> SceneError {
+        if let Value::String(s) = self.value
+            && s.starts_with(NON_FINITE_MARK)
+        {
+            return self.err(SceneErrorKind::NotFinite(s[1..].to_owned()));
+        }
+        self.err(SceneErrorKind::WrongType {
+            expected: expected.into(),
+            found: describe(self.value),
+        })
+    }
+
+    pub(crate) fn index(&self, i: usize, value: &'a Value) -> Node<'a> {
+        Node {
+            value,
+            path: format!("{}[{i}]", self.path),
+        }
+    }
+
+    pub(crate) fn object(&self, allowed: &[&str]) -> Result<Obj<'a>, SceneError> {
+        let Value::Object(map) = self.value else {
+            return Err(self.wrong_type("an object"));
+        };
+        let obj = Obj {
+            map,
+            path: self.path.clone(),
+        };
+        for key in map.keys() {
+            if !allowed.contains(&key.as_str()) {
+                return Err(obj.node(key, &map[key]).err(SceneErrorKind::UnknownField {
+                    expected: allowed.join(", "),
+                }));
+            }
+        }
+        Ok(obj)
+    }
+
+    pub(crate) fn array(&self) -> Result<Vec<Node<'a>>, SceneError> {
+        let Value::Array(items) = self.value else {
+            return Err(self.wrong_type("an array"));
+        };
+        Ok(items
+            .iter()
+            .enumerate()
+            .map(|(i, v)| self.index(i, v))
+            .collect())
+    }
+
+    pub(crate) fn f64(&self) -> Result<f64, SceneError> {
+        let Value::Number(n) = self.value else {
+            return Err(self.wrong_type("a number"));
+        };
+        match n.as_f64() {
+            Some(x) if x.is_finite() => Ok(x),
+            _ => Err(self.err(SceneErrorKind::NotFinite(n.to_string()))),
+        }
+    }
+
+    pub(crate) fn positive_f64(&self) -> Result<f64, SceneError> {
+        let x = self.f64()?;
+        if x > 0.0 {
+            Ok(x)
+        } else {
+            Err(self.invalid(format!("must be greater than 0, found {x}")))
+        }
+    }
+
+    pub(crate) fn u32_in(&self, lo: u32, hi: u32) -> Result<u32, SceneError> {
+        let Value::Number(n) = self.value else {
+            return Err(self.wrong_type("an integer"));
+        };
+        let Some(v) = n.as_u64() else {
+            return Err(self.wrong_type(&format!("an integer in {lo}..={hi}")));
+        };
+        if v < u64::from(lo) || v > u64::from(hi) {
+            return Err(self.invalid(format!("{v} is outside {lo}..={hi}")));
+        }
+        Ok(v as u32)
+    }
+
+    pub(crate) fn bool(&self) -> Result<bool, SceneError> {
+        self.value
+            .as_bool()
+            .ok_or_else(|| self.wrong_type("true or false"))
+    }
+
+    pub(crate) fn string(&self) -> Result<&'a str, SceneError> {
+        match self.value {
+            Value::String(s) if !s.starts_with(NON_FINITE_MARK) => Ok(s),
+            _ => Err(self.wrong_type("a string")),
+        }
+    }
+
+    /// A point: an array of 2 (`z = 0`) or 3 finite numbers.
+    pub(crate) fn point(&self) -> Result<DVec3, SceneError> {
+        let items = self.array()?;
+        if !(2..=3).contains(&items.len()) {
+            return Err(self.invalid(format!(
+                "a point has 2 or 3 coordinates, found {}",
+                items.len()
+            )));
+        }
+        let mut p = [0.0; 3];
+        for (slot, item) in p.iter_mut().zip(&items) {
+            *slot = item.f64()?;
+        }
+        Ok(DVec3::from_array(p))
+    }
+
+    pub(crate) fn numbers(&self) -> Result<Vec<f64>, SceneError> {
+        self.array()?.iter().map(Node::f64).collect()
+    }
+
+    pub(crate) fn points(&self, min: usize) -> Result<Vec<DVec3>, SceneError> {
+        let items = self.array()?;
+        if items.len() < min {
+            return Err(self.invalid(format!(
+                "needs at least {min} point{}, found {}",
+                if min == 1 { "" } else { "s" },
+                items.len()
+            )));
+        }
+        items.iter().map(Node::point).collect()
+    }
+
+    pub(crate) fn color(&self) -> Result<Color, SceneError> {
+        match self.value {
+            Value::String(s) if !s.starts_with(NON_FINITE_MARK) => parse_hex_color(s)
+                .ok_or_else(|| {
+                    self.invalid(format!(
+                        "{s:?} is not a colour (use \"#rrggbb\", \"#rrggbbaa\" or [r, g, b(, a)] in [0, 1])"
+                    ))
+                }),
+            Value::Array(_) => {
+                let items = self.array()?;
+                if !(3..=4).contains(&items.len()) {
+                    return Err(self.invalid(format!(
+                        "a colour has 3 or 4 channels, found {}",
+                        items.len()
+                    )));
+                }
+                let mut c = [1.0_f32; 4];
+                for (slot, item) in c.iter_mut().zip(&items) {
+                    let v = item.f64()?;
+                    if !(0.0..=1.0).contains(&v) {
+                        return Err(item.invalid(format!("colour channel {v} is outside [0, 1]")));
+                    }
+                    *slot = v as f32;
+                }
+                Ok(Color(c))
+            }
+            _ => Err(self.wrong_type("a colour (\"#rrggbb\" or [r, g, b(, a)])")),
+        }
+    }
+}
+
+impl<'a> Obj<'a> {
+    pub(crate) fn node(&self, key: &str, value: &'a Value) -> Node<'a> {
+        Node {
+            value,
+            path: if self.path.is_empty() {
+                key.to_owned()
+            } else {
+                format!("{}.{key}", self.path)
+            },
+        }
+    }
+
+    pub(crate) fn get(&self, key: &str) -> Option<Node<'a>> {
+        self.map.get(key).map(|v| self.node(key, v))
+    }
+
+    pub(crate) fn req(&self, key: &str) -> Result<Node<'a>, SceneError> {
+        self.get(key).ok_or_else(|| {
+            SceneError::new(
+                if self.path.is_empty() {
+                    key.to_owned()
+                } else {
+                    format!("{}.{key}", self.path)
+                },
+                SceneErrorKind::Missing,
+            )
+        })
+    }
+}
+
+pub(crate) fn parse_hex_color(s: &str) -> Option<Color> {
+    let hex = s.strip_prefix('#')?;
+    if !(hex.len() == 6 || hex.len() == 8) || !hex.chars().all(|c| c.is_ascii_hexdigit()) {
+        return None;
+    }
+    let mut c = [1.0_f32; 4];
+    for (i, slot) in c.iter_mut().enumerate().take(hex.len() / 2) {
+        *slot = f32::from(u8::from_str_radix(&hex[2 * i..2 * i + 2], 16).ok()?) / 255.0;
+    }
+    Some(Color(c))
+}
