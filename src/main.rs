@@ -67,6 +67,10 @@ enum Command {
         /// Degree of the stress curves.
         #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=31), requires = "stress")]
         degree: u64,
+        /// With --stress: re-solve every curve each frame (paper 000, one moving target
+        /// per curve) and draw the result.
+        #[arg(long, requires = "stress")]
+        solve: bool,
         #[command(flatten)]
         gpu: GpuArgs,
     },
@@ -174,6 +178,7 @@ fn run(cli: Cli) -> Result<()> {
             frames,
             stress,
             degree,
+            solve,
             gpu,
         }) => {
             if !splinescope::app::display_available() {
@@ -191,10 +196,14 @@ fn run(cli: Cli) -> Result<()> {
                 ),
                 None => load_scene_or_gallery(scene.as_deref())?,
             };
+            if solve && degree < 2 {
+                bail!("--solve needs --degree 2 or more (a line has no interior control point to move)");
+            }
             splinescope::app::run(splinescope::app::ViewOptions {
                 scene,
                 frames,
                 backend: gpu.gpu_backend,
+                solve,
             })?;
             Ok(())
         }
@@ -244,6 +253,7 @@ fn default_job() -> Result<()> {
             scene,
             frames: None,
             backend: BackendChoice::Auto,
+            solve: false,
         })?);
     }
     let ctx = GpuContext::new(&ContextOptions::from_env(BackendChoice::Auto))?;

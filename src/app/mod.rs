@@ -5,6 +5,7 @@
 //! at the cursor. Keys: `F` fit, `P` control polygons, `C` control points, `H` panel,
 //! `Esc` quit.
 
+mod stress;
 mod ui;
 
 use std::sync::Arc;
@@ -35,6 +36,9 @@ pub struct ViewOptions {
     pub frames: Option<u64>,
     /// The graphics API.
     pub backend: BackendChoice,
+    /// Stress mode: re-solve every curve each frame (single target, paper 000) with its
+    /// target circling the curve's midpoint. Needs a scene of Bézier curves of one degree.
+    pub solve: bool,
 }
 
 /// Why the viewer stopped with an error.
@@ -126,6 +130,8 @@ struct Running {
     fps: ui::FpsCounter,
     adapter: String,
     summaries: Vec<ui::CurveSummary>,
+    stress: Option<stress::StressSolver>,
+    started: Instant,
 }
 
 impl App {
@@ -279,7 +285,19 @@ impl Running {
             show_panel: true,
         };
         let scene = opts.scene.clone();
-        let gpu_scene = upload(&ctx, &tessellator, &renderer, &scene, toggles)?;
+        let (gpu_scene, prepared) = upload(&ctx, &tessellator, &renderer, &scene, toggles)?;
+        let stress = if opts.solve {
+            let chunk_points: Vec<usize> = prepared.chunks.iter().map(|c| c.points.len()).collect();
+            Some(
+                stress::StressSolver::new(&scene, &prepared.placements, &chunk_points).ok_or_else(|| {
+                    AppError::Surface(
+                        "solve mode needs a scene of Bézier curves of one degree ≥ 2 (use --stress)".into(),
+                    )
+                })?,
+            )
+        } else {
+            None
+        };
         let egui_ctx = egui::Context::default();
         let egui_state = egui_winit::State::new(
             egui_ctx.clone(),
@@ -317,6 +335,8 @@ impl Running {
             fps: ui::FpsCounter::new(Instant::now()),
             adapter,
             summaries: ui::summarize(&opts.scene),
+            stress,
+            started: Instant::now(),
         };
         if running.auto_fit {
             running.fit();
@@ -367,8 +387,12 @@ impl Running {
                 &self.renderer,
                 &self.scene,
                 self.toggles,
-            )?;
+            )?
+            .0;
             self.uploaded_toggles = self.toggles;
+        }
+        if let Some(s) = &mut self.stress {
+            s.step(self.started.elapsed().as_secs_f64(), &self.ctx.queue, &self.gpu_scene);
         }
         let frame = match self.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(f)
@@ -407,6 +431,7 @@ impl Running {
             fps: self.fps.fps(),
             samples_per_frame: self.gpu_scene.sample_count(),
             camera: &self.camera,
+            solving: self.stress.as_ref().map(|s| (s.curves, s.last_solve_ms)),
         };
         let toggles = &mut self.toggles;
         let mut panel_width = 0.0_f32;
@@ -485,7 +510,7 @@ fn upload(
     renderer: &Renderer,
     scene: &Scene,
     toggles: Toggles,
-) -> Result<GpuScene, AppError> {
+) -> Result<(GpuScene, crate::gpu::pack::PreparedScene), AppError> {
     let mut shown = scene.clone();
     for c in &mut shown.curves {
         c.style.show_polygon &= toggles.show_polygons;
@@ -496,5 +521,5 @@ fn upload(
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )
     .map_err(GpuError::from)?;
-    Ok(renderer.upload(&ctx.device, tessellator, &prepared))
+    Ok((renderer.upload(&ctx.device, tessellator, &prepared), prepared))
 }

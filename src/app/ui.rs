@@ -58,6 +58,8 @@ pub(crate) struct PanelInfo<'a> {
     pub fps: f64,
     pub samples_per_frame: u64,
     pub camera: &'a Camera,
+    /// Stress solving: curves re-solved per frame and the last batch's milliseconds.
+    pub solving: Option<(usize, f64)>,
 }
 
 /// What the user asked for this frame.
@@ -121,6 +123,12 @@ pub(crate) fn panel(
                 info.fps
             ));
             ui.small(info.adapter);
+            if let Some((curves, ms)) = info.solving {
+                ui.label(format!(
+                    "re-solving {curves} curves per frame: {ms:.2} ms ({:.1} M solves/s)",
+                    curves as f64 / (ms.max(1e-6) * 1e3)
+                ));
+            }
             ui.separator();
             ui.checkbox(&mut toggles.show_polygons, "control polygons (P)");
             ui.checkbox(&mut toggles.show_points, "control points (C)");

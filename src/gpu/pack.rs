@@ -87,6 +87,20 @@ pub struct TessChunk {
     pub styles: Vec<GpuLineStyle>,
 }
 
+/// Where a copy of one lowered segment's control points lives on the GPU: the chunk and
+/// the index of its first point there (a segment split across chunks has several).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Placement {
+    /// The chunk.
+    pub chunk: usize,
+    /// The first control point's index in the chunk's points.
+    pub first_point: u32,
+    /// The segment's index in the curve's lowering.
+    pub segment: usize,
+    /// Its number of control points.
+    pub len: u32,
+}
+
 /// Builds chunks segment by segment, opening a new chunk whenever the next record would
 /// not fit.
 #[derive(Debug)]
@@ -96,11 +110,14 @@ pub struct ChunkBuilder {
     /// The open segment: its curve, style, control points, and where they start in the
     /// current chunk (re-pushed when a run of samples spills into a new chunk).
     open: Option<OpenSegment>,
+    /// Per curve, where its segments' points went.
+    placements: Vec<Vec<Placement>>,
 }
 
 #[derive(Debug, Clone)]
 struct OpenSegment {
     curve: usize,
+    segment: usize,
     style: GpuLineStyle,
     points: Vec<GpuVertex>,
     first_point: u32,
@@ -114,6 +131,7 @@ impl ChunkBuilder {
             limits,
             chunks: vec![TessChunk::default()],
             open: None,
+            placements: Vec::new(),
         }
     }
 
@@ -152,6 +170,11 @@ impl ChunkBuilder {
         style: GpuLineStyle,
         points: &[DVec3],
     ) -> Result<(), PackError> {
+        let segment = self
+            .placements
+            .get(curve)
+            .and_then(|p| p.last())
+            .map_or(0, |p| p.segment + 1);
         let l = self.limits;
         if points.len() > l.max_points
             || l.max_samples < 2
@@ -182,13 +205,28 @@ impl ChunkBuilder {
         }
         let first_point = self.current().points.len() as u32;
         self.current_mut().points.extend_from_slice(&points);
+        self.place(curve, segment, first_point, points.len());
         self.open = Some(OpenSegment {
             curve,
+            segment,
             style,
             points,
             first_point,
         });
         Ok(())
+    }
+
+    fn place(&mut self, curve: usize, segment: usize, first_point: u32, len: usize) {
+        if self.placements.len() <= curve {
+            self.placements.resize(curve + 1, Vec::new());
+        }
+        let chunk = self.chunks.len() - 1;
+        self.placements[curve].push(Placement {
+            chunk,
+            first_point,
+            segment,
+            len: len as u32,
+        });
     }
 
     /// Opens a new chunk and re-pushes the open segment's control points there.
@@ -200,10 +238,17 @@ impl ChunkBuilder {
             .unwrap_or_else(|| unreachable!("spill needs an open segment"));
         let first_point = self.current().points.len() as u32;
         self.current_mut().points.extend_from_slice(&open.points);
+        self.place(open.curve, open.segment, first_point, open.points.len());
         self.open = Some(OpenSegment {
             first_point,
             ..open
         });
+    }
+
+    /// Where each curve's segments' control points went (by curve index).
+    #[must_use]
+    pub fn placements(&self) -> &[Vec<Placement>] {
+        &self.placements
     }
 
     /// Adds `count ≥ 1` samples of the open segment at parameters from `u0` to `u1` (see
@@ -274,7 +319,17 @@ impl ChunkBuilder {
     /// The chunks built, without empty ones, their records sorted by kernel class.
     #[must_use]
     pub fn finish(self) -> Vec<TessChunk> {
-        self.chunks
+        self.finish_with_placements().0
+    }
+
+    /// [`ChunkBuilder::finish`], with the placements of every curve's points.
+    #[must_use]
+    pub fn finish_with_placements(self) -> (Vec<TessChunk>, Vec<Vec<Placement>>) {
+        // Only a builder that never got a segment has an empty chunk (the first): chunk
+        // indices in the placements stay valid.
+        let placements = self.placements;
+        let chunks = self
+            .chunks
             .into_iter()
             .filter(|c| !c.segments.is_empty())
             .map(|mut c| {
@@ -291,7 +346,8 @@ impl ChunkBuilder {
                 c.class_ends = ends;
                 c
             })
-            .collect()
+            .collect();
+        (chunks, placements)
     }
 }
 
@@ -412,6 +468,37 @@ pub struct PreparedScene {
     pub points: Vec<LineBatch>,
     /// The clear colour.
     pub background: Color,
+    /// Per curve, where its lowered control points are (for in-place updates).
+    pub placements: Vec<Vec<Placement>>,
+}
+
+/// The new control points of a curve whose lowering kept its structure (same segment
+/// count and degrees), as `(chunk, first point, points)` writes; `None` when the structure
+/// changed and the scene must be packed again.
+#[must_use]
+pub fn repack_points(
+    placements: &[Placement],
+    segments: &[BezierSegment],
+) -> Option<Vec<(usize, u32, Vec<GpuVertex>)>> {
+    placements
+        .iter()
+        .map(|p| {
+            let seg = segments.get(p.segment)?;
+            if seg.bezier.points().len() != p.len as usize {
+                return None;
+            }
+            let verts = seg
+                .bezier
+                .points()
+                .iter()
+                .map(|q| GpuVertex {
+                    position: q.as_vec3().to_array(),
+                    id: 0,
+                })
+                .collect();
+            Some((p.chunk, p.first_point, verts))
+        })
+        .collect()
 }
 
 /// Width in pixels of control polygons.
@@ -506,8 +593,10 @@ pub fn prepare_scene(scene: &Scene, limits: ChunkLimits) -> Result<PreparedScene
             AnnotationShape::Points(p) => points.push(p, style),
         }
     }
+    let (chunks, placements) = chunks.finish_with_placements();
     Ok(PreparedScene {
-        chunks: chunks.finish(),
+        chunks,
+        placements,
         lines: lines.finish(),
         points: points.finish(),
         background: scene.background,
@@ -615,6 +704,59 @@ mod tests {
         assert!(err.to_string().starts_with("curves[4]: "));
         let ok = Bezier::new(vec![DVec3::ZERO; MAX_GPU_DEGREE + 1]);
         assert!(check_degrees(0, &ok.lower()).is_ok());
+    }
+
+    #[test]
+    fn repacking_an_edited_curve_in_place_equals_packing_it_anew() {
+        use crate::geom::{Curve, Nubmp};
+        use crate::scene::{SceneCurve, Style, ViewSpec};
+        let pts: Vec<DVec3> = (0..7).map(|i| DVec3::new(f64::from(i), f64::from(i % 2), 0.0)).collect();
+        let knots = vec![0., 0., 0., 0., 0.3, 0.5, 0.89, 1., 1., 1., 1.];
+        let nub = Nubmp::try_new(pts.clone(), knots, 4).unwrap();
+        let scene = |n: &Nubmp| Scene {
+            name: None,
+            background: Color::WHITE,
+            samples_per_segment: 40,
+            view: ViewSpec::Auto,
+            curves: vec![
+                SceneCurve {
+                    name: None,
+                    curve: Curve::Bezier(Bezier::new(pts.clone())),
+                    style: Style::default_for(0),
+                },
+                SceneCurve {
+                    name: None,
+                    curve: Curve::Nubmp(n.clone()),
+                    style: Style::default_for(1),
+                },
+            ],
+            annotations: Vec::new(),
+        };
+        // Small chunks so that segments spill and are placed twice.
+        let limits = ChunkLimits {
+            max_samples: 100,
+            max_points: 1000,
+            max_segments: 1000,
+            max_styles: 1000,
+        };
+        let before = prepare_scene(&scene(&nub), limits).unwrap();
+        assert!(before.chunks.len() > 2);
+        assert!(before.placements[1].len() > 4, "{:?}", before.placements[1]);
+        let mut edited = nub.clone();
+        edited.set_group(5, &[0.5, 0.2, 0.3]).unwrap();
+        let after = prepare_scene(&scene(&edited), limits).unwrap();
+        let mut chunks: Vec<Vec<GpuVertex>> = before.chunks.iter().map(|c| c.points.clone()).collect();
+        let writes = repack_points(&before.placements[1], &edited.lower()).expect("same structure");
+        for (chunk, first, verts) in writes {
+            let f = first as usize;
+            chunks[chunk][f..f + verts.len()].copy_from_slice(&verts);
+        }
+        let fresh: Vec<Vec<GpuVertex>> = after.chunks.iter().map(|c| c.points.clone()).collect();
+        assert_eq!(chunks, fresh);
+        assert_ne!(chunks, before.chunks.iter().map(|c| c.points.clone()).collect::<Vec<_>>());
+        // A different structure is refused.
+        let other = Bezier::new(vec![DVec3::ZERO; 5]);
+        assert!(repack_points(&before.placements[0], &other.lower()).is_none());
     }
 
     #[test]

@@ -50,6 +50,27 @@ pub struct GpuScene {
 }
 
 impl GpuScene {
+    /// Overwrites control points of chunk `chunk` from `first_point` on (a curve whose
+    /// lowering kept its structure: see [`super::pack::repack_points`]).
+    ///
+    /// # Panics
+    /// If the range is outside the chunk (a bug in the caller).
+    pub fn write_points(
+        &self,
+        queue: &wgpu::Queue,
+        chunk: usize,
+        first_point: u32,
+        points: &[GpuVertex],
+    ) {
+        let offset = u64::from(first_point) * size_of::<GpuVertex>() as u64;
+        let buffer = &self.chunks[chunk].buffers.points;
+        assert!(
+            offset + size_of_val(points) as u64 <= buffer.size(),
+            "points outside the chunk"
+        );
+        queue.write_buffer(buffer, offset, bytemuck::cast_slice(points));
+    }
+
     /// Total samples the kernel writes per frame.
     #[must_use]
     pub fn sample_count(&self) -> u64 {

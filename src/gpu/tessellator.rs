@@ -32,9 +32,11 @@ pub struct ChunkBuffers {
     pub samples: wgpu::Buffer,
     /// How many samples.
     pub sample_count: u32,
+    /// The control points the kernels read; rewritable in place when curves change
+    /// without changing their structure.
+    pub points: wgpu::Buffer,
     dispatches: Vec<Dispatch>,
     // Kept alive for the bind groups.
-    _points: wgpu::Buffer,
     _segments: wgpu::Buffer,
 }
 
@@ -121,7 +123,7 @@ impl Tessellator {
         let points = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("control points"),
             contents: bytemuck::cast_slice(&chunk.points),
-            usage: wgpu::BufferUsages::STORAGE,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         });
         let segments = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("segments"),
@@ -183,8 +185,8 @@ impl Tessellator {
         ChunkBuffers {
             samples,
             sample_count: chunk.sample_count,
+            points,
             dispatches,
-            _points: points,
             _segments: segments,
         }
     }

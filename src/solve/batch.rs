@@ -57,36 +57,38 @@ fn eval(points: &[DVec3], t: f64) -> DVec3 {
     buf[0]
 }
 
-/// `P(t)`, `P′(t)`, `P″(t)` without allocating.
+/// `P(t)`, `P′(t)`, `P″(t)` from one de Casteljau pass: the derivatives are differences of
+/// the last levels' points (`P′ = n (b₁ⁿ⁻¹ − b₀ⁿ⁻¹)`, `P″ = n(n−1)(b₂ⁿ⁻² − 2b₁ⁿ⁻² + b₀ⁿ⁻²)`).
 fn eval_derivs(points: &[DVec3], t: f64) -> (DVec3, DVec3, DVec3) {
     let n = points.len() - 1;
-    let mut d1 = [DVec3::ZERO; MAX_BATCH_DEGREE + 1];
-    let mut d2 = [DVec3::ZERO; MAX_BATCH_DEGREE + 1];
-    for i in 0..n {
-        d1[i] = n as f64 * (points[i + 1] - points[i]);
+    let mut buf = [DVec3::ZERO; MAX_BATCH_DEGREE + 1];
+    buf[..=n].copy_from_slice(points);
+    let s = 1.0 - t;
+    let nf = n as f64;
+    let mut second = DVec3::ZERO;
+    let mut first = DVec3::ZERO;
+    for r in 1..=n {
+        if r + 2 == n + 1 && n >= 2 {
+            // Level n − 2: three points left.
+            second = nf * (nf - 1.0) * (buf[2] - 2.0 * buf[1] + buf[0]);
+        }
+        if r == n {
+            first = nf * (buf[1] - buf[0]);
+        }
+        for i in 0..=(n - r) {
+            buf[i] = s * buf[i] + t * buf[i + 1];
+        }
     }
-    for i in 0..n.saturating_sub(1) {
-        d2[i] = (n - 1) as f64 * (d1[i + 1] - d1[i]);
-    }
-    let p1 = if n >= 1 {
-        eval(&d1[..n], t)
-    } else {
-        DVec3::ZERO
-    };
-    let p2 = if n >= 2 {
-        eval(&d2[..n - 1], t)
-    } else {
-        DVec3::ZERO
-    };
-    (eval(points, t), p1, p2)
+    (buf[0], first, second)
 }
 
 /// Safeguarded Newton on `(P − T)·P′ = 0` inside `[lo, hi]` from `t` (a Newton step when
-/// it stays in the bracket and gets closer, else bisection).
-fn refine(points: &[DVec3], target: DVec3, mut lo: f64, mut hi: f64, mut t: f64) -> f64 {
-    let dist = |t: f64| (eval(points, t) - target).length_squared();
-    for _ in 0..60 {
-        let (p, d1, d2) = eval_derivs(points, t);
+/// it stays in the bracket and gets closer, else bisection). Stops when a step moves the
+/// point by less than `tol`.
+fn refine(points: &[DVec3], target: DVec3, mut lo: f64, mut hi: f64, mut t: f64, tol: f64) -> (f64, f64) {
+    let (mut p, mut d1, mut d2) = eval_derivs(points, t);
+    let mut dist = (p - target).length_squared();
+    for _ in 0..50 {
         let w = p - target;
         let g = w.dot(d1);
         if g < 0.0 {
@@ -96,55 +98,67 @@ fn refine(points: &[DVec3], target: DVec3, mut lo: f64, mut hi: f64, mut t: f64)
         }
         let gp = d1.length_squared() + w.dot(d2);
         let newton = if gp > 0.0 { t - g / gp } else { f64::NAN };
-        let next = if newton > lo && newton < hi && dist(newton) <= dist(t) {
-            newton
-        } else {
-            0.5 * (lo + hi)
-        };
-        let done = (next - t).abs() <= 1e-15 || hi - lo <= 1e-15;
-        t = next;
-        if done {
+        let mut next = if newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
+        let (mut np, mut nd1, mut nd2) = eval_derivs(points, next);
+        let mut nd = (np - target).length_squared();
+        if nd > dist && next == newton {
+            // The Newton step went uphill: bisect instead.
+            next = 0.5 * (lo + hi);
+            (np, nd1, nd2) = eval_derivs(points, next);
+            nd = (np - target).length_squared();
+        }
+        let moved = (next - t).abs() * d1.length();
+        (t, p, d1, d2) = (next, np, nd1, nd2);
+        dist = dist.min(nd);
+        if moved <= tol || hi - lo <= 1e-15 {
             break;
         }
     }
-    t
+    (t, (p - target).length_squared())
 }
 
-/// The parameter of the point of `points` nearest `target`: `8(n + 1) + 1` samples, and
-/// every local minimum among them refined by [`refine`] within its neighbours; the best
-/// wins. Bounded work and no allocation, for batches; [`super::nearest`] is the global
-/// subdivision search.
+/// The parameter of the point of `points` nearest `target`: `8(n + 1) + 1` samples, then
+/// the local minima among them refined by [`refine`] within their neighbours, best sample
+/// first. A minimum is skipped when even the fastest the curve can move between samples
+/// (`n · max|P_{i+1} − P_i|`) cannot bring it below the best found: sound pruning, so the
+/// result is the best of all the sampled basins. Bounded work and no allocation, for
+/// batches; [`super::nearest`] is the global subdivision search.
 #[must_use]
 pub fn sampled_nearest(points: &[DVec3], target: DVec3) -> f64 {
     let n = points.len() - 1;
     let samples = 8 * (n + 1);
-    let dist = |t: f64| (eval(points, t) - target).length_squared();
-    let at = |k: usize| k as f64 / samples as f64;
-    let mut best = (0.0, dist(0.0));
-    let end = dist(1.0);
-    if end < best.1 {
-        best = (1.0, end);
-    }
-    let (mut prev, mut cur) = (f64::INFINITY, dist(0.0));
+    let h = 1.0 / samples as f64;
+    let mut d = [0.0_f64; 8 * (MAX_BATCH_DEGREE + 1) + 1];
+    let mut best_k = 0;
     for k in 0..=samples {
-        let next = if k < samples {
-            dist(at(k + 1))
-        } else {
-            f64::INFINITY
-        };
-        if cur <= prev && cur <= next {
-            let lo = at(k.saturating_sub(1));
-            let hi = at((k + 1).min(samples));
-            let t = refine(points, target, lo, hi, at(k));
-            let d = dist(t);
-            if d < best.1 {
-                best = (t, d);
-            }
+        d[k] = (eval(points, k as f64 * h) - target).length();
+        if d[k] < d[best_k] {
+            best_k = k;
         }
-        prev = cur;
-        cur = next;
     }
-    best.0
+    let speed = n as f64
+        * points
+            .windows(2)
+            .map(|w| (w[1] - w[0]).length())
+            .fold(0.0, f64::max);
+    let scale = points.iter().map(|p| p.length()).fold(target.length(), f64::max).max(1e-300);
+    let tol = 1e-13 * scale;
+    let is_min = |k: usize| (k == 0 || d[k] <= d[k - 1]) && (k == samples || d[k] <= d[k + 1]);
+    let bracket = |k: usize| ((k as f64 - 1.0).max(0.0) * h, ((k + 1) as f64 * h).min(1.0));
+    let (lo, hi) = bracket(best_k);
+    let (mut best_t, best_sq) = refine(points, target, lo, hi, best_k as f64 * h, tol);
+    let mut best = best_sq.sqrt();
+    for k in 0..=samples {
+        if k == best_k || !is_min(k) || d[k] - speed * h > best {
+            continue;
+        }
+        let (lo, hi) = bracket(k);
+        let (t, sq) = refine(points, target, lo, hi, k as f64 * h, tol);
+        if sq.sqrt() < best {
+            (best_t, best) = (t, sq.sqrt());
+        }
+    }
+    best_t
 }
 
 impl BatchSingleTarget {
