@@ -12,7 +12,11 @@ use splinescope::solve::nearest;
 use splinescope::solve::shape::{SingleTargetOptions, multi_target, single_target, tangent_kept};
 
 fn curve(rng: &mut Rng, n: usize) -> Bezier {
-    Bezier::new((0..=n).map(|_| DVec3::new(rng.range(-5., 5.), rng.range(-5., 5.), 0.0)).collect())
+    Bezier::new(
+        (0..=n)
+            .map(|_| DVec3::new(rng.range(-5., 5.), rng.range(-5., 5.), 0.0))
+            .collect(),
+    )
 }
 
 fn bench(c: &mut Criterion) {
@@ -21,12 +25,21 @@ fn bench(c: &mut Criterion) {
     for n in [3usize, 7, 15] {
         let b = curve(&mut rng, n);
         let target = b.eval(0.4) + DVec3::new(0.3, 0.2, 0.0);
-        let given = SingleTargetOptions { t_s: Some(0.4), ..Default::default() };
+        let given = SingleTargetOptions {
+            t_s: Some(0.4),
+            ..Default::default()
+        };
         g.bench_with_input(BenchmarkId::new("t_s given", n), &n, |bch, _| {
             bch.iter(|| single_target(black_box(&b), black_box(target), &given).unwrap());
         });
         g.bench_with_input(BenchmarkId::new("t_s projected", n), &n, |bch, _| {
-            bch.iter(|| single_target(black_box(&b), black_box(target), &SingleTargetOptions::default()))
+            bch.iter(|| {
+                single_target(
+                    black_box(&b),
+                    black_box(target),
+                    &SingleTargetOptions::default(),
+                )
+            })
         });
     }
     g.finish();
@@ -39,9 +52,14 @@ fn bench(c: &mut Criterion) {
 
     let b20 = curve(&mut rng, 20);
     let params: Vec<f64> = (0..10).map(|k| (f64::from(k) + 0.5) / 10.0).collect();
-    let targets: Vec<DVec3> = params.iter().map(|&t| b20.eval(t) + DVec3::new(0.1, -0.1, 0.0)).collect();
+    let targets: Vec<DVec3> = params
+        .iter()
+        .map(|&t| b20.eval(t) + DVec3::new(0.1, -0.1, 0.0))
+        .collect();
     c.bench_function("multi_target 10 targets degree 20 (params given)", |bch| {
-        bch.iter(|| multi_target(black_box(&b20), black_box(&targets), Some(&params), None).unwrap());
+        bch.iter(|| {
+            multi_target(black_box(&b20), black_box(&targets), Some(&params), None).unwrap()
+        });
     });
     c.bench_function("multi_target 10 targets degree 20 (projected)", |bch| {
         bch.iter(|| multi_target(black_box(&b20), black_box(&targets), None, None));
@@ -51,7 +69,9 @@ fn bench(c: &mut Criterion) {
     for n in [3usize, 7] {
         let b = curve(&mut rng, n);
         let q = DVec3::new(0.5, 0.5, 0.0);
-        g.bench_with_input(BenchmarkId::from_parameter(n), &n, |bch, _| bch.iter(|| nearest(black_box(&b), black_box(q), None)));
+        g.bench_with_input(BenchmarkId::from_parameter(n), &n, |bch, _| {
+            bch.iter(|| nearest(black_box(&b), black_box(q), None))
+        });
     }
     g.finish();
 
@@ -59,8 +79,12 @@ fn bench(c: &mut Criterion) {
     g.sample_size(30);
     for n in [3usize, 7] {
         let curves = 10_000;
-        let points: Vec<DVec3> = (0..curves * (n + 1)).map(|_| DVec3::new(rng.range(-1., 1.), rng.range(-1., 1.), 0.0)).collect();
-        let targets: Vec<DVec3> = (0..curves).map(|_| DVec3::new(rng.range(-1., 1.), rng.range(-1., 1.), 0.0)).collect();
+        let points: Vec<DVec3> = (0..curves * (n + 1))
+            .map(|_| DVec3::new(rng.range(-1., 1.), rng.range(-1., 1.), 0.0))
+            .collect();
+        let targets: Vec<DVec3> = (0..curves)
+            .map(|_| DVec3::new(rng.range(-1., 1.), rng.range(-1., 1.), 0.0))
+            .collect();
         let ts: Vec<f64> = (0..curves).map(|_| rng.range(0.1, 0.9)).collect();
         let batch = BatchSingleTarget::new(n).unwrap();
         let mut out = vec![DVec3::ZERO; points.len()];

@@ -197,7 +197,9 @@ fn run(cli: Cli) -> Result<()> {
                 None => load_scene_or_gallery(scene.as_deref())?,
             };
             if solve && degree < 2 {
-                bail!("--solve needs --degree 2 or more (a line has no interior control point to move)");
+                bail!(
+                    "--solve needs --degree 2 or more (a line has no interior control point to move)"
+                );
             }
             splinescope::app::run(splinescope::app::ViewOptions {
                 scene,

@@ -392,7 +392,11 @@ impl Running {
             self.uploaded_toggles = self.toggles;
         }
         if let Some(s) = &mut self.stress {
-            s.step(self.started.elapsed().as_secs_f64(), &self.ctx.queue, &self.gpu_scene);
+            s.step(
+                self.started.elapsed().as_secs_f64(),
+                &self.ctx.queue,
+                &self.gpu_scene,
+            );
         }
         let frame = match self.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(f)
@@ -521,5 +525,8 @@ fn upload(
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )
     .map_err(GpuError::from)?;
-    Ok((renderer.upload(&ctx.device, tessellator, &prepared), prepared))
+    Ok((
+        renderer.upload(&ctx.device, tessellator, &prepared),
+        prepared,
+    ))
 }

@@ -37,7 +37,11 @@ pub(crate) struct StressSolver {
 impl StressSolver {
     /// A solver for `scene` if every curve is a Bézier curve of one degree ≥ 2 lowered to
     /// one segment (the stress scenes), with the placements of its packing.
-    pub(crate) fn new(scene: &Scene, placements: &[Vec<Placement>], chunk_points: &[usize]) -> Option<StressSolver> {
+    pub(crate) fn new(
+        scene: &Scene,
+        placements: &[Vec<Placement>],
+        chunk_points: &[usize],
+    ) -> Option<StressSolver> {
         let degree = match scene.curves.first().map(|c| &c.curve) {
             Some(Curve::Bezier(b)) => b.degree(),
             _ => return None,
@@ -48,8 +52,12 @@ impl StressSolver {
         let mut anchors = Vec::with_capacity(scene.curves.len());
         let mut flat_placements = Vec::with_capacity(scene.curves.len());
         for (c, sc) in scene.curves.iter().enumerate() {
-            let Curve::Bezier(b) = &sc.curve else { return None };
-            let [p] = placements.get(c)?.as_slice() else { return None };
+            let Curve::Bezier(b) = &sc.curve else {
+                return None;
+            };
+            let [p] = placements.get(c)?.as_slice() else {
+                return None;
+            };
             if b.degree() != degree {
                 return None;
             }
@@ -63,13 +71,23 @@ impl StressSolver {
             batch,
             stride,
             targets: anchors.clone(),
-            phases: (0..n).map(|c| c as f64 * 0.618_033_988_75 * std::f64::consts::TAU).collect(),
+            phases: (0..n)
+                .map(|c| c as f64 * 0.618_033_988_75 * std::f64::consts::TAU)
+                .collect(),
             ts: vec![0.5; n],
             out: original.clone(),
             results: vec![BatchResult::default(); n],
             staging: chunk_points
                 .iter()
-                .map(|&len| vec![GpuVertex { position: [0.0; 3], id: 0 }; len])
+                .map(|&len| {
+                    vec![
+                        GpuVertex {
+                            position: [0.0; 3],
+                            id: 0
+                        };
+                        len
+                    ]
+                })
                 .collect(),
             placements: flat_placements,
             radius: 0.12 * scale,
@@ -88,12 +106,20 @@ impl StressSolver {
             *t = *a + self.radius * DVec3::new(angle.cos(), angle.sin(), 0.0);
         }
         let started = Instant::now();
-        self.batch
-            .solve(&self.original, &self.targets, Some(&self.ts), &mut self.out, &mut self.results);
+        self.batch.solve(
+            &self.original,
+            &self.targets,
+            Some(&self.ts),
+            &mut self.out,
+            &mut self.results,
+        );
         self.last_solve_ms = started.elapsed().as_secs_f64() * 1e3;
         for (c, p) in self.placements.iter().enumerate() {
             let dst = &mut self.staging[p.chunk][p.first_point as usize..][..self.stride];
-            for (v, q) in dst.iter_mut().zip(&self.out[c * self.stride..(c + 1) * self.stride]) {
+            for (v, q) in dst
+                .iter_mut()
+                .zip(&self.out[c * self.stride..(c + 1) * self.stride])
+            {
                 v.position = q.as_vec3().to_array();
             }
         }

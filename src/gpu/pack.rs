@@ -710,7 +710,9 @@ mod tests {
     fn repacking_an_edited_curve_in_place_equals_packing_it_anew() {
         use crate::geom::{Curve, Nubmp};
         use crate::scene::{SceneCurve, Style, ViewSpec};
-        let pts: Vec<DVec3> = (0..7).map(|i| DVec3::new(f64::from(i), f64::from(i % 2), 0.0)).collect();
+        let pts: Vec<DVec3> = (0..7)
+            .map(|i| DVec3::new(f64::from(i), f64::from(i % 2), 0.0))
+            .collect();
         let knots = vec![0., 0., 0., 0., 0.3, 0.5, 0.89, 1., 1., 1., 1.];
         let nub = Nubmp::try_new(pts.clone(), knots, 4).unwrap();
         let scene = |n: &Nubmp| Scene {
@@ -745,7 +747,8 @@ mod tests {
         let mut edited = nub.clone();
         edited.set_group(5, &[0.5, 0.2, 0.3]).unwrap();
         let after = prepare_scene(&scene(&edited), limits).unwrap();
-        let mut chunks: Vec<Vec<GpuVertex>> = before.chunks.iter().map(|c| c.points.clone()).collect();
+        let mut chunks: Vec<Vec<GpuVertex>> =
+            before.chunks.iter().map(|c| c.points.clone()).collect();
         let writes = repack_points(&before.placements[1], &edited.lower()).expect("same structure");
         for (chunk, first, verts) in writes {
             let f = first as usize;
@@ -753,7 +756,14 @@ mod tests {
         }
         let fresh: Vec<Vec<GpuVertex>> = after.chunks.iter().map(|c| c.points.clone()).collect();
         assert_eq!(chunks, fresh);
-        assert_ne!(chunks, before.chunks.iter().map(|c| c.points.clone()).collect::<Vec<_>>());
+        assert_ne!(
+            chunks,
+            before
+                .chunks
+                .iter()
+                .map(|c| c.points.clone())
+                .collect::<Vec<_>>()
+        );
         // A different structure is refused.
         let other = Bezier::new(vec![DVec3::ZERO; 5]);
         assert!(repack_points(&before.placements[0], &other.lower()).is_none());

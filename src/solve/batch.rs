@@ -85,7 +85,14 @@ fn eval_derivs(points: &[DVec3], t: f64) -> (DVec3, DVec3, DVec3) {
 /// Safeguarded Newton on `(P − T)·P′ = 0` inside `[lo, hi]` from `t` (a Newton step when
 /// it stays in the bracket and gets closer, else bisection). Stops when a step moves the
 /// point by less than `tol`.
-fn refine(points: &[DVec3], target: DVec3, mut lo: f64, mut hi: f64, mut t: f64, tol: f64) -> (f64, f64) {
+fn refine(
+    points: &[DVec3],
+    target: DVec3,
+    mut lo: f64,
+    mut hi: f64,
+    mut t: f64,
+    tol: f64,
+) -> (f64, f64) {
     let (mut p, mut d1, mut d2) = eval_derivs(points, t);
     let mut dist = (p - target).length_squared();
     for _ in 0..50 {
@@ -98,7 +105,11 @@ fn refine(points: &[DVec3], target: DVec3, mut lo: f64, mut hi: f64, mut t: f64,
         }
         let gp = d1.length_squared() + w.dot(d2);
         let newton = if gp > 0.0 { t - g / gp } else { f64::NAN };
-        let mut next = if newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
+        let mut next = if newton > lo && newton < hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
         let (mut np, mut nd1, mut nd2) = eval_derivs(points, next);
         let mut nd = (np - target).length_squared();
         if nd > dist && next == newton {
@@ -141,7 +152,11 @@ pub fn sampled_nearest(points: &[DVec3], target: DVec3) -> f64 {
             .windows(2)
             .map(|w| (w[1] - w[0]).length())
             .fold(0.0, f64::max);
-    let scale = points.iter().map(|p| p.length()).fold(target.length(), f64::max).max(1e-300);
+    let scale = points
+        .iter()
+        .map(|p| p.length())
+        .fold(target.length(), f64::max)
+        .max(1e-300);
     let tol = 1e-13 * scale;
     let is_min = |k: usize| (k == 0 || d[k] <= d[k - 1]) && (k == samples || d[k] <= d[k + 1]);
     let bracket = |k: usize| ((k as f64 - 1.0).max(0.0) * h, ((k + 1) as f64 * h).min(1.0));
