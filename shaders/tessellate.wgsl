@@ -27,10 +27,30 @@ fn sample_param(seg: Segment, j: u32) -> f32 {
     return seg.u0 * (1.0 - f) + seg.u1 * f;
 }
 
-// This invocation's record index, or segment_end when it has none.
-fn record_index(group: vec3<u32>) -> u32 {
+// What one invocation evaluates: sample j of record seg, at parameter u; ok is false
+// when the invocation has no sample (past the last record, or past the record's samples).
+struct Work {
+    seg: Segment,
+    j: u32,
+    u: f32,
+    ok: bool,
+}
+
+fn work(group: vec3<u32>, lane: u32) -> Work {
+    var w: Work;
+    w.ok = false;
     let s = params.segment_start + group.x + group.y * params.groups_x;
-    return min(s, params.segment_end);
+    if (s >= params.segment_end) {
+        return w;
+    }
+    w.seg = segments[s];
+    w.j = w.seg.sample_offset + lane;
+    if (w.j >= w.seg.sample_count) {
+        return w;
+    }
+    w.u = sample_param(w.seg, w.j);
+    w.ok = true;
+    return w;
 }
 
 fn control_point(seg: Segment, i: u32) -> vec3<f32> {
@@ -42,16 +62,12 @@ fn tessellate_cubic(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(local_invocation_index) lane: u32,
 ) {
-    let s = record_index(group);
-    if (s >= params.segment_end) {
+    let w = work(group, lane);
+    if (!w.ok) {
         return;
     }
-    let seg = segments[s];
-    let j = seg.sample_offset + lane;
-    if (j >= seg.sample_count) {
-        return;
-    }
-    let u = sample_param(seg, j);
+    let seg = w.seg;
+    let u = w.u;
     let v = 1.0 - u;
     let p0 = control_point(seg, 0u);
     let p1 = control_point(seg, 1u);
@@ -62,7 +78,7 @@ fn tessellate_cubic(
     let q2 = v * p2 + u * p3;
     let r0 = v * q0 + u * q1;
     let r1 = v * q1 + u * q2;
-    samples[seg.first_sample + j] = Vertex(v * r0 + u * r1, seg.curve);
+    samples[seg.first_sample + w.j] = Vertex(v * r0 + u * r1, seg.curve);
 }
 
 @compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
@@ -70,16 +86,12 @@ fn tessellate_quartic(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(local_invocation_index) lane: u32,
 ) {
-    let s = record_index(group);
-    if (s >= params.segment_end) {
+    let w = work(group, lane);
+    if (!w.ok) {
         return;
     }
-    let seg = segments[s];
-    let j = seg.sample_offset + lane;
-    if (j >= seg.sample_count) {
-        return;
-    }
-    let u = sample_param(seg, j);
+    let seg = w.seg;
+    let u = w.u;
     let v = 1.0 - u;
     let p0 = control_point(seg, 0u);
     let p1 = control_point(seg, 1u);
@@ -95,7 +107,7 @@ fn tessellate_quartic(
     let r2 = v * q2 + u * q3;
     let s0 = v * r0 + u * r1;
     let s1 = v * r1 + u * r2;
-    samples[seg.first_sample + j] = Vertex(v * s0 + u * s1, seg.curve);
+    samples[seg.first_sample + w.j] = Vertex(v * s0 + u * s1, seg.curve);
 }
 
 @compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
@@ -103,16 +115,12 @@ fn tessellate_any(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(local_invocation_index) lane: u32,
 ) {
-    let s = record_index(group);
-    if (s >= params.segment_end) {
+    let w = work(group, lane);
+    if (!w.ok) {
         return;
     }
-    let seg = segments[s];
-    let j = seg.sample_offset + lane;
-    if (j >= seg.sample_count) {
-        return;
-    }
-    let u = sample_param(seg, j);
+    let seg = w.seg;
+    let u = w.u;
     let v = 1.0 - u;
     // Packing rejects degrees over MAX_DEGREE; the min only keeps p[] in bounds.
     let n = min(seg.degree, MAX_DEGREE);
@@ -125,5 +133,5 @@ fn tessellate_any(
             p[i] = v * p[i] + u * p[i + 1u];
         }
     }
-    samples[seg.first_sample + j] = Vertex(p[0], seg.curve);
+    samples[seg.first_sample + w.j] = Vertex(p[0], seg.curve);
 }

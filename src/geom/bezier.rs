@@ -4,8 +4,9 @@ use glam::DVec3;
 
 use super::{GeomError, ParamCurve};
 
-/// Degrees up to this size evaluate on the stack; higher degrees allocate once per call.
-const STACK_POINTS: usize = 32;
+/// Curves of up to this many control points evaluate on the stack (no allocation); more
+/// allocate once per call.
+pub(crate) const STACK_POINTS: usize = 64;
 
 /// A Bézier curve of degree `n` in 3D (planar curves have `z = 0`):
 ///
@@ -82,8 +83,9 @@ impl Aabb {
     }
 }
 
-/// Runs de Casteljau on a scratch copy of `points` at `t` and returns `P_nⁿ`.
-fn de_casteljau(points: &[DVec3], t: f64) -> DVec3 {
+/// Runs de Casteljau on a scratch copy of `points` at `t` and returns `P_nⁿ` (on the stack
+/// for up to [`STACK_POINTS`] points).
+pub(crate) fn de_casteljau(points: &[DVec3], t: f64) -> DVec3 {
     fn run(p: &mut [DVec3], t: f64) -> DVec3 {
         let s = 1.0 - t;
         let n = p.len() - 1;

@@ -26,6 +26,20 @@ impl PartialEq for KnotVector {
     }
 }
 
+/// Order ≥ 2 and at least as many control points as the order.
+fn check_order(order: usize, n_points: usize) -> Result<(), GeomError> {
+    if order < 2 {
+        return Err(GeomError::OrderTooLow { order });
+    }
+    if n_points < order {
+        return Err(GeomError::TooFewPoints {
+            min: order,
+            found: n_points,
+        });
+    }
+    Ok(())
+}
+
 impl KnotVector {
     /// Validates `knots` for order `order` and `n_points` control points.
     ///
@@ -126,15 +140,7 @@ impl KnotVector {
     /// # Errors
     /// As [`KnotVector::try_new`] (order < 2 or fewer points than the order).
     pub fn clamped_uniform(order: usize, n_points: usize) -> Result<KnotVector, GeomError> {
-        if order < 2 {
-            return Err(GeomError::OrderTooLow { order });
-        }
-        if n_points < order {
-            return Err(GeomError::TooFewPoints {
-                min: order,
-                found: n_points,
-            });
-        }
+        check_order(order, n_points)?;
         let spans = n_points - order + 1;
         let mut knots = vec![0.0; order];
         knots.extend((1..spans).map(|i| i as f64 / spans as f64));

@@ -135,17 +135,15 @@ fn decode_view(node: &Node<'_>) -> Result<ViewSpec, SceneError> {
             )))
         };
     }
-    let kind_node = node.object(&[
-        "kind",
-        "center",
-        "height",
-        "target",
-        "distance",
-        "yaw_deg",
-        "pitch_deg",
-        "fov_deg",
-    ])?;
-    let kind = kind_node.req("kind")?;
+    let Value::Object(map) = node.value else {
+        return Err(node.wrong_type("\"auto\" or a view object"));
+    };
+    // Read the kind first: the fields allowed depend on it.
+    let probe = Obj {
+        map,
+        path: node.path.clone(),
+    };
+    let kind = probe.req("kind")?;
     match kind.string()? {
         "2d" => {
             let obj = node.object(&["kind", "center", "height"])?;

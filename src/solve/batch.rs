@@ -6,9 +6,11 @@ use rayon::prelude::*;
 
 use super::SolveError;
 use super::shape::DEFAULT_WINDOW;
+use crate::geom::bernstein::bernstein_all_into;
+use crate::geom::bezier::{STACK_POINTS, de_casteljau};
 
 /// The largest degree [`BatchSingleTarget`] handles (its scratch lives on the stack).
-pub const MAX_BATCH_DEGREE: usize = 63;
+pub const MAX_BATCH_DEGREE: usize = STACK_POINTS - 1;
 
 /// The outcome of one curve of a batch.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -29,32 +31,8 @@ pub struct BatchSingleTarget {
     window: usize,
 }
 
-/// The Bernstein values of degree `n` at `t` into `out[..=n]` (triangular recurrence).
-fn bernstein(n: usize, t: f64, out: &mut [f64; MAX_BATCH_DEGREE + 1]) {
-    let s = 1.0 - t;
-    out[0] = 1.0;
-    for j in 1..=n {
-        let mut saved = 0.0;
-        for slot in out.iter_mut().take(j) {
-            let tmp = *slot;
-            *slot = saved + s * tmp;
-            saved = t * tmp;
-        }
-        out[j] = saved;
-    }
-}
-
 fn eval(points: &[DVec3], t: f64) -> DVec3 {
-    let mut buf = [DVec3::ZERO; MAX_BATCH_DEGREE + 1];
-    let n = points.len() - 1;
-    buf[..=n].copy_from_slice(points);
-    let s = 1.0 - t;
-    for r in 1..=n {
-        for i in 0..=(n - r) {
-            buf[i] = s * buf[i] + t * buf[i + 1];
-        }
-    }
-    buf[0]
+    de_casteljau(points, t)
 }
 
 /// `P(t)`, `P′(t)`, `P″(t)` from one de Casteljau pass: the derivatives are differences of
@@ -140,13 +118,12 @@ pub fn sampled_nearest(points: &[DVec3], target: DVec3) -> f64 {
     let samples = 8 * (n + 1);
     let h = 1.0 / samples as f64;
     let mut d = [0.0_f64; 8 * (MAX_BATCH_DEGREE + 1) + 1];
-    let mut best_k = 0;
-    for k in 0..=samples {
-        d[k] = (eval(points, k as f64 * h) - target).length();
-        if d[k] < d[best_k] {
-            best_k = k;
-        }
+    for (k, slot) in d.iter_mut().enumerate().take(samples + 1) {
+        *slot = (eval(points, k as f64 * h) - target).length();
     }
+    let best_k = (0..=samples)
+        .min_by(|&a, &b| d[a].total_cmp(&d[b]))
+        .unwrap_or(0);
     let speed = n as f64
         * points
             .windows(2)
@@ -247,7 +224,7 @@ impl BatchSingleTarget {
             };
         }
         let mut b = [0.0; MAX_BATCH_DEGREE + 1];
-        bernstein(n, t, &mut b);
+        bernstein_all_into(t, &mut b[..=n]);
         let m = self.window;
         let mut first = 1;
         let mut best = -1.0;
