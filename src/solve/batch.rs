@@ -140,8 +140,8 @@ pub fn sampled_nearest(points: &[DVec3], target: DVec3) -> f64 {
     let (lo, hi) = bracket(best_k);
     let (mut best_t, best_sq) = refine(points, target, lo, hi, best_k as f64 * h, tol);
     let mut best = best_sq.sqrt();
-    for k in 0..=samples {
-        if k == best_k || !is_min(k) || d[k] - speed * h > best {
+    for (k, &dk) in d.iter().enumerate().take(samples + 1) {
+        if k == best_k || !is_min(k) || dk - speed * h > best {
             continue;
         }
         let (lo, hi) = bracket(k);
