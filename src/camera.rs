@@ -154,6 +154,37 @@ impl Camera {
         }
     }
 
+    /// The world point under `pixel` on the plane through `anchor` that faces the viewer
+    /// (2D: the plane `z = anchor.z`). Dragging a point keeps it at its depth.
+    #[must_use]
+    pub fn drag_point(&self, pixel: DVec2, viewport: DVec2, anchor: DVec3) -> DVec3 {
+        match self {
+            Camera::Ortho2d(_) => {
+                let p = self.world_from_pixel(pixel, viewport);
+                DVec3::new(p.x, p.y, anchor.z)
+            }
+            Camera::Orbit3d(c) => {
+                let inverse = self.clip_from_world(viewport).inverse();
+                let ndc = DVec2::new(
+                    pixel.x / viewport.x.max(1.0) * 2.0 - 1.0,
+                    1.0 - pixel.y / viewport.y.max(1.0) * 2.0,
+                );
+                let unproject = |z: f64| {
+                    let h = inverse * DVec4::new(ndc.x, ndc.y, z, 1.0);
+                    h.truncate() / h.w
+                };
+                let (near, far) = (unproject(0.0), unproject(1.0));
+                let dir = (far - near).normalize_or(DVec3::NEG_Z);
+                let normal = (c.target - c.eye()).normalize_or(DVec3::NEG_Z);
+                let denom = dir.dot(normal);
+                if denom.abs() < 1e-12 {
+                    return anchor;
+                }
+                near + dir * ((anchor - near).dot(normal) / denom)
+            }
+        }
+    }
+
     /// Moves the view so that the content follows the pointer by `delta_px`.
     pub fn pan(&mut self, delta_px: DVec2, viewport: DVec2) {
         match self {
@@ -264,6 +295,25 @@ mod tests {
         cam.pan(DVec2::new(15.0, -4.0), VIEW);
         let after = cam.pixel_from_world(p, VIEW).unwrap();
         assert!((after - before - DVec2::new(15.0, -4.0)).length() < 1e-9);
+    }
+
+    #[test]
+    fn dragged_points_land_under_the_pointer_at_their_depth() {
+        let bbox = Aabb::from_points(&[DVec3::new(-1.0, -2.0, -3.0), DVec3::new(4.0, 1.0, 2.0)]);
+        for three_d in [false, true] {
+            let cam = Camera::fit(bbox, VIEW, three_d);
+            let anchor = DVec3::new(1.0, 0.5, if three_d { 1.0 } else { 0.0 });
+            let pixel = DVec2::new(300.0, 250.0);
+            let p = cam.drag_point(pixel, VIEW, anchor);
+            let back = cam.pixel_from_world(p, VIEW).unwrap();
+            assert!((back - pixel).length() < 1e-6, "{three_d}: {back}");
+            if let Camera::Orbit3d(c) = cam {
+                let normal = (c.target - c.eye()).normalize();
+                assert!((p - anchor).dot(normal).abs() < 1e-9);
+            } else {
+                assert_eq!(p.z, anchor.z);
+            }
+        }
     }
 
     #[test]

@@ -54,7 +54,8 @@ impl GpuArgs {
 
 #[derive(Debug, Subcommand)]
 enum Command {
-    /// Open a scene (default: the built-in gallery) in a window.
+    /// Open a scene (default: the built-in gallery) in a window, to view and edit (Ctrl+S
+    /// saves to the scene's file, or splinescope-scene.json for the gallery).
     View {
         /// Scene file (JSON); omit for the built-in gallery.
         scene: Option<PathBuf>,
@@ -186,6 +187,7 @@ fn run(cli: Cli) -> Result<()> {
                     "no display found (DISPLAY and WAYLAND_DISPLAY are unset); use `splinescope render` for a PNG, or run under xvfb-run"
                 );
             }
+            let path = scene.clone();
             let scene = match stress {
                 Some(n) => splinescope::scene::generate::random_bezier_scene(
                     splinescope::scene::generate::StressOptions {
@@ -206,6 +208,7 @@ fn run(cli: Cli) -> Result<()> {
                 frames,
                 backend: gpu.gpu_backend,
                 solve,
+                path,
             })?;
             Ok(())
         }
@@ -256,6 +259,7 @@ fn default_job() -> Result<()> {
             frames: None,
             backend: BackendChoice::Auto,
             solve: false,
+            path: None,
         })?);
     }
     let ctx = GpuContext::new(&ContextOptions::from_env(BackendChoice::Auto))?;

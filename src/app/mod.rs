@@ -1,27 +1,35 @@
 //! The interactive viewer: a winit window that tessellates and draws the scene every
-//! frame, with pan / zoom / fit (2D) or orbit / pan / dolly (3D), and an egui side panel.
+//! frame, with pan / zoom / fit (2D) or orbit / pan / dolly (3D), an egui side panel, and
+//! editing.
 //!
-//! Mouse: left drag pans (2D) or orbits (3D); right or middle drag pans; the wheel zooms
-//! at the cursor. Keys: `F` fit, `P` control polygons, `C` control points, `H` panel,
-//! `Esc` quit.
+//! Mouse: left drag on a control point moves it; left drag on a Bézier curve pulls the
+//! curve through the pointer (paper 000's least-squares single-target modification);
+//! elsewhere left drag pans (2D) or orbits (3D); right or middle drag pans; the wheel
+//! zooms at the cursor. Keys: `F` fit, `P` control polygons, `C` control points, `H`
+//! panel, `Ctrl+Z` undo, `Ctrl+Shift+Z` / `Ctrl+Y` redo, `Ctrl+S` save, `Esc` quit.
 
+pub mod edit;
 mod stress;
 mod ui;
 
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 use thiserror::Error;
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, EventLoop};
-use winit::keyboard::{Key, NamedKey};
+use winit::keyboard::{Key, ModifiersState, NamedKey};
 use winit::window::{Window, WindowId};
 
 use crate::camera::Camera;
-use crate::gpu::pack::{ChunkLimits, prepare_scene};
+use crate::geom::Lower;
+use crate::gpu::pack::{
+    ChunkLimits, PreparedScene, prepare_overlays, prepare_scene, repack_points,
+};
 use crate::gpu::renderer::{GpuScene, Renderer, camera_uniform};
 use crate::gpu::tessellator::Tessellator;
 use crate::gpu::{BackendChoice, ContextOptions, GpuContext, GpuError};
@@ -38,8 +46,15 @@ pub struct ViewOptions {
     pub backend: BackendChoice,
     /// Stress mode: re-solve every curve each frame (single target, paper 000) with its
     /// target circling the curve's midpoint. Needs a scene of Bézier curves of one degree.
+    /// Editing is off in this mode.
     pub solve: bool,
+    /// Where `Ctrl+S` saves the edited scene (`None`: `splinescope-scene.json` in the
+    /// current directory).
+    pub path: Option<PathBuf>,
 }
+
+/// Where an unnamed scene is saved.
+pub const DEFAULT_SAVE_NAME: &str = "splinescope-scene.json";
 
 /// Why the viewer stopped with an error.
 #[derive(Debug, Error)]
@@ -113,7 +128,8 @@ struct Running {
     tessellator: Tessellator,
     renderer: Renderer,
     gpu_scene: GpuScene,
-    scene: Scene,
+    prepared: PreparedScene,
+    editor: edit::Editor,
     camera: Camera,
     toggles: Toggles,
     uploaded_toggles: Toggles,
@@ -122,6 +138,9 @@ struct Running {
     egui_renderer: egui_wgpu::Renderer,
     cursor: DVec2,
     dragging: Option<MouseButton>,
+    /// The point being edited by the left drag (its depth anchors 3D drags).
+    editing: Option<DVec3>,
+    modifiers: ModifiersState,
     /// Keep fitting the scene (to the area the panel leaves) until the user moves the
     /// camera; `F` turns it back on.
     auto_fit: bool,
@@ -182,11 +201,17 @@ impl ApplicationHandler for App {
                 }
                 r.window.request_redraw();
             }
+            WindowEvent::ModifiersChanged(m) => r.modifiers = m.state(),
             WindowEvent::CursorMoved { position, .. } => {
                 let p = DVec2::new(position.x, position.y);
                 let delta = p - r.cursor;
                 r.cursor = p;
                 let viewport = r.viewport();
+                if let Some(anchor) = r.editing {
+                    let world = r.camera.drag_point(p, viewport, anchor);
+                    r.editor.drag_to(world);
+                    return;
+                }
                 match r.dragging {
                     Some(MouseButton::Left) if r.camera.is_3d() => r.camera.orbit(delta),
                     Some(_) => r.camera.pan(delta, viewport),
@@ -197,8 +222,18 @@ impl ApplicationHandler for App {
                 }
             }
             WindowEvent::MouseInput { state, button, .. } => match state {
-                ElementState::Pressed if !consumed => r.dragging = Some(button),
-                ElementState::Released => r.dragging = None,
+                ElementState::Pressed if !consumed => {
+                    if button == MouseButton::Left && r.begin_edit() {
+                        return;
+                    }
+                    r.dragging = Some(button);
+                }
+                ElementState::Released => {
+                    r.dragging = None;
+                    if r.editing.take().is_some() {
+                        r.editor.finish();
+                    }
+                }
                 ElementState::Pressed => {}
             },
             WindowEvent::MouseWheel { delta, .. } if !consumed => {
@@ -213,7 +248,19 @@ impl ApplicationHandler for App {
             WindowEvent::KeyboardInput { event, .. }
                 if !consumed && event.state == ElementState::Pressed =>
             {
+                let ctrl = r.modifiers.control_key() || r.modifiers.super_key();
+                let shift = r.modifiers.shift_key();
                 match event.logical_key.as_ref() {
+                    Key::Character("z" | "Z") if ctrl && !shift => {
+                        r.editor.undo();
+                    }
+                    Key::Character("z" | "Z") if ctrl => {
+                        r.editor.redo();
+                    }
+                    Key::Character("y" | "Y") if ctrl => {
+                        r.editor.redo();
+                    }
+                    Key::Character("s" | "S") if ctrl => r.save(),
                     Key::Named(NamedKey::Escape) => event_loop.exit(),
                     Key::Character("f" | "F") => {
                         r.auto_fit = true;
@@ -286,6 +333,14 @@ impl Running {
         };
         let scene = opts.scene.clone();
         let (gpu_scene, prepared) = upload(&ctx, &tessellator, &renderer, &scene, toggles)?;
+        let editor = edit::Editor::new(
+            scene.clone(),
+            Some(
+                opts.path
+                    .clone()
+                    .unwrap_or_else(|| PathBuf::from(DEFAULT_SAVE_NAME)),
+            ),
+        );
         let stress = if opts.solve {
             let chunk_points: Vec<usize> = prepared.chunks.iter().map(|c| c.points.len()).collect();
             Some(
@@ -320,7 +375,8 @@ impl Running {
             tessellator,
             renderer,
             gpu_scene,
-            scene,
+            prepared,
+            editor,
             camera,
             toggles,
             uploaded_toggles: toggles,
@@ -329,6 +385,8 @@ impl Running {
             egui_renderer,
             cursor: DVec2::ZERO,
             dragging: None,
+            editing: None,
+            modifiers: ModifiersState::empty(),
             auto_fit: opts.scene.view == crate::scene::ViewSpec::Auto,
             panel_width_px: ui::PANEL_WIDTH_POINTS,
             frames_presented: 0,
@@ -357,11 +415,106 @@ impl Running {
             0.0
         };
         let free = DVec2::new((viewport.x - panel).max(1.0), viewport.y);
-        self.camera = Camera::fit(self.scene.bounds(), free, !self.scene.is_planar());
+        let scene = self.editor.scene();
+        self.camera = Camera::fit(scene.bounds(), free, !scene.is_planar());
         // Keep the scale fitted to the free area, centred in it.
         if let Camera::Ortho2d(c) = &mut self.camera {
             c.center.x -= 0.5 * panel / c.pixels_per_unit;
         }
+    }
+
+    /// Starts an edit under the pointer (a control point, or a Bézier curve to pull);
+    /// `false` when there is nothing to edit there.
+    fn begin_edit(&mut self) -> bool {
+        if self.stress.is_some() {
+            return false;
+        }
+        let radius = 9.0 * self.window.scale_factor();
+        let hit = self.editor.pick(
+            &self.camera,
+            self.viewport(),
+            self.cursor,
+            radius,
+            self.toggles.show_points,
+        );
+        match hit {
+            Some(edit::Hit::Point { curve, index, at }) => {
+                self.editor.begin_point_drag(curve, index);
+                self.editing = Some(at);
+                // The view stays put while the scene is edited.
+                self.auto_fit = false;
+                true
+            }
+            Some(edit::Hit::Curve { curve, t, at }) => match self.editor.begin_pull(curve, t) {
+                Ok(()) => {
+                    self.editing = Some(at);
+                    self.auto_fit = false;
+                    true
+                }
+                Err(message) => {
+                    self.editor.message = Some(message);
+                    false
+                }
+            },
+            None => false,
+        }
+    }
+
+    fn save(&mut self) {
+        if let Err(message) = self.editor.save(None) {
+            self.editor.message = Some(message);
+        }
+    }
+
+    /// Brings the GPU up to date with edits and the panel's switches: curves whose
+    /// lowering kept its structure are rewritten in place; otherwise the scene is packed
+    /// again. Overlays are rebuilt when anything changed.
+    fn sync_edits(&mut self) -> Result<(), AppError> {
+        let changed = self.editor.take_changed();
+        if changed.is_empty() && self.toggles == self.uploaded_toggles {
+            return Ok(());
+        }
+        let shown = shown_scene(self.editor.scene(), self.toggles);
+        let in_place = self.toggles == self.uploaded_toggles
+            && changed.iter().all(|&c| {
+                let segments = shown.curves[c].curve.lower();
+                match self
+                    .prepared
+                    .placements
+                    .get(c)
+                    .and_then(|p| repack_points(p, &segments))
+                {
+                    Some(writes) => {
+                        for (chunk, first, verts) in writes {
+                            self.gpu_scene
+                                .write_points(&self.ctx.queue, chunk, first, &verts);
+                        }
+                        true
+                    }
+                    None => false,
+                }
+            });
+        if in_place {
+            let limits = ChunkLimits::for_binding_size(self.ctx.max_binding_bytes());
+            let (lines, points) = prepare_overlays(&shown, limits);
+            self.renderer
+                .replace_overlays(&self.ctx.device, &mut self.gpu_scene, &lines, &points);
+        } else {
+            let (gpu, prepared) = upload(
+                &self.ctx,
+                &self.tessellator,
+                &self.renderer,
+                self.editor.scene(),
+                self.toggles,
+            )?;
+            self.gpu_scene = gpu;
+            self.prepared = prepared;
+            self.uploaded_toggles = self.toggles;
+        }
+        if !changed.is_empty() {
+            self.summaries = ui::summarize(self.editor.scene());
+        }
+        Ok(())
     }
 
     fn resize(&mut self, size: PhysicalSize<u32>) {
@@ -380,17 +533,7 @@ impl Running {
         if size.width == 0 || size.height == 0 {
             return Ok(false);
         }
-        if self.toggles != self.uploaded_toggles {
-            self.gpu_scene = upload(
-                &self.ctx,
-                &self.tessellator,
-                &self.renderer,
-                &self.scene,
-                self.toggles,
-            )?
-            .0;
-            self.uploaded_toggles = self.toggles;
-        }
+        self.sync_edits()?;
         if let Some(s) = &mut self.stress {
             s.step(
                 self.started.elapsed().as_secs_f64(),
@@ -429,7 +572,6 @@ impl Running {
         self.fps.tick(Instant::now());
         let mut actions = ui::Actions::default();
         let info = ui::PanelInfo {
-            scene: &self.scene,
             summaries: &self.summaries,
             adapter: &self.adapter,
             fps: self.fps.fps(),
@@ -438,11 +580,17 @@ impl Running {
             solving: self.stress.as_ref().map(|s| (s.curves, s.last_solve_ms)),
         };
         let toggles = &mut self.toggles;
+        let editor = &mut self.editor;
+        let editable = self.stress.is_none();
         let mut panel_width = 0.0_f32;
         let output = self.egui_ctx.run_ui(raw, |ui| {
-            panel_width = ui::panel(ui, &info, toggles, &mut actions);
+            panel_width = ui::panel(ui, &info, toggles, editor, editable, &mut actions);
         });
         self.panel_width_px = f64::from(panel_width) * f64::from(output.pixels_per_point);
+        // A panel control's drag (a slider) is one edit: commit it when the pointer lets go.
+        if self.editing.is_none() && self.egui_ctx.input(|i| i.pointer.any_released()) {
+            self.editor.finish();
+        }
         self.egui_state
             .handle_platform_output(&self.window, output.platform_output);
         let jobs = self
@@ -499,12 +647,25 @@ impl Running {
         if actions.fit {
             self.auto_fit = true;
         }
+        if actions.save {
+            self.save();
+        }
         if self.auto_fit {
             // The panel's width is known only after it is drawn: fit to what it leaves.
             self.fit();
         }
         Ok(true)
     }
+}
+
+/// The scene with the panel's overlay switches applied.
+fn shown_scene(scene: &Scene, toggles: Toggles) -> Scene {
+    let mut shown = scene.clone();
+    for c in &mut shown.curves {
+        c.style.show_polygon &= toggles.show_polygons;
+        c.style.show_points &= toggles.show_points;
+    }
+    shown
 }
 
 /// Prepares and uploads the scene with the panel's overlay switches applied.
@@ -514,12 +675,8 @@ fn upload(
     renderer: &Renderer,
     scene: &Scene,
     toggles: Toggles,
-) -> Result<(GpuScene, crate::gpu::pack::PreparedScene), AppError> {
-    let mut shown = scene.clone();
-    for c in &mut shown.curves {
-        c.style.show_polygon &= toggles.show_polygons;
-        c.style.show_points &= toggles.show_points;
-    }
+) -> Result<(GpuScene, PreparedScene), AppError> {
+    let shown = shown_scene(scene, toggles);
     let prepared = prepare_scene(
         &shown,
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),

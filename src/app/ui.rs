@@ -3,11 +3,16 @@
 use std::collections::VecDeque;
 use std::time::Instant;
 
+use glam::DVec3;
+
 use crate::camera::Camera;
-use crate::geom::{Lower, ParamCurve};
+use crate::geom::{
+    CubicInterpolation, Curve, Lower, Modification, ModifiedBezier, Nubmp, ParamCurve, Reading,
+};
 use crate::scene::Scene;
 
 use super::Toggles;
+use super::edit::Editor;
 
 /// The panel's default width in points.
 pub(crate) const PANEL_WIDTH_POINTS: f64 = 260.0;
@@ -52,7 +57,6 @@ pub(crate) fn summarize(scene: &Scene) -> Vec<CurveSummary> {
 
 /// What the panel shows.
 pub(crate) struct PanelInfo<'a> {
-    pub scene: &'a Scene,
     pub summaries: &'a [CurveSummary],
     pub adapter: &'a str,
     pub fps: f64,
@@ -66,6 +70,7 @@ pub(crate) struct PanelInfo<'a> {
 #[derive(Debug, Default)]
 pub(crate) struct Actions {
     pub fit: bool,
+    pub save: bool,
 }
 
 /// Frames per second over the last second.
@@ -105,6 +110,8 @@ pub(crate) fn panel(
     ui: &mut egui::Ui,
     info: &PanelInfo<'_>,
     toggles: &mut Toggles,
+    editor: &mut Editor,
+    editable: bool,
     actions: &mut Actions,
 ) -> f32 {
     if !toggles.show_panel {
@@ -115,10 +122,11 @@ pub(crate) fn panel(
         .max_size(PANEL_WIDTH_POINTS as f32 * 1.6)
         .resizable(true)
         .show(ui, |ui| {
-            ui.heading(info.scene.name.as_deref().unwrap_or("splinescope"));
+            let scene = editor.scene();
+            ui.heading(scene.name.as_deref().unwrap_or("splinescope"));
             ui.label(format!(
                 "{} curve(s) · {} samples/frame · {:.0} fps",
-                info.scene.curves.len(),
+                scene.curves.len(),
                 info.samples_per_frame,
                 info.fps
             ));
@@ -141,24 +149,253 @@ pub(crate) fn panel(
             });
             ui.small("H hides this panel · Esc quits");
             ui.separator();
+            if editable {
+                edit_section(ui, editor, actions);
+                ui.separator();
+            }
             egui::ScrollArea::vertical().show(ui, |ui| {
-                for c in info.summaries {
-                    ui.horizontal(|ui| {
-                        let (rect, _) =
-                            ui.allocate_exact_size(egui::vec2(10.0, 10.0), egui::Sense::hover());
-                        ui.painter().rect_filled(rect, 2.0, c.color);
-                        ui.add(egui::Label::new(&c.label).truncate());
-                    })
-                    .response
-                    .on_hover_text(&c.details);
+                for (i, c) in info.summaries.iter().enumerate() {
+                    let selected = editor.selected == Some(i);
+                    let row = ui
+                        .horizontal(|ui| {
+                            let (rect, _) = ui
+                                .allocate_exact_size(egui::vec2(10.0, 10.0), egui::Sense::hover());
+                            ui.painter().rect_filled(rect, 2.0, c.color);
+                            ui.add(egui::Button::selectable(selected, &c.label).truncate())
+                        })
+                        .inner
+                        .on_hover_text(&c.details);
+                    if row.clicked() && editable {
+                        editor.finish();
+                        editor.selected = Some(i);
+                    }
                 }
-                if info.scene.curves.len() > LISTED_CURVES {
-                    ui.small(format!(
-                        "… and {} more",
-                        info.scene.curves.len() - LISTED_CURVES
-                    ));
+                let total = editor.scene().curves.len();
+                if total > LISTED_CURVES {
+                    ui.small(format!("… and {} more", total - LISTED_CURVES));
                 }
             });
         });
     response.response.rect.width()
+}
+
+/// Undo/redo/save, the selected curve and its family's controls.
+fn edit_section(ui: &mut egui::Ui, editor: &mut Editor, actions: &mut Actions) {
+    let (undo, redo) = editor.history_len();
+    ui.horizontal(|ui| {
+        if ui
+            .add_enabled(undo > 0, egui::Button::new(format!("undo ({undo})")))
+            .on_hover_text("Ctrl+Z")
+            .clicked()
+        {
+            editor.undo();
+        }
+        if ui
+            .add_enabled(redo > 0, egui::Button::new(format!("redo ({redo})")))
+            .on_hover_text("Ctrl+Shift+Z")
+            .clicked()
+        {
+            editor.redo();
+        }
+        let label = if editor.is_dirty() { "save*" } else { "save" };
+        let target = editor
+            .path()
+            .map_or_else(String::new, |p| p.display().to_string());
+        if ui
+            .button(label)
+            .on_hover_text(format!("Ctrl+S: write {target} (* = unsaved changes)"))
+            .clicked()
+        {
+            actions.save = true;
+        }
+    });
+    if let Some(m) = &editor.message {
+        ui.small(m.clone());
+    }
+    let Some(index) = editor.selected else {
+        ui.small(
+            "Drag a control point to move it, or a Bézier curve to pull it through the pointer.",
+        );
+        return;
+    };
+    let sc = editor.scene().curves[index].clone();
+    ui.label(format!(
+        "{index}: {} ({})",
+        sc.name.as_deref().unwrap_or("unnamed"),
+        sc.curve.family()
+    ));
+    match &sc.curve {
+        Curve::Bezier(b) => {
+            ui.small(format!("degree {}", b.degree()));
+            if ui
+                .button("elevate degree")
+                .on_hover_text("the same curve with one more control point")
+                .clicked()
+            {
+                editor.set_curve(index, Curve::Bezier(b.elevate()), "elevate");
+                editor.finish();
+            }
+        }
+        Curve::Modified(m) => {
+            let mut t_star = m.t_star();
+            let slider = egui::Slider::new(&mut t_star, 0.01..=0.99)
+                .clamping(egui::SliderClamping::Never)
+                .text("t*");
+            if ui.add(slider).changed() {
+                apply(
+                    editor,
+                    index,
+                    "t*",
+                    ModifiedBezier::try_new(m.base().clone(), t_star, m.v()).map(Curve::Modified),
+                );
+            }
+            let mut v = m.v();
+            if vector_row(ui, "v", &mut v) {
+                apply(
+                    editor,
+                    index,
+                    "v",
+                    ModifiedBezier::try_new(m.base().clone(), m.t_star(), v).map(Curve::Modified),
+                );
+            }
+        }
+        Curve::Interpolation(c) => {
+            let rebuild = |m: Option<Modification>| {
+                CubicInterpolation::try_new(c.points().to_vec(), Some(c.params().to_vec()), m)
+                    .map(Curve::Interpolation)
+            };
+            let mut modified = c.modification().is_some();
+            if ui.checkbox(&mut modified, "modified (paper 002)").changed() {
+                let m = modified.then_some(Modification {
+                    t_star: 0.5,
+                    v: DVec3::ZERO,
+                    reading: Reading::Paper,
+                });
+                apply(editor, index, "modified", rebuild(m));
+                editor.finish();
+            }
+            if let Some(m) = c.modification() {
+                let mut next = m;
+                let slider = egui::Slider::new(&mut next.t_star, 0.01..=0.99)
+                    .clamping(egui::SliderClamping::Never)
+                    .text("t*");
+                let mut changed = ui.add(slider).changed();
+                changed |= vector_row(ui, "v", &mut next.v);
+                ui.horizontal(|ui| {
+                    changed |= ui
+                        .radio_value(&mut next.reading, Reading::Paper, "paper")
+                        .changed();
+                    changed |= ui
+                        .radio_value(&mut next.reading, Reading::BumpAdded, "bump added")
+                        .changed();
+                });
+                if changed {
+                    apply(editor, index, "modification", rebuild(Some(next)));
+                }
+            }
+        }
+        Curve::BSpline(b) => {
+            ui.small(format!(
+                "order {}, knots {:?}",
+                b.order(),
+                b.knots().knots()
+            ));
+        }
+        Curve::Nubmp(n) => nubmp_controls(ui, editor, index, n),
+    }
+}
+
+/// A row of drag values for a vector; whether it changed.
+fn vector_row(ui: &mut egui::Ui, label: &str, v: &mut DVec3) -> bool {
+    ui.horizontal(|ui| {
+        ui.label(label);
+        let mut changed = ui
+            .add(egui::DragValue::new(&mut v.x).speed(0.01).prefix("x "))
+            .changed();
+        changed |= ui
+            .add(egui::DragValue::new(&mut v.y).speed(0.01).prefix("y "))
+            .changed();
+        changed |= ui
+            .add(egui::DragValue::new(&mut v.z).speed(0.01).prefix("z "))
+            .changed();
+        changed
+    })
+    .inner
+}
+
+/// Applies a panel edit, or shows why it is refused (nothing changes then).
+fn apply<E: std::fmt::Display>(
+    editor: &mut Editor,
+    index: usize,
+    key: &str,
+    result: Result<Curve, E>,
+) {
+    match result {
+        Ok(curve) => editor.set_curve(index, curve, key),
+        Err(e) => editor.message = Some(format!("curves[{index}]: {e}")),
+    }
+}
+
+/// Sliders for the shape parameters of every group (the last member absorbs), with the
+/// Theorem 1 value and permissible ranges for order 4.
+fn nubmp_controls(ui: &mut egui::Ui, editor: &mut Editor, index: usize, n: &Nubmp) {
+    ui.small(format!(
+        "order {}, {} groups, {} free parameters",
+        n.order(),
+        n.groups().len(),
+        n.free_parameter_count()
+    ));
+    if !n.is_standard() && ui.button("reset to the standard curve").clicked() {
+        editor.set_curve(
+            index,
+            Curve::Nubmp(Nubmp::standard(n.points().to_vec(), n.knots().clone())),
+            "reset",
+        );
+        editor.finish();
+    }
+    egui::ScrollArea::vertical()
+        .id_salt("groups")
+        .max_height(220.0)
+        .show(ui, |ui| {
+            for (j, g) in n.groups().iter().enumerate() {
+                if !g.effective || g.members.len() < 2 {
+                    continue;
+                }
+                let vd = n.vd_value(j);
+                let title = match vd {
+                    Some(v) => format!("A_{j}: Theorem 1 value {v:.3}"),
+                    None => format!("A_{j}"),
+                };
+                let color = if vd.is_some_and(|v| v > 1.0) {
+                    egui::Color32::from_rgb(200, 40, 40)
+                } else {
+                    ui.visuals().text_color()
+                };
+                ui.colored_label(color, title);
+                let last = g.members[g.members.len() - 1];
+                for &i in &g.members[..g.members.len() - 1] {
+                    let (Some(mut a), Some(b)) = (g.value(i), g.value(last)) else {
+                        continue;
+                    };
+                    let pair = a + b;
+                    // Typed values are not clamped: the model refuses invalid ones, with a message.
+                    let slider = egui::Slider::new(&mut a, 0.0..=pair)
+                        .clamping(egui::SliderClamping::Never)
+                        .text(format!("a^{i}_{j}"));
+                    if let Ok(Some(r)) = n.permissible_range(j, i, last) {
+                        ui.small(format!(
+                            "VD range [{:.4}, {:.4}] (a^{last}_{j} absorbs)",
+                            r.min, r.max
+                        ));
+                    }
+                    if ui.add(slider).changed() {
+                        let mut next = n.clone();
+                        let result = next
+                            .set_parameter(j, i, a, last)
+                            .map(|()| Curve::Nubmp(next));
+                        apply(editor, index, &format!("a^{i}_{j}"), result);
+                    }
+                }
+            }
+        });
 }

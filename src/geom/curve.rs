@@ -3,8 +3,8 @@
 use glam::DVec3;
 
 use super::{
-    Aabb, BSpline, Bezier, BezierSegment, CubicInterpolation, Lower, ModifiedBezier, Nubmp,
-    ParamCurve,
+    Aabb, BSpline, Bezier, BezierSegment, CubicInterpolation, GeomError, Lower, ModifiedBezier,
+    Nubmp, ParamCurve,
 };
 
 /// Every curve family splinescope knows. Each one evaluates exactly in `f64`
@@ -82,6 +82,40 @@ impl Curve {
             Curve::BSpline(b) => b.points(),
             Curve::Nubmp(n) => n.points(),
         }
+    }
+
+    /// The same curve with control point `index` (as listed by [`Curve::control_points`])
+    /// moved to `p`; every other property (parameters, knots, shape parameters, `t*`, `v`)
+    /// is kept.
+    ///
+    /// # Errors
+    /// [`GeomError::NonFinitePoint`] for a non-finite `p` or an index out of range (reported
+    /// at that index).
+    pub fn with_control_point(&self, index: usize, p: DVec3) -> Result<Curve, GeomError> {
+        if index >= self.control_points().len() {
+            return Err(GeomError::NonFinitePoint {
+                index,
+                value: f64::NAN,
+            });
+        }
+        let mut pts = self.control_points().to_vec();
+        pts[index] = p;
+        crate::geom::bezier::check_finite(&pts)?;
+        Ok(match self {
+            Curve::Bezier(_) => Curve::Bezier(Bezier::new(pts)),
+            Curve::Modified(m) => Curve::Modified(ModifiedBezier::try_new(
+                Bezier::new(pts),
+                m.t_star(),
+                m.v(),
+            )?),
+            Curve::Interpolation(c) => Curve::Interpolation(CubicInterpolation::try_new(
+                pts,
+                Some(c.params().to_vec()),
+                c.modification(),
+            )?),
+            Curve::BSpline(b) => Curve::BSpline(BSpline::from_parts(pts, b.knots().clone())?),
+            Curve::Nubmp(n) => Curve::Nubmp(n.with_points(pts)?),
+        })
     }
 
     /// The polylines that explain the curve: its control polygon, and per family more

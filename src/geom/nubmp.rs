@@ -207,6 +207,27 @@ impl Nubmp {
         })
     }
 
+    /// The same curve with new control points (shape parameters kept).
+    ///
+    /// # Errors
+    /// [`GeomError::TooFewPoints`] / [`GeomError::KnotCount`] when the count changes, or a
+    /// non-finite point.
+    pub fn with_points(&self, points: Vec<DVec3>) -> Result<Nubmp, GeomError> {
+        check_finite(&points)?;
+        if points.len() != self.points.len() {
+            return Err(GeomError::KnotCount {
+                expected: points.len() + self.order(),
+                found: self.knots.knots().len(),
+                points: points.len(),
+                order: self.order(),
+            });
+        }
+        let mut out = self.clone();
+        out.points = points;
+        out.update_dual();
+        Ok(out)
+    }
+
     /// Sets all parameters of group `j` (in member order).
     ///
     /// # Errors

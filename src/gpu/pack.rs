@@ -559,8 +559,6 @@ pub fn overlay_point_style(kind: OverlayKind, curve: Color) -> Option<GpuLineSty
 /// [`PackError`] when a segment's degree is over the GPU maximum.
 pub fn prepare_scene(scene: &Scene, limits: ChunkLimits) -> Result<PreparedScene, PackError> {
     let mut chunks = ChunkBuilder::new(limits);
-    let mut lines = BatchBuilder::new(limits);
-    let mut points = BatchBuilder::new(limits);
     for (index, sc) in scene.curves.iter().enumerate() {
         let segments = sc.curve.lower();
         check_degrees(index, &segments)?;
@@ -570,6 +568,26 @@ pub fn prepare_scene(scene: &Scene, limits: ChunkLimits) -> Result<PreparedScene
             chunks.begin_segment(index, style, seg.bezier.points())?;
             chunks.add_samples(samples, 0.0, 1.0);
         }
+    }
+    let (lines, points) = prepare_overlays(scene, limits);
+    let (chunks, placements) = chunks.finish_with_placements();
+    Ok(PreparedScene {
+        chunks,
+        placements,
+        lines,
+        points,
+        background: scene.background,
+    })
+}
+
+/// The overlay polylines and points of a scene (control polygons, control points, the
+/// families' explaining polylines, annotations): rebuilt on their own when curves are
+/// edited in place.
+#[must_use]
+pub fn prepare_overlays(scene: &Scene, limits: ChunkLimits) -> (Vec<LineBatch>, Vec<LineBatch>) {
+    let mut lines = BatchBuilder::new(limits);
+    let mut points = BatchBuilder::new(limits);
+    for sc in &scene.curves {
         if sc.style.show_polygon {
             for overlay in sc.curve.overlays() {
                 lines.push(&overlay.points, overlay_style(overlay.kind, sc.style.color));
@@ -593,14 +611,7 @@ pub fn prepare_scene(scene: &Scene, limits: ChunkLimits) -> Result<PreparedScene
             AnnotationShape::Points(p) => points.push(p, style),
         }
     }
-    let (chunks, placements) = chunks.finish_with_placements();
-    Ok(PreparedScene {
-        chunks,
-        placements,
-        lines: lines.finish(),
-        points: points.finish(),
-        background: scene.background,
-    })
+    (lines.finish(), points.finish())
 }
 
 #[cfg(test)]

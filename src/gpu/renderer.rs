@@ -276,6 +276,24 @@ impl Renderer {
         }
     }
 
+    /// Replaces the scene's overlay batches (after curves were edited in place).
+    pub fn replace_overlays(
+        &self,
+        device: &wgpu::Device,
+        scene: &mut GpuScene,
+        lines: &[LineBatch],
+        points: &[LineBatch],
+    ) {
+        scene.lines = lines
+            .iter()
+            .map(|b| self.overlay_batch(device, b))
+            .collect();
+        scene.points = points
+            .iter()
+            .map(|b| self.overlay_batch(device, b))
+            .collect();
+    }
+
     /// Sets the camera for the next frames.
     pub fn set_camera(&self, queue: &wgpu::Queue, camera: &GpuCamera) {
         queue.write_buffer(&self.camera_buffer, 0, bytemuck::bytes_of(camera));

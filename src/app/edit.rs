@@ -1,0 +1,524 @@
+//! The viewer's editing model, free of GPU and window types: picking, dragging control
+//! points, pulling a Bézier curve through the pointer (paper 000's single-target solve),
+//! setting a curve from the panel, undo/redo that keeps every edit, and atomic saving.
+
+use std::path::{Path, PathBuf};
+
+use glam::{DVec2, DVec3};
+
+use crate::camera::Camera;
+use crate::geom::{Bezier, Curve};
+use crate::scene::{Scene, SceneCurve};
+use crate::solve::nearest;
+use crate::solve::shape::{SingleTargetOptions, single_target};
+
+/// What the pointer is over.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Hit {
+    /// A control point (as listed by `Curve::control_points`).
+    Point {
+        /// The curve.
+        curve: usize,
+        /// The point's index.
+        index: usize,
+        /// Its position.
+        at: DVec3,
+    },
+    /// A point on a curve.
+    Curve {
+        /// The curve.
+        curve: usize,
+        /// The curve parameter there.
+        t: f64,
+        /// The point.
+        at: DVec3,
+    },
+}
+
+/// One committed change of one curve.
+#[derive(Debug, Clone)]
+struct Edit {
+    id: u64,
+    curve: usize,
+    before: SceneCurve,
+    after: SceneCurve,
+}
+
+/// What the open (uncommitted) edit is doing.
+#[derive(Debug, Clone)]
+enum Gesture {
+    /// Dragging control point `index`.
+    Point { index: usize },
+    /// Pulling the curve's point at `t_s` through the pointer (from the original curve).
+    Pull { t_s: f64, original: Bezier },
+    /// A panel control, identified by `key`.
+    Control { key: String },
+}
+
+#[derive(Debug, Clone)]
+struct Open {
+    curve: usize,
+    before: SceneCurve,
+    gesture: Gesture,
+}
+
+/// The scene being edited, with its history.
+#[derive(Debug, Clone)]
+pub struct Editor {
+    scene: Scene,
+    history: Vec<Edit>,
+    undone: Vec<Edit>,
+    open: Option<Open>,
+    next_id: u64,
+    saved: Option<u64>,
+    changed: Vec<usize>,
+    path: Option<PathBuf>,
+    /// The selected curve, if any.
+    pub selected: Option<usize>,
+    /// The last message for the user (an error, or where a save went).
+    pub message: Option<String>,
+}
+
+impl Editor {
+    /// An editor of `scene`, saving to `path` (`None`: the scene has no file yet).
+    #[must_use]
+    pub fn new(scene: Scene, path: Option<PathBuf>) -> Editor {
+        Editor {
+            scene,
+            history: Vec::new(),
+            undone: Vec::new(),
+            open: None,
+            next_id: 1,
+            saved: None,
+            changed: Vec::new(),
+            path,
+            selected: None,
+            message: None,
+        }
+    }
+
+    /// The scene as edited so far.
+    #[must_use]
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The curves changed since the last call (each once).
+    pub fn take_changed(&mut self) -> Vec<usize> {
+        let mut c = std::mem::take(&mut self.changed);
+        c.sort_unstable();
+        c.dedup();
+        c
+    }
+
+    fn set(&mut self, curve: usize, value: SceneCurve) {
+        self.scene.curves[curve] = value;
+        self.changed.push(curve);
+    }
+
+    /// The nearest control point within `radius_px` of `pixel` (only where `points_shown`),
+    /// else the nearest curve within `radius_px` (2D views only).
+    #[must_use]
+    pub fn pick(
+        &self,
+        camera: &Camera,
+        viewport: DVec2,
+        pixel: DVec2,
+        radius_px: f64,
+        points_shown: bool,
+    ) -> Option<Hit> {
+        let mut best: Option<(f64, Hit)> = None;
+        if points_shown {
+            for (c, sc) in self.scene.curves.iter().enumerate() {
+                if !sc.style.show_points {
+                    continue;
+                }
+                for (i, &p) in sc.curve.control_points().iter().enumerate() {
+                    let Some(px) = camera.pixel_from_world(p, viewport) else {
+                        continue;
+                    };
+                    let d = (px - pixel).length();
+                    if d <= radius_px && best.is_none_or(|(b, _)| d < b) {
+                        best = Some((
+                            d,
+                            Hit::Point {
+                                curve: c,
+                                index: i,
+                                at: p,
+                            },
+                        ));
+                    }
+                }
+            }
+        }
+        if best.is_some() {
+            return best.map(|b| b.1);
+        }
+        let Camera::Ortho2d(c2) = camera else {
+            return None;
+        };
+        let world = camera.world_from_pixel(pixel, viewport);
+        let radius = radius_px / c2.pixels_per_unit;
+        for (c, sc) in self.scene.curves.iter().enumerate() {
+            let b = sc.curve.control_box();
+            let outside = (b.min - world).max(world - b.max).max(DVec3::ZERO).length();
+            if outside > radius {
+                continue;
+            }
+            let n = nearest(&sc.curve, world, None);
+            if n.distance <= radius && best.is_none_or(|(d, _)| n.distance < d) {
+                best = Some((
+                    n.distance,
+                    Hit::Curve {
+                        curve: c,
+                        t: n.t,
+                        at: n.point,
+                    },
+                ));
+            }
+        }
+        best.map(|b| b.1)
+    }
+
+    /// Starts dragging control point `index` of `curve`.
+    pub fn begin_point_drag(&mut self, curve: usize, index: usize) {
+        self.finish();
+        self.selected = Some(curve);
+        self.open = Some(Open {
+            curve,
+            before: self.scene.curves[curve].clone(),
+            gesture: Gesture::Point { index },
+        });
+    }
+
+    /// Starts pulling a Bézier curve's point at `t` through the pointer: while dragging, the
+    /// curve is the least-squares modification of the original (paper 000, Eq. 8) passing
+    /// through the pointer at `t`.
+    ///
+    /// # Errors
+    /// A message when the curve is not a Bézier curve of degree ≥ 2 or `t` is an end.
+    pub fn begin_pull(&mut self, curve: usize, t: f64) -> Result<(), String> {
+        self.finish();
+        self.selected = Some(curve);
+        let Curve::Bezier(b) = &self.scene.curves[curve].curve else {
+            return Err(format!(
+                "pulling a curve through a point modifies Bézier curves; curves[{curve}] is {} (drag its control points)",
+                self.scene.curves[curve].curve.family()
+            ));
+        };
+        if b.degree() < 2 || t <= 0.0 || t >= 1.0 {
+            return Err("grab the curve away from its fixed end points (and degree ≥ 2)".into());
+        }
+        self.open = Some(Open {
+            curve,
+            before: self.scene.curves[curve].clone(),
+            gesture: Gesture::Pull {
+                t_s: t,
+                original: b.clone(),
+            },
+        });
+        Ok(())
+    }
+
+    /// Moves the open drag to `world`. Invalid results leave the curve as it was and set
+    /// [`Editor::message`].
+    pub fn drag_to(&mut self, world: DVec3) {
+        let Some(open) = self.open.clone() else {
+            return;
+        };
+        let mut sc = self.scene.curves[open.curve].clone();
+        let result = match &open.gesture {
+            Gesture::Point { index } => sc
+                .curve
+                .with_control_point(*index, world)
+                .map_err(|e| e.to_string()),
+            Gesture::Pull { t_s, original } => single_target(
+                original,
+                world,
+                &SingleTargetOptions {
+                    t_s: Some(*t_s),
+                    ..SingleTargetOptions::default()
+                },
+            )
+            .map(|s| Curve::Bezier(s.curve))
+            .map_err(|e| e.to_string()),
+            Gesture::Control { .. } => return,
+        };
+        match result {
+            Ok(curve) => {
+                sc.curve = curve;
+                self.set(open.curve, sc);
+                self.message = None;
+            }
+            Err(e) => self.message = Some(e),
+        }
+    }
+
+    /// Replaces `curve` from a panel control identified by `key`: consecutive changes with
+    /// the same key (a slider being dragged) form one edit.
+    pub fn set_curve(&mut self, curve: usize, value: Curve, key: &str) {
+        let continuing = matches!(&self.open, Some(Open { curve: c, gesture: Gesture::Control { key: k }, .. }) if *c == curve && k == key);
+        if !continuing {
+            self.finish();
+            self.open = Some(Open {
+                curve,
+                before: self.scene.curves[curve].clone(),
+                gesture: Gesture::Control {
+                    key: key.to_owned(),
+                },
+            });
+        }
+        let mut sc = self.scene.curves[curve].clone();
+        sc.curve = value;
+        self.set(curve, sc);
+        self.message = None;
+    }
+
+    /// Commits the open edit, if it changed anything (pointer released, another control
+    /// used).
+    pub fn finish(&mut self) {
+        let Some(open) = self.open.take() else {
+            return;
+        };
+        let after = self.scene.curves[open.curve].clone();
+        if after != open.before {
+            self.history.push(Edit {
+                id: self.next_id,
+                curve: open.curve,
+                before: open.before,
+                after,
+            });
+            self.next_id += 1;
+            self.undone.clear();
+        }
+    }
+
+    /// Undoes the last edit; returns the curve it changed.
+    pub fn undo(&mut self) -> Option<usize> {
+        self.finish();
+        let edit = self.history.pop()?;
+        self.set(edit.curve, edit.before.clone());
+        let curve = edit.curve;
+        self.undone.push(edit);
+        Some(curve)
+    }
+
+    /// Redoes the last undone edit; returns the curve it changed.
+    pub fn redo(&mut self) -> Option<usize> {
+        self.finish();
+        let edit = self.undone.pop()?;
+        self.set(edit.curve, edit.after.clone());
+        let curve = edit.curve;
+        self.history.push(edit);
+        Some(curve)
+    }
+
+    /// How many edits can be undone and redone.
+    #[must_use]
+    pub fn history_len(&self) -> (usize, usize) {
+        (self.history.len(), self.undone.len())
+    }
+
+    /// Whether the scene differs from the last save (or the file it came from).
+    #[must_use]
+    pub fn is_dirty(&self) -> bool {
+        self.open.is_some() || self.history.last().map(|e| e.id) != self.saved
+    }
+
+    /// Where [`Editor::save`] writes without an explicit path.
+    #[must_use]
+    pub fn path(&self) -> Option<&Path> {
+        self.path.as_deref()
+    }
+
+    /// Writes the scene atomically to `path` (or the editor's own path) and remembers it.
+    ///
+    /// # Errors
+    /// A message naming the file when there is no path or writing fails (the previous
+    /// file is left intact).
+    pub fn save(&mut self, path: Option<&Path>) -> Result<PathBuf, String> {
+        self.finish();
+        let path = path
+            .map(Path::to_path_buf)
+            .or_else(|| self.path.clone())
+            .ok_or("no file to save to")?;
+        self.scene
+            .save(&path)
+            .map_err(|e| format!("{}: cannot save: {e}", path.display()))?;
+        self.saved = self.history.last().map(|e| e.id);
+        self.path = Some(path.clone());
+        self.message = Some(format!("saved {}", path.display()));
+        Ok(path)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::Camera2d;
+    use crate::geom::{Nubmp, ParamCurve};
+    use crate::scene::{Color, Style, ViewSpec};
+
+    fn scene() -> Scene {
+        let cubic = Bezier::new(vec![
+            DVec3::ZERO,
+            DVec3::new(1., 2., 0.),
+            DVec3::new(3., 2., 0.),
+            DVec3::new(4., 0., 0.),
+        ]);
+        let pts: Vec<DVec3> = (0..7)
+            .map(|i| DVec3::new(f64::from(i), f64::from(i % 2), 0.0))
+            .collect();
+        let nub =
+            Nubmp::try_new(pts, vec![0., 0., 0., 0., 0.3, 0.5, 0.89, 1., 1., 1., 1.], 4).unwrap();
+        Scene {
+            name: None,
+            background: Color::WHITE,
+            samples_per_segment: 64,
+            view: ViewSpec::Auto,
+            curves: vec![
+                SceneCurve {
+                    name: None,
+                    curve: Curve::Bezier(cubic),
+                    style: Style::default_for(0),
+                },
+                SceneCurve {
+                    name: None,
+                    curve: Curve::Nubmp(nub),
+                    style: Style::default_for(1),
+                },
+            ],
+            annotations: Vec::new(),
+        }
+    }
+
+    const VIEW: DVec2 = DVec2::new(800.0, 600.0);
+
+    fn camera() -> Camera {
+        Camera::Ortho2d(Camera2d {
+            center: DVec2::new(2.0, 1.0),
+            pixels_per_unit: 50.0,
+        })
+    }
+
+    #[test]
+    fn picking_prefers_control_points_then_curves() {
+        let e = Editor::new(scene(), None);
+        let cam = camera();
+        let px = cam.pixel_from_world(DVec3::new(1., 2., 0.), VIEW).unwrap();
+        assert_eq!(
+            e.pick(&cam, VIEW, px + DVec2::new(3.0, 0.0), 8.0, true),
+            Some(Hit::Point {
+                curve: 0,
+                index: 1,
+                at: DVec3::new(1., 2., 0.)
+            })
+        );
+        // A point on the cubic far from its control points.
+        let on = Bezier::new(scene().curves[0].curve.control_points().to_vec()).eval(0.5);
+        let px = cam.pixel_from_world(on, VIEW).unwrap();
+        match e.pick(&cam, VIEW, px, 8.0, true) {
+            Some(Hit::Curve { curve: 0, t, .. }) => assert!((t - 0.5).abs() < 1e-6),
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(e.pick(&cam, VIEW, DVec2::new(5.0, 5.0), 8.0, true), None);
+    }
+
+    #[test]
+    fn every_edit_is_undoable_and_redoable() {
+        let original = scene();
+        let mut e = Editor::new(original.clone(), None);
+        e.begin_point_drag(0, 1);
+        e.drag_to(DVec3::new(1.5, 3.0, 0.0));
+        e.drag_to(DVec3::new(2.0, 3.5, 0.0));
+        e.finish();
+        let after_drag = e.scene().clone();
+        assert_eq!(
+            after_drag.curves[0].curve.control_points()[1],
+            DVec3::new(2.0, 3.5, 0.0)
+        );
+        // A NUBMP point keeps its shape parameters.
+        let mut nub = match &e.scene().curves[1].curve {
+            Curve::Nubmp(n) => n.clone(),
+            _ => unreachable!(),
+        };
+        nub.set_group(4, &[0.3, 0.7]).unwrap();
+        e.set_curve(1, Curve::Nubmp(nub.clone()), "group 4");
+        nub.set_group(4, &[0.35, 0.65]).unwrap();
+        e.set_curve(1, Curve::Nubmp(nub), "group 4");
+        e.begin_point_drag(1, 3);
+        e.drag_to(DVec3::new(3.0, 2.0, 0.0));
+        e.finish();
+        match &e.scene().curves[1].curve {
+            Curve::Nubmp(n) => assert_eq!(n.groups()[4].values, vec![0.35, 0.65]),
+            _ => unreachable!(),
+        }
+        // Three edits: the drag, the slider (one edit), the NUBMP drag.
+        assert_eq!(e.history_len(), (3, 0));
+        assert_eq!(e.undo(), Some(1));
+        assert_eq!(e.undo(), Some(1));
+        assert_eq!(e.scene(), &after_drag);
+        assert_eq!(e.undo(), Some(0));
+        assert_eq!(e.scene(), &original);
+        assert_eq!(e.undo(), None);
+        assert_eq!(e.redo(), Some(0));
+        assert_eq!(e.scene(), &after_drag);
+        assert_eq!(e.history_len(), (1, 2));
+        // A new edit drops the redo branch.
+        e.begin_point_drag(0, 2);
+        e.drag_to(DVec3::new(3.0, 1.0, 0.0));
+        e.finish();
+        assert_eq!(e.history_len(), (2, 0));
+    }
+
+    #[test]
+    fn pulling_a_curve_passes_it_through_the_pointer() {
+        let mut e = Editor::new(scene(), None);
+        e.begin_pull(0, 0.4).unwrap();
+        let target = DVec3::new(1.5, 2.5, 0.0);
+        e.drag_to(DVec3::new(1.4, 2.2, 0.0));
+        e.drag_to(target);
+        e.finish();
+        assert!((e.scene().curves[0].curve.eval(0.4) - target).length() < 1e-12);
+        assert!(
+            e.begin_pull(1, 0.4).is_err(),
+            "NUBMP curves are edited by their points"
+        );
+        assert!(e.begin_pull(0, 0.0).is_err(), "the ends are fixed");
+    }
+
+    #[test]
+    fn saving_is_atomic_and_tracks_unsaved_changes() {
+        let dir = std::env::temp_dir().join(format!("splinescope-edit-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("scene.json");
+        let mut e = Editor::new(scene(), Some(path.clone()));
+        assert!(!e.is_dirty());
+        e.begin_point_drag(0, 1);
+        e.drag_to(DVec3::new(1.0, 3.0, 0.0));
+        assert!(e.is_dirty());
+        assert_eq!(e.save(None).unwrap(), path);
+        assert!(!e.is_dirty());
+        let back = Scene::load(&path).unwrap();
+        assert_eq!(back.curves[0].curve, e.scene().curves[0].curve);
+        e.undo();
+        assert!(e.is_dirty());
+        e.redo();
+        assert!(!e.is_dirty());
+        // No leftover temporary files.
+        let entries: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+        assert_eq!(entries.len(), 1);
+        std::fs::remove_dir_all(&dir).unwrap();
+        let mut unsaved = Editor::new(scene(), None);
+        assert!(unsaved.save(None).is_err());
+    }
+
+    #[test]
+    fn invalid_drags_leave_the_curve_and_say_why() {
+        let mut e = Editor::new(scene(), None);
+        e.begin_point_drag(0, 1);
+        e.drag_to(DVec3::new(f64::NAN, 0.0, 0.0));
+        assert!(e.message.is_some());
+        assert_eq!(e.scene(), &scene());
+    }
+}
