@@ -235,3 +235,51 @@ fn curve_pixels_hug_the_exact_curve() {
         "{inside} inside, {outside} outside"
     );
 }
+
+#[test]
+fn an_edit_written_in_place_renders_like_a_fresh_upload() {
+    use splinescope::geom::Lower;
+    use splinescope::gpu::offscreen::{OFFSCREEN_FORMAT, render_uploaded};
+    use splinescope::gpu::pack::{ChunkLimits, prepare_overlays, prepare_scene, repack_points};
+    use splinescope::gpu::renderer::Renderer;
+    use splinescope::gpu::tessellator::Tessellator;
+    let Some(ctx) = common::gpu("an_edit_written_in_place_renders_like_a_fresh_upload") else {
+        return;
+    };
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes/paper001_fig1.json");
+    let scene = Scene::load(&path).expect("scene");
+    let limits = ChunkLimits::for_binding_size(ctx.max_binding_bytes());
+    let tess = Tessellator::new(&ctx.device);
+    let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
+    let prepared = prepare_scene(&scene, limits).expect("pack");
+    let mut gpu = renderer.upload(&ctx.device, &tess, &prepared);
+    let viewport = DVec2::new(320.0, 240.0);
+    let camera = scene.camera(viewport);
+    let before = render_uploaded(ctx, &tess, &renderer, &gpu, &camera, 320, 240).expect("render");
+    // Edit the standard curve: a shape parameter (same structure) and a control point.
+    let mut edited = scene.clone();
+    let Curve::Nubmp(n) = &scene.curves[0].curve else {
+        panic!("a NUBMP curve")
+    };
+    let mut n = n.clone();
+    n.set_group(5, &[0.5, 0.3, 0.2]).expect("valid");
+    let moved = edited.curves[0].curve.control_points()[3] + DVec3::new(0.0, 0.8, 0.0);
+    edited.curves[0].curve = Curve::Nubmp(n)
+        .with_control_point(3, moved)
+        .expect("finite");
+    // In place: only that curve's points, and the overlays.
+    let writes = repack_points(&prepared.placements[0], &edited.curves[0].curve.lower())
+        .expect("same structure");
+    for (chunk, first, verts) in writes {
+        gpu.write_points(&ctx.queue, chunk, first, &verts);
+    }
+    let (lines, points) = prepare_overlays(&edited, limits);
+    renderer.replace_overlays(&ctx.device, &mut gpu, &lines, &points);
+    let in_place = render_uploaded(ctx, &tess, &renderer, &gpu, &camera, 320, 240).expect("render");
+    let fresh = render_scene(ctx, &edited, Some(camera), 320, 240).expect("render");
+    assert_eq!(
+        in_place, fresh,
+        "in-place update and fresh upload must draw the same pixels"
+    );
+    assert_ne!(in_place, before, "the edit must change the picture");
+}

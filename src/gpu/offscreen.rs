@@ -6,7 +6,7 @@ use glam::DVec2;
 use super::GpuError;
 use super::context::GpuContext;
 use super::pack::{ChunkLimits, prepare_scene};
-use super::renderer::{Renderer, camera_uniform};
+use super::renderer::{GpuScene, Renderer, camera_uniform};
 use super::tessellator::{Tessellator, read_buffer};
 use crate::camera::Camera;
 use crate::image::RgbaImage;
@@ -29,10 +29,7 @@ pub fn render_scene(
     width: u32,
     height: u32,
 ) -> Result<RgbaImage, GpuError> {
-    let max = ctx.device.limits().max_texture_dimension_2d;
-    if width == 0 || height == 0 || width > max || height > max {
-        return Err(GpuError::ImageSize { width, height, max });
-    }
+    check_size(ctx, width, height)?;
     let prepared = prepare_scene(
         scene,
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
@@ -42,7 +39,42 @@ pub fn render_scene(
     let gpu_scene = renderer.upload(&ctx.device, &tessellator, &prepared);
     let viewport = DVec2::new(f64::from(width), f64::from(height));
     let camera = camera.unwrap_or_else(|| scene.camera(viewport));
-    renderer.set_camera(&ctx.queue, &camera_uniform(&camera, viewport, 1.0));
+    render_uploaded(
+        ctx,
+        &tessellator,
+        &renderer,
+        &gpu_scene,
+        &camera,
+        width,
+        height,
+    )
+}
+
+fn check_size(ctx: &GpuContext, width: u32, height: u32) -> Result<(), GpuError> {
+    let max = ctx.device.limits().max_texture_dimension_2d;
+    if width == 0 || height == 0 || width > max || height > max {
+        return Err(GpuError::ImageSize { width, height, max });
+    }
+    Ok(())
+}
+
+/// Draws an already uploaded scene (tessellating it first) into a `width × height` image;
+/// `renderer` must draw to [`OFFSCREEN_FORMAT`].
+///
+/// # Errors
+/// [`GpuError::ImageSize`], or [`GpuError::Readback`] when reading fails.
+pub fn render_uploaded(
+    ctx: &GpuContext,
+    tessellator: &Tessellator,
+    renderer: &Renderer,
+    gpu_scene: &GpuScene,
+    camera: &Camera,
+    width: u32,
+    height: u32,
+) -> Result<RgbaImage, GpuError> {
+    check_size(ctx, width, height)?;
+    let viewport = DVec2::new(f64::from(width), f64::from(height));
+    renderer.set_camera(&ctx.queue, &camera_uniform(camera, viewport, 1.0));
 
     let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("offscreen"),
@@ -64,7 +96,7 @@ pub fn render_scene(
         .create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("offscreen"),
         });
-    renderer.encode_frame(&mut encoder, &tessellator, &gpu_scene, &view);
+    renderer.encode_frame(&mut encoder, tessellator, gpu_scene, &view);
 
     // Rows of a texture copy are padded to 256 bytes.
     let row = width * 4;
