@@ -262,6 +262,16 @@ const EXPECTED: &[(&str, &str, &str)] = &[
         "curves[0].shape[0].absorber",
         "missing",
     ),
+    (
+        "annotation-two-shapes",
+        "annotations[0].points",
+        "either a \"polyline\" or \"points\", not both",
+    ),
+    (
+        "annotation-no-shape",
+        "annotations[0]",
+        "an annotation needs \"polyline\" or \"points\"",
+    ),
 ];
 
 fn corpus() -> PathBuf {
