@@ -57,6 +57,16 @@ fn control_point(seg: Segment, i: u32) -> vec3<f32> {
     return points[seg.first_point + i].position;
 }
 
+// De Casteljau of a cubic, written out (its three levels).
+fn cubic(p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32>, p3: vec3<f32>, u: f32, v: f32) -> vec3<f32> {
+    let q0 = v * p0 + u * p1;
+    let q1 = v * p1 + u * p2;
+    let q2 = v * p2 + u * p3;
+    let r0 = v * q0 + u * q1;
+    let r1 = v * q1 + u * q2;
+    return v * r0 + u * r1;
+}
+
 @compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
 fn tessellate_cubic(
     @builtin(workgroup_id) group: vec3<u32>,
@@ -69,16 +79,15 @@ fn tessellate_cubic(
     let seg = w.seg;
     let u = w.u;
     let v = 1.0 - u;
-    let p0 = control_point(seg, 0u);
-    let p1 = control_point(seg, 1u);
-    let p2 = control_point(seg, 2u);
-    let p3 = control_point(seg, 3u);
-    let q0 = v * p0 + u * p1;
-    let q1 = v * p1 + u * p2;
-    let q2 = v * p2 + u * p3;
-    let r0 = v * q0 + u * q1;
-    let r1 = v * q1 + u * q2;
-    samples[seg.first_sample + w.j] = Vertex(v * r0 + u * r1, seg.curve);
+    let p = cubic(
+        control_point(seg, 0u),
+        control_point(seg, 1u),
+        control_point(seg, 2u),
+        control_point(seg, 3u),
+        u,
+        v,
+    );
+    samples[seg.first_sample + w.j] = Vertex(p, seg.curve);
 }
 
 @compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
@@ -98,16 +107,9 @@ fn tessellate_quartic(
     let p2 = control_point(seg, 2u);
     let p3 = control_point(seg, 3u);
     let p4 = control_point(seg, 4u);
-    let q0 = v * p0 + u * p1;
-    let q1 = v * p1 + u * p2;
-    let q2 = v * p2 + u * p3;
-    let q3 = v * p3 + u * p4;
-    let r0 = v * q0 + u * q1;
-    let r1 = v * q1 + u * q2;
-    let r2 = v * q2 + u * q3;
-    let s0 = v * r0 + u * r1;
-    let s1 = v * r1 + u * r2;
-    samples[seg.first_sample + w.j] = Vertex(v * s0 + u * s1, seg.curve);
+    // One level, then the cubic on the four points it leaves.
+    let p = cubic(v * p0 + u * p1, v * p1 + u * p2, v * p2 + u * p3, v * p3 + u * p4, u, v);
+    samples[seg.first_sample + w.j] = Vertex(p, seg.curve);
 }
 
 @compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
