@@ -2,7 +2,7 @@
 //! analytic truth that need no reference at all.
 //!
 //! Golden tolerance: a pixel counts as different when any channel differs by more than
-//! 24/255; at most 0.5 % of the pixels may differ. The references were made on lavapipe
+//! 24/255; at most 0.1 % of the pixels may differ. The references were made on lavapipe
 //! (Mesa 22.3, Vulkan); rasterisers differ slightly in coverage at edges, which the
 //! tolerance absorbs, while a missing, moved or recoloured curve changes far more pixels.
 //! On failure the actual image and a diff (differing pixels in red) are written to
@@ -20,7 +20,7 @@ use splinescope::image::{RgbaImage, compare};
 use splinescope::scene::{Color, Scene, SceneCurve, Style, ViewSpec, gallery};
 
 const CHANNEL_TOLERANCE: u8 = 24;
-const MAX_DIFFERING_FRACTION: f64 = 0.005;
+const MAX_DIFFERING_FRACTION: f64 = 0.001;
 
 fn golden(name: &str, image: &RgbaImage) {
     let reference = PathBuf::from(env!("CARGO_MANIFEST_DIR"))

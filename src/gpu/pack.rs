@@ -604,6 +604,18 @@ pub fn prepare_overlays(scene: &Scene, limits: ChunkLimits) -> (Vec<LineBatch>, 
             );
         }
     }
+    if !scene.is_planar() {
+        // An axis triad at the scene's lowest corner: x red, y green, z blue.
+        let bounds = scene.bounds();
+        let length = 0.2 * bounds.diagonal();
+        for (axis, color) in [
+            (DVec3::X, Color([0.85, 0.2, 0.2, 1.0])),
+            (DVec3::Y, Color([0.2, 0.6, 0.2, 1.0])),
+            (DVec3::Z, Color([0.2, 0.35, 0.85, 1.0])),
+        ] {
+            lines.push(&[bounds.min, bounds.min + axis * length], GpuLineStyle::solid(color, 2.0));
+        }
+    }
     for a in &scene.annotations {
         let style = GpuLineStyle::solid(a.color, a.width);
         match &a.shape {
