@@ -16,6 +16,41 @@ fn points(ps: &[DVec3]) -> Value {
     Value::Array(ps.iter().copied().map(point).collect())
 }
 
+/// What a NUBMP curve (or a B-spline, as the standard NUBMP curve) allows at `τ`: the
+/// point `P(τ)` and, for each group whose dual B-spline is non-zero there, its weight
+/// `N*_j(τ)` and the vertices of the region (segment, triangle, …) that `P(τ)` reaches by
+/// changing that group alone. `None` for other families or `τ` outside the domain.
+#[must_use]
+pub fn at_tau(curve: &Curve, tau: f64) -> Option<Value> {
+    let standard;
+    let n = match curve {
+        Curve::Nubmp(n) => n,
+        Curve::BSpline(b) => {
+            standard = Nubmp::standard(b.points().to_vec(), b.knots().clone());
+            &standard
+        }
+        _ => return None,
+    };
+    let (a, b) = n.domain();
+    if !(tau >= a && tau <= b) {
+        return None;
+    }
+    let groups: Vec<Value> = n
+        .groups_at(tau)
+        .into_iter()
+        .map(|j| {
+            let region = n.reachable_region(tau, j).unwrap_or_default();
+            json!({
+                "group": j,
+                "members": n.groups()[j].members,
+                "weight": n.dual_basis_value(j, tau),
+                "region": points(&region),
+            })
+        })
+        .collect();
+    Some(json!({"tau": tau, "point": point(n.eval(tau)), "groups": groups}))
+}
+
 /// The report of one curve.
 #[must_use]
 pub fn curve_report(index: usize, name: Option<&str>, curve: &Curve) -> Value {

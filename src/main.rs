@@ -118,6 +118,10 @@ enum Command {
         /// Only this curve (index in the scene).
         #[arg(long)]
         curve: Option<usize>,
+        /// For B-splines and NUBMP curves, also report P(τ), the groups that act there and
+        /// the region each lets P(τ) reach.
+        #[arg(long, allow_hyphen_values = true)]
+        tau: Option<f64>,
     },
     /// Apply a solve request (docs/solve-format.md) to a scene: print a JSON report and,
     /// with -o, write the modified scene.
@@ -245,7 +249,7 @@ fn run(cli: Cli) -> Result<()> {
             output,
             report,
         }) => solve(&scene, &request, output.as_deref(), report.as_deref()),
-        Some(Command::Inspect { scene, curve }) => inspect(&scene, curve),
+        Some(Command::Inspect { scene, curve, tau }) => inspect(&scene, curve, tau),
         Some(Command::Bench(args)) => bench::run(&args),
     }
 }
@@ -340,15 +344,27 @@ fn solve(path: &Path, request: &Path, output: Option<&Path>, report: Option<&Pat
     Ok(())
 }
 
-fn inspect(path: &Path, only: Option<usize>) -> Result<()> {
+fn inspect(path: &Path, only: Option<usize>, tau: Option<f64>) -> Result<()> {
     let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
-    let curves: Vec<serde_json::Value> = select_curves(&scene, only)?
-        .into_iter()
-        .map(|i| {
-            let c = &scene.curves[i];
-            splinescope::inspect::curve_report(i, c.name.as_deref(), &c.curve)
-        })
-        .collect();
+    let mut curves = Vec::new();
+    for i in select_curves(&scene, only)? {
+        let c = &scene.curves[i];
+        let mut report = splinescope::inspect::curve_report(i, c.name.as_deref(), &c.curve);
+        if let Some(t) = tau {
+            if !t.is_finite() {
+                bail!("--tau {t}: not a finite number");
+            }
+            let (a, b) = c.curve.domain();
+            let family = c.curve.family();
+            if family == "nubmp" || family == "bspline" {
+                let Some(at) = splinescope::inspect::at_tau(&c.curve, t) else {
+                    bail!("--tau {t} is outside the domain [{a}, {b}] of curves[{i}]");
+                };
+                report["at_tau"] = at;
+            }
+        }
+        curves.push(report);
+    }
     say!(
         "{}",
         splinescope::scene::pretty_json(&serde_json::json!({ "curves": curves }))

@@ -451,3 +451,51 @@ fn a_degree_over_the_maximum_after_lowering_is_caught() {
     let v = stdout_json(&run(&["eval", &path.to_string_lossy(), "--samples", "2"]));
     assert_eq!(samples(&v, 0)[1], [32.0, 2.0, 0.0]);
 }
+
+#[test]
+fn inspect_at_tau_reports_the_groups_and_their_regions() {
+    let path = scene_path("paper001_fig1.json");
+    let v = stdout_json(&run(&["inspect", &path, "--curve", "3", "--tau", "0.4"]));
+    let c = &v["curves"][0];
+    let at = &c["at_tau"];
+    let p: Vec<f64> = at["point"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    let groups = at["groups"].as_array().unwrap();
+    // Order 4: the dual B-splines of order 5 acting at an interior τ: at most 5.
+    assert!(!groups.is_empty() && groups.len() <= 5);
+    let weight_sum: f64 = groups.iter().map(|g| g["weight"].as_f64().unwrap()).sum();
+    assert!(
+        (weight_sum - 1.0).abs() < 1e-12,
+        "the dual B-splines sum to 1 at τ"
+    );
+    for g in groups {
+        let j = g["group"].as_u64().unwrap() as usize;
+        let values: Vec<f64> = c["groups"][j]["values"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        let region = g["region"].as_array().unwrap();
+        assert_eq!(region.len(), values.len());
+        // Σ a_i (P(τ) + w (P_i − P*_j)) = P(τ): the current parameters locate P(τ).
+        for k in 0..3 {
+            let s: f64 = region
+                .iter()
+                .zip(&values)
+                .map(|(r, a)| a * r[k].as_f64().unwrap())
+                .sum();
+            assert!((s - p[k]).abs() < 1e-12, "group {j}");
+        }
+    }
+    let (code, err) = stderr_of(&["inspect", &path, "--tau", "1.4"]);
+    assert_eq!(code, Some(1));
+    assert!(
+        err.contains("--tau 1.4 is outside the domain [0, 1] of curves[0]"),
+        "{err}"
+    );
+}

@@ -613,7 +613,10 @@ pub fn prepare_overlays(scene: &Scene, limits: ChunkLimits) -> (Vec<LineBatch>, 
             (DVec3::Y, Color([0.2, 0.6, 0.2, 1.0])),
             (DVec3::Z, Color([0.2, 0.35, 0.85, 1.0])),
         ] {
-            lines.push(&[bounds.min, bounds.min + axis * length], GpuLineStyle::solid(color, 2.0));
+            lines.push(
+                &[bounds.min, bounds.min + axis * length],
+                GpuLineStyle::solid(color, 2.0),
+            );
         }
     }
     for a in &scene.annotations {
