@@ -116,7 +116,7 @@ fn single(curve: Bezier, width: f32, samples: u32) -> Scene {
     Scene {
         name: None,
         background: Color::WHITE,
-        samples_per_segment: samples,
+        samples_per_segment: Some(samples),
         view: ViewSpec::TwoD {
             center: glam::DVec2::new(0.0, 0.0),
             height: 10.0,
@@ -256,20 +256,41 @@ fn an_edit_written_in_place_renders_like_a_fresh_upload() {
     let viewport = DVec2::new(320.0, 240.0);
     let camera = scene.camera(viewport);
     let before = render_uploaded(ctx, &tess, &renderer, &gpu, &camera, 320, 240).expect("render");
-    // Edit the standard curve: a shape parameter (same structure) and a control point.
-    let mut edited = scene.clone();
-    let Curve::Nubmp(n) = &scene.curves[0].curve else {
-        panic!("a NUBMP curve")
+    // Edit the standard curve: a shape parameter and a small move of a control point keep
+    // every segment's automatic sample count, so the edit can be written in place.
+    let edit = |dy: f64| {
+        let mut edited = scene.clone();
+        let Curve::Nubmp(n) = &scene.curves[0].curve else {
+            panic!("a NUBMP curve")
+        };
+        let mut n = n.clone();
+        let g = &n.groups()[5];
+        let values: Vec<f64> = g
+            .values
+            .iter()
+            .zip([0.01, -0.005, -0.005])
+            .map(|(v, d)| v + d)
+            .collect();
+        n.set_group(5, &values).expect("valid");
+        let moved = edited.curves[0].curve.control_points()[3] + DVec3::new(0.0, dy, 0.0);
+        edited.curves[0].curve = Curve::Nubmp(n)
+            .with_control_point(3, moved)
+            .expect("finite");
+        edited
     };
-    let mut n = n.clone();
-    n.set_group(5, &[0.5, 0.3, 0.2]).expect("valid");
-    let moved = edited.curves[0].curve.control_points()[3] + DVec3::new(0.0, 0.8, 0.0);
-    edited.curves[0].curve = Curve::Nubmp(n)
-        .with_control_point(3, moved)
-        .expect("finite");
-    // In place: only that curve's points, and the overlays.
-    let writes = repack_points(&prepared.placements[0], &edited.curves[0].curve.lower())
-        .expect("same structure");
+    let repack = |edited: &Scene| {
+        repack_points(
+            &prepared.placements[0],
+            &prepared.sample_counts[0],
+            &edited.curves[0].curve.lower(),
+            edited.samples_for(0),
+        )
+    };
+    // A large move changes the curvature enough to need other sample counts: refused,
+    // the viewer packs the scene again.
+    assert!(repack(&edit(2.0)).is_none());
+    let edited = edit(0.02);
+    let writes = repack(&edited).expect("same structure");
     for (chunk, first, verts) in writes {
         gpu.write_points(&ctx.queue, chunk, first, &verts);
     }

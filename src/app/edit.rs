@@ -374,7 +374,7 @@ mod tests {
         Scene {
             name: None,
             background: Color::WHITE,
-            samples_per_segment: 64,
+            samples_per_segment: Some(64),
             view: ViewSpec::Auto,
             curves: vec![
                 SceneCurve {

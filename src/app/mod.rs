@@ -478,12 +478,13 @@ impl Running {
         let in_place = self.toggles == self.uploaded_toggles
             && changed.iter().all(|&c| {
                 let segments = shown.curves[c].curve.lower();
-                match self
+                let writes = self
                     .prepared
                     .placements
                     .get(c)
-                    .and_then(|p| repack_points(p, &segments))
-                {
+                    .zip(self.prepared.sample_counts.get(c))
+                    .and_then(|(p, n)| repack_points(p, n, &segments, shown.samples_for(c)));
+                match writes {
                     Some(writes) => {
                         for (chunk, first, verts) in writes {
                             self.gpu_scene

@@ -13,7 +13,7 @@ use super::layout::{
     TESSELLATE_WORKGROUP_SIZE as WORKGROUP, kernel_class,
 };
 use crate::geom::{BezierSegment, Lower, OverlayKind};
-use crate::scene::{AnnotationShape, Color, Scene};
+use crate::scene::{AnnotationShape, Color, Scene, auto_samples};
 
 /// Why a scene cannot be packed for the GPU.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -470,16 +470,29 @@ pub struct PreparedScene {
     pub background: Color,
     /// Per curve, where its lowered control points are (for in-place updates).
     pub placements: Vec<Vec<Placement>>,
+    /// Per curve, the sample count each of its segments was packed with.
+    pub sample_counts: Vec<Vec<u32>>,
 }
 
-/// The new control points of a curve whose lowering kept its structure (same segment
-/// count and degrees), as `(chunk, first point, points)` writes; `None` when the structure
-/// changed and the scene must be packed again.
+/// The new control points of a curve whose lowering kept its structure (same segments,
+/// degrees and sample counts: `samples` is the curve's fixed count, `None` for automatic),
+/// as `(chunk, first point, points)` writes; `None` when the structure changed and the
+/// scene must be packed again.
 #[must_use]
 pub fn repack_points(
     placements: &[Placement],
+    packed_counts: &[u32],
     segments: &[BezierSegment],
+    samples: Option<u32>,
 ) -> Option<Vec<(usize, u32, Vec<GpuVertex>)>> {
+    if segments.len() != packed_counts.len() {
+        return None;
+    }
+    for (seg, &count) in segments.iter().zip(packed_counts) {
+        if samples.unwrap_or_else(|| auto_samples(seg.bezier.points())) != count {
+            return None;
+        }
+    }
     placements
         .iter()
         .map(|p| {
@@ -553,27 +566,34 @@ pub fn overlay_point_style(kind: OverlayKind, curve: Color) -> Option<GpuLineSty
 }
 
 /// Lowers and packs every curve of `scene` for drawing: each Bézier segment gets the
-/// curve's sample count, uniformly in its own parameter.
+/// curve's sample count (or the automatic one, [`auto_samples`]), uniformly in its own
+/// parameter.
 ///
 /// # Errors
 /// [`PackError`] when a segment's degree is over the GPU maximum.
 pub fn prepare_scene(scene: &Scene, limits: ChunkLimits) -> Result<PreparedScene, PackError> {
     let mut chunks = ChunkBuilder::new(limits);
+    let mut sample_counts = Vec::with_capacity(scene.curves.len());
     for (index, sc) in scene.curves.iter().enumerate() {
         let segments = sc.curve.lower();
         check_degrees(index, &segments)?;
         let style = GpuLineStyle::solid(sc.style.color, sc.style.width);
         let samples = scene.samples_for(index);
+        let mut counts = Vec::with_capacity(segments.len());
         for seg in &segments {
             chunks.begin_segment(index, style, seg.bezier.points())?;
-            chunks.add_samples(samples, 0.0, 1.0);
+            let count = samples.unwrap_or_else(|| auto_samples(seg.bezier.points()));
+            chunks.add_samples(count, 0.0, 1.0);
+            counts.push(count);
         }
+        sample_counts.push(counts);
     }
     let (lines, points) = prepare_overlays(scene, limits);
     let (chunks, placements) = chunks.finish_with_placements();
     Ok(PreparedScene {
         chunks,
         placements,
+        sample_counts,
         lines,
         points,
         background: scene.background,
@@ -744,7 +764,7 @@ mod tests {
         let scene = |n: &Nubmp| Scene {
             name: None,
             background: Color::WHITE,
-            samples_per_segment: 40,
+            samples_per_segment: Some(40),
             view: ViewSpec::Auto,
             curves: vec![
                 SceneCurve {
@@ -775,7 +795,13 @@ mod tests {
         let after = prepare_scene(&scene(&edited), limits).unwrap();
         let mut chunks: Vec<Vec<GpuVertex>> =
             before.chunks.iter().map(|c| c.points.clone()).collect();
-        let writes = repack_points(&before.placements[1], &edited.lower()).expect("same structure");
+        let writes = repack_points(
+            &before.placements[1],
+            &before.sample_counts[1],
+            &edited.lower(),
+            Some(40),
+        )
+        .expect("same structure");
         for (chunk, first, verts) in writes {
             let f = first as usize;
             chunks[chunk][f..f + verts.len()].copy_from_slice(&verts);
@@ -792,7 +818,25 @@ mod tests {
         );
         // A different structure is refused.
         let other = Bezier::new(vec![DVec3::ZERO; 5]);
-        assert!(repack_points(&before.placements[0], &other.lower()).is_none());
+        assert!(
+            repack_points(
+                &before.placements[0],
+                &before.sample_counts[0],
+                &other.lower(),
+                Some(40)
+            )
+            .is_none()
+        );
+        // A different sample count is a different structure too.
+        assert!(
+            repack_points(
+                &before.placements[1],
+                &before.sample_counts[1],
+                &edited.lower(),
+                Some(41)
+            )
+            .is_none()
+        );
     }
 
     #[test]

@@ -109,7 +109,7 @@ pub fn random_bezier_scene(opts: StressOptions) -> Scene {
             opts.curves, opts.degree
         )),
         background: Color::WHITE,
-        samples_per_segment: opts.samples,
+        samples_per_segment: Some(opts.samples),
         view: ViewSpec::Auto,
         curves,
         annotations: Vec::new(),

@@ -50,10 +50,11 @@ fn decode_scene(root: &Node<'_>) -> Result<Scene, SceneError> {
         .map(|n| n.string().map(str::to_owned))
         .transpose()?;
     let background = obj.get("background").map(|n| n.color()).transpose()?;
-    let samples = obj
-        .get("samples")
-        .map(|n| n.u32_in(2, MAX_SAMPLES_PER_SEGMENT))
-        .transpose()?;
+    let samples = match obj.get("samples") {
+        None => None,
+        Some(n) if n.value.as_str() == Some("auto") => None,
+        Some(n) => Some(n.u32_in(2, MAX_SAMPLES_PER_SEGMENT)?),
+    };
     let view = obj.get("view").map(|n| decode_view(&n)).transpose()?;
     let curves = obj
         .req("curves")?
@@ -73,7 +74,7 @@ fn decode_scene(root: &Node<'_>) -> Result<Scene, SceneError> {
     Ok(Scene {
         name,
         background: background.unwrap_or(Color::WHITE),
-        samples_per_segment: samples.unwrap_or(super::DEFAULT_SAMPLES_PER_SEGMENT),
+        samples_per_segment: samples,
         view: view.unwrap_or(ViewSpec::Auto),
         curves,
         annotations,
@@ -524,7 +525,12 @@ pub fn to_json_string(scene: &Scene) -> String {
         obj.insert("name".into(), name.clone().into());
     }
     obj.insert("background".into(), scene.background.to_hex().into());
-    obj.insert("samples".into(), scene.samples_per_segment.into());
+    obj.insert(
+        "samples".into(),
+        scene
+            .samples_per_segment
+            .map_or_else(|| Value::from("auto"), Value::from),
+    );
     let view = match scene.view {
         ViewSpec::Auto => Value::from("auto"),
         ViewSpec::TwoD { center, height } => serde_json::json!({

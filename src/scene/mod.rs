@@ -20,8 +20,12 @@ pub use json::{from_json_str, pretty_json, to_json_string};
 
 /// The scene format version this build reads and writes.
 pub const FORMAT_VERSION: u32 = 1;
-/// Samples per Bézier segment when neither the scene nor the curve says otherwise.
+/// Samples per Bézier segment of the stress scenes and benchmarks.
 pub const DEFAULT_SAMPLES_PER_SEGMENT: u32 = 64;
+/// With automatic sampling, the largest distance between a segment and its polyline,
+/// relative to the segment's control-box diagonal (2e-4: a fifth of a pixel when the
+/// segment spans a thousand).
+pub const AUTO_SAMPLES_TOLERANCE: f64 = 2e-4;
 /// The most samples one segment may ask for.
 pub const MAX_SAMPLES_PER_SEGMENT: u32 = 4096;
 
@@ -53,6 +57,40 @@ impl Color {
             format!("#{:02x}{:02x}{:02x}{:02x}", b[0], b[1], b[2], b[3])
         }
     }
+}
+
+/// The automatic sample count of a Bézier segment: enough uniform samples that the
+/// polyline stays within [`AUTO_SAMPLES_TOLERANCE`] of the segment, relative to its
+/// control-box diagonal. From `|P(u) − polyline| ≤ h²/8 · max|P″|` with
+/// `|P″| ≤ n(n−1) · max_i |P_{i+2} − 2P_{i+1} + P_i|` and `h = 1/(samples − 1)`, rounded up
+/// to the ladder 2, 3, 4, 6, 8, 12, 16, 24, … (so that small edits keep the count and can be
+/// written in place); between 2 (a straight segment) and [`MAX_SAMPLES_PER_SEGMENT`].
+#[must_use]
+pub fn auto_samples(points: &[glam::DVec3]) -> u32 {
+    let n = points.len().saturating_sub(1);
+    let size = Aabb::from_points(points).diagonal();
+    if n < 2 || size == 0.0 {
+        return 2;
+    }
+    let second = points
+        .windows(3)
+        .map(|w| (w[2] - 2.0 * w[1] + w[0]).length())
+        .fold(0.0, f64::max);
+    let bound = (n * (n - 1)) as f64 * second;
+    let intervals = (bound / (8.0 * AUTO_SAMPLES_TOLERANCE * size))
+        .sqrt()
+        .ceil();
+    let needed = (intervals + 1.0).clamp(2.0, f64::from(MAX_SAMPLES_PER_SEGMENT)) as u32;
+    let mut rung = 2;
+    while rung < needed {
+        // 2, 3, 4, 6, 8, 12, …: alternately ×1.5 and ×4/3.
+        rung = if rung.is_power_of_two() {
+            rung + rung / 2
+        } else {
+            rung / 3 * 4
+        };
+    }
+    rung.min(MAX_SAMPLES_PER_SEGMENT)
 }
 
 /// The palette curves take their colour from, by index, when the scene gives none.
@@ -143,8 +181,9 @@ pub struct Scene {
     pub name: Option<String>,
     /// The background colour.
     pub background: Color,
-    /// Samples per Bézier segment for curves that do not say.
-    pub samples_per_segment: u32,
+    /// Samples per Bézier segment for curves that do not say; `None`: automatic (see
+    /// [`auto_samples`]).
+    pub samples_per_segment: Option<u32>,
     /// The opening view.
     pub view: ViewSpec,
     /// The curves, drawn in order.
@@ -274,13 +313,14 @@ impl Scene {
         })
     }
 
-    /// Samples per segment for curve `index` (its own, else the scene's).
+    /// Samples per segment for curve `index` (its own, else the scene's); `None`:
+    /// automatic, per segment.
     #[must_use]
-    pub fn samples_for(&self, index: usize) -> u32 {
+    pub fn samples_for(&self, index: usize) -> Option<u32> {
         self.curves[index]
             .style
             .samples
-            .unwrap_or(self.samples_per_segment)
+            .or(self.samples_per_segment)
     }
 
     /// The box of every control point (holds every curve) and every annotation.
@@ -326,5 +366,82 @@ impl Scene {
                 fov_y: fov_deg.to_radians(),
             }),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Bezier;
+    use crate::scene::generate::Rng;
+
+    /// The largest distance from dense points of the curve to the polyline of `samples`
+    /// uniform samples.
+    fn polyline_error(b: &Bezier, samples: u32) -> f64 {
+        let poly: Vec<DVec3> = (0..samples)
+            .map(|j| b.eval(f64::from(j) / f64::from(samples - 1)))
+            .collect();
+        let mut worst = 0.0_f64;
+        for k in 0..=4000 {
+            let p = b.eval(f64::from(k) / 4000.0);
+            let d = poly
+                .windows(2)
+                .map(|w| {
+                    let ab = w[1] - w[0];
+                    let t = if ab.length_squared() > 0.0 {
+                        ((p - w[0]).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    (w[0] + t * ab - p).length()
+                })
+                .fold(f64::INFINITY, f64::min);
+            worst = worst.max(d);
+        }
+        worst
+    }
+
+    #[test]
+    fn automatic_samples_keep_the_polyline_within_tolerance() {
+        let mut rng = Rng::new(12);
+        for n in [2usize, 3, 5, 8, 12, 20, 31] {
+            for _ in 0..5 {
+                let b = Bezier::new(
+                    (0..=n)
+                        .map(|_| {
+                            DVec3::new(rng.range(-1., 1.), rng.range(-1., 1.), rng.range(-1., 1.))
+                        })
+                        .collect(),
+                );
+                let samples = auto_samples(b.points());
+                let size = b.control_box().diagonal();
+                let err = polyline_error(&b, samples);
+                if samples < MAX_SAMPLES_PER_SEGMENT {
+                    assert!(
+                        err <= AUTO_SAMPLES_TOLERANCE * size,
+                        "n={n}: {samples} samples, error {err:e}"
+                    );
+                }
+            }
+        }
+        // The ladder.
+        let mut seen = std::collections::BTreeSet::new();
+        for n in 2..40 {
+            let b = Bezier::new(
+                (0..=n)
+                    .map(|i| DVec3::new(i as f64, ((i * i) % 7) as f64, 0.0))
+                    .collect(),
+            );
+            seen.insert(auto_samples(b.points()));
+        }
+        for s in &seen {
+            let on_ladder = s.is_power_of_two()
+                || (s % 3 == 0 && (s / 3).is_power_of_two())
+                || *s == MAX_SAMPLES_PER_SEGMENT;
+            assert!(on_ladder, "{s}");
+        }
+        let line = Bezier::new(vec![DVec3::ZERO, DVec3::X, DVec3::X * 2.0]);
+        assert_eq!(auto_samples(line.points()), 2);
+        assert_eq!(auto_samples(&[DVec3::ZERO, DVec3::ONE]), 2);
     }
 }
