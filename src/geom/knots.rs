@@ -50,15 +50,7 @@ impl KnotVector {
         order: usize,
         n_points: usize,
     ) -> Result<KnotVector, GeomError> {
-        if order < 2 {
-            return Err(GeomError::OrderTooLow { order });
-        }
-        if n_points < order {
-            return Err(GeomError::TooFewPoints {
-                min: order,
-                found: n_points,
-            });
-        }
+        check_order(order, n_points)?;
         if knots.len() != n_points + order {
             return Err(GeomError::KnotCount {
                 expected: n_points + order,
