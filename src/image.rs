@@ -98,12 +98,7 @@ impl RgbaImage {
             writer.write_image_data(&self.data).map_err(png_err)?;
             writer.finish().map_err(png_err)?;
         }
-        let tmp = temp_path_beside(path);
-        fs::write(&tmp, &bytes).map_err(io)?;
-        fs::rename(&tmp, path).map_err(|e| {
-            let _ = fs::remove_file(&tmp);
-            io(e)
-        })
+        crate::files::write_atomic(path, &bytes).map_err(io)
     }
 
     /// Reads an 8-bit RGB or RGBA PNG.
@@ -143,15 +138,6 @@ impl RgbaImage {
             data,
         })
     }
-}
-
-/// A temporary file name in the same directory as `path` (so `rename` is atomic).
-fn temp_path_beside(path: &Path) -> PathBuf {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "image".to_owned());
-    path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
 }
 
 /// The outcome of comparing two images pixel by pixel.

@@ -23,6 +23,7 @@
 
 pub mod app;
 pub mod camera;
+pub mod files;
 pub mod geom;
 pub mod gpu;
 pub mod image;

@@ -335,9 +335,7 @@ fn solve(path: &Path, request: &Path, output: Option<&Path>, report: Option<&Pat
             .with_context(|| format!("{}: cannot write the scene", out.display()))?;
     }
     if let Some(r) = report {
-        let tmp = r.with_extension("json.tmp");
-        std::fs::write(&tmp, format!("{text}\n"))
-            .and_then(|()| std::fs::rename(&tmp, r))
+        splinescope::files::write_atomic(r, format!("{text}\n").as_bytes())
             .with_context(|| format!("{}: cannot write the report", r.display()))?;
     }
     say!("{text}");

@@ -301,16 +301,7 @@ impl Scene {
     /// # Errors
     /// The I/O error.
     pub fn save(&self, path: &Path) -> std::io::Result<()> {
-        let tmp = path.with_file_name(format!(
-            ".{}.{}.tmp",
-            path.file_name()
-                .map_or("scene".into(), |n| n.to_string_lossy()),
-            std::process::id()
-        ));
-        std::fs::write(&tmp, to_json_string(self))?;
-        std::fs::rename(&tmp, path).inspect_err(|_| {
-            let _ = std::fs::remove_file(&tmp);
-        })
+        crate::files::write_atomic(path, to_json_string(self).as_bytes())
     }
 
     /// Samples per segment for curve `index` (its own, else the scene's); `None`:
