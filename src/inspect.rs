@@ -8,11 +8,13 @@ use serde_json::{Map, Value, json};
 use crate::geom::exact::format_rational;
 use crate::geom::{Curve, KnotVector, Lower, Nubmp, ParamCurve};
 
-fn point(p: DVec3) -> Value {
+/// A point as a report writes it: always `[x, y, z]`.
+pub(crate) fn point(p: DVec3) -> Value {
     json!([p.x, p.y, p.z])
 }
 
-fn points(ps: &[DVec3]) -> Value {
+/// Points as a report writes them.
+pub(crate) fn points(ps: &[DVec3]) -> Value {
     Value::Array(ps.iter().copied().map(point).collect())
 }
 

@@ -7,6 +7,7 @@ use serde_json::{Map, Value, json};
 use thiserror::Error;
 
 use crate::geom::{Bezier, Curve, ParamCurve};
+use crate::inspect::{point, points};
 use crate::jsonread::{Node, parse_document};
 use crate::scene::{Annotation, AnnotationShape, Color, Scene, SceneError};
 use crate::solve::shape::{
@@ -59,14 +60,6 @@ fn at(node: &Node<'_>, field: &str, e: &SolveError) -> RequestError {
     }
 }
 
-fn p3(p: DVec3) -> Value {
-    json!([p.x, p.y, p.z])
-}
-
-fn pts(ps: &[DVec3]) -> Value {
-    Value::Array(ps.iter().copied().map(p3).collect())
-}
-
 /// The outcome of applying requests: the modified scene and one report per request.
 #[derive(Debug, Clone)]
 pub struct Outcome {
@@ -91,42 +84,28 @@ pub fn apply_text(scene: &Scene, text: &str) -> Result<Outcome, RequestError> {
     let mut scene = scene.clone();
     let mut reports = Vec::new();
     for node in &nodes {
-        let report = apply_one(&mut scene, node)?;
-        mark_targets(&mut scene, &report);
+        let mut targets = Vec::new();
+        let report = apply_one(&mut scene, node, &mut targets)?;
+        if !targets.is_empty() {
+            scene.annotations.push(Annotation {
+                shape: AnnotationShape::Points(targets),
+                color: TARGET_COLOR,
+                width: 9.0,
+                label: Some(format!(
+                    "{} target(s) of curves[{}]",
+                    report["method"].as_str().unwrap_or_default(),
+                    report["curve"]
+                )),
+            });
+        }
         reports.push(report);
     }
     Ok(Outcome { scene, reports })
 }
 
-/// The colour of target markers.
+/// The colour of target markers: each request's targets are marked in the scene (red
+/// discs), so the result can be checked by eye.
 pub const TARGET_COLOR: Color = Color([0.85, 0.1, 0.1, 1.0]);
-
-/// Marks a request's targets in the scene (red discs), so the result can be checked by eye.
-fn mark_targets(scene: &mut Scene, report: &Value) {
-    let point = |v: &Value| -> Option<DVec3> {
-        let a = v.as_array()?;
-        Some(DVec3::new(
-            a.first()?.as_f64()?,
-            a.get(1)?.as_f64()?,
-            a.get(2)?.as_f64()?,
-        ))
-    };
-    let method = report["method"].as_str().unwrap_or_default();
-    let targets: Vec<DVec3> = match method {
-        "multi_target" => report["targets"]
-            .as_array()
-            .map_or(Vec::new(), |a| a.iter().filter_map(point).collect()),
-        _ => report.get("target").and_then(point).into_iter().collect(),
-    };
-    if !targets.is_empty() {
-        scene.annotations.push(Annotation {
-            shape: AnnotationShape::Points(targets),
-            color: TARGET_COLOR,
-            width: 9.0,
-            label: Some(format!("{method} target(s) of curves[{}]", report["curve"])),
-        });
-    }
-}
 
 const FIELDS: [&str; 15] = [
     "curve",
@@ -186,7 +165,13 @@ fn field_path(node: &Node<'_>, field: &str) -> String {
     }
 }
 
-fn apply_one(scene: &mut Scene, node: &Node<'_>) -> Result<Value, RequestError> {
+/// Applies one request to `scene` and returns its report; `targets` receives the points
+/// the request aimed at, for marking.
+fn apply_one(
+    scene: &mut Scene,
+    node: &Node<'_>,
+    targets: &mut Vec<DVec3>,
+) -> Result<Value, RequestError> {
     let obj = node.object(&FIELDS)?;
     let method_node = obj.req("method")?;
     let method = method_node.string()?;
@@ -233,7 +218,8 @@ fn apply_one(scene: &mut Scene, node: &Node<'_>) -> Result<Value, RequestError> 
     report.insert("curve".into(), index.into());
     report.insert("method".into(), method.into());
     if let Some(t) = report_target {
-        report.insert("target".into(), p3(t));
+        report.insert("target".into(), point(t));
+        targets.push(t);
     }
     match method {
         "single_target" => {
@@ -275,15 +261,15 @@ fn apply_one(scene: &mut Scene, node: &Node<'_>) -> Result<Value, RequestError> 
                 at(node, field, &e)
             })?;
             report.insert("t".into(), s.t_s.into());
-            report.insert("start".into(), p3(s.start));
+            report.insert("start".into(), point(s.start));
             report.insert(
                 "moved".into(),
                 (s.first..s.first + s.deltas.len())
                     .collect::<Vec<_>>()
                     .into(),
             );
-            report.insert("deltas".into(), pts(&s.deltas));
-            report.insert("control_points".into(), pts(s.curve.points()));
+            report.insert("deltas".into(), points(&s.deltas));
+            report.insert("control_points".into(), points(s.curve.points()));
             report.insert("residual".into(), s.residual.into());
             scene.curves[index].curve = Curve::Bezier(s.curve);
         }
@@ -300,18 +286,18 @@ fn apply_one(scene: &mut Scene, node: &Node<'_>) -> Result<Value, RequestError> 
             })?;
             report.insert("t".into(), s.t_s.into());
             report.insert("mu".into(), s.mu.to_vec().into());
-            report.insert("directions".into(), pts(&s.directions));
-            report.insert("deltas".into(), pts(&s.deltas));
-            report.insert("control_points".into(), pts(s.curve.points()));
+            report.insert("directions".into(), points(&s.directions));
+            report.insert("deltas".into(), points(&s.deltas));
+            report.insert("control_points".into(), points(s.curve.points()));
             report.insert("residual".into(), s.residual.into());
             report.insert("least_squares".into(), s.least_squares.into());
             scene.curves[index].curve = Curve::Bezier(s.curve);
         }
         "multi_target" => {
             let b = bezier_of(scene, index, node, method)?;
-            let targets = obj.req("targets")?.points(1)?;
+            *targets = obj.req("targets")?.points(1)?;
             let params = obj.get("params").map(|n| n.numbers()).transpose()?;
-            let s = multi_target(b, &targets, params.as_deref(), accuracy).map_err(|e| {
+            let s = multi_target(b, targets, params.as_deref(), accuracy).map_err(|e| {
                 let field = match e {
                     SolveError::ParamCount { .. } | SolveError::ParameterOutsideDomain { .. } => {
                         "params".to_owned()
@@ -325,9 +311,9 @@ fn apply_one(scene: &mut Scene, node: &Node<'_>) -> Result<Value, RequestError> 
                 };
                 at(node, &field, &e)
             })?;
-            report.insert("targets".into(), pts(&targets));
+            report.insert("targets".into(), points(targets));
             report.insert("params".into(), s.params.clone().into());
-            report.insert("deltas".into(), pts(&s.deltas));
+            report.insert("deltas".into(), points(&s.deltas));
             report.insert("residuals".into(), s.residuals.clone().into());
             report.insert(
                 "max_residual".into(),
@@ -335,7 +321,7 @@ fn apply_one(scene: &mut Scene, node: &Node<'_>) -> Result<Value, RequestError> 
             );
             report.insert("rank".into(), s.rank.into());
             report.insert("least_squares".into(), s.least_squares.into());
-            report.insert("control_points".into(), pts(s.curve.points()));
+            report.insert("control_points".into(), points(s.curve.points()));
             scene.curves[index].curve = Curve::Bezier(s.curve);
         }
         "cubic_region" => {
@@ -352,9 +338,9 @@ fn apply_one(scene: &mut Scene, node: &Node<'_>) -> Result<Value, RequestError> 
             };
             report.insert("type".into(), region.kind.number().into());
             if let PolygonType::Converging { apex } = region.kind {
-                report.insert("apex".into(), p3(apex));
+                report.insert("apex".into(), point(apex));
             }
-            report.insert("directions".into(), pts(&[region.e1, region.e2]));
+            report.insert("directions".into(), points(&[region.e1, region.e2]));
             if let Some(t) = report_target {
                 report.insert("reachable".into(), region.contains(t).into());
                 report.insert(
@@ -366,7 +352,7 @@ fn apply_one(scene: &mut Scene, node: &Node<'_>) -> Result<Value, RequestError> 
             report.insert("limited".into(), limited.into());
             report.insert(
                 "boundary".into(),
-                Value::Array(boundary.iter().map(|l| pts(l)).collect()),
+                Value::Array(boundary.iter().map(|l| points(l)).collect()),
             );
             // The outline goes into the scene as an annotation, for drawing.
             for line in boundary {
@@ -432,8 +418,8 @@ fn apply_one(scene: &mut Scene, node: &Node<'_>) -> Result<Value, RequestError> 
                 s.curve.groups()[group].members.clone().into(),
             );
             report.insert("values".into(), s.values.clone().into());
-            report.insert("region".into(), pts(&s.region));
-            report.insert("dual_points".into(), pts(s.curve.dual_points()));
+            report.insert("region".into(), points(&s.region));
+            report.insert("dual_points".into(), points(s.curve.dual_points()));
             report.insert("residual".into(), s.residual.into());
             scene.curves[index].curve = Curve::Nubmp(s.curve);
         }
@@ -448,10 +434,10 @@ fn apply_one(scene: &mut Scene, node: &Node<'_>) -> Result<Value, RequestError> 
             }
             let n = nearest(&scene.curves[index].curve, q, accuracy);
             report.insert("t".into(), n.t.into());
-            report.insert("point".into(), p3(n.point));
+            report.insert("point".into(), point(n.point));
             report.insert("distance".into(), n.distance.into());
             let d = scene.curves[index].curve.eval_deriv(n.t);
-            report.insert("tangent".into(), p3(d));
+            report.insert("tangent".into(), point(d));
         }
         _ => unreachable!("methods were checked"),
     }
