@@ -160,9 +160,7 @@ impl Editor {
         let world = camera.world_from_pixel(pixel, viewport);
         let radius = radius_px / c2.pixels_per_unit;
         for (c, sc) in self.scene.curves.iter().enumerate() {
-            let b = sc.curve.control_box();
-            let outside = (b.min - world).max(world - b.max).max(DVec3::ZERO).length();
-            if outside > radius {
+            if sc.curve.control_box().distance_to(world) > radius {
                 continue;
             }
             let n = nearest(&sc.curve, world, None);

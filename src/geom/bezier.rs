@@ -76,6 +76,12 @@ impl Aabb {
         }
     }
 
+    /// The distance from `p` to the box (0 inside or on it).
+    #[must_use]
+    pub fn distance_to(&self, p: DVec3) -> f64 {
+        (self.min - p).max(p - self.max).max(DVec3::ZERO).length()
+    }
+
     /// The centre of the box.
     #[must_use]
     pub fn center(&self) -> DVec3 {
@@ -290,6 +296,28 @@ impl Bezier {
         b
     }
 
+    /// How far the control polygon strays from the chord `P_0P_n`: the largest distance of
+    /// a control point from the line through the end points (from `P_0` when the ends
+    /// coincide). The curve lies within this distance of the line (convex hull property),
+    /// so 0 means the curve is straight.
+    #[must_use]
+    pub fn flatness(&self) -> f64 {
+        let a = self.points[0];
+        let chord = self.points[self.points.len() - 1] - a;
+        let len2 = chord.length_squared();
+        self.points
+            .iter()
+            .map(|&q| {
+                let w = q - a;
+                if len2 > 0.0 {
+                    (w - chord * (w.dot(chord) / len2)).length()
+                } else {
+                    w.length()
+                }
+            })
+            .fold(0.0, f64::max)
+    }
+
     /// The box of the control points: it holds the curve (convex hull property).
     #[must_use]
     pub fn control_box(&self) -> Aabb {
@@ -395,6 +423,32 @@ mod tests {
             DVec3::new(3.0, 2.0, 1.0),
             DVec3::new(4.0, 0.0, -1.0),
         ])
+    }
+
+    #[test]
+    fn flatness_is_the_polygon_distance_from_the_chord() {
+        // Chord along x; the inner points stand 2 and 3 off it.
+        let b = Bezier::new(vec![
+            DVec3::ZERO,
+            DVec3::new(1.0, 2.0, 0.0),
+            DVec3::new(3.0, 0.0, 3.0),
+            DVec3::new(4.0, 0.0, 0.0),
+        ]);
+        assert_eq!(b.flatness(), 3.0);
+        let line = Bezier::new(vec![DVec3::ZERO, DVec3::X, DVec3::X * 5.0]);
+        assert_eq!(line.flatness(), 0.0);
+        // Closed curve: measured from the shared end point.
+        let closed = Bezier::new(vec![DVec3::ZERO, DVec3::new(3.0, 4.0, 0.0), DVec3::ZERO]);
+        assert_eq!(closed.flatness(), 5.0);
+    }
+
+    #[test]
+    fn box_distance_is_zero_inside_and_euclidean_outside() {
+        let b = Aabb::from_points(&[DVec3::ZERO, DVec3::new(1.0, 1.0, 1.0)]);
+        assert_eq!(b.distance_to(DVec3::splat(0.5)), 0.0);
+        assert_eq!(b.distance_to(DVec3::new(1.0, 0.5, 0.0)), 0.0);
+        assert_eq!(b.distance_to(DVec3::new(4.0, 5.0, 0.5)), 5.0);
+        assert_eq!(b.distance_to(DVec3::new(-2.0, 0.5, 0.5)), 2.0);
     }
 
     #[test]

@@ -31,10 +31,6 @@ pub struct BatchSingleTarget {
     window: usize,
 }
 
-fn eval(points: &[DVec3], t: f64) -> DVec3 {
-    de_casteljau(points, t)
-}
-
 /// `P(t)`, `P′(t)`, `P″(t)` from one de Casteljau pass: the derivatives are differences of
 /// the last levels' points (`P′ = n (b₁ⁿ⁻¹ − b₀ⁿ⁻¹)`, `P″ = n(n−1)(b₂ⁿ⁻² − 2b₁ⁿ⁻² + b₀ⁿ⁻²)`).
 fn eval_derivs(points: &[DVec3], t: f64) -> (DVec3, DVec3, DVec3) {
@@ -119,7 +115,7 @@ pub fn sampled_nearest(points: &[DVec3], target: DVec3) -> f64 {
     let h = 1.0 / samples as f64;
     let mut d = [0.0_f64; 8 * (MAX_BATCH_DEGREE + 1) + 1];
     for (k, slot) in d.iter_mut().enumerate().take(samples + 1) {
-        *slot = (eval(points, k as f64 * h) - target).length();
+        *slot = (de_casteljau(points, k as f64 * h) - target).length();
     }
     let best_k = (0..=samples)
         .min_by(|&a, &b| d[a].total_cmp(&d[b]))
@@ -219,7 +215,7 @@ impl BatchSingleTarget {
         if !(t > 0.0 && t < 1.0) {
             return BatchResult {
                 t_s: t,
-                residual: (eval(src, t.clamp(0.0, 1.0)) - target).length(),
+                residual: (de_casteljau(src, t.clamp(0.0, 1.0)) - target).length(),
                 solved: false,
             };
         }
@@ -235,13 +231,13 @@ impl BatchSingleTarget {
                 first = l;
             }
         }
-        let diff = target - eval(src, t);
+        let diff = target - de_casteljau(src, t);
         for i in first..first + m {
             dst[i] += b[i] / best * diff;
         }
         BatchResult {
             t_s: t,
-            residual: (eval(dst, t) - target).length(),
+            residual: (de_casteljau(dst, t) - target).length(),
             solved: true,
         }
     }

@@ -20,11 +20,6 @@ pub struct Nearest {
     pub distance: f64,
 }
 
-/// The distance from `p` to a box (0 inside).
-fn box_distance(b: &Aabb, p: DVec3) -> f64 {
-    (b.min - p).max(p - b.max).max(DVec3::ZERO).length()
-}
-
 /// Safeguarded Newton on `g(u) = |B(u) − p|²` inside `[lo, hi]`, from `u`: a Newton step
 /// on `g′ = 0` when it stays in the bracket and decreases `g`, else a bisection of the
 /// bracket on the sign of `g′`. Stops when a step moves the point by less than `accuracy`.
@@ -76,25 +71,14 @@ pub fn nearest_on_bezier(b: &Bezier, p: DVec3, accuracy: f64) -> (f64, f64) {
     let mut stack: Vec<(Bezier, f64, f64, u32)> = vec![(b.clone(), 0.0, 1.0, 0)];
     while let Some((piece, u0, u1, depth)) = stack.pop() {
         let bbox = piece.control_box();
-        if box_distance(&bbox, p) >= best.1 {
+        if bbox.distance_to(p) >= best.1 {
             continue;
         }
         let pts = piece.points();
         let (a, z) = (pts[0], pts[pts.len() - 1]);
         let chord = z - a;
-        let flatness = pts
-            .iter()
-            .map(|q| {
-                let w = *q - a;
-                if chord.length_squared() > 0.0 {
-                    (w - chord * (w.dot(chord) / chord.length_squared())).length()
-                } else {
-                    w.length()
-                }
-            })
-            .fold(0.0, f64::max);
         let size = bbox.diagonal();
-        if flatness <= 0.01 * size.max(accuracy) || depth >= 40 {
+        if piece.flatness() <= 0.01 * size.max(accuracy) || depth >= 40 {
             let s = if chord.length_squared() > 0.0 {
                 ((p - a).dot(chord) / chord.length_squared()).clamp(0.0, 1.0)
             } else {
@@ -111,8 +95,8 @@ pub fn nearest_on_bezier(b: &Bezier, p: DVec3, accuracy: f64) -> (f64, f64) {
         let mid = 0.5 * (u0 + u1);
         // Visit the nearer half first (pushed last) so the bound tightens sooner.
         let (dl, dr) = (
-            box_distance(&left.control_box(), p),
-            box_distance(&right.control_box(), p),
+            left.control_box().distance_to(p),
+            right.control_box().distance_to(p),
         );
         if dl <= dr {
             stack.push((right, mid, u1, depth + 1));

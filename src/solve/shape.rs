@@ -648,21 +648,8 @@ impl CubicRegion {
 /// Appends the flattened points of `c` on `(t0, t1]` to `out`.
 fn flatten(c: &Bezier, t0: f64, t1: f64, tol: f64, depth: u32, out: &mut Vec<DVec3>) {
     let piece = c.subsegment(t0, t1);
-    let p = piece.points();
-    let chord = p[3] - p[0];
-    let dev = p[1..3]
-        .iter()
-        .map(|q| {
-            let w = *q - p[0];
-            if chord.length_squared() > 0.0 {
-                (w - chord * (w.dot(chord) / chord.length_squared())).length()
-            } else {
-                w.length()
-            }
-        })
-        .fold(0.0, f64::max);
-    if dev <= tol || depth >= 24 {
-        out.push(p[3]);
+    if piece.flatness() <= tol || depth >= 24 {
+        out.push(piece.points()[3]);
     } else {
         let mid = 0.5 * (t0 + t1);
         flatten(c, t0, mid, tol, depth + 1, out);
