@@ -9,11 +9,11 @@ use num_rational::BigRational;
 use num_traits::{ToPrimitive, Zero};
 use proptest::prelude::*;
 use splinescope::geom::bspline::refine_knots;
-use splinescope::geom::exact::parse_decimal;
+use splinescope::geom::exact::{format_rational, parse_decimal};
 use splinescope::geom::modified::bump;
 use splinescope::geom::{
-    BSpline, Bezier, CubicInterpolation, KnotVector, Lower, Modification, ModifiedBezier, Nubmp,
-    ParamCurve, Reading, locate,
+    BSpline, Bezier, CubicInterpolation, Curve, GeomError, KnotVector, Lower, Modification,
+    ModifiedBezier, Nubmp, ParamCurve, Reading, locate,
 };
 use splinescope::scene::generate::Rng;
 
@@ -302,7 +302,7 @@ fn elevation_coefficients_are_exact_on_the_papers_knots() {
         assert_eq!(*s, Q::from_integer(1.into()), "group {j}");
     }
     // The values of paper 001's example: c^1_j for j = 1, 2, 3 is 3/4, 7/10, 1/10.
-    let shown: Vec<String> = e.rows[1].values.iter().map(Nubmp::format_exact).collect();
+    let shown: Vec<String> = e.rows[1].values.iter().map(format_rational).collect();
     assert_eq!(shown, vec!["3/4", "7/10", "1/10"]);
 }
 
@@ -595,4 +595,41 @@ fn unclamped_effective_groups_sum_to_one_and_outside_groups_cannot_be_set() {
     if values != n.groups()[j].standard {
         assert!(n.set_group(j, &values).is_err());
     }
+}
+
+#[test]
+fn moving_one_control_point_keeps_everything_else_and_rejects_bad_indices() {
+    let pts: Vec<DVec3> = (0..5)
+        .map(|i| DVec3::new(f64::from(i), f64::from(i % 2), 0.0))
+        .collect();
+    let knots = vec![0.0, 0.0, 0.0, 0.0, 0.4, 1.0, 1.0, 1.0, 1.0];
+    let curve = Curve::BSpline(BSpline::try_new(pts.clone(), knots.clone(), 4).unwrap());
+    let moved = curve
+        .with_control_point(2, DVec3::new(2.0, 5.0, 0.0))
+        .unwrap();
+    let Curve::BSpline(b) = &moved else {
+        panic!("the family changed: {}", moved.family());
+    };
+    assert_eq!(b.knots().knots(), knots.as_slice());
+    let mut want = pts.clone();
+    want[2] = DVec3::new(2.0, 5.0, 0.0);
+    assert_eq!(b.points(), want.as_slice());
+
+    let err = curve.with_control_point(5, DVec3::ZERO).unwrap_err();
+    assert!(
+        matches!(err, GeomError::NoSuchPoint { index: 5, count: 5 }),
+        "{err:?}"
+    );
+    assert_eq!(err.field(), "points[5]");
+    assert!(
+        err.to_string().contains("control point 5 does not exist"),
+        "{err}"
+    );
+    let err = curve
+        .with_control_point(1, DVec3::new(f64::NAN, 0.0, 0.0))
+        .unwrap_err();
+    assert!(
+        matches!(err, GeomError::NonFinitePoint { index: 1, .. }),
+        "{err:?}"
+    );
 }

@@ -153,12 +153,6 @@ impl Bezier {
         &self.points
     }
 
-    /// Consumes the curve, returning its control points.
-    #[must_use]
-    pub fn into_points(self) -> Vec<DVec3> {
-        self.points
-    }
-
     /// The point `P(t)` by de Casteljau (also valid for `t` outside `[0, 1]`, where it
     /// extrapolates the polynomial).
     #[must_use]

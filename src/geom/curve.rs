@@ -89,14 +89,12 @@ impl Curve {
     /// is kept.
     ///
     /// # Errors
-    /// [`GeomError::NonFinitePoint`] for a non-finite `p` or an index out of range (reported
-    /// at that index).
+    /// [`GeomError::NoSuchPoint`] for an index out of range, [`GeomError::NonFinitePoint`]
+    /// for a non-finite `p`, or the family's own error when the moved point breaks it.
     pub fn with_control_point(&self, index: usize, p: DVec3) -> Result<Curve, GeomError> {
-        if index >= self.control_points().len() {
-            return Err(GeomError::NonFinitePoint {
-                index,
-                value: f64::NAN,
-            });
+        let count = self.control_points().len();
+        if index >= count {
+            return Err(GeomError::NoSuchPoint { index, count });
         }
         let mut pts = self.control_points().to_vec();
         pts[index] = p;

@@ -135,6 +135,14 @@ pub enum GeomError {
         /// The domain's end.
         end: f64,
     },
+    /// A control point index does not exist.
+    #[error("control point {index} does not exist (the curve has {count})")]
+    NoSuchPoint {
+        /// The index given.
+        index: usize,
+        /// How many control points there are.
+        count: usize,
+    },
     /// A shape parameter group index does not exist.
     #[error("group {group} does not exist (groups 0..{groups})")]
     NoSuchGroup {
@@ -220,7 +228,9 @@ impl GeomError {
     pub fn field(&self) -> String {
         match self {
             GeomError::TooFewPoints { .. } => "points".to_owned(),
-            GeomError::NonFinitePoint { index, .. } => format!("points[{index}]"),
+            GeomError::NonFinitePoint { index, .. } | GeomError::NoSuchPoint { index, .. } => {
+                format!("points[{index}]")
+            }
             GeomError::TStarOutside { .. } => "t_star".to_owned(),
             GeomError::NonFiniteVector { .. } => "v".to_owned(),
             GeomError::ParamCount { .. } => "params".to_owned(),

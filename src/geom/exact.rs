@@ -5,7 +5,7 @@
 use std::ops::{Add, Div, Mul, Sub};
 
 use num_bigint::BigInt;
-use num_traits::{One, Signed, ToPrimitive, Zero};
+use num_traits::{One, ToPrimitive, Zero};
 
 /// An exact rational number.
 pub type Rational = num_rational::BigRational;
@@ -116,12 +116,6 @@ pub fn format_rational(r: &Rational) -> String {
     } else {
         format!("{}/{}", r.numer(), r.denom())
     }
-}
-
-/// Whether a rational is negative.
-#[must_use]
-pub fn is_negative(r: &Rational) -> bool {
-    r.is_negative()
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@ use glam::DVec3;
 
 use super::bezier::check_finite;
 use super::bspline::{Elevation, elevation_coefficients};
-use super::exact::{Rational, format_rational};
+use super::exact::Rational;
 use super::{BSpline, BezierSegment, GeomError, KnotVector, Lower, ParamCurve};
 
 /// How far a group's sum may be from 1 and still be accepted.
@@ -527,12 +527,6 @@ impl Nubmp {
     #[must_use]
     pub fn exact_coefficients(&self) -> Elevation<Rational> {
         elevation_coefficients(&self.knots.exact_knots(), self.order())
-    }
-
-    /// `c` as text, e.g. `"7/20"`.
-    #[must_use]
-    pub fn format_exact(r: &Rational) -> String {
-        format_rational(r)
     }
 }
 

@@ -245,12 +245,6 @@ impl ChunkBuilder {
         });
     }
 
-    /// Where each curve's segments' control points went (by curve index).
-    #[must_use]
-    pub fn placements(&self) -> &[Vec<Placement>] {
-        &self.placements
-    }
-
     /// Adds `count ≥ 1` samples of the open segment at parameters from `u0` to `u1` (see
     /// [`GpuSegment`]). A run that does not fit the chunk continues in the next one,
     /// repeating its last sample there so that polylines stay joined.
