@@ -512,9 +512,7 @@ impl Running {
             self.prepared = prepared;
             self.uploaded_toggles = self.toggles;
         }
-        if !changed.is_empty() {
-            self.summaries = ui::summarize(self.editor.scene());
-        }
+        ui::refresh(&mut self.summaries, self.editor.scene(), &changed);
         Ok(())
     }
 

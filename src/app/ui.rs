@@ -9,7 +9,7 @@ use crate::camera::Camera;
 use crate::geom::{
     CubicInterpolation, Curve, Lower, Modification, ModifiedBezier, Nubmp, ParamCurve, Reading,
 };
-use crate::scene::Scene;
+use crate::scene::{Scene, SceneCurve};
 
 use super::Toggles;
 use super::edit::Editor;
@@ -33,26 +33,38 @@ pub(crate) fn summarize(scene: &Scene) -> Vec<CurveSummary> {
         .iter()
         .take(LISTED_CURVES)
         .enumerate()
-        .map(|(i, c)| {
-            let segments = c.curve.lower();
-            let degree = segments
-                .iter()
-                .map(|s| s.bezier.degree())
-                .max()
-                .unwrap_or(0);
-            let (a, b) = c.curve.domain();
-            let [r, g, bl, _] = c.style.color.0.map(|v| (v * 255.0).round() as u8);
-            CurveSummary {
-                label: format!("{i}: {}", c.name.as_deref().unwrap_or(c.curve.family())),
-                details: format!(
-                    "{} · domain [{a}, {b}] · {} segment(s), degree ≤ {degree}",
-                    c.curve.family(),
-                    segments.len()
-                ),
-                color: egui::Color32::from_rgb(r, g, bl),
-            }
-        })
+        .map(|(i, c)| summarize_curve(i, c))
         .collect()
+}
+
+/// Refreshes the summaries of the `changed` curves (edits change curves in place; the
+/// others keep theirs).
+pub(crate) fn refresh(summaries: &mut [CurveSummary], scene: &Scene, changed: &[usize]) {
+    for &i in changed {
+        if let Some(slot) = summaries.get_mut(i) {
+            *slot = summarize_curve(i, &scene.curves[i]);
+        }
+    }
+}
+
+fn summarize_curve(i: usize, c: &SceneCurve) -> CurveSummary {
+    let segments = c.curve.lower();
+    let degree = segments
+        .iter()
+        .map(|s| s.bezier.degree())
+        .max()
+        .unwrap_or(0);
+    let (a, b) = c.curve.domain();
+    let [r, g, bl, _] = c.style.color.0.map(|v| (v * 255.0).round() as u8);
+    CurveSummary {
+        label: format!("{i}: {}", c.name.as_deref().unwrap_or(c.curve.family())),
+        details: format!(
+            "{} · domain [{a}, {b}] · {} segment(s), degree ≤ {degree}",
+            c.curve.family(),
+            segments.len()
+        ),
+        color: egui::Color32::from_rgb(r, g, bl),
+    }
 }
 
 /// What the panel shows.
@@ -398,4 +410,35 @@ fn nubmp_controls(ui: &mut egui::Ui, editor: &mut Editor, index: usize, n: &Nubm
                 }
             }
         });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{refresh, summarize};
+    use crate::geom::{Bezier, Curve};
+    use glam::DVec3;
+
+    #[test]
+    fn refresh_matches_a_full_summary_after_an_edit() {
+        let mut scene = crate::scene::gallery::gallery();
+        let mut summaries = summarize(&scene);
+        // Replace curve 1 by a line: its family, segment count and degree all change.
+        scene.curves[1].curve = Curve::Bezier(Bezier::new(vec![DVec3::ZERO, DVec3::X]));
+        scene.curves[1].name = None;
+        let before_0 = summaries[0].details.clone();
+        refresh(&mut summaries, &scene, &[1]);
+        let full = summarize(&scene);
+        assert_eq!(summaries.len(), full.len());
+        for (got, want) in summaries.iter().zip(&full) {
+            assert_eq!(got.label, want.label);
+            assert_eq!(got.details, want.details);
+            assert_eq!(got.color, want.color);
+        }
+        assert_eq!(summaries[0].details, before_0);
+        assert!(
+            summaries[1].details.contains("1 segment(s), degree ≤ 1"),
+            "{}",
+            summaries[1].details
+        );
+    }
 }
