@@ -252,7 +252,15 @@ fn cubic_tangent_kept_is_square_in_the_plane_and_least_squares_in_3d() {
     let off = tangent_kept(&b, DVec3::new(2.0, 2.2, 0.7), Some(0.5), None).unwrap();
     assert!(off.least_squares);
     assert!((off.residual - 0.7).abs() < 1e-12, "{}", off.residual);
-    assert_eq!(off.mu, planar.mu);
+    // The same μ as the planar solve (up to rounding: the systems differ).
+    for (o, p) in off.mu.iter().zip(planar.mu) {
+        assert!(
+            (o - p).abs() <= 1e-12 * p.abs(),
+            "{:?} vs {:?}",
+            off.mu,
+            planar.mu
+        );
+    }
 }
 
 #[test]
