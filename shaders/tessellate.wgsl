@@ -130,8 +130,12 @@ fn tessellate_any(
     for (var i = 0u; i <= n; i++) {
         p[i] = control_point(seg, i);
     }
-    for (var r = 1u; r <= n; r++) {
-        for (var i = 0u; i <= n - r; i++) {
+    // Level by level, m points left to combine. Written with the level's length counting
+    // down rather than as `i <= n - r` under an outer `r`: Mesa's GLSL compiler (llvmpipe,
+    // Mesa 22.3) miscompiles that inner bound and the GL backend returned P_0 for every
+    // sample. The operations and their order are the same either way.
+    for (var m = n; m > 0u; m--) {
+        for (var i = 0u; i < m; i++) {
             p[i] = v * p[i] + u * p[i + 1u];
         }
     }

@@ -74,34 +74,67 @@ fn eval_cpu_prints_exact_samples_over_the_domain() {
     }
 }
 
+/// Every scene in `scenes/`, on every backend present: `eval --backend gpu` agrees with
+/// the CPU within the bound of tests/gpu_tessellation.rs, taken over the curve's lowered
+/// segments.
 #[test]
-fn eval_gpu_agrees_with_cpu_within_the_bound() {
-    let Some(_) = common::gpu("eval_gpu_agrees_with_cpu_within_the_bound") else {
-        return;
-    };
-    let path = scene_path("gallery.json");
-    let cpu = stdout_json(&run(&["eval", &path, "--samples", "257"]));
-    let gpu = stdout_json(&run(&[
-        "eval",
-        &path,
-        "--samples",
-        "257",
-        "--backend",
-        "gpu",
-    ]));
-    let scene = Scene::load(Path::new(&path)).unwrap();
-    for (i, c) in scene.curves.iter().enumerate() {
-        let pts = c.curve.control_points();
-        let extent = Aabb::from_points(pts).diagonal();
-        let radius = pts.iter().map(|p| p.length()).fold(0.0, f64::max);
-        let degree = pts.len() - 1;
-        // The bound of tests/gpu_tessellation.rs.
-        let bound = 1e-6 * extent.max(radius) * (degree.max(12) as f64 / 12.0);
-        for (a, b) in samples(&cpu, i).iter().zip(samples(&gpu, i)) {
-            let d = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
-            assert!(d <= bound, "curve {i}: |cpu − gpu| = {d:e} > {bound:e}");
-        }
-    }
+fn eval_gpu_agrees_with_cpu_on_every_scene_and_backend() {
+    use splinescope::geom::Lower;
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("scenes")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .collect();
+    paths.sort();
+    assert!(paths.len() >= 6, "{paths:?}");
+    common::on_each_gpu(
+        "eval_gpu_agrees_with_cpu_on_every_scene_and_backend",
+        |backend| {
+            for path in &paths {
+                let path = path.to_string_lossy();
+                let cpu = stdout_json(&run(&["eval", &path, "--samples", "257"]));
+                let gpu = stdout_json(&run(&[
+                    "eval",
+                    &path,
+                    "--samples",
+                    "257",
+                    "--backend",
+                    "gpu",
+                    "--gpu-backend",
+                    &backend.name,
+                ]));
+                let scene = Scene::load(Path::new(path.as_ref())).unwrap();
+                for (i, c) in scene.curves.iter().enumerate() {
+                    let segments = c.curve.lower();
+                    let pts: Vec<_> = segments
+                        .iter()
+                        .flat_map(|s| s.bezier.points().to_vec())
+                        .collect();
+                    let extent = Aabb::from_points(&pts).diagonal();
+                    let radius = pts.iter().map(|p| p.length()).fold(0.0, f64::max);
+                    let degree = segments
+                        .iter()
+                        .map(|s| s.bezier.degree())
+                        .max()
+                        .unwrap_or(0);
+                    let bound = 1e-6 * extent.max(radius) * (degree.max(12) as f64 / 12.0);
+                    let (a, b) = (samples(&cpu, i), samples(&gpu, i));
+                    assert_eq!(a.len(), b.len());
+                    for (a, b) in a.iter().zip(b) {
+                        let d =
+                            ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2))
+                                .sqrt();
+                        assert!(
+                            d <= bound,
+                            "{}: {path} curve {i}: |cpu − gpu| = {d:e} > {bound:e}",
+                            backend.name
+                        );
+                    }
+                }
+            }
+        },
+    );
 }
 
 #[test]
@@ -116,7 +149,7 @@ fn eval_params_evaluate_at_the_given_parameters_on_both_backends() {
     let s = samples(&v, 0);
     assert_eq!(s[0], scene.curves[1].curve.eval(0.25).to_array());
     assert_eq!(s[1], scene.curves[1].curve.eval(0.5).to_array());
-    if common::gpu("eval_params (gpu half)").is_some() {
+    common::on_each_gpu("eval_params (gpu half)", |backend| {
         let g = stdout_json(&run(&[
             "eval",
             &path,
@@ -126,13 +159,19 @@ fn eval_params_evaluate_at_the_given_parameters_on_both_backends() {
             "1",
             "--backend",
             "gpu",
+            "--gpu-backend",
+            &backend.name,
         ]));
         for (a, b) in s.iter().zip(samples(&g, 0)) {
             for k in 0..3 {
-                assert!((a[k] - b[k]).abs() < 1e-5, "{a:?} vs {b:?}");
+                assert!(
+                    (a[k] - b[k]).abs() < 1e-5,
+                    "{}: {a:?} vs {b:?}",
+                    backend.name
+                );
             }
         }
-    }
+    });
 }
 
 fn stderr_of(args: &[&str]) -> (Option<i32>, String) {
@@ -223,7 +262,7 @@ fn a_degree_over_the_gpu_maximum_is_an_error_on_the_gpu_and_fine_on_the_cpu() {
     assert!(err.contains(want), "{err}");
     let v = stdout_json(&run(&["eval", &s, "--samples", "3"]));
     assert_eq!(samples(&v, 0)[2], [40.0, 0.0, 0.0]);
-    if common::gpu("degree over max (gpu half)").is_some() {
+    if !common::gpus("degree over max (gpu half)").is_empty() {
         let out_png = out_dir().join("degree40.png");
         let (code, err) = stderr_of(&["render", &s, "-o", &out_png.to_string_lossy()]);
         assert_eq!(code, Some(1));
@@ -236,61 +275,69 @@ fn a_degree_over_the_gpu_maximum_is_an_error_on_the_gpu_and_fine_on_the_cpu() {
 
 #[test]
 fn render_writes_a_png_of_the_requested_size() {
-    let Some(_) = common::gpu("render_writes_a_png_of_the_requested_size") else {
-        return;
-    };
-    let png = out_dir().join("render.png");
-    let _ = std::fs::remove_file(&png);
-    let out = run(&[
-        "render",
-        &scene_path("gallery.json"),
-        "-o",
-        &png.to_string_lossy(),
-        "--width",
-        "321",
-        "--height",
-        "123",
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let img = RgbaImage::read_png(&png).expect("png");
-    assert_eq!((img.width, img.height), (321, 123));
-    // Something other than the white background was drawn.
-    assert!(img.data.chunks_exact(4).any(|p| p[0] < 128));
+    common::on_each_gpu("render_writes_a_png_of_the_requested_size", |backend| {
+        let png = out_dir().join(format!("render.{}.png", backend.name));
+        let _ = std::fs::remove_file(&png);
+        let out = run(&[
+            "render",
+            &scene_path("gallery.json"),
+            "-o",
+            &png.to_string_lossy(),
+            "--width",
+            "321",
+            "--height",
+            "123",
+            "--gpu-backend",
+            &backend.name,
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let img = RgbaImage::read_png(&png).expect("png");
+        assert_eq!((img.width, img.height), (321, 123));
+        // Something other than the white background was drawn.
+        assert!(img.data.chunks_exact(4).any(|p| p[0] < 128));
+    });
 }
 
 #[test]
 fn no_arguments_and_no_display_render_the_gallery_and_say_where() {
-    let Some(_) = common::gpu("no_arguments_and_no_display_render_the_gallery_and_say_where")
-    else {
-        return;
-    };
-    let dir = out_dir().join("headless");
-    std::fs::create_dir_all(&dir).unwrap();
-    let png = dir.join("splinescope-gallery.png");
-    let _ = std::fs::remove_file(&png);
-    let out = bin()
-        .current_dir(&dir)
-        .env_remove("DISPLAY")
-        .env_remove("WAYLAND_DISPLAY")
-        .output()
-        .expect("run");
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    common::on_each_gpu(
+        "no_arguments_and_no_display_render_the_gallery_and_say_where",
+        |backend| {
+            let dir = out_dir().join(format!("headless-{}", backend.name));
+            std::fs::create_dir_all(&dir).unwrap();
+            let png = dir.join("splinescope-gallery.png");
+            let _ = std::fs::remove_file(&png);
+            let out = bin()
+                .current_dir(&dir)
+                .env("WGPU_BACKEND", &backend.name)
+                .env_remove("DISPLAY")
+                .env_remove("WAYLAND_DISPLAY")
+                .output()
+                .expect("run");
+            let stdout = String::from_utf8_lossy(&out.stdout);
+            assert!(
+                out.status.success(),
+                "{}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            assert!(stdout.contains("no display found"), "{stdout}");
+            assert!(
+                stdout.contains(&backend.ctx.describe()),
+                "{}: the message names the adapter used: {stdout}",
+                backend.name
+            );
+            assert!(
+                stdout.contains(&png.to_string_lossy().into_owned()),
+                "{stdout}"
+            );
+            let img = RgbaImage::read_png(&png).expect("png");
+            assert_eq!((img.width, img.height), (1600, 1000));
+        },
     );
-    assert!(stdout.contains("no display found"), "{stdout}");
-    assert!(
-        stdout.contains(&png.to_string_lossy().into_owned()),
-        "{stdout}"
-    );
-    let img = RgbaImage::read_png(&png).expect("png");
-    assert_eq!((img.width, img.height), (1600, 1000));
 }
 
 #[test]

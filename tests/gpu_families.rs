@@ -31,7 +31,8 @@ fn bound(curve: &Curve) -> f64 {
 
 /// Evaluates `curves` on the GPU at 301 parameters over each domain (ends and interior
 /// breakpoints included) and compares with the CPU.
-fn check(ctx: &GpuContext, curves: &[(String, Curve)]) {
+fn check(backend: &common::Backend, curves: &[(String, Curve)]) {
+    let ctx: &GpuContext = &backend.ctx;
     let lowered: Vec<_> = curves
         .iter()
         .enumerate()
@@ -50,13 +51,19 @@ fn check(ctx: &GpuContext, curves: &[(String, Curve)]) {
         .collect();
     let gpu = evaluate(ctx, &lowered, &params).expect("GPU evaluation");
     for ((name, curve), (ts, got)) in curves.iter().zip(params.iter().zip(&gpu)) {
-        assert_eq!(ts.len(), got.len(), "{name}: every parameter evaluated");
+        assert_eq!(
+            ts.len(),
+            got.len(),
+            "{}: {name}: every parameter evaluated",
+            backend.name
+        );
         let bound = bound(curve);
         for (&t, g) in ts.iter().zip(got) {
             let err = (*g - curve.eval(t)).length();
             assert!(
                 err <= bound,
-                "{name} ({}) at t={t}: |GPU − CPU| = {err:e} > {bound:e}",
+                "{}: {name} ({}) at t={t}: |GPU − CPU| = {err:e} > {bound:e}",
+                backend.name,
                 curve.family()
             );
         }
@@ -65,9 +72,6 @@ fn check(ctx: &GpuContext, curves: &[(String, Curve)]) {
 
 #[test]
 fn every_scene_curve_matches_on_the_gpu() {
-    let Some(ctx) = common::gpu("every_scene_curve_matches_on_the_gpu") else {
-        return;
-    };
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
     let mut curves = Vec::new();
     for entry in std::fs::read_dir(&dir).expect("scenes") {
@@ -86,7 +90,9 @@ fn every_scene_curve_matches_on_the_gpu() {
         5,
         "the scenes cover every family: {families:?}"
     );
-    check(ctx, &curves);
+    common::on_each_gpu("every_scene_curve_matches_on_the_gpu", |backend| {
+        check(backend, &curves);
+    });
 }
 
 fn random_points(rng: &mut Rng, n: usize, three_d: bool) -> Vec<DVec3> {
@@ -115,10 +121,6 @@ fn random_knots(rng: &mut Rng, order: usize, n: usize) -> Vec<f64> {
 
 #[test]
 fn random_curves_of_every_family_match_up_to_the_maximum_degree() {
-    let Some(ctx) = common::gpu("random_curves_of_every_family_match_up_to_the_maximum_degree")
-    else {
-        return;
-    };
     let mut rng = Rng::new(77);
     let mut curves = Vec::new();
     for three_d in [false, true] {
@@ -180,5 +182,8 @@ fn random_curves_of_every_family_match_up_to_the_maximum_degree() {
             curves.push((format!("nubmp order {order}"), Curve::Nubmp(nub)));
         }
     }
-    check(ctx, &curves);
+    common::on_each_gpu(
+        "random_curves_of_every_family_match_up_to_the_maximum_degree",
+        |backend| check(backend, &curves),
+    );
 }

@@ -1,5 +1,6 @@
-//! The WGSL kernel against the exact f64 curves and its f32 CPU twin, on the adapter the
-//! machine has (lavapipe in CI).
+//! The WGSL kernel against the exact f64 curves and its f32 CPU twin, on every backend
+//! that has an adapter (Vulkan lavapipe and GL llvmpipe in CI; `SPLINESCOPE_TEST_BACKENDS`
+//! chooses).
 //!
 //! Bound: max |GPU − CPU f64| ≤ 1e-6 · S for degree ≤ 12, with S = max(E, R): E the
 //! diagonal of the control points' box (the control polygon's extent), R the largest
@@ -60,7 +61,9 @@ fn pack(cases: &[Case], limits: ChunkLimits) -> Vec<TessChunk> {
 /// Runs the kernel over `chunks`, checks every sample was written with the right tag and
 /// lies within the bound of the f64 curve and close to the f32 twin. Returns the largest
 /// error relative to each curve's extent.
-fn check(ctx: &splinescope::gpu::GpuContext, cases: &[Case], chunks: &[TessChunk]) -> f64 {
+fn check(backend: &common::Backend, cases: &[Case], chunks: &[TessChunk]) -> f64 {
+    let ctx = &backend.ctx;
+    let name = &backend.name;
     let tess = Tessellator::new(&ctx.device);
     let mut worst = 0.0_f64;
     tess.tessellate_and_read(&ctx.device, &ctx.queue, chunks, |k, gpu| {
@@ -81,11 +84,14 @@ fn check(ctx: &splinescope::gpu::GpuContext, cases: &[Case], chunks: &[TessChunk
             let lanes = seg.sample_offset..(seg.sample_offset + 64).min(seg.sample_count);
             for j in lanes {
                 let s = gpu[(seg.first_sample + j) as usize];
-                assert_eq!(s.id, seg.curve, "sample {j} not written or mis-tagged");
+                assert_eq!(
+                    s.id, seg.curve,
+                    "{name}: sample {j} not written or mis-tagged"
+                );
                 let g = Vec3::from(s.position).as_dvec3();
                 assert!(
                     g.is_finite(),
-                    "sample {j} of a degree-{n} curve not written"
+                    "{name}: sample {j} of a degree-{n} curve not written"
                 );
                 // The kernel's parameter, then the exact curve there.
                 let t = f64::from(seg.u0)
@@ -99,13 +105,13 @@ fn check(ctx: &splinescope::gpu::GpuContext, cases: &[Case], chunks: &[TessChunk
                 let err = (g - exact).length();
                 assert!(
                     err <= bound,
-                    "degree {n}, sample {j}/{}: |GPU − f64| = {err:e} > {bound:e}",
+                    "{name}: degree {n}, sample {j}/{}: |GPU − f64| = {err:e} > {bound:e}",
                     seg.sample_count,
                 );
                 let twin_err = (g - Vec3::from(cpu[(seg.first_sample + j) as usize].position)
                     .as_dvec3())
                 .length();
-                assert!(twin_err <= bound, "GPU vs twin {twin_err:e}");
+                assert!(twin_err <= bound, "{name}: GPU vs twin {twin_err:e}");
                 worst = worst.max(err / extent);
             }
         }
@@ -116,62 +122,67 @@ fn check(ctx: &splinescope::gpu::GpuContext, cases: &[Case], chunks: &[TessChunk
 
 #[test]
 fn kernel_matches_the_exact_curves_for_every_degree_2d_and_3d() {
-    let Some(ctx) = common::gpu("kernel_matches_the_exact_curves_for_every_degree_2d_and_3d")
-    else {
-        return;
-    };
-    let mut rng = Rng::new(2024);
-    let mut cases = Vec::new();
-    for degree in 1..=MAX_GPU_DEGREE {
-        for three_d in [false, true] {
-            for _ in 0..4 {
-                cases.push(Case {
-                    curve: random_curve(&mut rng, degree, three_d),
-                    samples: rng.int(2, 300) as u32,
-                });
+    let test = "kernel_matches_the_exact_curves_for_every_degree_2d_and_3d";
+    common::on_each_gpu(test, |backend| {
+        let ctx = &backend.ctx;
+        let mut rng = Rng::new(2024);
+        let mut cases = Vec::new();
+        for degree in 1..=MAX_GPU_DEGREE {
+            for three_d in [false, true] {
+                for _ in 0..4 {
+                    cases.push(Case {
+                        curve: random_curve(&mut rng, degree, three_d),
+                        samples: rng.int(2, 300) as u32,
+                    });
+                }
             }
         }
-    }
-    let chunks = pack(
-        &cases,
-        ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
-    );
-    assert_eq!(chunks.len(), 1);
-    let worst = check(ctx, &cases, &chunks);
-    eprintln!("largest |GPU − f64| / extent over degrees 1..=31: {worst:e}");
+        let chunks = pack(
+            &cases,
+            ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
+        );
+        assert_eq!(chunks.len(), 1);
+        let worst = check(backend, &cases, &chunks);
+        eprintln!(
+            "{}: largest |GPU − f64| / extent over degrees 1..=31: {worst:e}",
+            backend.name
+        );
+    });
 }
 
 #[test]
 fn tiny_chunks_split_runs_and_still_write_every_sample() {
-    let Some(ctx) = common::gpu("tiny_chunks_split_runs_and_still_write_every_sample") else {
-        return;
-    };
-    let mut rng = Rng::new(5);
-    let cases: Vec<Case> = (0..40)
-        .map(|i| Case {
-            curve: random_curve(&mut rng, 1 + i % 9, i % 2 == 0),
-            samples: rng.int(2, 120) as u32,
-        })
-        .collect();
-    let limits = ChunkLimits {
-        max_samples: 97,
-        max_points: 40,
-        max_segments: 7,
-        max_styles: 5,
-    };
-    let chunks = pack(&cases, limits);
-    assert!(
-        chunks.len() >= 15,
-        "limits must force many chunks, got {}",
-        chunks.len()
+    common::on_each_gpu(
+        "tiny_chunks_split_runs_and_still_write_every_sample",
+        |backend| {
+            let mut rng = Rng::new(5);
+            let cases: Vec<Case> = (0..40)
+                .map(|i| Case {
+                    curve: random_curve(&mut rng, 1 + i % 9, i % 2 == 0),
+                    samples: rng.int(2, 120) as u32,
+                })
+                .collect();
+            let limits = ChunkLimits {
+                max_samples: 97,
+                max_points: 40,
+                max_segments: 7,
+                max_styles: 5,
+            };
+            let chunks = pack(&cases, limits);
+            assert!(
+                chunks.len() >= 15,
+                "limits must force many chunks, got {}",
+                chunks.len()
+            );
+            for c in &chunks {
+                assert!(c.sample_count as usize <= limits.max_samples);
+                assert!(c.points.len() <= limits.max_points);
+                assert!(c.segments.len() <= limits.max_segments);
+                assert!(c.styles.len() <= limits.max_styles);
+            }
+            check(backend, &cases, &chunks);
+        },
     );
-    for c in &chunks {
-        assert!(c.sample_count as usize <= limits.max_samples);
-        assert!(c.points.len() <= limits.max_points);
-        assert!(c.segments.len() <= limits.max_segments);
-        assert!(c.styles.len() <= limits.max_styles);
-    }
-    check(ctx, &cases, &chunks);
 }
 
 #[test]
@@ -185,60 +196,113 @@ fn dispatch_grid_covers_more_segments_than_one_dimension_allows() {
 
 #[test]
 fn one_million_cubics_tessellate_correctly_in_chunks() {
-    let Some(ctx) = common::gpu("one_million_cubics_tessellate_correctly_in_chunks") else {
-        return;
-    };
-    let scene = random_bezier_scene(StressOptions {
-        curves: 1_000_000,
-        degree: 3,
-        samples: 64,
-        three_d: false,
-        seed: 99,
-    });
-    let limits = ChunkLimits::for_binding_size(ctx.max_binding_bytes());
-    let prepared = prepare_scene(&scene, limits).expect("packs");
-    let total: u64 = prepared
-        .chunks
-        .iter()
-        .map(|c| u64::from(c.sample_count))
-        .sum();
-    assert_eq!(total, 64_000_000);
-    // 64M samples × 16 B = 1 GiB: more than one 128 MiB binding, so several chunks.
-    assert!(
-        prepared.chunks.len() >= 8,
-        "{} chunks",
-        prepared.chunks.len()
-    );
-    // More workgroups than one dispatch dimension allows, so the 2D grid is used.
-    assert!(prepared.chunks[0].segments.len() > 65_535);
-    let tess = Tessellator::new(&ctx.device);
-    let mut checked = 0u64;
-    let mut seen = 0u64;
-    tess.tessellate_and_read(&ctx.device, &ctx.queue, &prepared.chunks, |k, gpu| {
-        let chunk = &prepared.chunks[k];
-        // Every sample written (the buffer was poisoned with NaN / u32::MAX)…
-        for (i, s) in gpu.iter().enumerate() {
+    common::on_each_gpu(
+        "one_million_cubics_tessellate_correctly_in_chunks",
+        |backend| {
+            let ctx = &backend.ctx;
+            let name = &backend.name;
+            let scene = random_bezier_scene(StressOptions {
+                curves: 1_000_000,
+                degree: 3,
+                samples: 64,
+                three_d: false,
+                seed: 99,
+            });
+            let limits = ChunkLimits::for_binding_size(ctx.max_binding_bytes());
+            let prepared = prepare_scene(&scene, limits).expect("packs");
+            let total: u64 = prepared
+                .chunks
+                .iter()
+                .map(|c| u64::from(c.sample_count))
+                .sum();
+            assert_eq!(total, 64_000_000);
+            // 64M samples × 16 B = 1 GiB: more than one 128 MiB binding, so several chunks.
             assert!(
-                s.id != u32::MAX && !s.position[0].is_nan(),
-                "chunk {k}: sample {i} not written"
+                prepared.chunks.len() >= 8,
+                "{} chunks",
+                prepared.chunks.len()
             );
-        }
-        seen += gpu.len() as u64;
-        // …and a spread of them equal to the exact curves.
-        for seg in chunk.segments.iter().step_by(97) {
-            let curve = chunk.first_curve + seg.curve as usize;
-            let b = &scene.curves[curve].curve;
-            let bound = bound(3, b.control_points());
-            for j in [0, 17, 63] {
-                let s = gpu[(seg.first_sample + j) as usize];
-                let t = f64::from(j) / 63.0;
-                let err = (Vec3::from(s.position).as_dvec3() - b.eval(t)).length();
-                assert!(err <= bound, "curve {curve}: {err:e} > {bound:e}");
-                checked += 1;
-            }
-        }
-    })
-    .expect("readback");
-    assert_eq!(seen, 64_000_000);
-    assert!(checked > 30_000, "{checked}");
+            // More workgroups than one dispatch dimension allows, so the 2D grid is used.
+            assert!(prepared.chunks[0].segments.len() > 65_535);
+            let tess = Tessellator::new(&ctx.device);
+            let mut checked = 0u64;
+            let mut seen = 0u64;
+            tess.tessellate_and_read(&ctx.device, &ctx.queue, &prepared.chunks, |k, gpu| {
+                let chunk = &prepared.chunks[k];
+                // Every sample written (the buffer was poisoned with NaN / u32::MAX)…
+                for (i, s) in gpu.iter().enumerate() {
+                    assert!(
+                        s.id != u32::MAX && !s.position[0].is_nan(),
+                        "{name}: chunk {k}: sample {i} not written"
+                    );
+                }
+                seen += gpu.len() as u64;
+                // …and a spread of them equal to the exact curves.
+                for seg in chunk.segments.iter().step_by(97) {
+                    let curve = chunk.first_curve + seg.curve as usize;
+                    let b = &scene.curves[curve].curve;
+                    let bound = bound(3, b.control_points());
+                    for j in [0, 17, 63] {
+                        let s = gpu[(seg.first_sample + j) as usize];
+                        let t = f64::from(j) / 63.0;
+                        let err = (Vec3::from(s.position).as_dvec3() - b.eval(t)).length();
+                        assert!(err <= bound, "{name}: curve {curve}: {err:e} > {bound:e}");
+                        checked += 1;
+                    }
+                }
+            })
+            .expect("readback");
+            assert_eq!(seen, 64_000_000);
+            assert!(checked > 30_000, "{checked}");
+        },
+    );
+}
+
+/// The self-test that runs when a device opens catches a kernel that computes wrong
+/// samples: here a general kernel that returns `P_0` for every sample, the fault Mesa's
+/// GL compiler once produced. The real kernels pass it on every backend.
+#[test]
+fn the_kernel_self_test_refuses_a_wrong_kernel() {
+    use splinescope::gpu::selftest;
+    use splinescope::gpu::shaders::{COMMON, TESSELLATE};
+    common::on_each_gpu("the_kernel_self_test_refuses_a_wrong_kernel", |backend| {
+        let ctx = &backend.ctx;
+        let good = Tessellator::new(&ctx.device);
+        assert_eq!(
+            selftest::run(&ctx.device, &ctx.queue, &good).expect("dispatch"),
+            None,
+            "{}: the real kernels pass",
+            backend.name
+        );
+        let write = "samples[seg.first_sample + w.j] = Vertex(p[0], seg.curve);";
+        assert!(TESSELLATE.body.contains(write));
+        let broken_body = TESSELLATE.body.replace(
+            write,
+            "samples[seg.first_sample + w.j] = Vertex(control_point(seg, 0u), seg.curve);",
+        );
+        let module = ctx
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("broken tessellate"),
+                source: wgpu::ShaderSource::Wgsl(format!("{COMMON}\n{broken_body}").into()),
+            });
+        let broken = Tessellator::with_module(&ctx.device, &module);
+        let fault = selftest::run(&ctx.device, &ctx.queue, &broken)
+            .expect("dispatch")
+            .unwrap_or_else(|| panic!("{}: a kernel returning P_0 passed", backend.name));
+        assert_eq!(fault.kernel, "tessellate_any", "{}", backend.name);
+        assert_eq!(
+            fault.degree, 1,
+            "the first degree the general kernel serves"
+        );
+        assert!(
+            fault.u > 0.0,
+            "at u = 0 the sample is P_0 and right: {fault:?}"
+        );
+        let message = fault.to_string();
+        assert!(
+            message.contains("tessellate_any") && message.contains("degree-1"),
+            "{message}"
+        );
+    });
 }

@@ -22,7 +22,7 @@ use splinescope::scene::{Color, Scene, SceneCurve, Style, ViewSpec, gallery};
 const CHANNEL_TOLERANCE: u8 = 24;
 const MAX_DIFFERING_FRACTION: f64 = 0.001;
 
-fn golden(name: &str, image: &RgbaImage) {
+fn golden(name: &str, backend: &str, image: &RgbaImage) {
     let reference = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("tests/golden")
         .join(format!("{name}.png"));
@@ -36,15 +36,15 @@ fn golden(name: &str, image: &RgbaImage) {
     let out = common::out_dir("images");
     let diff = compare(image, &want, CHANNEL_TOLERANCE);
     let fail = |why: String| {
-        let actual = out.join(format!("{name}.actual.png"));
+        let actual = out.join(format!("{name}.{backend}.actual.png"));
         image.write_png(&actual).expect("write actual");
         if let Some(d) = &diff {
             d.diff_image
-                .write_png(&out.join(format!("{name}.diff.png")))
+                .write_png(&out.join(format!("{name}.{backend}.diff.png")))
                 .expect("write diff");
         }
         panic!(
-            "{name}: {why}; actual and diff images in {} (SPLINESCOPE_BLESS=1 accepts the new image)",
+            "{name} on {backend}: {why}; actual and diff images in {} (SPLINESCOPE_BLESS=1 accepts the new image)",
             out.display()
         );
     };
@@ -68,22 +68,22 @@ fn golden(name: &str, image: &RgbaImage) {
 
 #[test]
 fn gallery_matches_its_golden_image() {
-    let Some(ctx) = common::gpu("gallery_matches_its_golden_image") else {
-        return;
-    };
-    let image = render_scene(ctx, &gallery::gallery(), None, 480, 320).expect("render");
-    golden("gallery", &image);
+    common::on_each_gpu("gallery_matches_its_golden_image", |backend| {
+        let ctx = &backend.ctx;
+        let image = render_scene(ctx, &gallery::gallery(), None, 480, 320).expect("render");
+        golden("gallery", &backend.name, &image);
+    });
 }
 
 /// Renders `scenes/{name}.json` at 320×240 and compares it with its golden image.
 fn scene_golden(name: &str) {
-    let Some(ctx) = common::gpu(&format!("{name} golden image")) else {
-        return;
-    };
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{name}.json"));
-    let scene = Scene::load(&path).expect("scene");
-    let image = render_scene(ctx, &scene, None, 320, 240).expect("render");
-    golden(name, &image);
+    common::on_each_gpu(&format!("{name} golden image"), |backend| {
+        let ctx = &backend.ctx;
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{name}.json"));
+        let scene = Scene::load(&path).expect("scene");
+        let image = render_scene(ctx, &scene, None, 320, 240).expect("render");
+        golden(name, &backend.name, &image);
+    });
 }
 
 #[test]
@@ -145,95 +145,98 @@ fn segment_distance(c: DVec2, a: DVec2, b: DVec2) -> f64 {
 
 #[test]
 fn a_straight_line_has_exactly_the_analytic_coverage() {
-    let Some(ctx) = common::gpu("a_straight_line_has_exactly_the_analytic_coverage") else {
-        return;
-    };
-    // A line of width 3 px at an odd angle; with 2 samples it is one capsule, whose
-    // coverage at a pixel centre at distance d is clamp(w/2 + 0.5 − d, 0, 1).
-    let (w, h) = (200u32, 160u32);
-    let line = Bezier::new(vec![DVec3::new(-5.1, -3.3, 0.0), DVec3::new(4.3, 2.9, 0.0)]);
-    let scene = single(line.clone(), 3.0, 2);
-    let viewport = DVec2::new(f64::from(w), f64::from(h));
-    let camera: Camera = scene.camera(viewport);
-    let image = render_scene(ctx, &scene, Some(camera), w, h).expect("render");
-    let a = camera.pixel_from_world(line.points()[0], viewport).unwrap();
-    let b = camera.pixel_from_world(line.points()[1], viewport).unwrap();
-    let mut worst = 0.0_f64;
-    let mut inked = 0;
-    for y in 0..h {
-        for x in 0..w {
-            let centre = DVec2::new(f64::from(x) + 0.5, f64::from(y) + 0.5);
-            let coverage = (1.5 + 0.5 - segment_distance(centre, a, b)).clamp(0.0, 1.0);
-            let want = 255.0 * (1.0 - coverage);
-            let got = f64::from(image.pixel(x, y)[0]);
-            worst = worst.max((got - want).abs());
-            if coverage > 0.0 {
-                inked += 1;
+    common::on_each_gpu(
+        "a_straight_line_has_exactly_the_analytic_coverage",
+        |backend| {
+            let ctx = &backend.ctx;
+            // A line of width 3 px at an odd angle; with 2 samples it is one capsule, whose
+            // coverage at a pixel centre at distance d is clamp(w/2 + 0.5 − d, 0, 1).
+            let (w, h) = (200u32, 160u32);
+            let line = Bezier::new(vec![DVec3::new(-5.1, -3.3, 0.0), DVec3::new(4.3, 2.9, 0.0)]);
+            let scene = single(line.clone(), 3.0, 2);
+            let viewport = DVec2::new(f64::from(w), f64::from(h));
+            let camera: Camera = scene.camera(viewport);
+            let image = render_scene(ctx, &scene, Some(camera), w, h).expect("render");
+            let a = camera.pixel_from_world(line.points()[0], viewport).unwrap();
+            let b = camera.pixel_from_world(line.points()[1], viewport).unwrap();
+            let mut worst = 0.0_f64;
+            let mut inked = 0;
+            for y in 0..h {
+                for x in 0..w {
+                    let centre = DVec2::new(f64::from(x) + 0.5, f64::from(y) + 0.5);
+                    let coverage = (1.5 + 0.5 - segment_distance(centre, a, b)).clamp(0.0, 1.0);
+                    let want = 255.0 * (1.0 - coverage);
+                    let got = f64::from(image.pixel(x, y)[0]);
+                    worst = worst.max((got - want).abs());
+                    if coverage > 0.0 {
+                        inked += 1;
+                    }
+                }
             }
-        }
-    }
-    // f32 geometry in the shader and 8-bit rounding: within 3/255 of the model.
-    assert!(
-        worst <= 3.0,
-        "largest deviation from the analytic coverage: {worst}/255"
+            // f32 geometry in the shader and 8-bit rounding: within 3/255 of the model.
+            assert!(
+                worst <= 3.0,
+                "largest deviation from the analytic coverage: {worst}/255"
+            );
+            assert!(inked > 300, "the line must cover pixels ({inked})");
+        },
     );
-    assert!(inked > 300, "the line must cover pixels ({inked})");
 }
 
 #[test]
 fn curve_pixels_hug_the_exact_curve() {
-    let Some(ctx) = common::gpu("curve_pixels_hug_the_exact_curve") else {
-        return;
-    };
-    let (w, h) = (240u32, 180u32);
-    let cubic = Bezier::new(vec![
-        DVec3::new(-6.0, -3.0, 0.0),
-        DVec3::new(-3.0, 5.5, 0.0),
-        DVec3::new(3.5, -5.0, 0.0),
-        DVec3::new(6.0, 3.0, 0.0),
-    ]);
-    let width = 4.0;
-    let scene = single(cubic.clone(), width as f32, 512);
-    let viewport = DVec2::new(f64::from(w), f64::from(h));
-    let camera = scene.camera(viewport);
-    let image = render_scene(ctx, &scene, Some(camera), w, h).expect("render");
-    // The exact curve, densely, in pixels.
-    let dense: Vec<DVec2> = (0..=20_000)
-        .map(|k| {
-            camera
-                .pixel_from_world(cubic.eval(f64::from(k) / 20_000.0), viewport)
-                .unwrap()
-        })
-        .collect();
-    let (mut inside, mut outside) = (0, 0);
-    for y in 0..h {
-        for x in 0..w {
-            let c = DVec2::new(f64::from(x) + 0.5, f64::from(y) + 0.5);
-            let d = dense
-                .windows(2)
-                .map(|p| segment_distance(c, p[0], p[1]))
-                .fold(f64::INFINITY, f64::min);
-            let v = image.pixel(x, y)[0];
-            // Well inside the stroke: fully inked; well outside: untouched background.
-            if d <= width / 2.0 - 1.0 {
-                assert!(
-                    v <= 4,
-                    "pixel ({x},{y}) at {d:.2} px from the curve is {v}, want ink"
-                );
-                inside += 1;
-            } else if d >= width / 2.0 + 1.0 {
-                assert_eq!(
-                    v, 255,
-                    "pixel ({x},{y}) at {d:.2} px from the curve is inked"
-                );
-                outside += 1;
+    common::on_each_gpu("curve_pixels_hug_the_exact_curve", |backend| {
+        let ctx = &backend.ctx;
+        let (w, h) = (240u32, 180u32);
+        let cubic = Bezier::new(vec![
+            DVec3::new(-6.0, -3.0, 0.0),
+            DVec3::new(-3.0, 5.5, 0.0),
+            DVec3::new(3.5, -5.0, 0.0),
+            DVec3::new(6.0, 3.0, 0.0),
+        ]);
+        let width = 4.0;
+        let scene = single(cubic.clone(), width as f32, 512);
+        let viewport = DVec2::new(f64::from(w), f64::from(h));
+        let camera = scene.camera(viewport);
+        let image = render_scene(ctx, &scene, Some(camera), w, h).expect("render");
+        // The exact curve, densely, in pixels.
+        let dense: Vec<DVec2> = (0..=20_000)
+            .map(|k| {
+                camera
+                    .pixel_from_world(cubic.eval(f64::from(k) / 20_000.0), viewport)
+                    .unwrap()
+            })
+            .collect();
+        let (mut inside, mut outside) = (0, 0);
+        for y in 0..h {
+            for x in 0..w {
+                let c = DVec2::new(f64::from(x) + 0.5, f64::from(y) + 0.5);
+                let d = dense
+                    .windows(2)
+                    .map(|p| segment_distance(c, p[0], p[1]))
+                    .fold(f64::INFINITY, f64::min);
+                let v = image.pixel(x, y)[0];
+                // Well inside the stroke: fully inked; well outside: untouched background.
+                if d <= width / 2.0 - 1.0 {
+                    assert!(
+                        v <= 4,
+                        "pixel ({x},{y}) at {d:.2} px from the curve is {v}, want ink"
+                    );
+                    inside += 1;
+                } else if d >= width / 2.0 + 1.0 {
+                    assert_eq!(
+                        v, 255,
+                        "pixel ({x},{y}) at {d:.2} px from the curve is inked"
+                    );
+                    outside += 1;
+                }
             }
         }
-    }
-    assert!(
-        inside > 200 && outside > 10_000,
-        "{inside} inside, {outside} outside"
-    );
+        assert!(
+            inside > 200 && outside > 10_000,
+            "{inside} inside, {outside} outside"
+        );
+    });
 }
 
 #[test]
@@ -243,64 +246,69 @@ fn an_edit_written_in_place_renders_like_a_fresh_upload() {
     use splinescope::gpu::pack::{ChunkLimits, prepare_overlays, prepare_scene, repack_points};
     use splinescope::gpu::renderer::Renderer;
     use splinescope::gpu::tessellator::Tessellator;
-    let Some(ctx) = common::gpu("an_edit_written_in_place_renders_like_a_fresh_upload") else {
-        return;
-    };
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes/paper001_fig1.json");
-    let scene = Scene::load(&path).expect("scene");
-    let limits = ChunkLimits::for_binding_size(ctx.max_binding_bytes());
-    let tess = Tessellator::new(&ctx.device);
-    let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
-    let prepared = prepare_scene(&scene, limits).expect("pack");
-    let mut gpu = renderer.upload(&ctx.device, &tess, &prepared);
-    let viewport = DVec2::new(320.0, 240.0);
-    let camera = scene.camera(viewport);
-    let before = render_uploaded(ctx, &tess, &renderer, &gpu, &camera, 320, 240).expect("render");
-    // Edit the standard curve: a shape parameter and a small move of a control point keep
-    // every segment's automatic sample count, so the edit can be written in place.
-    let edit = |dy: f64| {
-        let mut edited = scene.clone();
-        let Curve::Nubmp(n) = &scene.curves[0].curve else {
-            panic!("a NUBMP curve")
-        };
-        let mut n = n.clone();
-        let g = &n.groups()[5];
-        let values: Vec<f64> = g
-            .values
-            .iter()
-            .zip([0.01, -0.005, -0.005])
-            .map(|(v, d)| v + d)
-            .collect();
-        n.set_group(5, &values).expect("valid");
-        let moved = edited.curves[0].curve.control_points()[3] + DVec3::new(0.0, dy, 0.0);
-        edited.curves[0].curve = Curve::Nubmp(n)
-            .with_control_point(3, moved)
-            .expect("finite");
-        edited
-    };
-    let repack = |edited: &Scene| {
-        repack_points(
-            &prepared.placements[0],
-            &prepared.sample_counts[0],
-            &edited.curves[0].curve.lower(),
-            edited.samples_for(0),
-        )
-    };
-    // A large move changes the curvature enough to need other sample counts: refused,
-    // the viewer packs the scene again.
-    assert!(repack(&edit(2.0)).is_none());
-    let edited = edit(0.02);
-    let writes = repack(&edited).expect("same structure");
-    for (chunk, first, verts) in writes {
-        gpu.write_points(&ctx.queue, chunk, first, &verts);
-    }
-    let (lines, points) = prepare_overlays(&edited, limits);
-    renderer.replace_overlays(&ctx.device, &mut gpu, &lines, &points);
-    let in_place = render_uploaded(ctx, &tess, &renderer, &gpu, &camera, 320, 240).expect("render");
-    let fresh = render_scene(ctx, &edited, Some(camera), 320, 240).expect("render");
-    assert_eq!(
-        in_place, fresh,
-        "in-place update and fresh upload must draw the same pixels"
+    common::on_each_gpu(
+        "an_edit_written_in_place_renders_like_a_fresh_upload",
+        |backend| {
+            let ctx = &backend.ctx;
+            let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes/paper001_fig1.json");
+            let scene = Scene::load(&path).expect("scene");
+            let limits = ChunkLimits::for_binding_size(ctx.max_binding_bytes());
+            let tess = Tessellator::new(&ctx.device);
+            let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
+            let prepared = prepare_scene(&scene, limits).expect("pack");
+            let mut gpu = renderer.upload(&ctx.device, &tess, &prepared);
+            let viewport = DVec2::new(320.0, 240.0);
+            let camera = scene.camera(viewport);
+            let before =
+                render_uploaded(ctx, &tess, &renderer, &gpu, &camera, 320, 240).expect("render");
+            // Edit the standard curve: a shape parameter and a small move of a control point keep
+            // every segment's automatic sample count, so the edit can be written in place.
+            let edit = |dy: f64| {
+                let mut edited = scene.clone();
+                let Curve::Nubmp(n) = &scene.curves[0].curve else {
+                    panic!("a NUBMP curve")
+                };
+                let mut n = n.clone();
+                let g = &n.groups()[5];
+                let values: Vec<f64> = g
+                    .values
+                    .iter()
+                    .zip([0.01, -0.005, -0.005])
+                    .map(|(v, d)| v + d)
+                    .collect();
+                n.set_group(5, &values).expect("valid");
+                let moved = edited.curves[0].curve.control_points()[3] + DVec3::new(0.0, dy, 0.0);
+                edited.curves[0].curve = Curve::Nubmp(n)
+                    .with_control_point(3, moved)
+                    .expect("finite");
+                edited
+            };
+            let repack = |edited: &Scene| {
+                repack_points(
+                    &prepared.placements[0],
+                    &prepared.sample_counts[0],
+                    &edited.curves[0].curve.lower(),
+                    edited.samples_for(0),
+                )
+            };
+            // A large move changes the curvature enough to need other sample counts: refused,
+            // the viewer packs the scene again.
+            assert!(repack(&edit(2.0)).is_none());
+            let edited = edit(0.02);
+            let writes = repack(&edited).expect("same structure");
+            for (chunk, first, verts) in writes {
+                gpu.write_points(&ctx.queue, chunk, first, &verts);
+            }
+            let (lines, points) = prepare_overlays(&edited, limits);
+            renderer.replace_overlays(&ctx.device, &mut gpu, &lines, &points);
+            let in_place =
+                render_uploaded(ctx, &tess, &renderer, &gpu, &camera, 320, 240).expect("render");
+            let fresh = render_scene(ctx, &edited, Some(camera), 320, 240).expect("render");
+            assert_eq!(
+                in_place, fresh,
+                "in-place update and fresh upload must draw the same pixels"
+            );
+            assert_ne!(in_place, before, "the edit must change the picture");
+        },
     );
-    assert_ne!(in_place, before, "the edit must change the picture");
 }

@@ -11,6 +11,8 @@ use std::fmt;
 use std::str::FromStr;
 
 use super::GpuError;
+use super::selftest;
+use super::tessellator::Tessellator;
 
 /// Which graphics API to use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -130,6 +132,20 @@ fn backend_rank(b: wgpu::Backend) -> u8 {
     }
 }
 
+/// Opens `adapter`'s device with its own limits and timestamp queries when it has them.
+fn open_device(adapter: &wgpu::Adapter) -> Result<(wgpu::Device, wgpu::Queue), GpuError> {
+    let wanted_features = wgpu::Features::TIMESTAMP_QUERY;
+    pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        label: Some("splinescope"),
+        required_features: adapter.features() & wanted_features,
+        required_limits: adapter.limits(),
+        experimental_features: wgpu::ExperimentalFeatures::disabled(),
+        memory_hints: wgpu::MemoryHints::Performance,
+        trace: wgpu::Trace::Off,
+    }))
+    .map_err(|e| GpuError::Device(e.to_string()))
+}
+
 /// A one-line description of an adapter: name, type, backend, driver.
 #[must_use]
 pub fn describe_adapter(info: &wgpu::AdapterInfo) -> String {
@@ -173,7 +189,7 @@ impl GpuContext {
             .map(|a| describe_adapter(&a.get_info()))
             .collect();
         let wanted = opts.adapter_name.as_ref().map(|n| n.to_lowercase());
-        let adapter = all
+        let mut candidates: Vec<wgpu::Adapter> = all
             .into_iter()
             .filter(|a| surface.is_none_or(|s| a.is_surface_supported(s)))
             .filter(|a| {
@@ -181,11 +197,13 @@ impl GpuContext {
                     .as_ref()
                     .is_none_or(|w| a.get_info().name.to_lowercase().contains(w))
             })
-            .min_by_key(|a| {
-                let info = a.get_info();
-                (type_rank(info.device_type), backend_rank(info.backend))
-            })
-            .ok_or_else(|| GpuError::NoAdapter {
+            .collect();
+        candidates.sort_by_key(|a| {
+            let info = a.get_info();
+            (type_rank(info.device_type), backend_rank(info.backend))
+        });
+        if candidates.is_empty() {
+            return Err(GpuError::NoAdapter {
                 backends: format!("{backends:?}"),
                 wanted: opts.adapter_name.clone(),
                 seen: if seen.is_empty() {
@@ -193,22 +211,34 @@ impl GpuContext {
                 } else {
                     seen.join("; ")
                 },
-            })?;
-        let wanted_features = wgpu::Features::TIMESTAMP_QUERY;
-        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-            label: Some("splinescope"),
-            required_features: adapter.features() & wanted_features,
-            required_limits: adapter.limits(),
-            experimental_features: wgpu::ExperimentalFeatures::disabled(),
-            memory_hints: wgpu::MemoryHints::Performance,
-            trace: wgpu::Trace::Off,
-        }))
-        .map_err(|e| GpuError::Device(e.to_string()))?;
-        Ok(GpuContext {
-            instance,
-            adapter,
-            device,
-            queue,
+            });
+        }
+        // The best adapter whose device opens and whose kernels pass the self-test; a
+        // refused adapter is reported only when no other one works.
+        let mut refused = Vec::new();
+        for adapter in candidates {
+            let name = describe_adapter(&adapter.get_info());
+            match open_device(&adapter) {
+                Ok((device, queue)) => {
+                    let tessellator = Tessellator::new(&device);
+                    match selftest::run(&device, &queue, &tessellator) {
+                        Ok(None) => {
+                            return Ok(GpuContext {
+                                instance,
+                                adapter,
+                                device,
+                                queue,
+                            });
+                        }
+                        Ok(Some(fault)) => refused.push(format!("{name}: {fault}")),
+                        Err(e) => refused.push(format!("{name}: kernel self-test failed: {e}")),
+                    }
+                }
+                Err(e) => refused.push(format!("{name}: {e}")),
+            }
+        }
+        Err(GpuError::Refused {
+            reasons: refused.join("; "),
         })
     }
 

@@ -8,6 +8,7 @@ pub mod layout;
 pub mod offscreen;
 pub mod pack;
 pub mod renderer;
+pub mod selftest;
 pub mod shaders;
 pub mod tessellator;
 pub mod twin;
@@ -33,6 +34,15 @@ pub enum GpuError {
         wanted: Option<String>,
         /// Every adapter found before filtering.
         seen: String,
+    },
+    /// Every adapter that matched was refused: its device did not open, or a kernel
+    /// computed wrong samples in the self-test run when a device opens.
+    #[error(
+        "no usable GPU adapter: {reasons}. Pick another with --gpu-backend or WGPU_ADAPTER_NAME (`splinescope adapters` lists them), or use the CPU path where the command has one"
+    )]
+    Refused {
+        /// Each adapter tried and why it was refused.
+        reasons: String,
     },
     /// The adapter refused to give a device.
     #[error("could not open the GPU device: {0}")]

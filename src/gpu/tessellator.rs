@@ -64,9 +64,16 @@ pub fn dispatch_grid(segments: u32, max_per_dim: u32) -> (u32, u32) {
 }
 
 impl Tessellator {
-    /// Builds the pipeline on `device`.
+    /// Builds the pipelines of `shaders/tessellate.wgsl` on `device`.
     #[must_use]
     pub fn new(device: &wgpu::Device) -> Tessellator {
+        Self::with_module(device, &shaders::TESSELLATE.module(device))
+    }
+
+    /// Builds the pipelines from another module with the same entry points and bindings
+    /// (the kernel self-test's own tests hand it a deliberately wrong kernel).
+    #[must_use]
+    pub fn with_module(device: &wgpu::Device, module: &wgpu::ShaderModule) -> Tessellator {
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("tessellate"),
             entries: &[
@@ -90,14 +97,13 @@ impl Tessellator {
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let module = shaders::TESSELLATE.module(device);
         let pipelines = TESSELLATE_KERNELS
             .iter()
             .map(|(entry, _)| {
                 device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                     label: Some(entry),
                     layout: Some(&pipeline_layout),
-                    module: &module,
+                    module,
                     entry_point: Some(entry),
                     compilation_options: wgpu::PipelineCompilationOptions::default(),
                     cache: None,

@@ -27,8 +27,8 @@ pub fn de_casteljau(points: &[GpuVertex], first: u32, n: u32, u: f32) -> Vec3 {
     for (i, slot) in p.iter_mut().enumerate().take(m + 1) {
         *slot = Vec3::from(points[first as usize + i].position);
     }
-    for r in 1..=m {
-        for i in 0..=(m - r) {
+    for level in (1..=m).rev() {
+        for i in 0..level {
             p[i] = v * p[i] + u * p[i + 1];
         }
     }

@@ -3,30 +3,103 @@
 
 use std::sync::OnceLock;
 
-use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext};
+use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext, GpuError};
 
 /// The environment variable that lets GPU tests skip (and say so) when no adapter exists.
 pub const SKIP_VAR: &str = "SPLINESCOPE_SKIP_GPU_TESTS";
 
-/// The shared GPU context. Without an adapter this fails the test with installation
-/// instructions, unless `SPLINESCOPE_SKIP_GPU_TESTS=1` asks to skip: then it prints that
-/// the test was skipped and returns `None`.
-pub fn gpu(test: &str) -> Option<&'static GpuContext> {
-    static CTX: OnceLock<Result<GpuContext, String>> = OnceLock::new();
-    let ctx = CTX.get_or_init(|| {
-        GpuContext::new(&ContextOptions::from_env(BackendChoice::Auto)).map_err(|e| e.to_string())
-    });
-    match ctx {
-        Ok(c) => Some(c),
+/// The environment variable that lists the backends GPU tests run on
+/// (`vulkan,gl`); by default every backend that has an adapter.
+pub const BACKENDS_VAR: &str = "SPLINESCOPE_TEST_BACKENDS";
+
+/// One backend's device, shared by the tests of a test binary.
+pub struct Backend {
+    /// `vulkan`, `gl`, `metal` or `dx12`: what `--gpu-backend` takes.
+    pub name: String,
+    /// Its context.
+    pub ctx: GpuContext,
+}
+
+const ALL: [BackendChoice; 4] = [
+    BackendChoice::Vulkan,
+    BackendChoice::Gl,
+    BackendChoice::Metal,
+    BackendChoice::Dx12,
+];
+
+fn open_all() -> Result<Vec<Backend>, String> {
+    let listed = std::env::var(BACKENDS_VAR)
+        .ok()
+        .filter(|v| !v.trim().is_empty());
+    let (choices, explicit) = match &listed {
+        Some(list) => (
+            list.split(',')
+                .map(|s| {
+                    s.trim()
+                        .parse::<BackendChoice>()
+                        .map_err(|e| format!("{BACKENDS_VAR}: {e}"))
+                })
+                .collect::<Result<Vec<_>, _>>()?,
+            true,
+        ),
+        None => (ALL.to_vec(), false),
+    };
+    let mut found = Vec::new();
+    let mut missing = Vec::new();
+    for choice in choices {
+        match GpuContext::new(&ContextOptions::from_env(choice)) {
+            Ok(ctx) => found.push(Backend {
+                name: choice.to_string(),
+                ctx,
+            }),
+            // Without a list, a backend with no adapter at all is simply not present; one
+            // whose adapter was refused (a kernel computing wrong samples) is a failure.
+            Err(GpuError::NoAdapter { .. }) if !explicit => {}
+            Err(e) => missing.push(format!("{choice}: {e}")),
+        }
+    }
+    if !missing.is_empty() {
+        return Err(format!(
+            "GPU backend(s) without a usable adapter: {}",
+            missing.join("; ")
+        ));
+    }
+    if found.is_empty() {
+        return Err("no GPU adapter on any backend".into());
+    }
+    Ok(found)
+}
+
+/// Every backend the GPU tests run on, each with its context. Without an adapter this
+/// fails the test with installation instructions, unless `SPLINESCOPE_SKIP_GPU_TESTS=1`
+/// asks to skip: then it prints that the test was skipped and returns an empty list.
+pub fn gpus(test: &str) -> Vec<&'static Backend> {
+    static BACKENDS: OnceLock<Result<Vec<Backend>, String>> = OnceLock::new();
+    match BACKENDS.get_or_init(open_all) {
+        Ok(all) => all.iter().collect(),
         Err(e) if std::env::var(SKIP_VAR).is_ok_and(|v| v == "1") => {
-            eprintln!("SKIPPED {test}: no GPU adapter ({e}); {SKIP_VAR}=1 asked to skip");
-            None
+            eprintln!("SKIPPED {test}: {e}; {SKIP_VAR}=1 asked to skip");
+            Vec::new()
         }
         Err(e) => panic!(
-            "{test} needs a GPU adapter and none was found: {e}\n\
-             Install the software one (Debian/Ubuntu: sudo apt-get install mesa-vulkan-drivers libvulkan1), \
+            "{test} needs a GPU adapter: {e}\n\
+             Install the software ones (Debian/Ubuntu: sudo apt-get install mesa-vulkan-drivers \
+             libvulkan1 libegl1 libgl1-mesa-dri), choose backends with {BACKENDS_VAR}=vulkan,gl, \
              or set {SKIP_VAR}=1 to skip GPU tests explicitly."
         ),
+    }
+}
+
+/// Runs `body` once per backend, saying which backend each run is on (the test's output
+/// names the backend of a failure).
+pub fn on_each_gpu(test: &str, mut body: impl FnMut(&'static Backend)) {
+    for backend in gpus(test) {
+        eprintln!(
+            "{test}: on backend {} ({})",
+            backend.name,
+            backend.ctx.describe()
+        );
+        body(backend);
     }
 }
 
