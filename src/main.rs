@@ -142,6 +142,15 @@ enum Command {
         /// Scene file (JSON).
         scene: PathBuf,
     },
+    /// List every GPU adapter found: backend, device type, driver, the limits that matter
+    /// here, whether its kernels pass the self-test, and which one each command would pick.
+    Adapters {
+        /// Print JSON instead of text.
+        #[arg(long)]
+        json: bool,
+        #[command(flatten)]
+        gpu: GpuArgs,
+    },
     /// Measure tessellation throughput: CPU (f64 and the f32 twin, one thread) and GPU.
     Bench(bench::BenchArgs),
 }
@@ -251,6 +260,7 @@ fn run(cli: Cli) -> Result<()> {
         }) => solve(&scene, &request, output.as_deref(), report.as_deref()),
         Some(Command::Inspect { scene, curve, tau }) => inspect(&scene, curve, tau),
         Some(Command::Bench(args)) => bench::run(&args),
+        Some(Command::Adapters { json, gpu }) => adapters(json, &gpu),
     }
 }
 
@@ -508,4 +518,70 @@ fn check(path: &Path) -> Result<()> {
     } else {
         bail!("not drawable on the GPU:\n  {}", gpu_problems.join("\n  "))
     }
+}
+
+fn adapters(json: bool, gpu: &GpuArgs) -> Result<()> {
+    let opts = ContextOptions::from_env(gpu.gpu_backend);
+    let found = splinescope::gpu::context::survey(&opts);
+    let chosen = found.iter().find(|a| a.chosen);
+    if json {
+        say!(
+            "{}",
+            serde_json::to_string_pretty(&serde_json::json!({
+                "backends": splinescope::gpu::context::backend_names(opts.backend.backends()),
+                "adapter_name_filter": opts.adapter_name,
+                "adapters": found,
+            }))?
+        );
+    } else {
+        say!(
+            "adapters for backends {}{} (most preferred first; * = chosen):",
+            splinescope::gpu::context::backend_names(opts.backend.backends()),
+            opts.adapter_name
+                .as_ref()
+                .map(|n| format!(", name containing {n:?}"))
+                .unwrap_or_default()
+        );
+        for a in &found {
+            let mib = |b: u64| b as f64 / (1024.0 * 1024.0);
+            say!(
+                "{} {} ({}, {}){}",
+                if a.chosen { "*" } else { " " },
+                a.name,
+                a.backend,
+                a.device_type,
+                if a.driver.is_empty() {
+                    String::new()
+                } else {
+                    format!(", driver {}", a.driver)
+                }
+            );
+            say!(
+                "    max storage binding {:.0} MiB, max buffer {:.0} MiB, {} workgroups per dimension, timestamps {}",
+                mib(a.max_storage_binding_bytes),
+                mib(a.max_buffer_bytes),
+                a.max_workgroups_per_dimension,
+                if a.timestamps { "yes" } else { "no" }
+            );
+            say!("    kernel self-test: {}", a.self_test);
+        }
+        match chosen {
+            Some(a) => say!(
+                "render, eval --backend gpu, bench and the headless gallery use: {} ({})\nview uses the first adapter in this list that passes and can present to its window",
+                a.name,
+                a.backend
+            ),
+            None => say!("no usable adapter"),
+        }
+    }
+    if found.is_empty() {
+        bail!(
+            "no GPU adapter found; {}",
+            splinescope::gpu::context::INSTALL_HINT
+        );
+    }
+    if chosen.is_none() {
+        bail!("no adapter passed the kernel self-test (see above)");
+    }
+    Ok(())
 }

@@ -110,8 +110,8 @@ pub struct GpuContext {
 
 /// The hint printed when no adapter exists.
 pub const INSTALL_HINT: &str = "install a Vulkan driver: on Debian/Ubuntu the software one is \
-`sudo apt-get install mesa-vulkan-drivers libvulkan1` (lavapipe); with a GPU, its vendor's \
-driver. Then pin it if needed: WGPU_BACKEND=vulkan \
+`sudo apt-get install mesa-vulkan-drivers libvulkan1` (lavapipe), and Mesa's OpenGL one is \
+`sudo apt-get install libegl1 libgl1-mesa-dri` (llvmpipe); with a GPU, its vendor's driver. Then pin it if needed: WGPU_BACKEND=vulkan \
 VK_DRIVER_FILES=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
 
 fn type_rank(t: wgpu::DeviceType) -> u8 {
@@ -130,6 +130,112 @@ fn backend_rank(b: wgpu::Backend) -> u8 {
         wgpu::Backend::Gl => 1,
         _ => 2,
     }
+}
+
+/// The real graphics APIs in `backends`, by the names `--gpu-backend` takes
+/// (`vulkan, gl`).
+#[must_use]
+pub fn backend_names(backends: wgpu::Backends) -> String {
+    let names: Vec<&str> = [
+        (wgpu::Backends::VULKAN, "vulkan"),
+        (wgpu::Backends::GL, "gl"),
+        (wgpu::Backends::METAL, "metal"),
+        (wgpu::Backends::DX12, "dx12"),
+    ]
+    .iter()
+    .filter(|(b, _)| backends.contains(*b))
+    .map(|(_, n)| *n)
+    .collect();
+    if names.is_empty() {
+        "none".into()
+    } else {
+        names.join(", ")
+    }
+}
+
+/// The order adapters are preferred in (smaller first): hardware before virtual before
+/// software; Vulkan, Metal and DX12 before GL.
+fn preference(info: &wgpu::AdapterInfo) -> (u8, u8) {
+    (type_rank(info.device_type), backend_rank(info.backend))
+}
+
+/// One adapter as `splinescope adapters` reports it.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct AdapterReport {
+    /// Its name.
+    pub name: String,
+    /// `Vulkan`, `Gl`, …
+    pub backend: String,
+    /// `DiscreteGpu`, `IntegratedGpu`, `VirtualGpu`, `Cpu` or `Other`.
+    pub device_type: String,
+    /// The driver's name and version information.
+    pub driver: String,
+    /// `max_storage_buffer_binding_size` in bytes: how many samples one chunk can hold.
+    pub max_storage_binding_bytes: u64,
+    /// `max_buffer_size` in bytes.
+    pub max_buffer_bytes: u64,
+    /// `max_compute_workgroups_per_dimension`: past it dispatches go 2D.
+    pub max_workgroups_per_dimension: u32,
+    /// Whether GPU timestamp queries are available (per-stage timings).
+    pub timestamps: bool,
+    /// `passed`, or why the device could not be used (the kernel self-test's finding,
+    /// or the device request's error).
+    pub self_test: String,
+    /// Whether offscreen commands (`render`, `eval --backend gpu`, `bench`, the headless
+    /// gallery) would pick this adapter with these options.
+    pub chosen: bool,
+}
+
+/// Every adapter the options allow, in order of preference, each opened and self-tested;
+/// the first that passes is marked `chosen` (the one [`GpuContext::new`] returns).
+#[must_use]
+pub fn survey(opts: &ContextOptions) -> Vec<AdapterReport> {
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
+        backends: opts.backend.backends(),
+        ..wgpu::InstanceDescriptor::new_without_display_handle_from_env()
+    });
+    let mut all = pollster::block_on(instance.enumerate_adapters(opts.backend.backends()));
+    all.sort_by_key(|a| preference(&a.get_info()));
+    let wanted = opts.adapter_name.as_ref().map(|n| n.to_lowercase());
+    let mut chosen_yet = false;
+    all.iter()
+        .map(|adapter| {
+            let info = adapter.get_info();
+            let limits = adapter.limits();
+            let matches = wanted
+                .as_ref()
+                .is_none_or(|w| info.name.to_lowercase().contains(w));
+            let self_test = match open_device(adapter) {
+                Ok((device, queue)) => {
+                    match selftest::run(&device, &queue, &Tessellator::new(&device)) {
+                        Ok(None) => "passed".to_owned(),
+                        Ok(Some(fault)) => format!("failed: {fault}"),
+                        Err(e) => format!("failed: {e}"),
+                    }
+                }
+                Err(e) => format!("failed: {e}"),
+            };
+            let chosen = matches && !chosen_yet && self_test == "passed";
+            chosen_yet |= chosen;
+            AdapterReport {
+                name: info.name.clone(),
+                backend: format!("{:?}", info.backend),
+                device_type: format!("{:?}", info.device_type),
+                driver: [info.driver.as_str(), info.driver_info.as_str()]
+                    .iter()
+                    .filter(|s| !s.is_empty())
+                    .copied()
+                    .collect::<Vec<_>>()
+                    .join(" "),
+                max_storage_binding_bytes: limits.max_storage_buffer_binding_size,
+                max_buffer_bytes: limits.max_buffer_size,
+                max_workgroups_per_dimension: limits.max_compute_workgroups_per_dimension,
+                timestamps: adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY),
+                self_test,
+                chosen,
+            }
+        })
+        .collect()
 }
 
 /// Opens `adapter`'s device with its own limits and timestamp queries when it has them.
@@ -198,13 +304,10 @@ impl GpuContext {
                     .is_none_or(|w| a.get_info().name.to_lowercase().contains(w))
             })
             .collect();
-        candidates.sort_by_key(|a| {
-            let info = a.get_info();
-            (type_rank(info.device_type), backend_rank(info.backend))
-        });
+        candidates.sort_by_key(|a| preference(&a.get_info()));
         if candidates.is_empty() {
             return Err(GpuError::NoAdapter {
-                backends: format!("{backends:?}"),
+                backends: backend_names(backends),
                 wanted: opts.adapter_name.clone(),
                 seen: if seen.is_empty() {
                     "none".into()

@@ -15,7 +15,7 @@ pub mod twin;
 
 use thiserror::Error;
 
-pub use context::{BackendChoice, ContextOptions, GpuContext};
+pub use context::{AdapterReport, BackendChoice, ContextOptions, GpuContext};
 pub use pack::PackError;
 
 /// Why GPU work failed.
