@@ -44,6 +44,10 @@ fn parse_backend(s: &str) -> Result<BackendChoice, String> {
     s.parse()
 }
 
+fn parse_tolerance(s: &str) -> Result<splinescope::image::Tolerance, String> {
+    s.parse()
+}
+
 impl GpuArgs {
     fn context(&self) -> Result<GpuContext> {
         Ok(GpuContext::new(&ContextOptions::from_env(
@@ -141,6 +145,56 @@ enum Command {
     Check {
         /// Scene file (JSON).
         scene: PathBuf,
+    },
+    /// Render every scene (*.json) of SCENES_DIR and compare it with REFS_DIR/<name>.png;
+    /// exits 1 when any scene differs, has no reference or fails.
+    Regress {
+        /// Directory of scene files.
+        scenes: PathBuf,
+        /// Directory of reference images (created by --bless).
+        refs: PathBuf,
+        /// Write missing and changed references instead of failing on them.
+        #[arg(long)]
+        bless: bool,
+        /// Render width in pixels.
+        #[arg(long, default_value_t = 640, value_parser = clap::value_parser!(u32).range(1..=16384))]
+        width: u32,
+        /// Render height in pixels.
+        #[arg(long, default_value_t = 480, value_parser = clap::value_parser!(u32).range(1..=16384))]
+        height: u32,
+        /// When images match: channel=N (largest per-channel difference that does not
+        /// count), pixels=P% (largest share of differing pixels), flip=F (largest FLIP mean;
+        /// unset: reported, not gated).
+        #[arg(long, default_value = "channel=24,pixels=0.1%", value_parser = parse_tolerance)]
+        tolerance: splinescope::image::Tolerance,
+        /// Write an HTML report with the actual, reference, diff and FLIP images here.
+        #[arg(long, value_name = "OUT_DIR")]
+        report: Option<PathBuf>,
+        /// Print the results as JSON.
+        #[arg(long)]
+        json: bool,
+        #[command(flatten)]
+        gpu: GpuArgs,
+    },
+    /// Compare two PNG images (per-channel and NVIDIA FLIP); exits 1 when they differ
+    /// beyond the tolerance or their sizes differ.
+    Diff {
+        /// The image under test.
+        actual: PathBuf,
+        /// The reference image.
+        reference: PathBuf,
+        /// Write the diff image (differing pixels in red over a grey reference).
+        #[arg(short, long, value_name = "PNG")]
+        output: Option<PathBuf>,
+        /// Write FLIP's error map as a heat map.
+        #[arg(long, value_name = "PNG")]
+        flip_map: Option<PathBuf>,
+        /// As for `regress`.
+        #[arg(long, default_value = "channel=24,pixels=0.1%", value_parser = parse_tolerance)]
+        tolerance: splinescope::image::Tolerance,
+        /// Print the figures as JSON.
+        #[arg(long)]
+        json: bool,
     },
     /// List every GPU adapter found: backend, device type, driver, the limits that matter
     /// here, whether its kernels pass the self-test, and which one each command would pick.
@@ -261,6 +315,44 @@ fn run(cli: Cli) -> Result<()> {
         Some(Command::Inspect { scene, curve, tau }) => inspect(&scene, curve, tau),
         Some(Command::Bench(args)) => bench::run(&args),
         Some(Command::Adapters { json, gpu }) => adapters(json, &gpu),
+        Some(Command::Regress {
+            scenes,
+            refs,
+            bless,
+            width,
+            height,
+            tolerance,
+            report,
+            json,
+            gpu,
+        }) => regress(
+            &scenes,
+            &refs,
+            &splinescope::regress::RegressOptions {
+                width,
+                height,
+                tolerance,
+                bless,
+                report,
+            },
+            json,
+            &gpu,
+        ),
+        Some(Command::Diff {
+            actual,
+            reference,
+            output,
+            flip_map,
+            tolerance,
+            json,
+        }) => diff(
+            &actual,
+            &reference,
+            output.as_deref(),
+            flip_map.as_deref(),
+            &tolerance,
+            json,
+        ),
     }
 }
 
@@ -582,6 +674,112 @@ fn adapters(json: bool, gpu: &GpuArgs) -> Result<()> {
     }
     if chosen.is_none() {
         bail!("no adapter passed the kernel self-test (see above)");
+    }
+    Ok(())
+}
+
+fn regress(
+    scenes: &Path,
+    refs: &Path,
+    opts: &splinescope::regress::RegressOptions,
+    json: bool,
+    gpu: &GpuArgs,
+) -> Result<()> {
+    use splinescope::regress::Status;
+    let ctx = gpu.context()?;
+    let report = splinescope::regress::run(&ctx, scenes, refs, opts)?;
+    if json {
+        say!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        for r in &report.scenes {
+            let figures = r.comparison.as_ref().map_or_else(String::new, |m| {
+                format!(
+                    " {} px differ ({:.3} %), FLIP mean {:.4}",
+                    m.differing_pixels,
+                    m.differing_fraction * 100.0,
+                    m.flip_mean
+                )
+            });
+            let status = format!("{:?}", r.status).to_lowercase();
+            say!(
+                "{status:<8} {}{figures}{}",
+                r.scene,
+                r.message
+                    .as_ref()
+                    .map(|m| format!(" — {m}"))
+                    .unwrap_or_default()
+            );
+        }
+        say!(
+            "regress: {} scene(s) on {}: {} match, {} differ, {} missing, {} blessed, {} error(s) (tolerance {})",
+            report.scenes.len(),
+            ctx.describe(),
+            report.count(Status::Match),
+            report.count(Status::Differs),
+            report.count(Status::Missing),
+            report.count(Status::Blessed),
+            report.count(Status::Error),
+            report.tolerance
+        );
+        if let Some(page) = &report.report_page {
+            say!("report: {}", page.display());
+        }
+    }
+    if report.failed() {
+        bail!(
+            "{} of {} scene(s) failed{}",
+            report.scenes.iter().filter(|r| r.failed()).count(),
+            report.scenes.len(),
+            report
+                .report_page
+                .as_ref()
+                .map(|p| format!("; see {}", p.display()))
+                .unwrap_or_default()
+        );
+    }
+    Ok(())
+}
+
+fn diff(
+    actual: &Path,
+    reference: &Path,
+    output: Option<&Path>,
+    flip_map: Option<&Path>,
+    tolerance: &splinescope::image::Tolerance,
+    json: bool,
+) -> Result<()> {
+    use splinescope::image::{RgbaImage, compare_images};
+    let a = RgbaImage::read_png(actual)?;
+    let b = RgbaImage::read_png(reference)?;
+    let (c, pictures) = compare_images(&a, &b, tolerance)
+        .with_context(|| format!("{} vs {}", actual.display(), reference.display()))?;
+    if let Some(out) = output {
+        pictures.diff.write_png(out)?;
+    }
+    if let Some(out) = flip_map {
+        pictures.flip.write_png(out)?;
+    }
+    if json {
+        say!("{}", serde_json::to_string_pretty(&c)?);
+    } else {
+        say!(
+            "{}: {} px of {} differ ({:.3} %; largest channel difference {}), FLIP mean {:.4}, max {:.4} (tolerance {})",
+            if c.matches { "match" } else { "differ" },
+            c.differing_pixels,
+            u64::from(c.width) * u64::from(c.height),
+            c.differing_fraction * 100.0,
+            c.max_channel_diff,
+            c.flip_mean,
+            c.flip_max,
+            tolerance
+        );
+    }
+    if !c.matches {
+        bail!(
+            "{} differs from {} beyond the tolerance {tolerance}",
+            actual.display(),
+            reference.display()
+        );
     }
     Ok(())
 }

@@ -1,8 +1,8 @@
 //! Offscreen images: golden references with a stated tolerance, and checks against
 //! analytic truth that need no reference at all.
 //!
-//! Golden tolerance: a pixel counts as different when any channel differs by more than
-//! 24/255; at most 0.1 % of the pixels may differ. The references were made on lavapipe
+//! Golden tolerance (`splinescope regress`'s default): a pixel counts as different when any
+//! channel differs by more than 24/255; at most 0.1 % of the pixels may differ. The references were made on lavapipe
 //! (Mesa 22.3, Vulkan); rasterisers differ slightly in coverage at edges, which the
 //! tolerance absorbs, while a missing, moved or recoloured curve changes far more pixels.
 //! On failure the actual image and a diff (differing pixels in red) are written to
@@ -16,12 +16,11 @@ use glam::{DVec2, DVec3};
 use splinescope::camera::Camera;
 use splinescope::geom::{Bezier, Curve};
 use splinescope::gpu::offscreen::render_scene;
-use splinescope::image::{RgbaImage, compare};
+use splinescope::image::{ComparisonImages, RgbaImage, Tolerance, compare_images};
 use splinescope::scene::{Color, Scene, SceneCurve, Style, ViewSpec, gallery};
 
-const CHANNEL_TOLERANCE: u8 = 24;
-const MAX_DIFFERING_FRACTION: f64 = 0.001;
-
+/// The golden references are compared with the same code as `splinescope regress`, at
+/// its default tolerance.
 fn golden(name: &str, backend: &str, image: &RgbaImage) {
     let reference = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("tests/golden")
@@ -34,35 +33,46 @@ fn golden(name: &str, backend: &str, image: &RgbaImage) {
     let want = RgbaImage::read_png(&reference)
         .unwrap_or_else(|e| panic!("{e}; run with SPLINESCOPE_BLESS=1 to create the reference"));
     let out = common::out_dir("images");
-    let diff = compare(image, &want, CHANNEL_TOLERANCE);
-    let fail = |why: String| {
+    let tolerance = Tolerance::default();
+    let fail = |why: String, pictures: Option<&ComparisonImages>| {
         let actual = out.join(format!("{name}.{backend}.actual.png"));
         image.write_png(&actual).expect("write actual");
-        if let Some(d) = &diff {
-            d.diff_image
+        if let Some(p) = pictures {
+            p.diff
                 .write_png(&out.join(format!("{name}.{backend}.diff.png")))
                 .expect("write diff");
+            p.flip
+                .write_png(&out.join(format!("{name}.{backend}.flip.png")))
+                .expect("write flip");
         }
         panic!(
             "{name} on {backend}: {why}; actual and diff images in {} (SPLINESCOPE_BLESS=1 accepts the new image)",
             out.display()
         );
     };
-    let Some(d) = &diff else {
-        fail(format!(
-            "size {}×{} differs from the reference {}×{}",
-            image.width, image.height, want.width, want.height
-        ));
-        return;
-    };
-    let fraction = d.pixels_over as f64 / f64::from(image.width * image.height);
-    if fraction > MAX_DIFFERING_FRACTION {
-        fail(format!(
-            "{} pixels ({:.3} %) differ by more than {CHANNEL_TOLERANCE}/255 (largest difference {})",
-            d.pixels_over,
-            fraction * 100.0,
-            d.max_channel_diff
-        ));
+    match compare_images(image, &want, &tolerance) {
+        Err(mismatch) => fail(mismatch.to_string(), None),
+        Ok((c, pictures)) => {
+            eprintln!(
+                "{name} on {backend}: {} px differ ({:.3} %), FLIP mean {:.4}",
+                c.differing_pixels,
+                c.differing_fraction * 100.0,
+                c.flip_mean
+            );
+            if !c.matches {
+                fail(
+                    format!(
+                        "{} pixels ({:.3} %) differ by more than {}/255 (largest difference {}; FLIP mean {:.4})",
+                        c.differing_pixels,
+                        c.differing_fraction * 100.0,
+                        tolerance.channel,
+                        c.max_channel_diff,
+                        c.flip_mean
+                    ),
+                    Some(&pictures),
+                );
+            }
+        }
     }
 }
 

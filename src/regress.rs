@@ -1,0 +1,492 @@
+//! Image regression for users' own scenes (`splinescope regress`): render every scene of a
+//! directory offscreen, compare each with its reference PNG by the per-channel rule and
+//! NVIDIA FLIP ([`crate::image::compare_images`]), bless new references on request, and
+//! write an HTML report with the actual, reference, diff and FLIP images.
+//!
+//! A failure writes nothing partial: references are written atomically, one by one, and
+//! the report is built in a hidden directory beside its destination and moved into place
+//! only when complete.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+use thiserror::Error;
+
+use crate::gpu::GpuContext;
+use crate::image::{Comparison, ComparisonImages, RgbaImage, Tolerance, compare_images};
+use crate::scene::Scene;
+
+/// How to run a regression.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RegressOptions {
+    /// Render width in pixels.
+    pub width: u32,
+    /// Render height in pixels.
+    pub height: u32,
+    /// When two images match.
+    pub tolerance: Tolerance,
+    /// Write missing and changed references instead of failing on them.
+    pub bless: bool,
+    /// Where to write the HTML report and its images, if anywhere.
+    pub report: Option<PathBuf>,
+}
+
+impl Default for RegressOptions {
+    fn default() -> RegressOptions {
+        RegressOptions {
+            width: 640,
+            height: 480,
+            tolerance: Tolerance::default(),
+            bless: false,
+            report: None,
+        }
+    }
+}
+
+/// What became of one scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Status {
+    /// It matches its reference.
+    Match,
+    /// It differs from its reference beyond the tolerance.
+    Differs,
+    /// It has no reference (run with `--bless` to create it).
+    Missing,
+    /// `--bless` wrote its reference (it was missing or differed).
+    Blessed,
+    /// It could not be compared: the scene did not load or render, or the reference
+    /// could not be read or has another size.
+    Error,
+}
+
+/// One scene's outcome.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SceneResult {
+    /// The scene file's name.
+    pub scene: String,
+    /// Its reference image.
+    pub reference: PathBuf,
+    /// The outcome.
+    pub status: Status,
+    /// The figures, when the images were compared.
+    pub comparison: Option<Comparison>,
+    /// What went wrong, or what was done.
+    pub message: Option<String>,
+}
+
+impl SceneResult {
+    /// Whether this scene makes the run fail.
+    #[must_use]
+    pub fn failed(&self) -> bool {
+        matches!(
+            self.status,
+            Status::Differs | Status::Missing | Status::Error
+        )
+    }
+}
+
+/// The outcome of a whole run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RegressReport {
+    /// Every scene, in file-name order.
+    pub scenes: Vec<SceneResult>,
+    /// The tolerance used, as `--tolerance` writes it.
+    pub tolerance: String,
+    /// The HTML report's page, when one was written.
+    pub report_page: Option<PathBuf>,
+}
+
+impl RegressReport {
+    /// Whether any scene failed.
+    #[must_use]
+    pub fn failed(&self) -> bool {
+        self.scenes.iter().any(SceneResult::failed)
+    }
+
+    /// How many scenes have `status`.
+    #[must_use]
+    pub fn count(&self, status: Status) -> usize {
+        self.scenes.iter().filter(|s| s.status == status).count()
+    }
+}
+
+/// Why a regression could not run at all (a problem with one scene is a
+/// [`SceneResult`] with [`Status::Error`] instead, and the others are still compared).
+#[derive(Debug, Error)]
+pub enum RegressError {
+    /// The scenes directory could not be listed.
+    #[error("{path}: cannot read the scenes directory: {source}")]
+    ScenesDir {
+        /// The directory.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// It holds no `*.json` scene.
+    #[error("{0}: no scene files (*.json) to compare")]
+    NoScenes(PathBuf),
+    /// The references path exists and is not a directory.
+    #[error("{0}: the references path is not a directory")]
+    RefsNotDir(PathBuf),
+    /// The references directory could not be created (`--bless`).
+    #[error("{path}: cannot create the references directory: {source}")]
+    RefsCreate {
+        /// The directory.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The report directory exists and is not an earlier report or empty, so replacing it
+    /// could destroy someone's files.
+    #[error(
+        "{0}: exists and is not an earlier splinescope report (no index.html) nor empty; choose another --report directory"
+    )]
+    ReportDirInUse(PathBuf),
+    /// Writing the report failed (nothing was left behind).
+    #[error("{path}: cannot write the report: {message}")]
+    Report {
+        /// The report directory.
+        path: PathBuf,
+        /// The cause.
+        message: String,
+    },
+}
+
+/// The `*.json` files directly in `dir`, sorted by name.
+fn scene_files(dir: &Path) -> Result<Vec<PathBuf>, RegressError> {
+    let read = std::fs::read_dir(dir).map_err(|source| RegressError::ScenesDir {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let mut files = Vec::new();
+    for entry in read {
+        let entry = entry.map_err(|source| RegressError::ScenesDir {
+            path: dir.to_path_buf(),
+            source,
+        })?;
+        let path = entry.path();
+        if path.extension().is_some_and(|e| e == "json") && path.is_file() {
+            files.push(path);
+        }
+    }
+    files.sort();
+    if files.is_empty() {
+        return Err(RegressError::NoScenes(dir.to_path_buf()));
+    }
+    Ok(files)
+}
+
+/// Checks that `report` can be (re)placed: absent, empty, or an earlier report.
+fn check_report_dir(report: &Path) -> Result<(), RegressError> {
+    let parent = report
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or_else(|| Path::new("."));
+    if !parent.is_dir() {
+        return Err(RegressError::Report {
+            path: report.to_path_buf(),
+            message: format!("{} is not a directory", parent.display()),
+        });
+    }
+    if !report.exists() {
+        return Ok(());
+    }
+    let earlier = report.is_dir()
+        && (report.join("index.html").is_file()
+            || std::fs::read_dir(report).is_ok_and(|mut d| d.next().is_none()));
+    if earlier {
+        Ok(())
+    } else {
+        Err(RegressError::ReportDirInUse(report.to_path_buf()))
+    }
+}
+
+/// One scene rendered and compared: the result and, for the report, its images.
+struct Compared {
+    result: SceneResult,
+    actual: Option<RgbaImage>,
+    reference: Option<RgbaImage>,
+    pictures: Option<ComparisonImages>,
+}
+
+fn compare_one(ctx: &GpuContext, path: &Path, refs: &Path, opts: &RegressOptions) -> Compared {
+    let name = path
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    let stem = path
+        .file_stem()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    let reference_path = refs.join(format!("{stem}.png"));
+    let mut out = Compared {
+        result: SceneResult {
+            scene: name,
+            reference: reference_path.clone(),
+            status: Status::Error,
+            comparison: None,
+            message: None,
+        },
+        actual: None,
+        reference: None,
+        pictures: None,
+    };
+    let rendered = Scene::load(path)
+        .map_err(|e| format!("{}: {e}", path.display()))
+        .and_then(|scene| {
+            crate::gpu::offscreen::render_scene(ctx, &scene, None, opts.width, opts.height)
+                .map_err(|e| format!("{}: {e}", path.display()))
+        });
+    let actual = match rendered {
+        Ok(image) => image,
+        Err(message) => {
+            out.result.message = Some(message);
+            return out;
+        }
+    };
+    let bless = |out: &mut Compared, actual: &RgbaImage, why: &str| match actual
+        .write_png(&reference_path)
+    {
+        Ok(()) => {
+            out.result.status = Status::Blessed;
+            out.result.message = Some(format!("{why}: wrote {}", reference_path.display()));
+        }
+        Err(e) => out.result.message = Some(e.to_string()),
+    };
+    if !reference_path.exists() {
+        if opts.bless {
+            bless(&mut out, &actual, "no reference");
+        } else {
+            out.result.status = Status::Missing;
+            out.result.message = Some(format!(
+                "{}: no reference image (run with --bless to create it)",
+                reference_path.display()
+            ));
+        }
+        out.actual = Some(actual);
+        return out;
+    }
+    let reference = match RgbaImage::read_png(&reference_path) {
+        Ok(r) => r,
+        Err(e) => {
+            if opts.bless {
+                bless(&mut out, &actual, &format!("unreadable reference ({e})"));
+            } else {
+                out.result.message = Some(format!("reference {e}"));
+            }
+            out.actual = Some(actual);
+            return out;
+        }
+    };
+    match compare_images(&actual, &reference, &opts.tolerance) {
+        Err(mismatch) => {
+            if opts.bless {
+                bless(&mut out, &actual, &mismatch.to_string());
+            } else {
+                out.result.message = Some(format!("{}: {mismatch}", reference_path.display()));
+            }
+        }
+        Ok((comparison, pictures)) => {
+            let matches = comparison.matches;
+            out.result.comparison = Some(comparison);
+            out.pictures = Some(pictures);
+            if matches {
+                out.result.status = Status::Match;
+            } else if opts.bless {
+                bless(&mut out, &actual, "changed");
+            } else {
+                out.result.status = Status::Differs;
+            }
+        }
+    }
+    out.actual = Some(actual);
+    out.reference = Some(reference);
+    out
+}
+
+/// Renders every scene in `scenes` on `ctx` and compares it with `refs/<stem>.png`.
+///
+/// # Errors
+/// [`RegressError`] when the run cannot start (no scenes, unusable directories) or the
+/// report cannot be written; a scene that fails is reported in its [`SceneResult`].
+pub fn run(
+    ctx: &GpuContext,
+    scenes: &Path,
+    refs: &Path,
+    opts: &RegressOptions,
+) -> Result<RegressReport, RegressError> {
+    let files = scene_files(scenes)?;
+    if refs.exists() && !refs.is_dir() {
+        return Err(RegressError::RefsNotDir(refs.to_path_buf()));
+    }
+    if let Some(report) = &opts.report {
+        check_report_dir(report)?;
+    }
+    if opts.bless {
+        std::fs::create_dir_all(refs).map_err(|source| RegressError::RefsCreate {
+            path: refs.to_path_buf(),
+            source,
+        })?;
+    }
+    let compared: Vec<Compared> = files
+        .iter()
+        .map(|f| compare_one(ctx, f, refs, opts))
+        .collect();
+    let mut report = RegressReport {
+        scenes: compared.iter().map(|c| c.result.clone()).collect(),
+        tolerance: opts.tolerance.to_string(),
+        report_page: None,
+    };
+    if let Some(dir) = &opts.report {
+        write_report(dir, &compared, &report).map_err(|message| RegressError::Report {
+            path: dir.clone(),
+            message,
+        })?;
+        report.report_page = Some(dir.join("index.html"));
+    }
+    Ok(report)
+}
+
+fn html_escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// Builds the report in a hidden directory beside `dir`, then moves it into place.
+fn write_report(dir: &Path, compared: &[Compared], report: &RegressReport) -> Result<(), String> {
+    let name = dir
+        .file_name()
+        .map_or_else(|| "report".to_owned(), |n| n.to_string_lossy().into_owned());
+    let staging = dir.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
+    let _ = std::fs::remove_dir_all(&staging);
+    let result = fill_report(&staging, compared, report).and_then(|()| {
+        if dir.exists() {
+            std::fs::remove_dir_all(dir).map_err(|e| e.to_string())?;
+        }
+        std::fs::rename(&staging, dir).map_err(|e| e.to_string())
+    });
+    if result.is_err() {
+        let _ = std::fs::remove_dir_all(&staging);
+    }
+    result
+}
+
+fn fill_report(
+    staging: &Path,
+    compared: &[Compared],
+    report: &RegressReport,
+) -> Result<(), String> {
+    std::fs::create_dir(staging).map_err(|e| format!("{}: {e}", staging.display()))?;
+    let mut rows = String::new();
+    for c in compared {
+        let r = &c.result;
+        let stem = Path::new(&r.scene)
+            .file_stem()
+            .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
+        let mut cells = String::new();
+        for (kind, image) in [
+            ("reference", c.reference.as_ref()),
+            ("actual", c.actual.as_ref()),
+            ("diff", c.pictures.as_ref().map(|p| &p.diff)),
+            ("flip", c.pictures.as_ref().map(|p| &p.flip)),
+        ] {
+            match image {
+                Some(image) => {
+                    let file = format!("{stem}.{kind}.png");
+                    image
+                        .write_png(&staging.join(&file))
+                        .map_err(|e| e.to_string())?;
+                    let file = html_escape(&file);
+                    let _ = write!(
+                        cells,
+                        "<td><a href=\"{file}\"><img src=\"{file}\" alt=\"{kind}\"></a></td>"
+                    );
+                }
+                None => cells.push_str("<td class=\"none\">—</td>"),
+            }
+        }
+        let figures = r.comparison.as_ref().map_or_else(String::new, |m| {
+            format!(
+                "{} px differ ({:.3} %), largest channel difference {}, FLIP mean {:.4}, max {:.4}",
+                m.differing_pixels,
+                m.differing_fraction * 100.0,
+                m.max_channel_diff,
+                m.flip_mean,
+                m.flip_max
+            )
+        });
+        let status = format!("{:?}", r.status).to_lowercase();
+        let _ = write!(
+            rows,
+            "<tr class=\"{status}\"><th>{}<br><span class=\"status\">{status}</span><p>{}</p><p>{}</p></th>{cells}</tr>\n",
+            html_escape(&r.scene),
+            html_escape(&figures),
+            html_escape(r.message.as_deref().unwrap_or("")),
+        );
+    }
+    let summary = format!(
+        "{} scene(s): {} match, {} differ, {} missing, {} blessed, {} error(s); tolerance {}",
+        report.scenes.len(),
+        report.count(Status::Match),
+        report.count(Status::Differs),
+        report.count(Status::Missing),
+        report.count(Status::Blessed),
+        report.count(Status::Error),
+        report.tolerance
+    );
+    let page = format!(
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+<title>splinescope regression report</title><style>\
+body{{font-family:sans-serif;margin:1em}}table{{border-collapse:collapse}}\
+td,th{{border:1px solid #ccc;padding:4px;vertical-align:top;text-align:left}}\
+th{{max-width:18em;font-weight:normal}}img{{width:240px;image-rendering:pixelated}}\
+.status{{font-weight:bold}}.differs .status,.missing .status,.error .status{{color:#c00}}\
+.match .status{{color:#080}}.blessed .status{{color:#a60}}</style></head><body>\
+<h1>splinescope regression report</h1><p>{}</p>\
+<table><tr><th>scene</th><th>reference</th><th>actual</th>\
+<th>diff (red: a channel off by more than the tolerance)</th>\
+<th>FLIP error (black: same, yellow: most different)</th></tr>\n{rows}</table></body></html>\n",
+        html_escape(&summary)
+    );
+    crate::files::write_atomic(&staging.join("index.html"), page.as_bytes())
+        .map_err(|e| e.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn report_directories_that_hold_other_files_are_refused() {
+        let base = std::env::temp_dir().join(format!("splinescope-regress-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&base);
+        std::fs::create_dir_all(base.join("earlier")).unwrap();
+        std::fs::write(base.join("earlier/index.html"), "x").unwrap();
+        std::fs::create_dir_all(base.join("empty")).unwrap();
+        std::fs::create_dir_all(base.join("photos")).unwrap();
+        std::fs::write(base.join("photos/cat.png"), "x").unwrap();
+        std::fs::write(base.join("file"), "x").unwrap();
+        assert!(check_report_dir(&base.join("absent")).is_ok());
+        assert!(check_report_dir(&base.join("earlier")).is_ok());
+        assert!(check_report_dir(&base.join("empty")).is_ok());
+        for bad in ["photos", "file"] {
+            let e = check_report_dir(&base.join(bad)).unwrap_err();
+            assert!(e.to_string().contains(bad), "{e}");
+        }
+        assert!(matches!(
+            scene_files(&base.join("empty")),
+            Err(RegressError::NoScenes(_))
+        ));
+        std::fs::remove_dir_all(&base).unwrap();
+    }
+
+    #[test]
+    fn html_is_escaped() {
+        assert_eq!(
+            html_escape("<a href=\"x\">&</a>"),
+            "&lt;a href=&quot;x&quot;&gt;&amp;&lt;/a&gt;"
+        );
+    }
+}
