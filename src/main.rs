@@ -600,9 +600,12 @@ fn check(path: &Path) -> Result<()> {
                 .unwrap_or_default(),
             segments.len()
         );
-        if let Err(e) = splinescope::gpu::pack::check_degrees(i, &segments) {
+        if let Err(e) = splinescope::gpu::pack::check_gpu_fit(i, &segments) {
             gpu_problems.push(e.to_string());
         }
+    }
+    if let Err(e) = splinescope::gpu::pack::check_annotations(&scene) {
+        gpu_problems.push(e.to_string());
     }
     if gpu_problems.is_empty() {
         say!("every curve fits the GPU kernel");

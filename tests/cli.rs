@@ -252,6 +252,69 @@ fn write_degree_40_scene() -> PathBuf {
     path
 }
 
+/// Coordinates near 1e308 are fine for the f64 CPU path but overflow f32: `check`, `eval
+/// --backend gpu` and `render` refuse them alike, naming the curve and the point (an
+/// annotation's too).
+#[test]
+fn coordinates_beyond_f32_are_refused_by_check_and_the_gpu_path_alike() {
+    let path = out_dir().join("huge.json");
+    std::fs::write(
+        &path,
+        r#"{"version": 1, "curves": [
+            {"type": "bezier", "points": [[0, 0], [1, 1]]},
+            {"type": "bezier", "points": [[0, 0], [1e308, 1], [2, 0]]}
+        ]}"#,
+    )
+    .unwrap();
+    let s = path.to_string_lossy();
+    let want = "curves[1]: Bézier segment 0, control point 1 has coordinate 1e308, beyond the GPU's f32 range of ±1e38";
+    let (code, err) = stderr_of(&["check", &s]);
+    assert_eq!(code, Some(1));
+    assert!(err.contains(want), "{err}");
+    common::on_each_gpu("huge coordinates (gpu half)", |backend| {
+        let out_png = out_dir().join(format!("huge.{}.png", backend.name));
+        let _ = std::fs::remove_file(&out_png);
+        for args in [
+            vec![
+                "render",
+                &s,
+                "-o",
+                &out_png.to_string_lossy(),
+                "--gpu-backend",
+                &backend.name,
+            ],
+            vec![
+                "eval",
+                &s,
+                "--samples",
+                "3",
+                "--backend",
+                "gpu",
+                "--gpu-backend",
+                &backend.name,
+            ],
+        ] {
+            let (code, err) = stderr_of(&args);
+            assert_eq!(code, Some(1), "{}: {args:?}", backend.name);
+            assert!(err.contains(want), "{}: {err}", backend.name);
+        }
+        assert!(!out_png.exists(), "a refused render writes nothing");
+    });
+    let annotated = out_dir().join("huge_annotation.json");
+    std::fs::write(
+        &annotated,
+        r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1, 1]]}],
+            "annotations": [{"points": [[0, 0], [3e38, 0]]}]}"#,
+    )
+    .unwrap();
+    let (code, err) = stderr_of(&["check", &annotated.to_string_lossy()]);
+    assert_eq!(code, Some(1), "{err}");
+    assert!(
+        err.contains("annotations[0].points[1] has coordinate 3e38"),
+        "{err}"
+    );
+}
+
 #[test]
 fn a_degree_over_the_gpu_maximum_is_an_error_on_the_gpu_and_fine_on_the_cpu() {
     let scene = write_degree_40_scene();

@@ -8,7 +8,7 @@ use glam::DVec3;
 use super::GpuError;
 use super::context::GpuContext;
 use super::layout::GpuVertex;
-use super::pack::{ChunkBuilder, ChunkLimits, check_degrees};
+use super::pack::{ChunkBuilder, ChunkLimits, check_gpu_fit};
 use super::tessellator::Tessellator;
 use crate::geom::{BezierSegment, locate};
 use crate::scene::Color;
@@ -45,7 +45,7 @@ pub fn evaluate_with_limits(
     let style = super::layout::GpuLineStyle::solid(Color::WHITE, 1.0);
     let mut builder = ChunkBuilder::new(limits);
     for (slot, ((index, segments), ts)) in curves.iter().zip(params).enumerate() {
-        check_degrees(*index, segments)?;
+        check_gpu_fit(*index, segments)?;
         let mut open: Option<usize> = None;
         for &t in ts {
             let Some((s, u)) = locate(segments, t) else {

@@ -32,6 +32,37 @@ pub enum PackError {
         /// [`MAX_GPU_DEGREE`].
         max: usize,
     },
+    /// A lowered control point has a coordinate the kernel cannot work with in `f32`: its
+    /// `f32` form, or a de Casteljau intermediate (a sum of two products), would overflow.
+    #[error(
+        "curves[{curve}]: Bézier segment {segment}, control point {point} has coordinate {value:e}, beyond the GPU's f32 range of ±{limit:e} (the CPU path, e.g. `eval --backend cpu`, takes it)"
+    )]
+    CoordinateTooLarge {
+        /// The curve's index in the scene.
+        curve: usize,
+        /// The segment's index in the curve's lowering.
+        segment: usize,
+        /// The point's index in the segment.
+        point: usize,
+        /// The offending coordinate.
+        value: f64,
+        /// [`GPU_COORDINATE_LIMIT`].
+        limit: f64,
+    },
+    /// An annotation point has a coordinate beyond [`GPU_COORDINATE_LIMIT`].
+    #[error(
+        "annotations[{annotation}].points[{point}] has coordinate {value:e}, beyond the GPU's f32 range of ±{limit:e}"
+    )]
+    AnnotationTooLarge {
+        /// The annotation's index in the scene.
+        annotation: usize,
+        /// The point's index.
+        point: usize,
+        /// The offending coordinate.
+        value: f64,
+        /// [`GPU_COORDINATE_LIMIT`].
+        limit: f64,
+    },
     /// The chunk limits are too small to hold even one segment.
     #[error("GPU buffer limits too small: one chunk holds {what}")]
     LimitsTooSmall {
@@ -359,11 +390,19 @@ impl GpuLineStyle {
     }
 }
 
-/// Checks every segment's degree against [`MAX_GPU_DEGREE`].
+/// The largest coordinate magnitude the GPU path takes: half of `f32::MAX` (≈ 1.7e38)
+/// rounded down, so that a de Casteljau step `v·a + u·b` of two such coordinates cannot
+/// overflow (`|v·a| + |u·b| ≤ max(|a|, |b|)` in exact arithmetic, and rounding stays far
+/// below the other half).
+pub const GPU_COORDINATE_LIMIT: f64 = 1e38;
+
+/// Checks that the kernel can evaluate every segment: its degree is at most
+/// [`MAX_GPU_DEGREE`] and every coordinate is within [`GPU_COORDINATE_LIMIT`].
 ///
 /// # Errors
-/// [`PackError::DegreeTooHigh`] naming the curve and segment.
-pub fn check_degrees(curve: usize, segments: &[BezierSegment]) -> Result<(), PackError> {
+/// [`PackError::DegreeTooHigh`] or [`PackError::CoordinateTooLarge`] naming the curve,
+/// the segment and the point.
+pub fn check_gpu_fit(curve: usize, segments: &[BezierSegment]) -> Result<(), PackError> {
     for (segment, s) in segments.iter().enumerate() {
         let degree = s.bezier.degree();
         if degree > MAX_GPU_DEGREE {
@@ -373,6 +412,38 @@ pub fn check_degrees(curve: usize, segments: &[BezierSegment]) -> Result<(), Pac
                 degree,
                 max: MAX_GPU_DEGREE,
             });
+        }
+        for (point, p) in s.bezier.points().iter().enumerate() {
+            if let Some(&value) = p.to_array().iter().find(|c| c.abs() > GPU_COORDINATE_LIMIT) {
+                return Err(PackError::CoordinateTooLarge {
+                    curve,
+                    segment,
+                    point,
+                    value,
+                    limit: GPU_COORDINATE_LIMIT,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Checks every annotation point against [`GPU_COORDINATE_LIMIT`].
+///
+/// # Errors
+/// [`PackError::AnnotationTooLarge`] naming the annotation and the point.
+pub fn check_annotations(scene: &Scene) -> Result<(), PackError> {
+    for (annotation, a) in scene.annotations.iter().enumerate() {
+        let (AnnotationShape::Polyline(points) | AnnotationShape::Points(points)) = &a.shape;
+        for (point, p) in points.iter().enumerate() {
+            if let Some(&value) = p.to_array().iter().find(|c| c.abs() > GPU_COORDINATE_LIMIT) {
+                return Err(PackError::AnnotationTooLarge {
+                    annotation,
+                    point,
+                    value,
+                    limit: GPU_COORDINATE_LIMIT,
+                });
+            }
         }
     }
     Ok(())
@@ -564,13 +635,14 @@ pub fn overlay_point_style(kind: OverlayKind, curve: Color) -> Option<GpuLineSty
 /// parameter.
 ///
 /// # Errors
-/// [`PackError`] when a segment's degree is over the GPU maximum.
+/// [`PackError`] when a segment's degree is over the GPU maximum or a coordinate beyond
+/// [`GPU_COORDINATE_LIMIT`].
 pub fn prepare_scene(scene: &Scene, limits: ChunkLimits) -> Result<PreparedScene, PackError> {
     let mut chunks = ChunkBuilder::new(limits);
     let mut sample_counts = Vec::with_capacity(scene.curves.len());
     for (index, sc) in scene.curves.iter().enumerate() {
         let segments = sc.curve.lower();
-        check_degrees(index, &segments)?;
+        check_gpu_fit(index, &segments)?;
         let style = GpuLineStyle::solid(sc.style.color, sc.style.width);
         let samples = scene.samples_for(index);
         let mut counts = Vec::with_capacity(segments.len());
@@ -582,6 +654,7 @@ pub fn prepare_scene(scene: &Scene, limits: ChunkLimits) -> Result<PreparedScene
         }
         sample_counts.push(counts);
     }
+    check_annotations(scene)?;
     let (lines, points) = prepare_overlays(scene, limits);
     let (chunks, placements) = chunks.finish_with_placements();
     Ok(PreparedScene {
@@ -731,7 +804,7 @@ mod tests {
     #[test]
     fn degree_over_the_gpu_maximum_is_an_error_not_a_clamp() {
         let b = Bezier::new(vec![DVec3::ZERO; MAX_GPU_DEGREE + 2]);
-        let err = check_degrees(4, &b.lower()).unwrap_err();
+        let err = check_gpu_fit(4, &b.lower()).unwrap_err();
         assert_eq!(
             err,
             PackError::DegreeTooHigh {
@@ -743,7 +816,47 @@ mod tests {
         );
         assert!(err.to_string().starts_with("curves[4]: "));
         let ok = Bezier::new(vec![DVec3::ZERO; MAX_GPU_DEGREE + 1]);
-        assert!(check_degrees(0, &ok.lower()).is_ok());
+        assert!(check_gpu_fit(0, &ok.lower()).is_ok());
+    }
+
+    #[test]
+    fn coordinates_beyond_the_f32_range_are_refused_with_the_point_named() {
+        let at = |x: f64| {
+            Bezier::new(vec![
+                DVec3::ZERO,
+                DVec3::new(1.0, 2.0, 0.0),
+                DVec3::new(0.0, x, 0.0),
+            ])
+        };
+        assert!(check_gpu_fit(0, &at(GPU_COORDINATE_LIMIT).lower()).is_ok());
+        assert!(check_gpu_fit(0, &at(-GPU_COORDINATE_LIMIT).lower()).is_ok());
+        for x in [1e308, -2e38, f64::from(f32::MAX)] {
+            let err = check_gpu_fit(7, &at(x).lower()).unwrap_err();
+            assert_eq!(
+                err,
+                PackError::CoordinateTooLarge {
+                    curve: 7,
+                    segment: 0,
+                    point: 2,
+                    value: x,
+                    limit: GPU_COORDINATE_LIMIT
+                }
+            );
+            assert!(
+                err.to_string()
+                    .starts_with("curves[7]: Bézier segment 0, control point 2")
+            );
+        }
+        // The limit keeps every de Casteljau step finite in f32: two coordinates at the
+        // limit, of opposite signs and the same sign, at every parameter tried.
+        let lim = GPU_COORDINATE_LIMIT as f32;
+        for (a, b) in [(lim, lim), (lim, -lim), (-lim, -lim)] {
+            for k in 0..=64 {
+                let u = k as f32 / 64.0;
+                let v = 1.0 - u;
+                assert!((v * a + u * b).is_finite());
+            }
+        }
     }
 
     #[test]
