@@ -418,9 +418,9 @@ fn fill_report(
             )
         });
         let status = format!("{:?}", r.status).to_lowercase();
-        let _ = write!(
+        let _ = writeln!(
             rows,
-            "<tr class=\"{status}\"><th>{}<br><span class=\"status\">{status}</span><p>{}</p><p>{}</p></th>{cells}</tr>\n",
+            "<tr class=\"{status}\"><th>{}<br><span class=\"status\">{status}</span><p>{}</p><p>{}</p></th>{cells}</tr>",
             html_escape(&r.scene),
             html_escape(&figures),
             html_escape(r.message.as_deref().unwrap_or("")),
