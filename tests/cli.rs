@@ -609,3 +609,41 @@ fn inspect_at_tau_reports_the_groups_and_their_regions() {
         "{err}"
     );
 }
+
+/// `adapters` lists, for each backend present, its adapters with their limits and
+/// self-test, and marks exactly the one offscreen commands use.
+#[test]
+fn adapters_lists_each_backend_and_marks_the_chosen_one() {
+    common::on_each_gpu("adapters", |backend| {
+        let v = stdout_json(&run(&[
+            "adapters",
+            "--json",
+            "--gpu-backend",
+            &backend.name,
+        ]));
+        assert_eq!(v["backends"], backend.name.as_str());
+        let list = v["adapters"].as_array().expect("adapters");
+        assert!(!list.is_empty(), "{}: {v}", backend.name);
+        let info = backend.ctx.adapter.get_info();
+        for a in list {
+            assert_eq!(a["backend"], format!("{:?}", info.backend), "{a}");
+            assert!(a["max_storage_binding_bytes"].as_u64().unwrap() > 0, "{a}");
+            assert!(
+                a["max_workgroups_per_dimension"].as_u64().unwrap() > 0,
+                "{a}"
+            );
+            assert!(a["timestamps"].is_boolean(), "{a}");
+        }
+        let chosen: Vec<&Value> = list.iter().filter(|a| a["chosen"] == true).collect();
+        assert_eq!(chosen.len(), 1, "{}: {v}", backend.name);
+        assert_eq!(chosen[0]["name"], info.name.as_str());
+        assert_eq!(chosen[0]["self_test"], "passed");
+        let text = run(&["adapters", "--gpu-backend", &backend.name]);
+        let text = String::from_utf8_lossy(&text.stdout);
+        assert!(text.contains("kernel self-test: passed"), "{text}");
+        assert!(
+            text.contains(&format!("* {}", info.name)),
+            "the chosen adapter is starred: {text}"
+        );
+    });
+}
