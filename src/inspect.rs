@@ -6,7 +6,7 @@ use glam::DVec3;
 use serde_json::{Map, Value, json};
 
 use crate::geom::exact::format_rational;
-use crate::geom::{Curve, KnotVector, Lower, Nubmp, ParamCurve};
+use crate::geom::{Curve, GeomError, KnotVector, Lower, Nubmp, ParamCurve};
 
 /// A point as a report writes it: always `[x, y, z]`.
 pub(crate) fn point(p: DVec3) -> Value {
@@ -22,20 +22,23 @@ pub(crate) fn points(ps: &[DVec3]) -> Value {
 /// point `P(τ)` and, for each group whose dual B-spline is non-zero there, its weight
 /// `N*_j(τ)` and the vertices of the region (segment, triangle, …) that `P(τ)` reaches by
 /// changing that group alone. `None` for other families or `τ` outside the domain.
-#[must_use]
-pub fn at_tau(curve: &Curve, tau: f64) -> Option<Value> {
+///
+/// # Errors
+/// A B-spline whose standard NUBMP structure overflows `f64`
+/// ([`crate::geom::GeomError::DerivedNotFinite`]).
+pub fn at_tau(curve: &Curve, tau: f64) -> Result<Option<Value>, GeomError> {
     let standard;
     let n = match curve {
         Curve::Nubmp(n) => n,
         Curve::BSpline(b) => {
-            standard = Nubmp::standard(b.points().to_vec(), b.knots().clone());
+            standard = Nubmp::standard(b.points().to_vec(), b.knots().clone())?;
             &standard
         }
-        _ => return None,
+        _ => return Ok(None),
     };
     let (a, b) = n.domain();
     if !(tau >= a && tau <= b) {
-        return None;
+        return Ok(None);
     }
     let groups: Vec<Value> = n
         .groups_at(tau)
@@ -50,12 +53,17 @@ pub fn at_tau(curve: &Curve, tau: f64) -> Option<Value> {
             })
         })
         .collect();
-    Some(json!({"tau": tau, "point": point(n.eval(tau)), "groups": groups}))
+    Ok(Some(
+        json!({"tau": tau, "point": point(n.eval(tau)), "groups": groups}),
+    ))
 }
 
 /// The report of one curve.
-#[must_use]
-pub fn curve_report(index: usize, name: Option<&str>, curve: &Curve) -> Value {
+///
+/// # Errors
+/// A B-spline whose standard NUBMP structure overflows `f64`
+/// ([`crate::geom::GeomError::DerivedNotFinite`]).
+pub fn curve_report(index: usize, name: Option<&str>, curve: &Curve) -> Result<Value, GeomError> {
     let mut obj = Map::new();
     obj.insert("index".into(), index.into());
     obj.insert("family".into(), curve.family().into());
@@ -113,7 +121,7 @@ pub fn curve_report(index: usize, name: Option<&str>, curve: &Curve) -> Value {
             // A B-spline is the standard NUBMP curve on its knots: report that structure.
             nubmp_fields(
                 &mut obj,
-                &Nubmp::standard(bs.points().to_vec(), bs.knots().clone()),
+                &Nubmp::standard(bs.points().to_vec(), bs.knots().clone())?,
             );
         }
         Curve::Nubmp(n) => {
@@ -121,7 +129,7 @@ pub fn curve_report(index: usize, name: Option<&str>, curve: &Curve) -> Value {
             nubmp_fields(&mut obj, n);
         }
     }
-    Value::Object(obj)
+    Ok(Value::Object(obj))
 }
 
 fn spline_fields(obj: &mut Map<String, Value>, knots: &KnotVector) {

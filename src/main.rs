@@ -430,16 +430,17 @@ fn solve(path: &Path, request: &Path, output: Option<&Path>, report: Option<&Pat
     let outcome = splinescope::request::apply_text(&scene, &text)
         .with_context(|| format!("{}", request.display()))?;
     let text = splinescope::scene::pretty_json(&serde_json::json!({ "reports": outcome.reports }));
+    // The scene and the report are written all or none.
+    let scene_text = splinescope::scene::to_json_string(&outcome.scene);
+    let report_text = format!("{text}\n");
+    let mut files: Vec<(&Path, &[u8])> = Vec::new();
     if let Some(out) = output {
-        outcome
-            .scene
-            .save(out)
-            .with_context(|| format!("{}: cannot write the scene", out.display()))?;
+        files.push((out, scene_text.as_bytes()));
     }
     if let Some(r) = report {
-        splinescope::files::write_atomic(r, format!("{text}\n").as_bytes())
-            .with_context(|| format!("{}: cannot write the report", r.display()))?;
+        files.push((r, report_text.as_bytes()));
     }
+    splinescope::files::write_all_atomic(&files).context("nothing was written")?;
     say!("{text}");
     Ok(())
 }
@@ -449,7 +450,8 @@ fn inspect(path: &Path, only: Option<usize>, tau: Option<f64>) -> Result<()> {
     let mut curves = Vec::new();
     for i in select_curves(&scene, only)? {
         let c = &scene.curves[i];
-        let mut report = splinescope::inspect::curve_report(i, c.name.as_deref(), &c.curve);
+        let mut report = splinescope::inspect::curve_report(i, c.name.as_deref(), &c.curve)
+            .with_context(|| format!("{}: curves[{i}]", path.display()))?;
         if let Some(t) = tau {
             if !t.is_finite() {
                 bail!("--tau {t}: not a finite number");
@@ -457,7 +459,9 @@ fn inspect(path: &Path, only: Option<usize>, tau: Option<f64>) -> Result<()> {
             let (a, b) = c.curve.domain();
             let family = c.curve.family();
             if family == "nubmp" || family == "bspline" {
-                let Some(at) = splinescope::inspect::at_tau(&c.curve, t) else {
+                let Some(at) = splinescope::inspect::at_tau(&c.curve, t)
+                    .with_context(|| format!("{}: curves[{i}]", path.display()))?
+                else {
                     bail!("--tau {t} is outside the domain [{a}, {b}] of curves[{i}]");
                 };
                 report["at_tau"] = at;
@@ -528,6 +532,20 @@ fn eval(
             splinescope::gpu::eval::evaluate(&ctx, &lowered, &per_curve)?
         }
     };
+    // Every number printed is finite, or the command fails naming where it overflowed.
+    for ((&i, ts), pts) in indices.iter().zip(&per_curve).zip(&points) {
+        if let Some((t, p)) = ts.iter().zip(pts).find(|(_, p)| !p.is_finite()) {
+            bail!(
+                "{}: curves[{i}] at t = {t}: the value {p} is not finite (the curve's coordinates are too large for this computation in {})",
+                path.display(),
+                if backend == EvalBackend::Gpu {
+                    "f32"
+                } else {
+                    "f64"
+                }
+            );
+        }
+    }
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());
     write_eval_json(&mut out, &indices, &points, backend == EvalBackend::Gpu)?;

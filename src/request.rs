@@ -86,6 +86,7 @@ pub fn apply_text(scene: &Scene, text: &str) -> Result<Outcome, RequestError> {
     for node in &nodes {
         let mut targets = Vec::new();
         let report = apply_one(&mut scene, node, &mut targets)?;
+        check_outputs(&scene, node, &report)?;
         if !targets.is_empty() {
             scene.annotations.push(Annotation {
                 shape: AnnotationShape::Points(targets),
@@ -101,6 +102,71 @@ pub fn apply_text(scene: &Scene, text: &str) -> Result<Outcome, RequestError> {
         reports.push(report);
     }
     Ok(Outcome { scene, reports })
+}
+
+/// The request's own path: `[2]` in an array, `request` for a single one.
+fn request_path(node: &Node<'_>) -> String {
+    let p = node.path.to_string();
+    if p.is_empty() { "request".into() } else { p }
+}
+
+/// Every number a request produced is finite: the report (where `null` only ever stands
+/// for "not applicable" under `reachable_limited`) and every curve of the scene, with its
+/// lowering. Otherwise the request is refused, named, and nothing is written.
+fn check_outputs(scene: &Scene, node: &Node<'_>, report: &Value) -> Result<(), RequestError> {
+    fn walk(v: &Value, at: &str, bad: &mut Option<String>) {
+        match v {
+            Value::Null if !at.ends_with("reachable_limited") => {
+                bad.get_or_insert_with(|| at.to_owned());
+            }
+            Value::Number(n) if n.as_f64().is_none_or(|x| !x.is_finite()) => {
+                bad.get_or_insert_with(|| at.to_owned());
+            }
+            Value::Array(items) => {
+                for (i, item) in items.iter().enumerate() {
+                    walk(item, &format!("{at}[{i}]"), bad);
+                }
+            }
+            Value::Object(map) => {
+                for (k, item) in map {
+                    walk(item, &format!("{at}.{k}"), bad);
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut bad = None;
+    walk(report, "report", &mut bad);
+    if let Some(at) = bad {
+        return Err(RequestError {
+            path: request_path(node),
+            message: format!(
+                "the solve produced a value that is not a finite number ({at}): its inputs are too extreme for f64 (a parameter too close to an end, or coordinates too large)"
+            ),
+        });
+    }
+    for (i, c) in scene.curves.iter().enumerate() {
+        let finite = c.curve.control_points().iter().all(|p| p.is_finite());
+        if let Err(e) = c.curve.check_derived().and_then(|()| {
+            if finite {
+                Ok(())
+            } else {
+                Err(crate::geom::GeomError::DerivedNotFinite {
+                    field: "points",
+                    what: "a control point".into(),
+                    value: f64::NAN,
+                })
+            }
+        }) {
+            return Err(RequestError {
+                path: request_path(node),
+                message: format!(
+                    "the solve left curves[{i}] with a value that is not finite ({e}); nothing was changed"
+                ),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The colour of target markers: each request's targets are marked in the scene (red

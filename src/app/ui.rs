@@ -358,12 +358,11 @@ fn nubmp_controls(ui: &mut egui::Ui, editor: &mut Editor, index: usize, n: &Nubm
         n.free_parameter_count()
     ));
     if !n.is_standard() && ui.button("reset to the standard curve").clicked() {
-        editor.set_curve(
-            index,
-            Curve::Nubmp(Nubmp::standard(n.points().to_vec(), n.knots().clone())),
-            "reset",
-        );
-        editor.finish();
+        // The curve's own knots gave a finite standard structure when it was built.
+        if let Ok(standard) = Nubmp::standard(n.points().to_vec(), n.knots().clone()) {
+            editor.set_curve(index, Curve::Nubmp(standard), "reset");
+            editor.finish();
+        }
     }
     egui::ScrollArea::vertical()
         .id_salt("groups")

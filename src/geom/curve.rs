@@ -59,6 +59,43 @@ macro_rules! each_family {
 }
 
 impl Curve {
+    /// Checks the values derived from the input: every control point of the lowering
+    /// (interpolation tangents and inner points, B-spline extraction, NUBMP dual points)
+    /// must be a finite number, or the curve is refused with what overflowed. Scenes run
+    /// this on every curve they load and every edit they accept, so nothing downstream
+    /// (evaluation, drawing, reports) meets a non-finite value.
+    ///
+    /// # Errors
+    /// [`GeomError::DerivedNotFinite`] naming the segment and point.
+    pub fn check_derived(&self) -> Result<(), GeomError> {
+        // The input the overflow most likely comes from; interpolation tangents depend on
+        // points and parameters alike, so the curve itself is named.
+        let field = match self {
+            Curve::Interpolation(_) => "",
+            Curve::BSpline(_) | Curve::Nubmp(_) => "knots",
+            _ => "points",
+        };
+        for (s, seg) in self.lower().iter().enumerate() {
+            for (j, p) in seg.bezier.points().iter().enumerate() {
+                if let Some(&value) = p.to_array().iter().find(|v| !v.is_finite()) {
+                    return Err(GeomError::DerivedNotFinite {
+                        field,
+                        what: format!("control point {j} of lowered Bézier segment {s}"),
+                        value,
+                    });
+                }
+            }
+            if !(seg.t0.is_finite() && seg.t1.is_finite()) {
+                return Err(GeomError::DerivedNotFinite {
+                    field,
+                    what: format!("the parameter range of lowered Bézier segment {s}"),
+                    value: if seg.t0.is_finite() { seg.t1 } else { seg.t0 },
+                });
+            }
+        }
+        Ok(())
+    }
+
     /// The family's name as written in scene files (`"bezier"`, …).
     #[must_use]
     pub fn family(&self) -> &'static str {

@@ -8,6 +8,20 @@ use thiserror::Error;
 /// so that the scene layer can name the full path, e.g. `curves[3].knots[5]`.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum GeomError {
+    /// A value computed from the input is not a finite number: the input is too extreme
+    /// for `f64` (knots or parameters too close together, coordinates too large).
+    #[error(
+        "{what} is not a finite number ({value}): the input is too extreme for f64 arithmetic (knots or parameters too close together, or coordinates too large)"
+    )]
+    DerivedNotFinite {
+        /// The input field the value was computed from, relative to the curve
+        /// (`knots`, `points`; empty for the curve as a whole).
+        field: &'static str,
+        /// What was computed, e.g. "degree-elevation coefficient c^2_3".
+        what: String,
+        /// The value.
+        value: f64,
+    },
     /// A list of control points is shorter than the family requires.
     #[error("needs at least {min} points, found {found}")]
     TooFewPoints {
@@ -228,6 +242,7 @@ impl GeomError {
     pub fn field(&self) -> String {
         match self {
             GeomError::TooFewPoints { .. } => "points".to_owned(),
+            GeomError::DerivedNotFinite { field, .. } => (*field).to_owned(),
             GeomError::NonFinitePoint { index, .. } | GeomError::NoSuchPoint { index, .. } => {
                 format!("points[{index}]")
             }

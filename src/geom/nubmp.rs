@@ -80,15 +80,19 @@ impl Nubmp {
     pub fn try_new(points: Vec<DVec3>, knots: Vec<f64>, order: usize) -> Result<Nubmp, GeomError> {
         check_finite(&points)?;
         let knots = KnotVector::try_new(knots, order, points.len())?;
-        Ok(Nubmp::standard(points, knots))
+        Nubmp::standard(points, knots)
     }
 
     /// The standard curve from validated parts.
     ///
+    /// # Errors
+    /// [`GeomError::DerivedNotFinite`] when an elevation coefficient or a dual control
+    /// point overflows `f64` (distinct knots so close that their difference is subnormal,
+    /// say).
+    ///
     /// # Panics
     /// If `points.len()` differs from the knot vector's point count (a bug in the caller).
-    #[must_use]
-    pub fn standard(points: Vec<DVec3>, knots: KnotVector) -> Nubmp {
+    pub fn standard(points: Vec<DVec3>, knots: KnotVector) -> Result<Nubmp, GeomError> {
         assert_eq!(
             points.len(),
             knots.n_points(),
@@ -96,6 +100,24 @@ impl Nubmp {
         );
         let k = knots.order();
         let e: Elevation<f64> = elevation_coefficients(knots.knots(), k);
+        for (i, row) in e.rows.iter().enumerate() {
+            for (jj, &c) in row.values.iter().enumerate() {
+                if !c.is_finite() {
+                    return Err(GeomError::DerivedNotFinite {
+                        field: "knots",
+                        what: format!("degree-elevation coefficient c^{i}_{}", row.first + jj),
+                        value: c,
+                    });
+                }
+            }
+        }
+        if let Some(&t) = e.refined.iter().find(|t| !t.is_finite()) {
+            return Err(GeomError::DerivedNotFinite {
+                field: "knots",
+                what: "a refined knot".into(),
+                value: t,
+            });
+        }
         let n_star = e.refined.len() - (k + 1);
         let refined = KnotVector::try_new(e.refined.clone(), k + 1, n_star)
             .unwrap_or_else(|err| unreachable!("refined knots are valid: {err}"));
@@ -117,14 +139,14 @@ impl Nubmp {
                 g.values.push(c);
             }
         }
-        let dual = dual_spline(&points, &groups, &refined);
-        Nubmp {
+        let dual = dual_spline(&points, &groups, &refined)?;
+        Ok(Nubmp {
             points,
             knots,
             refined,
             groups,
             dual,
-        }
+        })
     }
 
     /// The control points `P_i`.
@@ -224,7 +246,7 @@ impl Nubmp {
         }
         let mut out = self.clone();
         out.points = points;
-        out.update_dual();
+        out.update_dual()?;
         Ok(out)
     }
 
@@ -263,8 +285,12 @@ impl Nubmp {
         if !g.effective && values != g.standard.as_slice() {
             return Err(GeomError::GroupOutsideDomain { group: j });
         }
-        self.groups[j].values = values.to_vec();
-        self.update_dual();
+        let before = std::mem::replace(&mut self.groups[j].values, values.to_vec());
+        if let Err(e) = self.update_dual() {
+            // Refused: the curve stays as it was.
+            self.groups[j].values = before;
+            return Err(e);
+        }
         Ok(())
     }
 
@@ -309,8 +335,9 @@ impl Nubmp {
         self.set_group(j, &values)
     }
 
-    fn update_dual(&mut self) {
-        self.dual = dual_spline(&self.points, &self.groups, &self.refined);
+    fn update_dual(&mut self) -> Result<(), GeomError> {
+        self.dual = dual_spline(&self.points, &self.groups, &self.refined)?;
+        Ok(())
     }
 
     /// The NUBMP basis functions `Ñ_{i,k}(t) = Σ_j a^i_j N*_{j,k+1}(t)` that are non-zero at
@@ -563,7 +590,11 @@ fn quadratic_roots(a: f64, b: f64, c: f64) -> Vec<f64> {
     vec![q / a, c / q]
 }
 
-fn dual_spline(points: &[DVec3], groups: &[Group], refined: &KnotVector) -> BSpline {
+fn dual_spline(
+    points: &[DVec3],
+    groups: &[Group],
+    refined: &KnotVector,
+) -> Result<BSpline, GeomError> {
     let dual: Vec<DVec3> = groups
         .iter()
         .map(|g| {
@@ -574,8 +605,14 @@ fn dual_spline(points: &[DVec3], groups: &[Group], refined: &KnotVector) -> BSpl
                 .sum()
         })
         .collect();
-    BSpline::from_parts(dual, refined.clone())
-        .unwrap_or_else(|e| unreachable!("one dual point per refined B-spline: {e}"))
+    BSpline::from_parts(dual, refined.clone()).map_err(|e| match e {
+        GeomError::NonFinitePoint { index, value } => GeomError::DerivedNotFinite {
+            field: "points",
+            what: format!("dual control point P*_{index}"),
+            value,
+        },
+        other => other,
+    })
 }
 
 impl ParamCurve for Nubmp {

@@ -252,7 +252,7 @@ fn decode_curve(node: &Node<'_>, index: usize) -> Result<SceneCurve, SceneError>
         "nubmp" => {
             let obj = node.object(&with_common(&["points", "knots", "order", "shape"]))?;
             let (points, knots) = decode_spline_parts(node, &obj)?;
-            let mut curve = Nubmp::standard(points, knots);
+            let mut curve = Nubmp::standard(points, knots).map_err(|e| geom_error(node, "", &e))?;
             if let Some(shape) = obj.get("shape") {
                 for setting in shape.array()? {
                     apply_shape_setting(&mut curve, &setting)?;
@@ -267,6 +267,9 @@ fn decode_curve(node: &Node<'_>, index: usize) -> Result<SceneCurve, SceneError>
             )));
         }
     };
+    curve
+        .check_derived()
+        .map_err(|e| geom_error(node, "", &e))?;
     let name = obj
         .get("name")
         .map(|n| n.string().map(str::to_owned))
@@ -412,10 +415,13 @@ fn with_common(fields: &[&'static str]) -> Vec<&'static str> {
 }
 
 fn geom_error(curve: &Node<'_>, prefix: &str, e: &GeomError) -> SceneError {
-    SceneError::new(
-        format!("{}.{prefix}{}", curve.path, e.field()),
-        SceneErrorKind::Invalid(e.to_string()),
-    )
+    let field = e.field();
+    let path = if field.is_empty() {
+        curve.path.to_string()
+    } else {
+        format!("{}.{prefix}{field}", curve.path)
+    };
+    SceneError::new(path, SceneErrorKind::Invalid(e.to_string()))
 }
 
 fn decode_style(node: &Node<'_>, index: usize) -> Result<Style, SceneError> {
