@@ -3,37 +3,145 @@
 //!
 //! JSON has no NaN or Infinity; files written by tools that emit them anyway (Python's
 //! `json.dumps` does) get a `not a finite number` error at the value's path rather than a
-//! bare syntax error.
+//! bare syntax error. A key that appears twice in one object is an error at its path
+//! (JSON parsers disagree on which copy wins, so neither is guessed).
+
+use std::collections::HashSet;
 
 use glam::DVec3;
-use serde_json::{Map, Value};
+use serde::de::{DeserializeSeed, Error as _, MapAccess, SeqAccess, Visitor};
+use serde_json::{Map, Number, Value};
 
 use crate::scene::{Color, SceneError, SceneErrorKind};
 
-/// Marks a non-finite literal rewritten into a string before parsing.
-pub(crate) const NON_FINITE_MARK: char = '\u{1}';
+/// The number literals that stand for `NaN`, `Infinity` and `-Infinity` once rewritten
+/// (numbers so large that they are not finite as `f64` either, so a value that happens to
+/// be written this way is refused all the same; only its description differs).
+const NON_FINITE_LITERALS: [(&str, &str); 4] = [
+    ("-Infinity", "-1e9999999999999999992"),
+    ("+Infinity", "1e9999999999999999992"),
+    ("Infinity", "1e9999999999999999992"),
+    ("NaN", "1e9999999999999999991"),
+];
+
+/// How a non-finite number is named in messages: `NaN`/`Infinity` for the rewritten
+/// literals, the number's own text otherwise.
+pub(crate) fn describe_number(n: &Number) -> String {
+    let text = n.to_string();
+    // serde_json writes the exponent with its sign (`1e+999`).
+    let plain = text.replace("e+", "e");
+    NON_FINITE_LITERALS
+        .iter()
+        .find(|(_, lit)| *lit == plain)
+        .map_or(text, |(word, _)| word.trim_start_matches('+').to_owned())
+}
 
 /// Parses JSON text into a value. Bare `NaN`/`Infinity` literals (not JSON, but written by
-/// some tools) become marked strings, so that readers can report them at their path.
+/// some tools) become numbers that are not finite, so that readers report them at their
+/// path.
 ///
 /// # Errors
-/// The syntax error, at `(root)`, with line and column.
+/// The syntax error, at `(root)`, with line and column; a duplicated key at its path.
 pub(crate) fn parse_document(text: &str) -> Result<Value, SceneError> {
-    let value: Value = match serde_json::from_str(text) {
-        Ok(v) => v,
+    let (value, parsed): (Value, std::borrow::Cow<'_, str>) = match serde_json::from_str(text) {
+        Ok(v) => (v, text.into()),
         Err(original) => {
-            // Retry with NaN/Infinity literals turned into marked strings, so that the
-            // decoder can name their path; otherwise report the original syntax error.
-            let marked = mark_non_finite_literals(text);
-            match (marked.as_deref(), original) {
-                (Some(m), original) => {
-                    serde_json::from_str(m).map_err(|_| syntax_error(&original))?
-                }
-                (None, original) => return Err(syntax_error(&original)),
+            // Retry with NaN/Infinity literals rewritten, so that the decoder can name
+            // their path; otherwise report the original syntax error.
+            match mark_non_finite_literals(text) {
+                Some(m) => (
+                    serde_json::from_str(&m).map_err(|_| syntax_error(&original))?,
+                    m.into(),
+                ),
+                None => return Err(syntax_error(&original)),
             }
         }
     };
+    check_duplicate_keys(&parsed)?;
     Ok(value)
+}
+
+/// Separates the parts of a duplicate-key report inside a serde error message.
+const DUP_MARK: char = '\u{1}';
+
+/// Walks the document once more, failing at the first object key seen twice.
+fn check_duplicate_keys(text: &str) -> Result<(), SceneError> {
+    struct Seed<'p>(&'p str);
+    struct Walk(String);
+    impl<'de> DeserializeSeed<'de> for Seed<'_> {
+        type Value = ();
+        fn deserialize<D: serde::Deserializer<'de>>(self, d: D) -> Result<(), D::Error> {
+            d.deserialize_any(Walk(self.0.to_owned()))
+        }
+    }
+    impl<'de> Visitor<'de> for Walk {
+        type Value = ();
+        fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            f.write_str("any JSON value")
+        }
+        fn visit_bool<E>(self, _: bool) -> Result<(), E> {
+            Ok(())
+        }
+        fn visit_i64<E>(self, _: i64) -> Result<(), E> {
+            Ok(())
+        }
+        fn visit_u64<E>(self, _: u64) -> Result<(), E> {
+            Ok(())
+        }
+        fn visit_f64<E>(self, _: f64) -> Result<(), E> {
+            Ok(())
+        }
+        fn visit_str<E>(self, _: &str) -> Result<(), E> {
+            Ok(())
+        }
+        fn visit_unit<E>(self) -> Result<(), E> {
+            Ok(())
+        }
+        fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<(), A::Error> {
+            let mut i = 0usize;
+            while seq
+                .next_element_seed(Seed(&format!("{}[{i}]", self.0)))?
+                .is_some()
+            {
+                i += 1;
+            }
+            Ok(())
+        }
+        fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<(), A::Error> {
+            let mut seen = HashSet::new();
+            while let Some(key) = map.next_key::<String>()? {
+                let path = if self.0.is_empty() {
+                    key.clone()
+                } else {
+                    format!("{}.{key}", self.0)
+                };
+                if !seen.insert(key.clone()) {
+                    return Err(A::Error::custom(format!(
+                        "{DUP_MARK}{path}{DUP_MARK}{key}{DUP_MARK}"
+                    )));
+                }
+                map.next_value_seed(Seed(&path))?;
+            }
+            Ok(())
+        }
+    }
+    let mut de = serde_json::Deserializer::from_str(text);
+    match Seed("").deserialize(&mut de) {
+        Ok(()) => Ok(()),
+        Err(e) => {
+            let message = e.to_string();
+            let mut parts = message.split(DUP_MARK).skip(1);
+            match (parts.next(), parts.next()) {
+                (Some(path), Some(key)) => Err(SceneError::new(
+                    path,
+                    SceneErrorKind::Invalid(format!(
+                        "the key {key:?} appears more than once in this object"
+                    )),
+                )),
+                _ => Err(syntax_error(&e)),
+            }
+        }
+    }
 }
 
 fn syntax_error(e: &serde_json::Error) -> SceneError {
@@ -53,9 +161,9 @@ fn syntax_error(e: &serde_json::Error) -> SceneError {
 }
 
 /// Rewrites the bare words `NaN`, `Infinity`, `-Infinity`, `+Infinity` outside strings
-/// into marked strings. `None` when there are none.
+/// into number literals that are not finite ([`NON_FINITE_LITERALS`]). `None` when there
+/// are none.
 fn mark_non_finite_literals(text: &str) -> Option<String> {
-    const WORDS: [&str; 4] = ["-Infinity", "+Infinity", "Infinity", "NaN"];
     let mut out = String::with_capacity(text.len() + 16);
     let mut in_string = false;
     let mut escaped = false;
@@ -72,11 +180,11 @@ fn mark_non_finite_literals(text: &str) -> Option<String> {
             }
         } else if c == '"' {
             in_string = true;
-        } else if let Some(word) = WORDS.iter().find(|w| rest.starts_with(**w)) {
-            // JSON strings cannot hold a raw control character: write its escape.
-            out.push_str("\"\\u0001");
-            out.push_str(word);
-            out.push('"');
+        } else if let Some((word, literal)) = NON_FINITE_LITERALS
+            .iter()
+            .find(|(w, _)| rest.starts_with(*w))
+        {
+            out.push_str(literal);
             rest = &rest[word.len()..];
             changed = true;
             continue;
@@ -103,8 +211,8 @@ pub(crate) fn describe(v: &Value) -> String {
     match v {
         Value::Null => "null".into(),
         Value::Bool(b) => format!("the boolean {b}"),
+        Value::Number(n) if n.as_f64().is_none_or(|x| !x.is_finite()) => describe_number(n),
         Value::Number(n) => format!("the number {n}"),
-        Value::String(s) if s.starts_with(NON_FINITE_MARK) => s[1..].to_owned(),
         Value::String(s) => format!("the string {s:?}"),
         Value::Array(a) => format!("an array of {} items", a.len()),
         Value::Object(_) => "an object".into(),
@@ -136,10 +244,10 @@ impl<'a> Node<'a> {
     }
 
     pub(crate) fn wrong_type(&self, expected: &str) -> SceneError {
-        if let Value::String(s) = self.value
-            && s.starts_with(NON_FINITE_MARK)
+        if let Value::Number(n) = self.value
+            && n.as_f64().is_none_or(|x| !x.is_finite())
         {
-            return self.err(SceneErrorKind::NotFinite(s[1..].to_owned()));
+            return self.err(SceneErrorKind::NotFinite(describe_number(n)));
         }
         self.err(SceneErrorKind::WrongType {
             expected: expected.into(),
@@ -189,7 +297,7 @@ impl<'a> Node<'a> {
         };
         match n.as_f64() {
             Some(x) if x.is_finite() => Ok(x),
-            _ => Err(self.err(SceneErrorKind::NotFinite(n.to_string()))),
+            _ => Err(self.err(SceneErrorKind::NotFinite(describe_number(n)))),
         }
     }
 
@@ -223,7 +331,7 @@ impl<'a> Node<'a> {
 
     pub(crate) fn string(&self) -> Result<&'a str, SceneError> {
         match self.value {
-            Value::String(s) if !s.starts_with(NON_FINITE_MARK) => Ok(s),
+            Value::String(s) => Ok(s),
             _ => Err(self.wrong_type("a string")),
         }
     }
@@ -262,7 +370,7 @@ impl<'a> Node<'a> {
 
     pub(crate) fn color(&self) -> Result<Color, SceneError> {
         match self.value {
-            Value::String(s) if !s.starts_with(NON_FINITE_MARK) => parse_hex_color(s)
+            Value::String(s) => parse_hex_color(s)
                 .ok_or_else(|| {
                     self.invalid(format!(
                         "{s:?} is not a colour (use \"#rrggbb\", \"#rrggbbaa\" or [r, g, b(, a)] in [0, 1])"

@@ -12,6 +12,7 @@ use glam::DVec3;
 
 use splinescope::geom::{Lower, ParamCurve};
 use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext};
+use splinescope::num::Num;
 use splinescope::scene::{Scene, gallery};
 
 mod bench;
@@ -462,7 +463,12 @@ fn inspect(path: &Path, only: Option<usize>, tau: Option<f64>) -> Result<()> {
                 let Some(at) = splinescope::inspect::at_tau(&c.curve, t)
                     .with_context(|| format!("{}: curves[{i}]", path.display()))?
                 else {
-                    bail!("--tau {t} is outside the domain [{a}, {b}] of curves[{i}]");
+                    bail!(
+                        "--tau {} is outside the domain [{}, {}] of curves[{i}]",
+                        Num(t),
+                        Num(a),
+                        Num(b)
+                    );
                 };
                 report["at_tau"] = at;
             }
@@ -498,7 +504,10 @@ fn eval(
                 for (k, &t) in ts.iter().enumerate() {
                     if !(a..=b).contains(&t) {
                         bail!(
-                            "--params[{k}] = {t} is outside the domain [{a}, {b}] of curves[{i}]"
+                            "--params[{k}] = {} is outside the domain [{}, {}] of curves[{i}]",
+                            Num(t),
+                            Num(a),
+                            Num(b)
                         );
                     }
                 }
@@ -609,6 +618,7 @@ fn check(path: &Path) -> Result<()> {
             .max()
             .unwrap_or(0);
         let (a, b) = c.curve.domain();
+        let (a, b) = (Num(a), Num(b));
         say!(
             "  curves[{i}] {}{}: domain [{a}, {b}], {} Bézier segment(s), max degree {max_degree}",
             c.curve.family(),

@@ -275,3 +275,67 @@ fn special_output_paths_follow_the_documented_policy() {
     );
     std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o644)).unwrap();
 }
+
+#[test]
+fn duplicate_keys_markers_and_extreme_numbers_in_messages() {
+    let d = dir("small");
+    // A duplicated key is refused at its path, whichever copy holds the bad value.
+    let dup = write(
+        &d,
+        "dup.json",
+        r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, NaN], [1, 1]], "points": [[0, 0], [1, 1]]}]}"#,
+    );
+    fails_saying(
+        &["check", &dup],
+        &["curves[0].points: the key \"points\" appears more than once"],
+    );
+    let dup_root = write(
+        &d,
+        "dup_root.json",
+        r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1, 1]]}], "version": 1}"#,
+    );
+    fails_saying(&["check", &dup_root], &["version: the key \"version\""]);
+    let dup_req = write(
+        &d,
+        "dup_req.json",
+        r#"{"curve": 0, "method": "project", "target": [1, 1], "target": [2, 2]}"#,
+    );
+    fails_saying(
+        &["solve", &demo(), &dup_req],
+        &["target: the key \"target\" appears more than once"],
+    );
+    // A user string that looks like the old internal marker is just a string.
+    let marker = write(
+        &d,
+        "marker.json",
+        r#"{"version": 1, "curves": [{"type": "bezier", "name": "\u0001NaN", "points": [[0, 0], [1, 1]]}]}"#,
+    );
+    let out = run(&["check", &marker]);
+    assert!(out.status.success(), "{}", text(&out));
+    // NaN and Infinity literals are still named as such, at their path.
+    let nan = write(
+        &d,
+        "nan.json",
+        r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1, -Infinity]]}]}"#,
+    );
+    fails_saying(
+        &["check", &nan],
+        &["curves[0].points[1][1]: not a finite number (-Infinity)"],
+    );
+    // Subnormals are printed in their shortest round-trip form, not 300 digits.
+    let sub = write(
+        &d,
+        "sub.json",
+        r#"{"version": 1, "curves": [{"type": "interpolation", "points": [[0, 0], [1, 2], [2, 0]], "params": [0, 5e-324, 0]}]}"#,
+    );
+    fails_saying(&["check", &sub], &["0 follows 5e-324"]);
+    let bez = write(
+        &d,
+        "bez.json",
+        r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1, 1]]}]}"#,
+    );
+    let out = run(&["eval", &bez, "--params", "2.5e-320,-5e-324"]);
+    let all = text(&out);
+    assert!(all.contains("--params[1] = -5e-324 is outside"), "{all}");
+    assert!(all.len() < 400, "no 300-digit numbers: {all}");
+}

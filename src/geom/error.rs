@@ -10,9 +10,7 @@ use thiserror::Error;
 pub enum GeomError {
     /// A value computed from the input is not a finite number: the input is too extreme
     /// for `f64` (knots or parameters too close together, coordinates too large).
-    #[error(
-        "{what} is not a finite number ({value}): the input is too extreme for f64 arithmetic (knots or parameters too close together, or coordinates too large)"
-    )]
+    #[error("{what} is not a finite number ({value_}): the input is too extreme for f64 arithmetic (knots or parameters too close together, or coordinates too large)", value_ = crate::num::Num(*.value))]
     DerivedNotFinite {
         /// The input field the value was computed from, relative to the curve
         /// (`knots`, `points`; empty for the curve as a whole).
@@ -31,7 +29,7 @@ pub enum GeomError {
         found: usize,
     },
     /// A coordinate is NaN or infinite.
-    #[error("not a finite number ({value})")]
+    #[error("not a finite number ({value_})", value_ = crate::num::Num(*.value))]
     NonFinitePoint {
         /// Index of the offending point.
         index: usize,
@@ -39,13 +37,13 @@ pub enum GeomError {
         value: f64,
     },
     /// `t*` of a modified curve is not inside `(0, 1)`.
-    #[error("t* = {value} is not inside the open interval (0, 1)")]
+    #[error("t* = {value_} is not inside the open interval (0, 1)", value_ = crate::num::Num(*.value))]
     TStarOutside {
         /// The value given.
         value: f64,
     },
     /// The vector `v` of a modified curve has a non-finite coordinate.
-    #[error("not a finite number ({value})")]
+    #[error("not a finite number ({value_})", value_ = crate::num::Num(*.value))]
     NonFiniteVector {
         /// The value given.
         value: f64,
@@ -59,7 +57,7 @@ pub enum GeomError {
         found: usize,
     },
     /// Interpolation parameters are not strictly increasing.
-    #[error("parameters must increase strictly: {value} follows {previous}")]
+    #[error("parameters must increase strictly: {value_} follows {previous_}", value_ = crate::num::Num(*.value), previous_ = crate::num::Num(*.previous))]
     ParamsNotIncreasing {
         /// Index of the offending parameter.
         index: usize,
@@ -69,7 +67,7 @@ pub enum GeomError {
         previous: f64,
     },
     /// An interpolation parameter is NaN or infinite.
-    #[error("not a finite number ({value})")]
+    #[error("not a finite number ({value_})", value_ = crate::num::Num(*.value))]
     NonFiniteParam {
         /// Index of the offending parameter.
         index: usize,
@@ -97,7 +95,7 @@ pub enum GeomError {
         order: usize,
     },
     /// A knot is NaN or infinite.
-    #[error("not a finite number ({value})")]
+    #[error("not a finite number ({value_})", value_ = crate::num::Num(*.value))]
     NonFiniteKnot {
         /// Index of the offending knot.
         index: usize,
@@ -105,7 +103,7 @@ pub enum GeomError {
         value: f64,
     },
     /// Knots decrease.
-    #[error("knots must not decrease: {value} follows {previous}")]
+    #[error("knots must not decrease: {value_} follows {previous_}", value_ = crate::num::Num(*.value), previous_ = crate::num::Num(*.previous))]
     KnotsDecreasing {
         /// Index of the offending knot.
         index: usize,
@@ -115,10 +113,8 @@ pub enum GeomError {
         previous: f64,
     },
     /// A knot repeats too often.
-    #[error(
-        "knot {value} has multiplicity {multiplicity}; at most {max} allowed {}",
-        if *interior { "inside the domain (order − 1 keeps the curve continuous)" } else { "at the domain's ends (the order)" }
-    )]
+    #[error("knot {value_} has multiplicity {multiplicity}; at most {max} allowed {}",
+        if *interior { "inside the domain (order − 1 keeps the curve continuous)" } else { "at the domain's ends (the order)" }, value_ = crate::num::Num(*.value))]
     KnotMultiplicity {
         /// Index of the first copy over the limit.
         index: usize,
@@ -132,7 +128,7 @@ pub enum GeomError {
         interior: bool,
     },
     /// The domain `[t_{k−1}, t_n]` is empty.
-    #[error("the domain [t_(k-1), t_n] = [{start}, {end}] is empty")]
+    #[error("the domain [t_(k-1), t_n] = [{start_}, {end_}] is empty", start_ = crate::num::Num(*.start), end_ = crate::num::Num(*.end))]
     EmptyDomain {
         /// `t_{k−1}`.
         start: f64,
@@ -140,7 +136,7 @@ pub enum GeomError {
         end: f64,
     },
     /// A knot to insert lies outside the domain.
-    #[error("{value} is outside the domain [{start}, {end}]")]
+    #[error("{value_} is outside the domain [{start_}, {end_}]", value_ = crate::num::Num(*.value), start_ = crate::num::Num(*.start), end_ = crate::num::Num(*.end))]
     KnotOutsideDomain {
         /// The knot.
         value: f64,
@@ -186,7 +182,7 @@ pub enum GeomError {
         found: usize,
     },
     /// A shape parameter is negative or not finite.
-    #[error("shape parameter a^{member}_{group} = {value} must be finite and ≥ 0")]
+    #[error("shape parameter a^{member}_{group} = {value_} must be finite and ≥ 0", value_ = crate::num::Num(*.value))]
     NegativeParameter {
         /// The group.
         group: usize,
@@ -196,7 +192,7 @@ pub enum GeomError {
         value: f64,
     },
     /// A group's parameters do not sum to 1.
-    #[error("group {group} sums to {sum}, not 1 (tolerance {tolerance:e})")]
+    #[error("group {group} sums to {sum_}, not 1 (tolerance {tolerance:e})", sum_ = crate::num::Num(*.sum))]
     GroupSum {
         /// The group.
         group: usize,
@@ -206,9 +202,7 @@ pub enum GeomError {
         tolerance: f64,
     },
     /// A one-parameter edit asks for more than the two members hold together.
-    #[error(
-        "a^{member}_{group} = {value} is more than a^{member}_{group} + a^{absorber}_{group} = {pair}: the absorbing a^{absorber}_{group} would become negative"
-    )]
+    #[error("a^{member}_{group} = {value_} is more than a^{member}_{group} + a^{absorber}_{group} = {pair_}: the absorbing a^{absorber}_{group} would become negative", value_ = crate::num::Num(*.value), pair_ = crate::num::Num(*.pair))]
     AbsorberNegative {
         /// The group.
         group: usize,

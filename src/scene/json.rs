@@ -4,7 +4,7 @@
 use glam::{DVec2, DVec3};
 use serde_json::{Map, Value};
 
-use crate::jsonread::{NON_FINITE_MARK, Node, Obj, describe, parse_document};
+use crate::jsonread::{Node, Obj, describe, parse_document};
 
 use super::{
     Annotation, AnnotationShape, Color, FORMAT_VERSION, MAX_SAMPLES_PER_SEGMENT, Scene, SceneCurve,
@@ -325,7 +325,7 @@ fn decode_spline_parts(
             KnotVector::clamped_uniform(order, points.len())
                 .map_err(|e| geom_error(node, "", &e))?
         }
-        Value::String(s) if !s.starts_with(NON_FINITE_MARK) => {
+        Value::String(s) => {
             return Err(knots_node.invalid(format!(
                 "unknown knot vector {s:?} (expected an array of numbers or \"clamped_uniform\")"
             )));
