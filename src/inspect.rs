@@ -138,12 +138,28 @@ fn spline_fields(obj: &mut Map<String, Value>, knots: &KnotVector) {
     obj.insert("clamped".into(), knots.is_clamped().into());
 }
 
+/// The highest order for which `inspect` reports the elevation coefficients as exact
+/// rationals (above it, `exact_omitted` says so; the `f64` values are always there).
+pub const EXACT_MAX_ORDER: usize = 16;
+
 fn nubmp_fields(obj: &mut Map<String, Value>, n: &Nubmp) {
     obj.insert(
         "refined_knots".into(),
         n.refined_knots().knots().to_vec().into(),
     );
-    let exact = n.exact_coefficients();
+    // Exact rationals cost about order⁴ big-number operations per coefficient: they are
+    // computed up to EXACT_MAX_ORDER, the f64 values always.
+    let exact = (n.order() <= EXACT_MAX_ORDER).then(|| n.exact_coefficients());
+    if exact.is_none() {
+        obj.insert(
+            "exact_omitted".into(),
+            format!(
+                "exact rational coefficients are computed up to order {EXACT_MAX_ORDER}; this curve has order {}",
+                n.order()
+            )
+            .into(),
+        );
+    }
     obj.insert(
         "exact_from".into(),
         if n.knots().has_exact() {
@@ -157,18 +173,24 @@ fn nubmp_fields(obj: &mut Map<String, Value>, n: &Nubmp) {
     obj.insert(
         "coefficients".into(),
         Value::Array(
-            exact
-                .rows
+            f64_rows
                 .iter()
-                .zip(&f64_rows)
                 .enumerate()
-                .map(|(i, (row, frow))| {
-                    json!({
+                .map(|(i, frow)| {
+                    let mut row = json!({
                         "i": i,
-                        "first_group": row.first,
+                        "first_group": frow.first,
                         "values": frow.values,
-                        "exact": row.values.iter().map(format_rational).collect::<Vec<_>>(),
-                    })
+                    });
+                    if let Some(e) = &exact {
+                        row["exact"] = e.rows[i]
+                            .values
+                            .iter()
+                            .map(format_rational)
+                            .collect::<Vec<_>>()
+                            .into();
+                    }
+                    row
                 })
                 .collect(),
         ),

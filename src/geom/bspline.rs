@@ -163,26 +163,33 @@ impl BSpline {
     }
 
     /// The exact Bézier pieces of the curve over its domain, one per non-empty knot span
-    /// (Bézier extraction: every breakpoint raised to multiplicity `k − 1`).
+    /// (Bézier extraction). Each piece is computed on its own span: its control points are
+    /// the blossom values `f(t_μ^{p−j}, t_{μ+1}^j)`, `j = 0..=p`, of the span's `p + 1`
+    /// control points — the result of raising every breakpoint to multiplicity `k − 1`,
+    /// in `O(p³)` per span, so the whole extraction is linear in the number of points.
     #[must_use]
     pub fn bezier_segments(&self) -> Vec<BezierSegment> {
         let p = self.knots.degree();
-        let mut spline = self.clone();
-        for v in self.knots.breakpoints() {
-            while spline.knots.multiplicity(v) < p {
-                spline = spline
-                    .insert_knot(v)
-                    .unwrap_or_else(|e| unreachable!("raising {v} to multiplicity {p}: {e}"));
-            }
-        }
-        let tk = spline.knots.knots();
-        let (a, b) = spline.knots.domain();
-        (p..spline.points.len())
+        let tk = self.knots.knots();
+        let (a, b) = self.knots.domain();
+        let mut args = vec![0.0; p];
+        let mut w = vec![DVec3::ZERO; p + 1];
+        (p..self.points.len())
             .filter(|&mu| tk[mu] < tk[mu + 1] && tk[mu] >= a && tk[mu + 1] <= b)
-            .map(|mu| BezierSegment {
-                bezier: Bezier::new(spline.points[mu - p..=mu].to_vec()),
-                t0: tk[mu],
-                t1: tk[mu + 1],
+            .map(|mu| {
+                let bezier = (0..=p)
+                    .map(|j| {
+                        for (r, x) in args.iter_mut().enumerate() {
+                            *x = if r < p - j { tk[mu] } else { tk[mu + 1] };
+                        }
+                        blossom_points(tk, &self.points, p, mu, &args, &mut w)
+                    })
+                    .collect();
+                BezierSegment {
+                    bezier: Bezier::new(bezier),
+                    t0: tk[mu],
+                    t1: tk[mu + 1],
+                }
             })
             .collect()
     }
@@ -226,6 +233,19 @@ pub fn tau<S: Scalar>(knots: &[S], i: usize) -> usize {
     i + s
 }
 
+/// [`tau`] for every `i` in `0..count`, in one pass.
+fn taus<S: Scalar>(knots: &[S], count: usize) -> Vec<usize> {
+    let mut s = 0;
+    (0..count)
+        .map(|i| {
+            if i > 0 && knots[i] != knots[i - 1] {
+                s += 1;
+            }
+            i + s
+        })
+        .collect()
+}
+
 /// One row of the elevation coefficients: `c^i_j` for `j = first .. first + values.len()`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CoefficientRow<S> {
@@ -247,6 +267,27 @@ pub struct Elevation<S> {
 /// The blossom (polar form) of the degree-`p` polynomial piece on span `mu` of the spline
 /// with `knots` and scalar coefficients `d`, at the `p` arguments `xs` (de Boor's algorithm
 /// with argument `xs[r−1]` at level `r`).
+/// The blossom of the degree-`p` spline with control points `points` on span `μ`, at
+/// `xs` (de Boor's recurrence with one argument per level); `w` is scratch of `p + 1`.
+fn blossom_points(
+    knots: &[f64],
+    points: &[DVec3],
+    p: usize,
+    mu: usize,
+    xs: &[f64],
+    w: &mut [DVec3],
+) -> DVec3 {
+    w.copy_from_slice(&points[mu - p..=mu]);
+    for r in 1..=p {
+        for jj in (r..=p).rev() {
+            let i = mu - p + jj;
+            let alpha = (xs[r - 1] - knots[i]) / (knots[i + p + 1 - r] - knots[i]);
+            w[jj] = (1.0 - alpha) * w[jj - 1] + alpha * w[jj];
+        }
+    }
+    w[p]
+}
+
 fn blossom<S: Scalar>(knots: &[S], d: &[S], p: usize, mu: usize, xs: &[S]) -> S {
     let mut w: Vec<S> = d[mu - p..=mu].to_vec();
     for r in 1..=p {
@@ -293,12 +334,12 @@ pub fn elevation_coefficients<S: Scalar>(knots: &[S], order: usize) -> Elevation
         .collect();
     padded.extend(knots.iter().cloned());
     padded.extend((1..=p).map(|i| last.clone() + span.clone() * S::from_usize(i)));
-    let taus: Vec<usize> = (0..=n + k - 1).map(|i| tau(knots, i)).collect();
+    let taus = taus(knots, n + k);
     let kk = S::from_usize(k);
+    // e_i in the padded numbering, one entry set at a time.
+    let mut d = vec![S::zero(); n + 2 * p];
     let rows = (0..n)
         .map(|i| {
-            // e_i in the padded numbering.
-            let mut d = vec![S::zero(); n + 2 * p];
             d[i + p] = S::one();
             let j_first = taus[i];
             let j_last = taus[i + k] - k;
@@ -310,10 +351,15 @@ pub fn elevation_coefficients<S: Scalar>(knots: &[S], order: usize) -> Elevation
                     let l = (j..=j + k)
                         .find(|&l| refined[l] < refined[l + 1])
                         .unwrap_or_else(|| unreachable!("N*_{j} has a non-empty support"));
-                    let mu = (0..padded.len() - 1)
-                        .rev()
-                        .find(|&m| padded[m] <= refined[l] && padded[m] < padded[m + 1])
-                        .unwrap_or_else(|| unreachable!("the padded knots cover T*"));
+                    // The last non-empty span of the padded knots starting at or before
+                    // refined[l] (binary search, then back over repeated knots).
+                    let mut mu = padded
+                        .partition_point(|x| *x <= refined[l])
+                        .saturating_sub(1)
+                        .min(padded.len() - 2);
+                    while mu > 0 && padded[mu] >= padded[mu + 1] {
+                        mu -= 1;
+                    }
                     let mut sum = S::zero();
                     for skip in 0..k {
                         let xs: Vec<S> = args
@@ -327,6 +373,7 @@ pub fn elevation_coefficients<S: Scalar>(knots: &[S], order: usize) -> Elevation
                     sum / kk.clone()
                 })
                 .collect();
+            d[i + p] = S::zero();
             CoefficientRow {
                 first: j_first,
                 values,

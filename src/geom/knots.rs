@@ -137,7 +137,16 @@ impl KnotVector {
         let mut knots = vec![0.0; order];
         knots.extend((1..spans).map(|i| i as f64 / spans as f64));
         knots.extend(std::iter::repeat_n(1.0, order));
-        KnotVector::try_new(knots, order, n_points)
+        // Their exact values are i / spans (derived data in rationals stays small).
+        let exact: Vec<Rational> = knots
+            .iter()
+            .enumerate()
+            .map(|(idx, _)| {
+                let i = idx.saturating_sub(order - 1).min(spans);
+                Rational::new(i.into(), spans.into())
+            })
+            .collect();
+        Ok(KnotVector::try_new(knots, order, n_points)?.with_exact(exact))
     }
 
     /// The knots.

@@ -390,12 +390,14 @@ impl Nubmp {
     pub fn affected_spans(&self, j: usize) -> Vec<(f64, f64)> {
         let rt = self.refined.knots();
         let k1 = self.refined.order();
-        let (lo, hi) = (rt[j], rt[j + k1]);
-        let bps = self.knots.breakpoints();
-        bps.windows(2)
-            .map(|w| (w[0], w[1]))
-            .filter(|&(a, b)| a >= lo && b <= hi)
-            .collect()
+        let (a, b) = self.knots.domain();
+        let (lo, hi) = (rt[j].max(a), rt[j + k1].min(b));
+        // The distinct knots in [lo, hi] (all breakpoints, as lo ≥ a and hi ≤ b), found by
+        // binary search: linear in the group's support, not in the curve's size.
+        let t = self.knots.knots();
+        let mut bps = t[t.partition_point(|&x| x < lo)..t.partition_point(|&x| x <= hi)].to_vec();
+        bps.dedup();
+        bps.windows(2).map(|w| (w[0], w[1])).collect()
     }
 
     /// The groups whose dual B-spline is non-zero at `τ` (those that can move `P(τ)`).
@@ -493,8 +495,10 @@ impl Nubmp {
             }
         };
         let terms_at = |h: usize, s: f64| self.vd_terms(h, &value_at(s));
-        // The conditions whose terms change with s.
-        let involved: Vec<usize> = (0..self.groups.len())
+        // The conditions whose terms change with s: condition h reads groups h − 1, h and
+        // h + 1 only, so only conditions j − 1 ..= j + 1 can.
+        let near = j.saturating_sub(1)..=(j + 1).min(self.groups.len() - 1);
+        let involved: Vec<usize> = near
             .filter(|&h| match (terms_at(h, 0.0), terms_at(h, pair)) {
                 (Some(x), Some(y)) => x != y,
                 _ => false,
