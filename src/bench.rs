@@ -5,7 +5,7 @@
 use std::io::Write;
 use std::time::{Duration, Instant};
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use glam::DVec2;
 use serde_json::json;
 
@@ -55,6 +55,10 @@ fn rate(samples: u64, elapsed: Duration) -> f64 {
 /// # Errors
 /// GPU setup or readback errors.
 pub fn run(args: &BenchArgs) -> Result<()> {
+    // Checked before the scene is generated: curves × samples bounds every buffer.
+    splinescope::limits::SAMPLES
+        .check(args.curves * u64::from(args.samples))
+        .with_context(|| format!("bench --curves {} --samples {}", args.curves, args.samples))?;
     let scene = random_bezier_scene(StressOptions {
         curves: args.curves as usize,
         degree: args.degree as usize,

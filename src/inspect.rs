@@ -142,6 +142,9 @@ fn spline_fields(obj: &mut Map<String, Value>, knots: &KnotVector) {
 /// rationals (above it, `exact_omitted` says so; the `f64` values are always there).
 pub const EXACT_MAX_ORDER: usize = 16;
 
+/// The most control points for which `inspect` reports exact rational coefficients.
+pub const EXACT_MAX_POINTS: usize = 10_000;
+
 fn nubmp_fields(obj: &mut Map<String, Value>, n: &Nubmp) {
     obj.insert(
         "refined_knots".into(),
@@ -149,13 +152,15 @@ fn nubmp_fields(obj: &mut Map<String, Value>, n: &Nubmp) {
     );
     // Exact rationals cost about order⁴ big-number operations per coefficient: they are
     // computed up to EXACT_MAX_ORDER, the f64 values always.
-    let exact = (n.order() <= EXACT_MAX_ORDER).then(|| n.exact_coefficients());
+    let exact = (n.order() <= EXACT_MAX_ORDER && n.points().len() <= EXACT_MAX_POINTS)
+        .then(|| n.exact_coefficients());
     if exact.is_none() {
         obj.insert(
             "exact_omitted".into(),
             format!(
-                "exact rational coefficients are computed up to order {EXACT_MAX_ORDER}; this curve has order {}",
-                n.order()
+                "exact rational coefficients are computed up to order {EXACT_MAX_ORDER} and {EXACT_MAX_POINTS} points; this curve has order {} and {} points",
+                n.order(),
+                n.points().len()
             )
             .into(),
         );

@@ -29,6 +29,7 @@ pub mod gpu;
 pub mod image;
 pub mod inspect;
 mod jsonread;
+pub mod limits;
 pub mod num;
 pub mod regress;
 pub mod request;

@@ -256,6 +256,13 @@ fn run(cli: Cli) -> Result<()> {
                 );
             }
             let path = scene.clone();
+            if let Some(n) = stress {
+                splinescope::limits::SAMPLES
+                    .check(n.saturating_mul(u64::from(
+                        splinescope::scene::generate::StressOptions::default().samples,
+                    )))
+                    .with_context(|| format!("view --stress {n}"))?;
+            }
             let scene = match stress {
                 Some(n) => splinescope::scene::generate::random_bezier_scene(
                     splinescope::scene::generate::StressOptions {
@@ -426,7 +433,8 @@ fn select_curves(scene: &Scene, only: Option<usize>) -> Result<Vec<usize>> {
 
 fn solve(path: &Path, request: &Path, output: Option<&Path>, report: Option<&Path>) -> Result<()> {
     let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
-    let text = std::fs::read_to_string(request)
+    let text = splinescope::limits::read_bounded(request)
+        .map_err(anyhow::Error::msg)
         .with_context(|| format!("{}: cannot read the request", request.display()))?;
     let outcome = splinescope::request::apply_text(&scene, &text)
         .with_context(|| format!("{}", request.display()))?;
@@ -448,15 +456,22 @@ fn solve(path: &Path, request: &Path, output: Option<&Path>, report: Option<&Pat
 
 fn inspect(path: &Path, only: Option<usize>, tau: Option<f64>) -> Result<()> {
     let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
-    let mut curves = Vec::new();
-    for i in select_curves(&scene, only)? {
+    if let Some(t) = tau
+        && !t.is_finite()
+    {
+        bail!("--tau {t}: not a finite number");
+    }
+    // Streamed curve by curve: memory holds the scene and one report, however many curves.
+    // Reports are built before anything is printed for them, so a failing curve stops the
+    // output at a curve boundary with the error on stderr (and exit 1).
+    let stdout = std::io::stdout();
+    let mut out = std::io::BufWriter::new(stdout.lock());
+    write!(out, "{{\n  \"curves\": [")?;
+    for (k, i) in select_curves(&scene, only)?.into_iter().enumerate() {
         let c = &scene.curves[i];
         let mut report = splinescope::inspect::curve_report(i, c.name.as_deref(), &c.curve)
             .with_context(|| format!("{}: curves[{i}]", path.display()))?;
         if let Some(t) = tau {
-            if !t.is_finite() {
-                bail!("--tau {t}: not a finite number");
-            }
             let (a, b) = c.curve.domain();
             let family = c.curve.family();
             if family == "nubmp" || family == "bspline" {
@@ -473,12 +488,17 @@ fn inspect(path: &Path, only: Option<usize>, tau: Option<f64>) -> Result<()> {
                 report["at_tau"] = at;
             }
         }
-        curves.push(report);
+        let text = splinescope::scene::pretty_json(&report);
+        write!(out, "{}\n", if k == 0 { "" } else { "," })?;
+        for (l, line) in text.lines().enumerate() {
+            if l > 0 {
+                writeln!(out)?;
+            }
+            write!(out, "    {line}")?;
+        }
     }
-    say!(
-        "{}",
-        splinescope::scene::pretty_json(&serde_json::json!({ "curves": curves }))
-    );
+    writeln!(out, "\n  ]\n}}")?;
+    out.flush()?;
     Ok(())
 }
 
@@ -496,6 +516,17 @@ fn eval(
     if given.is_none() && samples.is_none() {
         bail!("give --samples N or --params T0,T1,...");
     }
+    let per = given
+        .as_ref()
+        .map_or_else(|| u64::from(samples.unwrap_or(0)), |g| g.len() as u64);
+    splinescope::limits::SAMPLES
+        .check(per.saturating_mul(indices.len() as u64))
+        .with_context(|| {
+            format!(
+                "{} curve(s) × {per} parameter(s) to evaluate",
+                indices.len()
+            )
+        })?;
     let mut per_curve = Vec::with_capacity(indices.len());
     for &i in &indices {
         let (a, b) = scene.curves[i].curve.domain();

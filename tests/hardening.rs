@@ -339,3 +339,112 @@ fn duplicate_keys_markers_and_extreme_numbers_in_messages() {
     assert!(all.contains("--params[1] = -5e-324 is outside"), "{all}");
     assert!(all.len() < 400, "no 300-digit numbers: {all}");
 }
+
+/// Each documented limit is checked before allocating, names the value, the limit and the
+/// variable that raises it; raising the variable lets the input through.
+#[test]
+fn limits_are_named_with_the_variable_that_raises_them() {
+    let d = dir("limits");
+    let pts = |n: usize| {
+        (0..n)
+            .map(|i| format!("[{i}, {}]", i % 3))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let degree = write(
+        &d,
+        "degree.json",
+        &format!(
+            r#"{{"version": 1, "curves": [{{"type": "bezier", "points": [{}]}}]}}"#,
+            pts(1002)
+        ),
+    );
+    fails_saying(
+        &["eval", &degree, "--params", "0.5"],
+        &[
+            "curves[0].points: 1001 is over the limit of 1000 for the degree of a Bézier curve",
+            "SPLINESCOPE_MAX_DEGREE=N",
+        ],
+    );
+    let raised = bin()
+        .args(["eval", &degree, "--params", "0.5"])
+        .env("SPLINESCOPE_MAX_DEGREE", "2000")
+        .output()
+        .unwrap();
+    assert!(raised.status.success(), "{}", text(&raised));
+    let order = write(
+        &d,
+        "order.json",
+        &format!(
+            r#"{{"version": 1, "curves": [{{"type": "bspline", "points": [{}], "knots": "clamped_uniform", "order": 65}}]}}"#,
+            pts(70)
+        ),
+    );
+    fails_saying(
+        &["check", &order],
+        &[
+            "curves[0].order: 65 is over the limit of 64",
+            "SPLINESCOPE_MAX_ORDER",
+        ],
+    );
+    let many = bin()
+        .args(["check", &order])
+        .env("SPLINESCOPE_MAX_POINTS", "50")
+        .output()
+        .unwrap();
+    assert!(
+        text(&many).contains("curves[0].points: 70 is over the limit of 50 points per curve"),
+        "{}",
+        text(&many)
+    );
+    let curves = bin()
+        .args(["check", &degree])
+        .env("SPLINESCOPE_MAX_CURVES", "0")
+        .output()
+        .unwrap();
+    assert!(
+        text(&curves).contains("curves: 1 is over the limit of 0 curves per scene"),
+        "{}",
+        text(&curves)
+    );
+    let bytes = bin()
+        .args(["check", &degree])
+        .env("SPLINESCOPE_MAX_FILE_BYTES", "100")
+        .output()
+        .unwrap();
+    assert!(
+        text(&bytes).contains("is over the limit of 100 bytes per scene or request file"),
+        "{}",
+        text(&bytes)
+    );
+    let gallery = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes/gallery.json")
+        .to_string_lossy()
+        .into_owned();
+    fails_saying(
+        &["eval", &gallery, "--samples", "10000000"],
+        &[
+            "190000000 is over the limit of 134217728 samples per command",
+            "SPLINESCOPE_MAX_SAMPLES",
+        ],
+    );
+    fails_saying(
+        &["bench", "--curves", "10000000", "--samples", "64"],
+        &["640000000 is over the limit of 134217728 samples per command"],
+    );
+    if common::gpus("limits (render half)").is_empty() {
+        return;
+    }
+    let render = bin()
+        .args(["render", &gallery, "-o", &d.join("x.png").to_string_lossy()])
+        .env("SPLINESCOPE_MAX_SAMPLES", "100")
+        .output()
+        .unwrap();
+    assert_eq!(render.status.code(), Some(1), "{}", text(&render));
+    assert!(
+        text(&render).contains("is over the limit of 100 samples per command"),
+        "{}",
+        text(&render)
+    );
+    assert!(!d.join("x.png").exists());
+}

@@ -63,6 +63,9 @@ pub enum PackError {
         /// [`GPU_COORDINATE_LIMIT`].
         limit: f64,
     },
+    /// The scene needs more samples than [`crate::limits::SAMPLES`] allows.
+    #[error("the scene's curves need {0}")]
+    TooManySamples(String),
     /// The chunk limits are too small to hold even one segment.
     #[error("GPU buffer limits too small: one chunk holds {what}")]
     LimitsTooSmall {
@@ -638,6 +641,17 @@ pub fn overlay_point_style(kind: OverlayKind, curve: Color) -> Option<GpuLineSty
 /// [`PackError`] when a segment's degree is over the GPU maximum or a coordinate beyond
 /// [`GPU_COORDINATE_LIMIT`].
 pub fn prepare_scene(scene: &Scene, limits: ChunkLimits) -> Result<PreparedScene, PackError> {
+    // The sample total first, before any buffer is built.
+    let mut total = 0u64;
+    for (index, sc) in scene.curves.iter().enumerate() {
+        let samples = scene.samples_for(index);
+        for seg in sc.curve.lower() {
+            total += u64::from(samples.unwrap_or_else(|| auto_samples(seg.bezier.points())));
+        }
+    }
+    crate::limits::SAMPLES
+        .check(total)
+        .map_err(|e| PackError::TooManySamples(e.to_string()))?;
     let mut chunks = ChunkBuilder::new(limits);
     let mut sample_counts = Vec::with_capacity(scene.curves.len());
     for (index, sc) in scene.curves.iter().enumerate() {

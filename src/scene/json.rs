@@ -56,8 +56,13 @@ fn decode_scene(root: &Node<'_>) -> Result<Scene, SceneError> {
         Some(n) => Some(n.u32_in(2, MAX_SAMPLES_PER_SEGMENT)?),
     };
     let view = obj.get("view").map(|n| decode_view(&n)).transpose()?;
-    let curves = obj
-        .req("curves")?
+    let curves_node = obj.req("curves")?;
+    if let Value::Array(a) = curves_node.value {
+        crate::limits::CURVES
+            .check(a.len() as u64)
+            .map_err(|e| curves_node.invalid(e.to_string()))?;
+    }
+    let curves = curves_node
         .array()?
         .iter()
         .enumerate()
@@ -210,13 +215,13 @@ fn decode_curve(node: &Node<'_>, index: usize) -> Result<SceneCurve, SceneError>
     let (curve, obj) = match family {
         "bezier" => {
             let obj = node.object(&with_common(&["points"]))?;
-            let points = obj.req("points")?.points(2)?;
+            let points = bezier_points(&obj)?;
             let curve = Bezier::try_new(points).map_err(|e| geom_error(node, "", &e))?;
             (Curve::Bezier(curve), obj)
         }
         "modified_bezier" => {
             let obj = node.object(&with_common(&["points", "t_star", "v"]))?;
-            let points = obj.req("points")?.points(2)?;
+            let points = bezier_points(&obj)?;
             let t_star = obj.req("t_star")?.f64()?;
             let v = obj.req("v")?.point()?;
             let base = Bezier::try_new(points).map_err(|e| geom_error(node, "", &e))?;
@@ -281,6 +286,16 @@ fn decode_curve(node: &Node<'_>, index: usize) -> Result<SceneCurve, SceneError>
     Ok(SceneCurve { name, curve, style })
 }
 
+/// A Bézier curve's points, its degree checked against [`crate::limits::DEGREE`].
+fn bezier_points(obj: &Obj<'_>) -> Result<Vec<glam::DVec3>, SceneError> {
+    let node = obj.req("points")?;
+    let points = node.points(2)?;
+    crate::limits::DEGREE
+        .check(points.len() as u64 - 1)
+        .map_err(|e| node.invalid(e.to_string()))?;
+    Ok(points)
+}
+
 /// The curve types the format knows.
 const FAMILIES: [&str; 5] = [
     "bezier",
@@ -319,6 +334,9 @@ fn decode_spline_parts(
     let points = obj.req("points")?.points(2)?;
     let order_node = obj.req("order")?;
     let order = order_node.u32_in(0, u32::MAX)? as usize;
+    crate::limits::ORDER
+        .check(order as u64)
+        .map_err(|e| order_node.invalid(e.to_string()))?;
     let knots_node = obj.req("knots")?;
     let knots = match knots_node.value {
         Value::String(s) if s == "clamped_uniform" => {

@@ -291,8 +291,8 @@ impl Scene {
     /// # Errors
     /// A [`SceneError`] naming the offending value (or the I/O problem).
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| SceneError::new("(root)", SceneErrorKind::Io(e.to_string())))?;
+        let text = crate::limits::read_bounded(path)
+            .map_err(|e| SceneError::new("(root)", SceneErrorKind::Io(e)))?;
         from_json_str(&text)
     }
 

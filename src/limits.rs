@@ -1,0 +1,151 @@
+//! The documented limits on input sizes, checked before anything is allocated for the
+//! input, so that no file or argument makes the program run for hours or exhaust memory.
+//! Each can be raised with an environment variable; a breach is an error that names the
+//! value, the limit and the variable.
+
+use thiserror::Error;
+
+/// One limit: its name in messages, its environment variable and its default.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Limit {
+    /// What is counted, e.g. "points per curve".
+    pub what: &'static str,
+    /// The environment variable that raises (or lowers) it.
+    pub var: &'static str,
+    /// The value when the variable is unset.
+    pub default: u64,
+}
+
+/// Scene files larger than this are refused before reading (a JSON document takes about
+/// 40 times its size in memory while it is decoded).
+pub const SCENE_BYTES: Limit = Limit {
+    what: "bytes per scene or request file",
+    var: "SPLINESCOPE_MAX_FILE_BYTES",
+    default: 16 << 20,
+};
+
+/// Curves per scene.
+pub const CURVES: Limit = Limit {
+    what: "curves per scene",
+    var: "SPLINESCOPE_MAX_CURVES",
+    default: 1_000_000,
+};
+
+/// Control points per curve (and points per annotation).
+pub const POINTS: Limit = Limit {
+    what: "points per curve",
+    var: "SPLINESCOPE_MAX_POINTS",
+    default: 100_000,
+};
+
+/// Degree of a Bézier curve (`points − 1`): de Casteljau is quadratic in the degree, so
+/// one evaluation at this degree is about 10⁶ operations.
+pub const DEGREE: Limit = Limit {
+    what: "for the degree of a Bézier curve",
+    var: "SPLINESCOPE_MAX_DEGREE",
+    default: 1_000,
+};
+
+/// Order of a B-spline or NUBMP curve: extraction costs `order³` and the NUBMP structure
+/// `order⁴` per point.
+pub const ORDER: Limit = Limit {
+    what: "for the order of a B-spline or NUBMP curve",
+    var: "SPLINESCOPE_MAX_ORDER",
+    default: 64,
+};
+
+/// Samples one command evaluates or tessellates in all (`eval`, `render`, `view`, `bench`):
+/// 2²⁷ samples are 2 GiB on the GPU (16 bytes each) or 3 GiB of `f64` points.
+pub const SAMPLES: Limit = Limit {
+    what: "samples per command",
+    var: "SPLINESCOPE_MAX_SAMPLES",
+    default: 1 << 27,
+};
+
+/// Every limit, for the documentation and `--help`.
+pub const ALL: [Limit; 6] = [SCENE_BYTES, CURVES, POINTS, DEGREE, ORDER, SAMPLES];
+
+/// A value over its limit.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[error(
+    "{found} is over the limit of {limit} {what} (raise it with the environment variable {var}=N)"
+)]
+pub struct LimitError {
+    /// What is counted.
+    pub what: &'static str,
+    /// The value found.
+    pub found: u64,
+    /// The limit in force.
+    pub limit: u64,
+    /// The variable that raises it.
+    pub var: &'static str,
+}
+
+impl Limit {
+    /// The limit in force: the environment variable when it holds a whole number, else
+    /// the default.
+    #[must_use]
+    pub fn value(&self) -> u64 {
+        std::env::var(self.var)
+            .ok()
+            .and_then(|v| v.trim().replace('_', "").parse::<u64>().ok())
+            .unwrap_or(self.default)
+    }
+
+    /// Checks `found` against the limit.
+    ///
+    /// # Errors
+    /// [`LimitError`] naming the value, the limit and the variable.
+    pub fn check(&self, found: u64) -> Result<(), LimitError> {
+        let limit = self.value();
+        if found > limit {
+            Err(LimitError {
+                what: self.what,
+                found,
+                limit,
+                var: self.var,
+            })
+        } else {
+            Ok(())
+        }
+    }
+}
+
+/// Reads a text file after checking its size against [`SCENE_BYTES`].
+///
+/// # Errors
+/// The I/O error or the limit, as a message.
+pub fn read_bounded(path: &std::path::Path) -> Result<String, String> {
+    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if meta.is_file() {
+        SCENE_BYTES.check(meta.len()).map_err(|e| e.to_string())?;
+    }
+    // A FIFO or device has no size: read at most one byte past the limit.
+    use std::io::Read;
+    let limit = SCENE_BYTES.value();
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(limit.saturating_add(1)).read_to_end(&mut bytes))
+        .map_err(|e| e.to_string())?;
+    SCENE_BYTES
+        .check(bytes.len() as u64)
+        .map_err(|e| e.to_string())?;
+    String::from_utf8(bytes).map_err(|e| format!("not UTF-8 text: {e}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_breach_names_the_value_the_limit_and_the_variable() {
+        assert!(ORDER.check(ORDER.default).is_ok());
+        let e = ORDER.check(ORDER.default + 1).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "65 is over the limit of 64 for the order of a B-spline or NUBMP curve (raise it with the environment variable SPLINESCOPE_MAX_ORDER=N)"
+        );
+        let vars: std::collections::HashSet<_> = ALL.iter().map(|l| l.var).collect();
+        assert_eq!(vars.len(), ALL.len(), "one variable per limit");
+    }
+}
