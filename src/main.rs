@@ -489,7 +489,7 @@ fn inspect(path: &Path, only: Option<usize>, tau: Option<f64>) -> Result<()> {
             }
         }
         let text = splinescope::scene::pretty_json(&report);
-        write!(out, "{}\n", if k == 0 { "" } else { "," })?;
+        writeln!(out, "{}", if k == 0 { "" } else { "," })?;
         for (l, line) in text.lines().enumerate() {
             if l > 0 {
                 writeln!(out)?;
