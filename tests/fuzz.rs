@@ -1,0 +1,569 @@
+//! Structured fuzzing of every input path: valid scenes and solve requests mutated field by
+//! field (extreme, subnormal and non-finite numbers, wrong types, removed and duplicated
+//! keys, arrays truncated or grown past the limits, families swapped), and argument lists
+//! for the CPU commands. Invariants, for the library and the command line:
+//!
+//! * nothing panics (the CLI never exits 101 or by a signal);
+//! * a command that exits 0 printed only finite numbers, and a loaded scene evaluates to
+//!   finite points;
+//! * a command that fails writes no output file;
+//! * every run finishes within the time bound, under a memory cap (`ulimit -v`).
+//!
+//! A bounded run (a fixed number of cases from a fixed seed) is part of the test suite;
+//! `scripts/fuzz --minutes N` runs the same generators for N minutes from a fresh seed
+//! (`SPLINESCOPE_FUZZ_SECONDS`, `SPLINESCOPE_FUZZ_SEED`), printing any failing input.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::time::{Duration, Instant};
+
+use serde_json::{Value, json};
+use splinescope::geom::{Lower, ParamCurve};
+use splinescope::scene::Scene;
+use splinescope::scene::generate::Rng;
+
+mod common;
+
+/// Numbers that have broken or could break derived computations.
+const EXTREMES: [f64; 22] = [
+    0.0,
+    -0.0,
+    5e-324,
+    -5e-324,
+    2.2250738585072014e-308,
+    1e-300,
+    1e-12,
+    0.5,
+    1.0,
+    -1.0,
+    2.0,
+    3.0,
+    1e15,
+    4294967296.0,
+    1e20,
+    1e38,
+    3.4e38,
+    1e300,
+    1e308,
+    -1e308,
+    f64::MAX,
+    f64::MIN,
+];
+
+fn manifest(p: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(p)
+}
+
+fn seeds(dir: &str) -> Vec<Value> {
+    let mut out = Vec::new();
+    let mut paths: Vec<_> = std::fs::read_dir(manifest(dir))
+        .expect("seed dir")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .collect();
+    paths.sort();
+    for p in paths {
+        let text = std::fs::read_to_string(&p).expect("seed");
+        out.push(serde_json::from_str(&text).expect("seeds are JSON"));
+    }
+    out
+}
+
+/// Every path (as a list of steps) to a value in `v`.
+#[derive(Clone, Debug)]
+enum Step {
+    Key(String),
+    Index(usize),
+}
+
+fn paths(v: &Value, prefix: &mut Vec<Step>, out: &mut Vec<Vec<Step>>) {
+    out.push(prefix.clone());
+    match v {
+        Value::Array(a) => {
+            for (i, item) in a.iter().enumerate() {
+                prefix.push(Step::Index(i));
+                paths(item, prefix, out);
+                prefix.pop();
+            }
+        }
+        Value::Object(m) => {
+            for (k, item) in m {
+                prefix.push(Step::Key(k.clone()));
+                paths(item, prefix, out);
+                prefix.pop();
+            }
+        }
+        _ => {}
+    }
+}
+
+fn at<'a>(v: &'a mut Value, path: &[Step]) -> &'a mut Value {
+    let mut cur = v;
+    for s in path {
+        cur = match s {
+            Step::Key(k) => cur.get_mut(k.as_str()).expect("path exists"),
+            Step::Index(i) => cur.get_mut(*i).expect("path exists"),
+        };
+    }
+    cur
+}
+
+fn extreme(rng: &mut Rng) -> f64 {
+    EXTREMES[rng.int(0, EXTREMES.len() - 1)] * if rng.unit() < 0.2 { -1.0 } else { 1.0 }
+}
+
+/// One mutation of `doc`; returns the text (which may hold non-JSON `NaN` literals).
+fn mutate(doc: &Value, rng: &mut Rng) -> String {
+    let mut v = doc.clone();
+    let rounds = 1 + rng.int(0, 2);
+    let mut nan_literal = false;
+    for _ in 0..rounds {
+        let mut all = Vec::new();
+        paths(&v, &mut Vec::new(), &mut all);
+        let path = all[rng.int(0, all.len() - 1)].clone();
+        let target = at(&mut v, &path);
+        match rng.int(0, 11) {
+            0..=3 => {
+                // A number somewhere at or below: an extreme value.
+                *target = json!(extreme(rng));
+            }
+            4 => *target = json!(rng.range(-10.0, 10.0)),
+            5 => {
+                *target = [
+                    json!(null),
+                    json!(true),
+                    json!("x"),
+                    json!([]),
+                    json!({}),
+                    json!("clamped_uniform"),
+                    json!(-1),
+                    json!(f64::MAX),
+                ][rng.int(0, 7)]
+                .clone();
+            }
+            6 => {
+                if let Value::Array(a) = target
+                    && !a.is_empty()
+                {
+                    let keep = rng.int(0, a.len() - 1);
+                    a.truncate(keep);
+                }
+            }
+            7 => {
+                if let Value::Array(a) = target
+                    && !a.is_empty()
+                {
+                    // Grow: duplicate items, sometimes past the degree limit.
+                    let grow = if rng.unit() < 0.1 {
+                        1001
+                    } else {
+                        rng.int(1, 40)
+                    };
+                    let item = a[rng.int(0, a.len() - 1)].clone();
+                    for _ in 0..grow {
+                        a.push(item.clone());
+                    }
+                }
+            }
+            8 => {
+                if let Value::Object(m) = target
+                    && !m.is_empty()
+                {
+                    let keys: Vec<String> = m.keys().cloned().collect();
+                    m.remove(&keys[rng.int(0, keys.len() - 1)]);
+                }
+            }
+            9 => {
+                if let Value::Object(m) = target {
+                    let family = [
+                        "bezier",
+                        "modified_bezier",
+                        "interpolation",
+                        "bspline",
+                        "nubmp",
+                    ][rng.int(0, 4)];
+                    if m.contains_key("type") {
+                        m.insert("type".into(), json!(family));
+                    } else if m.contains_key("order") {
+                        m.insert("order".into(), json!(rng.int(0, 70)));
+                    } else {
+                        m.insert("t".into(), json!(extreme(rng)));
+                    }
+                }
+            }
+            10 => {
+                if let Value::Array(a) = target
+                    && a.len() >= 2
+                    && a.iter().all(Value::is_number)
+                {
+                    // Knots or parameters: make two equal or out of order.
+                    let i = rng.int(0, a.len() - 2);
+                    a[i + 1] = if rng.unit() < 0.5 {
+                        a[i].clone()
+                    } else {
+                        json!(a[i].as_f64().unwrap_or(0.0) - 5e-324)
+                    };
+                }
+            }
+            _ => {
+                if target.is_number() {
+                    nan_literal = true;
+                    *target = json!(123_456.789_f64);
+                }
+            }
+        }
+    }
+    let text = serde_json::to_string(&v).expect("serialise");
+    if nan_literal {
+        let word = ["NaN", "Infinity", "-Infinity"][rng.int(0, 2)];
+        text.replacen("123456.789", word, 1)
+    } else {
+        text
+    }
+}
+
+/// Duplicates a key in the text's first object that has one (JSON allows writing it).
+fn duplicate_a_key(text: &str) -> Option<String> {
+    let i = text.find("\"points\":")?;
+    Some(format!(
+        "{}\"points\":[[0,0],[1,1]],{}",
+        &text[..i],
+        &text[i..]
+    ))
+}
+
+/// Runs the CLI under a time bound and a memory cap.
+fn run_bounded(args: &[String], limit: Duration) -> (Output, Duration) {
+    let start = Instant::now();
+    let mut cmd = Command::new("sh");
+    // 8 GiB of address space: far above any documented limit's need, far below the
+    // machine's memory.
+    cmd.arg("-c")
+        .arg("ulimit -v 8388608; exec timeout -s KILL \"$0\" \"$@\"")
+        .arg(format!("{}", limit.as_secs().max(1)))
+        .arg(env!("CARGO_BIN_EXE_splinescope"))
+        .args(args);
+    let out = cmd.output().expect("run");
+    (out, start.elapsed())
+}
+
+/// Finds a non-finite number in printed JSON, as the invariant requires there is none.
+fn non_finite_in(stdout: &str) -> Option<String> {
+    let v: Value = serde_json::from_str(stdout).ok()?;
+    fn walk(v: &Value, at: &str) -> Option<String> {
+        match v {
+            Value::Number(n) if n.as_f64().is_none_or(|x| !x.is_finite()) => Some(at.into()),
+            Value::Array(a) => a
+                .iter()
+                .enumerate()
+                .find_map(|(i, x)| walk(x, &format!("{at}[{i}]"))),
+            Value::Object(m) => m.iter().find_map(|(k, x)| walk(x, &format!("{at}.{k}"))),
+            _ => None,
+        }
+    }
+    walk(&v, "")
+}
+
+struct Fuzz {
+    rng: Rng,
+    dir: PathBuf,
+    failures: Vec<String>,
+    cases: usize,
+    /// Runs that succeeded, failed cleanly (1) or were refused as arguments (2).
+    exits: [usize; 3],
+}
+
+impl Fuzz {
+    fn fail(&mut self, what: String) {
+        eprintln!("FUZZ FAILURE: {what}");
+        self.failures.push(what);
+    }
+
+    /// The library side: loading never panics; a loaded scene evaluates and lowers to
+    /// finite values; inspect's report holds no non-finite number.
+    fn library(&mut self, text: &str, case: &str) {
+        let result = std::panic::catch_unwind(|| -> Result<(), String> {
+            let Ok(scene) = splinescope::scene::from_json_str(text) else {
+                return Ok(());
+            };
+            for (i, c) in scene.curves.iter().enumerate() {
+                let (a, b) = c.curve.domain();
+                for t in [a, 0.5 * a + 0.5 * b, b] {
+                    let p = c.curve.eval(t);
+                    if !p.is_finite() {
+                        return Err(format!("curves[{i}] at t = {t:e}: {p}"));
+                    }
+                }
+                for s in c.curve.lower() {
+                    if !s.bezier.points().iter().all(|p| p.is_finite()) {
+                        return Err(format!("curves[{i}]: a lowered point is not finite"));
+                    }
+                }
+                if c.curve.control_points().len() <= 200
+                    && let Ok(report) =
+                        splinescope::inspect::curve_report(i, c.name.as_deref(), &c.curve)
+                    && let Some(at) = non_finite_in(&report.to_string())
+                {
+                    return Err(format!("inspect curves[{i}]: non-finite at {at}"));
+                }
+            }
+            Ok(())
+        });
+        match result {
+            Ok(Ok(())) => {}
+            Ok(Err(e)) => self.fail(format!("{case}: {e}\ninput: {text}")),
+            Err(_) => self.fail(format!("{case}: the library panicked\ninput: {text}")),
+        }
+    }
+
+    /// The command line side for one argument list: no panic or signal, finite output on
+    /// success, no output file on failure, within the time bound.
+    fn cli(&mut self, args: Vec<String>, output: Option<&Path>, case: &str, input: &str) {
+        if let Some(o) = output {
+            let _ = std::fs::remove_file(o);
+        }
+        let (out, took) = run_bounded(&args, Duration::from_secs(30));
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let show = || {
+            format!(
+                "{case}: splinescope {}\ninput: {input}\nstderr: {stderr}",
+                args.join(" ")
+            )
+        };
+        if let Some(c @ 0..=2) = out.status.code() {
+            self.exits[c as usize] += 1;
+        }
+        match out.status.code() {
+            Some(0) => {
+                if let Some(at) = non_finite_in(&stdout) {
+                    self.fail(format!(
+                        "exit 0 with a non-finite number at {at}: {}",
+                        show()
+                    ));
+                }
+                if stdout.contains("NaN") || stdout.contains("inf,") {
+                    self.fail(format!("exit 0 printing NaN/inf: {}", show()));
+                }
+            }
+            Some(1 | 2) => {
+                if stderr.contains("panicked") {
+                    self.fail(format!("panic: {}", show()));
+                }
+                if let Some(o) = output
+                    && o.exists()
+                {
+                    self.fail(format!("failed but wrote {}: {}", o.display(), show()));
+                }
+            }
+            other => self.fail(format!(
+                "exit {other:?} (panic, signal, time or memory bound): {}",
+                show()
+            )),
+        }
+        if took > Duration::from_secs(30) {
+            self.fail(format!("took {took:?}: {}", show()));
+        }
+    }
+
+    fn scene_case(&mut self, seeds: &[Value], requests: &[Value]) {
+        let seed = &seeds[self.rng.int(0, seeds.len() - 1)];
+        let mut text = mutate(seed, &mut self.rng);
+        if self.rng.unit() < 0.05
+            && let Some(t) = duplicate_a_key(&text)
+        {
+            text = t;
+        }
+        let case = format!("scene case {}", self.cases);
+        self.library(&text, &case);
+        let path = self.dir.join("scene.json");
+        std::fs::write(&path, &text).expect("write case");
+        let p = path.to_string_lossy().into_owned();
+        let s = |x: &str| x.to_owned();
+        let command = self.rng.int(0, 3);
+        match command {
+            0 => self.cli(vec![s("check"), p], None, &case, &text),
+            1 => {
+                let n = ["2", "3", "17"][self.rng.int(0, 2)];
+                self.cli(vec![s("eval"), p, s("--samples"), s(n)], None, &case, &text);
+            }
+            2 => self.cli(vec![s("inspect"), p], None, &case, &text),
+            _ => {
+                let req = mutate(
+                    &requests[self.rng.int(0, requests.len() - 1)],
+                    &mut self.rng,
+                );
+                let rp = self.dir.join("request.json");
+                std::fs::write(&rp, &req).expect("write request");
+                let out = self.dir.join("solved.json");
+                self.cli(
+                    vec![
+                        s("solve"),
+                        p,
+                        rp.to_string_lossy().into_owned(),
+                        s("-o"),
+                        out.to_string_lossy().into_owned(),
+                    ],
+                    Some(&out),
+                    &case,
+                    &format!("{text}\nrequest: {req}"),
+                );
+            }
+        }
+    }
+
+    fn argument_case(&mut self) {
+        let scenes = [
+            "scenes/gallery.json",
+            "scenes/bsplines.json",
+            "scenes/paper001_fig1.json",
+        ];
+        let scene = manifest(scenes[self.rng.int(0, 2)])
+            .to_string_lossy()
+            .into_owned();
+        let number = |rng: &mut Rng| -> String {
+            match rng.int(0, 4) {
+                0 => format!("{:e}", extreme(rng)),
+                1 => format!("{}", rng.range(-1.0, 2.0)),
+                2 => ["NaN", "inf", "-inf", "", "abc", "1e400", "0x10", "-0"][rng.int(0, 7)].into(),
+                3 => format!("{}", rng.int(0, 40)),
+                _ => "0.5".into(),
+            }
+        };
+        let mut args = vec![];
+        match self.rng.int(0, 2) {
+            0 => {
+                args.push("eval".into());
+                args.push(scene);
+                if self.rng.unit() < 0.5 {
+                    args.push("--samples".into());
+                    args.push(
+                        ["0", "1", "2", "100", "10000001", "-3", "4294967296", "x"]
+                            [self.rng.int(0, 7)]
+                        .into(),
+                    );
+                } else {
+                    let k = self.rng.int(1, 4);
+                    let list: Vec<String> = (0..k).map(|_| number(&mut self.rng)).collect();
+                    args.push("--params".into());
+                    args.push(list.join(","));
+                }
+                if self.rng.unit() < 0.3 {
+                    args.push("--curve".into());
+                    args.push(number(&mut self.rng));
+                }
+            }
+            1 => {
+                args.push("inspect".into());
+                args.push(scene);
+                args.push("--tau".into());
+                args.push(number(&mut self.rng));
+            }
+            _ => {
+                args.push("check".into());
+                args.push(
+                    [
+                        scene.as_str(),
+                        "/dev/null",
+                        "/nonexistent.json",
+                        env!("CARGO_MANIFEST_DIR"),
+                    ][self.rng.int(0, 3)]
+                    .into(),
+                );
+            }
+        }
+        let case = format!("argument case {}", self.cases);
+        self.cli(args, None, &case, "(arguments only)");
+    }
+}
+
+#[test]
+fn fuzz_every_input_path() {
+    let seconds: u64 = std::env::var("SPLINESCOPE_FUZZ_SECONDS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0);
+    let seed: u64 = std::env::var("SPLINESCOPE_FUZZ_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(20_261_130);
+    // The bounded run: a fixed number of cases; a long run: until the time is up.
+    let bounded_cases = 1500;
+    let scenes = seeds("scenes");
+    let requests = seeds("scenes/requests");
+    let dir = common::out_dir("fuzz");
+    let mut f = Fuzz {
+        rng: Rng::new(seed),
+        dir,
+        failures: Vec::new(),
+        cases: 0,
+        exits: [0; 3],
+    };
+    let start = Instant::now();
+    loop {
+        if seconds == 0 && f.cases >= bounded_cases {
+            break;
+        }
+        if seconds > 0 && start.elapsed() > Duration::from_secs(seconds) {
+            break;
+        }
+        if f.rng.unit() < 0.8 {
+            f.scene_case(&scenes, &requests);
+        } else {
+            f.argument_case();
+        }
+        f.cases += 1;
+        if f.failures.len() >= 10 {
+            break;
+        }
+    }
+    eprintln!(
+        "fuzz: {} cases from seed {seed} in {:.1} s ({} succeeded, {} failed cleanly, {} refused arguments), {} failure(s)",
+        f.cases,
+        start.elapsed().as_secs_f64(),
+        f.exits[0],
+        f.exits[1],
+        f.exits[2],
+        f.failures.len()
+    );
+    // A fuzzer whose inputs all fail to parse tests nothing: both outcomes must occur.
+    assert!(
+        f.cases < 50 || (f.exits[0] * 10 > f.cases && f.exits[1] * 10 > f.cases),
+        "the mutations must produce both valid and invalid inputs: {:?}",
+        f.exits
+    );
+    assert!(
+        f.failures.is_empty(),
+        "{} failure(s); the first:\n{}",
+        f.failures.len(),
+        f.failures[0]
+    );
+    assert!(f.cases >= bounded_cases.min(50), "ran {} cases", f.cases);
+}
+
+/// The mutation engine reaches what it must: extreme numbers, other types, truncated and
+/// grown arrays, removed keys, and non-JSON literals.
+#[test]
+fn mutations_cover_every_kind() {
+    let seed =
+        json!({"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1, 1], [2, 0]]}]});
+    let mut rng = Rng::new(1);
+    let (mut nan, mut subnormal, mut grown, mut removed) = (false, false, false, false);
+    for _ in 0..2000 {
+        let t = mutate(&seed, &mut rng);
+        nan |= t.contains("NaN") || t.contains("Infinity");
+        subnormal |= t.contains("5e-324");
+        grown |= t.matches('[').count() > 12;
+        removed |= !t.contains("\"version\"") || !t.contains("\"points\"");
+    }
+    assert!(
+        nan && subnormal && grown && removed,
+        "{nan} {subnormal} {grown} {removed}"
+    );
+    assert!(
+        duplicate_a_key(&seed.to_string()).is_some_and(|t| t.matches("\"points\"").count() == 2)
+    );
+    let parsed: Result<Scene, _> =
+        splinescope::scene::from_json_str(&duplicate_a_key(&seed.to_string()).unwrap_or_default());
+    assert!(parsed.is_err());
+}
