@@ -239,7 +239,9 @@ fn decode_curve(node: &Node<'_>, index: usize) -> Result<SceneCurve, SceneError>
                 .transpose()?;
             let curve = CubicInterpolation::try_new(points, params, modification).map_err(|e| {
                 let prefix = match e {
-                    GeomError::TStarOutside { .. } | GeomError::NonFiniteVector { .. } => {
+                    GeomError::TStarOutside { .. }
+                    | GeomError::NonFiniteVector { .. }
+                    | GeomError::DerivedNotFinite { field: "t_star", .. } => {
                         "modification."
                     }
                     _ => "",
