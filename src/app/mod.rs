@@ -532,6 +532,8 @@ impl Running {
         if size.width == 0 || size.height == 0 {
             return Ok(false);
         }
+        // A lost device stops the viewer with a clear error instead of a panic or a hang.
+        self.ctx.check_health()?;
         self.sync_edits()?;
         if let Some(s) = &mut self.stress {
             s.step(

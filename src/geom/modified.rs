@@ -52,8 +52,14 @@ pub(crate) fn check_t_star(t_star: f64) -> Result<(), GeomError> {
     }
     // The bump's derivatives must be numbers too: S″ = −2/t*² on the left piece.
     for (what, value) in [
-        ("the bump's second derivative −2/t*²", bump_second_deriv(0.0, t_star)),
-        ("the bump's second derivative −2/(1 − t*)²", bump_second_deriv(1.0, t_star)),
+        (
+            "the bump's second derivative −2/t*²",
+            bump_second_deriv(0.0, t_star),
+        ),
+        (
+            "the bump's second derivative −2/(1 − t*)²",
+            bump_second_deriv(1.0, t_star),
+        ),
     ] {
         if !value.is_finite() {
             return Err(GeomError::DerivedNotFinite {
@@ -187,7 +193,10 @@ mod tests {
     fn bump_is_within_a_few_ulp_of_the_exact_value() {
         use crate::geom::exact::{Scalar, rational_from_f64};
         let exact = |t: f64, ts: f64| {
-            let (t, ts) = (rational_from_f64(t).unwrap(), rational_from_f64(ts).unwrap());
+            let (t, ts) = (
+                rational_from_f64(t).unwrap(),
+                rational_from_f64(ts).unwrap(),
+            );
             let one = crate::geom::exact::Rational::one();
             let r = if t <= ts {
                 one.clone() - t / ts

@@ -9,6 +9,7 @@
 
 use std::fmt;
 use std::str::FromStr;
+use std::sync::{Arc, Mutex};
 
 use super::GpuError;
 use super::selftest;
@@ -106,6 +107,9 @@ pub struct GpuContext {
     pub device: wgpu::Device,
     /// Its queue.
     pub queue: wgpu::Queue,
+    /// The first uncaptured error or loss the device reported (see
+    /// [`GpuContext::check_health`]).
+    health: Arc<Mutex<Option<String>>>,
 }
 
 /// The hint printed when no adapter exists.
@@ -151,6 +155,26 @@ pub fn backend_names(backends: wgpu::Backends) -> String {
     } else {
         names.join(", ")
     }
+}
+
+/// Records the device's first uncaptured error or loss instead of panicking.
+fn watch(device: &wgpu::Device) -> Arc<Mutex<Option<String>>> {
+    let health = Arc::new(Mutex::new(None::<String>));
+    let record = |slot: &Arc<Mutex<Option<String>>>, message: String| {
+        let mut h = slot
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        h.get_or_insert(message);
+    };
+    let on_error = Arc::clone(&health);
+    device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+        record(&on_error, e.to_string());
+    }));
+    let on_lost = Arc::clone(&health);
+    device.set_device_lost_callback(move |reason, message| {
+        record(&on_lost, format!("device lost ({reason:?}): {message}"));
+    });
+    health
 }
 
 /// The order adapters are preferred in (smaller first): hardware before virtual before
@@ -326,11 +350,13 @@ impl GpuContext {
                     let tessellator = Tessellator::new(&device);
                     match selftest::run(&device, &queue, &tessellator) {
                         Ok(None) => {
+                            let health = watch(&device);
                             return Ok(GpuContext {
                                 instance,
                                 adapter,
                                 device,
                                 queue,
+                                health,
                             });
                         }
                         Ok(Some(fault)) => refused.push(format!("{name}: {fault}")),
@@ -343,6 +369,26 @@ impl GpuContext {
         Err(GpuError::Refused {
             reasons: refused.join("; "),
         })
+    }
+
+    /// Whether the device is still usable: `Err` once it was lost or reported an error
+    /// that no error scope caught (a validation error, running out of memory). Work done
+    /// after that point is not trusted: offscreen commands fail with this error and the
+    /// viewer stops with it, instead of crashing (wgpu's default is to panic) or showing
+    /// garbage.
+    ///
+    /// # Errors
+    /// [`GpuError::DeviceLost`] with the device's message.
+    pub fn check_health(&self) -> Result<(), GpuError> {
+        match self
+            .health
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .as_ref()
+        {
+            Some(message) => Err(GpuError::DeviceLost(message.clone())),
+            None => Ok(()),
+        }
     }
 
     /// A one-line description of the adapter in use.

@@ -61,9 +61,12 @@ pub fn evaluate_with_limits(
     let chunks = builder.finish();
     let tessellator = Tessellator::new(&ctx.device);
     let mut all: Vec<GpuVertex> = Vec::with_capacity(params.iter().map(Vec::len).sum());
-    tessellator.tessellate_and_read(&ctx.device, &ctx.queue, &chunks, |_, samples| {
+    ctx.check_health()?;
+    let read = tessellator.tessellate_and_read(&ctx.device, &ctx.queue, &chunks, |_, samples| {
         all.extend_from_slice(samples);
-    })?;
+    });
+    ctx.check_health()?;
+    read?;
     if let Some(i) = all
         .iter()
         .position(|v| v.position.iter().any(|c| c.is_nan()))

@@ -15,6 +15,31 @@ pub mod twin;
 
 use thiserror::Error;
 
+/// A buffer holding `contents` (like wgpu's `create_buffer_init`, which panics when the
+/// device is lost: here the failure goes to the device's error handler and shows in
+/// [`GpuContext::check_health`]).
+#[must_use]
+pub fn init_buffer(
+    device: &wgpu::Device,
+    label: &str,
+    contents: &[u8],
+    usage: wgpu::BufferUsages,
+) -> wgpu::Buffer {
+    let align = wgpu::COPY_BUFFER_ALIGNMENT;
+    let size = (contents.len() as u64).div_ceil(align).max(1) * align;
+    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size,
+        usage,
+        mapped_at_creation: true,
+    });
+    if let Ok(mut view) = buffer.get_mapped_range_mut(..) {
+        view.slice(..contents.len()).copy_from_slice(contents);
+    }
+    buffer.unmap();
+    buffer
+}
+
 pub use context::{AdapterReport, BackendChoice, ContextOptions, GpuContext};
 pub use pack::PackError;
 
@@ -47,6 +72,12 @@ pub enum GpuError {
     /// The adapter refused to give a device.
     #[error("could not open the GPU device: {0}")]
     Device(String),
+    /// The device was lost or reported an error no scope caught; its results are not
+    /// trusted.
+    #[error(
+        "the GPU device failed: {0}. Its results were discarded; run the command again (with --gpu-backend or WGPU_ADAPTER_NAME to try another adapter)"
+    )]
+    DeviceLost(String),
     /// Reading a buffer back failed.
     #[error("reading GPU results back failed: {0}")]
     Readback(String),

@@ -73,6 +73,7 @@ pub fn render_uploaded(
     height: u32,
 ) -> Result<RgbaImage, GpuError> {
     check_size(ctx, width, height)?;
+    ctx.check_health()?;
     let viewport = DVec2::new(f64::from(width), f64::from(height));
     renderer.set_camera(&ctx.queue, &camera_uniform(camera, viewport, 1.0));
 
@@ -129,7 +130,10 @@ pub fn render_uploaded(
             depth_or_array_layers: 1,
         },
     );
-    let bytes: Vec<u8> = read_buffer(&ctx.device, &ctx.queue, &mut encoder, &buffer)?;
+    let read = read_buffer(&ctx.device, &ctx.queue, &mut encoder, &buffer);
+    // A device error during the frame makes the pixels untrustworthy, whatever was read.
+    ctx.check_health()?;
+    let bytes: Vec<u8> = read?;
     let mut data = Vec::with_capacity((row * height) as usize);
     for y in 0..height as usize {
         let start = y * padded as usize;

@@ -3,7 +3,6 @@
 //! sample comes back to the CPU in a frame.
 
 use glam::DVec2;
-use wgpu::util::DeviceExt;
 
 use super::layout::{GpuCamera, GpuLineStyle, GpuVertex};
 use super::pack::{LineBatch, PreparedScene};
@@ -202,11 +201,12 @@ impl Renderer {
         vertex_count: u32,
         styles: &[GpuLineStyle],
     ) -> DrawBatch {
-        let styles = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("styles"),
-            contents: bytemuck::cast_slice(styles),
-            usage: wgpu::BufferUsages::STORAGE,
-        });
+        let styles = super::init_buffer(
+            device,
+            "styles",
+            bytemuck::cast_slice(styles),
+            wgpu::BufferUsages::STORAGE,
+        );
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("vertices and styles"),
             layout: &self.batch_layout,
@@ -229,11 +229,12 @@ impl Renderer {
     }
 
     fn overlay_batch(&self, device: &wgpu::Device, batch: &LineBatch) -> DrawBatch {
-        let vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("overlay vertices"),
-            contents: bytemuck::cast_slice::<GpuVertex, u8>(&batch.vertices),
-            usage: wgpu::BufferUsages::STORAGE,
-        });
+        let vertices = super::init_buffer(
+            device,
+            "overlay vertices",
+            bytemuck::cast_slice::<GpuVertex, u8>(&batch.vertices),
+            wgpu::BufferUsages::STORAGE,
+        );
         self.batch(device, vertices, batch.vertices.len() as u32, &batch.styles)
     }
 

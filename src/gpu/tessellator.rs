@@ -1,8 +1,6 @@
 //! The compute tessellator: uploads [`TessChunk`]s and dispatches
 //! `shaders/tessellate.wgsl` over them.
 
-use wgpu::util::DeviceExt;
-
 use super::GpuError;
 use super::layout::{GpuTessParams, GpuVertex, TESSELLATE_KERNELS};
 use super::pack::TessChunk;
@@ -126,16 +124,18 @@ impl Tessellator {
         chunk: &TessChunk,
         sample_usage: wgpu::BufferUsages,
     ) -> ChunkBuffers {
-        let points = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("control points"),
-            contents: bytemuck::cast_slice(&chunk.points),
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-        });
-        let segments = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("segments"),
-            contents: bytemuck::cast_slice(&chunk.segments),
-            usage: wgpu::BufferUsages::STORAGE,
-        });
+        let points = super::init_buffer(
+            device,
+            "control points",
+            bytemuck::cast_slice(&chunk.points),
+            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        );
+        let segments = super::init_buffer(
+            device,
+            "segments",
+            bytemuck::cast_slice(&chunk.segments),
+            wgpu::BufferUsages::STORAGE,
+        );
         let samples = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("samples"),
             size: (u64::from(chunk.sample_count.max(1)) * size_of::<GpuVertex>() as u64),
@@ -147,16 +147,17 @@ impl Tessellator {
         for (kernel, &end) in chunk.class_ends.iter().enumerate() {
             if end > start {
                 let groups = dispatch_grid(end - start, self.max_groups_per_dim);
-                let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("tessellate params"),
-                    contents: bytemuck::bytes_of(&GpuTessParams {
+                let params = super::init_buffer(
+                    device,
+                    "tessellate params",
+                    bytemuck::bytes_of(&GpuTessParams {
                         segment_start: start,
                         segment_end: end,
                         groups_x: groups.0,
                         _padding: 0,
                     }),
-                    usage: wgpu::BufferUsages::UNIFORM,
-                });
+                    wgpu::BufferUsages::UNIFORM,
+                );
                 let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some(TESSELLATE_KERNELS[kernel].0),
                     layout: &self.layout,

@@ -241,9 +241,9 @@ fn decode_curve(node: &Node<'_>, index: usize) -> Result<SceneCurve, SceneError>
                 let prefix = match e {
                     GeomError::TStarOutside { .. }
                     | GeomError::NonFiniteVector { .. }
-                    | GeomError::DerivedNotFinite { field: "t_star", .. } => {
-                        "modification."
-                    }
+                    | GeomError::DerivedNotFinite {
+                        field: "t_star", ..
+                    } => "modification.",
                     _ => "",
                 };
                 geom_error(node, prefix, &e)
