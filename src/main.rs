@@ -747,7 +747,6 @@ fn regress(
     json: bool,
     gpu: &GpuArgs,
 ) -> Result<()> {
-    use splinescope::regress::Status;
     let ctx = gpu.context()?;
     let report = splinescope::regress::run(&ctx, scenes, refs, opts)?;
     if json {
@@ -772,17 +771,7 @@ fn regress(
                     .unwrap_or_default()
             );
         }
-        say!(
-            "regress: {} scene(s) on {}: {} match, {} differ, {} missing, {} blessed, {} error(s) (tolerance {})",
-            report.scenes.len(),
-            ctx.describe(),
-            report.count(Status::Match),
-            report.count(Status::Differs),
-            report.count(Status::Missing),
-            report.count(Status::Blessed),
-            report.count(Status::Error),
-            report.tolerance
-        );
+        say!("regress on {}: {}", ctx.describe(), report.summary());
         if let Some(page) = &report.report_page {
             say!("report: {}", page.display());
         }

@@ -105,6 +105,21 @@ impl RegressReport {
         self.scenes.iter().any(SceneResult::failed)
     }
 
+    /// One line: how many scenes matched, differed, were missing, blessed or failed.
+    #[must_use]
+    pub fn summary(&self) -> String {
+        format!(
+            "{} scene(s): {} match, {} differ, {} missing, {} blessed, {} error(s); tolerance {}",
+            self.scenes.len(),
+            self.count(Status::Match),
+            self.count(Status::Differs),
+            self.count(Status::Missing),
+            self.count(Status::Blessed),
+            self.count(Status::Error),
+            self.tolerance
+        )
+    }
+
     /// How many scenes have `status`.
     #[must_use]
     pub fn count(&self, status: Status) -> usize {
@@ -426,16 +441,7 @@ fn fill_report(
             html_escape(r.message.as_deref().unwrap_or("")),
         );
     }
-    let summary = format!(
-        "{} scene(s): {} match, {} differ, {} missing, {} blessed, {} error(s); tolerance {}",
-        report.scenes.len(),
-        report.count(Status::Match),
-        report.count(Status::Differs),
-        report.count(Status::Missing),
-        report.count(Status::Blessed),
-        report.count(Status::Error),
-        report.tolerance
-    );
+    let summary = report.summary();
     let page = format!(
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
 <title>splinescope regression report</title><style>\

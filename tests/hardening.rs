@@ -5,24 +5,9 @@
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_splinescope"))
-}
-
-fn run(args: &[&str]) -> Output {
-    bin().args(args).output().expect("run splinescope")
-}
-
-fn text(out: &Output) -> String {
-    format!(
-        "exit {:?}\nstdout:\n{}\nstderr:\n{}",
-        out.status.code(),
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    )
-}
+use common::{bin, run, text};
 
 fn dir(name: &str) -> PathBuf {
     let d = common::out_dir("hardening").join(name);
@@ -46,6 +31,16 @@ fn fails_saying(args: &[&str], says: &[&str]) {
         assert!(all.contains(s), "{args:?} should say {s:?}: {all}");
     }
     assert!(!all.contains("panicked"), "{all}");
+}
+
+/// Runs with one environment variable set and checks the output says `says`.
+fn assert_says_with_env(args: &[&str], (var, value): (&str, &str), says: &str) {
+    let out = bin().args(args).env(var, value).output().expect("run");
+    assert!(
+        text(&out).contains(says),
+        "{var}={value} {args:?}: {}",
+        text(&out)
+    );
 }
 
 fn demo() -> String {
@@ -280,30 +275,48 @@ fn special_output_paths_follow_the_documented_policy() {
 fn duplicate_keys_markers_and_extreme_numbers_in_messages() {
     let d = dir("small");
     // A duplicated key is refused at its path, whichever copy holds the bad value.
-    let dup = write(
-        &d,
-        "dup.json",
-        r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, NaN], [1, 1]], "points": [[0, 0], [1, 1]]}]}"#,
-    );
-    fails_saying(
-        &["check", &dup],
-        &["curves[0].points: the key \"points\" appears more than once"],
-    );
-    let dup_root = write(
-        &d,
-        "dup_root.json",
-        r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1, 1]]}], "version": 1}"#,
-    );
-    fails_saying(&["check", &dup_root], &["version: the key \"version\""]);
-    let dup_req = write(
-        &d,
-        "dup_req.json",
-        r#"{"curve": 0, "method": "project", "target": [1, 1], "target": [2, 2]}"#,
-    );
-    fails_saying(
-        &["solve", &demo(), &dup_req],
-        &["target: the key \"target\" appears more than once"],
-    );
+    for (name, body, command, says) in [
+        (
+            "dup.json",
+            r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, NaN], [1, 1]], "points": [[0, 0], [1, 1]]}]}"#,
+            "check",
+            "curves[0].points: the key \"points\" appears more than once",
+        ),
+        (
+            "dup_root.json",
+            r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1, 1]]}], "version": 1}"#,
+            "check",
+            "version: the key \"version\"",
+        ),
+        (
+            "dup_req.json",
+            r#"{"curve": 0, "method": "project", "target": [1, 1], "target": [2, 2]}"#,
+            "solve",
+            "target: the key \"target\" appears more than once",
+        ),
+        (
+            "nan.json",
+            r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1, -Infinity]]}]}"#,
+            "check",
+            "curves[0].points[1][1]: not a finite number (-Infinity)",
+        ),
+        (
+            // Subnormals are printed in their shortest round-trip form, not 300 digits.
+            "sub.json",
+            r#"{"version": 1, "curves": [{"type": "interpolation", "points": [[0, 0], [1, 2], [2, 0]], "params": [0, 5e-324, 0]}]}"#,
+            "check",
+            "0 follows 5e-324",
+        ),
+    ] {
+        let file = write(&d, name, body);
+        let demo = demo();
+        let args: Vec<&str> = if command == "solve" {
+            vec!["solve", &demo, &file]
+        } else {
+            vec![command, &file]
+        };
+        fails_saying(&args, &[says]);
+    }
     // A user string that looks like the old internal marker is just a string.
     let marker = write(
         &d,
@@ -312,23 +325,6 @@ fn duplicate_keys_markers_and_extreme_numbers_in_messages() {
     );
     let out = run(&["check", &marker]);
     assert!(out.status.success(), "{}", text(&out));
-    // NaN and Infinity literals are still named as such, at their path.
-    let nan = write(
-        &d,
-        "nan.json",
-        r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1, -Infinity]]}]}"#,
-    );
-    fails_saying(
-        &["check", &nan],
-        &["curves[0].points[1][1]: not a finite number (-Infinity)"],
-    );
-    // Subnormals are printed in their shortest round-trip form, not 300 digits.
-    let sub = write(
-        &d,
-        "sub.json",
-        r#"{"version": 1, "curves": [{"type": "interpolation", "points": [[0, 0], [1, 2], [2, 0]], "params": [0, 5e-324, 0]}]}"#,
-    );
-    fails_saying(&["check", &sub], &["0 follows 5e-324"]);
     let bez = write(
         &d,
         "bez.json",
@@ -387,35 +383,20 @@ fn limits_are_named_with_the_variable_that_raises_them() {
             "SPLINESCOPE_MAX_ORDER",
         ],
     );
-    let many = bin()
-        .args(["check", &order])
-        .env("SPLINESCOPE_MAX_POINTS", "50")
-        .output()
-        .unwrap();
-    assert!(
-        text(&many).contains("curves[0].points: 70 is over the limit of 50 points per curve"),
-        "{}",
-        text(&many)
+    assert_says_with_env(
+        &["check", &order],
+        ("SPLINESCOPE_MAX_POINTS", "50"),
+        "curves[0].points: 70 is over the limit of 50 points per curve",
     );
-    let curves = bin()
-        .args(["check", &degree])
-        .env("SPLINESCOPE_MAX_CURVES", "0")
-        .output()
-        .unwrap();
-    assert!(
-        text(&curves).contains("curves: 1 is over the limit of 0 curves per scene"),
-        "{}",
-        text(&curves)
+    assert_says_with_env(
+        &["check", &degree],
+        ("SPLINESCOPE_MAX_CURVES", "0"),
+        "curves: 1 is over the limit of 0 curves per scene",
     );
-    let bytes = bin()
-        .args(["check", &degree])
-        .env("SPLINESCOPE_MAX_FILE_BYTES", "100")
-        .output()
-        .unwrap();
-    assert!(
-        text(&bytes).contains("is over the limit of 100 bytes per scene or request file"),
-        "{}",
-        text(&bytes)
+    assert_says_with_env(
+        &["check", &degree],
+        ("SPLINESCOPE_MAX_FILE_BYTES", "100"),
+        "is over the limit of 100 bytes per scene or request file",
     );
     let gallery = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("scenes/gallery.json")

@@ -6,29 +6,13 @@
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 use serde_json::Value;
 use splinescope::image::RgbaImage;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_splinescope"))
-}
+use common::{bin, run, text};
 
-fn run(args: &[&str]) -> Output {
-    bin().args(args).output().expect("run splinescope")
-}
-
-fn text(out: &Output) -> String {
-    format!(
-        "exit {:?}\nstdout:\n{}\nstderr:\n{}",
-        out.status.code(),
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    )
-}
-
-/// A fresh working directory with two scenes copied from `scenes/`.
 fn workspace(name: &str) -> PathBuf {
     let dir = common::out_dir("regress").join(name);
     let _ = std::fs::remove_dir_all(&dir);

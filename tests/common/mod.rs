@@ -112,3 +112,23 @@ pub fn out_dir(sub: &str) -> std::path::PathBuf {
     std::fs::create_dir_all(&dir).expect("create test output dir");
     dir
 }
+
+/// The splinescope binary under test.
+pub fn bin() -> std::process::Command {
+    std::process::Command::new(env!("CARGO_BIN_EXE_splinescope"))
+}
+
+/// Runs the binary with `args`.
+pub fn run(args: &[&str]) -> std::process::Output {
+    bin().args(args).output().expect("run splinescope")
+}
+
+/// Exit code, stdout and stderr of a run, for assertion messages.
+pub fn text(out: &std::process::Output) -> String {
+    format!(
+        "exit {:?}\nstdout:\n{}\nstderr:\n{}",
+        out.status.code(),
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    )
+}
