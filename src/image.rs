@@ -81,10 +81,18 @@ impl RgbaImage {
     /// # Errors
     /// I/O or encoder errors, naming the path.
     pub fn write_png(&self, path: &Path) -> Result<(), ImageError> {
-        let io = |source| ImageError::Io {
+        let bytes = self.png_bytes(path)?;
+        crate::files::write_atomic(path, &bytes).map_err(|source| ImageError::Io {
             path: path.to_path_buf(),
             source,
-        };
+        })
+    }
+
+    /// The image encoded as a PNG file's bytes (`path` only names it in errors).
+    ///
+    /// # Errors
+    /// Encoder errors, naming the path.
+    pub fn png_bytes(&self, path: &Path) -> Result<Vec<u8>, ImageError> {
         let png_err = |e: png::EncodingError| ImageError::Png {
             path: path.to_path_buf(),
             message: e.to_string(),
@@ -98,7 +106,7 @@ impl RgbaImage {
             writer.write_image_data(&self.data).map_err(png_err)?;
             writer.finish().map_err(png_err)?;
         }
-        crate::files::write_atomic(path, &bytes).map_err(io)
+        Ok(bytes)
     }
 
     /// Reads an 8-bit RGB or RGBA PNG.

@@ -804,12 +804,16 @@ fn diff(
     let b = RgbaImage::read_png(reference)?;
     let (c, pictures) = compare_images(&a, &b, tolerance)
         .with_context(|| format!("{} vs {}", actual.display(), reference.display()))?;
+    // Both images or neither.
+    let mut files: Vec<(&Path, Vec<u8>)> = Vec::new();
     if let Some(out) = output {
-        pictures.diff.write_png(out)?;
+        files.push((out, pictures.diff.png_bytes(out)?));
     }
     if let Some(out) = flip_map {
-        pictures.flip.write_png(out)?;
+        files.push((out, pictures.flip.png_bytes(out)?));
     }
+    let borrowed: Vec<(&Path, &[u8])> = files.iter().map(|(p, b)| (*p, b.as_slice())).collect();
+    splinescope::files::write_all_atomic(&borrowed).context("nothing was written")?;
     if json {
         say!("{}", serde_json::to_string_pretty(&c)?);
     } else {

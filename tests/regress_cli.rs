@@ -296,6 +296,20 @@ fn diff_compares_two_images_and_writes_the_diff() {
     assert_eq!(diff.pixel(0, 0), [255, 0, 0, 255]);
     assert_ne!(diff.pixel(20, 20), [255, 0, 0, 255]);
     assert!(RgbaImage::read_png(&flip).is_ok());
+    // Two outputs, one impossible: neither is written.
+    let _ = std::fs::remove_file(&d);
+    let out = run(&[
+        "diff",
+        &s(&pb),
+        &s(&pa),
+        "-o",
+        &s(&d),
+        "--flip-map",
+        &s(&dir.join("missing/f.png")),
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out));
+    assert!(text(&out).contains("nothing was written"), "{}", text(&out));
+    assert!(!d.exists(), "the diff image was not written either");
     // A looser tolerance accepts the same pair.
     let out = run(&["diff", &s(&pb), &s(&pa), "--tolerance", "pixels=2%"]);
     assert!(out.status.success(), "{}", text(&out));
