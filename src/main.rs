@@ -112,6 +112,10 @@ enum Command {
         /// Only this curve (index in the scene).
         #[arg(long)]
         curve: Option<usize>,
+        /// Also print the first derivative P′ (`1`), or P′, P″ and the curvature (`2`), at
+        /// each parameter.
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..=2))]
+        derivatives: Option<u32>,
         #[command(flatten)]
         gpu: GpuArgs,
     },
@@ -311,8 +315,19 @@ fn run(cli: Cli) -> Result<()> {
             params,
             backend,
             curve,
+            derivatives,
             gpu,
-        }) => eval(&scene, samples, params.as_deref(), backend, curve, &gpu),
+        }) => eval(
+            &scene,
+            &EvalRequest {
+                samples,
+                params: params.as_deref(),
+                backend,
+                only: curve,
+                derivatives: derivatives.unwrap_or(0),
+            },
+            &gpu,
+        ),
         Some(Command::Check { scene }) => check(&scene),
         Some(Command::Solve {
             scene,
@@ -502,14 +517,24 @@ fn inspect(path: &Path, only: Option<usize>, tau: Option<f64>) -> Result<()> {
     Ok(())
 }
 
-fn eval(
-    path: &Path,
+/// What `eval` was asked for.
+struct EvalRequest<'a> {
     samples: Option<u32>,
-    params: Option<&str>,
+    params: Option<&'a str>,
     backend: EvalBackend,
     only: Option<usize>,
-    gpu: &GpuArgs,
-) -> Result<()> {
+    /// 0: points only; 1: and P′; 2: and P″ and the curvature.
+    derivatives: u32,
+}
+
+fn eval(path: &Path, req: &EvalRequest<'_>, gpu: &GpuArgs) -> Result<()> {
+    let EvalRequest {
+        samples,
+        params,
+        backend,
+        only,
+        derivatives,
+    } = *req;
     let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
     let indices = select_curves(&scene, only)?;
     let given = params.map(parse_params).transpose()?;
@@ -557,11 +582,25 @@ fn eval(
         };
         per_curve.push(ts);
     }
-    let points: Vec<Vec<DVec3>> = match backend {
-        EvalBackend::Cpu => indices
-            .iter()
-            .zip(&per_curve)
-            .map(|(&i, ts)| ts.iter().map(|&t| scene.curves[i].curve.eval(t)).collect())
+    // values[0]: the points; values[k]: the k-th derivative.
+    let values: Vec<Vec<Vec<DVec3>>> = match backend {
+        EvalBackend::Cpu => (0..=derivatives)
+            .map(|k| {
+                indices
+                    .iter()
+                    .zip(&per_curve)
+                    .map(|(&i, ts)| {
+                        let c = &scene.curves[i].curve;
+                        ts.iter()
+                            .map(|&t| match k {
+                                0 => c.eval(t),
+                                1 => c.eval_deriv(t),
+                                _ => c.eval_second_deriv(t),
+                            })
+                            .collect()
+                    })
+                    .collect()
+            })
             .collect(),
         EvalBackend::Gpu => {
             let ctx = gpu.context()?;
@@ -569,36 +608,48 @@ fn eval(
                 .iter()
                 .map(|&i| (i, scene.curves[i].curve.lower()))
                 .collect();
-            splinescope::gpu::eval::evaluate(&ctx, &lowered, &per_curve)?
+            let mut v = vec![splinescope::gpu::eval::evaluate(
+                &ctx, &lowered, &per_curve,
+            )?];
+            for k in 1..=derivatives {
+                v.push(splinescope::gpu::eval::evaluate_derivative(
+                    &ctx, &lowered, &per_curve, k,
+                )?);
+            }
+            v
         }
     };
     // Every number printed is finite, or the command fails naming where it overflowed.
-    for ((&i, ts), pts) in indices.iter().zip(&per_curve).zip(&points) {
-        if let Some((t, p)) = ts.iter().zip(pts).find(|(_, p)| !p.is_finite()) {
-            bail!(
-                "{}: curves[{i}] at t = {t}: the value {p} is not finite (the curve's coordinates are too large for this computation in {})",
-                path.display(),
-                if backend == EvalBackend::Gpu {
-                    "f32"
-                } else {
-                    "f64"
-                }
-            );
+    for (k, pts_all) in values.iter().enumerate() {
+        for ((&i, ts), pts) in indices.iter().zip(&per_curve).zip(pts_all) {
+            if let Some((t, p)) = ts.iter().zip(pts).find(|(_, p)| !p.is_finite()) {
+                bail!(
+                    "{}: curves[{i}] at t = {t}: the {} {p} is not finite (the curve's coordinates are too large for this computation in {})",
+                    path.display(),
+                    ["value", "first derivative", "second derivative"][k],
+                    if backend == EvalBackend::Gpu {
+                        "f32"
+                    } else {
+                        "f64"
+                    }
+                );
+            }
         }
     }
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());
-    write_eval_json(&mut out, &indices, &points, backend == EvalBackend::Gpu)?;
+    write_eval_json(&mut out, &indices, &values, backend == EvalBackend::Gpu)?;
     out.flush()?;
     Ok(())
 }
 
 /// Writes `{"curves":[{"index":i,"samples":[[x,y,z],...]}]}`, streaming (scenes may be
-/// large). GPU values are `f32`: they are printed in their shortest `f32` form.
+/// large), with `"d1"` (P′), `"d2"` (P″) and `"curvature"` when derivatives were asked
+/// for. GPU values are `f32`: they are printed in their shortest `f32` form.
 fn write_eval_json(
     out: &mut impl Write,
     indices: &[usize],
-    points: &[Vec<DVec3>],
+    values: &[Vec<Vec<DVec3>>],
     from_f32: bool,
 ) -> Result<()> {
     let num = |v: f64| -> String {
@@ -610,19 +661,47 @@ fn write_eval_json(
         };
         serde_json::Number::from_f64(v).map_or_else(|| "null".to_owned(), |n| n.to_string())
     };
-    write!(out, "{{\"curves\":[")?;
-    for (k, (&i, pts)) in indices.iter().zip(points).enumerate() {
-        if k > 0 {
-            write!(out, ",")?;
-        }
-        write!(out, "\n{{\"index\":{i},\"samples\":[")?;
+    let list = |out: &mut dyn Write, key: &str, pts: &[DVec3]| -> std::io::Result<()> {
+        write!(out, ",\"{key}\":[")?;
         for (j, p) in pts.iter().enumerate() {
             if j > 0 {
                 write!(out, ",")?;
             }
             write!(out, "[{},{},{}]", num(p.x), num(p.y), num(p.z))?;
         }
-        write!(out, "]}}")?;
+        write!(out, "]")
+    };
+    write!(out, "{{\"curves\":[")?;
+    for (k, &i) in indices.iter().enumerate() {
+        if k > 0 {
+            write!(out, ",")?;
+        }
+        write!(out, "\n{{\"index\":{i}")?;
+        for (order, key) in ["samples", "d1", "d2"]
+            .iter()
+            .enumerate()
+            .take(values.len())
+        {
+            list(out, key, &values[order][k])?;
+        }
+        if values.len() == 3 {
+            // κ = |P′ × P″| / |P′|³; null where P′ = 0 (no tangent, no curvature).
+            write!(out, ",\"curvature\":[")?;
+            for (j, (d1, d2)) in values[1][k].iter().zip(&values[2][k]).enumerate() {
+                if j > 0 {
+                    write!(out, ",")?;
+                }
+                let speed = d1.length();
+                let kappa = d1.cross(*d2).length() / (speed * speed * speed);
+                if speed > 0.0 && kappa.is_finite() {
+                    write!(out, "{}", num(kappa))?;
+                } else {
+                    write!(out, "null")?;
+                }
+            }
+            write!(out, "]")?;
+        }
+        write!(out, "}}")?;
     }
     writeln!(out, "\n]}}")?;
     Ok(())

@@ -647,3 +647,148 @@ fn adapters_lists_each_backend_and_marks_the_chosen_one() {
         );
     });
 }
+
+fn vectors(v: &Value, curve: usize, key: &str) -> Vec<[f64; 3]> {
+    v["curves"][curve][key]
+        .as_array()
+        .unwrap_or_else(|| panic!("{key} missing"))
+        .iter()
+        .map(|p| {
+            let a = p.as_array().expect("vector");
+            [0, 1, 2].map(|i| a[i].as_f64().expect("number"))
+        })
+        .collect()
+}
+
+/// `eval --derivatives 2`: P′ and P″ against central differences of the exact curve (at
+/// the middle of every lowered segment, away from joints where P″ may jump), the curvature
+/// against a closed form, and the GPU (hodographs through the same kernel) against the CPU
+/// within the documented bound applied to the hodographs' control points.
+#[test]
+fn eval_derivatives_match_finite_differences_closed_forms_and_the_gpu() {
+    use splinescope::geom::Lower;
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    for name in [
+        "gallery.json",
+        "bezier3d.json",
+        "paper001_fig1.json",
+        "bsplines.json",
+    ] {
+        let path = dir.join(name);
+        let scene = Scene::load(&path).unwrap();
+        for (i, c) in scene.curves.iter().enumerate() {
+            let segs = c.curve.lower();
+            let ts: Vec<f64> = segs.iter().map(|s| 0.5 * (s.t0 + s.t1)).collect();
+            let list = ts
+                .iter()
+                .map(|t| format!("{t:e}"))
+                .collect::<Vec<_>>()
+                .join(",");
+            let p = path.to_string_lossy();
+            let idx = i.to_string();
+            let args = [
+                "eval",
+                &p,
+                "--curve",
+                &idx,
+                "--params",
+                &list,
+                "--derivatives",
+                "2",
+            ];
+            let cpu = stdout_json(&run(&args));
+            let (d1, d2) = (vectors(&cpu, 0, "d1"), vectors(&cpu, 0, "d2"));
+            for (k, (&t, s)) in ts.iter().zip(&segs).enumerate() {
+                let h = 1e-5 * (s.t1 - s.t0);
+                let fd1 = (c.curve.eval(t + h) - c.curve.eval(t - h)) / (2.0 * h);
+                let fd2 = (c.curve.eval_deriv(t + h) - c.curve.eval_deriv(t - h)) / (2.0 * h);
+                let scale1 = fd1.length().max(1.0);
+                let scale2 = fd2.length().max(1.0);
+                let e1 = (glam::DVec3::from(d1[k]) - fd1).length();
+                let e2 = (glam::DVec3::from(d2[k]) - fd2).length();
+                assert!(
+                    e1 <= 1e-6 * scale1,
+                    "{name} curves[{i}] t={t}: P′ off by {e1:e}"
+                );
+                assert!(
+                    e2 <= 1e-5 * scale2,
+                    "{name} curves[{i}] t={t}: P″ off by {e2:e}"
+                );
+            }
+            common::on_each_gpu("eval --derivatives (gpu half)", |backend| {
+                let mut gargs = args.to_vec();
+                gargs.extend(["--backend", "gpu", "--gpu-backend", &backend.name]);
+                let gpu = stdout_json(&run(&gargs));
+                for (key, order) in [("d1", 1u32), ("d2", 2)] {
+                    let (want, got) = (vectors(&cpu, 0, key), vectors(&gpu, 0, key));
+                    for (k, s) in segs.iter().enumerate() {
+                        let h = splinescope::gpu::eval::hodographs(std::slice::from_ref(s), order);
+                        let pts = h[0].bezier.points();
+                        let extent = Aabb::from_points(pts).diagonal();
+                        let radius = pts.iter().map(|p| p.length()).fold(0.0, f64::max);
+                        let n = s.bezier.degree();
+                        let bound = 1e-6 * extent.max(radius) * (n.max(12) as f64 / 12.0)
+                            / (s.t1 - s.t0).powi(order as i32);
+                        let e = (glam::DVec3::from(want[k]) - glam::DVec3::from(got[k])).length();
+                        assert!(
+                            e <= bound,
+                            "{}: {name} curves[{i}] {key} at segment {k}: {e:e} > {bound:e}",
+                            backend.name
+                        );
+                    }
+                }
+            });
+        }
+    }
+    // Curvature of the parabola P(t) = (2t, 4t(1 − t)): κ = 16 / (4 + (4 − 8t)²)^{3/2}.
+    let d = out_dir();
+    let parabola = d.join("parabola.json");
+    std::fs::write(
+        &parabola,
+        r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1, 2], [2, 0]]}]}"#,
+    )
+    .unwrap();
+    let v = stdout_json(&run(&[
+        "eval",
+        &parabola.to_string_lossy(),
+        "--params",
+        "0,0.25,0.5",
+        "--derivatives",
+        "2",
+    ]));
+    let kappa: Vec<f64> = v["curves"][0]["curvature"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|k| k.as_f64().unwrap())
+        .collect();
+    for (k, t) in kappa.iter().zip([0.0_f64, 0.25, 0.5]) {
+        let want = 16.0 / (4.0 + (4.0 - 8.0 * t).powi(2)).powf(1.5);
+        assert!((k - want).abs() <= 1e-14 * want, "t={t}: {k} vs {want}");
+    }
+    // A point where P′ = 0 has no curvature: null, not a number.
+    let cusp = d.join("cusp.json");
+    std::fs::write(
+        &cusp,
+        r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [0, 0], [1, 1]]}]}"#,
+    )
+    .unwrap();
+    let v = stdout_json(&run(&[
+        "eval",
+        &cusp.to_string_lossy(),
+        "--params",
+        "0",
+        "--derivatives",
+        "2",
+    ]));
+    assert!(v["curves"][0]["curvature"][0].is_null(), "{v}");
+    let (code, err) = stderr_of(&[
+        "eval",
+        &cusp.to_string_lossy(),
+        "--params",
+        "0",
+        "--derivatives",
+        "3",
+    ]);
+    assert_eq!(code, Some(2), "{err}");
+}

@@ -88,3 +88,57 @@ pub fn evaluate_with_limits(
     }
     Ok(out)
 }
+
+/// The `order`-th hodograph of each lowered segment (same `t0`, `t1`): the Bézier curve
+/// whose value at `u` is `dᵏP/duᵏ`. Degree `n − k`; a segment of degree below `k` has the
+/// zero curve of degree 0.
+#[must_use]
+pub fn hodographs(segments: &[BezierSegment], order: u32) -> Vec<BezierSegment> {
+    segments
+        .iter()
+        .map(|s| {
+            let mut b = s.bezier.clone();
+            for _ in 0..order {
+                b = b.deriv();
+            }
+            BezierSegment {
+                bezier: b,
+                t0: s.t0,
+                t1: s.t1,
+            }
+        })
+        .collect()
+}
+
+/// Evaluates the `order`-th derivative (1 or 2) of each curve at its parameters on the
+/// GPU: the hodographs go through the same kernel as the curves, and the chain rule
+/// divides by `(t1 − t0)ᵏ` of the segment holding each parameter.
+///
+/// # Errors
+/// As [`evaluate`].
+pub fn evaluate_derivative(
+    ctx: &GpuContext,
+    curves: &[(usize, Vec<BezierSegment>)],
+    params: &[Vec<f64>],
+    order: u32,
+) -> Result<Vec<Vec<DVec3>>, GpuError> {
+    let hodo: Vec<(usize, Vec<BezierSegment>)> = curves
+        .iter()
+        .map(|(i, segs)| (*i, hodographs(segs, order)))
+        .collect();
+    let values = evaluate(ctx, &hodo, params)?;
+    Ok(curves
+        .iter()
+        .zip(params)
+        .zip(values)
+        .map(|(((_, segs), ts), vs)| {
+            ts.iter()
+                .zip(vs)
+                .map(|(&t, v)| match locate(segs, t) {
+                    Some((s, _)) => v / (segs[s].t1 - segs[s].t0).powi(order as i32),
+                    None => v,
+                })
+                .collect()
+        })
+        .collect())
+}
