@@ -90,6 +90,9 @@ pub fn curve_report(index: usize, name: Option<&str>, curve: &Curve) -> Result<V
     match curve {
         Curve::Bezier(bz) => {
             obj.insert("degree".into(), bz.degree().into());
+            if bz.degree() <= POWER_BASIS_MAX_DEGREE {
+                obj.insert("power_basis".into(), power_basis(bz.points()));
+            }
         }
         Curve::Modified(m) => {
             obj.insert("degree".into(), m.base().degree().into());
@@ -136,6 +139,64 @@ fn spline_fields(obj: &mut Map<String, Value>, knots: &KnotVector) {
     obj.insert("order".into(), knots.order().into());
     obj.insert("knots".into(), knots.knots().to_vec().into());
     obj.insert("clamped".into(), knots.is_clamped().into());
+}
+
+/// The highest degree for which `inspect` reports a Bézier curve's power-basis
+/// coefficients (their binomial factors grow as 2ⁿ).
+pub const POWER_BASIS_MAX_DEGREE: usize = 64;
+
+/// The power-basis coefficients `a_k` of `P(t) = Σ_k a_k t^k`,
+/// `a_k = C(n,k) Σ_{i≤k} (−1)^{k−i} C(k,i) P_i`, as exact rationals of each coordinate's
+/// shortest decimal form (the decimal written in the scene file, for inputs of up to 15
+/// significant digits) and as `f64`.
+fn power_basis(pts: &[DVec3]) -> Value {
+    use crate::geom::exact::{Rational, parse_decimal};
+    use num_traits::{One, Zero};
+    let n = pts.len() - 1;
+    let exact: Vec<[Rational; 3]> = pts
+        .iter()
+        .map(|p| {
+            p.to_array().map(|c| {
+                parse_decimal(&crate::num::Num(c).to_string())
+                    .unwrap_or_else(|| unreachable!("a finite coordinate's decimal parses"))
+            })
+        })
+        .collect();
+    let binomial = |n: usize, k: usize| -> Rational {
+        let mut b = Rational::one();
+        for j in 0..k {
+            b = b * Rational::from_integer((n - j).into()) / Rational::from_integer((j + 1).into());
+        }
+        b
+    };
+    let coefficients: Vec<[Rational; 3]> = (0..=n)
+        .map(|k| {
+            let mut sum = [Rational::zero(), Rational::zero(), Rational::zero()];
+            for (i, p) in exact.iter().enumerate().take(k + 1) {
+                let w = binomial(k, i)
+                    * if (k - i) % 2 == 0 {
+                        Rational::one()
+                    } else {
+                        -Rational::one()
+                    };
+                for (s, c) in sum.iter_mut().zip(p) {
+                    *s = s.clone() + w.clone() * c.clone();
+                }
+            }
+            let ck = binomial(n, k);
+            sum.map(|s| s * ck.clone())
+        })
+        .collect();
+    json!({
+        "exact": coefficients
+            .iter()
+            .map(|c| c.iter().map(format_rational).collect::<Vec<_>>())
+            .collect::<Vec<_>>(),
+        "values": coefficients
+            .iter()
+            .map(|c| c.iter().map(crate::geom::exact::Scalar::to_f64).collect::<Vec<_>>())
+            .collect::<Vec<_>>(),
+    })
 }
 
 /// The highest order for which `inspect` reports the elevation coefficients as exact

@@ -792,3 +792,78 @@ fn eval_derivatives_match_finite_differences_closed_forms_and_the_gpu() {
     ]);
     assert_eq!(code, Some(2), "{err}");
 }
+
+/// `inspect`'s power-basis coefficients of a Bézier curve: the exact rationals of the
+/// decimals written in the file, against an independent expansion of the Bernstein sum in
+/// integers (coordinates in tenths), and the f64 values against the curve.
+#[test]
+fn inspect_reports_exact_power_basis_coefficients_of_the_decimal_input() {
+    let tenths: [[i64; 2]; 4] = [[1, 0], [2, 7], [13, -4], [20, 10]];
+    let d = out_dir();
+    let path = d.join("power.json");
+    let pts: Vec<String> = tenths
+        .iter()
+        .map(|p| format!("[{}, {}]", p[0] as f64 / 10.0, p[1] as f64 / 10.0))
+        .collect();
+    std::fs::write(
+        &path,
+        format!(
+            r#"{{"version": 1, "curves": [{{"type": "bezier", "points": [{}]}}]}}"#,
+            pts.join(", ")
+        ),
+    )
+    .unwrap();
+    // Σ_i P_i C(3,i) t^i (1 − t)^{3−i}, multiplied out as integer polynomials.
+    let n = 3usize;
+    let binom = |n: usize, k: usize| -> i64 {
+        (0..k).fold(1i64, |b, j| b * (n - j) as i64 / (j as i64 + 1))
+    };
+    let mut want = vec![[0i64; 2]; n + 1];
+    for (i, p) in tenths.iter().enumerate() {
+        // (1 − t)^{n−i} = Σ_j C(n−i, j) (−t)^j
+        for j in 0..=n - i {
+            let c = binom(n, i) * binom(n - i, j) * if j % 2 == 0 { 1 } else { -1 };
+            for axis in 0..2 {
+                want[i + j][axis] += c * p[axis];
+            }
+        }
+    }
+    let reduce = |num: i64| -> String {
+        let g = (1..=10)
+            .rev()
+            .find(|g| num % g == 0 && 10 % g == 0)
+            .unwrap_or(1);
+        let (a, b) = (num / g, 10 / g);
+        if b == 1 {
+            a.to_string()
+        } else {
+            format!("{a}/{b}")
+        }
+    };
+    let v = stdout_json(&run(&["inspect", &path.to_string_lossy()]));
+    let pb = &v["curves"][0]["power_basis"];
+    for k in 0..=n {
+        for axis in 0..2 {
+            assert_eq!(
+                pb["exact"][k][axis].as_str().unwrap(),
+                reduce(want[k][axis]),
+                "a_{k}[{axis}]"
+            );
+        }
+        assert_eq!(pb["exact"][k][2], "0");
+    }
+    let scene = Scene::load(&path).unwrap();
+    for t in [0.0, 0.3, 0.77, 1.0] {
+        let p = scene.curves[0].curve.eval(t);
+        let mut q = [0.0; 2];
+        for k in (0..=n).rev() {
+            for axis in 0..2 {
+                q[axis] = q[axis] * t + pb["values"][k][axis].as_f64().unwrap();
+            }
+        }
+        assert!(
+            (q[0] - p.x).abs() < 1e-12 && (q[1] - p.y).abs() < 1e-12,
+            "t={t}"
+        );
+    }
+}
