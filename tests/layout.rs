@@ -155,3 +155,32 @@ fn a_broken_shader_is_reported_with_its_file_and_span() {
     assert!(err.contains("broken.wgsl"), "{err}");
     assert!(err.contains("undefined_name"), "{err}");
 }
+
+/// Errors point at the line of the file that holds them, not of the composed source
+/// (`common.wgsl` is prepended): a parse error and a validation error on line 3 of the
+/// body, and the body's first line, are reported at those lines.
+#[test]
+fn shader_errors_name_the_right_file_and_line() {
+    let parse = shaders::ShaderSource {
+        file: "parse.wgsl",
+        body: "// one\n// two\nfn f() -> f32 { return 1.0 +; }\n",
+    };
+    let err = parse.validate().expect_err("must fail").to_string();
+    assert!(err.starts_with("shaders/parse.wgsl:3:"), "{err}");
+    assert!(err.contains("3 | fn f() -> f32 { return 1.0 +; }"), "{err}");
+    let unknown = shaders::ShaderSource {
+        file: "unknown.wgsl",
+        body: "// one\n// two\nfn g() -> u32 { return h(); }\n",
+    };
+    let err = unknown.validate().expect_err("must fail").to_string();
+    assert!(err.starts_with("shaders/unknown.wgsl:3:24:"), "{err}");
+    // The mapping itself: the composed source's first line after common.wgsl is line 1.
+    let common_lines = shaders::COMMON.lines().count() as u32;
+    assert_eq!(parse.origin(1), ("common.wgsl", 1));
+    assert_eq!(parse.origin(common_lines + 2), ("parse.wgsl", 1));
+    let composed = parse.composed();
+    assert_eq!(
+        composed.lines().nth(common_lines as usize + 1),
+        Some("// one")
+    );
+}

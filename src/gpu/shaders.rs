@@ -37,7 +37,7 @@ pub const ALL: [ShaderSource; 3] = [TESSELLATE, LINES, POINTS];
 
 /// A shader that naga rejects, with the message and source span it printed.
 #[derive(Debug, Clone, Error)]
-#[error("shaders/{file}: {message}")]
+#[error("{message}")]
 pub struct ShaderError {
     /// The file.
     pub file: &'static str,
@@ -52,15 +52,54 @@ impl ShaderSource {
         format!("{COMMON}\n{}", self.body)
     }
 
+    /// Where line `line` (1-based) of [`ShaderSource::composed`] comes from: the file and
+    /// its own line there (`common.wgsl` is prepended, then one joining newline).
+    #[must_use]
+    pub fn origin(&self, line: u32) -> (&'static str, u32) {
+        let common_lines = COMMON.lines().count() as u32 + 1;
+        if line <= common_lines {
+            ("common.wgsl", line)
+        } else {
+            (self.file, line - common_lines)
+        }
+    }
+
+    /// `shaders/FILE:LINE:COLUMN: MESSAGE` and the offending line, with the line counted
+    /// in the file that holds it (not in the composed source).
+    fn report(&self, source: &str, message: &str, at: Option<naga::SourceLocation>) -> String {
+        match at {
+            Some(loc) => {
+                let (file, line) = self.origin(loc.line_number);
+                let text = source
+                    .lines()
+                    .nth(loc.line_number as usize - 1)
+                    .unwrap_or_default();
+                format!(
+                    "shaders/{file}:{line}:{}: {message}\n  {line} | {text}",
+                    loc.line_position
+                )
+            }
+            None => format!("shaders/{}: {message}", self.file),
+        }
+    }
+
     /// Parses and validates the composed source with naga (no adapter needed).
     ///
     /// # Errors
-    /// [`ShaderError`] with naga's report and source span.
+    /// [`ShaderError`] with naga's message, located at the file and line that hold the
+    /// fault.
     pub fn validate(&self) -> Result<(naga::Module, naga::valid::ModuleInfo), ShaderError> {
         let source = self.composed();
         let module = naga::front::wgsl::parse_str(&source).map_err(|e| ShaderError {
             file: self.file,
-            message: e.emit_to_string_with_path(&source, self.file),
+            // The first label with a real span (some errors carry an empty primary one).
+            message: self.report(
+                &source,
+                e.message(),
+                e.labels()
+                    .find(|(span, _)| span.to_range().is_some_and(|r| !r.is_empty()))
+                    .map(|(span, _)| span.location(&source)),
+            ),
         })?;
         let info = naga::valid::Validator::new(
             naga::valid::ValidationFlags::all(),
@@ -69,7 +108,7 @@ impl ShaderSource {
         .validate(&module)
         .map_err(|e| ShaderError {
             file: self.file,
-            message: e.emit_to_string_with_path(&source, self.file),
+            message: self.report(&source, &e.as_inner().to_string(), e.location(&source)),
         })?;
         Ok((module, info))
     }
