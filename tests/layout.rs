@@ -184,3 +184,67 @@ fn shader_errors_name_the_right_file_and_line() {
         Some("// one")
     );
 }
+
+/// The bind-group layouts the pipelines are built from agree with naga's reflection of
+/// each shader: the same (group, binding) pairs, uniform where the WGSL says uniform,
+/// storage with the same access.
+#[test]
+fn bind_group_layouts_match_the_shaders() {
+    use splinescope::gpu::bindings;
+    type Binding = (u32, u32, String);
+    fn from_layouts(groups: &[Vec<wgpu::BindGroupLayoutEntry>]) -> Vec<Binding> {
+        let mut out = Vec::new();
+        for (g, entries) in groups.iter().enumerate() {
+            for e in entries {
+                let kind = match e.ty {
+                    wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        ..
+                    } => "uniform".to_owned(),
+                    wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Storage { read_only },
+                        ..
+                    } => format!("storage read_only={read_only}"),
+                    ref other => format!("{other:?}"),
+                };
+                out.push((g as u32, e.binding, kind));
+            }
+        }
+        out.sort();
+        out
+    }
+    fn from_shader(source: &shaders::ShaderSource) -> Vec<Binding> {
+        let (module, _) = source.validate().expect("valid");
+        let mut out: Vec<Binding> = module
+            .global_variables
+            .iter()
+            .filter_map(|(_, g)| {
+                let b = g.binding.as_ref()?;
+                let kind = match g.space {
+                    naga::AddressSpace::Uniform => "uniform".to_owned(),
+                    naga::AddressSpace::Storage { access } => format!(
+                        "storage read_only={}",
+                        !access.contains(naga::StorageAccess::STORE)
+                    ),
+                    ref other => format!("{other:?}"),
+                };
+                Some((b.group, b.binding, kind))
+            })
+            .collect();
+        out.sort();
+        out
+    }
+    assert_eq!(
+        from_layouts(&bindings::tessellate()),
+        from_shader(&shaders::TESSELLATE)
+    );
+    for s in [shaders::LINES, shaders::POINTS] {
+        assert_eq!(
+            from_layouts(&bindings::draw()),
+            from_shader(&s),
+            "{}",
+            s.file
+        );
+    }
+    assert_eq!(from_shader(&shaders::TESSELLATE).len(), 4);
+}

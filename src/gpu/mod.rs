@@ -2,6 +2,7 @@
 //! shaders, packing, the compute tessellator and its CPU twin, the renderer, offscreen
 //! capture and GPU evaluation.
 
+pub mod bindings;
 pub mod context;
 pub mod eval;
 pub mod layout;

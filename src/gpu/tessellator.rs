@@ -38,19 +38,6 @@ pub struct ChunkBuffers {
     _segments: wgpu::Buffer,
 }
 
-fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
 /// The 2D workgroup grid covering `segments` workgroups: `x ≤ max_per_dim`.
 #[must_use]
 pub fn dispatch_grid(segments: u32, max_per_dim: u32) -> (u32, u32) {
@@ -74,21 +61,7 @@ impl Tessellator {
     pub fn with_module(device: &wgpu::Device, module: &wgpu::ShaderModule) -> Tessellator {
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("tessellate"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-                storage_entry(1, true),
-                storage_entry(2, true),
-                storage_entry(3, false),
-            ],
+            entries: &super::bindings::tessellate()[0],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("tessellate"),
