@@ -48,6 +48,44 @@ pub fn dispatch_grid(segments: u32, max_per_dim: u32) -> (u32, u32) {
     (x, segments.div_ceil(x))
 }
 
+/// One dispatch as the tessellator issues it: the kernel (index in
+/// [`TESSELLATE_KERNELS`]), its parameters and its workgroup grid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlannedDispatch {
+    /// Index in [`TESSELLATE_KERNELS`].
+    pub kernel: usize,
+    /// The uniform the kernel reads.
+    pub params: GpuTessParams,
+    /// Workgroups in x and y.
+    pub groups: (u32, u32),
+}
+
+/// The dispatches that tessellate `chunk`: one per non-empty kernel class, over its range
+/// of records, on a grid of at most `max_groups_per_dim` workgroups per dimension. The
+/// CPU twin runs the same plan ([`super::twin::dispatch`]).
+#[must_use]
+pub fn plan(chunk: &TessChunk, max_groups_per_dim: u32) -> Vec<PlannedDispatch> {
+    let mut out = Vec::new();
+    let mut start = 0u32;
+    for (kernel, &end) in chunk.class_ends.iter().enumerate() {
+        if end > start {
+            let groups = dispatch_grid(end - start, max_groups_per_dim);
+            out.push(PlannedDispatch {
+                kernel,
+                params: GpuTessParams {
+                    segment_start: start,
+                    segment_end: end,
+                    groups_x: groups.0,
+                    _padding: 0,
+                },
+                groups,
+            });
+        }
+        start = start.max(end);
+    }
+    out
+}
+
 impl Tessellator {
     /// Builds the pipelines of `shaders/tessellate.wgsl` on `device`.
     #[must_use]
@@ -116,19 +154,17 @@ impl Tessellator {
             mapped_at_creation: false,
         });
         let mut dispatches = Vec::new();
-        let mut start = 0u32;
-        for (kernel, &end) in chunk.class_ends.iter().enumerate() {
-            if end > start {
-                let groups = dispatch_grid(end - start, self.max_groups_per_dim);
+        for planned in plan(chunk, self.max_groups_per_dim) {
+            let PlannedDispatch {
+                kernel,
+                params: tess_params,
+                groups,
+            } = planned;
+            {
                 let params = super::init_buffer(
                     device,
                     "tessellate params",
-                    bytemuck::bytes_of(&GpuTessParams {
-                        segment_start: start,
-                        segment_end: end,
-                        groups_x: groups.0,
-                        _padding: 0,
-                    }),
+                    bytemuck::bytes_of(&tess_params),
                     wgpu::BufferUsages::UNIFORM,
                 );
                 let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -160,7 +196,6 @@ impl Tessellator {
                     _params: params,
                 });
             }
-            start = start.max(end);
         }
         ChunkBuffers {
             samples,

@@ -3,7 +3,9 @@
 
 use glam::Vec3;
 
-use super::layout::{GpuSegment, GpuVertex, MAX_GPU_DEGREE, TESSELLATE_WORKGROUP_SIZE};
+use super::layout::{
+    GpuSegment, GpuTessParams, GpuVertex, MAX_GPU_DEGREE, TESSELLATE_WORKGROUP_SIZE,
+};
 
 /// `sample_param` of the shader: `u0 (1 − f) + u1 f`, `f = j / (count − 1)`.
 #[must_use]
@@ -51,6 +53,42 @@ pub fn tessellate(points: &[GpuVertex], segments: &[GpuSegment], samples: &mut [
                 position: de_casteljau(points, seg.first_point, seg.degree, u).to_array(),
                 id: seg.curve,
             };
+        }
+    }
+}
+
+/// One dispatch of the kernel, as the GPU runs it: every workgroup `(x, y)` of the
+/// `groups` grid takes record `segment_start + x + y · groups_x` when it is below
+/// `segment_end` (`work()` in the shader), and each of its lanes writes one sample. The
+/// twin of [`super::tessellator::plan`]'s dispatches.
+///
+/// # Panics
+/// When a record points outside `points` or `samples` (a packing bug).
+pub fn dispatch(
+    params: &GpuTessParams,
+    groups: (u32, u32),
+    points: &[GpuVertex],
+    segments: &[GpuSegment],
+    samples: &mut [GpuVertex],
+) {
+    for gy in 0..groups.1 {
+        for gx in 0..groups.0 {
+            let s = params.segment_start + gx + gy * params.groups_x;
+            if s >= params.segment_end {
+                continue;
+            }
+            let seg = &segments[s as usize];
+            for lane in 0..TESSELLATE_WORKGROUP_SIZE {
+                let j = seg.sample_offset + lane;
+                if j >= seg.sample_count {
+                    continue;
+                }
+                let u = sample_param(seg, j);
+                samples[(seg.first_sample + j) as usize] = GpuVertex {
+                    position: de_casteljau(points, seg.first_point, seg.degree, u).to_array(),
+                    id: seg.curve,
+                };
+            }
         }
     }
 }
