@@ -1,4 +1,4 @@
-//! Bézier curves of any degree (all three papers, MATH.md §0).
+//! Bézier curves of any degree (all three papers, docs/math.md §0).
 
 use glam::DVec3;
 

@@ -1,4 +1,6 @@
 //! Non-uniform B-spline curves of any order (paper 001, §2), and exact degree elevation.
+//! Formulas (extraction by blossoms, elevation coefficients by dual functionals):
+//! `docs/math.md` §3.
 
 use glam::DVec3;
 

@@ -8,7 +8,7 @@ use super::modified::{
 };
 use super::{Bezier, BezierSegment, GeomError, Lower, ParamCurve};
 
-/// Which reading of paper 002's modified interpolation to use (MATH.md §1).
+/// Which reading of paper 002's modified interpolation to use (docs/math.md §1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Reading {
     /// The paper's reading (default; reproduces its Example 2 exactly): plain cubic pieces

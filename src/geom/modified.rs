@@ -1,5 +1,6 @@
 //! The modified Bézier curve of paper 002 (Bożek & Sroda, "Modyfikacja wielomianowych
-//! krzywych Béziera"): a Bézier curve plus a C¹ bump times a vector.
+//! krzywych Béziera"): a Bézier curve plus a C¹ bump times a vector. The formulas and the
+//! decisions taken (the factored bump): `docs/math.md` §1.
 
 use glam::DVec3;
 

@@ -1,6 +1,7 @@
 //! Non-uniform B-splines with multiple shape parameters (NUBMP) — paper 001 (Cao, Wang,
 //! Li, Chen, "Non-uniform B-spline curves with multiple shape parameters", J. Zhejiang
-//! Univ.-Sci. C 12(10), 2011).
+//! Univ.-Sci. C 12(10), 2011). Formulas and decisions (unclamped groups, the Fig. 1b
+//! range, locality): `docs/math.md` §3.
 
 use glam::DVec3;
 

@@ -1,5 +1,6 @@
 //! Constrained shape modification of NUBMP curves (paper 001, §5.2): move `P(τ)` to a
 //! target `q` by changing one group of shape parameters.
+//! `docs/math.md` §3 (constrained modification).
 
 use glam::DVec3;
 use nalgebra::DMatrix;

@@ -1,5 +1,6 @@
 //! The closest point of a curve to a point: global and robust for any degree and, through
 //! lowering, for every family.
+//! `docs/math.md` §2.5.
 
 use glam::DVec3;
 

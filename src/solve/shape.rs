@@ -2,6 +2,8 @@
 //! modification of Bézier curves by geometric constraints"): move control points by the
 //! least `Σ‖ε_i‖²` so that the curve passes through target points, with the end points
 //! fixed and optionally the end tangents kept.
+//! Formulas and decisions (the default window of Eq. 8, the cubic allowed region):
+//! `docs/math.md` §2.
 
 use glam::{DVec2, DVec3};
 use nalgebra::DMatrix;
