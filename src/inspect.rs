@@ -93,6 +93,22 @@ pub fn curve_report(index: usize, name: Option<&str>, curve: &Curve) -> Result<V
             if bz.degree() <= POWER_BASIS_MAX_DEGREE {
                 obj.insert("power_basis".into(), power_basis(bz.points()));
             }
+            if bz.degree() == 3 {
+                // Paper 000 §2.3's classification of the control polygon.
+                match crate::solve::shape::cubic_region(bz) {
+                    Ok(region) => {
+                        let (subtype, meets) = region.subtype();
+                        let mut r = json!({"type": region.kind.number(), "subtype": subtype});
+                        if let Some(x) = meets {
+                            r["lines_meet_at"] = point(x);
+                        }
+                        obj.insert("cubic_region".into(), r);
+                    }
+                    Err(e) => {
+                        obj.insert("cubic_region_unavailable".into(), e.to_string().into());
+                    }
+                }
+            }
         }
         Curve::Modified(m) => {
             obj.insert("degree".into(), m.base().degree().into());
@@ -102,6 +118,16 @@ pub fn curve_report(index: usize, name: Option<&str>, curve: &Curve) -> Result<V
         }
         Curve::Interpolation(c) => {
             obj.insert("params".into(), c.params().to_vec().into());
+            // Paper 002 §5: chord slopes C_i and the parabola weights α_i behind s_i.
+            let (p, t) = (c.points(), c.params());
+            let chords: Vec<DVec3> = (0..p.len() - 1)
+                .map(|i| (p[i + 1] - p[i]) / (t[i + 1] - t[i]))
+                .collect();
+            obj.insert("chord_slopes".into(), points(&chords));
+            let weights: Vec<f64> = (1..p.len() - 1)
+                .map(|i| (t[i] - t[i - 1]) / (t[i + 1] - t[i - 1]))
+                .collect();
+            obj.insert("parabola_weights".into(), weights.into());
             obj.insert("tangents".into(), points(c.tangents()));
             obj.insert(
                 "inner_points".into(),

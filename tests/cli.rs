@@ -867,3 +867,91 @@ fn inspect_reports_exact_power_basis_coefficients_of_the_decimal_input() {
         );
     }
 }
+
+/// `inspect` classifies a cubic's control polygon as paper 000 §2.3 does, with the finer
+/// subtype and where the legs' lines meet (worked out by hand below), and reports an
+/// interpolation's chord slopes and parabola weights (paper 002's Example 1).
+#[test]
+fn inspect_reports_cubic_subtypes_and_interpolation_weights() {
+    let d = out_dir();
+    let cases: [(&str, [[f64; 2]; 4], u64, &str, Option<[f64; 2]>); 5] = [
+        (
+            "parallel",
+            [[0.0, 0.0], [0.0, 1.0], [4.0, 1.0], [4.0, 0.0]],
+            1,
+            "parallel",
+            None,
+        ),
+        (
+            "anti",
+            [[0.0, 0.0], [0.0, 1.0], [4.0, -1.0], [4.0, 0.0]],
+            1,
+            "antiparallel",
+            None,
+        ),
+        (
+            "conv",
+            [[0.0, 0.0], [1.0, 1.0], [3.0, 1.0], [4.0, 0.0]],
+            2,
+            "converging",
+            Some([2.0, 2.0]),
+        ),
+        (
+            "div",
+            [[0.0, 0.0], [-1.0, 1.0], [5.0, 1.0], [4.0, 0.0]],
+            3,
+            "diverging",
+            Some([2.0, -2.0]),
+        ),
+        (
+            "mixed",
+            [[0.0, 0.0], [1.0, 1.0], [5.0, -1.0], [4.0, 0.0]],
+            3,
+            "mixed",
+            Some([2.0, 2.0]),
+        ),
+    ];
+    for (name, pts, ty, subtype, meet) in cases {
+        let path = d.join(format!("region_{name}.json"));
+        let list: Vec<String> = pts
+            .iter()
+            .map(|p| format!("[{}, {}]", p[0], p[1]))
+            .collect();
+        std::fs::write(
+            &path,
+            format!(
+                r#"{{"version": 1, "curves": [{{"type": "bezier", "points": [{}]}}]}}"#,
+                list.join(", ")
+            ),
+        )
+        .unwrap();
+        let v = stdout_json(&run(&["inspect", &path.to_string_lossy()]));
+        let r = &v["curves"][0]["cubic_region"];
+        assert_eq!(r["type"], ty, "{name}: {r}");
+        assert_eq!(r["subtype"], subtype, "{name}: {r}");
+        match meet {
+            None => assert!(r.get("lines_meet_at").is_none(), "{name}: {r}"),
+            Some(m) => {
+                let x = &r["lines_meet_at"];
+                for k in 0..2 {
+                    assert!((x[k].as_f64().unwrap() - m[k]).abs() < 1e-12, "{name}: {r}");
+                }
+            }
+        }
+    }
+    // Example 1: chords (0,6), (6,0), (0,−6) over unit steps; weights 1/2, 1/2.
+    let ex = d.join("example1.json");
+    std::fs::write(
+        &ex,
+        r#"{"version": 1, "curves": [{"type": "interpolation", "points": [[0, 0], [0, 6], [6, 6], [6, 0]], "params": [0, 1, 2, 3]}]}"#,
+    )
+    .unwrap();
+    let v = stdout_json(&run(&["inspect", &ex.to_string_lossy()]));
+    let c = &v["curves"][0];
+    let chords = vectors(&v, 0, "chord_slopes");
+    assert_eq!(
+        chords,
+        vec![[0.0, 6.0, 0.0], [6.0, 0.0, 0.0], [0.0, -6.0, 0.0]]
+    );
+    assert_eq!(c["parabola_weights"], serde_json::json!([0.5, 0.5]));
+}

@@ -421,6 +421,50 @@ pub struct CubicRegion {
     pub e2: DVec3,
 }
 
+impl CubicRegion {
+    /// The finer classification `inspect` reports, and where the legs' lines meet:
+    /// type 1 `"parallel"` (legs pointing the same way) or `"antiparallel"`; type 2
+    /// `"converging"` (meeting at `X` ahead of both legs); type 3 `"diverging"` (meeting
+    /// behind both legs), `"mixed"` (ahead of one, behind the other) or, in space,
+    /// `"skew"` (the lines do not meet, no point).
+    #[must_use]
+    pub fn subtype(&self) -> (&'static str, Option<DVec3>) {
+        match self.kind {
+            PolygonType::Parallel => {
+                if self.e1.dot(self.e2) > 0.0 {
+                    ("parallel", None)
+                } else {
+                    ("antiparallel", None)
+                }
+            }
+            PolygonType::Converging { apex } => ("converging", Some(apex)),
+            PolygonType::Diverging => {
+                let (s, r, x1, x2) = closest_line_points(self.p0, self.e1, self.p3, self.e2);
+                let scale = (self.p3 - self.p0).length().max(1.0);
+                if (x1 - x2).length() > REGION_TOLERANCE * scale.max(x1.length()) {
+                    ("skew", None)
+                } else if s < 0.0 && r < 0.0 {
+                    ("diverging", Some(0.5 * (x1 + x2)))
+                } else {
+                    ("mixed", Some(0.5 * (x1 + x2)))
+                }
+            }
+        }
+    }
+}
+
+/// The closest points `p0 + s e1` and `p3 + r e2` of two non-parallel lines with unit
+/// directions: `(s, r, x1, x2)`.
+fn closest_line_points(p0: DVec3, e1: DVec3, p3: DVec3, e2: DVec3) -> (f64, f64, DVec3, DVec3) {
+    let w = p0 - p3;
+    let b = e1.dot(e2);
+    let (d, e) = (e1.dot(w), e2.dot(w));
+    let den = 1.0 - b * b;
+    let s = (b * e - d) / den;
+    let r = (e - b * d) / den;
+    (s, r, p0 + s * e1, p3 + r * e2)
+}
+
 /// Relative tolerance of the region's geometric tests.
 const REGION_TOLERANCE: f64 = 1e-9;
 
@@ -448,14 +492,7 @@ pub fn cubic_region(curve: &Bezier) -> Result<CubicRegion, SolveError> {
         PolygonType::Parallel
     } else {
         // Closest points of the two lines: P0 + s e1 and P3 + r e2.
-        let w = p0 - p3;
-        let (a, b, c) = (1.0, e1.dot(e2), 1.0);
-        let (d, e) = (e1.dot(w), e2.dot(w));
-        let den = a * c - b * b;
-        let s = (b * e - c * d) / den;
-        let r = (a * e - b * d) / den;
-        let x1 = p0 + s * e1;
-        let x2 = p3 + r * e2;
+        let (s, r, x1, x2) = closest_line_points(p0, e1, p3, e2);
         if (x1 - x2).length() <= REGION_TOLERANCE * scale && s > 0.0 && r > 0.0 {
             PolygonType::Converging {
                 apex: 0.5 * (x1 + x2),
