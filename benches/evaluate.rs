@@ -61,7 +61,7 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("kernel twin (f32)");
     g.throughput(Throughput::Elements(u64::from(chunk.sample_count)));
     g.bench_function("1000 cubics x 64 samples", |bch| {
-        bch.iter(|| twin::tessellate(&chunk.points, &chunk.segments, black_box(&mut out)));
+        bch.iter(|| twin::tessellate(&chunk.points, &chunk.records, black_box(&mut out)));
     });
     g.finish();
 }

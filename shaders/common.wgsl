@@ -14,8 +14,9 @@ struct Vertex {
     id: u32,
 }
 
-// Twin: GpuSegment. One Bézier segment and where its samples go.
-struct Segment {
+// Twin: GpuRecord. One workgroup's run of samples (at most 64) of one Bézier segment, and
+// where they go.
+struct Record {
     first_point: u32,
     degree: u32,
     curve: u32,
@@ -28,8 +29,8 @@ struct Segment {
 
 // Twin: GpuTessParams.
 struct TessParams {
-    segment_start: u32,
-    segment_end: u32,
+    record_start: u32,
+    record_end: u32,
     groups_x: u32,
     _padding: u32,
 }

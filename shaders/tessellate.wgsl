@@ -1,6 +1,6 @@
 // Compute tessellation: every sample of every Bézier segment by de Casteljau.
 //
-// One workgroup per segment record (2D dispatch: record = segment_start + x + y * groups_x);
+// One workgroup per segment record (2D dispatch: record = record_start + x + y * groups_x);
 // lane j of the workgroup evaluates sample sample_offset + j. Records hold at most
 // TESSELLATE_WORKGROUP_SIZE samples (packing splits longer runs), so no lane loops over
 // samples.
@@ -14,12 +14,12 @@
 
 @group(0) @binding(0) var<uniform> params: TessParams;
 @group(0) @binding(1) var<storage, read> points: array<Vertex>;
-@group(0) @binding(2) var<storage, read> segments: array<Segment>;
+@group(0) @binding(2) var<storage, read> records: array<Record>;
 @group(0) @binding(3) var<storage, read_write> samples: array<Vertex>;
 
 // The segment parameter of sample j: u0 (1 - f) + u1 f with f = j / (count - 1), so the
 // first and last samples land exactly on u0 and u1.
-fn sample_param(seg: Segment, j: u32) -> f32 {
+fn sample_param(seg: Record, j: u32) -> f32 {
     var f = 0.0;
     if (seg.sample_count > 1u) {
         f = f32(j) / f32(seg.sample_count - 1u);
@@ -30,7 +30,7 @@ fn sample_param(seg: Segment, j: u32) -> f32 {
 // What one invocation evaluates: sample j of record seg, at parameter u; ok is false
 // when the invocation has no sample (past the last record, or past the record's samples).
 struct Work {
-    seg: Segment,
+    seg: Record,
     j: u32,
     u: f32,
     ok: bool,
@@ -39,11 +39,11 @@ struct Work {
 fn work(group: vec3<u32>, lane: u32) -> Work {
     var w: Work;
     w.ok = false;
-    let s = params.segment_start + group.x + group.y * params.groups_x;
-    if (s >= params.segment_end) {
+    let s = params.record_start + group.x + group.y * params.groups_x;
+    if (s >= params.record_end) {
         return w;
     }
-    w.seg = segments[s];
+    w.seg = records[s];
     w.j = w.seg.sample_offset + lane;
     if (w.j >= w.seg.sample_count) {
         return w;
@@ -53,7 +53,7 @@ fn work(group: vec3<u32>, lane: u32) -> Work {
     return w;
 }
 
-fn control_point(seg: Segment, i: u32) -> vec3<f32> {
+fn control_point(seg: Record, i: u32) -> vec3<f32> {
     return points[seg.first_point + i].position;
 }
 

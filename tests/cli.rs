@@ -875,7 +875,13 @@ fn inspect_reports_exact_power_basis_coefficients_of_the_decimal_input() {
 fn inspect_reports_cubic_subtypes_and_interpolation_weights() {
     let d = out_dir();
     /// Name, control points, type, subtype, where the legs' lines meet.
-    type Case = (&'static str, [[f64; 2]; 4], u64, &'static str, Option<[f64; 2]>);
+    type Case = (
+        &'static str,
+        [[f64; 2]; 4],
+        u64,
+        &'static str,
+        Option<[f64; 2]>,
+    );
     let cases: [Case; 5] = [
         (
             "parallel",

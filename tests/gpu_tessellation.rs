@@ -86,15 +86,9 @@ fn check(backend: &common::Backend, cases: &[Case], chunks: &[TessChunk]) -> f64
             chunk,
             ctx.device.limits().max_compute_workgroups_per_dimension,
         ) {
-            twin::dispatch(
-                &d.params,
-                d.groups,
-                &chunk.points,
-                &chunk.segments,
-                &mut cpu,
-            );
+            twin::dispatch(&d.params, d.groups, &chunk.points, &chunk.records, &mut cpu);
         }
-        for seg in &chunk.segments {
+        for seg in &chunk.records {
             let case = &cases[chunk.first_curve + seg.curve as usize];
             let extent = case.curve.control_box().diagonal();
             let n = case.curve.degree();
@@ -187,7 +181,7 @@ fn tiny_chunks_split_runs_and_still_write_every_sample() {
             let limits = ChunkLimits {
                 max_samples: 97,
                 max_points: 40,
-                max_segments: 7,
+                max_records: 7,
                 max_styles: 5,
             };
             let chunks = pack(&cases, limits);
@@ -199,7 +193,7 @@ fn tiny_chunks_split_runs_and_still_write_every_sample() {
             for c in &chunks {
                 assert!(c.sample_count as usize <= limits.max_samples);
                 assert!(c.points.len() <= limits.max_points);
-                assert!(c.segments.len() <= limits.max_segments);
+                assert!(c.records.len() <= limits.max_records);
                 assert!(c.styles.len() <= limits.max_styles);
             }
             check(backend, &cases, &chunks);
@@ -227,7 +221,7 @@ fn dispatch_grid_covers_more_segments_than_one_dimension_allows() {
     let chunk = &chunks[0];
     let n = chunk.sample_count as usize;
     let mut direct = vec![POISON; n];
-    twin::tessellate(&chunk.points, &chunk.segments, &mut direct);
+    twin::tessellate(&chunk.points, &chunk.records, &mut direct);
     let mut gridded = vec![POISON; n];
     let planned = plan(chunk, 3);
     assert!(planned.iter().any(|d| d.groups.1 > 1), "a 2D grid is used");
@@ -236,7 +230,7 @@ fn dispatch_grid_covers_more_segments_than_one_dimension_allows() {
             &d.params,
             d.groups,
             &chunk.points,
-            &chunk.segments,
+            &chunk.records,
             &mut gridded,
         );
     }
@@ -249,7 +243,7 @@ fn dispatch_grid_covers_more_segments_than_one_dimension_allows() {
             &d.params,
             (d.groups.0, d.groups.1 - 1),
             &chunk.points,
-            &chunk.segments,
+            &chunk.records,
             &mut short,
         );
     }
@@ -285,7 +279,7 @@ fn one_million_cubics_tessellate_correctly_in_chunks() {
                 prepared.chunks.len()
             );
             // More workgroups than one dispatch dimension allows, so the 2D grid is used.
-            assert!(prepared.chunks[0].segments.len() > 65_535);
+            assert!(prepared.chunks[0].records.len() > 65_535);
             let tess = Tessellator::new(&ctx.device);
             let mut checked = 0u64;
             let mut seen = 0u64;
@@ -300,7 +294,7 @@ fn one_million_cubics_tessellate_correctly_in_chunks() {
                 }
                 seen += gpu.len() as u64;
                 // …and a spread of them equal to the exact curves.
-                for seg in chunk.segments.iter().step_by(97) {
+                for seg in chunk.records.iter().step_by(97) {
                     let curve = chunk.first_curve + seg.curve as usize;
                     let b = &scene.curves[curve].curve;
                     let bound = bound(3, b.control_points());

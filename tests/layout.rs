@@ -3,7 +3,7 @@
 
 use naga::{Module, TypeInner};
 use splinescope::gpu::layout::{
-    GpuCamera, GpuLineStyle, GpuSegment, GpuTessParams, GpuVertex, MAX_GPU_DEGREE,
+    GpuCamera, GpuLineStyle, GpuRecord, GpuTessParams, GpuVertex, MAX_GPU_DEGREE,
     TESSELLATE_KERNELS, TESSELLATE_WORKGROUP_SIZE,
 };
 use splinescope::gpu::shaders::{self, ALL};
@@ -69,8 +69,8 @@ fn gpu_structs_match_their_wgsl_twins() {
         assert_twin!(m, "Vertex", GpuVertex, [position, id]);
         assert_twin!(
             m,
-            "Segment",
-            GpuSegment,
+            "Record",
+            GpuRecord,
             [
                 first_point,
                 degree,
@@ -86,7 +86,7 @@ fn gpu_structs_match_their_wgsl_twins() {
             m,
             "TessParams",
             GpuTessParams,
-            [segment_start, segment_end, groups_x, _padding]
+            [record_start, record_end, groups_x, _padding]
         );
         assert_twin!(
             m,

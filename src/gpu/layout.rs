@@ -38,10 +38,10 @@ pub struct GpuVertex {
 /// writing sample `j` to `samples[first_sample + j]`. A run longer than one workgroup is
 /// several records differing only in `sample_offset`.
 ///
-/// Twin: `Segment` in `shaders/common.wgsl`.
+/// Twin: `Record` in `shaders/common.wgsl`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct GpuSegment {
+pub struct GpuRecord {
     /// Index of the first control point.
     pub first_point: u32,
     /// Degree `n` (`n + 1` control points), at most [`MAX_GPU_DEGREE`].
@@ -66,10 +66,10 @@ pub struct GpuSegment {
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct GpuTessParams {
     /// The first record this dispatch evaluates.
-    pub segment_start: u32,
+    pub record_start: u32,
     /// One past the last record this dispatch evaluates.
-    pub segment_end: u32,
-    /// Workgroups along x of the 2D dispatch (record = `segment_start + x + y · groups_x`).
+    pub record_end: u32,
+    /// Workgroups along x of the 2D dispatch (record = `record_start + x + y · groups_x`).
     pub groups_x: u32,
     /// Uniform structs are 16-byte aligned.
     pub _padding: u32,

@@ -9,7 +9,7 @@ use glam::DVec3;
 use thiserror::Error;
 
 use super::layout::{
-    GpuLineStyle, GpuSegment, GpuVertex, MAX_GPU_DEGREE, TESSELLATE_KERNELS,
+    GpuLineStyle, GpuRecord, GpuVertex, MAX_GPU_DEGREE, TESSELLATE_KERNELS,
     TESSELLATE_WORKGROUP_SIZE as WORKGROUP, kernel_class,
 };
 use crate::geom::{BezierSegment, Lower, OverlayKind};
@@ -81,8 +81,8 @@ pub struct ChunkLimits {
     pub max_samples: usize,
     /// Control points per chunk.
     pub max_points: usize,
-    /// Segment records per chunk.
-    pub max_segments: usize,
+    /// Records (runs of at most one workgroup of samples) per chunk.
+    pub max_records: usize,
     /// Style-table entries per chunk.
     pub max_styles: usize,
 }
@@ -96,7 +96,7 @@ impl ChunkLimits {
         ChunkLimits {
             max_samples: per(size_of::<GpuVertex>()),
             max_points: per(size_of::<GpuVertex>()),
-            max_segments: per(size_of::<GpuSegment>()),
+            max_records: per(size_of::<GpuRecord>()),
             max_styles: per(size_of::<GpuLineStyle>()),
         }
     }
@@ -107,9 +107,9 @@ impl ChunkLimits {
 pub struct TessChunk {
     /// Control points of this chunk's segments.
     pub points: Vec<GpuVertex>,
-    /// Segment records (indices local to this chunk), sorted by kernel class (see
+    /// Records (indices local to this chunk), sorted by kernel class (see
     /// [`TESSELLATE_KERNELS`]).
-    pub segments: Vec<GpuSegment>,
+    pub records: Vec<GpuRecord>,
     /// Where each kernel class's records end in `segments` (class `k` holds
     /// `class_ends[k − 1] .. class_ends[k]`, class 0 starting at 0).
     pub class_ends: [u32; TESSELLATE_KERNELS.len()],
@@ -188,7 +188,7 @@ impl ChunkBuilder {
         let c = self.current();
         let new_style = c.styles.is_empty() || curve - c.first_curve >= c.styles.len();
         c.points.len() + points <= l.max_points
-            && c.segments.len() < l.max_segments
+            && c.records.len() < l.max_records
             && c.sample_count as usize + samples <= l.max_samples
             && (!new_style || c.styles.len() < l.max_styles)
     }
@@ -212,7 +212,7 @@ impl ChunkBuilder {
         let l = self.limits;
         if points.len() > l.max_points
             || l.max_samples < 2
-            || l.max_segments == 0
+            || l.max_records == 0
             || l.max_styles == 0
         {
             return Err(PackError::LimitsTooSmall {
@@ -220,7 +220,7 @@ impl ChunkBuilder {
                     "{} control points, {} samples, {} segments, {} styles; a segment needs {} points",
                     l.max_points,
                     l.max_samples,
-                    l.max_segments,
+                    l.max_records,
                     l.max_styles,
                     points.len()
                 ),
@@ -280,7 +280,7 @@ impl ChunkBuilder {
     }
 
     /// Adds `count ≥ 1` samples of the open segment at parameters from `u0` to `u1` (see
-    /// [`GpuSegment`]). A run that does not fit the chunk continues in the next one,
+    /// [`GpuRecord`]). A run that does not fit the chunk continues in the next one,
     /// repeating its last sample there so that polylines stay joined.
     ///
     /// # Panics
@@ -304,7 +304,7 @@ impl ChunkBuilder {
                 continue;
             }
             let room_samples = self.limits.max_samples - self.current().sample_count as usize;
-            let room_records = self.limits.max_segments - self.current().segments.len();
+            let room_records = self.limits.max_records - self.current().records.len();
             let take = (remaining as usize)
                 .min(room_samples)
                 .min(room_records * WORKGROUP as usize) as u32;
@@ -324,7 +324,7 @@ impl ChunkBuilder {
             }
             // One record per workgroup's worth of samples of this run.
             for sample_offset in (0..take).step_by(WORKGROUP as usize) {
-                c.segments.push(GpuSegment {
+                c.records.push(GpuRecord {
                     first_point: open.first_point,
                     degree: (open.points.len() - 1) as u32,
                     curve: tag as u32,
@@ -359,13 +359,13 @@ impl ChunkBuilder {
         let chunks = self
             .chunks
             .into_iter()
-            .filter(|c| !c.segments.is_empty())
+            .filter(|c| !c.records.is_empty())
             .map(|mut c| {
                 // Records are independent (each writes its own samples), so their order is
                 // free: group them by the kernel that evaluates them.
-                c.segments.sort_by_key(|s| kernel_class(s.degree));
+                c.records.sort_by_key(|s| kernel_class(s.degree));
                 let mut ends = [0u32; TESSELLATE_KERNELS.len()];
-                for s in &c.segments {
+                for s in &c.records {
                     ends[kernel_class(s.degree)] += 1;
                 }
                 for k in 1..ends.len() {
@@ -744,7 +744,7 @@ mod tests {
         let limits = ChunkLimits {
             max_samples: 10,
             max_points: 100,
-            max_segments: 100,
+            max_records: 100,
             max_styles: 100,
         };
         let mut b = ChunkBuilder::new(limits);
@@ -756,9 +756,9 @@ mod tests {
         let counts: Vec<u32> = chunks.iter().map(|c| c.sample_count).collect();
         assert_eq!(counts, vec![10, 10, 7]);
         // The second chunk starts at the first chunk's last parameter (9/24).
-        assert_eq!(chunks[0].segments[0].u1, (9.0_f64 / 24.0) as f32);
-        assert_eq!(chunks[1].segments[0].u0, (9.0_f64 / 24.0) as f32);
-        assert_eq!(chunks[2].segments[0].u1, 1.0);
+        assert_eq!(chunks[0].records[0].u1, (9.0_f64 / 24.0) as f32);
+        assert_eq!(chunks[1].records[0].u0, (9.0_f64 / 24.0) as f32);
+        assert_eq!(chunks[2].records[0].u1, 1.0);
         for c in &chunks {
             assert_eq!(c.points.len(), 4, "each chunk carries the control points");
             assert_eq!(c.styles.len(), 1);
@@ -776,7 +776,7 @@ mod tests {
         b.add_samples(64, 0.0, 1.0);
         let chunks = b.finish();
         let records: Vec<(u32, u32, u32, u32)> = chunks[0]
-            .segments
+            .records
             .iter()
             .map(|s| (s.curve, s.first_sample, s.sample_count, s.sample_offset))
             .collect();
@@ -803,12 +803,12 @@ mod tests {
             b.add_samples(8, 0.0, 1.0);
         }
         let chunks = b.finish();
-        let degrees: Vec<u32> = chunks[0].segments.iter().map(|s| s.degree).collect();
+        let degrees: Vec<u32> = chunks[0].records.iter().map(|s| s.degree).collect();
         assert_eq!(degrees, vec![3, 3, 4, 5, 1]);
         assert_eq!(chunks[0].class_ends, [2, 3, 5]);
         // Each record still writes its own curve's samples.
         let firsts: Vec<(u32, u32)> = chunks[0]
-            .segments
+            .records
             .iter()
             .map(|s| (s.curve, s.first_sample))
             .collect();
@@ -905,7 +905,7 @@ mod tests {
         let limits = ChunkLimits {
             max_samples: 100,
             max_points: 1000,
-            max_segments: 1000,
+            max_records: 1000,
             max_styles: 1000,
         };
         let before = prepare_scene(&scene(&nub), limits).unwrap();
@@ -965,7 +965,7 @@ mod tests {
         let limits = ChunkLimits {
             max_samples: 4,
             max_points: 4,
-            max_segments: 4,
+            max_records: 4,
             max_styles: 4,
         };
         let mut b = BatchBuilder::new(limits);

@@ -90,8 +90,8 @@ pub fn run(
     let mut fault = None;
     for chunk in &chunks {
         let mut want = vec![super::tessellator::POISON; chunk.sample_count as usize];
-        twin::tessellate(&chunk.points, &chunk.segments, &mut want);
-        for seg in &chunk.segments {
+        twin::tessellate(&chunk.points, &chunk.records, &mut want);
+        for seg in &chunk.records {
             for j in 0..seg.sample_count {
                 let at = (seg.first_sample + j) as usize;
                 let g = Vec3::from(got[at].position);

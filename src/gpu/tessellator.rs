@@ -73,8 +73,8 @@ pub fn plan(chunk: &TessChunk, max_groups_per_dim: u32) -> Vec<PlannedDispatch> 
             out.push(PlannedDispatch {
                 kernel,
                 params: GpuTessParams {
-                    segment_start: start,
-                    segment_end: end,
+                    record_start: start,
+                    record_end: end,
                     groups_x: groups.0,
                     _padding: 0,
                 },
@@ -144,7 +144,7 @@ impl Tessellator {
         let segments = super::init_buffer(
             device,
             "segments",
-            bytemuck::cast_slice(&chunk.segments),
+            bytemuck::cast_slice(&chunk.records),
             wgpu::BufferUsages::STORAGE,
         );
         let samples = device.create_buffer(&wgpu::BufferDescriptor {

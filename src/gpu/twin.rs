@@ -4,12 +4,12 @@
 use glam::Vec3;
 
 use super::layout::{
-    GpuSegment, GpuTessParams, GpuVertex, MAX_GPU_DEGREE, TESSELLATE_WORKGROUP_SIZE,
+    GpuRecord, GpuTessParams, GpuVertex, MAX_GPU_DEGREE, TESSELLATE_WORKGROUP_SIZE,
 };
 
 /// `sample_param` of the shader: `u0 (1 − f) + u1 f`, `f = j / (count − 1)`.
 #[must_use]
-pub fn sample_param(seg: &GpuSegment, j: u32) -> f32 {
+pub fn sample_param(seg: &GpuRecord, j: u32) -> f32 {
     let f = if seg.sample_count > 1 {
         j as f32 / (seg.sample_count - 1) as f32
     } else {
@@ -41,7 +41,7 @@ pub fn de_casteljau(points: &[GpuVertex], first: u32, n: u32, u: f32) -> Vec3 {
 ///
 /// # Panics
 /// When a record points outside `points` or `samples` (a packing bug).
-pub fn tessellate(points: &[GpuVertex], segments: &[GpuSegment], samples: &mut [GpuVertex]) {
+pub fn tessellate(points: &[GpuVertex], segments: &[GpuRecord], samples: &mut [GpuVertex]) {
     for seg in segments {
         for lane in 0..TESSELLATE_WORKGROUP_SIZE {
             let j = seg.sample_offset + lane;
@@ -58,8 +58,8 @@ pub fn tessellate(points: &[GpuVertex], segments: &[GpuSegment], samples: &mut [
 }
 
 /// One dispatch of the kernel, as the GPU runs it: every workgroup `(x, y)` of the
-/// `groups` grid takes record `segment_start + x + y · groups_x` when it is below
-/// `segment_end` (`work()` in the shader), and each of its lanes writes one sample. The
+/// `groups` grid takes record `record_start + x + y · groups_x` when it is below
+/// `record_end` (`work()` in the shader), and each of its lanes writes one sample. The
 /// twin of [`super::tessellator::plan`]'s dispatches.
 ///
 /// # Panics
@@ -68,13 +68,13 @@ pub fn dispatch(
     params: &GpuTessParams,
     groups: (u32, u32),
     points: &[GpuVertex],
-    segments: &[GpuSegment],
+    segments: &[GpuRecord],
     samples: &mut [GpuVertex],
 ) {
     for gy in 0..groups.1 {
         for gx in 0..groups.0 {
-            let s = params.segment_start + gx + gy * params.groups_x;
-            if s >= params.segment_end {
+            let s = params.record_start + gx + gy * params.groups_x;
+            if s >= params.record_end {
                 continue;
             }
             let seg = &segments[s as usize];

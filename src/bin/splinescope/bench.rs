@@ -92,7 +92,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     // CPU twin (f32), one thread, over the first chunk's records (capped like above).
     let chunk = &prepared.chunks[0];
     let records = chunk
-        .segments
+        .records
         .len()
         .min((2_000_000 / args.samples as usize).max(1));
     let mut out = vec![
@@ -103,7 +103,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         chunk.sample_count as usize
     ];
     let started = Instant::now();
-    twin::tessellate(&chunk.points, &chunk.segments[..records], &mut out);
+    twin::tessellate(&chunk.points, &chunk.records[..records], &mut out);
     let cpu_twin = rate(records as u64 * u64::from(args.samples), started.elapsed());
     std::hint::black_box(&out);
 
