@@ -3,6 +3,8 @@
 //! `docs/math.md` §3 (constrained modification).
 
 use glam::DVec3;
+
+use super::roots;
 use nalgebra::DMatrix;
 
 use super::SolveError;
@@ -266,20 +268,7 @@ pub fn find_tau(curve: &Nubmp, group: usize, q: DVec3) -> Result<TauSolution, So
             let t = lo + (hi - lo) * f64::from(s) / f64::from(samples);
             let v = side(t);
             if prev.1 == 0.0 || prev.1.signum() != v.signum() {
-                let (mut a, mut b) = (prev.0, t);
-                let sa = prev.1;
-                for _ in 0..200 {
-                    let m = 0.5 * (a + b);
-                    if m == a || m == b {
-                        break;
-                    }
-                    if side(m).signum() == sa.signum() && sa != 0.0 {
-                        a = m;
-                    } else {
-                        b = m;
-                    }
-                }
-                let root = if prev.1 == 0.0 { prev.0 } else { 0.5 * (a + b) };
+                let root = roots::bisect_sign_change(side, prev.0, t, prev.1);
                 if distance(root) <= tol
                     && intervals
                         .last()
@@ -309,16 +298,7 @@ pub fn find_tau(curve: &Nubmp, group: usize, q: DVec3) -> Result<TauSolution, So
                 s += 1;
             }
             let refine = |inside: f64, outside: f64| {
-                let (mut i, mut o) = (inside, outside);
-                for _ in 0..60 {
-                    let m = 0.5 * (i + o);
-                    if distance(m) <= tol {
-                        i = m;
-                    } else {
-                        o = m;
-                    }
-                }
-                i
+                roots::bisect_boundary(|m| distance(m) <= tol, inside, outside, 60)
             };
             let left = if start > 0 {
                 refine(taus[start], taus[start - 1])
@@ -333,18 +313,7 @@ pub fn find_tau(curve: &Nubmp, group: usize, q: DVec3) -> Result<TauSolution, So
             intervals.push((left, right));
         } else if s > 0 && s + 1 < taus.len() && ds[s] < ds[s - 1] && ds[s] <= ds[s + 1] {
             // A local minimum above the tolerance: a touching point between samples?
-            let (mut x0, mut x1) = (taus[s - 1], taus[s + 1]);
-            let phi = 0.5 * (5f64.sqrt() - 1.0);
-            for _ in 0..100 {
-                let c = x1 - phi * (x1 - x0);
-                let d = x0 + phi * (x1 - x0);
-                if distance(c) < distance(d) {
-                    x1 = d;
-                } else {
-                    x0 = c;
-                }
-            }
-            let t = 0.5 * (x0 + x1);
+            let t = roots::golden_minimum(distance, taus[s - 1], taus[s + 1], 100);
             if distance(t) <= 1e-7 * scale {
                 intervals.push((t, t));
             }
