@@ -3,10 +3,12 @@
 //! capture and GPU evaluation.
 
 pub mod bindings;
+pub mod chunks;
 pub mod context;
 pub mod eval;
 pub mod layout;
 pub mod offscreen;
+pub mod overlays;
 pub mod pack;
 pub mod renderer;
 pub mod selftest;

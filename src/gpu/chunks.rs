@@ -1,0 +1,389 @@
+//! Splitting GPU work into chunks that each fit the device's buffer-binding limits:
+//! tessellation records with their control points and samples ([`ChunkBuilder`]), and
+//! overlay polylines or points with their style tables ([`BatchBuilder`]). Pure CPU code.
+
+use glam::DVec3;
+
+use super::layout::{
+    GpuLineStyle, GpuRecord, GpuVertex, TESSELLATE_KERNELS, TESSELLATE_WORKGROUP_SIZE as WORKGROUP,
+    kernel_class,
+};
+use super::pack::PackError;
+
+/// The most each chunk may hold, derived from the device's binding and buffer limits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ChunkLimits {
+    /// Output samples per chunk.
+    pub max_samples: usize,
+    /// Control points per chunk.
+    pub max_points: usize,
+    /// Records (runs of at most one workgroup of samples) per chunk.
+    pub max_records: usize,
+    /// Style-table entries per chunk.
+    pub max_styles: usize,
+}
+
+impl ChunkLimits {
+    /// Limits for buffers of at most `max_bytes` each (the smaller of the device's
+    /// `max_storage_buffer_binding_size` and `max_buffer_size`).
+    #[must_use]
+    pub fn for_binding_size(max_bytes: u64) -> ChunkLimits {
+        let per = |size: usize| (max_bytes / size as u64).min(u64::from(u32::MAX)) as usize;
+        ChunkLimits {
+            max_samples: per(size_of::<GpuVertex>()),
+            max_points: per(size_of::<GpuVertex>()),
+            max_records: per(size_of::<GpuRecord>()),
+            max_styles: per(size_of::<GpuLineStyle>()),
+        }
+    }
+}
+
+/// One self-contained unit of tessellation work.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TessChunk {
+    /// Control points of this chunk's segments.
+    pub points: Vec<GpuVertex>,
+    /// Records (indices local to this chunk), sorted by kernel class (see
+    /// [`TESSELLATE_KERNELS`]).
+    pub records: Vec<GpuRecord>,
+    /// Where each kernel class's records end in `segments` (class `k` holds
+    /// `class_ends[k − 1] .. class_ends[k]`, class 0 starting at 0).
+    pub class_ends: [u32; TESSELLATE_KERNELS.len()],
+    /// Number of samples the kernel writes.
+    pub sample_count: u32,
+    /// The scene index of the curve whose tag is 0 in this chunk.
+    pub first_curve: usize,
+    /// Style of each curve in the chunk, by local tag.
+    pub styles: Vec<GpuLineStyle>,
+}
+
+/// Where a copy of one lowered segment's control points lives on the GPU: the chunk and
+/// the index of its first point there (a segment split across chunks has several).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Placement {
+    /// The chunk.
+    pub chunk: usize,
+    /// The first control point's index in the chunk's points.
+    pub first_point: u32,
+    /// The segment's index in the curve's lowering.
+    pub segment: usize,
+    /// Its number of control points.
+    pub len: u32,
+}
+
+/// Builds chunks segment by segment, opening a new chunk whenever the next record would
+/// not fit.
+#[derive(Debug)]
+pub struct ChunkBuilder {
+    limits: ChunkLimits,
+    chunks: Vec<TessChunk>,
+    /// The open segment: its curve, style, control points, and where they start in the
+    /// current chunk (re-pushed when a run of samples spills into a new chunk).
+    open: Option<OpenSegment>,
+    /// Per curve, where its segments' points went.
+    placements: Vec<Vec<Placement>>,
+}
+
+#[derive(Debug, Clone)]
+struct OpenSegment {
+    curve: usize,
+    segment: usize,
+    style: GpuLineStyle,
+    points: Vec<GpuVertex>,
+    first_point: u32,
+}
+
+impl ChunkBuilder {
+    /// A builder with the given limits.
+    #[must_use]
+    pub fn new(limits: ChunkLimits) -> ChunkBuilder {
+        ChunkBuilder {
+            limits,
+            chunks: vec![TessChunk::default()],
+            open: None,
+            placements: Vec::new(),
+        }
+    }
+
+    fn current(&self) -> &TessChunk {
+        self.chunks
+            .last()
+            .unwrap_or_else(|| unreachable!("never empty"))
+    }
+
+    fn current_mut(&mut self) -> &mut TessChunk {
+        self.chunks
+            .last_mut()
+            .unwrap_or_else(|| unreachable!("never empty"))
+    }
+
+    /// Whether the current chunk can take `points` more control points and one more
+    /// record of at least `samples` samples for `curve`.
+    fn has_room(&self, curve: usize, points: usize, samples: usize) -> bool {
+        let l = self.limits;
+        let c = self.current();
+        let new_style = c.styles.is_empty() || curve - c.first_curve >= c.styles.len();
+        c.points.len() + points <= l.max_points
+            && c.records.len() < l.max_records
+            && c.sample_count as usize + samples <= l.max_samples
+            && (!new_style || c.styles.len() < l.max_styles)
+    }
+
+    /// Starts a segment of scene curve `curve` (curves come in non-decreasing order) with
+    /// the given control points, rounded to `f32`.
+    ///
+    /// # Errors
+    /// [`PackError::LimitsTooSmall`] when a segment does not fit an empty chunk.
+    pub fn begin_segment(
+        &mut self,
+        curve: usize,
+        style: GpuLineStyle,
+        points: &[DVec3],
+    ) -> Result<(), PackError> {
+        let segment = self
+            .placements
+            .get(curve)
+            .and_then(|p| p.last())
+            .map_or(0, |p| p.segment + 1);
+        let l = self.limits;
+        if points.len() > l.max_points
+            || l.max_samples < 2
+            || l.max_records == 0
+            || l.max_styles == 0
+        {
+            return Err(PackError::LimitsTooSmall {
+                what: format!(
+                    "{} control points, {} samples, {} segments, {} styles; a segment needs {} points",
+                    l.max_points,
+                    l.max_samples,
+                    l.max_records,
+                    l.max_styles,
+                    points.len()
+                ),
+            });
+        }
+        let points: Vec<GpuVertex> = points
+            .iter()
+            .map(|p| GpuVertex {
+                position: p.as_vec3().to_array(),
+                id: 0,
+            })
+            .collect();
+        self.open = None;
+        if !self.has_room(curve, points.len(), 1) {
+            self.chunks.push(TessChunk::default());
+        }
+        let first_point = self.current().points.len() as u32;
+        self.current_mut().points.extend_from_slice(&points);
+        self.place(curve, segment, first_point, points.len());
+        self.open = Some(OpenSegment {
+            curve,
+            segment,
+            style,
+            points,
+            first_point,
+        });
+        Ok(())
+    }
+
+    fn place(&mut self, curve: usize, segment: usize, first_point: u32, len: usize) {
+        if self.placements.len() <= curve {
+            self.placements.resize(curve + 1, Vec::new());
+        }
+        let chunk = self.chunks.len() - 1;
+        self.placements[curve].push(Placement {
+            chunk,
+            first_point,
+            segment,
+            len: len as u32,
+        });
+    }
+
+    /// Opens a new chunk and re-pushes the open segment's control points there.
+    fn spill(&mut self) {
+        self.chunks.push(TessChunk::default());
+        let open = self
+            .open
+            .take()
+            .unwrap_or_else(|| unreachable!("spill needs an open segment"));
+        let first_point = self.current().points.len() as u32;
+        self.current_mut().points.extend_from_slice(&open.points);
+        self.place(open.curve, open.segment, first_point, open.points.len());
+        self.open = Some(OpenSegment {
+            first_point,
+            ..open
+        });
+    }
+
+    /// Adds `count ≥ 1` samples of the open segment at parameters from `u0` to `u1` (see
+    /// [`GpuRecord`]). A run that does not fit the chunk continues in the next one,
+    /// repeating its last sample there so that polylines stay joined.
+    ///
+    /// # Panics
+    /// If no segment is open or `count` is 0 (bugs in the caller).
+    pub fn add_samples(&mut self, count: u32, u0: f64, u1: f64) {
+        assert!(count > 0, "add_samples needs at least one sample");
+        let at = |j: u32| {
+            if count > 1 {
+                u0 + (u1 - u0) * f64::from(j) / f64::from(count - 1)
+            } else {
+                u0
+            }
+        };
+        let mut start = 0u32;
+        loop {
+            let open = self.open.clone().expect("add_samples needs begin_segment");
+            let remaining = count - start;
+            // A partial run must write at least 2 samples to make progress (it repeats one).
+            if !self.has_room(open.curve, 0, remaining.min(2) as usize) {
+                self.spill();
+                continue;
+            }
+            let room_samples = self.limits.max_samples - self.current().sample_count as usize;
+            let room_records = self.limits.max_records - self.current().records.len();
+            let take = (remaining as usize)
+                .min(room_samples)
+                .min(room_records * WORKGROUP as usize) as u32;
+            let (ua, ub) = if take == count {
+                (u0, u1)
+            } else {
+                (at(start), at(start + take - 1))
+            };
+            let c = self.current_mut();
+            if c.styles.is_empty() {
+                c.first_curve = open.curve;
+            }
+            let tag = open.curve - c.first_curve;
+            if tag >= c.styles.len() {
+                // Tags stay dense: a curve that lowered to no segment keeps its slot.
+                c.styles.resize(tag + 1, open.style);
+            }
+            // One record per workgroup's worth of samples of this run.
+            for sample_offset in (0..take).step_by(WORKGROUP as usize) {
+                c.records.push(GpuRecord {
+                    first_point: open.first_point,
+                    degree: (open.points.len() - 1) as u32,
+                    curve: tag as u32,
+                    first_sample: c.sample_count,
+                    sample_count: take,
+                    u0: ua as f32,
+                    u1: ub as f32,
+                    sample_offset,
+                });
+            }
+            c.sample_count += take;
+            if take == remaining {
+                return;
+            }
+            start += take - 1;
+            self.spill();
+        }
+    }
+
+    /// The chunks built, without empty ones, their records sorted by kernel class.
+    #[must_use]
+    pub fn finish(self) -> Vec<TessChunk> {
+        self.finish_with_placements().0
+    }
+
+    /// [`ChunkBuilder::finish`], with the placements of every curve's points.
+    #[must_use]
+    pub fn finish_with_placements(self) -> (Vec<TessChunk>, Vec<Vec<Placement>>) {
+        // Only a builder that never got a segment has an empty chunk (the first): chunk
+        // indices in the placements stay valid.
+        let placements = self.placements;
+        let chunks = self
+            .chunks
+            .into_iter()
+            .filter(|c| !c.records.is_empty())
+            .map(|mut c| {
+                // Records are independent (each writes its own samples), so their order is
+                // free: group them by the kernel that evaluates them.
+                c.records.sort_by_key(|s| kernel_class(s.degree));
+                let mut ends = [0u32; TESSELLATE_KERNELS.len()];
+                for s in &c.records {
+                    ends[kernel_class(s.degree)] += 1;
+                }
+                for k in 1..ends.len() {
+                    ends[k] += ends[k - 1];
+                }
+                c.class_ends = ends;
+                c
+            })
+            .collect();
+        (chunks, placements)
+    }
+}
+
+/// Tagged polylines or points with their style table, split so each batch fits a
+/// binding.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct LineBatch {
+    /// The vertices; a change of tag separates polylines.
+    pub vertices: Vec<GpuVertex>,
+    /// Styles by tag.
+    pub styles: Vec<GpuLineStyle>,
+}
+
+/// Builds [`LineBatch`]es from polylines (or point sets), one style entry per polyline.
+#[derive(Debug)]
+pub struct BatchBuilder {
+    max_vertices: usize,
+    max_styles: usize,
+    batches: Vec<LineBatch>,
+}
+
+impl BatchBuilder {
+    /// A builder with per-batch limits.
+    #[must_use]
+    pub fn new(limits: ChunkLimits) -> BatchBuilder {
+        BatchBuilder {
+            max_vertices: limits.max_points.max(2),
+            max_styles: limits.max_styles.max(1),
+            batches: vec![LineBatch::default()],
+        }
+    }
+
+    /// Adds one polyline (or point set) drawn with `style`. Polylines longer than a batch
+    /// continue in the next one from their last vertex.
+    pub fn push(&mut self, points: &[DVec3], style: GpuLineStyle) {
+        let mut rest = points;
+        while !rest.is_empty() {
+            let full = {
+                let b = self
+                    .batches
+                    .last()
+                    .unwrap_or_else(|| unreachable!("never empty"));
+                b.styles.len() >= self.max_styles || b.vertices.len() + 2 > self.max_vertices
+            };
+            if full {
+                self.batches.push(LineBatch::default());
+            }
+            let b = self
+                .batches
+                .last_mut()
+                .unwrap_or_else(|| unreachable!("never empty"));
+            let tag = b.styles.len() as u32;
+            b.styles.push(style);
+            let take = rest.len().min(self.max_vertices - b.vertices.len());
+            b.vertices.extend(rest[..take].iter().map(|p| GpuVertex {
+                position: p.as_vec3().to_array(),
+                id: tag,
+            }));
+            if take == rest.len() {
+                break;
+            }
+            // Repeat the last vertex in the next batch so the polyline stays joined.
+            rest = &rest[take - 1..];
+        }
+    }
+
+    /// The batches built, without empty ones.
+    #[must_use]
+    pub fn finish(self) -> Vec<LineBatch> {
+        self.batches
+            .into_iter()
+            .filter(|b| !b.vertices.is_empty())
+            .collect()
+    }
+}
