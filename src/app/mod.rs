@@ -153,6 +153,14 @@ struct Running {
     started: Instant,
 }
 
+/// `SPLINESCOPE_LOSE_DEVICE_AFTER_FRAMES=N`: destroy the device after `N` presented
+/// frames, to exercise the viewer's device-failure path.
+fn lose_device_after() -> Option<u64> {
+    std::env::var("SPLINESCOPE_LOSE_DEVICE_AFTER_FRAMES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+}
+
 impl App {
     fn fail(&mut self, event_loop: &ActiveEventLoop, e: AppError) {
         self.error = Some(e);
@@ -188,6 +196,12 @@ impl ApplicationHandler for App {
                     Ok(presented) => {
                         if presented {
                             r.frames_presented += 1;
+                            // Forcing the device-failure path (tests and diagnosis): lose
+                            // the device after N frames; the next frame must stop with a
+                            // clear error.
+                            if lose_device_after().is_some_and(|n| r.frames_presented == n) {
+                                r.ctx.device.destroy();
+                            }
                         }
                     }
                     Err(e) => {
@@ -532,7 +546,9 @@ impl Running {
         if size.width == 0 || size.height == 0 {
             return Ok(false);
         }
-        // A lost device stops the viewer with a clear error instead of a panic or a hang.
+        // A lost device stops the viewer with a clear error instead of a panic or a hang
+        // (polling first delivers a pending loss notice).
+        let _ = self.ctx.device.poll(wgpu::PollType::Poll);
         self.ctx.check_health()?;
         self.sync_edits()?;
         if let Some(s) = &mut self.stress {
@@ -553,6 +569,8 @@ impl Running {
                 return Ok(false);
             }
             wgpu::CurrentSurfaceTexture::Validation => {
+                // A failed device is the likelier cause: say so when it is.
+                self.ctx.check_health()?;
                 return Err(AppError::Surface(
                     "validation error acquiring the frame".into(),
                 ));

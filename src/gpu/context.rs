@@ -172,7 +172,14 @@ fn watch(device: &wgpu::Device) -> Arc<Mutex<Option<String>>> {
     }));
     let on_lost = Arc::clone(&health);
     device.set_device_lost_callback(move |reason, message| {
-        record(&on_lost, format!("device lost ({reason:?}): {message}"));
+        record(
+            &on_lost,
+            if message.is_empty() {
+                format!("device lost ({reason:?})")
+            } else {
+                format!("device lost ({reason:?}): {message}")
+            },
+        );
     });
     health
 }
