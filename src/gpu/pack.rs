@@ -10,10 +10,7 @@ use thiserror::Error;
 
 pub use super::chunks::{BatchBuilder, ChunkBuilder, ChunkLimits, LineBatch, Placement, TessChunk};
 use super::layout::{GpuLineStyle, GpuVertex, MAX_GPU_DEGREE};
-pub use super::overlays::{
-    DERIVED_POINT_DIAMETER_PX, DUAL_COLOR, POINT_DIAMETER_PX, POLYGON_WIDTH_PX,
-    overlay_point_style, overlay_style, prepare_overlays,
-};
+pub use super::overlays::prepare_overlays;
 use crate::geom::{BezierSegment, Lower};
 use crate::scene::{AnnotationShape, Color, Scene, auto_samples};
 

@@ -4,6 +4,7 @@
 //!
 //! The format is documented in `docs/scene-format.md`.
 
+pub mod draw;
 pub mod gallery;
 pub mod generate;
 mod json;
