@@ -38,15 +38,7 @@ fn stdout_json(out: &Output) -> Value {
 }
 
 fn samples(v: &Value, curve: usize) -> Vec<[f64; 3]> {
-    v["curves"][curve]["samples"]
-        .as_array()
-        .expect("samples")
-        .iter()
-        .map(|p| {
-            let a = p.as_array().expect("point");
-            [0, 1, 2].map(|i| a[i].as_f64().expect("number"))
-        })
-        .collect()
+    vectors(v, curve, "samples")
 }
 
 #[test]

@@ -37,23 +37,29 @@ pub fn de_casteljau(points: &[GpuVertex], first: u32, n: u32, u: f32) -> Vec3 {
     p[0]
 }
 
+/// One workgroup's body: every lane of `record` writes its sample (the kernel's `work()`
+/// and entry point).
+fn run_record(record: &GpuRecord, points: &[GpuVertex], samples: &mut [GpuVertex]) {
+    for lane in 0..TESSELLATE_WORKGROUP_SIZE {
+        let j = record.sample_offset + lane;
+        if j >= record.sample_count {
+            break;
+        }
+        let u = sample_param(record, j);
+        samples[(record.first_sample + j) as usize] = GpuVertex {
+            position: de_casteljau(points, record.first_point, record.degree, u).to_array(),
+            id: record.curve,
+        };
+    }
+}
+
 /// Runs the kernels' body for every lane of every record, writing into `samples`.
 ///
 /// # Panics
 /// When a record points outside `points` or `samples` (a packing bug).
-pub fn tessellate(points: &[GpuVertex], segments: &[GpuRecord], samples: &mut [GpuVertex]) {
-    for seg in segments {
-        for lane in 0..TESSELLATE_WORKGROUP_SIZE {
-            let j = seg.sample_offset + lane;
-            if j >= seg.sample_count {
-                break;
-            }
-            let u = sample_param(seg, j);
-            samples[(seg.first_sample + j) as usize] = GpuVertex {
-                position: de_casteljau(points, seg.first_point, seg.degree, u).to_array(),
-                id: seg.curve,
-            };
-        }
+pub fn tessellate(points: &[GpuVertex], records: &[GpuRecord], samples: &mut [GpuVertex]) {
+    for record in records {
+        run_record(record, points, samples);
     }
 }
 
@@ -68,26 +74,14 @@ pub fn dispatch(
     params: &GpuTessParams,
     groups: (u32, u32),
     points: &[GpuVertex],
-    segments: &[GpuRecord],
+    records: &[GpuRecord],
     samples: &mut [GpuVertex],
 ) {
     for gy in 0..groups.1 {
         for gx in 0..groups.0 {
             let s = params.record_start + gx + gy * params.groups_x;
-            if s >= params.record_end {
-                continue;
-            }
-            let seg = &segments[s as usize];
-            for lane in 0..TESSELLATE_WORKGROUP_SIZE {
-                let j = seg.sample_offset + lane;
-                if j >= seg.sample_count {
-                    continue;
-                }
-                let u = sample_param(seg, j);
-                samples[(seg.first_sample + j) as usize] = GpuVertex {
-                    position: de_casteljau(points, seg.first_point, seg.degree, u).to_array(),
-                    id: seg.curve,
-                };
+            if s < params.record_end {
+                run_record(&records[s as usize], points, samples);
             }
         }
     }
