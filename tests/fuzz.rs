@@ -491,7 +491,9 @@ fn fuzz_every_input_path() {
     let bounded_cases = 1500;
     let scenes = seeds("scenes");
     let requests = seeds("scenes/requests");
-    let dir = common::out_dir("fuzz");
+    // One directory per run: concurrent runs (a long one beside the test suite) must not
+    // share their files.
+    let dir = common::out_dir(&format!("fuzz/{}", std::process::id()));
     let mut f = Fuzz {
         rng: Rng::new(seed),
         dir,
