@@ -227,16 +227,17 @@ pub fn refine_knots<S: Scalar>(knots: &[S]) -> Vec<S> {
     out
 }
 
-/// `τ(i)`: the index in `T*` of the knot converted from `t_i` (paper 001: with `t_i` the
-/// `s`-th distinct knot, 0-based, `τ(i) = i + s`).
+/// Paper 001's knot map `τ(i)`: the index in `T*` of the knot converted from `t_i` (with
+/// `t_i` the `s`-th distinct knot, 0-based, `τ(i) = i + s`). Named apart from the curve
+/// parameter `τ` of the constrained modification.
 #[must_use]
-pub fn tau<S: Scalar>(knots: &[S], i: usize) -> usize {
+pub fn refined_index<S: Scalar>(knots: &[S], i: usize) -> usize {
     let s = (1..=i).filter(|&l| knots[l] != knots[l - 1]).count();
     i + s
 }
 
-/// [`tau`] for every `i` in `0..count`, in one pass.
-fn taus<S: Scalar>(knots: &[S], count: usize) -> Vec<usize> {
+/// [`refined_index`] for every `i` in `0..count`, in one pass.
+fn refined_indices<S: Scalar>(knots: &[S], count: usize) -> Vec<usize> {
     let mut s = 0;
     (0..count)
         .map(|i| {
@@ -336,7 +337,7 @@ pub fn elevation_coefficients<S: Scalar>(knots: &[S], order: usize) -> Elevation
         .collect();
     padded.extend(knots.iter().cloned());
     padded.extend((1..=p).map(|i| last.clone() + span.clone() * S::from_usize(i)));
-    let taus = taus(knots, n + k);
+    let taus = refined_indices(knots, n + k);
     let kk = S::from_usize(k);
     // e_i in the padded numbering, one entry set at a time.
     let mut d = vec![S::zero(); n + 2 * p];
@@ -458,9 +459,9 @@ mod tests {
         );
         // n* = n + m − 1 = 7 + 5 − 1 = 11 B-splines of order 5 need 16 knots.
         assert_eq!(r.len(), 11 + 5);
-        assert_eq!(tau(&t, 0), 0);
-        assert_eq!(tau(&t, 4), 5); // t_4 = 0.3 is distinct knot 1
-        assert_eq!(tau(&t, 10), 14);
+        assert_eq!(refined_index(&t, 0), 0);
+        assert_eq!(refined_index(&t, 4), 5); // t_4 = 0.3 is distinct knot 1
+        assert_eq!(refined_index(&t, 10), 14);
     }
 
     #[test]
