@@ -125,7 +125,6 @@ struct Running {
     surface: wgpu::Surface<'static>,
     config: wgpu::SurfaceConfiguration,
     ctx: GpuContext,
-    tessellator: Tessellator,
     renderer: Renderer,
     gpu_scene: GpuScene,
     prepared: PreparedScene,
@@ -338,7 +337,6 @@ impl Running {
         config.present_mode = wgpu::PresentMode::AutoVsync;
         surface.configure(&ctx.device, &config);
 
-        let tessellator = Tessellator::new(&ctx.device);
         let renderer = Renderer::new(&ctx.device, format);
         let toggles = Toggles {
             show_polygons: true,
@@ -346,7 +344,7 @@ impl Running {
             show_panel: true,
         };
         let scene = opts.scene.clone();
-        let (gpu_scene, prepared) = upload(&ctx, &tessellator, &renderer, &scene, toggles)?;
+        let (gpu_scene, prepared) = upload(&ctx, &ctx.tessellator, &renderer, &scene, toggles)?;
         let editor = edit::Editor::new(
             scene.clone(),
             Some(
@@ -386,7 +384,6 @@ impl Running {
             surface,
             config,
             ctx,
-            tessellator,
             renderer,
             gpu_scene,
             prepared,
@@ -517,7 +514,7 @@ impl Running {
         } else {
             let (gpu, prepared) = upload(
                 &self.ctx,
-                &self.tessellator,
+                &self.ctx.tessellator,
                 &self.renderer,
                 self.editor.scene(),
                 self.toggles,
@@ -638,7 +635,7 @@ impl Running {
             &jobs,
             &screen,
         );
-        self.tessellator.encode(
+        self.ctx.tessellator.encode(
             &mut encoder,
             self.gpu_scene.chunks.iter().map(|c| &c.buffers),
             None,

@@ -107,6 +107,8 @@ pub struct GpuContext {
     pub device: wgpu::Device,
     /// Its queue.
     pub queue: wgpu::Queue,
+    /// The tessellation pipelines, built once: the very ones the self-test checked.
+    pub tessellator: Tessellator,
     /// The first uncaptured error or loss the device reported (see
     /// [`GpuContext::check_health`]).
     health: Arc<Mutex<Option<String>>>,
@@ -236,15 +238,9 @@ pub fn survey(opts: &ContextOptions) -> Vec<AdapterReport> {
             let matches = wanted
                 .as_ref()
                 .is_none_or(|w| info.name.to_lowercase().contains(w));
-            let self_test = match open_device(adapter) {
-                Ok((device, queue)) => {
-                    match selftest::run(&device, &queue, &Tessellator::new(&device)) {
-                        Ok(None) => "passed".to_owned(),
-                        Ok(Some(fault)) => format!("failed: {fault}"),
-                        Err(e) => format!("failed: {e}"),
-                    }
-                }
-                Err(e) => format!("failed: {e}"),
+            let self_test = match open_and_test(adapter) {
+                Ok(_) => "passed".to_owned(),
+                Err(why) => format!("failed: {why}"),
             };
             let chosen = matches && !chosen_yet && self_test == "passed";
             chosen_yet |= chosen;
@@ -267,6 +263,20 @@ pub fn survey(opts: &ContextOptions) -> Vec<AdapterReport> {
             }
         })
         .collect()
+}
+
+/// Opens `adapter`'s device and runs the kernel self-test on it: the device, its queue
+/// and the tested tessellation pipelines, or why the adapter is refused.
+fn open_and_test(
+    adapter: &wgpu::Adapter,
+) -> Result<(wgpu::Device, wgpu::Queue, Tessellator), String> {
+    let (device, queue) = open_device(adapter).map_err(|e| e.to_string())?;
+    let tessellator = Tessellator::new(&device);
+    match selftest::run(&device, &queue, &tessellator) {
+        Ok(None) => Ok((device, queue, tessellator)),
+        Ok(Some(fault)) => Err(fault.to_string()),
+        Err(e) => Err(format!("kernel self-test failed: {e}")),
+    }
 }
 
 /// Opens `adapter`'s device with its own limits and timestamp queries when it has them.
@@ -351,26 +361,21 @@ impl GpuContext {
         // refused adapter is reported only when no other one works.
         let mut refused = Vec::new();
         for adapter in candidates {
-            let name = describe_adapter(&adapter.get_info());
-            match open_device(&adapter) {
-                Ok((device, queue)) => {
-                    let tessellator = Tessellator::new(&device);
-                    match selftest::run(&device, &queue, &tessellator) {
-                        Ok(None) => {
-                            let health = watch(&device);
-                            return Ok(GpuContext {
-                                instance,
-                                adapter,
-                                device,
-                                queue,
-                                health,
-                            });
-                        }
-                        Ok(Some(fault)) => refused.push(format!("{name}: {fault}")),
-                        Err(e) => refused.push(format!("{name}: kernel self-test failed: {e}")),
-                    }
+            match open_and_test(&adapter) {
+                Ok((device, queue, tessellator)) => {
+                    let health = watch(&device);
+                    return Ok(GpuContext {
+                        instance,
+                        adapter,
+                        device,
+                        queue,
+                        tessellator,
+                        health,
+                    });
                 }
-                Err(e) => refused.push(format!("{name}: {e}")),
+                Err(why) => {
+                    refused.push(format!("{}: {why}", describe_adapter(&adapter.get_info())))
+                }
             }
         }
         Err(GpuError::Refused {

@@ -9,7 +9,6 @@ use super::GpuError;
 use super::context::GpuContext;
 use super::layout::GpuVertex;
 use super::pack::{ChunkBuilder, ChunkLimits, check_gpu_fit};
-use super::tessellator::Tessellator;
 use crate::geom::{BezierSegment, locate};
 use crate::scene::Color;
 
@@ -59,7 +58,7 @@ pub fn evaluate_with_limits(
         }
     }
     let chunks = builder.finish();
-    let tessellator = Tessellator::new(&ctx.device);
+    let tessellator = &ctx.tessellator;
     let mut all: Vec<GpuVertex> = Vec::with_capacity(params.iter().map(Vec::len).sum());
     ctx.check_health()?;
     let read = tessellator.tessellate_and_read(&ctx.device, &ctx.queue, &chunks, |_, samples| {

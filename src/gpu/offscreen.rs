@@ -34,14 +34,13 @@ pub fn render_scene(
         scene,
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )?;
-    let tessellator = Tessellator::new(&ctx.device);
     let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
-    let gpu_scene = renderer.upload(&ctx.device, &tessellator, &prepared);
+    let gpu_scene = renderer.upload(&ctx.device, &ctx.tessellator, &prepared);
     let viewport = DVec2::new(f64::from(width), f64::from(height));
     let camera = camera.unwrap_or_else(|| scene.camera(viewport));
     render_uploaded(
         ctx,
-        &tessellator,
+        &ctx.tessellator,
         &renderer,
         &gpu_scene,
         &camera,

@@ -108,9 +108,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     std::hint::black_box(&out);
 
     // GPU compute only.
-    let tessellator = Tessellator::new(&ctx.device);
+    let tessellator = &ctx.tessellator;
     let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
-    let gpu_scene = renderer.upload(&ctx.device, &tessellator, &prepared);
+    let gpu_scene = renderer.upload(&ctx.device, tessellator, &prepared);
     let timestamps = Timestamps::new(&ctx);
     let mut gpu_pass_ns = Vec::new();
     let mut wall = Duration::ZERO;
@@ -155,7 +155,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let frame_fps = if args.frames > 0 {
         Some(draw_frames(
             &ctx,
-            &tessellator,
+            tessellator,
             &renderer,
             &gpu_scene,
             &scene,
