@@ -6,6 +6,7 @@
 //! self-contained: its records index its own points and samples, and its samples' tags
 //! index its own style table.
 
+use glam::DVec3;
 use thiserror::Error;
 
 pub use super::chunks::{BatchBuilder, ChunkBuilder, ChunkLimits, LineBatch, Placement, TessChunk};
@@ -96,19 +97,28 @@ pub fn check_gpu_fit(curve: usize, segments: &[BezierSegment]) -> Result<(), Pac
                 max: MAX_GPU_DEGREE,
             });
         }
-        for (point, p) in s.bezier.points().iter().enumerate() {
-            if let Some(&value) = p.to_array().iter().find(|c| c.abs() > GPU_COORDINATE_LIMIT) {
-                return Err(PackError::CoordinateTooLarge {
-                    curve,
-                    segment,
-                    point,
-                    value,
-                    limit: GPU_COORDINATE_LIMIT,
-                });
-            }
+        if let Some((point, value)) = first_too_large(s.bezier.points()) {
+            return Err(PackError::CoordinateTooLarge {
+                curve,
+                segment,
+                point,
+                value,
+                limit: GPU_COORDINATE_LIMIT,
+            });
         }
     }
     Ok(())
+}
+
+/// The first point with a coordinate beyond [`GPU_COORDINATE_LIMIT`]: its index and that
+/// coordinate.
+fn first_too_large(points: &[DVec3]) -> Option<(usize, f64)> {
+    points.iter().enumerate().find_map(|(i, p)| {
+        p.to_array()
+            .into_iter()
+            .find(|c| c.abs() > GPU_COORDINATE_LIMIT)
+            .map(|c| (i, c))
+    })
 }
 
 /// Checks every annotation point against [`GPU_COORDINATE_LIMIT`].
@@ -118,15 +128,13 @@ pub fn check_gpu_fit(curve: usize, segments: &[BezierSegment]) -> Result<(), Pac
 pub fn check_annotations(scene: &Scene) -> Result<(), PackError> {
     for (annotation, a) in scene.annotations.iter().enumerate() {
         let (AnnotationShape::Polyline(points) | AnnotationShape::Points(points)) = &a.shape;
-        for (point, p) in points.iter().enumerate() {
-            if let Some(&value) = p.to_array().iter().find(|c| c.abs() > GPU_COORDINATE_LIMIT) {
-                return Err(PackError::AnnotationTooLarge {
-                    annotation,
-                    point,
-                    value,
-                    limit: GPU_COORDINATE_LIMIT,
-                });
-            }
+        if let Some((point, value)) = first_too_large(points) {
+            return Err(PackError::AnnotationTooLarge {
+                annotation,
+                point,
+                value,
+                limit: GPU_COORDINATE_LIMIT,
+            });
         }
     }
     Ok(())
@@ -197,30 +205,31 @@ pub fn repack_points(
 /// [`PackError`] when a segment's degree is over the GPU maximum or a coordinate beyond
 /// [`GPU_COORDINATE_LIMIT`].
 pub fn prepare_scene(scene: &Scene, limits: ChunkLimits) -> Result<PreparedScene, PackError> {
-    // The sample total first, before any buffer is built.
+    // Lower, check and count first: the sample total is checked before any buffer is
+    // built.
+    let mut lowered = Vec::with_capacity(scene.curves.len());
     let mut total = 0u64;
     for (index, sc) in scene.curves.iter().enumerate() {
+        let segments = sc.curve.lower();
+        check_gpu_fit(index, &segments)?;
         let samples = scene.samples_for(index);
-        for seg in sc.curve.lower() {
-            total += u64::from(samples.unwrap_or_else(|| auto_samples(seg.bezier.points())));
-        }
+        let counts: Vec<u32> = segments
+            .iter()
+            .map(|seg| samples.unwrap_or_else(|| auto_samples(seg.bezier.points())))
+            .collect();
+        total += counts.iter().map(|&c| u64::from(c)).sum::<u64>();
+        lowered.push((segments, counts));
     }
     crate::limits::SAMPLES
         .check(total)
         .map_err(|e| PackError::TooManySamples(e.to_string()))?;
     let mut chunks = ChunkBuilder::new(limits);
     let mut sample_counts = Vec::with_capacity(scene.curves.len());
-    for (index, sc) in scene.curves.iter().enumerate() {
-        let segments = sc.curve.lower();
-        check_gpu_fit(index, &segments)?;
+    for (index, (sc, (segments, counts))) in scene.curves.iter().zip(lowered).enumerate() {
         let style = GpuLineStyle::solid(sc.style.color, sc.style.width);
-        let samples = scene.samples_for(index);
-        let mut counts = Vec::with_capacity(segments.len());
-        for seg in &segments {
+        for (seg, &count) in segments.iter().zip(&counts) {
             chunks.begin_segment(index, style, seg.bezier.points())?;
-            let count = samples.unwrap_or_else(|| auto_samples(seg.bezier.points()));
             chunks.add_samples(count, 0.0, 1.0);
-            counts.push(count);
         }
         sample_counts.push(counts);
     }
@@ -241,7 +250,6 @@ pub fn prepare_scene(scene: &Scene, limits: ChunkLimits) -> Result<PreparedScene
 mod tests {
     use super::*;
     use crate::geom::Bezier;
-    use glam::DVec3;
 
     fn style() -> GpuLineStyle {
         GpuLineStyle::solid(Color::WHITE, 1.0)
