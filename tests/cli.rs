@@ -4,20 +4,14 @@
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 use serde_json::Value;
 use splinescope::geom::{Aabb, ParamCurve};
 use splinescope::image::RgbaImage;
 use splinescope::scene::Scene;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_splinescope"))
-}
-
-fn run(args: &[&str]) -> Output {
-    bin().args(args).output().expect("run splinescope")
-}
+use common::{bin, run};
 
 fn scene_path(name: &str) -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))
