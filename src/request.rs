@@ -111,7 +111,7 @@ fn request_path(node: &Node<'_>) -> String {
 }
 
 /// Every number a request produced is finite: the report (where `null` only ever stands
-/// for "not applicable" under `reachable_limited`) and every curve of the scene, with its
+/// for "not applicable" under `reachable_limited`) and the curve it changed, with its
 /// lowering. Otherwise the request is refused, named, and nothing is written.
 fn check_outputs(scene: &Scene, node: &Node<'_>, report: &Value) -> Result<(), RequestError> {
     fn walk(v: &Value, at: &str, bad: &mut Option<String>) {
@@ -145,26 +145,27 @@ fn check_outputs(scene: &Scene, node: &Node<'_>, report: &Value) -> Result<(), R
             ),
         });
     }
-    for (i, c) in scene.curves.iter().enumerate() {
-        let finite = c.curve.control_points().iter().all(|p| p.is_finite());
-        if let Err(e) = c.curve.check_derived().and_then(|()| {
-            if finite {
-                Ok(())
-            } else {
-                Err(crate::geom::GeomError::DerivedNotFinite {
-                    field: "points",
-                    what: "a control point".into(),
-                    value: f64::NAN,
-                })
-            }
-        }) {
-            return Err(RequestError {
-                path: request_path(node),
-                message: format!(
-                    "the solve left curves[{i}] with a value that is not finite ({e}); nothing was changed"
-                ),
-            });
-        }
+    // A solve changes only the curve it names: that one is checked, not the whole scene.
+    let Some(c) = report["curve"]
+        .as_u64()
+        .and_then(|i| scene.curves.get(i as usize))
+    else {
+        return Ok(());
+    };
+    let control = c
+        .curve
+        .control_points()
+        .iter()
+        .position(|p| !p.is_finite())
+        .map(|j| format!("control point {j} is not a finite number"));
+    if let Some(why) = control.or_else(|| c.curve.check_derived().err().map(|e| e.to_string())) {
+        return Err(RequestError {
+            path: request_path(node),
+            message: format!(
+                "the solve left curves[{}] with a value that is not finite ({why}); nothing was changed",
+                report["curve"]
+            ),
+        });
     }
     Ok(())
 }
