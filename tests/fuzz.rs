@@ -302,7 +302,8 @@ impl Fuzz {
                 if c.curve.control_points().len() <= 200
                     && let Ok(report) =
                         splinescope::inspect::curve_report(i, c.name.as_deref(), &c.curve)
-                    && let Some(at) = non_finite_in(&report.to_string())
+                    && let Some(at) =
+                        non_finite_in(&serde_json::to_string(&report).unwrap_or_default())
                 {
                     return Err(format!("inspect curves[{i}]: non-finite at {at}"));
                 }

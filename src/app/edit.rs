@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use glam::{DVec2, DVec3};
 
 use crate::camera::Camera;
-use crate::geom::{Bezier, Curve};
+use crate::geom::{Bezier, Control, ControlValue, Curve};
 use crate::scene::{Scene, SceneCurve};
 use crate::solve::nearest;
 use crate::solve::shape::{SingleTargetOptions, single_target};
@@ -270,6 +270,26 @@ impl Editor {
         sc.curve = value;
         self.set(curve, sc);
         self.message = None;
+    }
+
+    /// Applies one of a family's panel controls ([`crate::geom::Family::controls`]) to
+    /// curve `index`. A refused value (or one whose derived data overflows) leaves the
+    /// curve as it was and sets [`Editor::message`]; a discrete control (button, toggle,
+    /// choice) is one edit on its own, a stream of slider changes is one edit together.
+    pub fn apply_control(&mut self, index: usize, control: &Control, value: ControlValue) {
+        let result = self.scene.curves[index]
+            .curve
+            .apply_control(control.id, value)
+            .and_then(|c| c.check_derived().map(|()| c));
+        match result {
+            Ok(curve) => {
+                self.set_curve(index, curve, &control.id.to_string());
+                if control.kind.is_discrete() {
+                    self.finish();
+                }
+            }
+            Err(e) => self.message = Some(format!("curves[{index}]: {}: {e}", control.label)),
+        }
     }
 
     /// Commits the open edit, if it changed anything (pointer released, another control

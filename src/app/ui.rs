@@ -6,9 +6,7 @@ use std::time::Instant;
 use glam::DVec3;
 
 use crate::camera::Camera;
-use crate::geom::{
-    CubicInterpolation, Curve, Lower, Modification, ModifiedBezier, Nubmp, ParamCurve, Reading,
-};
+use crate::geom::{Control, ControlKind, ControlValue, Lower, ParamCurve};
 use crate::scene::{Scene, SceneCurve};
 
 use super::Toggles;
@@ -236,84 +234,69 @@ fn edit_section(ui: &mut egui::Ui, editor: &mut Editor, actions: &mut Actions) {
         sc.name.as_deref().unwrap_or("unnamed"),
         sc.curve.family()
     ));
-    match &sc.curve {
-        Curve::Bezier(b) => {
-            ui.small(format!("degree {}", b.degree()));
-            if ui
-                .button("elevate degree")
-                .on_hover_text("the same curve with one more control point")
-                .clicked()
-            {
-                editor.set_curve(index, Curve::Bezier(b.elevate()), "elevate");
-                editor.finish();
-            }
-        }
-        Curve::Modified(m) => {
-            let mut t_star = m.t_star();
-            let slider = egui::Slider::new(&mut t_star, 0.01..=0.99)
-                .clamping(egui::SliderClamping::Never)
-                .text("t*");
-            if ui.add(slider).changed() {
-                apply(
-                    editor,
-                    index,
-                    "t*",
-                    ModifiedBezier::try_new(m.base().clone(), t_star, m.v()).map(Curve::Modified),
-                );
-            }
-            let mut v = m.v();
-            if vector_row(ui, "v", &mut v) {
-                apply(
-                    editor,
-                    index,
-                    "v",
-                    ModifiedBezier::try_new(m.base().clone(), m.t_star(), v).map(Curve::Modified),
-                );
-            }
-        }
-        Curve::Interpolation(c) => {
-            let rebuild = |m: Option<Modification>| {
-                CubicInterpolation::try_new(c.points().to_vec(), Some(c.params().to_vec()), m)
-                    .map(Curve::Interpolation)
-            };
-            let mut modified = c.modification().is_some();
-            if ui.checkbox(&mut modified, "modified (paper 002)").changed() {
-                let m = modified.then_some(Modification {
-                    t_star: 0.5,
-                    v: DVec3::ZERO,
-                    reading: Reading::Paper,
-                });
-                apply(editor, index, "modified", rebuild(m));
-                editor.finish();
-            }
-            if let Some(m) = c.modification() {
-                let mut next = m;
-                let slider = egui::Slider::new(&mut next.t_star, 0.01..=0.99)
-                    .clamping(egui::SliderClamping::Never)
-                    .text("t*");
-                let mut changed = ui.add(slider).changed();
-                changed |= vector_row(ui, "v", &mut next.v);
-                ui.horizontal(|ui| {
-                    changed |= ui
-                        .radio_value(&mut next.reading, Reading::Paper, "paper")
-                        .changed();
-                    changed |= ui
-                        .radio_value(&mut next.reading, Reading::BumpAdded, "bump added")
-                        .changed();
-                });
-                if changed {
-                    apply(editor, index, "modification", rebuild(Some(next)));
+    ui.small(sc.curve.summary());
+    egui::ScrollArea::vertical()
+        .id_salt("controls")
+        .max_height(240.0)
+        .show(ui, |ui| {
+            for control in sc.curve.controls() {
+                if let Some(value) = control_widget(ui, &control) {
+                    editor.apply_control(index, &control, value);
                 }
             }
+        });
+}
+
+/// Draws one of a family's controls; the value the user gave, if any.
+fn control_widget(ui: &mut egui::Ui, control: &Control) -> Option<ControlValue> {
+    let hint = control.hint.as_deref().unwrap_or_default();
+    match &control.kind {
+        ControlKind::Note { warning } => {
+            let color = if *warning {
+                egui::Color32::from_rgb(200, 40, 40)
+            } else {
+                ui.visuals().text_color()
+            };
+            ui.colored_label(color, &control.label);
+            None
         }
-        Curve::BSpline(b) => {
-            ui.small(format!(
-                "order {}, knots {:?}",
-                b.order(),
-                b.knots().knots()
-            ));
+        ControlKind::Number { value, range } => {
+            let mut v = *value;
+            // Typed values are not clamped: the family refuses invalid ones, with a message.
+            let slider = egui::Slider::new(&mut v, range.0..=range.1)
+                .clamping(egui::SliderClamping::Never)
+                .text(&control.label);
+            if !hint.is_empty() {
+                ui.small(hint);
+            }
+            ui.add(slider).changed().then_some(ControlValue::Number(v))
         }
-        Curve::Nubmp(n) => nubmp_controls(ui, editor, index, n),
+        ControlKind::Vector { value } => {
+            let mut v = *value;
+            vector_row(ui, &control.label, &mut v).then_some(ControlValue::Vector(v))
+        }
+        ControlKind::Toggle { value } => {
+            let mut on = *value;
+            ui.checkbox(&mut on, &control.label)
+                .on_hover_text(hint)
+                .changed()
+                .then_some(ControlValue::Toggle(on))
+        }
+        ControlKind::Choice { options, selected } => {
+            let mut choice = *selected;
+            ui.horizontal(|ui| {
+                ui.label(&control.label);
+                for (i, option) in options.iter().enumerate() {
+                    ui.radio_value(&mut choice, i, *option);
+                }
+            });
+            (choice != *selected).then_some(ControlValue::Choice(choice))
+        }
+        ControlKind::Action => ui
+            .button(&control.label)
+            .on_hover_text(hint)
+            .clicked()
+            .then_some(ControlValue::Press),
     }
 }
 
@@ -333,82 +316,6 @@ fn vector_row(ui: &mut egui::Ui, label: &str, v: &mut DVec3) -> bool {
         changed
     })
     .inner
-}
-
-/// Applies a panel edit, or shows why it is refused (nothing changes then).
-fn apply<E: std::fmt::Display>(
-    editor: &mut Editor,
-    index: usize,
-    key: &str,
-    result: Result<Curve, E>,
-) {
-    match result {
-        Ok(curve) => editor.set_curve(index, curve, key),
-        Err(e) => editor.message = Some(format!("curves[{index}]: {e}")),
-    }
-}
-
-/// Sliders for the shape parameters of every group (the last member absorbs), with the
-/// Theorem 1 value and permissible ranges for order 4.
-fn nubmp_controls(ui: &mut egui::Ui, editor: &mut Editor, index: usize, n: &Nubmp) {
-    ui.small(format!(
-        "order {}, {} groups, {} free parameters",
-        n.order(),
-        n.groups().len(),
-        n.free_parameter_count()
-    ));
-    if !n.is_standard() && ui.button("reset to the standard curve").clicked() {
-        // The curve's own knots gave a finite standard structure when it was built.
-        if let Ok(standard) = Nubmp::standard(n.points().to_vec(), n.knots().clone()) {
-            editor.set_curve(index, Curve::Nubmp(standard), "reset");
-            editor.finish();
-        }
-    }
-    egui::ScrollArea::vertical()
-        .id_salt("groups")
-        .max_height(220.0)
-        .show(ui, |ui| {
-            for (j, g) in n.groups().iter().enumerate() {
-                if !g.effective || g.members.len() < 2 {
-                    continue;
-                }
-                let vd = n.vd_value(j);
-                let title = match vd {
-                    Some(v) => format!("A_{j}: Theorem 1 value {v:.3}"),
-                    None => format!("A_{j}"),
-                };
-                let color = if vd.is_some_and(|v| v > 1.0) {
-                    egui::Color32::from_rgb(200, 40, 40)
-                } else {
-                    ui.visuals().text_color()
-                };
-                ui.colored_label(color, title);
-                let last = g.members[g.members.len() - 1];
-                for &i in &g.members[..g.members.len() - 1] {
-                    let (Some(mut a), Some(b)) = (g.value(i), g.value(last)) else {
-                        continue;
-                    };
-                    let pair = a + b;
-                    // Typed values are not clamped: the model refuses invalid ones, with a message.
-                    let slider = egui::Slider::new(&mut a, 0.0..=pair)
-                        .clamping(egui::SliderClamping::Never)
-                        .text(format!("a^{i}_{j}"));
-                    if let Ok(Some(r)) = n.permissible_range(j, i, last) {
-                        ui.small(format!(
-                            "VD range [{:.4}, {:.4}] (a^{last}_{j} absorbs)",
-                            r.min, r.max
-                        ));
-                    }
-                    if ui.add(slider).changed() {
-                        let mut next = n.clone();
-                        let result = next
-                            .set_parameter(j, i, a, last)
-                            .map(|()| Curve::Nubmp(next));
-                        apply(editor, index, &format!("a^{i}_{j}"), result);
-                    }
-                }
-            }
-        });
 }
 
 #[cfg(test)]

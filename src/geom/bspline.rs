@@ -6,7 +6,12 @@ use glam::DVec3;
 
 use super::bezier::check_finite;
 use super::exact::Scalar;
-use super::{Bezier, BezierSegment, GeomError, KnotVector, Lower, ParamCurve};
+use schemars::JsonSchema;
+use serde::Serialize;
+
+use super::family::{AtTau, Family, FamilyDetails};
+use super::nubmp::{NubmpDetails, NubmpStructure, SplineDetails, nubmp_at_tau};
+use super::{Bezier, BezierSegment, GeomError, KnotVector, Lower, Nubmp, ParamCurve};
 
 /// A non-uniform B-spline curve of order `k` (degree `k − 1`):
 ///
@@ -404,6 +409,62 @@ impl ParamCurve for BSpline {
 impl Lower for BSpline {
     fn lower(&self) -> Vec<BezierSegment> {
         self.bezier_segments()
+    }
+}
+
+impl Family for BSpline {
+    const NAME: &'static str = "bspline";
+    type Details = BSplineDetails;
+
+    fn control_points(&self) -> &[DVec3] {
+        self.points()
+    }
+
+    fn with_control_points(&self, points: Vec<DVec3>) -> Result<BSpline, GeomError> {
+        BSpline::from_parts(points, self.knots.clone())
+    }
+
+    fn derived_field(&self) -> &'static str {
+        "knots"
+    }
+
+    fn summary(&self) -> String {
+        format!("order {}, knots {:?}", self.order(), self.knots.knots())
+    }
+
+    /// A B-spline is the standard NUBMP curve on its knots: that structure is reported.
+    fn details(&self) -> Result<BSplineDetails, GeomError> {
+        let standard = self.standard_nubmp()?;
+        Ok(BSplineDetails(NubmpDetails {
+            spline: SplineDetails::of(&self.knots),
+            structure: NubmpStructure::of(&standard),
+        }))
+    }
+
+    fn at_tau(&self, tau: f64) -> Result<Option<AtTau>, GeomError> {
+        nubmp_at_tau(&self.standard_nubmp()?, tau).map(Some)
+    }
+}
+
+impl BSpline {
+    /// The standard NUBMP curve on this spline's points and knots (the same curve).
+    ///
+    /// # Errors
+    /// [`GeomError::DerivedNotFinite`] when its structure overflows `f64`.
+    pub fn standard_nubmp(&self) -> Result<Nubmp, GeomError> {
+        Nubmp::standard(self.points().to_vec(), self.knots.clone())
+    }
+}
+
+/// What `inspect` reports for a B-spline: the structure of the standard NUBMP curve on its
+/// knots.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[serde(transparent)]
+pub struct BSplineDetails(pub NubmpDetails);
+
+impl From<BSplineDetails> for FamilyDetails {
+    fn from(d: BSplineDetails) -> FamilyDetails {
+        FamilyDetails::BSpline(d)
     }
 }
 

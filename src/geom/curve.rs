@@ -2,13 +2,16 @@
 
 use glam::DVec3;
 
+use super::family::{AtTau, Control, ControlId, ControlValue, Family, FamilyDetails};
 use super::{
     Aabb, BSpline, Bezier, BezierSegment, CubicInterpolation, GeomError, Lower, ModifiedBezier,
     Nubmp, ParamCurve,
 };
 
-/// Every curve family splinescope knows. Each one evaluates exactly in `f64`
-/// ([`ParamCurve`]) and lowers exactly to Bézier segments ([`Lower`]).
+/// Every curve family splinescope knows. Each one implements [`Family`] in its own file:
+/// it evaluates exactly in `f64` ([`ParamCurve`]), lowers exactly to Bézier segments
+/// ([`Lower`]) and describes its overlays, reports and panel controls. This enum and its
+/// dispatch macro are the only places that list the families.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Curve {
     /// A Bézier curve of any degree (all papers).
@@ -57,6 +60,7 @@ macro_rules! each_family {
         }
     };
 }
+pub(crate) use each_family;
 
 impl Curve {
     /// Checks the values derived from the input: every control point of the lowering
@@ -68,13 +72,8 @@ impl Curve {
     /// # Errors
     /// [`GeomError::DerivedNotFinite`] naming the segment and point.
     pub fn check_derived(&self) -> Result<(), GeomError> {
-        // The input the overflow most likely comes from; interpolation tangents depend on
-        // points and parameters alike, so the curve itself is named.
-        let field = match self {
-            Curve::Interpolation(_) => "",
-            Curve::BSpline(_) | Curve::Nubmp(_) => "knots",
-            _ => "points",
-        };
+        // The input the overflow most likely comes from.
+        let field = each_family!(self, c => c.derived_field());
         for (s, seg) in self.lower().iter().enumerate() {
             for (j, p) in seg.bezier.points().iter().enumerate() {
                 if let Some(&value) = p.to_array().iter().find(|v| !v.is_finite()) {
@@ -96,29 +95,19 @@ impl Curve {
         Ok(())
     }
 
-    /// The family's name as written in scene files (`"bezier"`, …).
+    /// The family's name as written in scene files (`"bezier"`, …): [`Family::NAME`].
     #[must_use]
     pub fn family(&self) -> &'static str {
-        match self {
-            Curve::Bezier(_) => "bezier",
-            Curve::Modified(_) => "modified_bezier",
-            Curve::Interpolation(_) => "interpolation",
-            Curve::BSpline(_) => "bspline",
-            Curve::Nubmp(_) => "nubmp",
+        fn name<F: Family>(_: &F) -> &'static str {
+            F::NAME
         }
+        each_family!(self, c => name(c))
     }
 
-    /// The points the user places (drawn as dots): control points, or the interpolated
-    /// points.
+    /// The points the user places (drawn as dots): [`Family::control_points`].
     #[must_use]
     pub fn control_points(&self) -> &[DVec3] {
-        match self {
-            Curve::Bezier(b) => b.points(),
-            Curve::Modified(m) => m.base().points(),
-            Curve::Interpolation(c) => c.points(),
-            Curve::BSpline(b) => b.points(),
-            Curve::Nubmp(n) => n.points(),
-        }
+        each_family!(self, c => c.control_points())
     }
 
     /// The same curve with control point `index` (as listed by [`Curve::control_points`])
@@ -136,89 +125,82 @@ impl Curve {
         let mut pts = self.control_points().to_vec();
         pts[index] = p;
         crate::geom::bezier::check_finite(&pts)?;
-        Ok(match self {
-            Curve::Bezier(_) => Curve::Bezier(Bezier::new(pts)),
-            Curve::Modified(m) => Curve::Modified(ModifiedBezier::try_new(
-                Bezier::new(pts),
-                m.t_star(),
-                m.v(),
-            )?),
-            Curve::Interpolation(c) => Curve::Interpolation(CubicInterpolation::try_new(
-                pts,
-                Some(c.params().to_vec()),
-                c.modification(),
-            )?),
-            Curve::BSpline(b) => Curve::BSpline(BSpline::from_parts(pts, b.knots().clone())?),
-            Curve::Nubmp(n) => Curve::Nubmp(n.with_points(pts)?),
-        })
+        each_family!(self, c => c.with_control_points(pts).map(Into::into))
     }
 
-    /// The polylines that explain the curve: its control polygon, and per family more
-    /// (the dual polygon, tangent handles, the bump vector).
+    /// The polylines that explain the curve: [`Family::overlays`].
     #[must_use]
     pub fn overlays(&self) -> Vec<OverlayPolyline> {
-        let polygon = |points: &[DVec3]| OverlayPolyline {
-            kind: OverlayKind::ControlPolygon,
-            points: points.to_vec(),
-        };
-        match self {
-            Curve::Bezier(b) => vec![polygon(b.points())],
-            Curve::BSpline(b) => vec![polygon(b.points())],
-            Curve::Modified(m) => {
-                let q = m.base().eval(m.t_star());
-                vec![
-                    polygon(m.base().points()),
-                    OverlayPolyline {
-                        kind: OverlayKind::BumpVector,
-                        points: vec![q, q + m.v()],
-                    },
-                ]
-            }
-            Curve::Interpolation(c) => c
-                .pieces()
-                .iter()
-                .map(|p| OverlayPolyline {
-                    kind: OverlayKind::TangentHandles,
-                    points: p.points().to_vec(),
-                })
-                .collect(),
-            Curve::Nubmp(n) => vec![
-                polygon(n.points()),
-                OverlayPolyline {
-                    kind: OverlayKind::DualPolygon,
-                    points: n.dual_points().to_vec(),
-                },
-            ],
-        }
+        each_family!(self, c => c.overlays())
     }
 
-    /// A box holding the whole curve. Bézier, B-spline and NUBMP curves lie in the convex
-    /// hull of their control points; the modified and interpolating curves are bounded by
-    /// their lowered pieces' control points.
+    /// A box holding the whole curve: [`Family::control_box`].
     #[must_use]
     pub fn control_box(&self) -> Aabb {
-        match self {
-            Curve::Modified(_) | Curve::Interpolation(_) => self
-                .lower()
-                .iter()
-                .fold(Aabb::EMPTY, |b, s| b.union(s.bezier.control_box())),
-            _ => Aabb::from_points(self.control_points()),
-        }
+        each_family!(self, c => c.control_box())
     }
 
     /// Whether every point has `z = 0`.
     #[must_use]
     pub fn is_planar(&self) -> bool {
-        let planar = |pts: &[DVec3]| pts.iter().all(|p| p.z == 0.0);
-        match self {
-            Curve::Modified(m) => planar(m.base().points()) && m.v().z == 0.0,
-            Curve::Interpolation(c) => {
-                planar(c.points()) && c.modification().is_none_or(|m| m.v.z == 0.0)
-            }
-            _ => planar(self.control_points()),
-        }
+        each_family!(self, c => c.is_planar())
+    }
+
+    /// One line describing the curve's structure: [`Family::summary`].
+    #[must_use]
+    pub fn summary(&self) -> String {
+        each_family!(self, c => c.summary())
+    }
+
+    /// The family's derived data for `inspect`: [`Family::details`].
+    ///
+    /// # Errors
+    /// A derived structure that overflows `f64`.
+    pub fn details(&self) -> Result<FamilyDetails, GeomError> {
+        each_family!(self, c => c.details().map(Into::into))
+    }
+
+    /// What the structure allows at `τ`: [`Family::at_tau`].
+    ///
+    /// # Errors
+    /// `τ` outside the domain, or a derived structure that overflows.
+    pub fn at_tau(&self, tau: f64) -> Result<Option<AtTau>, GeomError> {
+        each_family!(self, c => c.at_tau(tau))
+    }
+
+    /// The panel's controls: [`Family::controls`].
+    #[must_use]
+    pub fn controls(&self) -> Vec<Control> {
+        each_family!(self, c => c.controls())
+    }
+
+    /// The curve with a control changed: [`Family::apply_control`].
+    ///
+    /// # Errors
+    /// An unknown control, or a value the family refuses.
+    pub fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Curve, GeomError> {
+        each_family!(self, c => c.apply_control(id, value).map(Into::into))
     }
 }
+
+/// Each family converts into the enum.
+macro_rules! into_curve {
+    ($($family:ident => $variant:ident),* $(,)?) => {
+        $(impl From<$family> for Curve {
+            fn from(c: $family) -> Curve {
+                Curve::$variant(c)
+            }
+        })*
+    };
+}
+
+into_curve!(
+    Bezier => Bezier,
+    ModifiedBezier => Modified,
+    CubicInterpolation => Interpolation,
+    BSpline => BSpline,
+    Nubmp => Nubmp,
+);
 
 impl ParamCurve for Curve {
     fn domain(&self) -> (f64, f64) {

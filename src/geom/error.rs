@@ -228,6 +228,24 @@ pub enum GeomError {
         /// The group.
         group: usize,
     },
+    /// A parameter outside the curve's domain.
+    #[error("{value_} is outside the domain [{start_}, {end_}]", value_ = crate::num::Num(*.value), start_ = crate::num::Num(*.start), end_ = crate::num::Num(*.end))]
+    ParameterOutsideDomain {
+        /// The parameter.
+        value: f64,
+        /// The domain's start.
+        start: f64,
+        /// The domain's end.
+        end: f64,
+    },
+    /// A panel control the curve does not have, or a value of the wrong kind for it.
+    #[error("{family} curves have no control {control}")]
+    UnknownControl {
+        /// The curve's family.
+        family: &'static str,
+        /// The control and the value given.
+        control: String,
+    },
 }
 
 impl GeomError {
@@ -261,6 +279,9 @@ impl GeomError {
             | GeomError::SameAbsorber { .. }
             | GeomError::AbsorberNegative { .. }
             | GeomError::GroupOutsideDomain { .. } => "shape".to_owned(),
+            GeomError::ParameterOutsideDomain { .. } | GeomError::UnknownControl { .. } => {
+                String::new()
+            }
         }
     }
 }

@@ -9,9 +9,11 @@
 pub mod bernstein;
 pub mod bezier;
 pub mod bspline;
+pub mod cubic_region;
 pub mod curve;
 pub mod error;
 pub mod exact;
+pub mod family;
 pub mod interp;
 pub mod knots;
 pub mod lowering;
@@ -20,8 +22,10 @@ pub mod nubmp;
 
 pub use bezier::{Aabb, Bezier};
 pub use bspline::BSpline;
+pub(crate) use curve::each_family;
 pub use curve::{Curve, OverlayKind, OverlayPolyline};
 pub use error::GeomError;
+pub use family::{Control, ControlId, ControlKind, ControlValue, Family, FamilyDetails};
 pub use interp::{CubicInterpolation, Modification, Reading};
 pub use knots::KnotVector;
 pub use lowering::{BezierSegment, Lower, locate};

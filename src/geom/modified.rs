@@ -4,7 +4,15 @@
 
 use glam::DVec3;
 
-use super::{Bezier, BezierSegment, GeomError, Lower, ParamCurve};
+use schemars::JsonSchema;
+use serde::Serialize;
+
+use super::family::{
+    Control, ControlId, ControlKind, ControlValue, Family, FamilyDetails, Xyz, unknown_control,
+};
+use super::{
+    Aabb, Bezier, BezierSegment, GeomError, Lower, OverlayKind, OverlayPolyline, ParamCurve,
+};
 
 /// The bump `S` of paper 002 for `t* ∈ (0, 1)`:
 ///
@@ -182,6 +190,133 @@ impl Lower for ModifiedBezier {
                 t1: 1.0,
             },
         ]
+    }
+}
+
+/// The control box of a curve bounded by its lowered pieces' control points.
+pub(crate) fn lowered_box(curve: &impl Lower) -> Aabb {
+    curve
+        .lower()
+        .iter()
+        .fold(Aabb::EMPTY, |b, s| b.union(s.bezier.control_box()))
+}
+
+impl Family for ModifiedBezier {
+    const NAME: &'static str = "modified_bezier";
+    type Details = ModifiedDetails;
+
+    fn control_points(&self) -> &[DVec3] {
+        self.base.points()
+    }
+
+    fn with_control_points(&self, points: Vec<DVec3>) -> Result<ModifiedBezier, GeomError> {
+        ModifiedBezier::try_new(Bezier::try_new(points)?, self.t_star, self.v)
+    }
+
+    fn overlays(&self) -> Vec<OverlayPolyline> {
+        let q = self.base.eval(self.t_star);
+        vec![
+            OverlayPolyline {
+                kind: OverlayKind::ControlPolygon,
+                points: self.base.points().to_vec(),
+            },
+            OverlayPolyline {
+                kind: OverlayKind::BumpVector,
+                points: vec![q, q + self.v],
+            },
+        ]
+    }
+
+    /// The modified curve leaves its base's hull: it is bounded by its two pieces.
+    fn control_box(&self) -> Aabb {
+        lowered_box(self)
+    }
+
+    fn is_planar(&self) -> bool {
+        self.base.points().iter().all(|p| p.z == 0.0) && self.v.z == 0.0
+    }
+
+    fn summary(&self) -> String {
+        format!("degree {}, t* = {}", self.base.degree(), self.t_star)
+    }
+
+    fn details(&self) -> Result<ModifiedDetails, GeomError> {
+        Ok(ModifiedDetails {
+            degree: self.base.degree(),
+            t_star: self.t_star,
+            v: self.v.to_array(),
+            peak: Peak {
+                t: self.t_star,
+                q: self.base.eval(self.t_star).to_array(),
+                r: self.eval(self.t_star).to_array(),
+            },
+        })
+    }
+
+    fn controls(&self) -> Vec<Control> {
+        vec![
+            Control {
+                id: ControlId::new("t_star"),
+                label: "t*".into(),
+                hint: Some("where the bump peaks, in (0, 1)".into()),
+                kind: ControlKind::Number {
+                    value: self.t_star,
+                    range: (0.01, 0.99),
+                },
+            },
+            Control {
+                id: ControlId::new("v"),
+                label: "v".into(),
+                hint: Some("R(t*) = Q(t*) + v".into()),
+                kind: ControlKind::Vector { value: self.v },
+            },
+        ]
+    }
+
+    fn apply_control(
+        &self,
+        id: ControlId,
+        value: ControlValue,
+    ) -> Result<ModifiedBezier, GeomError> {
+        match (id.key, value) {
+            ("t_star", ControlValue::Number(t)) => {
+                ModifiedBezier::try_new(self.base.clone(), t, self.v)
+            }
+            ("v", ControlValue::Vector(v)) => {
+                ModifiedBezier::try_new(self.base.clone(), self.t_star, v)
+            }
+            _ => Err(unknown_control(Self::NAME, id, value)),
+        }
+    }
+}
+
+/// What `inspect` reports for a modified Bézier curve.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct ModifiedDetails {
+    /// The base curve's degree `n`.
+    pub degree: usize,
+    /// `t*`.
+    pub t_star: f64,
+    /// `v`.
+    pub v: Xyz,
+    /// The bump's peak: `Q(t*)` and `R(t*) = Q(t*) + v`.
+    pub peak: Peak,
+}
+
+/// The peak of a bump.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct Peak {
+    /// `t*`.
+    pub t: f64,
+    /// `Q(t*)`.
+    pub q: Xyz,
+    /// `R(t*)`.
+    pub r: Xyz,
+}
+
+impl From<ModifiedDetails> for FamilyDetails {
+    fn from(d: ModifiedDetails) -> FamilyDetails {
+        FamilyDetails::Modified(d)
     }
 }
 

@@ -1,19 +1,19 @@
 //! Reading and writing the JSON scene format with path-naming errors (the reader walks the
 //! parsed value with [`crate::jsonread`]).
 
-use glam::{DVec2, DVec3};
-use serde_json::{Map, Value};
+use glam::DVec2;
+use serde_json::Value;
 
 use crate::jsonread::{Node, Obj, describe, parse_document};
 
+use super::codec::{self, geom_error};
+use super::doc::{
+    AnnotationDoc, AnnotationShapeDoc, Auto, CameraDoc, ColorDoc, CurveDoc, PointDoc, SamplesDoc,
+    SceneDoc, StyleDoc, ViewDoc,
+};
 use super::{
     Annotation, AnnotationShape, Color, FORMAT_VERSION, MAX_SAMPLES_PER_SEGMENT, Scene, SceneCurve,
     SceneError, SceneErrorKind, Style, ViewSpec,
-};
-use crate::geom::exact::{Rational, parse_decimal};
-use crate::geom::{
-    BSpline, Bezier, CubicInterpolation, Curve, GeomError, KnotVector, Modification,
-    ModifiedBezier, Nubmp, Reading,
 };
 
 /// Parses and validates a scene from JSON text.
@@ -199,9 +199,6 @@ fn decode_view(node: &Node<'_>) -> Result<ViewSpec, SceneError> {
     }
 }
 
-/// The fields every curve object may have, whatever its family.
-const COMMON_CURVE_FIELDS: [&str; 3] = ["type", "name", "style"];
-
 fn decode_curve(node: &Node<'_>, index: usize) -> Result<SceneCurve, SceneError> {
     let Value::Object(map) = node.value else {
         return Err(node.wrong_type("a curve object"));
@@ -212,68 +209,13 @@ fn decode_curve(node: &Node<'_>, index: usize) -> Result<SceneCurve, SceneError>
     };
     let ty = probe.req("type")?;
     let family = ty.string()?;
-    let (curve, obj) = match family {
-        "bezier" => {
-            let obj = node.object(&with_common(&["points"]))?;
-            let points = bezier_points(&obj)?;
-            let curve = Bezier::try_new(points).map_err(|e| geom_error(node, "", &e))?;
-            (Curve::Bezier(curve), obj)
-        }
-        "modified_bezier" => {
-            let obj = node.object(&with_common(&["points", "t_star", "v"]))?;
-            let points = bezier_points(&obj)?;
-            let t_star = obj.req("t_star")?.f64()?;
-            let v = obj.req("v")?.point()?;
-            let base = Bezier::try_new(points).map_err(|e| geom_error(node, "", &e))?;
-            let curve =
-                ModifiedBezier::try_new(base, t_star, v).map_err(|e| geom_error(node, "", &e))?;
-            (Curve::Modified(curve), obj)
-        }
-        "interpolation" => {
-            let obj = node.object(&with_common(&["points", "params", "modification"]))?;
-            let points = obj.req("points")?.points(2)?;
-            let params = obj.get("params").map(|n| n.numbers()).transpose()?;
-            let modification = obj
-                .get("modification")
-                .map(|n| decode_modification(&n))
-                .transpose()?;
-            let curve = CubicInterpolation::try_new(points, params, modification).map_err(|e| {
-                let prefix = match e {
-                    GeomError::TStarOutside { .. }
-                    | GeomError::NonFiniteVector { .. }
-                    | GeomError::DerivedNotFinite {
-                        field: "t_star", ..
-                    } => "modification.",
-                    _ => "",
-                };
-                geom_error(node, prefix, &e)
-            })?;
-            (Curve::Interpolation(curve), obj)
-        }
-        "bspline" => {
-            let obj = node.object(&with_common(&["points", "knots", "order"]))?;
-            let (points, knots) = decode_spline_parts(node, &obj)?;
-            let curve = BSpline::from_parts(points, knots).map_err(|e| geom_error(node, "", &e))?;
-            (Curve::BSpline(curve), obj)
-        }
-        "nubmp" => {
-            let obj = node.object(&with_common(&["points", "knots", "order", "shape"]))?;
-            let (points, knots) = decode_spline_parts(node, &obj)?;
-            let mut curve = Nubmp::standard(points, knots).map_err(|e| geom_error(node, "", &e))?;
-            if let Some(shape) = obj.get("shape") {
-                for setting in shape.array()? {
-                    apply_shape_setting(&mut curve, &setting)?;
-                }
-            }
-            (Curve::Nubmp(curve), obj)
-        }
-        other => {
-            return Err(ty.invalid(format!(
-                "unknown curve type {other:?} (expected one of: {})",
-                FAMILIES.join(", ")
-            )));
-        }
+    let Some(decoded) = codec::decode(family, node) else {
+        return Err(ty.invalid(format!(
+            "unknown curve type {family:?} (expected one of: {})",
+            codec::family_names().join(", ")
+        )));
     };
+    let (curve, obj) = decoded?;
     curve
         .check_derived()
         .map_err(|e| geom_error(node, "", &e))?;
@@ -286,162 +228,6 @@ fn decode_curve(node: &Node<'_>, index: usize) -> Result<SceneCurve, SceneError>
         Some(n) => decode_style(&n, index)?,
     };
     Ok(SceneCurve { name, curve, style })
-}
-
-/// A Bézier curve's points, its degree checked against [`crate::limits::DEGREE`].
-fn bezier_points(obj: &Obj<'_>) -> Result<Vec<glam::DVec3>, SceneError> {
-    let node = obj.req("points")?;
-    let points = node.points(2)?;
-    crate::limits::DEGREE
-        .check(points.len() as u64 - 1)
-        .map_err(|e| node.invalid(e.to_string()))?;
-    Ok(points)
-}
-
-/// The curve types the format knows.
-const FAMILIES: [&str; 5] = [
-    "bezier",
-    "modified_bezier",
-    "interpolation",
-    "bspline",
-    "nubmp",
-];
-
-fn decode_modification(node: &Node<'_>) -> Result<Modification, SceneError> {
-    let obj = node.object(&["t_star", "v", "reading"])?;
-    let reading = match obj.get("reading") {
-        None => Reading::Paper,
-        Some(n) => match n.string()? {
-            "paper" => Reading::Paper,
-            "bump_added" => Reading::BumpAdded,
-            other => {
-                return Err(n.invalid(format!(
-                    "unknown reading {other:?} (expected \"paper\" or \"bump_added\")"
-                )));
-            }
-        },
-    };
-    Ok(Modification {
-        t_star: obj.req("t_star")?.f64()?,
-        v: obj.req("v")?.point()?,
-        reading,
-    })
-}
-
-/// Points and validated knots, with the knots' exact decimal values recorded.
-fn decode_spline_parts(
-    node: &Node<'_>,
-    obj: &Obj<'_>,
-) -> Result<(Vec<glam::DVec3>, KnotVector), SceneError> {
-    let points = obj.req("points")?.points(2)?;
-    let order_node = obj.req("order")?;
-    let order = order_node.u32_in(0, u32::MAX)? as usize;
-    crate::limits::ORDER
-        .check(order as u64)
-        .map_err(|e| order_node.invalid(e.to_string()))?;
-    let knots_node = obj.req("knots")?;
-    let knots = match knots_node.value {
-        Value::String(s) if s == "clamped_uniform" => {
-            KnotVector::clamped_uniform(order, points.len())
-                .map_err(|e| geom_error(node, "", &e))?
-        }
-        Value::String(s) => {
-            return Err(knots_node.invalid(format!(
-                "unknown knot vector {s:?} (expected an array of numbers or \"clamped_uniform\")"
-            )));
-        }
-        _ => {
-            let items = knots_node.array()?;
-            let values = items.iter().map(Node::f64).collect::<Result<Vec<_>, _>>()?;
-            let exact: Option<Vec<Rational>> = items
-                .iter()
-                .map(|n| match n.value {
-                    Value::Number(x) => parse_decimal(&x.to_string()),
-                    _ => None,
-                })
-                .collect();
-            let kv = KnotVector::try_new(values, order, points.len())
-                .map_err(|e| geom_error(node, "", &e))?;
-            match exact {
-                Some(exact) => kv.with_exact(exact),
-                None => kv,
-            }
-        }
-    };
-    Ok((points, knots))
-}
-
-/// Applies one entry of a NUBMP `shape` list: `{"group": j, "values": [...]}` or
-/// `{"group": j, "member": i, "value": x, "absorber": l}`.
-fn apply_shape_setting(curve: &mut Nubmp, node: &Node<'_>) -> Result<(), SceneError> {
-    let obj = node.object(&["group", "values", "member", "value", "absorber"])?;
-    let group = obj.req("group")?.u32_in(0, u32::MAX)? as usize;
-    let at =
-        |field: &str| SceneError::new(format!("{}.{field}", node.path), SceneErrorKind::Missing);
-    let err = |field: String, e: &GeomError| {
-        SceneError::new(
-            format!("{}.{field}", node.path),
-            SceneErrorKind::Invalid(e.to_string()),
-        )
-    };
-    if let Some(values_node) = obj.get("values") {
-        for extra in ["member", "value", "absorber"] {
-            if obj.get(extra).is_some() {
-                return Err(SceneError::new(
-                    format!("{}.{extra}", node.path),
-                    SceneErrorKind::Invalid(
-                        "give either \"values\" (the whole group) or \"member\", \"value\" and \"absorber\"".into(),
-                    ),
-                ));
-            }
-        }
-        let values = values_node.numbers()?;
-        return curve.set_group(group, &values).map_err(|e| {
-            let field = match &e {
-                GeomError::NoSuchGroup { .. } | GeomError::GroupOutsideDomain { .. } => {
-                    "group".into()
-                }
-                GeomError::NegativeParameter { member, .. } => curve.groups()[group]
-                    .position(*member)
-                    .map_or("values".into(), |p| format!("values[{p}]")),
-                _ => "values".into(),
-            };
-            err(field, &e)
-        });
-    }
-    let member_node = obj.get("member").ok_or_else(|| at("member"))?;
-    let member = member_node.u32_in(0, u32::MAX)? as usize;
-    let value = obj.get("value").ok_or_else(|| at("value"))?.f64()?;
-    let absorber = obj
-        .get("absorber")
-        .ok_or_else(|| at("absorber"))?
-        .u32_in(0, u32::MAX)? as usize;
-    curve
-        .set_parameter(group, member, value, absorber)
-        .map_err(|e| {
-            let field = match &e {
-                GeomError::NoSuchGroup { .. } | GeomError::GroupOutsideDomain { .. } => "group",
-                GeomError::NotInGroup { member: m, .. } if *m == member => "member",
-                GeomError::NotInGroup { .. } | GeomError::SameAbsorber { .. } => "absorber",
-                // A negative result (for either member) comes from the value asked for.
-                _ => "value",
-            };
-            err(field.into(), &e)
-        })
-}
-
-fn with_common(fields: &[&'static str]) -> Vec<&'static str> {
-    COMMON_CURVE_FIELDS.iter().chain(fields).copied().collect()
-}
-
-fn geom_error(curve: &Node<'_>, prefix: &str, e: &GeomError) -> SceneError {
-    let field = e.field();
-    let path = if field.is_empty() {
-        curve.path.to_string()
-    } else {
-        format!("{}.{prefix}{field}", curve.path)
-    };
-    SceneError::new(path, SceneErrorKind::Invalid(e.to_string()))
 }
 
 fn decode_style(node: &Node<'_>, index: usize) -> Result<Style, SceneError> {
@@ -469,137 +255,77 @@ fn decode_style(node: &Node<'_>, index: usize) -> Result<Style, SceneError> {
     Ok(style)
 }
 
-fn point_json(p: DVec3) -> Value {
-    if p.z == 0.0 {
-        serde_json::json!([p.x, p.y])
-    } else {
-        serde_json::json!([p.x, p.y, p.z])
+/// The typed document of `scene` (what is written, and what the schema describes).
+#[must_use]
+pub fn to_doc(scene: &Scene) -> SceneDoc {
+    SceneDoc {
+        version: FORMAT_VERSION,
+        name: scene.name.clone(),
+        background: Some(ColorDoc::Hex(scene.background.to_hex())),
+        samples: Some(
+            scene
+                .samples_per_segment
+                .map_or(SamplesDoc::Auto(Auto::Auto), SamplesDoc::Count),
+        ),
+        view: Some(match scene.view {
+            ViewSpec::Auto => ViewDoc::Auto(Auto::Auto),
+            ViewSpec::TwoD { center, height } => ViewDoc::Camera(CameraDoc::TwoD {
+                center: center.to_array(),
+                height,
+            }),
+            ViewSpec::ThreeD {
+                target,
+                distance,
+                yaw_deg,
+                pitch_deg,
+                fov_deg,
+            } => ViewDoc::Camera(CameraDoc::ThreeD {
+                target: PointDoc(target.to_array().to_vec()),
+                distance,
+                yaw_deg: Some(yaw_deg),
+                pitch_deg: Some(pitch_deg),
+                fov_deg: Some(fov_deg),
+            }),
+        }),
+        curves: scene.curves.iter().map(curve_doc).collect(),
+        annotations: scene
+            .annotations
+            .iter()
+            .map(|a| AnnotationDoc {
+                shape: match &a.shape {
+                    AnnotationShape::Polyline(p) => AnnotationShapeDoc::Polyline(PointDoc::all(p)),
+                    AnnotationShape::Points(p) => AnnotationShapeDoc::Points(PointDoc::all(p)),
+                },
+                color: Some(ColorDoc::Hex(a.color.to_hex())),
+                width: Some(f64::from(a.width)),
+                label: a.label.clone(),
+            })
+            .collect(),
     }
 }
 
-fn points_json(points: &[DVec3]) -> Value {
-    Value::Array(points.iter().copied().map(point_json).collect())
-}
-
-fn curve_json(c: &SceneCurve) -> Value {
-    let mut obj = Map::new();
-    obj.insert("type".into(), c.curve.family().into());
-    if let Some(name) = &c.name {
-        obj.insert("name".into(), name.clone().into());
-    }
-    match &c.curve {
-        Curve::Bezier(b) => {
-            obj.insert("points".into(), points_json(b.points()));
-        }
-        Curve::Modified(m) => {
-            obj.insert("points".into(), points_json(m.base().points()));
-            obj.insert("t_star".into(), m.t_star().into());
-            obj.insert("v".into(), point_json(m.v()));
-        }
-        Curve::Interpolation(ip) => {
-            obj.insert("points".into(), points_json(ip.points()));
-            obj.insert("params".into(), ip.params().to_vec().into());
-            if let Some(m) = ip.modification() {
-                obj.insert(
-                    "modification".into(),
-                    serde_json::json!({
-                        "t_star": m.t_star, "v": point_json(m.v), "reading": m.reading.name()
-                    }),
-                );
-            }
-        }
-        Curve::BSpline(b) => {
-            obj.insert("points".into(), points_json(b.points()));
-            obj.insert("knots".into(), b.knots().knots().to_vec().into());
-            obj.insert("order".into(), b.order().into());
-        }
-        Curve::Nubmp(n) => {
-            obj.insert("points".into(), points_json(n.points()));
-            obj.insert("knots".into(), n.knots().knots().to_vec().into());
-            obj.insert("order".into(), n.order().into());
-            let shape: Vec<Value> = n
-                .groups()
-                .iter()
-                .enumerate()
-                .filter(|(_, g)| g.values != g.standard)
-                .map(|(j, g)| serde_json::json!({"group": j, "values": g.values}))
-                .collect();
-            if !shape.is_empty() {
-                obj.insert("shape".into(), Value::Array(shape));
-            }
-        }
-    }
+fn curve_doc(c: &SceneCurve) -> CurveDoc {
     let s = &c.style;
-    let mut style = Map::new();
-    style.insert("color".into(), s.color.to_hex().into());
-    style.insert("width".into(), f64::from(s.width).into());
-    style.insert("polygon".into(), s.show_polygon.into());
-    style.insert("points".into(), s.show_points.into());
-    if let Some(n) = s.samples {
-        style.insert("samples".into(), n.into());
+    CurveDoc {
+        family: codec::encode(&c.curve),
+        name: c.name.clone(),
+        style: Some(StyleDoc {
+            color: Some(ColorDoc::Hex(s.color.to_hex())),
+            width: Some(f64::from(s.width)),
+            polygon: Some(s.show_polygon),
+            points: Some(s.show_points),
+            samples: s.samples,
+        }),
     }
-    obj.insert("style".into(), Value::Object(style));
-    Value::Object(obj)
 }
 
 /// Writes a scene as pretty JSON in the current format version.
 #[must_use]
 pub fn to_json_string(scene: &Scene) -> String {
-    let mut obj = Map::new();
-    obj.insert("version".into(), FORMAT_VERSION.into());
-    if let Some(name) = &scene.name {
-        obj.insert("name".into(), name.clone().into());
-    }
-    obj.insert("background".into(), scene.background.to_hex().into());
-    obj.insert(
-        "samples".into(),
-        scene
-            .samples_per_segment
-            .map_or_else(|| Value::from("auto"), Value::from),
-    );
-    let view = match scene.view {
-        ViewSpec::Auto => Value::from("auto"),
-        ViewSpec::TwoD { center, height } => serde_json::json!({
-            "kind": "2d", "center": [center.x, center.y], "height": height
-        }),
-        ViewSpec::ThreeD {
-            target,
-            distance,
-            yaw_deg,
-            pitch_deg,
-            fov_deg,
-        } => serde_json::json!({
-            "kind": "3d", "target": [target.x, target.y, target.z], "distance": distance,
-            "yaw_deg": yaw_deg, "pitch_deg": pitch_deg, "fov_deg": fov_deg
-        }),
-    };
-    obj.insert("view".into(), view);
-    obj.insert(
-        "curves".into(),
-        Value::Array(scene.curves.iter().map(curve_json).collect()),
-    );
-    if !scene.annotations.is_empty() {
-        let annotations = scene
-            .annotations
-            .iter()
-            .map(|a| {
-                let mut m = Map::new();
-                match &a.shape {
-                    AnnotationShape::Polyline(p) => m.insert("polyline".into(), points_json(p)),
-                    AnnotationShape::Points(p) => m.insert("points".into(), points_json(p)),
-                };
-                m.insert("color".into(), a.color.to_hex().into());
-                m.insert("width".into(), f64::from(a.width).into());
-                if let Some(l) = &a.label {
-                    m.insert("label".into(), l.clone().into());
-                }
-                Value::Object(m)
-            })
-            .collect();
-        obj.insert("annotations".into(), Value::Array(annotations));
-    }
+    let value = serde_json::to_value(to_doc(scene))
+        .unwrap_or_else(|e| unreachable!("a scene document always serialises: {e}"));
     let mut text = String::new();
-    write_pretty(&Value::Object(obj), 0, &mut text);
+    write_pretty(&value, 0, &mut text);
     text.push('\n');
     text
 }
@@ -656,6 +382,7 @@ pub(crate) fn write_pretty(v: &Value, indent: usize, out: &mut String) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec3;
 
     fn err(text: &str) -> SceneError {
         from_json_str(text).expect_err("should be rejected")

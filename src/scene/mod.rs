@@ -4,6 +4,8 @@
 //!
 //! The format is documented in `docs/scene-format.md`.
 
+pub mod codec;
+pub mod doc;
 pub mod draw;
 pub mod gallery;
 pub mod generate;
@@ -17,7 +19,7 @@ use thiserror::Error;
 use crate::camera::{Camera, Camera2d, Camera3d};
 use crate::geom::{Aabb, Curve};
 
-pub use json::{from_json_str, pretty_json, to_json_string};
+pub use json::{from_json_str, pretty_json, to_doc, to_json_string};
 
 /// The scene format version this build reads and writes.
 pub const FORMAT_VERSION: u32 = 1;

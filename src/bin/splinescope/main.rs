@@ -10,7 +10,7 @@ use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand, ValueEnum};
 use glam::DVec3;
 
-use splinescope::geom::{Lower, ParamCurve};
+use splinescope::geom::{GeomError, Lower, ParamCurve};
 use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext};
 use splinescope::num::Num;
 use splinescope::scene::{Scene, gallery};
@@ -487,22 +487,19 @@ fn inspect(path: &Path, only: Option<usize>, tau: Option<f64>) -> Result<()> {
         let mut report = splinescope::inspect::curve_report(i, c.name.as_deref(), &c.curve)
             .with_context(|| format!("{}: curves[{i}]", path.display()))?;
         if let Some(t) = tau {
-            let (a, b) = c.curve.domain();
-            let family = c.curve.family();
-            if family == "nubmp" || family == "bspline" {
-                let Some(at) = splinescope::inspect::at_tau(&c.curve, t)
-                    .with_context(|| format!("{}: curves[{i}]", path.display()))?
-                else {
-                    bail!(
-                        "--tau {} is outside the domain [{}, {}] of curves[{i}]",
-                        Num(t),
-                        Num(a),
-                        Num(b)
-                    );
-                };
-                report["at_tau"] = at;
-            }
+            report.at_tau = c.curve.at_tau(t).map_err(|e| match e {
+                GeomError::ParameterOutsideDomain { start, end, .. } => anyhow::anyhow!(
+                    "--tau {} is outside the domain [{}, {}] of curves[{i}]",
+                    Num(t),
+                    Num(start),
+                    Num(end)
+                ),
+                other => {
+                    anyhow::Error::new(other).context(format!("{}: curves[{i}]", path.display()))
+                }
+            })?;
         }
+        let report = serde_json::to_value(&report)?;
         let text = splinescope::scene::pretty_json(&report);
         writeln!(out, "{}", if k == 0 { "" } else { "," })?;
         for (l, line) in text.lines().enumerate() {

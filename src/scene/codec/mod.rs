@@ -1,0 +1,96 @@
+//! One codec per curve family: how its object in a scene file is read (with the path of
+//! the first offending value) and written. Each family's file implements [`Codec`]; the
+//! table [`CODECS`] is the only list of families the reader keeps.
+
+mod bezier;
+mod bspline;
+mod interpolation;
+mod modified;
+mod nubmp;
+
+pub use bezier::BezierDoc;
+pub use bspline::BSplineDoc;
+pub use interpolation::{InterpolationDoc, ModificationDoc};
+pub use modified::ModifiedBezierDoc;
+pub use nubmp::{NubmpDoc, ShapeSettingDoc};
+
+use crate::geom::{
+    BSpline, Bezier, CubicInterpolation, Curve, Family, GeomError, ModifiedBezier, Nubmp,
+};
+use crate::jsonread::{Node, Obj};
+
+use super::SceneError;
+use super::doc::FamilyDoc;
+
+/// How one family reads and writes its curve object.
+pub(crate) trait Codec: Family {
+    /// The family's own fields (beyond `type`, `name` and `style`).
+    const FIELDS: &'static [&'static str];
+
+    /// The written form of the family's fields.
+    type Doc: Into<FamilyDoc>;
+
+    /// Reads the family's fields of the curve object `obj` (at `node`).
+    fn decode(node: &Node<'_>, obj: &Obj<'_>) -> Result<Self, SceneError>;
+
+    /// The family's fields as they are written.
+    fn encode(&self) -> Self::Doc;
+}
+
+/// The fields every curve object may have, whatever its family.
+const COMMON_CURVE_FIELDS: [&str; 3] = ["type", "name", "style"];
+
+type Decoder = for<'a> fn(&Node<'a>) -> Result<(Curve, Obj<'a>), SceneError>;
+
+fn decode_as<'a, F: Codec>(node: &Node<'a>) -> Result<(Curve, Obj<'a>), SceneError> {
+    let fields: Vec<&str> = COMMON_CURVE_FIELDS
+        .iter()
+        .chain(F::FIELDS)
+        .copied()
+        .collect();
+    let obj = node.object(&fields)?;
+    let curve = F::decode(node, &obj)?;
+    Ok((curve.into(), obj))
+}
+
+/// Every family's name and reader, in the order error messages list them.
+const CODECS: [(&str, Decoder); 5] = [
+    (Bezier::NAME, decode_as::<Bezier>),
+    (ModifiedBezier::NAME, decode_as::<ModifiedBezier>),
+    (CubicInterpolation::NAME, decode_as::<CubicInterpolation>),
+    (BSpline::NAME, decode_as::<BSpline>),
+    (Nubmp::NAME, decode_as::<Nubmp>),
+];
+
+/// Reads the curve object at `node` as family `family`; `None` for an unknown family.
+pub(crate) fn decode<'a>(
+    family: &str,
+    node: &Node<'a>,
+) -> Option<Result<(Curve, Obj<'a>), SceneError>> {
+    CODECS
+        .iter()
+        .find(|(name, _)| *name == family)
+        .map(|(_, decode)| decode(node))
+}
+
+/// The families' names, for error messages.
+pub(crate) fn family_names() -> Vec<&'static str> {
+    CODECS.iter().map(|(name, _)| *name).collect()
+}
+
+/// The written form of a curve's family fields.
+pub(crate) fn encode(curve: &Curve) -> FamilyDoc {
+    crate::geom::each_family!(curve, c => c.encode().into())
+}
+
+/// A [`GeomError`] at its field of the curve at `curve` (`prefix` before the field, e.g.
+/// `modification.`).
+pub(crate) fn geom_error(curve: &Node<'_>, prefix: &str, e: &GeomError) -> SceneError {
+    let field = e.field();
+    let path = if field.is_empty() {
+        curve.path.to_string()
+    } else {
+        format!("{}.{prefix}{field}", curve.path)
+    };
+    SceneError::new(path, super::SceneErrorKind::Invalid(e.to_string()))
+}

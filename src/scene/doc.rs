@@ -1,0 +1,221 @@
+//! The scene file as Rust types: what [`crate::scene::to_json_string`] writes (through
+//! `Serialize`) and what `docs/schemas/scene.schema.json` is generated from (through
+//! `JsonSchema`). The reader ([`crate::scene::from_json_str`]) walks the parsed JSON by
+//! hand instead, to name the path of the first offending value; a test checks that every
+//! document it accepts validates against the schema.
+
+use glam::DVec3;
+use schemars::JsonSchema;
+use serde::Serialize;
+
+use super::codec::{BSplineDoc, BezierDoc, InterpolationDoc, ModifiedBezierDoc, NubmpDoc};
+
+/// A scene document (format version 1, `docs/scene-format.md`).
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[schemars(title = "splinescope scene", deny_unknown_fields)]
+pub struct SceneDoc {
+    /// The format version: 1.
+    #[schemars(range(min = 1, max = 1))]
+    pub version: u32,
+    /// The title (window title, panel).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// The background colour (default white).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub background: Option<ColorDoc>,
+    /// Samples per Bézier segment for curves that do not set their own (default `"auto"`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub samples: Option<SamplesDoc>,
+    /// The opening view (default `"auto"`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub view: Option<ViewDoc>,
+    /// The curves, drawn in order.
+    pub curves: Vec<CurveDoc>,
+    /// Marks drawn over the curves.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub annotations: Vec<AnnotationDoc>,
+}
+
+/// A point: `[x, y]` (`z = 0`) or `[x, y, z]`.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[serde(transparent)]
+pub struct PointDoc(#[schemars(length(min = 2, max = 3))] pub Vec<f64>);
+
+impl PointDoc {
+    /// `[x, y]` when `z = 0`, else `[x, y, z]`.
+    #[must_use]
+    pub fn of(p: DVec3) -> PointDoc {
+        if p.z == 0.0 {
+            PointDoc(vec![p.x, p.y])
+        } else {
+            PointDoc(vec![p.x, p.y, p.z])
+        }
+    }
+
+    /// Every point of `points`.
+    #[must_use]
+    pub fn all(points: &[DVec3]) -> Vec<PointDoc> {
+        points.iter().copied().map(PointDoc::of).collect()
+    }
+}
+
+/// A colour: `"#rrggbb"`, `"#rrggbbaa"`, or `[r, g, b]` / `[r, g, b, a]` in `[0, 1]`.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[serde(untagged)]
+pub enum ColorDoc {
+    /// Hexadecimal sRGB.
+    Hex(#[schemars(regex(pattern = r"^#([0-9a-fA-F]{6}|[0-9a-fA-F]{8})$"))] String),
+    /// Channels in `[0, 1]`.
+    Channels(#[schemars(length(min = 3, max = 4), inner(range(min = 0.0, max = 1.0)))] Vec<f64>),
+}
+
+/// The word `"auto"`.
+#[derive(Debug, Clone, Copy, Serialize, JsonSchema)]
+pub enum Auto {
+    /// `"auto"`.
+    #[serde(rename = "auto")]
+    Auto,
+}
+
+/// Samples per segment: a count or `"auto"` (Wang's bound in object space).
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[serde(untagged)]
+pub enum SamplesDoc {
+    /// Chosen per segment.
+    Auto(Auto),
+    /// A fixed count.
+    Count(#[schemars(range(min = 2, max = 4096))] u32),
+}
+
+/// The opening view.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[serde(untagged)]
+pub enum ViewDoc {
+    /// Fit every control point.
+    Auto(Auto),
+    /// A given camera.
+    Camera(CameraDoc),
+}
+
+/// A camera.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[serde(tag = "kind", deny_unknown_fields)]
+pub enum CameraDoc {
+    /// A 2D view: the world point at the centre and the visible height.
+    #[serde(rename = "2d")]
+    TwoD {
+        /// The centre `[x, y]`.
+        center: [f64; 2],
+        /// The visible height (> 0).
+        #[schemars(range(min = 0.0))]
+        height: f64,
+    },
+    /// An orbit camera.
+    #[serde(rename = "3d")]
+    ThreeD {
+        /// The point looked at.
+        target: PointDoc,
+        /// The distance from it (> 0).
+        #[schemars(range(min = 0.0))]
+        distance: f64,
+        /// Yaw about the world `y` axis (default 30).
+        #[serde(skip_serializing_if = "Option::is_none")]
+        yaw_deg: Option<f64>,
+        /// Pitch in (−89, 89) (default 20).
+        #[serde(skip_serializing_if = "Option::is_none")]
+        #[schemars(range(min = -89.0, max = 89.0))]
+        pitch_deg: Option<f64>,
+        /// Vertical field of view in (1, 179) (default 45).
+        #[serde(skip_serializing_if = "Option::is_none")]
+        #[schemars(range(min = 1.0, max = 179.0))]
+        fov_deg: Option<f64>,
+    },
+}
+
+/// One curve: its family's fields (tagged by `type`), a name and a style.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct CurveDoc {
+    /// The family and its fields.
+    #[serde(flatten)]
+    pub family: FamilyDoc,
+    /// The curve's name.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// How it is drawn.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub style: Option<StyleDoc>,
+}
+
+/// A curve's family and its own fields; one variant per family, each defined with the
+/// family's codec (`src/scene/codec/`).
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[serde(tag = "type")]
+pub enum FamilyDoc {
+    /// `"bezier"`.
+    #[serde(rename = "bezier")]
+    Bezier(BezierDoc),
+    /// `"modified_bezier"`.
+    #[serde(rename = "modified_bezier")]
+    ModifiedBezier(ModifiedBezierDoc),
+    /// `"interpolation"`.
+    #[serde(rename = "interpolation")]
+    Interpolation(InterpolationDoc),
+    /// `"bspline"`.
+    #[serde(rename = "bspline")]
+    BSpline(BSplineDoc),
+    /// `"nubmp"`.
+    #[serde(rename = "nubmp")]
+    Nubmp(NubmpDoc),
+}
+
+/// How a curve is drawn.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct StyleDoc {
+    /// The colour (default: a palette colour by index).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub color: Option<ColorDoc>,
+    /// Line width in pixels, in (0, 1000] (default 2.5).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 0.0, max = 1000.0))]
+    pub width: Option<f64>,
+    /// Draw the control polygon and the family's explaining polylines (default true).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub polygon: Option<bool>,
+    /// Draw the control points (default true).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub points: Option<bool>,
+    /// Samples per Bézier segment (default: the scene's).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 2, max = 4096))]
+    pub samples: Option<u32>,
+}
+
+/// A mark drawn over the curves: a polyline or points.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct AnnotationDoc {
+    /// The shape.
+    #[serde(flatten)]
+    pub shape: AnnotationShapeDoc,
+    /// The colour.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub color: Option<ColorDoc>,
+    /// Line width or point diameter in pixels, in (0, 1000].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 0.0, max = 1000.0))]
+    pub width: Option<f64>,
+    /// A label.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub label: Option<String>,
+}
+
+/// An annotation's shape.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub enum AnnotationShapeDoc {
+    /// At least 2 points joined in order.
+    #[serde(rename = "polyline")]
+    Polyline(#[schemars(length(min = 2))] Vec<PointDoc>),
+    /// At least 1 point, drawn as discs.
+    #[serde(rename = "points")]
+    Points(#[schemars(length(min = 1))] Vec<PointDoc>),
+}
