@@ -81,13 +81,3 @@ pub fn curve_report(
         at_tau: None,
     })
 }
-
-/// A point as a report writes it: always `[x, y, z]`.
-pub(crate) fn point(p: glam::DVec3) -> serde_json::Value {
-    serde_json::json!([p.x, p.y, p.z])
-}
-
-/// Points as a report writes them.
-pub(crate) fn points(ps: &[glam::DVec3]) -> serde_json::Value {
-    serde_json::Value::Array(ps.iter().copied().map(point).collect())
-}

@@ -132,8 +132,10 @@ pub enum CameraDoc {
     },
 }
 
-/// One curve: its family's fields (tagged by `type`), a name and a style.
+/// One curve: its family's fields (tagged by `type`), a name and a style. Fields of other
+/// families are refused (`unevaluatedProperties`).
 #[derive(Debug, Clone, Serialize, JsonSchema)]
+#[schemars(extend("unevaluatedProperties" = false))]
 pub struct CurveDoc {
     /// The family and its fields.
     #[serde(flatten)]
@@ -193,6 +195,7 @@ pub struct StyleDoc {
 
 /// A mark drawn over the curves: a polyline or points.
 #[derive(Debug, Clone, Serialize, JsonSchema)]
+#[schemars(extend("unevaluatedProperties" = false))]
 pub struct AnnotationDoc {
     /// The shape.
     #[serde(flatten)]

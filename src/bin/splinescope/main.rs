@@ -150,6 +150,18 @@ enum Command {
     Check {
         /// Scene file (JSON).
         scene: PathBuf,
+        /// Print the description as JSON (docs/schemas/check.schema.json).
+        #[arg(long)]
+        json: bool,
+    },
+    /// Print the JSON Schema of a format (scene, request, report, inspect, eval, check), or
+    /// write them all with --write DIR.
+    Schema {
+        /// Which schema.
+        name: Option<String>,
+        /// Write every schema as DIR/<name>.schema.json.
+        #[arg(long, value_name = "DIR")]
+        write: Option<PathBuf>,
     },
     /// Render every scene (*.json) of SCENES_DIR and compare it with REFS_DIR/<name>.png;
     /// exits 1 when any scene differs, has no reference or fails.
@@ -328,7 +340,8 @@ fn run(cli: Cli) -> Result<()> {
             },
             &gpu,
         ),
-        Some(Command::Check { scene }) => check(&scene),
+        Some(Command::Check { scene, json }) => check(&scene, json),
+        Some(Command::Schema { name, write }) => schema(name.as_deref(), write.as_deref()),
         Some(Command::Solve {
             scene,
             request,
@@ -453,7 +466,10 @@ fn solve(path: &Path, request: &Path, output: Option<&Path>, report: Option<&Pat
         .with_context(|| format!("{}: cannot read the request", request.display()))?;
     let outcome = splinescope::request::apply_text(&scene, &text)
         .with_context(|| format!("{}", request.display()))?;
-    let text = splinescope::scene::pretty_json(&serde_json::json!({ "reports": outcome.reports }));
+    let solved = splinescope::request::types::SolveOutput {
+        reports: outcome.reports,
+    };
+    let text = splinescope::scene::pretty_json(&serde_json::to_value(&solved)?);
     // The scene and the report are written all or none.
     let scene_text = splinescope::scene::to_json_string(&outcome.scene);
     let report_text = format!("{text}\n");
@@ -640,116 +656,131 @@ fn eval(path: &Path, req: &EvalRequest<'_>, gpu: &GpuArgs) -> Result<()> {
     Ok(())
 }
 
-/// Writes `{"curves":[{"index":i,"samples":[[x,y,z],...]}]}`, streaming (scenes may be
-/// large), with `"d1"` (P′), `"d2"` (P″) and `"curvature"` when derivatives were asked
-/// for. GPU values are `f32`: they are printed in their shortest `f32` form.
+/// Writes [`EvalOutput`](splinescope::outputs::EvalOutput), streamed curve by curve
+/// (scenes may be large), with `"d1"` (P′), `"d2"` (P″) and `"curvature"` when derivatives
+/// were asked for. GPU values are `f32`: they are printed in their shortest `f32` form.
 fn write_eval_json(
     out: &mut impl Write,
     indices: &[usize],
     values: &[Vec<Vec<DVec3>>],
     from_f32: bool,
 ) -> Result<()> {
-    let num = |v: f64| -> String {
-        let v = if from_f32 {
-            // Shortest decimal that reads back as the same f32.
-            format!("{}", v as f32).parse::<f64>().unwrap_or(v)
-        } else {
-            v
-        };
-        serde_json::Number::from_f64(v).map_or_else(|| "null".to_owned(), |n| n.to_string())
-    };
-    let list = |out: &mut dyn Write, key: &str, pts: &[DVec3]| -> std::io::Result<()> {
-        write!(out, ",\"{key}\":[")?;
-        for (j, p) in pts.iter().enumerate() {
-            if j > 0 {
-                write!(out, ",")?;
+    let shortest = |p: DVec3| -> [f64; 3] {
+        p.to_array().map(|v| {
+            if from_f32 {
+                // Shortest decimal that reads back as the same f32.
+                format!("{}", v as f32).parse::<f64>().unwrap_or(v)
+            } else {
+                v
             }
-            write!(out, "[{},{},{}]", num(p.x), num(p.y), num(p.z))?;
-        }
-        write!(out, "]")
+        })
     };
+    let list = |pts: &[DVec3]| pts.iter().copied().map(shortest).collect::<Vec<_>>();
     write!(out, "{{\"curves\":[")?;
-    for (k, &i) in indices.iter().enumerate() {
+    for (k, &index) in indices.iter().enumerate() {
         if k > 0 {
             write!(out, ",")?;
         }
-        write!(out, "\n{{\"index\":{i}")?;
-        for (order, key) in ["samples", "d1", "d2"]
-            .iter()
-            .enumerate()
-            .take(values.len())
-        {
-            list(out, key, &values[order][k])?;
-        }
-        if values.len() == 3 {
+        let curvature = (values.len() == 3).then(|| {
             // κ = |P′ × P″| / |P′|³; null where P′ = 0 (no tangent, no curvature).
-            write!(out, ",\"curvature\":[")?;
-            for (j, (d1, d2)) in values[1][k].iter().zip(&values[2][k]).enumerate() {
-                if j > 0 {
-                    write!(out, ",")?;
-                }
-                let speed = d1.length();
-                let kappa = d1.cross(*d2).length() / (speed * speed * speed);
-                if speed > 0.0 && kappa.is_finite() {
-                    write!(out, "{}", num(kappa))?;
-                } else {
-                    write!(out, "null")?;
-                }
-            }
-            write!(out, "]")?;
-        }
-        write!(out, "}}")?;
+            values[1][k]
+                .iter()
+                .zip(&values[2][k])
+                .map(|(d1, d2)| {
+                    let speed = d1.length();
+                    let kappa = d1.cross(*d2).length() / (speed * speed * speed);
+                    (speed > 0.0 && kappa.is_finite()).then(|| shortest(DVec3::splat(kappa))[0])
+                })
+                .collect()
+        });
+        let curve = splinescope::outputs::EvalCurve {
+            index,
+            samples: list(&values[0][k]),
+            d1: values.get(1).map(|v| list(&v[k])),
+            d2: values.get(2).map(|v| list(&v[k])),
+            curvature,
+        };
+        writeln!(out)?;
+        serde_json::to_writer(&mut *out, &curve)?;
     }
     writeln!(out, "\n]}}")?;
     Ok(())
 }
 
-fn check(path: &Path) -> Result<()> {
+fn check(path: &Path, json: bool) -> Result<()> {
     let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
-    say!(
-        "{}: valid scene, {} curve(s){}",
-        path.display(),
-        scene.curves.len(),
-        scene
-            .name
-            .as_ref()
-            .map(|n| format!(" ({n})"))
-            .unwrap_or_default()
-    );
-    let mut gpu_problems = Vec::new();
-    for (i, c) in scene.curves.iter().enumerate() {
-        let segments = c.curve.lower();
-        let max_degree = segments
-            .iter()
-            .map(|s| s.bezier.degree())
-            .max()
-            .unwrap_or(0);
-        let (a, b) = c.curve.domain();
-        let (a, b) = (Num(a), Num(b));
+    let report = splinescope::outputs::CheckOutput::of(&path.display().to_string(), &scene);
+    if json {
+        say!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
         say!(
-            "  curves[{i}] {}{}: domain [{a}, {b}], {} Bézier segment(s), max degree {max_degree}",
-            c.curve.family(),
-            c.name
+            "{}: valid scene, {} curve(s){}",
+            path.display(),
+            report.curves.len(),
+            report
+                .name
                 .as_ref()
-                .map(|n| format!(" {n:?}"))
-                .unwrap_or_default(),
-            segments.len()
+                .map(|n| format!(" ({n})"))
+                .unwrap_or_default()
         );
-        if let Err(e) = splinescope::gpu::pack::check_gpu_fit(i, &segments) {
-            gpu_problems.push(e.to_string());
+        for c in &report.curves {
+            say!(
+                "  curves[{}] {}{}: domain [{}, {}], {} Bézier segment(s), max degree {}",
+                c.index,
+                c.family,
+                c.name
+                    .as_ref()
+                    .map(|n| format!(" {n:?}"))
+                    .unwrap_or_default(),
+                Num(c.domain[0]),
+                Num(c.domain[1]),
+                c.segments,
+                c.max_degree
+            );
         }
     }
-    if let Err(e) = splinescope::gpu::pack::check_annotations(&scene) {
-        gpu_problems.push(e.to_string());
-    }
-    if gpu_problems.is_empty() {
-        say!("every curve fits the GPU kernel");
+    if report.gpu_problems.is_empty() {
+        if !json {
+            say!("every curve fits the GPU kernel");
+        }
         Ok(())
     } else {
-        bail!("not drawable on the GPU:\n  {}", gpu_problems.join("\n  "))
+        bail!(
+            "not drawable on the GPU:\n  {}",
+            report.gpu_problems.join("\n  ")
+        )
     }
 }
 
+/// Prints one schema, or writes every schema into `dir`.
+fn schema(name: Option<&str>, write: Option<&Path>) -> Result<()> {
+    let all = splinescope::schemas::all();
+    if let Some(dir) = write {
+        std::fs::create_dir_all(dir).with_context(|| format!("{}", dir.display()))?;
+        for (stem, schema) in &all {
+            let path = dir.join(format!("{stem}.schema.json"));
+            splinescope::files::write_atomic(
+                &path,
+                splinescope::schemas::to_text(schema).as_bytes(),
+            )
+            .with_context(|| format!("{}", path.display()))?;
+            say!("wrote {}", path.display());
+        }
+        return Ok(());
+    }
+    let names: Vec<&str> = all.iter().map(|(n, _)| *n).collect();
+    let Some(name) = name else {
+        bail!("name a schema ({}) or give --write DIR", names.join(", "));
+    };
+    let Some((_, schema)) = all.iter().find(|(n, _)| *n == name) else {
+        bail!(
+            "unknown schema {name:?} (expected one of: {})",
+            names.join(", ")
+        );
+    };
+    print!("{}", splinescope::schemas::to_text(schema));
+    Ok(())
+}
 fn adapters(json: bool, gpu: &GpuArgs) -> Result<()> {
     let opts = ContextOptions::from_env(gpu.gpu_backend);
     let found = splinescope::gpu::context::survey(&opts);

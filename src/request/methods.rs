@@ -1,0 +1,403 @@
+//! One reader and one solver call per method: each turns its request object into a typed
+//! request, applies it to the scene and returns its typed report.
+
+use glam::DVec3;
+
+use super::types::{
+    CubicRegionReport, CubicRegionRequest, MultiTargetReport, MultiTargetRequest, NubmpChange,
+    NubmpConstrainedReport, NubmpConstrainedRequest, NubmpFindTauReport, NubmpFindTauRequest,
+    ProjectReport, ProjectRequest, SingleTargetReport, SingleTargetRequest, TangentKeptReport,
+    TangentKeptRequest,
+};
+use super::{RequestError, at, field_path};
+use crate::geom::family::xyz;
+use crate::geom::{Bezier, Curve, Nubmp, ParamCurve};
+use crate::jsonread::{Node, Obj};
+use crate::scene::{Annotation, AnnotationShape, Color, Scene, SceneError, SceneErrorKind};
+use crate::solve::shape::{
+    PolygonType, SingleTargetOptions, cubic_region, multi_target, single_target, tangent_kept,
+};
+use crate::solve::{SolveError, nearest, nubmp};
+
+/// A request object being read: its node (for error paths) and its fields.
+pub(super) struct Fields<'n, 'a> {
+    pub node: &'n Node<'a>,
+    pub obj: Obj<'a>,
+    pub curve: usize,
+}
+
+impl Fields<'_, '_> {
+    fn f64(&self, key: &str) -> Result<Option<f64>, RequestError> {
+        Ok(self.obj.get(key).map(|n| n.f64()).transpose()?)
+    }
+    fn positive(&self, key: &str) -> Result<Option<f64>, RequestError> {
+        Ok(self.obj.get(key).map(|n| n.positive_f64()).transpose()?)
+    }
+    fn bool(&self, key: &str) -> Result<Option<bool>, RequestError> {
+        Ok(self.obj.get(key).map(|n| n.bool()).transpose()?)
+    }
+    fn index(&self, key: &str) -> Result<usize, RequestError> {
+        Ok(self.obj.req(key)?.u32_in(0, u32::MAX)? as usize)
+    }
+    fn point(&self, key: &str) -> Result<DVec3, RequestError> {
+        Ok(self.obj.req(key)?.point()?)
+    }
+    fn missing(&self, key: &str) -> RequestError {
+        SceneError::new(field_path(self.node, key), SceneErrorKind::Missing).into()
+    }
+}
+
+fn bezier_of<'s>(
+    scene: &'s Scene,
+    index: usize,
+    node: &Node<'_>,
+    method: &str,
+) -> Result<&'s Bezier, RequestError> {
+    match &scene.curves[index].curve {
+        Curve::Bezier(b) => Ok(b),
+        other => Err(RequestError {
+            path: field_path(node, "curve"),
+            message: format!(
+                "{method} modifies Bézier curves (paper 000); curves[{index}] is {}",
+                other.family()
+            ),
+        }),
+    }
+}
+
+fn nubmp_of(
+    scene: &Scene,
+    index: usize,
+    node: &Node<'_>,
+    method: &str,
+) -> Result<Nubmp, RequestError> {
+    match &scene.curves[index].curve {
+        Curve::Nubmp(n) => Ok(n.clone()),
+        other => Err(RequestError {
+            path: field_path(node, "curve"),
+            message: format!(
+                "{method} modifies NUBMP curves (paper 001); curves[{index}] is {}",
+                other.family()
+            ),
+        }),
+    }
+}
+
+pub(super) fn read_single_target(f: &Fields<'_, '_>) -> Result<SingleTargetRequest, RequestError> {
+    let (first, count) = match (f.obj.get("first"), f.obj.get("count")) {
+        (None, None) => (None, None),
+        (Some(a), Some(b)) => (
+            Some(a.u32_in(0, u32::MAX)? as usize),
+            Some(b.u32_in(0, u32::MAX)? as usize),
+        ),
+        (Some(_), None) => return Err(f.missing("count")),
+        (None, Some(_)) => return Err(f.missing("first")),
+    };
+    Ok(SingleTargetRequest {
+        curve: f.curve,
+        target: f.point("target")?,
+        t: f.f64("t")?,
+        first,
+        count,
+        accuracy: f.positive("accuracy")?,
+    })
+}
+
+/// Paper 000 §2.1.
+pub(super) fn run_single_target(
+    scene: &mut Scene,
+    node: &Node<'_>,
+    r: &SingleTargetRequest,
+) -> Result<SingleTargetReport, RequestError> {
+    let b = bezier_of(scene, r.curve, node, "single_target")?;
+    let opts = SingleTargetOptions {
+        t_s: r.t,
+        window: r.first.zip(r.count),
+        accuracy: r.accuracy,
+    };
+    let s = single_target(b, r.target, &opts).map_err(|e| {
+        let field = match e {
+            SolveError::WindowOutOfRange { .. } => "first",
+            SolveError::ParameterAtEnd { .. } | SolveError::ParameterOutsideDomain { .. } => "t",
+            SolveError::NonFiniteTarget { .. } | SolveError::TargetAtEnd { .. } => "target",
+            _ => "",
+        };
+        at(node, field, &e)
+    })?;
+    let report = SingleTargetReport {
+        target: r.target.to_array(),
+        t: s.t_s,
+        start: s.start.to_array(),
+        moved: (s.first..s.first + s.deltas.len()).collect(),
+        deltas: xyz(&s.deltas),
+        control_points: xyz(s.curve.points()),
+        residual: s.residual,
+    };
+    scene.curves[r.curve].curve = Curve::Bezier(s.curve);
+    Ok(report)
+}
+
+pub(super) fn read_tangent_kept(f: &Fields<'_, '_>) -> Result<TangentKeptRequest, RequestError> {
+    Ok(TangentKeptRequest {
+        curve: f.curve,
+        target: f.point("target")?,
+        t: f.f64("t")?,
+        accuracy: f.positive("accuracy")?,
+    })
+}
+
+/// Paper 000 §2.2.
+pub(super) fn run_tangent_kept(
+    scene: &mut Scene,
+    node: &Node<'_>,
+    r: &TangentKeptRequest,
+) -> Result<TangentKeptReport, RequestError> {
+    let b = bezier_of(scene, r.curve, node, "tangent_kept")?;
+    let s = tangent_kept(b, r.target, r.t, r.accuracy).map_err(|e| {
+        let field = match e {
+            SolveError::ParameterAtEnd { .. } | SolveError::ParameterOutsideDomain { .. } => "t",
+            SolveError::NonFiniteTarget { .. } | SolveError::TargetAtEnd { .. } => "target",
+            _ => "curve",
+        };
+        at(node, field, &e)
+    })?;
+    let report = TangentKeptReport {
+        target: r.target.to_array(),
+        t: s.t_s,
+        mu: s.mu,
+        directions: s.directions.map(|d| d.to_array()),
+        deltas: xyz(&s.deltas),
+        control_points: xyz(s.curve.points()),
+        residual: s.residual,
+        least_squares: s.least_squares,
+    };
+    scene.curves[r.curve].curve = Curve::Bezier(s.curve);
+    Ok(report)
+}
+
+pub(super) fn read_multi_target(f: &Fields<'_, '_>) -> Result<MultiTargetRequest, RequestError> {
+    Ok(MultiTargetRequest {
+        curve: f.curve,
+        targets: f.obj.req("targets")?.points(1)?,
+        params: f.obj.get("params").map(|n| n.numbers()).transpose()?,
+        accuracy: f.positive("accuracy")?,
+    })
+}
+
+/// Paper 000 §3.
+pub(super) fn run_multi_target(
+    scene: &mut Scene,
+    node: &Node<'_>,
+    r: &MultiTargetRequest,
+) -> Result<MultiTargetReport, RequestError> {
+    let b = bezier_of(scene, r.curve, node, "multi_target")?;
+    let s = multi_target(b, &r.targets, r.params.as_deref(), r.accuracy).map_err(|e| {
+        let field = match e {
+            SolveError::ParamCount { .. } | SolveError::ParameterOutsideDomain { .. } => {
+                "params".to_owned()
+            }
+            SolveError::ParameterAtEnd { index, .. } => format!("params[{index}]"),
+            SolveError::NonFiniteTarget { index, .. } | SolveError::TargetAtEnd { index, .. } => {
+                format!("targets[{index}]")
+            }
+            _ => String::new(),
+        };
+        at(node, &field, &e)
+    })?;
+    let report = MultiTargetReport {
+        targets: xyz(&r.targets),
+        params: s.params.clone(),
+        deltas: xyz(&s.deltas),
+        residuals: s.residuals.clone(),
+        max_residual: s.residuals.iter().copied().fold(0.0, f64::max),
+        rank: s.rank,
+        least_squares: s.least_squares,
+        control_points: xyz(s.curve.points()),
+    };
+    scene.curves[r.curve].curve = Curve::Bezier(s.curve);
+    Ok(report)
+}
+
+pub(super) fn read_cubic_region(f: &Fields<'_, '_>) -> Result<CubicRegionRequest, RequestError> {
+    Ok(CubicRegionRequest {
+        curve: f.curve,
+        target: f.obj.get("target").map(|n| n.point()).transpose()?,
+        limited: f.bool("limited")?,
+        reach: f.positive("reach")?,
+    })
+}
+
+/// Paper 000 §2.3: the outline goes into the scene as annotations, for drawing.
+pub(super) fn run_cubic_region(
+    scene: &mut Scene,
+    node: &Node<'_>,
+    r: &CubicRegionRequest,
+) -> Result<CubicRegionReport, RequestError> {
+    let b = bezier_of(scene, r.curve, node, "cubic_region")?.clone();
+    let region = cubic_region(&b).map_err(|e| at(node, "curve", &e))?;
+    let limited = r.limited.unwrap_or(false);
+    let reach = r
+        .reach
+        .unwrap_or_else(|| 3.0 * b.control_box().diagonal().max(1e-9));
+    let boundary = region.boundary(limited, reach);
+    for line in &boundary {
+        scene.annotations.push(Annotation {
+            shape: AnnotationShape::Polyline(line.clone()),
+            color: Color([0.45, 0.45, 0.45, 0.9]),
+            width: 1.5,
+            label: Some(format!("allowed region of curves[{}]", r.curve)),
+        });
+    }
+    Ok(CubicRegionReport {
+        target: r.target.map(|t| t.to_array()),
+        kind: region.kind.number(),
+        apex: match region.kind {
+            PolygonType::Converging { apex } => Some(apex.to_array()),
+            _ => None,
+        },
+        directions: [region.e1.to_array(), region.e2.to_array()],
+        reachable: r.target.map(|t| region.contains(t)),
+        reachable_limited: r.target.map(|t| region.contains_limited(t)),
+        limited,
+        boundary: boundary.iter().map(|l| xyz(l)).collect(),
+    })
+}
+
+pub(super) fn read_nubmp_constrained(
+    f: &Fields<'_, '_>,
+) -> Result<NubmpConstrainedRequest, RequestError> {
+    Ok(NubmpConstrainedRequest {
+        curve: f.curve,
+        tau: f.obj.req("tau")?.f64()?,
+        group: f.index("group")?,
+        target: f.point("target")?,
+        respect_vd: f.bool("respect_vd")?,
+    })
+}
+
+fn nubmp_field(e: &SolveError) -> &'static str {
+    match e {
+        SolveError::ParameterOutsideDomain { .. } => "tau",
+        SolveError::GroupInactive { .. } | SolveError::Geom(_) | SolveError::NoTau { .. } => {
+            "group"
+        }
+        _ => "target",
+    }
+}
+
+/// Moves `P(τ)` to `q` through group `j` and records the change in the scene.
+fn nubmp_change(
+    scene: &mut Scene,
+    node: &Node<'_>,
+    index: usize,
+    nub: &Nubmp,
+    (tau, group, q): (f64, usize, DVec3),
+    respect_vd: bool,
+) -> Result<NubmpChange, RequestError> {
+    let s = nubmp::constrained(nub, tau, group, q, respect_vd)
+        .map_err(|e| at(node, nubmp_field(&e), &e))?;
+    let change = NubmpChange {
+        tau,
+        group,
+        members: s.curve.groups()[group].members.clone(),
+        values: s.values.clone(),
+        region: xyz(&s.region),
+        dual_points: xyz(s.curve.dual_points()),
+        residual: s.residual,
+    };
+    scene.curves[index].curve = Curve::Nubmp(s.curve);
+    Ok(change)
+}
+
+/// Paper 001 §5.2.
+pub(super) fn run_nubmp_constrained(
+    scene: &mut Scene,
+    node: &Node<'_>,
+    r: &NubmpConstrainedRequest,
+) -> Result<NubmpConstrainedReport, RequestError> {
+    let nub = nubmp_of(scene, r.curve, node, "nubmp_constrained")?;
+    let change = nubmp_change(
+        scene,
+        node,
+        r.curve,
+        &nub,
+        (r.tau, r.group, r.target),
+        r.respect_vd.unwrap_or(false),
+    )?;
+    Ok(NubmpConstrainedReport {
+        target: r.target.to_array(),
+        change,
+    })
+}
+
+pub(super) fn read_nubmp_find_tau(f: &Fields<'_, '_>) -> Result<NubmpFindTauRequest, RequestError> {
+    Ok(NubmpFindTauRequest {
+        curve: f.curve,
+        group: f.index("group")?,
+        target: f.point("target")?,
+        apply: f.bool("apply")?,
+        respect_vd: f.bool("respect_vd")?,
+    })
+}
+
+/// Paper 001 §5.2, the alternative scenario.
+pub(super) fn run_nubmp_find_tau(
+    scene: &mut Scene,
+    node: &Node<'_>,
+    r: &NubmpFindTauRequest,
+) -> Result<NubmpFindTauReport, RequestError> {
+    let nub = nubmp_of(scene, r.curve, node, "nubmp_find_tau")?;
+    let found =
+        nubmp::find_tau(&nub, r.group, r.target).map_err(|e| at(node, nubmp_field(&e), &e))?;
+    let applied = if r.apply.unwrap_or(false) {
+        Some(nubmp_change(
+            scene,
+            node,
+            r.curve,
+            &nub,
+            (found.best, r.group, r.target),
+            r.respect_vd.unwrap_or(false),
+        )?)
+    } else {
+        None
+    };
+    Ok(NubmpFindTauReport {
+        target: r.target.to_array(),
+        intervals: found.intervals.iter().map(|&(a, b)| [a, b]).collect(),
+        best: found.best,
+        applied,
+    })
+}
+
+pub(super) fn read_project(f: &Fields<'_, '_>) -> Result<ProjectRequest, RequestError> {
+    Ok(ProjectRequest {
+        curve: f.curve,
+        target: f.point("target")?,
+        accuracy: f.positive("accuracy")?,
+    })
+}
+
+/// The closest point of any curve.
+pub(super) fn run_project(
+    scene: &Scene,
+    node: &Node<'_>,
+    r: &ProjectRequest,
+) -> Result<ProjectReport, RequestError> {
+    let q = r.target;
+    if let Some(value) = q.to_array().into_iter().find(|c| !c.is_finite()) {
+        return Err(at(
+            node,
+            "target",
+            &SolveError::NonFiniteTarget { index: 0, value },
+        ));
+    }
+    let curve = &scene.curves[r.curve].curve;
+    let n = nearest(curve, q, r.accuracy);
+    Ok(ProjectReport {
+        target: q.to_array(),
+        t: n.t,
+        point: n.point.to_array(),
+        distance: n.distance,
+        tangent: curve.eval_deriv(n.t).to_array(),
+    })
+}

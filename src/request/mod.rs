@@ -1,0 +1,311 @@
+//! Solve requests (`splinescope solve SCENE REQUEST`): a JSON document naming a curve, a
+//! method and its inputs, applied to a scene to give the modified scene and a JSON report.
+//! The format is documented in `docs/solve-format.md`; requests are read into the types of
+//! [`types`] and reports are written from them (their JSON Schemas are in `docs/schemas/`).
+
+mod methods;
+pub mod types;
+
+use glam::DVec3;
+use serde_json::Value;
+use thiserror::Error;
+
+use crate::jsonread::{Node, parse_document};
+use crate::scene::{Annotation, AnnotationShape, Color, Scene, SceneError};
+use crate::solve::SolveError;
+use methods::Fields;
+use types::{MethodReport, Report, Request};
+
+/// The methods a request may name.
+pub const METHODS: [&str; 7] = [
+    "single_target",
+    "tangent_kept",
+    "multi_target",
+    "cubic_region",
+    "nubmp_constrained",
+    "nubmp_find_tau",
+    "project",
+];
+
+/// Why a request could not be applied: the path of the offending value in the request
+/// document (`[1].target`, `first`) and what is wrong.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("{path}: {message}")]
+pub struct RequestError {
+    /// Where, as a JSON path in the request document, or `(root)`.
+    pub path: String,
+    /// What.
+    pub message: String,
+}
+
+impl From<SceneError> for RequestError {
+    fn from(e: SceneError) -> RequestError {
+        RequestError {
+            path: e.path,
+            message: e.kind.to_string(),
+        }
+    }
+}
+
+fn at(node: &Node<'_>, field: &str, e: &SolveError) -> RequestError {
+    let base = node.display_path();
+    RequestError {
+        path: if field.is_empty() {
+            base
+        } else if node.path.is_empty() {
+            field.to_owned()
+        } else {
+            format!("{base}.{field}")
+        },
+        message: e.to_string(),
+    }
+}
+
+/// The outcome of applying requests: the modified scene and one report per request.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// The scene after every request.
+    pub scene: Scene,
+    /// One report per request, in order.
+    pub reports: Vec<Report>,
+}
+
+/// Parses a request document (one request object, or an array of them) and applies each,
+/// in order, to `scene`. Nothing is changed unless every request succeeds.
+///
+/// # Errors
+/// [`RequestError`] naming the offending value of the request.
+pub fn apply_text(scene: &Scene, text: &str) -> Result<Outcome, RequestError> {
+    let value = parse_document(text)?;
+    let root = Node::root(&value);
+    let nodes = match &value {
+        Value::Array(_) => root.array()?,
+        _ => vec![Node::root(&value)],
+    };
+    let mut scene = scene.clone();
+    let mut reports = Vec::new();
+    for node in &nodes {
+        let request = read(&scene, node)?;
+        let report = run(&mut scene, node, &request)?;
+        check_outputs(&scene, node, &report)?;
+        let targets = targets_of(&request);
+        if !targets.is_empty() {
+            scene.annotations.push(Annotation {
+                shape: AnnotationShape::Points(targets),
+                color: TARGET_COLOR,
+                width: 9.0,
+                label: Some(format!(
+                    "{} target(s) of curves[{}]",
+                    request.method(),
+                    report.curve
+                )),
+            });
+        }
+        reports.push(report);
+    }
+    Ok(Outcome { scene, reports })
+}
+
+/// The request's own path: `[2]` in an array, `request` for a single one.
+fn request_path(node: &Node<'_>) -> String {
+    let p = node.path.to_string();
+    if p.is_empty() { "request".into() } else { p }
+}
+
+/// Every number a request produced is finite: the report (where `null` only ever stands
+/// for "not applicable" under `reachable_limited`) and the curve it changed, with its
+/// lowering. Otherwise the request is refused, named, and nothing is written.
+fn check_outputs(scene: &Scene, node: &Node<'_>, report: &Report) -> Result<(), RequestError> {
+    fn walk(v: &Value, at: &str, bad: &mut Option<String>) {
+        match v {
+            Value::Null if !at.ends_with("reachable_limited") => {
+                bad.get_or_insert_with(|| at.to_owned());
+            }
+            Value::Number(n) if n.as_f64().is_none_or(|x| !x.is_finite()) => {
+                bad.get_or_insert_with(|| at.to_owned());
+            }
+            Value::Array(items) => {
+                for (i, item) in items.iter().enumerate() {
+                    walk(item, &format!("{at}[{i}]"), bad);
+                }
+            }
+            Value::Object(map) => {
+                for (k, item) in map {
+                    walk(item, &format!("{at}.{k}"), bad);
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut bad = None;
+    let value = serde_json::to_value(report).unwrap_or(Value::Null);
+    walk(&value, "report", &mut bad);
+    if let Some(at) = bad {
+        return Err(RequestError {
+            path: request_path(node),
+            message: format!(
+                "the solve produced a value that is not a finite number ({at}): its inputs are too extreme for f64 (a parameter too close to an end, or coordinates too large)"
+            ),
+        });
+    }
+    // A solve changes only the curve it names: that one is checked, not the whole scene.
+    let Some(c) = scene.curves.get(report.curve) else {
+        return Ok(());
+    };
+    let control = c
+        .curve
+        .control_points()
+        .iter()
+        .position(|p| !p.is_finite())
+        .map(|j| format!("control point {j} is not a finite number"));
+    if let Some(why) = control.or_else(|| c.curve.check_derived().err().map(|e| e.to_string())) {
+        return Err(RequestError {
+            path: request_path(node),
+            message: format!(
+                "the solve left curves[{}] with a value that is not finite ({why}); nothing was changed",
+                report.curve
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// The colour of target markers: each request's targets are marked in the scene (red
+/// discs), so the result can be checked by eye.
+pub const TARGET_COLOR: Color = Color([0.85, 0.1, 0.1, 1.0]);
+
+/// The fields each method reads (beyond `curve` and `method`).
+fn method_fields(method: &str) -> &'static [&'static str] {
+    match method {
+        "single_target" => &["target", "t", "first", "count", "accuracy"],
+        "tangent_kept" => &["target", "t", "accuracy"],
+        "multi_target" => &["targets", "params", "accuracy"],
+        "cubic_region" => &["target", "limited", "reach"],
+        "nubmp_constrained" => &["target", "tau", "group", "respect_vd"],
+        "nubmp_find_tau" => &["target", "group", "apply", "respect_vd"],
+        "project" => &["target", "accuracy"],
+        _ => &[],
+    }
+}
+
+pub(crate) fn field_path(node: &Node<'_>, field: &str) -> String {
+    if node.path.is_empty() {
+        field.to_owned()
+    } else {
+        format!("{}.{field}", node.path)
+    }
+}
+
+/// Every field any method reads.
+const FIELDS: [&str; 15] = [
+    "curve",
+    "method",
+    "target",
+    "targets",
+    "t",
+    "params",
+    "first",
+    "count",
+    "accuracy",
+    "limited",
+    "tau",
+    "group",
+    "respect_vd",
+    "apply",
+    "reach",
+];
+
+/// Reads one request object into its typed request: the method, only the fields it
+/// reads, an existing curve, then the method's own fields.
+fn read(scene: &Scene, node: &Node<'_>) -> Result<Request, RequestError> {
+    let obj = node.object(&FIELDS)?;
+    let method_node = obj.req("method")?;
+    let method = method_node.string()?;
+    if !METHODS.contains(&method) {
+        return Err(method_node
+            .invalid(format!(
+                "unknown method {method:?} (expected one of: {})",
+                METHODS.join(", ")
+            ))
+            .into());
+    }
+    for key in obj.map.keys() {
+        if key != "curve" && key != "method" && !method_fields(method).contains(&key.as_str()) {
+            return Err(RequestError {
+                path: field_path(node, key),
+                message: format!(
+                    "not used by {method} (it reads: curve, method, {})",
+                    method_fields(method).join(", ")
+                ),
+            });
+        }
+    }
+    let curve_node = obj.req("curve")?;
+    let curve = curve_node.u32_in(0, u32::MAX)? as usize;
+    if curve >= scene.curves.len() {
+        return Err(curve_node
+            .invalid(format!(
+                "curve {curve} does not exist (the scene has {} curve(s))",
+                scene.curves.len()
+            ))
+            .into());
+    }
+    let f = Fields { node, obj, curve };
+    Ok(match method {
+        "single_target" => Request::SingleTarget(methods::read_single_target(&f)?),
+        "tangent_kept" => Request::TangentKept(methods::read_tangent_kept(&f)?),
+        "multi_target" => Request::MultiTarget(methods::read_multi_target(&f)?),
+        "cubic_region" => Request::CubicRegion(methods::read_cubic_region(&f)?),
+        "nubmp_constrained" => Request::NubmpConstrained(methods::read_nubmp_constrained(&f)?),
+        "nubmp_find_tau" => Request::NubmpFindTau(methods::read_nubmp_find_tau(&f)?),
+        _ => Request::Project(methods::read_project(&f)?),
+    })
+}
+
+/// Applies a typed request to `scene`: one function per method.
+fn run(scene: &mut Scene, node: &Node<'_>, request: &Request) -> Result<Report, RequestError> {
+    let (curve, result) = match request {
+        Request::SingleTarget(r) => (
+            r.curve,
+            MethodReport::SingleTarget(methods::run_single_target(scene, node, r)?),
+        ),
+        Request::TangentKept(r) => (
+            r.curve,
+            MethodReport::TangentKept(methods::run_tangent_kept(scene, node, r)?),
+        ),
+        Request::MultiTarget(r) => (
+            r.curve,
+            MethodReport::MultiTarget(methods::run_multi_target(scene, node, r)?),
+        ),
+        Request::CubicRegion(r) => (
+            r.curve,
+            MethodReport::CubicRegion(methods::run_cubic_region(scene, node, r)?),
+        ),
+        Request::NubmpConstrained(r) => (
+            r.curve,
+            MethodReport::NubmpConstrained(methods::run_nubmp_constrained(scene, node, r)?),
+        ),
+        Request::NubmpFindTau(r) => (
+            r.curve,
+            MethodReport::NubmpFindTau(methods::run_nubmp_find_tau(scene, node, r)?),
+        ),
+        Request::Project(r) => (
+            r.curve,
+            MethodReport::Project(methods::run_project(scene, node, r)?),
+        ),
+    };
+    Ok(Report { curve, result })
+}
+
+/// The points a request aims at, marked in the scene.
+fn targets_of(request: &Request) -> Vec<DVec3> {
+    match request {
+        Request::SingleTarget(r) => vec![r.target],
+        Request::TangentKept(r) => vec![r.target],
+        Request::MultiTarget(r) => r.targets.clone(),
+        Request::CubicRegion(r) => r.target.into_iter().collect(),
+        Request::NubmpConstrained(r) => vec![r.target],
+        Request::NubmpFindTau(r) => vec![r.target],
+        Request::Project(r) => vec![r.target],
+    }
+}
