@@ -9,8 +9,8 @@ use crate::camera::Camera;
 use crate::geom::{Control, ControlKind, ControlValue, Lower, ParamCurve};
 use crate::scene::{Scene, SceneCurve};
 
-use super::Toggles;
 use super::edit::Editor;
+use super::interaction::Toggles;
 
 /// The panel's default width in points.
 pub(crate) const PANEL_WIDTH_POINTS: f64 = 260.0;

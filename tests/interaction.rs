@@ -1,0 +1,187 @@
+//! The viewer's window-free interaction model driven as a user would drive the window:
+//! pointer drags edit control points and pan, the wheel zooms about the cursor, keys
+//! toggle, undo, fit, save and quit. Expected values come from the camera's own
+//! pixel↔world maps and from the scene before the input.
+
+use glam::{DVec2, DVec3};
+use splinescope::app::edit::Editor;
+use splinescope::app::interaction::{Button, Input, Interaction, Key};
+use splinescope::camera::Camera;
+use splinescope::geom::{Bezier, Curve};
+use splinescope::scene::{Color, Scene, SceneCurve, Style, ViewSpec};
+
+const VIEWPORT: DVec2 = DVec2::new(1000.0, 700.0);
+
+fn scene(z: f64) -> Scene {
+    Scene {
+        name: None,
+        background: Color::WHITE,
+        samples_per_segment: None,
+        view: ViewSpec::Auto,
+        curves: vec![SceneCurve {
+            name: None,
+            curve: Curve::Bezier(Bezier::new(vec![
+                DVec3::ZERO,
+                DVec3::new(1.0, 2.0, z),
+                DVec3::new(3.0, 2.0, 0.0),
+                DVec3::new(4.0, 0.0, 0.0),
+            ])),
+            style: Style::default_for(0),
+        }],
+        annotations: Vec::new(),
+    }
+}
+
+fn model(z: f64, path: Option<std::path::PathBuf>) -> Interaction {
+    Interaction::new(Editor::new(scene(z), path), VIEWPORT, 1.0, 260.0)
+}
+
+fn key(c: char, ctrl: bool) -> Input {
+    Input::Key {
+        key: Key::Char(c),
+        ctrl,
+        shift: false,
+    }
+}
+
+fn pixel_of(m: &Interaction, p: DVec3) -> DVec2 {
+    m.camera.pixel_from_world(p, VIEWPORT).expect("on screen")
+}
+
+#[test]
+fn dragging_a_control_point_moves_it_under_the_pointer_and_undo_restores_it() {
+    let mut m = model(0.0, None);
+    let before = m.scene().clone();
+    let start = pixel_of(&m, DVec3::new(1.0, 2.0, 0.0));
+    m.handle(Input::PointerMoved(start + DVec2::new(2.0, -1.0)));
+    m.handle(Input::Pressed(Button::Primary));
+    assert!(
+        m.is_editing(),
+        "a press next to a control point starts an edit"
+    );
+    let to = start + DVec2::new(60.0, 40.0);
+    m.handle(Input::PointerMoved(start + DVec2::new(30.0, 10.0)));
+    m.handle(Input::PointerMoved(to));
+    m.handle(Input::Released);
+    let want = m.camera.world_from_pixel(to, VIEWPORT);
+    let got = m.scene().curves[0].curve.control_points()[1];
+    assert!((got - want).length() < 1e-9, "{got} vs {want}");
+    // The others did not move; one drag is one edit.
+    assert_eq!(
+        m.scene().curves[0].curve.control_points()[2],
+        DVec3::new(3.0, 2.0, 0.0)
+    );
+    assert_eq!(m.editor.history_len(), (1, 0));
+    m.handle(key('z', true));
+    assert_eq!(m.scene(), &before);
+    m.handle(Input::Key {
+        key: Key::Char('Z'),
+        ctrl: true,
+        shift: true,
+    });
+    assert!((m.scene().curves[0].curve.control_points()[1] - want).length() < 1e-9);
+}
+
+#[test]
+fn dragging_empty_space_pans_and_f_fits_again() {
+    let mut m = model(0.0, None);
+    assert!(m.auto_fit);
+    let fitted = m.camera;
+    let from = DVec2::new(900.0, 650.0);
+    let world = m.camera.world_from_pixel(from, VIEWPORT);
+    m.handle(Input::PointerMoved(from));
+    m.handle(Input::Pressed(Button::Primary));
+    assert!(!m.is_editing());
+    m.handle(Input::PointerMoved(from + DVec2::new(-50.0, 20.0)));
+    m.handle(Input::Released);
+    // The world point that was under the pointer is under it still.
+    let now = m.camera.pixel_from_world(world, VIEWPORT).unwrap();
+    assert!(
+        (now - (from + DVec2::new(-50.0, 20.0))).length() < 1e-9,
+        "{now}"
+    );
+    assert!(!m.auto_fit);
+    assert_eq!(m.editor.history_len(), (0, 0), "panning edits nothing");
+    m.handle(key('f', false));
+    assert!(m.auto_fit);
+    assert_eq!(m.camera, fitted);
+}
+
+#[test]
+fn the_wheel_zooms_about_the_cursor() {
+    let mut m = model(0.0, None);
+    let at = DVec2::new(420.0, 333.0);
+    let world = m.camera.world_from_pixel(at, VIEWPORT);
+    let Camera::Ortho2d(before) = m.camera else {
+        panic!("a planar scene opens in 2D")
+    };
+    m.handle(Input::PointerMoved(at));
+    m.handle(Input::Wheel(2.0));
+    let Camera::Ortho2d(after) = m.camera else {
+        panic!()
+    };
+    assert!((after.pixels_per_unit / before.pixels_per_unit - 1.15_f64.powi(2)).abs() < 1e-12);
+    let now = m.camera.pixel_from_world(world, VIEWPORT).unwrap();
+    assert!((now - at).length() < 1e-9, "{now}");
+}
+
+#[test]
+fn keys_toggle_the_overlays_and_panel_save_and_quit() {
+    let dir = std::env::temp_dir().join(format!("splinescope-interaction-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("saved.json");
+    let mut m = model(0.0, Some(path.clone()));
+    let t = m.toggles;
+    m.handle(key('p', false));
+    m.handle(key('C', false));
+    m.handle(key('h', false));
+    assert_eq!(m.toggles.show_polygons, !t.show_polygons);
+    assert_eq!(m.toggles.show_points, !t.show_points);
+    assert_eq!(m.toggles.show_panel, !t.show_panel);
+    // With control points hidden a press cannot grab one: it pans.
+    let p = pixel_of(&m, DVec3::new(3.0, 2.0, 0.0));
+    m.handle(Input::PointerMoved(p));
+    m.handle(Input::Pressed(Button::Primary));
+    m.handle(Input::PointerMoved(p + DVec2::new(10.0, 0.0)));
+    m.handle(Input::Released);
+    assert_eq!(m.editor.history_len(), (0, 0));
+    m.handle(key('s', true));
+    let saved = Scene::load(&path).expect("Ctrl+S wrote the scene");
+    // Colours are written as 8-bit hex: compare what the file says.
+    assert_eq!(
+        splinescope::scene::to_json_string(&saved),
+        splinescope::scene::to_json_string(m.scene())
+    );
+    assert_eq!(saved.curves[0].curve, m.scene().curves[0].curve);
+    assert!(!m.handle(key('q', false)).exit);
+    assert!(
+        m.handle(Input::Key {
+            key: Key::Escape,
+            ctrl: false,
+            shift: false
+        })
+        .exit
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_read_only_model_never_edits_and_3d_drags_orbit() {
+    let mut m = model(1.5, None);
+    assert!(m.camera.is_3d(), "a non-planar scene opens in 3D");
+    m.editable = false;
+    let before_scene = m.scene().clone();
+    let before_camera = m.camera;
+    let p = pixel_of(&m, DVec3::new(1.0, 2.0, 1.5));
+    m.handle(Input::PointerMoved(p));
+    m.handle(Input::Pressed(Button::Primary));
+    assert!(!m.is_editing());
+    m.handle(Input::PointerMoved(p + DVec2::new(40.0, 15.0)));
+    m.handle(Input::Released);
+    assert_eq!(m.scene(), &before_scene);
+    let (Camera::Orbit3d(a), Camera::Orbit3d(b)) = (&before_camera, &m.camera) else {
+        panic!()
+    };
+    assert_ne!(a.yaw, b.yaw, "a primary drag orbits");
+    assert_eq!(a.target, b.target, "orbiting keeps the target");
+}
