@@ -7,7 +7,6 @@ use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result};
 use glam::DVec2;
-use serde_json::json;
 
 use super::say;
 
@@ -66,14 +65,123 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         three_d: false,
         seed: 7,
     });
-    let total = args.curves * u64::from(args.samples);
     let ctx = args.gpu.context()?;
     let prepared = prepare_scene(
         &scene,
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )?;
+    let (cpu_f64, cpu_twin) = cpu_rates(&scene, &prepared, args);
+    let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
+    let gpu_scene = renderer.upload(&ctx.device, &ctx.tessellator, &prepared);
+    let (gpu_wall, gpu_pass) = gpu_compute_rates(&ctx, &gpu_scene, args)?;
 
-    // CPU f64, one thread: at most 2M samples so it finishes quickly.
+    // GPU compute + readback of every sample.
+    let started = Instant::now();
+    let mut read = 0u64;
+    ctx.tessellator
+        .tessellate_and_read(&ctx.device, &ctx.queue, &prepared.chunks, |_, s| {
+            read += s.len() as u64;
+        })?;
+    let gpu_readback = rate(read, started.elapsed());
+
+    // Whole frames offscreen.
+    let frame_fps = if args.frames > 0 {
+        Some(draw_frames(
+            &ctx,
+            &ctx.tessellator,
+            &renderer,
+            &gpu_scene,
+            &scene,
+            args.frames,
+        )?)
+    } else {
+        None
+    };
+    let report = BenchReport {
+        adapter: ctx.describe(),
+        curves: args.curves,
+        degree: args.degree,
+        samples_per_curve: args.samples,
+        chunks: prepared.chunks.len(),
+        cpu_f64_one_thread_samples_per_s: cpu_f64,
+        cpu_f32_twin_one_thread_samples_per_s: cpu_twin,
+        gpu_compute_wall_samples_per_s: gpu_wall,
+        gpu_compute_timestamp_samples_per_s: gpu_pass,
+        gpu_compute_with_readback_samples_per_s: gpu_readback,
+        frames_per_s_1920x1080: frame_fps,
+    };
+    if args.json {
+        say!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print_report(&report)?;
+    }
+    Ok(())
+}
+
+/// What `bench --json` prints (rates in samples per second).
+#[derive(Debug, serde::Serialize)]
+struct BenchReport {
+    adapter: String,
+    curves: u64,
+    degree: u64,
+    samples_per_curve: u32,
+    chunks: usize,
+    cpu_f64_one_thread_samples_per_s: f64,
+    cpu_f32_twin_one_thread_samples_per_s: f64,
+    gpu_compute_wall_samples_per_s: f64,
+    gpu_compute_timestamp_samples_per_s: Option<f64>,
+    gpu_compute_with_readback_samples_per_s: f64,
+    frames_per_s_1920x1080: Option<f64>,
+}
+
+fn print_report(r: &BenchReport) -> Result<()> {
+    let m = |v: f64| format!("{:>10.1} M samples/s", v / 1e6);
+    let total = r.curves * u64::from(r.samples_per_curve);
+    say!(
+        "adapter: {}\n{} curves of degree {}, {} samples each ({} samples, {} chunk(s))",
+        r.adapter,
+        r.curves,
+        r.degree,
+        r.samples_per_curve,
+        total,
+        r.chunks
+    );
+    say!(
+        "  CPU f64 de Casteljau, 1 thread     {}",
+        m(r.cpu_f64_one_thread_samples_per_s)
+    );
+    say!(
+        "  CPU f32 kernel twin, 1 thread      {}",
+        m(r.cpu_f32_twin_one_thread_samples_per_s)
+    );
+    say!(
+        "  GPU compute (wall, submit+wait)    {}",
+        m(r.gpu_compute_wall_samples_per_s)
+    );
+    match r.gpu_compute_timestamp_samples_per_s {
+        Some(v) => say!("  GPU compute (timestamps)           {}", m(v)),
+        None => say!("  GPU compute (timestamps)           not supported by this adapter"),
+    }
+    say!(
+        "  GPU compute + readback             {}",
+        m(r.gpu_compute_with_readback_samples_per_s)
+    );
+    if let Some(fps) = r.frames_per_s_1920x1080 {
+        say!(
+            "  whole frames 1920×1080 (compute + {} line pieces) {fps:.2} frames/s",
+            total.saturating_sub(r.curves)
+        );
+    }
+    Ok(())
+}
+
+/// CPU rates, one thread, at most 2M samples each: `f64` evaluation and the `f32` twin of
+/// the kernel over the first chunk's records.
+fn cpu_rates(
+    scene: &splinescope::scene::Scene,
+    prepared: &splinescope::gpu::pack::PreparedScene,
+    args: &BenchArgs,
+) -> (f64, f64) {
     let cpu_curves = (2_000_000 / u64::from(args.samples)).clamp(1, args.curves) as usize;
     let started = Instant::now();
     let mut sink = glam::DVec3::ZERO;
@@ -88,8 +196,6 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         started.elapsed(),
     );
     std::hint::black_box(sink);
-
-    // CPU twin (f32), one thread, over the first chunk's records (capped like above).
     let chunk = &prepared.chunks[0];
     let records = chunk
         .records
@@ -106,24 +212,30 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     twin::tessellate(&chunk.points, &chunk.records[..records], &mut out);
     let cpu_twin = rate(records as u64 * u64::from(args.samples), started.elapsed());
     std::hint::black_box(&out);
+    (cpu_f64, cpu_twin)
+}
 
-    // GPU compute only.
-    let tessellator = &ctx.tessellator;
-    let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
-    let gpu_scene = renderer.upload(&ctx.device, tessellator, &prepared);
-    let timestamps = Timestamps::new(&ctx);
+/// The compute pass alone: by wall clock (submit and wait) and, where the adapter has
+/// them, by timestamps.
+fn gpu_compute_rates(
+    ctx: &GpuContext,
+    gpu_scene: &splinescope::gpu::renderer::GpuScene,
+    args: &BenchArgs,
+) -> Result<(f64, Option<f64>)> {
+    let total = args.curves * u64::from(args.samples);
+    let timestamps = Timestamps::new(ctx);
     let mut gpu_pass_ns = Vec::new();
     let mut wall = Duration::ZERO;
     for i in 0..=args.iterations {
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        tessellator.encode(
+        ctx.tessellator.encode(
             &mut encoder,
             gpu_scene.chunks.iter().map(|c| &c.buffers),
             timestamps.as_ref().map(Timestamps::writes),
         );
         let started = Instant::now();
         if let Some(ts) = &timestamps {
-            let ns = ts.resolve_and_read(&ctx, encoder)?;
+            let ns = ts.resolve_and_read(ctx, encoder)?;
             if i > 0 {
                 gpu_pass_ns.push(ns);
             }
@@ -142,71 +254,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         let mean = gpu_pass_ns.iter().sum::<f64>() / gpu_pass_ns.len() as f64;
         total as f64 / (mean * 1e-9)
     });
-
-    // GPU compute + readback of every sample.
-    let started = Instant::now();
-    let mut read = 0u64;
-    tessellator.tessellate_and_read(&ctx.device, &ctx.queue, &prepared.chunks, |_, s| {
-        read += s.len() as u64;
-    })?;
-    let gpu_readback = rate(read, started.elapsed());
-
-    // Whole frames offscreen.
-    let frame_fps = if args.frames > 0 {
-        Some(draw_frames(
-            &ctx,
-            tessellator,
-            &renderer,
-            &gpu_scene,
-            &scene,
-            args.frames,
-        )?)
-    } else {
-        None
-    };
-
-    let report = json!({
-        "adapter": ctx.describe(),
-        "curves": args.curves,
-        "degree": args.degree,
-        "samples_per_curve": args.samples,
-        "chunks": prepared.chunks.len(),
-        "cpu_f64_one_thread_samples_per_s": cpu_f64,
-        "cpu_f32_twin_one_thread_samples_per_s": cpu_twin,
-        "gpu_compute_wall_samples_per_s": gpu_wall,
-        "gpu_compute_timestamp_samples_per_s": gpu_pass,
-        "gpu_compute_with_readback_samples_per_s": gpu_readback,
-        "frames_per_s_1920x1080": frame_fps,
-    });
-    if args.json {
-        say!("{report:#}");
-        return Ok(());
-    }
-    let m = |v: f64| format!("{:>10.1} M samples/s", v / 1e6);
-    say!(
-        "adapter: {}\n{} curves of degree {}, {} samples each ({} samples, {} chunk(s))",
-        ctx.describe(),
-        args.curves,
-        args.degree,
-        args.samples,
-        total,
-        prepared.chunks.len()
-    );
-    say!("  CPU f64 de Casteljau, 1 thread     {}", m(cpu_f64));
-    say!("  CPU f32 kernel twin, 1 thread      {}", m(cpu_twin));
-    say!("  GPU compute (wall, submit+wait)    {}", m(gpu_wall));
-    match gpu_pass {
-        Some(v) => say!("  GPU compute (timestamps)           {}", m(v)),
-        None => say!("  GPU compute (timestamps)           not supported by this adapter"),
-    }
-    say!("  GPU compute + readback             {}", m(gpu_readback));
-    if let Some(fps) = frame_fps {
-        say!(
-            "  whole frames 1920×1080 (compute + {} line pieces) {fps:.2} frames/s",
-            total.saturating_sub(args.curves)
-        );
-    }
-    Ok(())
+    Ok((gpu_wall, gpu_pass))
 }
 
 fn draw_frames(

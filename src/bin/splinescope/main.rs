@@ -265,62 +265,14 @@ fn run(cli: Cli) -> Result<()> {
             degree,
             solve,
             gpu,
-        }) => {
-            if !splinescope::app::display_available() {
-                bail!(
-                    "no display found (DISPLAY and WAYLAND_DISPLAY are unset); use `splinescope render` for a PNG, or run under xvfb-run"
-                );
-            }
-            let path = scene.clone();
-            if let Some(n) = stress {
-                splinescope::limits::SAMPLES
-                    .check(n.saturating_mul(u64::from(
-                        splinescope::scene::generate::StressOptions::default().samples,
-                    )))
-                    .with_context(|| format!("view --stress {n}"))?;
-            }
-            let scene = match stress {
-                Some(n) => splinescope::scene::generate::random_bezier_scene(
-                    splinescope::scene::generate::StressOptions {
-                        curves: n as usize,
-                        degree: degree as usize,
-                        ..Default::default()
-                    },
-                ),
-                None => load_scene_or_gallery(scene.as_deref())?,
-            };
-            if solve && degree < 2 {
-                bail!(
-                    "--solve needs --degree 2 or more (a line has no interior control point to move)"
-                );
-            }
-            splinescope::app::run(splinescope::app::ViewOptions {
-                scene,
-                frames,
-                backend: gpu.gpu_backend,
-                solve,
-                path,
-            })?;
-            Ok(())
-        }
+        }) => view(scene, frames, stress, degree, solve, &gpu),
         Some(Command::Render {
             scene,
             output,
             width,
             height,
             gpu,
-        }) => {
-            let scene = load_scene_or_gallery(scene.as_deref())?;
-            let ctx = gpu.context()?;
-            render_to(&ctx, &scene, &output, width, height)?;
-            say!(
-                "rendered {} curve(s) to {} ({width}×{height}, {})",
-                scene.curves.len(),
-                output.display(),
-                ctx.describe()
-            );
-            Ok(())
-        }
+        }) => render(scene.as_deref(), &output, (width, height), &gpu),
         Some(Command::Eval {
             scene,
             samples,
@@ -390,6 +342,69 @@ fn run(cli: Cli) -> Result<()> {
             json,
         ),
     }
+}
+
+/// `view`: a scene (or the gallery, or a generated stress scene) in a window.
+fn view(
+    scene: Option<PathBuf>,
+    frames: Option<u64>,
+    stress: Option<u64>,
+    degree: u64,
+    solve: bool,
+    gpu: &GpuArgs,
+) -> Result<()> {
+    if !splinescope::app::display_available() {
+        bail!(
+            "no display found (DISPLAY and WAYLAND_DISPLAY are unset); use `splinescope render` for a PNG, or run under xvfb-run"
+        );
+    }
+    if solve && degree < 2 {
+        bail!("--solve needs --degree 2 or more (a line has no interior control point to move)");
+    }
+    let loaded = match stress {
+        Some(n) => {
+            splinescope::limits::SAMPLES
+                .check(n.saturating_mul(u64::from(
+                    splinescope::scene::generate::StressOptions::default().samples,
+                )))
+                .with_context(|| format!("view --stress {n}"))?;
+            splinescope::scene::generate::random_bezier_scene(
+                splinescope::scene::generate::StressOptions {
+                    curves: n as usize,
+                    degree: degree as usize,
+                    ..Default::default()
+                },
+            )
+        }
+        None => load_scene_or_gallery(scene.as_deref())?,
+    };
+    splinescope::app::run(splinescope::app::ViewOptions {
+        scene: loaded,
+        frames,
+        backend: gpu.gpu_backend,
+        solve,
+        path: scene,
+    })?;
+    Ok(())
+}
+
+/// `render`: a scene (or the gallery) to a PNG.
+fn render(
+    scene: Option<&Path>,
+    output: &Path,
+    (width, height): (u32, u32),
+    gpu: &GpuArgs,
+) -> Result<()> {
+    let scene = load_scene_or_gallery(scene)?;
+    let ctx = gpu.context()?;
+    render_to(&ctx, &scene, output, width, height)?;
+    say!(
+        "rendered {} curve(s) to {} ({width}×{height}, {})",
+        scene.curves.len(),
+        output.display(),
+        ctx.describe()
+    );
+    Ok(())
 }
 
 /// No arguments: the gallery in a window, or with no display a PNG of it.
@@ -781,6 +796,14 @@ fn schema(name: Option<&str>, write: Option<&Path>) -> Result<()> {
     print!("{}", splinescope::schemas::to_text(schema));
     Ok(())
 }
+/// What `adapters --json` prints.
+#[derive(serde::Serialize)]
+struct AdaptersOutput<'a, A: serde::Serialize> {
+    backends: String,
+    adapter_name_filter: Option<String>,
+    adapters: &'a [A],
+}
+
 fn adapters(json: bool, gpu: &GpuArgs) -> Result<()> {
     let opts = ContextOptions::from_env(gpu.gpu_backend);
     let found = splinescope::gpu::context::survey(&opts);
@@ -788,11 +811,11 @@ fn adapters(json: bool, gpu: &GpuArgs) -> Result<()> {
     if json {
         say!(
             "{}",
-            serde_json::to_string_pretty(&serde_json::json!({
-                "backends": splinescope::gpu::context::backend_names(opts.backend.backends()),
-                "adapter_name_filter": opts.adapter_name,
-                "adapters": found,
-            }))?
+            serde_json::to_string_pretty(&AdaptersOutput {
+                backends: splinescope::gpu::context::backend_names(opts.backend.backends()),
+                adapter_name_filter: opts.adapter_name.clone(),
+                adapters: &found,
+            })?
         );
     } else {
         say!(
