@@ -27,6 +27,28 @@ struct Record {
     sample_offset: u32,
 }
 
+// Twin: GpuSegment. A Bézier segment drawn with a per-frame sample count (adaptive.wgsl):
+// control points points[first_point ..= first_point + degree], samples tagged `curve`,
+// `fixed` samples when the scene sets a count (0: chosen each frame).
+struct Segment {
+    first_point: u32,
+    degree: u32,
+    curve: u32,
+    fixed: u32,
+}
+
+// Twin: GpuFrame. What adaptive tessellation needs each frame, per chunk.
+struct Frame {
+    clip_from_world: mat4x4<f32>,
+    viewport_px: vec2<f32>,
+    tolerance_px: f32,
+    cull_margin_px: f32,
+    segment_count: u32,
+    capacity: u32,
+    max_count: u32,
+    _padding: u32,
+}
+
 // Twin: GpuTessParams.
 struct TessParams {
     record_start: u32,

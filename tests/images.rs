@@ -252,10 +252,10 @@ fn curve_pixels_hug_the_exact_curve() {
 #[test]
 fn an_edit_written_in_place_renders_like_a_fresh_upload() {
     use splinescope::geom::Lower;
+    use splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX;
     use splinescope::gpu::offscreen::{OFFSCREEN_FORMAT, render_uploaded};
     use splinescope::gpu::pack::{ChunkLimits, prepare_overlays, prepare_scene, repack_points};
     use splinescope::gpu::renderer::Renderer;
-    use splinescope::gpu::tessellator::Tessellator;
     common::on_each_gpu(
         "an_edit_written_in_place_renders_like_a_fresh_upload",
         |backend| {
@@ -263,14 +263,20 @@ fn an_edit_written_in_place_renders_like_a_fresh_upload() {
             let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes/paper001_fig1.json");
             let scene = Scene::load(&path).expect("scene");
             let limits = ChunkLimits::for_binding_size(ctx.max_binding_bytes());
-            let tess = Tessellator::new(&ctx.device);
             let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
             let prepared = prepare_scene(&scene, limits).expect("pack");
-            let mut gpu = renderer.upload(&ctx.device, &tess, &prepared);
+            let mut gpu = renderer.upload(ctx, &prepared);
             let viewport = DVec2::new(320.0, 240.0);
             let camera = scene.camera(viewport);
-            let before =
-                render_uploaded(ctx, &tess, &renderer, &gpu, &camera, 320, 240).expect("render");
+            let before = render_uploaded(
+                ctx,
+                &renderer,
+                &mut gpu,
+                &camera,
+                (320, 240),
+                DEFAULT_TOLERANCE_PX,
+            )
+            .expect("render");
             // Edit the standard curve: a shape parameter and a small move of a control point keep
             // every segment's automatic sample count, so the edit can be written in place.
             let edit = |dy: f64| {
@@ -311,8 +317,15 @@ fn an_edit_written_in_place_renders_like_a_fresh_upload() {
             }
             let (lines, points) = prepare_overlays(&edited, limits);
             renderer.replace_overlays(&ctx.device, &mut gpu, &lines, &points);
-            let in_place =
-                render_uploaded(ctx, &tess, &renderer, &gpu, &camera, 320, 240).expect("render");
+            let in_place = render_uploaded(
+                ctx,
+                &renderer,
+                &mut gpu,
+                &camera,
+                (320, 240),
+                DEFAULT_TOLERANCE_PX,
+            )
+            .expect("render");
             let fresh = render_scene(ctx, &edited, Some(camera), 320, 240).expect("render");
             assert_eq!(
                 in_place, fresh,

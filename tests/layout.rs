@@ -3,8 +3,8 @@
 
 use naga::{Module, TypeInner};
 use splinescope::gpu::layout::{
-    GpuCamera, GpuLineStyle, GpuRecord, GpuTessParams, GpuVertex, MAX_GPU_DEGREE,
-    TESSELLATE_KERNELS, TESSELLATE_WORKGROUP_SIZE,
+    GpuCamera, GpuFrame, GpuLineStyle, GpuRecord, GpuSegment, GpuTessParams, GpuVertex,
+    MAX_GPU_DEGREE, SCAN_BLOCK, TESSELLATE_KERNELS, TESSELLATE_WORKGROUP_SIZE, WORK_HEADER,
 };
 use splinescope::gpu::shaders::{self, ALL};
 
@@ -61,6 +61,13 @@ fn every_shader_validates() {
 }
 
 #[test]
+fn adaptive_constants_match_their_rust_twins() {
+    let (module, _) = shaders::ADAPTIVE.validate().expect("valid");
+    assert_eq!(constant_u32(&module, "SCAN_BLOCK"), SCAN_BLOCK);
+    assert_eq!(constant_u32(&module, "WORK_COUNTS") as usize, WORK_HEADER);
+}
+
+#[test]
 fn gpu_structs_match_their_wgsl_twins() {
     // Each pipeline composes the shared declarations, so check them in every module.
     for source in ALL {
@@ -80,6 +87,27 @@ fn gpu_structs_match_their_wgsl_twins() {
                 u0,
                 u1,
                 sample_offset
+            ]
+        );
+        assert_twin!(
+            m,
+            "Segment",
+            GpuSegment,
+            [first_point, degree, curve, fixed]
+        );
+        assert_twin!(
+            m,
+            "Frame",
+            GpuFrame,
+            [
+                clip_from_world,
+                viewport_px,
+                tolerance_px,
+                cull_margin_px,
+                segment_count,
+                capacity,
+                max_count,
+                _padding
             ]
         );
         assert_twin!(
@@ -247,4 +275,9 @@ fn bind_group_layouts_match_the_shaders() {
         );
     }
     assert_eq!(from_shader(&shaders::TESSELLATE).len(), 4);
+    assert_eq!(
+        from_layouts(&bindings::adaptive()),
+        from_shader(&shaders::ADAPTIVE)
+    );
+    assert_eq!(from_shader(&shaders::ADAPTIVE).len(), 6);
 }

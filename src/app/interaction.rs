@@ -96,6 +96,8 @@ pub struct Interaction {
     pub auto_fit: bool,
     /// Whether the scene may be edited (not in stress-solve mode).
     pub editable: bool,
+    /// The tessellation tolerance in pixels (`--tolerance-px`, the panel's slider).
+    pub tolerance_px: f64,
     cursor: DVec2,
     dragging: Option<Button>,
     /// The point being edited by the primary drag (its depth anchors 3D drags).
@@ -118,6 +120,7 @@ impl Interaction {
             panel_width_px,
             auto_fit,
             editable: true,
+            tolerance_px: crate::gpu::adaptive::DEFAULT_TOLERANCE_PX,
             cursor: DVec2::ZERO,
             dragging: None,
             editing: None,

@@ -54,6 +54,8 @@ pub struct ViewOptions {
     /// target circling the curve's midpoint. Needs a scene of Bézier curves of one degree.
     /// Editing is off in this mode.
     pub solve: bool,
+    /// The tessellation tolerance in pixels (see [`crate::gpu::adaptive`]).
+    pub tolerance_px: f64,
     /// Where `Ctrl+S` saves the edited scene (`None`: `splinescope-scene.json` in the
     /// current directory).
     pub path: Option<PathBuf>,
@@ -298,6 +300,7 @@ impl Running {
             ui::PANEL_WIDTH_POINTS,
         );
         model.editable = stress.is_none();
+        model.tolerance_px = opts.tolerance_px;
         Ok(Running {
             adapter: ctx.describe(),
             surface,
@@ -324,6 +327,7 @@ impl Running {
         // (polling first delivers a pending loss notice).
         let _ = self.ctx.device.poll(wgpu::PollType::Poll);
         self.ctx.check_health()?;
+        self.view.poll_stats(&self.ctx);
         let changed = self.model.editor.take_changed();
         self.view.sync(
             &self.ctx,
@@ -345,7 +349,7 @@ impl Running {
             .texture
             .create_view(&wgpu::TextureViewDescriptor::default());
         let scale = self.surface.window.scale_factor() as f32;
-        self.renderer_camera(scale);
+        let camera = self.renderer_camera(scale);
         let mut encoder = self
             .ctx
             .device
@@ -353,7 +357,13 @@ impl Running {
                 label: Some("frame"),
             });
         let (panel, actions) = self.run_panel(&mut encoder);
-        self.view.encode_tessellation(&self.ctx, &mut encoder);
+        let settings = crate::gpu::adaptive::FrameSettings {
+            camera,
+            tolerance_px: self.model.tolerance_px as f32,
+        };
+        let copied_stats = self
+            .view
+            .encode_tessellation(&self.ctx, &mut encoder, &settings);
         {
             let mut pass = self
                 .view
@@ -372,6 +382,9 @@ impl Running {
         self.ctx
             .queue
             .submit(extra.into_iter().chain([encoder.finish()]));
+        if copied_stats {
+            self.view.after_submit();
+        }
         self.surface.window.pre_present_notify();
         self.ctx.queue.present(frame);
         self.egui.finish(&panel);
@@ -388,11 +401,11 @@ impl Running {
         Ok(true)
     }
 
-    fn renderer_camera(&self, scale: f32) {
-        self.view.renderer.set_camera(
-            &self.ctx.queue,
-            &camera_uniform(&self.model.camera, self.model.viewport, scale),
-        );
+    /// Sets the renderer's camera for this frame and returns it.
+    fn renderer_camera(&self, scale: f32) -> crate::gpu::layout::GpuCamera {
+        let camera = camera_uniform(&self.model.camera, self.model.viewport, scale);
+        self.view.renderer.set_camera(&self.ctx.queue, &camera);
+        camera
     }
 
     /// Runs the side panel for this frame (recording its uploads into `encoder`).
@@ -407,11 +420,13 @@ impl Running {
             summaries: &self.view.summaries,
             adapter: &self.adapter,
             fps: self.fps.fps(),
-            samples_per_frame: self.view.gpu.sample_count(),
+            samples_per_frame: self.view.samples_per_frame(),
+            capped: self.view.capped(),
             camera: &camera,
             solving: self.stress.as_ref().map(|s| (s.curves, s.last_solve_ms)),
         };
         let editable = self.model.editable;
+        let tolerance_before = self.model.tolerance_px;
         let model = &mut self.model;
         let mut panel_width = 0.0_f32;
         let size = [self.surface.config.width, self.surface.config.height];
@@ -421,6 +436,7 @@ impl Running {
                     panel_width = ui::panel(
                         ui,
                         &info,
+                        &mut model.tolerance_px,
                         &mut model.toggles,
                         &mut model.editor,
                         editable,
@@ -428,6 +444,14 @@ impl Running {
                     );
                 });
         self.model.panel_width_px = f64::from(panel_width) * f64::from(pixels_per_point);
+        let t = self.model.tolerance_px;
+        if !(t.is_finite() && t >= crate::gpu::adaptive::MIN_TOLERANCE_PX) {
+            self.model.editor.message = Some(format!(
+                "tolerance {t} px refused: it must be at least {} px",
+                crate::gpu::adaptive::MIN_TOLERANCE_PX
+            ));
+            self.model.tolerance_px = tolerance_before;
+        }
         // A panel control's drag (a slider) is one edit: commit it when the pointer lets go.
         if !self.model.is_editing() && self.egui.pointer_released() {
             self.model.editor.finish();

@@ -2,10 +2,15 @@
 //! the panel's switches (curves rewritten in place when their structure is unchanged),
 //! tessellated and drawn every frame.
 
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use super::AppError;
 use super::interaction::Toggles;
 use super::ui;
 use crate::geom::Lower;
+use crate::gpu::adaptive::FrameSettings;
+use crate::gpu::layout::{FrameStats, WORK_HEADER};
 use crate::gpu::pack::{
     ChunkLimits, PreparedScene, prepare_overlays, prepare_scene, repack_points,
 };
@@ -20,6 +25,89 @@ pub(crate) struct SceneView {
     pub prepared: PreparedScene,
     uploaded_toggles: Toggles,
     pub summaries: Vec<ui::CurveSummary>,
+    stats: StatsReader,
+    /// The chunks' statistics of a recent frame (read back without waiting).
+    pub last_stats: Vec<FrameStats>,
+}
+
+/// Reads the chunks' frame statistics back a few frames late, never waiting for the GPU:
+/// one copy in flight at a time.
+struct StatsReader {
+    staging: Option<wgpu::Buffer>,
+    ready: Option<Arc<AtomicBool>>,
+}
+
+const STATS_BYTES: u64 = (WORK_HEADER * 4) as u64;
+
+impl StatsReader {
+    fn new() -> StatsReader {
+        StatsReader {
+            staging: None,
+            ready: None,
+        }
+    }
+
+    /// Records copies of every chunk's statistics when no read is in flight; whether it did.
+    fn record(
+        &mut self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        gpu: &GpuScene,
+    ) -> bool {
+        if self.ready.is_some() || gpu.chunks.is_empty() {
+            return false;
+        }
+        let size = STATS_BYTES * gpu.chunks.len() as u64;
+        if self.staging.as_ref().is_none_or(|b| b.size() != size) {
+            self.staging = Some(ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("frame statistics"),
+                size,
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }));
+        }
+        let Some(staging) = &self.staging else {
+            return false;
+        };
+        for (i, c) in gpu.chunks.iter().enumerate() {
+            encoder.copy_buffer_to_buffer(
+                &c.adaptive.work,
+                0,
+                staging,
+                i as u64 * STATS_BYTES,
+                STATS_BYTES,
+            );
+        }
+        true
+    }
+
+    /// After the recorded copies were submitted: asks for the mapping.
+    fn request(&mut self) {
+        let Some(staging) = &self.staging else {
+            return;
+        };
+        let flag = Arc::new(AtomicBool::new(false));
+        let done = flag.clone();
+        staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+            done.store(r.is_ok(), Ordering::Release);
+        });
+        self.ready = Some(flag);
+    }
+
+    /// The statistics, once the mapping completed.
+    fn take(&mut self) -> Option<Vec<FrameStats>> {
+        if !self.ready.as_ref()?.load(Ordering::Acquire) {
+            return None;
+        }
+        self.ready = None;
+        let staging = self.staging.as_ref()?;
+        let stats = {
+            let data = staging.slice(..).get_mapped_range().ok()?;
+            bytemuck::pod_collect_to_vec::<u8, FrameStats>(&data)
+        };
+        staging.unmap();
+        Some(stats)
+    }
 }
 
 impl SceneView {
@@ -37,6 +125,8 @@ impl SceneView {
             prepared,
             uploaded_toggles: toggles,
             summaries: ui::summarize(scene),
+            stats: StatsReader::new(),
+            last_stats: Vec::new(),
         })
     }
 
@@ -68,6 +158,9 @@ impl SceneView {
             self.gpu = gpu;
             self.prepared = prepared;
             self.uploaded_toggles = toggles;
+            // Statistics of the old chunks no longer apply.
+            self.stats = StatsReader::new();
+            self.last_stats.clear();
         }
         ui::refresh(&mut self.summaries, scene, changed);
         Ok(())
@@ -92,10 +185,47 @@ impl SceneView {
         true
     }
 
-    /// Records the frame's tessellation (every chunk) into `encoder`.
-    pub fn encode_tessellation(&self, ctx: &GpuContext, encoder: &mut wgpu::CommandEncoder) {
-        ctx.tessellator
-            .encode(encoder, self.gpu.chunks.iter().map(|c| &c.buffers), None);
+    /// Takes the statistics of an earlier frame if they arrived, growing the chunks whose
+    /// samples did not fit.
+    pub fn poll_stats(&mut self, ctx: &GpuContext) {
+        if let Some(stats) = self.stats.take() {
+            if stats.len() == self.gpu.chunks.len() {
+                self.gpu.grow(ctx, &self.renderer, &stats);
+            }
+            self.last_stats = stats;
+        }
+    }
+
+    /// Records the frame's adaptive tessellation (every chunk, for the camera and
+    /// tolerance of `settings`) into `encoder`, and a copy of its statistics when none is
+    /// in flight; returns whether it copied them ([`SceneView::after_submit`] then).
+    pub fn encode_tessellation(
+        &mut self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        settings: &FrameSettings,
+    ) -> bool {
+        self.gpu.prepare_frame(ctx, settings);
+        self.gpu.encode_tessellation(ctx, encoder, None);
+        self.stats.record(ctx, encoder, &self.gpu)
+    }
+
+    /// After the frame was submitted: maps the statistics copied this frame.
+    pub fn after_submit(&mut self) {
+        self.stats.request();
+    }
+
+    /// Samples drawn per frame (recent statistics; the buffers' capacity before any).
+    pub fn samples_per_frame(&self) -> u64 {
+        if self.last_stats.is_empty() {
+            return self.gpu.capacity();
+        }
+        self.last_stats.iter().map(|s| u64::from(s.drawn)).sum()
+    }
+
+    /// Whether a recent frame's samples were scaled down to fit the buffers.
+    pub fn capped(&self) -> bool {
+        self.last_stats.iter().any(|s| s.capped != 0)
     }
 }
 
@@ -122,8 +252,5 @@ fn upload(
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )
     .map_err(GpuError::from)?;
-    Ok((
-        renderer.upload(&ctx.device, &ctx.tessellator, &prepared),
-        prepared,
-    ))
+    Ok((renderer.upload(ctx, &prepared), prepared))
 }

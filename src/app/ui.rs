@@ -71,6 +71,8 @@ pub(crate) struct PanelInfo<'a> {
     pub adapter: &'a str,
     pub fps: f64,
     pub samples_per_frame: u64,
+    /// Whether the sample buffers capped a recent frame.
+    pub capped: bool,
     pub camera: &'a Camera,
     /// Stress solving: curves re-solved per frame and the last batch's milliseconds.
     pub solving: Option<(usize, f64)>,
@@ -119,6 +121,7 @@ impl FpsCounter {
 pub(crate) fn panel(
     ui: &mut egui::Ui,
     info: &PanelInfo<'_>,
+    tolerance_px: &mut f64,
     toggles: &mut Toggles,
     editor: &mut Editor,
     editable: bool,
@@ -135,11 +138,17 @@ pub(crate) fn panel(
             let scene = editor.scene();
             ui.heading(scene.name.as_deref().unwrap_or("splinescope"));
             ui.label(format!(
-                "{} curve(s) · {} samples/frame · {:.0} fps",
+                "{} curve(s) · {} samples/frame · {:.1} fps",
                 scene.curves.len(),
                 info.samples_per_frame,
                 info.fps
             ));
+            if info.capped {
+                ui.colored_label(
+                    egui::Color32::from_rgb(200, 40, 40),
+                    "sample buffer full: curves drawn coarser than the tolerance",
+                );
+            }
             ui.small(info.adapter);
             if let Some((curves, ms)) = info.solving {
                 ui.label(format!(
@@ -148,6 +157,12 @@ pub(crate) fn panel(
                 ));
             }
             ui.separator();
+            ui.add(
+                egui::Slider::new(tolerance_px, 0.05..=8.0)
+                    .logarithmic(true)
+                    .text("tolerance (px)"),
+            )
+            .on_hover_text("the largest distance between a drawn polyline and its curve");
             ui.checkbox(&mut toggles.show_polygons, "control polygons (P)");
             ui.checkbox(&mut toggles.show_points, "control points (C)");
             if ui.button("fit (F)").clicked() {

@@ -5,8 +5,8 @@
 use glam::DVec3;
 
 use super::layout::{
-    GpuLineStyle, GpuRecord, GpuVertex, TESSELLATE_KERNELS, TESSELLATE_WORKGROUP_SIZE as WORKGROUP,
-    kernel_class,
+    GpuLineStyle, GpuRecord, GpuSegment, GpuVertex, MAX_ADAPTIVE_SEGMENTS, TESSELLATE_KERNELS,
+    TESSELLATE_WORKGROUP_SIZE as WORKGROUP, kernel_class,
 };
 use super::pack::PackError;
 
@@ -55,6 +55,11 @@ pub struct TessChunk {
     pub first_curve: usize,
     /// Style of each curve in the chunk, by local tag.
     pub styles: Vec<GpuLineStyle>,
+    /// The Bézier segments drawn from this chunk with per-frame sample counts (adaptive
+    /// tessellation; each segment whose first record is here), sorted by kernel class.
+    pub segments: Vec<GpuSegment>,
+    /// Where each kernel class's segments end in `segments`.
+    pub segment_class_ends: [u32; TESSELLATE_KERNELS.len()],
 }
 
 /// Where a copy of one lowered segment's control points lives on the GPU: the chunk and
@@ -91,6 +96,9 @@ struct OpenSegment {
     style: GpuLineStyle,
     points: Vec<GpuVertex>,
     first_point: u32,
+    /// For a drawn segment, its fixed sample count (0: adaptive); registered in the chunk
+    /// that gets its first record.
+    drawn: Option<u32>,
 }
 
 impl ChunkBuilder {
@@ -125,6 +133,7 @@ impl ChunkBuilder {
         let new_style = c.styles.is_empty() || curve - c.first_curve >= c.styles.len();
         c.points.len() + points <= l.max_points
             && c.records.len() < l.max_records
+            && c.segments.len() < MAX_ADAPTIVE_SEGMENTS
             && c.sample_count as usize + samples <= l.max_samples
             && (!new_style || c.styles.len() < l.max_styles)
     }
@@ -182,6 +191,7 @@ impl ChunkBuilder {
             style,
             points,
             first_point,
+            drawn: None,
         });
         Ok(())
     }
@@ -213,6 +223,19 @@ impl ChunkBuilder {
             first_point,
             ..open
         });
+    }
+
+    /// Adds the open segment's `count ≥ 1` samples over its whole parameter range, as a
+    /// drawn segment: it is also entered in its chunk's adaptive segment table, with
+    /// `count` as its fixed count when `fixed` (otherwise chosen every frame).
+    ///
+    /// # Panics
+    /// If no segment is open or `count` is 0 (bugs in the caller).
+    pub fn add_drawn_samples(&mut self, count: u32, fixed: bool) {
+        if let Some(open) = &mut self.open {
+            open.drawn = Some(if fixed { count } else { 0 });
+        }
+        self.add_samples(count, 0.0, 1.0);
     }
 
     /// Adds `count ≥ 1` samples of the open segment at parameters from `u0` to `u1` (see
@@ -257,6 +280,16 @@ impl ChunkBuilder {
             if tag >= c.styles.len() {
                 // Tags stay dense: a curve that lowered to no segment keeps its slot.
                 c.styles.resize(tag + 1, open.style);
+            }
+            if start == 0
+                && let Some(fixed) = open.drawn
+            {
+                c.segments.push(GpuSegment {
+                    first_point: open.first_point,
+                    degree: (open.points.len() - 1) as u32,
+                    curve: tag as u32,
+                    fixed,
+                });
             }
             // One record per workgroup's worth of samples of this run.
             for sample_offset in (0..take).step_by(WORKGROUP as usize) {
@@ -308,6 +341,15 @@ impl ChunkBuilder {
                     ends[k] += ends[k - 1];
                 }
                 c.class_ends = ends;
+                c.segments.sort_by_key(|s| kernel_class(s.degree));
+                let mut ends = [0u32; TESSELLATE_KERNELS.len()];
+                for s in &c.segments {
+                    ends[kernel_class(s.degree)] += 1;
+                }
+                for k in 1..ends.len() {
+                    ends[k] += ends[k - 1];
+                }
+                c.segment_class_ends = ends;
                 c
             })
             .collect();

@@ -109,6 +109,8 @@ pub struct GpuContext {
     pub queue: wgpu::Queue,
     /// The tessellation pipelines, built once: the very ones the self-test checked.
     pub tessellator: Tessellator,
+    /// The adaptive tessellation pipelines (drawing), built once.
+    pub adaptive: super::adaptive::AdaptiveTessellator,
     /// The first uncaptured error or loss the device reported (see
     /// [`GpuContext::check_health`]).
     health: Arc<Mutex<Option<String>>>,
@@ -364,12 +366,14 @@ impl GpuContext {
             match open_and_test(&adapter) {
                 Ok((device, queue, tessellator)) => {
                     let health = watch(&device);
+                    let adaptive = super::adaptive::AdaptiveTessellator::new(&device);
                     return Ok(GpuContext {
                         instance,
                         adapter,
                         device,
                         queue,
                         tessellator,
+                        adaptive,
                         health,
                     });
                 }

@@ -75,6 +75,86 @@ pub struct GpuTessParams {
     pub _padding: u32,
 }
 
+/// A Bézier segment drawn with a per-frame sample count (`shaders/adaptive.wgsl`): control
+/// points `points[first_point ..= first_point + degree]`, samples tagged `curve`.
+///
+/// Twin: `Segment` in `shaders/common.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Pod, Zeroable)]
+pub struct GpuSegment {
+    /// Index of the first control point.
+    pub first_point: u32,
+    /// Degree `n`, at most [`MAX_GPU_DEGREE`].
+    pub degree: u32,
+    /// Tag written with every sample (chunk-local curve index).
+    pub curve: u32,
+    /// The scene's or curve's fixed sample count; 0: chosen every frame for the tolerance.
+    pub fixed: u32,
+}
+
+/// The per-frame uniform of adaptive tessellation, one per chunk. Twin: `Frame` in
+/// `shaders/common.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuFrame {
+    /// World to clip space, column-major (the camera's).
+    pub clip_from_world: [[f32; 4]; 4],
+    /// Viewport size in physical pixels.
+    pub viewport_px: [f32; 2],
+    /// The largest distance, in pixels, between a drawn polyline and its curve.
+    pub tolerance_px: f32,
+    /// How far outside the viewport a segment may reach and still be drawn (half the
+    /// chunk's widest line, plus a pixel).
+    pub cull_margin_px: f32,
+    /// Segments in the chunk.
+    pub segment_count: u32,
+    /// Samples the chunk's sample buffer holds.
+    pub capacity: u32,
+    /// The most samples one segment may get ([`MAX_SAMPLES_PER_SEGMENT`]).
+    pub max_count: u32,
+    /// Uniform structs are 16-byte aligned.
+    pub _padding: u32,
+}
+
+/// The most samples adaptive tessellation gives one segment (a scene's fixed counts have
+/// the same maximum).
+pub const MAX_SAMPLES_PER_SEGMENT: u32 = crate::scene::MAX_SAMPLES_PER_SEGMENT;
+
+/// The most segments of one chunk in adaptive tessellation: the prefix sum scans blocks of
+/// [`SCAN_BLOCK`] and then at most [`SCAN_BLOCK`] block totals in one workgroup.
+pub const MAX_ADAPTIVE_SEGMENTS: usize = (SCAN_BLOCK * SCAN_BLOCK) as usize;
+
+/// Segments per block of the prefix sum. Twin: `SCAN_BLOCK` in `shaders/adaptive.wgsl`.
+pub const SCAN_BLOCK: u32 = 256;
+
+/// The `u32` words at the start of the adaptive work buffer: the indirect draw arguments
+/// (`[6, pieces, 0, 0]`) and the frame's statistics ([`FrameStats`]); the segments'
+/// counts, scan pairs and block pairs follow. Twin: `WORK_COUNTS` in
+/// `shaders/adaptive.wgsl`.
+pub const WORK_HEADER: usize = 8;
+
+/// The frame's figures as the adaptive passes leave them in the work buffer's header.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Pod, Zeroable)]
+pub struct FrameStats {
+    /// Vertices per line piece (6), for the indirect draw.
+    pub vertex_count: u32,
+    /// Line pieces drawn (samples − 1).
+    pub instance_count: u32,
+    /// 0, for the indirect draw.
+    pub first_vertex: u32,
+    /// 0, for the indirect draw.
+    pub first_instance: u32,
+    /// Samples the tolerance asked for.
+    pub requested: u32,
+    /// Samples written (fewer when the buffer capped them).
+    pub drawn: u32,
+    /// Segments with samples (not wholly off screen).
+    pub segments_drawn: u32,
+    /// 1 when the counts were scaled down to fit the buffer.
+    pub capped: u32,
+}
+
 /// The kernels of `shaders/tessellate.wgsl`, one per degree class: `(entry point, the one
 /// degree it evaluates, or None for any degree)`. Each chunk's records are sorted in this
 /// order and each class is dispatched with its own pipeline.

@@ -2,6 +2,7 @@
 //! shaders, packing, the compute tessellator and its CPU twin, the renderer, offscreen
 //! capture and GPU evaluation.
 
+pub mod adaptive;
 pub mod bindings;
 pub mod chunks;
 pub mod context;

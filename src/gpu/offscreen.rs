@@ -4,10 +4,11 @@
 use glam::DVec2;
 
 use super::GpuError;
+use super::adaptive::{DEFAULT_TOLERANCE_PX, FrameSettings, read_stats};
 use super::context::GpuContext;
 use super::pack::{ChunkLimits, prepare_scene};
 use super::renderer::{GpuScene, Renderer, camera_uniform};
-use super::tessellator::{Tessellator, read_buffer};
+use super::tessellator::read_buffer;
 use crate::camera::Camera;
 use crate::image::RgbaImage;
 use crate::scene::Scene;
@@ -17,7 +18,8 @@ use crate::scene::Scene;
 pub const OFFSCREEN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 /// Draws `scene` with `camera` (the scene's own when `None`) into a `width × height`
-/// image.
+/// image, tessellated as the window does for the default tolerance
+/// ([`DEFAULT_TOLERANCE_PX`]).
 ///
 /// # Errors
 /// [`GpuError::ImageSize`] for a size the device cannot hold, [`GpuError::Pack`] for a
@@ -29,23 +31,36 @@ pub fn render_scene(
     width: u32,
     height: u32,
 ) -> Result<RgbaImage, GpuError> {
+    render_scene_with(ctx, scene, camera, (width, height), DEFAULT_TOLERANCE_PX)
+}
+
+/// [`render_scene`] for a tolerance of `tolerance_px` pixels.
+///
+/// # Errors
+/// As [`render_scene`].
+pub fn render_scene_with(
+    ctx: &GpuContext,
+    scene: &Scene,
+    camera: Option<Camera>,
+    (width, height): (u32, u32),
+    tolerance_px: f64,
+) -> Result<RgbaImage, GpuError> {
     check_size(ctx, width, height)?;
     let prepared = prepare_scene(
         scene,
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )?;
     let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
-    let gpu_scene = renderer.upload(&ctx.device, &ctx.tessellator, &prepared);
+    let mut gpu_scene = renderer.upload(ctx, &prepared);
     let viewport = DVec2::new(f64::from(width), f64::from(height));
     let camera = camera.unwrap_or_else(|| scene.camera(viewport));
     render_uploaded(
         ctx,
-        &ctx.tessellator,
         &renderer,
-        &gpu_scene,
+        &mut gpu_scene,
         &camera,
-        width,
-        height,
+        (width, height),
+        tolerance_px,
     )
 }
 
@@ -57,24 +72,68 @@ fn check_size(ctx: &GpuContext, width: u32, height: u32) -> Result<(), GpuError>
     Ok(())
 }
 
-/// Draws an already uploaded scene (tessellating it first) into a `width × height` image;
-/// `renderer` must draw to [`OFFSCREEN_FORMAT`].
+/// Draws an already uploaded scene (tessellating it first, for `tolerance_px`) into a
+/// `width × height` image; `renderer` must draw to [`OFFSCREEN_FORMAT`]. When the view
+/// asks for more samples than a chunk's buffer holds, the buffer grows and the frame is
+/// drawn again, so an image is never coarsened by the buffer (only by the device's
+/// limit).
 ///
 /// # Errors
 /// [`GpuError::ImageSize`], or [`GpuError::Readback`] when reading fails.
 pub fn render_uploaded(
     ctx: &GpuContext,
-    tessellator: &Tessellator,
+    renderer: &Renderer,
+    gpu_scene: &mut GpuScene,
+    camera: &Camera,
+    (width, height): (u32, u32),
+    tolerance_px: f64,
+) -> Result<RgbaImage, GpuError> {
+    let image = render_once(
+        ctx,
+        renderer,
+        gpu_scene,
+        camera,
+        (width, height),
+        tolerance_px,
+    )?;
+    let stats = gpu_scene
+        .chunks
+        .iter()
+        .map(|c| read_stats(&ctx.device, &ctx.queue, &c.adaptive))
+        .collect::<Result<Vec<_>, _>>()?;
+    if gpu_scene.grow(ctx, renderer, &stats) {
+        return render_once(
+            ctx,
+            renderer,
+            gpu_scene,
+            camera,
+            (width, height),
+            tolerance_px,
+        );
+    }
+    Ok(image)
+}
+
+fn render_once(
+    ctx: &GpuContext,
     renderer: &Renderer,
     gpu_scene: &GpuScene,
     camera: &Camera,
-    width: u32,
-    height: u32,
+    (width, height): (u32, u32),
+    tolerance_px: f64,
 ) -> Result<RgbaImage, GpuError> {
     check_size(ctx, width, height)?;
     ctx.check_health()?;
     let viewport = DVec2::new(f64::from(width), f64::from(height));
-    renderer.set_camera(&ctx.queue, &camera_uniform(camera, viewport, 1.0));
+    let camera = camera_uniform(camera, viewport, 1.0);
+    renderer.set_camera(&ctx.queue, &camera);
+    gpu_scene.prepare_frame(
+        ctx,
+        &FrameSettings {
+            camera,
+            tolerance_px: tolerance_px as f32,
+        },
+    );
 
     let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("offscreen"),
@@ -96,7 +155,7 @@ pub fn render_uploaded(
         .create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("offscreen"),
         });
-    renderer.encode_frame(&mut encoder, tessellator, gpu_scene, &view);
+    renderer.encode_frame(ctx, &mut encoder, gpu_scene, &view);
 
     // Rows of a texture copy are padded to 256 bytes.
     let row = width * 4;

@@ -227,9 +227,10 @@ pub fn prepare_scene(scene: &Scene, limits: ChunkLimits) -> Result<PreparedScene
     let mut sample_counts = Vec::with_capacity(scene.curves.len());
     for (index, (sc, (segments, counts))) in scene.curves.iter().zip(lowered).enumerate() {
         let style = GpuLineStyle::solid(sc.style.color, sc.style.width);
+        let fixed = scene.samples_for(index).is_some();
         for (seg, &count) in segments.iter().zip(&counts) {
             chunks.begin_segment(index, style, seg.bezier.points())?;
-            chunks.add_samples(count, 0.0, 1.0);
+            chunks.add_drawn_samples(count, fixed);
         }
         sample_counts.push(counts);
     }

@@ -4,10 +4,11 @@
 
 use glam::DVec2;
 
-use super::layout::{GpuCamera, GpuLineStyle, GpuVertex};
+use super::adaptive::{AdaptiveChunk, FrameSettings, initial_capacity};
+use super::context::GpuContext;
+use super::layout::{FrameStats, GpuCamera, GpuLineStyle, GpuVertex};
 use super::pack::{LineBatch, PreparedScene};
 use super::shaders;
-use super::tessellator::{ChunkBuffers, Tessellator};
 use crate::camera::Camera;
 
 /// Line and point pipelines for one colour target format, and the camera uniform.
@@ -29,12 +30,14 @@ pub struct DrawBatch {
     _buffers: Vec<wgpu::Buffer>,
 }
 
-/// A curve chunk on the GPU: the tessellator's buffers plus the draw bind group.
+/// A curve chunk on the GPU: the adaptive tessellation's buffers plus the draw bind
+/// group over its samples.
 #[derive(Debug)]
 pub struct GpuChunk {
-    /// The tessellation buffers (samples among them).
-    pub buffers: ChunkBuffers,
+    /// The tessellation buffers (samples and the indirect draw arguments among them).
+    pub adaptive: AdaptiveChunk,
     draw: DrawBatch,
+    styles: Vec<GpuLineStyle>,
 }
 
 /// A scene uploaded to the GPU.
@@ -62,7 +65,7 @@ impl GpuScene {
         points: &[GpuVertex],
     ) {
         let offset = u64::from(first_point) * size_of::<GpuVertex>() as u64;
-        let buffer = &self.chunks[chunk].buffers.points;
+        let buffer = &self.chunks[chunk].adaptive.points;
         assert!(
             offset + size_of_val(points) as u64 <= buffer.size(),
             "points outside the chunk"
@@ -70,13 +73,66 @@ impl GpuScene {
         queue.write_buffer(buffer, offset, bytemuck::cast_slice(points));
     }
 
-    /// Total samples the kernel writes per frame.
+    /// Samples the chunks' buffers hold together.
     #[must_use]
-    pub fn sample_count(&self) -> u64 {
+    pub fn capacity(&self) -> u64 {
         self.chunks
             .iter()
-            .map(|c| u64::from(c.buffers.sample_count))
+            .map(|c| u64::from(c.adaptive.capacity))
             .sum()
+    }
+
+    /// Writes every chunk's frame uniform (camera and tolerance) for the next frame.
+    pub fn prepare_frame(&self, ctx: &GpuContext, settings: &FrameSettings) {
+        ctx.adaptive.prepare(
+            &ctx.queue,
+            self.chunks.iter().map(|c| &c.adaptive),
+            settings,
+        );
+    }
+
+    /// Records the adaptive tessellation of every chunk.
+    pub fn encode_tessellation(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        ctx.adaptive.encode(
+            encoder,
+            self.chunks.iter().map(|c| &c.adaptive),
+            timestamp_writes,
+        );
+    }
+
+    /// Gives every chunk whose last frame asked for more samples than its buffer holds a
+    /// buffer for them (within the device's limit); whether any grew. `stats` are the
+    /// chunks' statistics of that frame, in order.
+    pub fn grow(&mut self, ctx: &GpuContext, renderer: &Renderer, stats: &[FrameStats]) -> bool {
+        let limit = (ctx.max_binding_bytes() / size_of::<GpuVertex>() as u64)
+            .min(u64::from(u32::MAX)) as u32;
+        let mut grew = false;
+        for (chunk, s) in self.chunks.iter_mut().zip(stats) {
+            if s.requested <= chunk.adaptive.capacity || chunk.adaptive.capacity >= limit {
+                continue;
+            }
+            // Headroom, so that zooming in does not reallocate every frame.
+            let capacity = (u64::from(s.requested) * 3 / 2).min(u64::from(limit)) as u32;
+            ctx.adaptive.grow(
+                &ctx.device,
+                &mut chunk.adaptive,
+                capacity,
+                wgpu::BufferUsages::COPY_SRC,
+            );
+            chunk.draw = renderer.batch(
+                &ctx.device,
+                chunk.adaptive.samples.clone(),
+                chunk.adaptive.capacity,
+                &chunk.styles,
+            );
+            grew = true;
+        }
+        grew
     }
 }
 
@@ -173,7 +229,7 @@ impl Renderer {
         self.format
     }
 
-    fn batch(
+    pub(crate) fn batch(
         &self,
         device: &wgpu::Device,
         vertices: wgpu::Buffer,
@@ -219,24 +275,31 @@ impl Renderer {
 
     /// Uploads a prepared scene.
     #[must_use]
-    pub fn upload(
-        &self,
-        device: &wgpu::Device,
-        tessellator: &Tessellator,
-        prepared: &PreparedScene,
-    ) -> GpuScene {
+    pub fn upload(&self, ctx: &GpuContext, prepared: &PreparedScene) -> GpuScene {
+        let device = &ctx.device;
+        let limit = ctx.max_binding_bytes() / size_of::<GpuVertex>() as u64;
         let chunks = prepared
             .chunks
             .iter()
+            // Every chunk, even one without segments of its own: placements index them.
             .map(|chunk| {
-                let buffers = tessellator.upload(device, chunk, wgpu::BufferUsages::COPY_SRC);
+                let adaptive = ctx.adaptive.upload(
+                    device,
+                    chunk,
+                    initial_capacity(chunk, limit),
+                    wgpu::BufferUsages::COPY_SRC,
+                );
                 let draw = self.batch(
                     device,
-                    buffers.samples.clone(),
-                    buffers.sample_count,
+                    adaptive.samples.clone(),
+                    adaptive.capacity,
                     &chunk.styles,
                 );
-                GpuChunk { buffers, draw }
+                GpuChunk {
+                    adaptive,
+                    draw,
+                    styles: chunk.styles.clone(),
+                }
             })
             .collect();
         let [r, g, b, a] = prepared.background.0.map(f64::from);
@@ -281,15 +344,16 @@ impl Renderer {
 
     /// Records the whole frame: the compute pass tessellating every chunk, then one render
     /// pass clearing `target` and drawing overlays' polylines, the curves, and points on
-    /// top.
+    /// top. The frame's camera and tolerance must have been set ([`Renderer::set_camera`],
+    /// [`GpuScene::prepare_frame`]).
     pub fn encode_frame(
         &self,
+        ctx: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
-        tessellator: &Tessellator,
         scene: &GpuScene,
         target: &wgpu::TextureView,
     ) {
-        tessellator.encode(encoder, scene.chunks.iter().map(|c| &c.buffers), None);
+        scene.encode_tessellation(ctx, encoder, None);
         let mut pass = self.begin_pass(encoder, target, wgpu::LoadOp::Clear(scene.background));
         self.draw(&mut pass, scene);
     }
@@ -328,7 +392,9 @@ impl Renderer {
             draw_lines(pass, batch);
         }
         for chunk in &scene.chunks {
-            draw_lines(pass, &chunk.draw);
+            // As many pieces as the adaptive passes wrote samples, less one.
+            pass.set_bind_group(1, &chunk.draw.bind_group, &[]);
+            pass.draw_indirect(&chunk.adaptive.work, 0);
         }
         pass.set_pipeline(&self.point_pipeline);
         for batch in &scene.points {

@@ -20,6 +20,13 @@ pub const TESSELLATE: ShaderSource = ShaderSource {
     body: include_str!("../../shaders/tessellate.wgsl"),
 };
 
+/// `shaders/adaptive.wgsl`: per-frame sample counts, their prefix sum, and the de Casteljau
+/// kernels writing exactly those samples.
+pub const ADAPTIVE: ShaderSource = ShaderSource {
+    file: "adaptive.wgsl",
+    body: include_str!("../../shaders/adaptive.wgsl"),
+};
+
 /// `shaders/lines.wgsl`: anti-aliased polylines.
 pub const LINES: ShaderSource = ShaderSource {
     file: "lines.wgsl",
@@ -33,7 +40,7 @@ pub const POINTS: ShaderSource = ShaderSource {
 };
 
 /// Every pipeline shader.
-pub const ALL: [ShaderSource; 3] = [TESSELLATE, LINES, POINTS];
+pub const ALL: [ShaderSource; 4] = [TESSELLATE, ADAPTIVE, LINES, POINTS];
 
 /// A shader that naga rejects, with the message and source span it printed.
 #[derive(Debug, Clone, Error)]

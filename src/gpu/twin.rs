@@ -1,10 +1,12 @@
-//! The CPU twin of `shaders/tessellate.wgsl`: the same layout, the same loop, in `f32`.
+//! The CPU twins of `shaders/tessellate.wgsl` and `shaders/adaptive.wgsl`: the same
+//! layout, the same loops, in `f32`.
 //! Tests compare the GPU's output with it (and both with the exact `f64` curves).
 
-use glam::Vec3;
+use glam::{Mat4, Vec2, Vec3};
 
 use super::layout::{
-    GpuRecord, GpuTessParams, GpuVertex, MAX_GPU_DEGREE, TESSELLATE_WORKGROUP_SIZE,
+    FrameStats, GpuFrame, GpuRecord, GpuSegment, GpuTessParams, GpuVertex, MAX_GPU_DEGREE,
+    TESSELLATE_WORKGROUP_SIZE,
 };
 
 /// `sample_param` of the shader: `u0 (1 − f) + u1 f`, `f = j / (count − 1)`.
@@ -83,6 +85,136 @@ pub fn dispatch(
             if s < params.record_end {
                 run_record(&records[s as usize], points, samples);
             }
+        }
+    }
+}
+
+/// The twin of `wang_count` in `shaders/adaptive.wgsl`: the samples segment `seg` gets in
+/// the frame `frame` (its fixed count; 0 wholly off screen; the most when a control point
+/// is at or behind the eye; otherwise Wang's bound in homogeneous pixel coordinates,
+/// `docs/math.md` §5), in the shader's `f32` operations.
+#[must_use]
+pub fn wang_count(frame: &GpuFrame, points: &[GpuVertex], seg: &GpuSegment) -> u32 {
+    if seg.fixed > 0 {
+        return seg.fixed;
+    }
+    let n = (seg.degree as usize).min(MAX_GPU_DEGREE);
+    let half = 0.5 * Vec2::from(frame.viewport_px);
+    let m = Mat4::from_cols_array_2d(&frame.clip_from_world);
+    let mut h = [Vec3::ZERO; MAX_GPU_DEGREE + 1];
+    let (mut w_min, mut w_max) = (f32::MAX, 0.0_f32);
+    for (i, slot) in h.iter_mut().enumerate().take(n + 1) {
+        let p = Vec3::from(points[seg.first_point as usize + i].position);
+        let c = m * p.extend(1.0);
+        *slot = Vec3::new(c.x * half.x, -c.y * half.y, c.w);
+        w_min = w_min.min(c.w);
+        w_max = w_max.max(c.w.abs());
+    }
+    if w_min.is_nan() || w_min <= ADAPTIVE_NEAR_W * w_max {
+        return frame.max_count;
+    }
+    let (mut lo, mut hi, mut r) = (Vec2::splat(f32::MAX), Vec2::splat(-f32::MAX), 0.0_f32);
+    for q in &h[..=n] {
+        let p = q.truncate() / q.z;
+        lo = lo.min(p);
+        hi = hi.max(p);
+        r = r.max(p.length());
+    }
+    let margin = frame.cull_margin_px;
+    if hi.x < -half.x - margin
+        || lo.x > half.x + margin
+        || hi.y < -half.y - margin
+        || lo.y > half.y + margin
+    {
+        return 0;
+    }
+    let (mut m_xy, mut m_w) = (0.0_f32, 0.0_f32);
+    for i in 0..n.saturating_sub(1) {
+        let d = h[i] - 2.0 * h[i + 1] + h[i + 2];
+        m_xy = m_xy.max(d.truncate().length());
+        m_w = m_w.max(d.z.abs());
+    }
+    let nn = (n * n.saturating_sub(1)) as f32;
+    let intervals = (nn * (m_xy + r * m_w) / (8.0 * frame.tolerance_px * w_min))
+        .sqrt()
+        .ceil();
+    if intervals.is_nan() || intervals >= frame.max_count as f32 {
+        return frame.max_count;
+    }
+    (intervals as u32 + 1).clamp(2, frame.max_count)
+}
+
+/// Twin of `NEAR_W` in `shaders/adaptive.wgsl`.
+pub const ADAPTIVE_NEAR_W: f32 = 1e-5;
+
+/// The twin of `scan_blocks`, `scan_sums` and `finalize`: from each segment's requested
+/// count, its offset and final count in a buffer of `capacity` samples, and the frame's
+/// statistics. When the counts exceed the buffer every drawn segment keeps 2 samples and
+/// the rest shrink in proportion (`placed` in the shader).
+#[must_use]
+pub fn scan_and_place(counts: &[u32], capacity: u32) -> (Vec<u32>, Vec<u32>, FrameStats) {
+    let total: u32 = counts.iter().sum();
+    let drawn_total = counts.iter().filter(|&&c| c > 0).count() as u32;
+    let ratio = if total > capacity {
+        (capacity - 2 * drawn_total) as f32 / (total - 2 * drawn_total) as f32
+    } else {
+        1.0
+    };
+    let placed = |offset: u32, drawn: u32| -> u32 {
+        if ratio >= 1.0 {
+            return offset;
+        }
+        let base = 2 * drawn;
+        (base + ((offset - base) as f32 * ratio).floor() as u32).min(capacity)
+    };
+    let (mut offset, mut drawn) = (0u32, 0u32);
+    let mut offsets = Vec::with_capacity(counts.len());
+    let mut finals = Vec::with_capacity(counts.len());
+    let mut end = 0;
+    for &c in counts {
+        let start = placed(offset, drawn);
+        offset += c;
+        drawn += u32::from(c > 0);
+        end = placed(offset, drawn);
+        offsets.push(start);
+        finals.push(end - start);
+    }
+    let stats = FrameStats {
+        vertex_count: 6,
+        instance_count: end.max(1) - 1,
+        first_vertex: 0,
+        first_instance: 0,
+        requested: total,
+        drawn: end,
+        segments_drawn: drawn_total,
+        capped: u32::from(ratio < 1.0),
+    };
+    (offsets, finals, stats)
+}
+
+/// The twin of the adaptive `tessellate_*` kernels: segment `s` writes its `counts[s]`
+/// samples at `u = j / (count − 1)` from `offsets[s]` on.
+///
+/// # Panics
+/// When a segment points outside `points` or `samples` (a packing bug).
+pub fn tessellate_adaptive(
+    points: &[GpuVertex],
+    segments: &[GpuSegment],
+    offsets: &[u32],
+    counts: &[u32],
+    samples: &mut [GpuVertex],
+) {
+    for ((seg, &first), &count) in segments.iter().zip(offsets).zip(counts) {
+        for j in 0..count {
+            let u = if count < 2 {
+                0.0
+            } else {
+                j as f32 / (count - 1) as f32
+            };
+            samples[(first + j) as usize] = GpuVertex {
+                position: de_casteljau(points, seg.first_point, seg.degree, u).to_array(),
+                id: seg.curve,
+            };
         }
     }
 }

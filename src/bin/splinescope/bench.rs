@@ -16,7 +16,7 @@ use splinescope::gpu::layout::GpuVertex;
 use splinescope::gpu::offscreen::OFFSCREEN_FORMAT;
 use splinescope::gpu::pack::{ChunkLimits, prepare_scene};
 use splinescope::gpu::renderer::{Renderer, camera_uniform};
-use splinescope::gpu::tessellator::{Tessellator, read_buffer};
+use splinescope::gpu::tessellator::read_buffer;
 use splinescope::gpu::twin;
 use splinescope::scene::generate::{StressOptions, random_bezier_scene};
 
@@ -72,8 +72,17 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     )?;
     let (cpu_f64, cpu_twin) = cpu_rates(&scene, &prepared, args);
     let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
-    let gpu_scene = renderer.upload(&ctx.device, &ctx.tessellator, &prepared);
-    let (gpu_wall, gpu_pass) = gpu_compute_rates(&ctx, &gpu_scene, args)?;
+    let gpu_scene = renderer.upload(&ctx, &prepared);
+    // The kernel's throughput: every record of the packing, fixed counts.
+    let records: Vec<_> = prepared
+        .chunks
+        .iter()
+        .map(|c| {
+            ctx.tessellator
+                .upload(&ctx.device, c, wgpu::BufferUsages::COPY_SRC)
+        })
+        .collect();
+    let (gpu_wall, gpu_pass) = gpu_compute_rates(&ctx, &records, args)?;
 
     // GPU compute + readback of every sample.
     let started = Instant::now();
@@ -88,7 +97,6 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let frame_fps = if args.frames > 0 {
         Some(draw_frames(
             &ctx,
-            &ctx.tessellator,
             &renderer,
             &gpu_scene,
             &scene,
@@ -219,7 +227,7 @@ fn cpu_rates(
 /// them, by timestamps.
 fn gpu_compute_rates(
     ctx: &GpuContext,
-    gpu_scene: &splinescope::gpu::renderer::GpuScene,
+    records: &[splinescope::gpu::tessellator::ChunkBuffers],
     args: &BenchArgs,
 ) -> Result<(f64, Option<f64>)> {
     let total = args.curves * u64::from(args.samples);
@@ -230,7 +238,7 @@ fn gpu_compute_rates(
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         ctx.tessellator.encode(
             &mut encoder,
-            gpu_scene.chunks.iter().map(|c| &c.buffers),
+            records,
             timestamps.as_ref().map(Timestamps::writes),
         );
         let started = Instant::now();
@@ -259,7 +267,6 @@ fn gpu_compute_rates(
 
 fn draw_frames(
     ctx: &GpuContext,
-    tessellator: &Tessellator,
     renderer: &Renderer,
     gpu_scene: &splinescope::gpu::renderer::GpuScene,
     scene: &splinescope::scene::Scene,
@@ -267,9 +274,14 @@ fn draw_frames(
 ) -> Result<f64> {
     let (w, h) = (1920, 1080);
     let viewport = DVec2::new(f64::from(w), f64::from(h));
-    renderer.set_camera(
-        &ctx.queue,
-        &camera_uniform(&scene.camera(viewport), viewport, 1.0),
+    let camera = camera_uniform(&scene.camera(viewport), viewport, 1.0);
+    renderer.set_camera(&ctx.queue, &camera);
+    gpu_scene.prepare_frame(
+        ctx,
+        &splinescope::gpu::adaptive::FrameSettings {
+            camera,
+            tolerance_px: splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX as f32,
+        },
     );
     let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("bench target"),
@@ -290,7 +302,7 @@ fn draw_frames(
     for i in 0..=frames {
         let started = Instant::now();
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        renderer.encode_frame(&mut encoder, tessellator, gpu_scene, &view);
+        renderer.encode_frame(ctx, &mut encoder, gpu_scene, &view);
         ctx.queue.submit([encoder.finish()]);
         ctx.device
             .poll(wgpu::PollType::wait_indefinitely())

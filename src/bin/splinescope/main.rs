@@ -45,6 +45,12 @@ fn parse_backend(s: &str) -> Result<BackendChoice, String> {
     s.parse()
 }
 
+/// Parses `--tolerance-px`.
+fn parse_tolerance_px(s: &str) -> Result<f64, String> {
+    let v: f64 = s.parse().map_err(|_| format!("{s:?} is not a number"))?;
+    splinescope::gpu::adaptive::check_tolerance(v)
+}
+
 fn parse_tolerance(s: &str) -> Result<splinescope::image::Tolerance, String> {
     s.parse()
 }
@@ -77,6 +83,10 @@ enum Command {
         /// per curve) and draw the result.
         #[arg(long, requires = "stress")]
         solve: bool,
+        /// How far, in pixels, a drawn polyline may stray from its curve (sample counts
+        /// are chosen every frame for it; a scene's fixed `samples` still win).
+        #[arg(long, default_value_t = splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX, value_parser = parse_tolerance_px)]
+        tolerance_px: f64,
         #[command(flatten)]
         gpu: GpuArgs,
     },
@@ -93,6 +103,9 @@ enum Command {
         /// Image height in pixels.
         #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(1..=16384))]
         height: u32,
+        /// How far, in pixels, a drawn polyline may stray from its curve.
+        #[arg(long, default_value_t = splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX, value_parser = parse_tolerance_px)]
+        tolerance_px: f64,
         #[command(flatten)]
         gpu: GpuArgs,
     },
@@ -264,15 +277,23 @@ fn run(cli: Cli) -> Result<()> {
             stress,
             degree,
             solve,
+            tolerance_px,
             gpu,
-        }) => view(scene, frames, stress, degree, solve, &gpu),
+        }) => view(scene, frames, (stress, degree), solve, tolerance_px, &gpu),
         Some(Command::Render {
             scene,
             output,
             width,
             height,
+            tolerance_px,
             gpu,
-        }) => render(scene.as_deref(), &output, (width, height), &gpu),
+        }) => render(
+            scene.as_deref(),
+            &output,
+            (width, height),
+            tolerance_px,
+            &gpu,
+        ),
         Some(Command::Eval {
             scene,
             samples,
@@ -348,9 +369,9 @@ fn run(cli: Cli) -> Result<()> {
 fn view(
     scene: Option<PathBuf>,
     frames: Option<u64>,
-    stress: Option<u64>,
-    degree: u64,
+    (stress, degree): (Option<u64>, u64),
     solve: bool,
+    tolerance_px: f64,
     gpu: &GpuArgs,
 ) -> Result<()> {
     if !splinescope::app::display_available() {
@@ -383,6 +404,7 @@ fn view(
         frames,
         backend: gpu.gpu_backend,
         solve,
+        tolerance_px,
         path: scene,
     })?;
     Ok(())
@@ -393,11 +415,19 @@ fn render(
     scene: Option<&Path>,
     output: &Path,
     (width, height): (u32, u32),
+    tolerance_px: f64,
     gpu: &GpuArgs,
 ) -> Result<()> {
     let scene = load_scene_or_gallery(scene)?;
     let ctx = gpu.context()?;
-    render_to(&ctx, &scene, output, width, height)?;
+    let image = splinescope::gpu::offscreen::render_scene_with(
+        &ctx,
+        &scene,
+        None,
+        (width, height),
+        tolerance_px,
+    )?;
+    image.write_png(output)?;
     say!(
         "rendered {} curve(s) to {} ({width}×{height}, {})",
         scene.curves.len(),
@@ -416,6 +446,7 @@ fn default_job() -> Result<()> {
             frames: None,
             backend: BackendChoice::Auto,
             solve: false,
+            tolerance_px: splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX,
             path: None,
         })?);
     }

@@ -1,0 +1,309 @@
+// Adaptive tessellation, every frame, on the GPU (no readback):
+//
+//   count       one invocation per Bézier segment: its sample count from Wang's bound on
+//               its control points projected to the screen, for a tolerance in pixels
+//               (0 for a segment wholly off screen; a fixed count when the scene sets one)
+//   scan_blocks exclusive prefix sums of (count, drawn) within blocks of 256 segments
+//   scan_sums   the same over the block totals (one workgroup; at most 256 blocks)
+//   finalize    each segment's offset in the sample buffer; when the counts exceed the
+//               buffer they are scaled down in proportion (never below 2 for a drawn
+//               segment, never past the buffer); the indirect draw's instance count
+//   tessellate_{cubic,quartic,any}
+//               one workgroup per segment writes exactly its samples there
+//
+// The line pipeline then draws `instance_count` pieces with one indirect draw. The CPU
+// twins are `wang_count`, `scan_and_place` and `tessellate_adaptive` in src/gpu/twin.rs.
+// The bound (docs/math.md §5): with H_i = (x, y, w) the control points in homogeneous
+// pixel coordinates, M_xy and M_w their largest second differences, R the largest
+// distance of a projected control point from the viewport centre and W the smallest w,
+// N uniform intervals keep every screen chord within
+// n (n − 1) (M_xy + R M_w) / (8 N² W) pixels of the curve (orthographic: w = 1, M_w = 0,
+// Wang's own bound).
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<uniform> range: TessParams;
+@group(0) @binding(2) var<storage, read> points: array<Vertex>;
+@group(0) @binding(3) var<storage, read> segments: array<Segment>;
+// Twin: the WORK_* constants in src/gpu/layout.rs. [0, 8): the indirect draw arguments and
+// the frame's statistics (FrameStats); then counts[S], scan pairs[2 S], block pairs[2 B].
+@group(0) @binding(4) var<storage, read_write> work: array<u32>;
+@group(0) @binding(5) var<storage, read_write> samples: array<Vertex>;
+
+const SCAN_BLOCK: u32 = 256u;
+const STAT_INSTANCES: u32 = 1u;
+const STAT_REQUESTED: u32 = 4u;
+const STAT_DRAWN: u32 = 5u;
+const STAT_SEGMENTS_DRAWN: u32 = 6u;
+const STAT_CAPPED: u32 = 7u;
+const WORK_COUNTS: u32 = 8u;
+// w below this (relative to the largest |w|) counts as at or behind the eye.
+const NEAR_W: f32 = 1e-5;
+
+fn scan_base() -> u32 {
+    return WORK_COUNTS + frame.segment_count;
+}
+
+fn block_base() -> u32 {
+    return WORK_COUNTS + 3u * frame.segment_count;
+}
+
+// The samples a segment needs this frame.
+fn wang_count(seg: Segment) -> u32 {
+    if (seg.fixed > 0u) {
+        return seg.fixed;
+    }
+    let n = min(seg.degree, MAX_DEGREE);
+    let half = 0.5 * frame.viewport_px;
+    var h: array<vec3<f32>, 32>;
+    var w_min = 3.4e38;
+    var w_max = 0.0;
+    var lo = vec2<f32>(3.4e38);
+    var hi = vec2<f32>(-3.4e38);
+    var r = 0.0;
+    for (var i = 0u; i <= n; i++) {
+        let c = frame.clip_from_world * vec4<f32>(points[seg.first_point + i].position, 1.0);
+        h[i] = vec3<f32>(c.x * half.x, -c.y * half.y, c.w);
+        w_min = min(w_min, c.w);
+        w_max = max(w_max, abs(c.w));
+    }
+    if (!(w_min > NEAR_W * w_max)) {
+        // At or behind the eye: no bound holds; the most samples (the line pipeline clips).
+        return frame.max_count;
+    }
+    for (var i = 0u; i <= n; i++) {
+        let p = h[i].xy / h[i].z;
+        lo = min(lo, p);
+        hi = max(hi, p);
+        r = max(r, length(p));
+    }
+    // The curve lies in the hull of its projected control points: wholly off screen
+    // (with a margin for the line's width), it needs no samples.
+    let m = frame.cull_margin_px;
+    if (hi.x < -half.x - m || lo.x > half.x + m || hi.y < -half.y - m || lo.y > half.y + m) {
+        return 0u;
+    }
+    var m_xy = 0.0;
+    var m_w = 0.0;
+    for (var i = 0u; i + 2u <= n; i++) {
+        let d = h[i] - 2.0 * h[i + 1u] + h[i + 2u];
+        m_xy = max(m_xy, length(d.xy));
+        m_w = max(m_w, abs(d.z));
+    }
+    let nn = f32(n * (n - min(n, 1u)));
+    let intervals = ceil(sqrt(nn * (m_xy + r * m_w) / (8.0 * frame.tolerance_px * w_min)));
+    // NaN or overflow (a degenerate camera) asks for the most samples, not garbage.
+    if (!(intervals < f32(frame.max_count))) {
+        return frame.max_count;
+    }
+    return clamp(u32(intervals) + 1u, 2u, frame.max_count);
+}
+
+@compute @workgroup_size(64)
+fn count(@builtin(global_invocation_id) id: vec3<u32>) {
+    let s = id.x;
+    if (s >= frame.segment_count) {
+        return;
+    }
+    work[WORK_COUNTS + s] = wang_count(segments[s]);
+}
+
+var<workgroup> scan_scratch: array<vec2<u32>, 256>;
+
+// Inclusive scan of scan_scratch (Hillis–Steele); every lane calls it.
+fn scan_workgroup(lane: u32) {
+    for (var step = 1u; step < SCAN_BLOCK; step = step * 2u) {
+        workgroupBarrier();
+        var add = vec2<u32>(0u);
+        if (lane >= step) {
+            add = scan_scratch[lane - step];
+        }
+        workgroupBarrier();
+        scan_scratch[lane] = scan_scratch[lane] + add;
+    }
+    workgroupBarrier();
+}
+
+@compute @workgroup_size(256)
+fn scan_blocks(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let s = group.x * SCAN_BLOCK + lane;
+    var v = vec2<u32>(0u);
+    if (s < frame.segment_count) {
+        let c = work[WORK_COUNTS + s];
+        v = vec2<u32>(c, select(0u, 1u, c > 0u));
+    }
+    scan_scratch[lane] = v;
+    scan_workgroup(lane);
+    if (s < frame.segment_count) {
+        let exclusive = scan_scratch[lane] - v;
+        work[scan_base() + 2u * s] = exclusive.x;
+        work[scan_base() + 2u * s + 1u] = exclusive.y;
+    }
+    if (lane == SCAN_BLOCK - 1u) {
+        work[block_base() + 2u * group.x] = scan_scratch[lane].x;
+        work[block_base() + 2u * group.x + 1u] = scan_scratch[lane].y;
+    }
+}
+
+@compute @workgroup_size(256)
+fn scan_sums(@builtin(local_invocation_index) lane: u32) {
+    let blocks = (frame.segment_count + SCAN_BLOCK - 1u) / SCAN_BLOCK;
+    var v = vec2<u32>(0u);
+    if (lane < blocks) {
+        v = vec2<u32>(work[block_base() + 2u * lane], work[block_base() + 2u * lane + 1u]);
+    }
+    scan_scratch[lane] = v;
+    scan_workgroup(lane);
+    if (lane < blocks) {
+        let exclusive = scan_scratch[lane] - v;
+        work[block_base() + 2u * lane] = exclusive.x;
+        work[block_base() + 2u * lane + 1u] = exclusive.y;
+    }
+    if (lane == SCAN_BLOCK - 1u) {
+        work[STAT_REQUESTED] = scan_scratch[lane].x;
+        work[STAT_SEGMENTS_DRAWN] = scan_scratch[lane].y;
+    }
+}
+
+// Where a prefix (offset, drawn segments before) lands once the counts are scaled to fit
+// the buffer: drawn segments keep 2 samples each, the rest shrink by `ratio`.
+fn placed(offset: u32, drawn: u32, ratio: f32) -> u32 {
+    if (ratio >= 1.0) {
+        return offset;
+    }
+    let base = 2u * drawn;
+    return min(base + u32(floor(f32(offset - base) * ratio)), frame.capacity);
+}
+
+@compute @workgroup_size(64)
+fn finalize(@builtin(global_invocation_id) id: vec3<u32>) {
+    let s = id.x;
+    if (s >= frame.segment_count) {
+        return;
+    }
+    let total = work[STAT_REQUESTED];
+    let drawn_total = work[STAT_SEGMENTS_DRAWN];
+    var ratio = 1.0;
+    if (total > frame.capacity) {
+        ratio = f32(frame.capacity - 2u * drawn_total) / f32(total - 2u * drawn_total);
+    }
+    let block = s / SCAN_BLOCK;
+    let c = work[WORK_COUNTS + s];
+    let offset = work[scan_base() + 2u * s] + work[block_base() + 2u * block];
+    let drawn = work[scan_base() + 2u * s + 1u] + work[block_base() + 2u * block + 1u];
+    let start = placed(offset, drawn, ratio);
+    let end = placed(offset + c, drawn + select(0u, 1u, c > 0u), ratio);
+    work[scan_base() + 2u * s] = start;
+    work[WORK_COUNTS + s] = end - start;
+    if (s + 1u == frame.segment_count) {
+        work[STAT_DRAWN] = end;
+        work[STAT_INSTANCES] = max(end, 1u) - 1u;
+        work[STAT_CAPPED] = select(0u, 1u, ratio < 1.0);
+    }
+}
+
+// The segment of this workgroup, or false past the dispatch's range.
+fn adaptive_segment(group: vec3<u32>) -> u32 {
+    return range.record_start + group.x + group.y * range.groups_x;
+}
+
+fn control(seg: Segment, i: u32) -> vec3<f32> {
+    return points[seg.first_point + i].position;
+}
+
+// The parameter of sample j of count: j / (count − 1), exactly 0 and 1 at the ends (a
+// segment the cap left one sample gets its start).
+fn adaptive_param(j: u32, count: u32) -> f32 {
+    if (count < 2u) {
+        return 0.0;
+    }
+    return f32(j) / f32(count - 1u);
+}
+
+fn cubic_at(p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32>, p3: vec3<f32>, u: f32, v: f32) -> vec3<f32> {
+    let q0 = v * p0 + u * p1;
+    let q1 = v * p1 + u * p2;
+    let q2 = v * p2 + u * p3;
+    let r0 = v * q0 + u * q1;
+    let r1 = v * q1 + u * q2;
+    return v * r0 + u * r1;
+}
+
+@compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
+fn tessellate_cubic(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let s = adaptive_segment(group);
+    if (s >= range.record_end) {
+        return;
+    }
+    let seg = segments[s];
+    let count = work[WORK_COUNTS + s];
+    let first = work[scan_base() + 2u * s];
+    let p0 = control(seg, 0u);
+    let p1 = control(seg, 1u);
+    let p2 = control(seg, 2u);
+    let p3 = control(seg, 3u);
+    for (var j = lane; j < count; j += TESSELLATE_WORKGROUP_SIZE) {
+        let u = adaptive_param(j, count);
+        samples[first + j] = Vertex(cubic_at(p0, p1, p2, p3, u, 1.0 - u), seg.curve);
+    }
+}
+
+@compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
+fn tessellate_quartic(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let s = adaptive_segment(group);
+    if (s >= range.record_end) {
+        return;
+    }
+    let seg = segments[s];
+    let count = work[WORK_COUNTS + s];
+    let first = work[scan_base() + 2u * s];
+    let p0 = control(seg, 0u);
+    let p1 = control(seg, 1u);
+    let p2 = control(seg, 2u);
+    let p3 = control(seg, 3u);
+    let p4 = control(seg, 4u);
+    for (var j = lane; j < count; j += TESSELLATE_WORKGROUP_SIZE) {
+        let u = adaptive_param(j, count);
+        let v = 1.0 - u;
+        let p = cubic_at(v * p0 + u * p1, v * p1 + u * p2, v * p2 + u * p3, v * p3 + u * p4, u, v);
+        samples[first + j] = Vertex(p, seg.curve);
+    }
+}
+
+@compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
+fn tessellate_any(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let s = adaptive_segment(group);
+    if (s >= range.record_end) {
+        return;
+    }
+    let seg = segments[s];
+    let count = work[WORK_COUNTS + s];
+    let first = work[scan_base() + 2u * s];
+    let n = min(seg.degree, MAX_DEGREE);
+    for (var j = lane; j < count; j += TESSELLATE_WORKGROUP_SIZE) {
+        let u = adaptive_param(j, count);
+        let v = 1.0 - u;
+        var p: array<vec3<f32>, 32>;
+        for (var i = 0u; i <= n; i++) {
+            p[i] = control(seg, i);
+        }
+        // Counting each level's length down, as in tessellate.wgsl (Mesa's GL compiler).
+        for (var m = n; m > 0u; m--) {
+            for (var i = 0u; i < m; i++) {
+                p[i] = v * p[i] + u * p[i + 1u];
+            }
+        }
+        samples[first + j] = Vertex(p[0], seg.curve);
+    }
+}

@@ -1,0 +1,468 @@
+//! Adaptive tessellation on the GPU, every frame, without readback: the passes of
+//! `shaders/adaptive.wgsl` (count by Wang's bound in screen space → prefix sum → place,
+//! capping to the buffer → de Casteljau writing exactly those samples) and the buffers
+//! they work on. The line pipeline draws the result with one indirect draw per chunk.
+//! Twins: [`super::twin::wang_count`], [`super::twin::scan_and_place`].
+
+use super::layout::{
+    FrameStats, GpuCamera, GpuFrame, GpuLineStyle, GpuTessParams, GpuVertex,
+    MAX_SAMPLES_PER_SEGMENT, SCAN_BLOCK, TESSELLATE_KERNELS, WORK_HEADER,
+};
+use super::pack::TessChunk;
+use super::tessellator::dispatch_grid;
+use super::{GpuError, shaders};
+
+/// The default tolerance: a drawn polyline stays within this many pixels of its curve.
+pub const DEFAULT_TOLERANCE_PX: f64 = 0.25;
+
+/// The smallest tolerance accepted: below it `f32` evaluation noise, not the sampling,
+/// decides the distance.
+pub const MIN_TOLERANCE_PX: f64 = 0.01;
+
+/// Checks a tolerance given by the user.
+///
+/// # Errors
+/// A message naming the value when it is not a finite number of at least
+/// [`MIN_TOLERANCE_PX`].
+pub fn check_tolerance(tolerance_px: f64) -> Result<f64, String> {
+    if tolerance_px.is_finite() && tolerance_px >= MIN_TOLERANCE_PX {
+        Ok(tolerance_px)
+    } else {
+        Err(format!(
+            "tolerance {} px: must be a finite number of at least {MIN_TOLERANCE_PX} px",
+            crate::num::Num(tolerance_px)
+        ))
+    }
+}
+
+/// The passes' pipelines.
+#[derive(Debug)]
+pub struct AdaptiveTessellator {
+    layout: wgpu::BindGroupLayout,
+    count: wgpu::ComputePipeline,
+    scan_blocks: wgpu::ComputePipeline,
+    scan_sums: wgpu::ComputePipeline,
+    finalize: wgpu::ComputePipeline,
+    kernels: Vec<wgpu::ComputePipeline>,
+    max_groups_per_dim: u32,
+}
+
+/// One chunk's buffers for adaptive tessellation and drawing.
+#[derive(Debug)]
+pub struct AdaptiveChunk {
+    /// The control points (rewritable in place).
+    pub points: wgpu::Buffer,
+    segments: wgpu::Buffer,
+    frame: wgpu::Buffer,
+    /// Indirect draw arguments and statistics, then the passes' scratch.
+    pub work: wgpu::Buffer,
+    /// The samples, in drawing order; `capacity` of them at most.
+    pub samples: wgpu::Buffer,
+    /// Samples the buffer holds.
+    pub capacity: u32,
+    segment_count: u32,
+    cull_margin_px: f32,
+    /// The pass for counting, scanning and placing (range unused), then one per kernel
+    /// class: `(kernel, bind group, grid, range buffer)`.
+    base: wgpu::BindGroup,
+    dispatches: Vec<(usize, wgpu::BindGroup, (u32, u32), wgpu::Buffer)>,
+    ranges: Vec<(usize, GpuTessParams)>,
+    base_range: wgpu::Buffer,
+}
+
+/// The passes, in order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stage {
+    /// Each segment's count.
+    Count,
+    /// The prefix sum and the placement (offsets, final counts, draw arguments).
+    Place,
+    /// The samples.
+    Tessellate,
+}
+
+/// The per-frame settings: camera and tolerance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameSettings {
+    /// The camera uniform of the frame.
+    pub camera: GpuCamera,
+    /// The tolerance in pixels.
+    pub tolerance_px: f32,
+}
+
+/// Samples a chunk's buffer starts with: room for its segments' object-space automatic
+/// counts, twice (zooming in asks for more), and at least 2 per segment (the minimum
+/// the cap keeps), within the device's limit.
+#[must_use]
+pub fn initial_capacity(chunk: &TessChunk, max_samples: u64) -> u32 {
+    let want = (2 * u64::from(chunk.sample_count))
+        .max(2 * chunk.segments.len() as u64)
+        .max(2);
+    want.min(max_samples).min(u64::from(u32::MAX)) as u32
+}
+
+impl AdaptiveTessellator {
+    /// Builds the pipelines of `shaders/adaptive.wgsl` on `device`.
+    #[must_use]
+    pub fn new(device: &wgpu::Device) -> AdaptiveTessellator {
+        let module = shaders::ADAPTIVE.module(device);
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("adaptive"),
+            entries: &super::bindings::adaptive()[0],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("adaptive"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = |entry: &str| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&pipeline_layout),
+                module: &module,
+                entry_point: Some(entry),
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+                cache: None,
+            })
+        };
+        AdaptiveTessellator {
+            count: pipeline("count"),
+            scan_blocks: pipeline("scan_blocks"),
+            scan_sums: pipeline("scan_sums"),
+            finalize: pipeline("finalize"),
+            kernels: TESSELLATE_KERNELS
+                .iter()
+                .map(|(e, _)| pipeline(e))
+                .collect(),
+            layout,
+            max_groups_per_dim: device.limits().max_compute_workgroups_per_dimension,
+        }
+    }
+
+    /// Uploads one chunk's control points and segment table, with a sample buffer of
+    /// `capacity` samples. `sample_usage` is added to the samples' `STORAGE` usage.
+    #[must_use]
+    pub fn upload(
+        &self,
+        device: &wgpu::Device,
+        chunk: &TessChunk,
+        capacity: u32,
+        sample_usage: wgpu::BufferUsages,
+    ) -> AdaptiveChunk {
+        let points = super::init_buffer(
+            device,
+            "control points",
+            bytemuck::cast_slice(&pad(&chunk.points)),
+            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        );
+        let segments = super::init_buffer(
+            device,
+            "adaptive segments",
+            bytemuck::cast_slice(&pad(&chunk.segments)),
+            wgpu::BufferUsages::STORAGE,
+        );
+        let n = chunk.segments.len() as u32;
+        let blocks = n.div_ceil(SCAN_BLOCK).max(1);
+        let work_words = WORK_HEADER as u64 + 3 * u64::from(n) + 2 * u64::from(blocks);
+        let mut header = vec![0u32; work_words as usize];
+        header[0] = 6;
+        let work = super::init_buffer(
+            device,
+            "adaptive work",
+            bytemuck::cast_slice(&header),
+            wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::INDIRECT
+                | wgpu::BufferUsages::COPY_SRC
+                | wgpu::BufferUsages::COPY_DST,
+        );
+        let frame = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("adaptive frame"),
+            size: size_of::<GpuFrame>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let ranges = ranges(chunk);
+        let widest = chunk
+            .styles
+            .iter()
+            .map(|s: &GpuLineStyle| s.width_px)
+            .fold(0.0_f32, f32::max);
+        let base_range = super::init_buffer(
+            device,
+            "adaptive range",
+            bytemuck::bytes_of(&GpuTessParams {
+                record_start: 0,
+                record_end: n,
+                groups_x: 0,
+                _padding: 0,
+            }),
+            wgpu::BufferUsages::UNIFORM,
+        );
+        let samples = sample_buffer(device, capacity, sample_usage);
+        let (base, dispatches) = self.bind(
+            device,
+            [&frame, &points, &segments, &work, &samples],
+            &base_range,
+            &ranges,
+        );
+        AdaptiveChunk {
+            samples,
+            points,
+            segments,
+            frame,
+            work,
+            capacity,
+            segment_count: n,
+            cull_margin_px: 0.5 * widest + 1.0,
+            base,
+            dispatches,
+            ranges,
+            base_range,
+        }
+    }
+
+    /// The bind groups over a chunk's buffers `[frame, points, segments, work, samples]`:
+    /// the counting pass's and one per kernel class range.
+    #[allow(clippy::type_complexity)]
+    fn bind(
+        &self,
+        device: &wgpu::Device,
+        [frame, points, segments, work, samples]: [&wgpu::Buffer; 5],
+        base_range: &wgpu::Buffer,
+        ranges: &[(usize, GpuTessParams)],
+    ) -> (
+        wgpu::BindGroup,
+        Vec<(usize, wgpu::BindGroup, (u32, u32), wgpu::Buffer)>,
+    ) {
+        let group = |range: &wgpu::Buffer| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("adaptive"),
+                layout: &self.layout,
+                entries: &[
+                    entry(0, frame),
+                    entry(1, range),
+                    entry(2, points),
+                    entry(3, segments),
+                    entry(4, work),
+                    entry(5, samples),
+                ],
+            })
+        };
+        let dispatches = ranges
+            .iter()
+            .map(|&(kernel, params)| {
+                let grid = dispatch_grid(
+                    params.record_end - params.record_start,
+                    self.max_groups_per_dim,
+                );
+                let params = GpuTessParams {
+                    groups_x: grid.0,
+                    ..params
+                };
+                let buffer = super::init_buffer(
+                    device,
+                    "adaptive range",
+                    bytemuck::bytes_of(&params),
+                    wgpu::BufferUsages::UNIFORM,
+                );
+                (kernel, group(&buffer), grid, buffer)
+            })
+            .collect();
+        (group(base_range), dispatches)
+    }
+
+    /// Replaces a chunk's sample buffer by one of `capacity` samples (the contents are
+    /// rewritten by the next frame).
+    pub fn grow(
+        &self,
+        device: &wgpu::Device,
+        chunk: &mut AdaptiveChunk,
+        capacity: u32,
+        sample_usage: wgpu::BufferUsages,
+    ) {
+        chunk.samples = sample_buffer(device, capacity, sample_usage);
+        chunk.capacity = capacity;
+        let (base, dispatches) = self.bind(
+            device,
+            [
+                &chunk.frame,
+                &chunk.points,
+                &chunk.segments,
+                &chunk.work,
+                &chunk.samples,
+            ],
+            &chunk.base_range,
+            &chunk.ranges,
+        );
+        chunk.base = base;
+        chunk.dispatches = dispatches;
+    }
+
+    /// Writes each chunk's frame uniform for `settings`.
+    pub fn prepare<'a>(
+        &self,
+        queue: &wgpu::Queue,
+        chunks: impl IntoIterator<Item = &'a AdaptiveChunk>,
+        settings: &FrameSettings,
+    ) {
+        for c in chunks {
+            queue.write_buffer(&c.frame, 0, bytemuck::bytes_of(&c.frame_uniform(settings)));
+        }
+    }
+
+    /// Records the passes for every chunk in one compute pass.
+    pub fn encode<'a>(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        chunks: impl IntoIterator<Item = &'a AdaptiveChunk>,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        self.encode_until(encoder, chunks, timestamp_writes, Stage::Tessellate);
+    }
+
+    /// Records the passes up to and including `last` (tests compare each stage with its
+    /// twin).
+    pub fn encode_until<'a>(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        chunks: impl IntoIterator<Item = &'a AdaptiveChunk>,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        last: Stage,
+    ) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("adaptive tessellation"),
+            timestamp_writes,
+        });
+        for c in chunks {
+            if c.segment_count == 0 {
+                continue;
+            }
+            pass.set_bind_group(0, &c.base, &[]);
+            pass.set_pipeline(&self.count);
+            pass.dispatch_workgroups(c.segment_count.div_ceil(64), 1, 1);
+            if last == Stage::Count {
+                continue;
+            }
+            pass.set_pipeline(&self.scan_blocks);
+            pass.dispatch_workgroups(c.segment_count.div_ceil(SCAN_BLOCK), 1, 1);
+            pass.set_pipeline(&self.scan_sums);
+            pass.dispatch_workgroups(1, 1, 1);
+            pass.set_pipeline(&self.finalize);
+            pass.dispatch_workgroups(c.segment_count.div_ceil(64), 1, 1);
+            if last == Stage::Place {
+                continue;
+            }
+            for (kernel, group, grid, _) in &c.dispatches {
+                pass.set_pipeline(&self.kernels[*kernel]);
+                pass.set_bind_group(0, group, &[]);
+                pass.dispatch_workgroups(grid.0, grid.1, 1);
+            }
+        }
+    }
+}
+
+impl AdaptiveChunk {
+    /// The frame uniform of this chunk for `settings`.
+    #[must_use]
+    pub fn frame_uniform(&self, settings: &FrameSettings) -> GpuFrame {
+        GpuFrame {
+            clip_from_world: settings.camera.clip_from_world,
+            viewport_px: settings.camera.viewport_px,
+            tolerance_px: settings.tolerance_px,
+            cull_margin_px: self.cull_margin_px * settings.camera.width_scale,
+            segment_count: self.segment_count,
+            capacity: self.capacity,
+            max_count: MAX_SAMPLES_PER_SEGMENT,
+            _padding: 0,
+        }
+    }
+
+    /// Segments in the chunk.
+    #[must_use]
+    pub fn segment_count(&self) -> u32 {
+        self.segment_count
+    }
+}
+
+/// The dispatch ranges of each non-empty kernel class of `chunk`'s segments.
+fn ranges(chunk: &TessChunk) -> Vec<(usize, GpuTessParams)> {
+    let mut out = Vec::new();
+    let mut start = 0u32;
+    for (kernel, &end) in chunk.segment_class_ends.iter().enumerate() {
+        if end > start {
+            out.push((
+                kernel,
+                GpuTessParams {
+                    record_start: start,
+                    record_end: end,
+                    groups_x: 0,
+                    _padding: 0,
+                },
+            ));
+        }
+        start = start.max(end);
+    }
+    out
+}
+
+fn entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry {
+        binding,
+        resource: buffer.as_entire_binding(),
+    }
+}
+
+fn sample_buffer(device: &wgpu::Device, capacity: u32, usage: wgpu::BufferUsages) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("adaptive samples"),
+        size: u64::from(capacity.max(2)) * size_of::<GpuVertex>() as u64,
+        usage: wgpu::BufferUsages::STORAGE | usage,
+        mapped_at_creation: false,
+    })
+}
+
+/// Storage bindings may not be empty: an empty list becomes one zeroed element.
+fn pad<T: bytemuck::Pod + bytemuck::Zeroable>(items: &[T]) -> Vec<T> {
+    if items.is_empty() {
+        vec![T::zeroed()]
+    } else {
+        items.to_vec()
+    }
+}
+
+/// Reads a chunk's whole work buffer: the header ([`FrameStats`]), then each segment's
+/// count, then the scan pairs (after [`Stage::Place`]: each segment's offset and the drawn
+/// segments before it), then the block pairs.
+///
+/// # Errors
+/// [`GpuError::Readback`] when mapping fails.
+pub fn read_work(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    chunk: &AdaptiveChunk,
+) -> Result<Vec<u32>, GpuError> {
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("read work"),
+    });
+    super::tessellator::read_buffer(device, queue, &mut encoder, &chunk.work)
+}
+
+/// Reads the statistics the last frame left in `chunk`'s work buffer (waits for the GPU:
+/// for tests, offscreen renders and `--stats`, not for the window's frames).
+///
+/// # Errors
+/// [`GpuError::Readback`] when mapping fails.
+pub fn read_stats(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    chunk: &AdaptiveChunk,
+) -> Result<FrameStats, GpuError> {
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("read stats"),
+    });
+    let words: Vec<u32> =
+        super::tessellator::read_buffer(device, queue, &mut encoder, &chunk.work)?;
+    Ok(*bytemuck::from_bytes(bytemuck::cast_slice(
+        &words[..WORK_HEADER],
+    )))
+}
