@@ -98,6 +98,9 @@ pub struct Interaction {
     pub editable: bool,
     /// The tessellation tolerance in pixels (`--tolerance-px`, the panel's slider).
     pub tolerance_px: f64,
+    /// Why control polygons and points cannot be shown, when they cannot (`P` and `C` then
+    /// show this reason instead).
+    pub overlays_locked: Option<&'static str>,
     cursor: DVec2,
     dragging: Option<Button>,
     /// The point being edited by the primary drag (its depth anchors 3D drags).
@@ -121,6 +124,7 @@ impl Interaction {
             auto_fit,
             editable: true,
             tolerance_px: crate::gpu::adaptive::DEFAULT_TOLERANCE_PX,
+            overlays_locked: None,
             cursor: DVec2::ZERO,
             dragging: None,
             editing: None,
@@ -200,6 +204,9 @@ impl Interaction {
             'f' => {
                 self.auto_fit = true;
                 self.fit();
+            }
+            'p' | 'c' if self.overlays_locked.is_some() => {
+                self.editor.message = self.overlays_locked.map(str::to_owned);
             }
             'p' => self.toggles.show_polygons ^= true,
             'c' => self.toggles.show_points ^= true,

@@ -20,6 +20,7 @@ pub mod interaction;
 mod scene_view;
 mod stress;
 mod surface;
+mod timing;
 mod ui;
 
 use std::path::PathBuf;
@@ -56,6 +57,9 @@ pub struct ViewOptions {
     pub solve: bool,
     /// The tessellation tolerance in pixels (see [`crate::gpu::adaptive`]).
     pub tolerance_px: f64,
+    /// Start with control polygons and points hidden (`P`, `C` show them): the stress
+    /// scenes, whose overlays would cover the curves.
+    pub overlays_hidden: bool,
     /// Where `Ctrl+S` saves the edited scene (`None`: `splinescope-scene.json` in the
     /// current directory).
     pub path: Option<PathBuf>,
@@ -98,7 +102,7 @@ pub fn display_available() -> bool {
 ///
 /// # Errors
 /// [`AppError`] when the window, the surface or the GPU fails.
-pub fn run(opts: ViewOptions) -> Result<(), AppError> {
+pub fn run(opts: ViewOptions) -> Result<ViewStats, AppError> {
     let event_loop = EventLoop::new().map_err(|e| AppError::Window(e.to_string()))?;
     let mut app = App {
         opts,
@@ -110,8 +114,35 @@ pub fn run(opts: ViewOptions) -> Result<(), AppError> {
         .map_err(|e| AppError::Window(e.to_string()))?;
     match app.error {
         Some(e) => Err(e),
-        None => Ok(()),
+        None => Ok(app
+            .running
+            .as_ref()
+            .map_or_else(ViewStats::default, Running::stats)),
     }
+}
+
+/// What `view … --stats` prints at exit: the frame rate over the frames presented (from
+/// the first), the last figures the GPU reported, and the mean milliseconds per stage
+/// (GPU timestamps where the adapter has them; `solve` is the CPU's stress solve).
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct ViewStats {
+    /// Frames presented.
+    pub frames: u64,
+    /// Frames per second, from the first frame presented to the last.
+    pub fps: f64,
+    /// Samples the adaptive tessellation drew in a recent frame.
+    pub samples_per_frame: u64,
+    /// Line pieces drawn for the curves in a recent frame.
+    pub line_pieces_per_frame: u64,
+    /// Mean milliseconds per stage: `count`, `scan`, `tessellate`, `draw` (scene and
+    /// panel) on the GPU, `solve` on the CPU in stress-solve mode.
+    pub stage_ms: std::collections::BTreeMap<&'static str, f64>,
+    /// The tolerance in pixels at exit.
+    pub tolerance_px: f64,
+    /// Whether a recent frame was coarsened to fit the sample buffers.
+    pub capped: bool,
+    /// The adapter.
+    pub adapter: String,
 }
 
 struct App {
@@ -133,6 +164,12 @@ struct Running {
     adapter: String,
     stress: Option<stress::StressSolver>,
     started: Instant,
+    timer: Option<timing::StageTimer>,
+    /// When the first frame was presented (the `--stats` frame rate counts from it).
+    first_presented: Option<Instant>,
+    last_presented: Option<Instant>,
+    /// Milliseconds of every stress solve, summed, and their number.
+    solve_ms: (f64, u32),
 }
 
 /// `SPLINESCOPE_LOSE_DEVICE_AFTER_FRAMES=N`: destroy the device after `N` presented
@@ -156,6 +193,9 @@ impl App {
         match r.frame() {
             Ok(true) => {
                 r.frames_presented += 1;
+                let now = Instant::now();
+                r.first_presented.get_or_insert(now);
+                r.last_presented = Some(now);
                 // Forcing the device-failure path (tests and diagnosis): lose the device
                 // after N frames; the next frame must stop with a clear error.
                 if lose_device_after().is_some_and(|n| r.frames_presented == n) {
@@ -264,7 +304,12 @@ impl Running {
         let (surface, ctx) =
             WindowSurface::open(event_loop, &title, &ContextOptions::from_env(opts.backend))?;
         let scene = opts.scene.clone();
-        let view = SceneView::new(&ctx, surface.format(), &scene, Toggles::default())?;
+        let mut toggles = Toggles::default();
+        if opts.overlays_hidden || opts.solve {
+            toggles.show_polygons = false;
+            toggles.show_points = false;
+        }
+        let view = SceneView::new(&ctx, surface.format(), &scene, toggles)?;
         let stress = if opts.solve {
             let chunk_points: Vec<usize> = view
                 .prepared
@@ -301,7 +346,17 @@ impl Running {
         );
         model.editable = stress.is_none();
         model.tolerance_px = opts.tolerance_px;
+        model.toggles = toggles;
+        if stress.is_some() {
+            model.overlays_locked = Some(
+                "the solver moves every control point on the GPU each frame: polygons and points are not drawn while solving",
+            );
+        }
         Ok(Running {
+            timer: timing::StageTimer::new(&ctx),
+            first_presented: None,
+            last_presented: None,
+            solve_ms: (0.0, 0),
             adapter: ctx.describe(),
             surface,
             ctx,
@@ -328,6 +383,9 @@ impl Running {
         let _ = self.ctx.device.poll(wgpu::PollType::Poll);
         self.ctx.check_health()?;
         self.view.poll_stats(&self.ctx);
+        if let Some(t) = &mut self.timer {
+            t.poll();
+        }
         let changed = self.model.editor.take_changed();
         self.view.sync(
             &self.ctx,
@@ -341,6 +399,8 @@ impl Running {
                 &self.ctx.queue,
                 &self.view.gpu,
             );
+            self.solve_ms.0 += s.last_solve_ms;
+            self.solve_ms.1 += 1;
         }
         let Some(frame) = self.surface.acquire(&self.ctx)? else {
             return Ok(false);
@@ -361,21 +421,30 @@ impl Running {
             camera,
             tolerance_px: self.model.tolerance_px as f32,
         };
-        let copied_stats = self
-            .view
-            .encode_tessellation(&self.ctx, &mut encoder, &settings);
+        let timed = self.timer.as_ref().filter(|t| t.active());
+        let copied_stats = self.view.encode_tessellation(
+            &self.ctx,
+            &mut encoder,
+            &settings,
+            timed.map(timing::StageTimer::compute_writes),
+        );
         {
             let mut pass = self
                 .view
                 .renderer
-                .begin_pass(
+                .begin_timed_pass(
                     &mut encoder,
                     &target,
                     wgpu::LoadOp::Clear(self.view.gpu.background),
+                    timed.map(timing::StageTimer::render_writes),
                 )
                 .forget_lifetime();
             self.view.renderer.draw(&mut pass, &self.view.gpu);
             self.egui.paint(&mut pass, &panel);
+        }
+        let timed = timed.is_some();
+        if timed && let Some(t) = &self.timer {
+            t.resolve(&mut encoder);
         }
         let (mut panel, actions) = (panel, actions);
         let extra = std::mem::take(&mut panel.extra);
@@ -384,6 +453,9 @@ impl Running {
             .submit(extra.into_iter().chain([encoder.finish()]));
         if copied_stats {
             self.view.after_submit();
+        }
+        if timed && let Some(t) = &mut self.timer {
+            t.request();
         }
         self.surface.window.pre_present_notify();
         self.ctx.queue.present(frame);
@@ -399,6 +471,35 @@ impl Running {
             self.model.fit();
         }
         Ok(true)
+    }
+
+    /// The figures `--stats` prints.
+    fn stats(&self) -> ViewStats {
+        let fps = match (self.first_presented, self.last_presented) {
+            (Some(a), Some(b)) if self.frames_presented > 1 && b > a => {
+                (self.frames_presented - 1) as f64 / b.duration_since(a).as_secs_f64()
+            }
+            _ => 0.0,
+        };
+        let mut stage_ms = std::collections::BTreeMap::new();
+        if let Some(ms) = self.timer.as_ref().and_then(timing::StageTimer::mean_ms) {
+            for (name, v) in timing::STAGES.iter().zip(ms) {
+                stage_ms.insert(*name, v);
+            }
+        }
+        if self.solve_ms.1 > 0 {
+            stage_ms.insert("solve", self.solve_ms.0 / f64::from(self.solve_ms.1));
+        }
+        ViewStats {
+            frames: self.frames_presented,
+            fps,
+            samples_per_frame: self.view.samples_per_frame(),
+            line_pieces_per_frame: self.view.pieces_per_frame(),
+            stage_ms,
+            tolerance_px: self.model.tolerance_px,
+            capped: self.view.capped(),
+            adapter: self.adapter.clone(),
+        }
     }
 
     /// Sets the renderer's camera for this frame and returns it.
@@ -422,6 +523,8 @@ impl Running {
             fps: self.fps.fps(),
             samples_per_frame: self.view.samples_per_frame(),
             capped: self.view.capped(),
+            stage_ms: self.timer.as_ref().and_then(|t| t.last_ms),
+            overlays_locked: self.model.overlays_locked,
             camera: &camera,
             solving: self.stress.as_ref().map(|s| (s.curves, s.last_solve_ms)),
         };

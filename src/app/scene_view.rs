@@ -204,9 +204,16 @@ impl SceneView {
         ctx: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         settings: &FrameSettings,
+        timestamps: Option<[Option<wgpu::ComputePassTimestampWrites<'_>>; 3]>,
     ) -> bool {
         self.gpu.prepare_frame(ctx, settings);
-        self.gpu.encode_tessellation(ctx, encoder, None);
+        match timestamps {
+            Some(writes) => {
+                let chunks: Vec<_> = self.gpu.chunks.iter().map(|c| &c.adaptive).collect();
+                ctx.adaptive.encode_staged(encoder, &chunks, writes);
+            }
+            None => self.gpu.encode_tessellation(ctx, encoder, None),
+        }
         self.stats.record(ctx, encoder, &self.gpu)
     }
 
@@ -221,6 +228,14 @@ impl SceneView {
             return self.gpu.capacity();
         }
         self.last_stats.iter().map(|s| u64::from(s.drawn)).sum()
+    }
+
+    /// Line pieces drawn for the curves in a recent frame.
+    pub fn pieces_per_frame(&self) -> u64 {
+        self.last_stats
+            .iter()
+            .map(|s| u64::from(s.instance_count))
+            .sum()
     }
 
     /// Whether a recent frame's samples were scaled down to fit the buffers.

@@ -73,6 +73,10 @@ pub(crate) struct PanelInfo<'a> {
     pub samples_per_frame: u64,
     /// Whether the sample buffers capped a recent frame.
     pub capped: bool,
+    /// GPU milliseconds of a recent frame per stage (count, scan, tessellate, draw).
+    pub stage_ms: Option<[f64; 4]>,
+    /// Why control polygons and points cannot be shown, when they cannot.
+    pub overlays_locked: Option<&'static str>,
     pub camera: &'a Camera,
     /// Stress solving: curves re-solved per frame and the last batch's milliseconds.
     pub solving: Option<(usize, f64)>,
@@ -150,6 +154,11 @@ pub(crate) fn panel(
                 );
             }
             ui.small(info.adapter);
+            if let Some([count, scan, tessellate, draw]) = info.stage_ms {
+                ui.small(format!(
+                    "GPU ms: count {count:.2} · scan {scan:.2} · tessellate {tessellate:.2} · draw {draw:.2}"
+                ));
+            }
             if let Some((curves, ms)) = info.solving {
                 ui.label(format!(
                     "re-solving {curves} curves per frame: {ms:.2} ms ({:.1} M solves/s)",
@@ -163,8 +172,25 @@ pub(crate) fn panel(
                     .text("tolerance (px)"),
             )
             .on_hover_text("the largest distance between a drawn polyline and its curve");
-            ui.checkbox(&mut toggles.show_polygons, "control polygons (P)");
-            ui.checkbox(&mut toggles.show_points, "control points (C)");
+            match info.overlays_locked {
+                None => {
+                    ui.checkbox(&mut toggles.show_polygons, "control polygons (P)");
+                    ui.checkbox(&mut toggles.show_points, "control points (C)");
+                }
+                Some(reason) => {
+                    ui.add_enabled(
+                        false,
+                        egui::Checkbox::new(&mut toggles.show_polygons, "control polygons (P)"),
+                    )
+                    .on_disabled_hover_text(reason);
+                    ui.add_enabled(
+                        false,
+                        egui::Checkbox::new(&mut toggles.show_points, "control points (C)"),
+                    )
+                    .on_disabled_hover_text(reason);
+                    ui.small(reason);
+                }
+            }
             if ui.button("fit (F)").clicked() {
                 actions.fit = true;
             }

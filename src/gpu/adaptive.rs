@@ -361,6 +361,54 @@ impl AdaptiveTessellator {
     }
 }
 
+impl AdaptiveTessellator {
+    /// Records the passes as three compute passes — counting, scanning and placing,
+    /// tessellating — each with its own timestamp writes (the viewer's per-stage times).
+    pub fn encode_staged<'a>(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        chunks: &[&'a AdaptiveChunk],
+        writes: [Option<wgpu::ComputePassTimestampWrites<'_>>; 3],
+    ) {
+        let [count_writes, place_writes, tessellate_writes] = writes;
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("adaptive count"),
+            timestamp_writes: count_writes,
+        });
+        for c in chunks.iter().filter(|c| c.segment_count > 0) {
+            pass.set_bind_group(0, &c.base, &[]);
+            pass.set_pipeline(&self.count);
+            pass.dispatch_workgroups(c.segment_count.div_ceil(64), 1, 1);
+        }
+        drop(pass);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("adaptive scan"),
+            timestamp_writes: place_writes,
+        });
+        for c in chunks.iter().filter(|c| c.segment_count > 0) {
+            pass.set_bind_group(0, &c.base, &[]);
+            pass.set_pipeline(&self.scan_blocks);
+            pass.dispatch_workgroups(c.segment_count.div_ceil(SCAN_BLOCK), 1, 1);
+            pass.set_pipeline(&self.scan_sums);
+            pass.dispatch_workgroups(1, 1, 1);
+            pass.set_pipeline(&self.finalize);
+            pass.dispatch_workgroups(c.segment_count.div_ceil(64), 1, 1);
+        }
+        drop(pass);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("adaptive tessellate"),
+            timestamp_writes: tessellate_writes,
+        });
+        for c in chunks.iter().filter(|c| c.segment_count > 0) {
+            for (kernel, group, grid, _) in &c.dispatches {
+                pass.set_pipeline(&self.kernels[*kernel]);
+                pass.set_bind_group(0, group, &[]);
+                pass.dispatch_workgroups(grid.0, grid.1, 1);
+            }
+        }
+    }
+}
+
 impl AdaptiveChunk {
     /// The frame uniform of this chunk for `settings`.
     #[must_use]

@@ -366,6 +366,18 @@ impl Renderer {
         target: &wgpu::TextureView,
         load: wgpu::LoadOp<wgpu::Color>,
     ) -> wgpu::RenderPass<'e> {
+        self.begin_timed_pass(encoder, target, load, None)
+    }
+
+    /// [`Renderer::begin_pass`] with timestamp writes at its start and end.
+    #[must_use]
+    pub fn begin_timed_pass<'e>(
+        &self,
+        encoder: &'e mut wgpu::CommandEncoder,
+        target: &wgpu::TextureView,
+        load: wgpu::LoadOp<wgpu::Color>,
+        timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
+    ) -> wgpu::RenderPass<'e> {
         encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("draw"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -378,7 +390,7 @@ impl Renderer {
                 },
             })],
             depth_stencil_attachment: None,
-            timestamp_writes: None,
+            timestamp_writes,
             occlusion_query_set: None,
             multiview_mask: None,
         })

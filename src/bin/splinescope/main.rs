@@ -87,6 +87,10 @@ enum Command {
         /// are chosen every frame for it; a scene's fixed `samples` still win).
         #[arg(long, default_value_t = splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX, value_parser = parse_tolerance_px)]
         tolerance_px: f64,
+        /// At exit, print one JSON object: frames, fps, samples and line pieces per frame,
+        /// milliseconds per stage, adapter (for benchmarking the viewer by script).
+        #[arg(long)]
+        stats: bool,
         #[command(flatten)]
         gpu: GpuArgs,
     },
@@ -278,8 +282,16 @@ fn run(cli: Cli) -> Result<()> {
             degree,
             solve,
             tolerance_px,
+            stats,
             gpu,
-        }) => view(scene, frames, (stress, degree), solve, tolerance_px, &gpu),
+        }) => view(
+            scene,
+            frames,
+            (stress, degree),
+            (solve, stats),
+            tolerance_px,
+            &gpu,
+        ),
         Some(Command::Render {
             scene,
             output,
@@ -370,7 +382,7 @@ fn view(
     scene: Option<PathBuf>,
     frames: Option<u64>,
     (stress, degree): (Option<u64>, u64),
-    solve: bool,
+    (solve, print_stats): (bool, bool),
     tolerance_px: f64,
     gpu: &GpuArgs,
 ) -> Result<()> {
@@ -389,24 +401,36 @@ fn view(
                     splinescope::scene::generate::StressOptions::default().samples,
                 )))
                 .with_context(|| format!("view --stress {n}"))?;
-            splinescope::scene::generate::random_bezier_scene(
+            let mut generated = splinescope::scene::generate::random_bezier_scene(
                 splinescope::scene::generate::StressOptions {
                     curves: n as usize,
                     degree: degree as usize,
                     ..Default::default()
                 },
-            )
+            );
+            // Drawn like any scene: sample counts chosen every frame for the tolerance, and
+            // control polygons and points shown when P and C turn them on (off at first).
+            generated.samples_per_segment = None;
+            for c in &mut generated.curves {
+                c.style.show_polygon = true;
+                c.style.show_points = true;
+            }
+            generated
         }
         None => load_scene_or_gallery(scene.as_deref())?,
     };
-    splinescope::app::run(splinescope::app::ViewOptions {
+    let stats = splinescope::app::run(splinescope::app::ViewOptions {
         scene: loaded,
         frames,
         backend: gpu.gpu_backend,
         solve,
         tolerance_px,
+        overlays_hidden: stress.is_some(),
         path: scene,
     })?;
+    if print_stats {
+        say!("{}", serde_json::to_string(&stats)?);
+    }
     Ok(())
 }
 
@@ -441,14 +465,16 @@ fn render(
 fn default_job() -> Result<()> {
     let scene = gallery::gallery();
     if splinescope::app::display_available() {
-        return Ok(splinescope::app::run(splinescope::app::ViewOptions {
+        splinescope::app::run(splinescope::app::ViewOptions {
             scene,
             frames: None,
             backend: BackendChoice::Auto,
             solve: false,
             tolerance_px: splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX,
+            overlays_hidden: false,
             path: None,
-        })?);
+        })?;
+        return Ok(());
     }
     let ctx = GpuContext::new(&ContextOptions::from_env(BackendChoice::Auto))?;
     let path = std::env::current_dir()

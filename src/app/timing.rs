@@ -1,0 +1,137 @@
+//! Per-stage GPU times of the viewer's frames (count, scan, tessellate, draw) from
+//! timestamp queries, where the adapter has them; read back a few frames late without
+//! waiting, like the frame statistics.
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use crate::gpu::GpuContext;
+
+/// The stages timed, in the order of their timestamp pairs.
+pub(crate) const STAGES: [&str; 4] = ["count", "scan", "tessellate", "draw"];
+
+/// Timestamp queries around each stage's pass.
+pub(crate) struct StageTimer {
+    set: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    staging: wgpu::Buffer,
+    ready: Option<Arc<AtomicBool>>,
+    period_ns: f64,
+    /// The last frame's milliseconds per stage.
+    pub last_ms: Option<[f64; 4]>,
+    sums: [f64; 4],
+    frames: u32,
+}
+
+const QUERIES: u32 = 2 * STAGES.len() as u32;
+
+impl StageTimer {
+    /// A timer, when the device has timestamp queries.
+    pub fn new(ctx: &GpuContext) -> Option<StageTimer> {
+        if !ctx
+            .device
+            .features()
+            .contains(wgpu::Features::TIMESTAMP_QUERY)
+        {
+            return None;
+        }
+        let size = u64::from(QUERIES) * 8;
+        Some(StageTimer {
+            set: ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("stage times"),
+                ty: wgpu::QueryType::Timestamp,
+                count: QUERIES,
+            }),
+            resolve: ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("stage times"),
+                size,
+                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
+            staging: ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("stage times readback"),
+                size,
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            ready: None,
+            period_ns: f64::from(ctx.queue.get_timestamp_period()),
+            last_ms: None,
+            sums: [0.0; 4],
+            frames: 0,
+        })
+    }
+
+    /// Whether this frame is timed (no read in flight).
+    pub fn active(&self) -> bool {
+        self.ready.is_none()
+    }
+
+    /// The compute passes' timestamp writes (count, scan, tessellate).
+    pub fn compute_writes(&self) -> [Option<wgpu::ComputePassTimestampWrites<'_>>; 3] {
+        [0u32, 1, 2].map(|stage| {
+            Some(wgpu::ComputePassTimestampWrites {
+                query_set: &self.set,
+                beginning_of_pass_write_index: Some(2 * stage),
+                end_of_pass_write_index: Some(2 * stage + 1),
+            })
+        })
+    }
+
+    /// The render pass's timestamp writes (draw).
+    pub fn render_writes(&self) -> wgpu::RenderPassTimestampWrites<'_> {
+        wgpu::RenderPassTimestampWrites {
+            query_set: &self.set,
+            beginning_of_pass_write_index: Some(6),
+            end_of_pass_write_index: Some(7),
+        }
+    }
+
+    /// After the frame's passes: resolves the queries and copies them for reading.
+    pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
+        encoder.resolve_query_set(&self.set, 0..QUERIES, &self.resolve, 0);
+        encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.staging, 0, self.resolve.size());
+    }
+
+    /// After submission: asks for the mapping.
+    pub fn request(&mut self) {
+        let flag = Arc::new(AtomicBool::new(false));
+        let done = flag.clone();
+        self.staging
+            .slice(..)
+            .map_async(wgpu::MapMode::Read, move |r| {
+                done.store(r.is_ok(), Ordering::Release)
+            });
+        self.ready = Some(flag);
+    }
+
+    /// Takes the times when the mapping completed.
+    pub fn poll(&mut self) {
+        let Some(flag) = &self.ready else {
+            return;
+        };
+        if !flag.load(Ordering::Acquire) {
+            return;
+        }
+        self.ready = None;
+        let ticks: Vec<u64> = match self.staging.slice(..).get_mapped_range() {
+            Ok(data) => bytemuck::pod_collect_to_vec(&data),
+            Err(_) => return,
+        };
+        self.staging.unmap();
+        let mut ms = [0.0; 4];
+        for (i, slot) in ms.iter_mut().enumerate() {
+            *slot = ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * self.period_ns * 1e-6;
+        }
+        for (sum, m) in self.sums.iter_mut().zip(ms) {
+            *sum += m;
+        }
+        self.frames += 1;
+        self.last_ms = Some(ms);
+    }
+
+    /// The mean milliseconds per stage over every timed frame.
+    pub fn mean_ms(&self) -> Option<[f64; 4]> {
+        (self.frames > 0).then(|| self.sums.map(|s| s / f64::from(self.frames)))
+    }
+}
