@@ -364,10 +364,10 @@ impl AdaptiveTessellator {
 impl AdaptiveTessellator {
     /// Records the passes as three compute passes — counting, scanning and placing,
     /// tessellating — each with its own timestamp writes (the viewer's per-stage times).
-    pub fn encode_staged<'a>(
+    pub fn encode_staged(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        chunks: &[&'a AdaptiveChunk],
+        chunks: &[&AdaptiveChunk],
         writes: [Option<wgpu::ComputePassTimestampWrites<'_>>; 3],
     ) {
         let [count_writes, place_writes, tessellate_writes] = writes;
