@@ -69,9 +69,9 @@ fn vs_line(@builtin(vertex_index) corner: u32, @builtin(instance_index) piece: u
     let half_width = 0.5 * style.width_px * camera.width_scale;
     // One pixel of margin for the anti-aliased edge.
     let r = half_width + 1.0;
-    // Two triangles: (start, -), (end, -), (start, +), (start, +), (end, -), (end, +).
-    let at_end = corner == 1u || corner == 4u || corner == 5u;
-    let side = select(-1.0, 1.0, corner == 2u || corner == 3u || corner == 5u);
+    // A triangle strip of four corners: (start, -), (end, -), (start, +), (end, +).
+    let at_end = corner == 1u || corner == 3u;
+    let side = select(-1.0, 1.0, corner >= 2u);
     var p = pa - dir * r;
     if (at_end) {
         p = pb + dir * r;

@@ -128,7 +128,7 @@ pub const MAX_ADAPTIVE_SEGMENTS: usize = (SCAN_BLOCK * SCAN_BLOCK) as usize;
 pub const SCAN_BLOCK: u32 = 256;
 
 /// The `u32` words at the start of the adaptive work buffer: the indirect draw arguments
-/// (`[6, pieces, 0, 0]`) and the frame's statistics ([`FrameStats`]); the segments'
+/// (`[4, pieces, 0, 0]`) and the frame's statistics ([`FrameStats`]); the segments'
 /// counts, scan pairs and block pairs follow. Twin: `WORK_COUNTS` in
 /// `shaders/adaptive.wgsl`.
 pub const WORK_HEADER: usize = 8;
@@ -137,7 +137,7 @@ pub const WORK_HEADER: usize = 8;
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Pod, Zeroable)]
 pub struct FrameStats {
-    /// Vertices per line piece (6), for the indirect draw.
+    /// Vertices per line piece (4, a triangle strip), for the indirect draw.
     pub vertex_count: u32,
     /// Line pieces drawn (samples − 1).
     pub instance_count: u32,

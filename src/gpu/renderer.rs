@@ -11,6 +11,10 @@ use super::pack::{LineBatch, PreparedScene};
 use super::shaders;
 use crate::camera::Camera;
 
+/// Vertices per line piece: a triangle strip around the piece's capsule
+/// (`shaders/lines.wgsl`).
+pub const LINE_CORNERS: u32 = 4;
+
 /// Line and point pipelines for one colour target format, and the camera uniform.
 #[derive(Debug)]
 pub struct Renderer {
@@ -183,7 +187,10 @@ impl Renderer {
             bind_group_layouts: &[Some(&camera_layout), Some(&batch_layout)],
             immediate_size: 0,
         });
-        let pipeline = |source: shaders::ShaderSource, vs: &str, fs: &str| {
+        let pipeline = |source: shaders::ShaderSource,
+                        vs: &str,
+                        fs: &str,
+                        topology: wgpu::PrimitiveTopology| {
             let module = source.module(device);
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(source.file),
@@ -194,7 +201,10 @@ impl Renderer {
                     compilation_options: wgpu::PipelineCompilationOptions::default(),
                     buffers: &[],
                 },
-                primitive: wgpu::PrimitiveState::default(),
+                primitive: wgpu::PrimitiveState {
+                    topology,
+                    ..wgpu::PrimitiveState::default()
+                },
                 depth_stencil: None,
                 multisample: wgpu::MultisampleState::default(),
                 fragment: Some(wgpu::FragmentState {
@@ -211,8 +221,18 @@ impl Renderer {
                 cache: None,
             })
         };
-        let line_pipeline = pipeline(shaders::LINES, "vs_line", "fs_line");
-        let point_pipeline = pipeline(shaders::POINTS, "vs_point", "fs_point");
+        let line_pipeline = pipeline(
+            shaders::LINES,
+            "vs_line",
+            "fs_line",
+            wgpu::PrimitiveTopology::TriangleStrip,
+        );
+        let point_pipeline = pipeline(
+            shaders::POINTS,
+            "vs_point",
+            "fs_point",
+            wgpu::PrimitiveTopology::TriangleList,
+        );
         Renderer {
             camera_buffer,
             camera_bind_group,
@@ -421,5 +441,5 @@ fn draw_lines(pass: &mut wgpu::RenderPass<'_>, batch: &DrawBatch) {
         return;
     }
     pass.set_bind_group(1, &batch.bind_group, &[]);
-    pass.draw(0..6, 0..batch.vertex_count - 1);
+    pass.draw(0..LINE_CORNERS, 0..batch.vertex_count - 1);
 }
