@@ -384,3 +384,55 @@ fn a_full_buffer_coarsens_every_curve_in_proportion_and_writes_nothing_outside()
         },
     );
 }
+
+#[test]
+fn an_offscreen_render_grows_a_buffer_the_view_outgrew_and_draws_uncapped() {
+    use splinescope::gpu::adaptive::{DEFAULT_TOLERANCE_PX, read_stats};
+    use splinescope::gpu::offscreen::{OFFSCREEN_FORMAT, render_uploaded};
+    use splinescope::gpu::renderer::Renderer;
+    common::on_each_gpu(
+        "an_offscreen_render_grows_a_buffer_the_view_outgrew_and_draws_uncapped",
+        |backend| {
+            let ctx = &backend.ctx;
+            let scene = random_scene(14, false);
+            let prepared = prepare_scene(
+                &scene,
+                ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
+            )
+            .expect("pack");
+            let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
+            let mut gpu = renderer.upload(ctx, &prepared);
+            let before = gpu.capacity();
+            // A large image at the finest tolerance: far more samples than the object-space
+            // estimate the buffers started with.
+            let big = DVec2::new(4096.0, 3072.0);
+            render_uploaded(
+                ctx,
+                &renderer,
+                &mut gpu,
+                &scene.camera(big),
+                (4096, 3072),
+                0.01,
+            )
+            .expect("render");
+            let stats =
+                read_stats(&ctx.device, &ctx.queue, &gpu.chunks[0].adaptive).expect("stats");
+            let what = format!("{}: capacity {before} → {}", backend.name, gpu.capacity());
+            assert!(gpu.capacity() > before, "{what}: the buffer grew");
+            assert_eq!(stats.capped, 0, "{what}: the final frame was not capped");
+            assert_eq!(stats.drawn, stats.requested, "{what}");
+            // Back to the default tolerance and view: nothing shrinks or reallocates.
+            let grown = gpu.capacity();
+            render_uploaded(
+                ctx,
+                &renderer,
+                &mut gpu,
+                &scene.camera(VIEWPORT),
+                (VIEWPORT.x as u32, VIEWPORT.y as u32),
+                DEFAULT_TOLERANCE_PX,
+            )
+            .expect("render");
+            assert_eq!(gpu.capacity(), grown, "{what}");
+        },
+    );
+}
