@@ -204,9 +204,27 @@ fn finalize(@builtin(global_invocation_id) id: vec3<u32>) {
     }
 }
 
-// The segment of this workgroup, or false past the dispatch's range.
-fn adaptive_segment(group: vec3<u32>) -> u32 {
-    return range.record_start + group.x + group.y * range.groups_x;
+// What one workgroup tessellates: its segment, the count placed for it and where its
+// samples start; ok is false past the dispatch's range.
+struct AdaptiveWork {
+    seg: Segment,
+    count: u32,
+    first: u32,
+    ok: bool,
+}
+
+fn adaptive_work(group: vec3<u32>) -> AdaptiveWork {
+    var w: AdaptiveWork;
+    w.ok = false;
+    let s = range.record_start + group.x + group.y * range.groups_x;
+    if (s >= range.record_end) {
+        return w;
+    }
+    w.seg = segments[s];
+    w.count = work[WORK_COUNTS + s];
+    w.first = work[scan_base() + 2u * s];
+    w.ok = true;
+    return w;
 }
 
 fn control(seg: Segment, i: u32) -> vec3<f32> {
@@ -222,34 +240,25 @@ fn adaptive_param(j: u32, count: u32) -> f32 {
     return f32(j) / f32(count - 1u);
 }
 
-fn cubic_at(p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32>, p3: vec3<f32>, u: f32, v: f32) -> vec3<f32> {
-    let q0 = v * p0 + u * p1;
-    let q1 = v * p1 + u * p2;
-    let q2 = v * p2 + u * p3;
-    let r0 = v * q0 + u * q1;
-    let r1 = v * q1 + u * q2;
-    return v * r0 + u * r1;
-}
-
 @compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
 fn tessellate_cubic(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(local_invocation_index) lane: u32,
 ) {
-    let s = adaptive_segment(group);
-    if (s >= range.record_end) {
+    let w = adaptive_work(group);
+    if (!w.ok) {
         return;
     }
-    let seg = segments[s];
-    let count = work[WORK_COUNTS + s];
-    let first = work[scan_base() + 2u * s];
+    let seg = w.seg;
+    let count = w.count;
+    let first = w.first;
     let p0 = control(seg, 0u);
     let p1 = control(seg, 1u);
     let p2 = control(seg, 2u);
     let p3 = control(seg, 3u);
     for (var j = lane; j < count; j += TESSELLATE_WORKGROUP_SIZE) {
         let u = adaptive_param(j, count);
-        samples[first + j] = Vertex(cubic_at(p0, p1, p2, p3, u, 1.0 - u), seg.curve);
+        samples[first + j] = Vertex(cubic(p0, p1, p2, p3, u, 1.0 - u), seg.curve);
     }
 }
 
@@ -258,13 +267,13 @@ fn tessellate_quartic(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(local_invocation_index) lane: u32,
 ) {
-    let s = adaptive_segment(group);
-    if (s >= range.record_end) {
+    let w = adaptive_work(group);
+    if (!w.ok) {
         return;
     }
-    let seg = segments[s];
-    let count = work[WORK_COUNTS + s];
-    let first = work[scan_base() + 2u * s];
+    let seg = w.seg;
+    let count = w.count;
+    let first = w.first;
     let p0 = control(seg, 0u);
     let p1 = control(seg, 1u);
     let p2 = control(seg, 2u);
@@ -273,7 +282,7 @@ fn tessellate_quartic(
     for (var j = lane; j < count; j += TESSELLATE_WORKGROUP_SIZE) {
         let u = adaptive_param(j, count);
         let v = 1.0 - u;
-        let p = cubic_at(v * p0 + u * p1, v * p1 + u * p2, v * p2 + u * p3, v * p3 + u * p4, u, v);
+        let p = cubic(v * p0 + u * p1, v * p1 + u * p2, v * p2 + u * p3, v * p3 + u * p4, u, v);
         samples[first + j] = Vertex(p, seg.curve);
     }
 }
@@ -283,13 +292,13 @@ fn tessellate_any(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(local_invocation_index) lane: u32,
 ) {
-    let s = adaptive_segment(group);
-    if (s >= range.record_end) {
+    let w = adaptive_work(group);
+    if (!w.ok) {
         return;
     }
-    let seg = segments[s];
-    let count = work[WORK_COUNTS + s];
-    let first = work[scan_base() + 2u * s];
+    let seg = w.seg;
+    let count = w.count;
+    let first = w.first;
     let n = min(seg.degree, MAX_DEGREE);
     for (var j = lane; j < count; j += TESSELLATE_WORKGROUP_SIZE) {
         let u = adaptive_param(j, count);

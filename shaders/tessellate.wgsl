@@ -57,16 +57,6 @@ fn control_point(seg: Record, i: u32) -> vec3<f32> {
     return points[seg.first_point + i].position;
 }
 
-// De Casteljau of a cubic, written out (its three levels).
-fn cubic(p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32>, p3: vec3<f32>, u: f32, v: f32) -> vec3<f32> {
-    let q0 = v * p0 + u * p1;
-    let q1 = v * p1 + u * p2;
-    let q2 = v * p2 + u * p3;
-    let r0 = v * q0 + u * q1;
-    let r1 = v * q1 + u * q2;
-    return v * r0 + u * r1;
-}
-
 @compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
 fn tessellate_cubic(
     @builtin(workgroup_id) group: vec3<u32>,

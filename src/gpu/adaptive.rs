@@ -333,25 +333,41 @@ impl AdaptiveTessellator {
             label: Some("adaptive tessellation"),
             timestamp_writes,
         });
-        for c in chunks {
-            if c.segment_count == 0 {
-                continue;
-            }
+        let chunks: Vec<&AdaptiveChunk> = chunks.into_iter().collect();
+        self.record_count(&mut pass, &chunks);
+        if last != Stage::Count {
+            self.record_place(&mut pass, &chunks);
+        }
+        if last == Stage::Tessellate {
+            self.record_tessellate(&mut pass, &chunks);
+        }
+    }
+
+    /// The count pass of every chunk.
+    fn record_count(&self, pass: &mut wgpu::ComputePass<'_>, chunks: &[&AdaptiveChunk]) {
+        pass.set_pipeline(&self.count);
+        for c in chunks.iter().filter(|c| c.segment_count > 0) {
             pass.set_bind_group(0, &c.base, &[]);
-            pass.set_pipeline(&self.count);
             pass.dispatch_workgroups(c.segment_count.div_ceil(64), 1, 1);
-            if last == Stage::Count {
-                continue;
-            }
+        }
+    }
+
+    /// The prefix sum and placement of every chunk.
+    fn record_place(&self, pass: &mut wgpu::ComputePass<'_>, chunks: &[&AdaptiveChunk]) {
+        for c in chunks.iter().filter(|c| c.segment_count > 0) {
+            pass.set_bind_group(0, &c.base, &[]);
             pass.set_pipeline(&self.scan_blocks);
             pass.dispatch_workgroups(c.segment_count.div_ceil(SCAN_BLOCK), 1, 1);
             pass.set_pipeline(&self.scan_sums);
             pass.dispatch_workgroups(1, 1, 1);
             pass.set_pipeline(&self.finalize);
             pass.dispatch_workgroups(c.segment_count.div_ceil(64), 1, 1);
-            if last == Stage::Place {
-                continue;
-            }
+        }
+    }
+
+    /// The de Casteljau kernels of every chunk, one dispatch per degree class.
+    fn record_tessellate(&self, pass: &mut wgpu::ComputePass<'_>, chunks: &[&AdaptiveChunk]) {
+        for c in chunks.iter().filter(|c| c.segment_count > 0) {
             for (kernel, group, grid, _) in &c.dispatches {
                 pass.set_pipeline(&self.kernels[*kernel]);
                 pass.set_bind_group(0, group, &[]);
@@ -370,40 +386,16 @@ impl AdaptiveTessellator {
         chunks: &[&AdaptiveChunk],
         writes: [Option<wgpu::ComputePassTimestampWrites<'_>>; 3],
     ) {
-        let [count_writes, place_writes, tessellate_writes] = writes;
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("adaptive count"),
-            timestamp_writes: count_writes,
-        });
-        for c in chunks.iter().filter(|c| c.segment_count > 0) {
-            pass.set_bind_group(0, &c.base, &[]);
-            pass.set_pipeline(&self.count);
-            pass.dispatch_workgroups(c.segment_count.div_ceil(64), 1, 1);
-        }
-        drop(pass);
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("adaptive scan"),
-            timestamp_writes: place_writes,
-        });
-        for c in chunks.iter().filter(|c| c.segment_count > 0) {
-            pass.set_bind_group(0, &c.base, &[]);
-            pass.set_pipeline(&self.scan_blocks);
-            pass.dispatch_workgroups(c.segment_count.div_ceil(SCAN_BLOCK), 1, 1);
-            pass.set_pipeline(&self.scan_sums);
-            pass.dispatch_workgroups(1, 1, 1);
-            pass.set_pipeline(&self.finalize);
-            pass.dispatch_workgroups(c.segment_count.div_ceil(64), 1, 1);
-        }
-        drop(pass);
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("adaptive tessellate"),
-            timestamp_writes: tessellate_writes,
-        });
-        for c in chunks.iter().filter(|c| c.segment_count > 0) {
-            for (kernel, group, grid, _) in &c.dispatches {
-                pass.set_pipeline(&self.kernels[*kernel]);
-                pass.set_bind_group(0, group, &[]);
-                pass.dispatch_workgroups(grid.0, grid.1, 1);
+        let labels = ["adaptive count", "adaptive scan", "adaptive tessellate"];
+        for (stage, (label, timestamp_writes)) in labels.into_iter().zip(writes).enumerate() {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some(label),
+                timestamp_writes,
+            });
+            match stage {
+                0 => self.record_count(&mut pass, chunks),
+                1 => self.record_place(&mut pass, chunks),
+                _ => self.record_tessellate(&mut pass, chunks),
             }
         }
     }
