@@ -66,5 +66,102 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench);
+/// The same 100,000 planar cubics × 64 uniform samples through kurbo, lyon_geom and
+/// splinescope's batch evaluator (one thread, then every core), in one run: the ratios
+/// are what BENCHMARKS.md records.
+fn peers(c: &mut Criterion) {
+    use splinescope::geom::batch::{CurveSampler, sample_many};
+    const CURVES: usize = 100_000;
+    const SAMPLES: usize = 64;
+    let scene = random_bezier_scene(StressOptions {
+        curves: CURVES,
+        degree: 3,
+        samples: SAMPLES as u32,
+        ..Default::default()
+    });
+    let cubics: Vec<[DVec3; 4]> = scene
+        .curves
+        .iter()
+        .map(|c| {
+            let p = c.curve.control_points();
+            [p[0], p[1], p[2], p[3]]
+        })
+        .collect();
+    let ts: Vec<f64> = (0..SAMPLES)
+        .map(|j| j as f64 / (SAMPLES - 1) as f64)
+        .collect();
+    let mut g = c.benchmark_group("peers");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements((CURVES * SAMPLES) as u64));
+    g.bench_function("kurbo", |b| {
+        let curves: Vec<kurbo::CubicBez> = cubics
+            .iter()
+            .map(|p| {
+                let q = p.map(|v| kurbo::Point::new(v.x, v.y));
+                kurbo::CubicBez::new(q[0], q[1], q[2], q[3])
+            })
+            .collect();
+        b.iter(|| {
+            use kurbo::ParamCurve as _;
+            let mut s = 0.0;
+            for c in &curves {
+                for &t in &ts {
+                    let p = c.eval(t);
+                    s += p.x + p.y;
+                }
+            }
+            black_box(s)
+        });
+    });
+    g.bench_function("lyon_geom", |b| {
+        let curves: Vec<lyon_geom::CubicBezierSegment<f64>> = cubics
+            .iter()
+            .map(|p| {
+                let q = p.map(|v| lyon_geom::point(v.x, v.y));
+                lyon_geom::CubicBezierSegment {
+                    from: q[0],
+                    ctrl1: q[1],
+                    ctrl2: q[2],
+                    to: q[3],
+                }
+            })
+            .collect();
+        b.iter(|| {
+            let mut s = 0.0;
+            for c in &curves {
+                for &t in &ts {
+                    let p = c.sample(t);
+                    s += p.x + p.y;
+                }
+            }
+            black_box(s)
+        });
+    });
+    let samplers: Vec<CurveSampler> = scene
+        .curves
+        .iter()
+        .map(|c| CurveSampler::new(&c.curve))
+        .collect();
+    g.bench_function("splinescope", |b| {
+        let mut out = vec![DVec3::ZERO; SAMPLES];
+        b.iter(|| {
+            let mut s = 0.0;
+            for c in &samplers {
+                c.eval_into(&ts, &mut out);
+                s += out.iter().map(|p| p.x + p.y).sum::<f64>();
+            }
+            black_box(s)
+        });
+    });
+    g.bench_function("splinescope_all_cores", |b| {
+        let mut out = vec![DVec3::ZERO; CURVES * SAMPLES];
+        b.iter(|| {
+            sample_many(&samplers, SAMPLES, &mut out);
+            black_box(out[out.len() / 2])
+        });
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench, peers);
 criterion_main!(benches);

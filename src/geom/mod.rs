@@ -6,6 +6,7 @@
 //! Points are [`glam::DVec3`]; planar curves have `z = 0`. Nothing in this module knows
 //! about the GPU.
 
+pub mod batch;
 pub mod bernstein;
 pub mod bezier;
 pub mod bspline;

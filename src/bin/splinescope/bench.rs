@@ -10,7 +10,6 @@ use glam::DVec2;
 
 use super::say;
 
-use splinescope::geom::ParamCurve;
 use splinescope::gpu::GpuContext;
 use splinescope::gpu::layout::GpuVertex;
 use splinescope::gpu::offscreen::OFFSCREEN_FORMAT;
@@ -70,7 +69,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         &scene,
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )?;
-    let (cpu_f64, cpu_twin) = cpu_rates(&scene, &prepared, args);
+    let (cpu_f64, cpu_all_cores, cpu_twin) = cpu_rates(&scene, &prepared, args);
     let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
     let gpu_scene = renderer.upload(&ctx, &prepared);
     // The kernel's throughput: every record of the packing, fixed counts.
@@ -112,6 +111,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         samples_per_curve: args.samples,
         chunks: prepared.chunks.len(),
         cpu_f64_one_thread_samples_per_s: cpu_f64,
+        cpu_f64_all_cores_samples_per_s: cpu_all_cores,
         cpu_f32_twin_one_thread_samples_per_s: cpu_twin,
         gpu_compute_wall_samples_per_s: gpu_wall,
         gpu_compute_timestamp_samples_per_s: gpu_pass,
@@ -135,6 +135,7 @@ struct BenchReport {
     samples_per_curve: u32,
     chunks: usize,
     cpu_f64_one_thread_samples_per_s: f64,
+    cpu_f64_all_cores_samples_per_s: f64,
     cpu_f32_twin_one_thread_samples_per_s: f64,
     gpu_compute_wall_samples_per_s: f64,
     gpu_compute_timestamp_samples_per_s: Option<f64>,
@@ -157,6 +158,10 @@ fn print_report(r: &BenchReport) -> Result<()> {
     say!(
         "  CPU f64 de Casteljau, 1 thread     {}",
         m(r.cpu_f64_one_thread_samples_per_s)
+    );
+    say!(
+        "  CPU f64 de Casteljau, all cores    {}",
+        m(r.cpu_f64_all_cores_samples_per_s)
     );
     say!(
         "  CPU f32 kernel twin, 1 thread      {}",
@@ -183,27 +188,38 @@ fn print_report(r: &BenchReport) -> Result<()> {
     Ok(())
 }
 
-/// CPU rates, one thread, at most 2M samples each: `f64` evaluation and the `f32` twin of
-/// the kernel over the first chunk's records.
+/// CPU rates over at most 2M samples each: the batch `f64` evaluator on one thread and on
+/// every core, and the `f32` twin of the kernel (one thread) over the first chunk's records.
 fn cpu_rates(
     scene: &splinescope::scene::Scene,
     prepared: &splinescope::gpu::pack::PreparedScene,
     args: &BenchArgs,
-) -> (f64, f64) {
+) -> (f64, f64, f64) {
+    use splinescope::geom::batch::{CurveSampler, sample_many};
     let cpu_curves = (2_000_000 / u64::from(args.samples)).clamp(1, args.curves) as usize;
+    let samplers: Vec<CurveSampler> = scene.curves[..cpu_curves]
+        .iter()
+        .map(|c| CurveSampler::new(&c.curve))
+        .collect();
+    let count = args.samples as usize;
+    let mut out = vec![glam::DVec3::ZERO; count];
     let started = Instant::now();
-    let mut sink = glam::DVec3::ZERO;
-    let denominator = f64::from(args.samples - 1);
-    for c in &scene.curves[..cpu_curves] {
-        for j in 0..args.samples {
-            sink += c.curve.eval(f64::from(j) / denominator);
-        }
+    for s in &samplers {
+        s.sample_uniform_into(count, &mut out);
+        std::hint::black_box(&out);
     }
     let cpu_f64 = rate(
         cpu_curves as u64 * u64::from(args.samples),
         started.elapsed(),
     );
-    std::hint::black_box(sink);
+    let mut all = vec![glam::DVec3::ZERO; cpu_curves * count];
+    let started = Instant::now();
+    sample_many(&samplers, count, &mut all);
+    let cpu_all_cores = rate(
+        cpu_curves as u64 * u64::from(args.samples),
+        started.elapsed(),
+    );
+    std::hint::black_box(&all);
     let chunk = &prepared.chunks[0];
     let records = chunk
         .records
@@ -220,7 +236,7 @@ fn cpu_rates(
     twin::tessellate(&chunk.points, &chunk.records[..records], &mut out);
     let cpu_twin = rate(records as u64 * u64::from(args.samples), started.elapsed());
     std::hint::black_box(&out);
-    (cpu_f64, cpu_twin)
+    (cpu_f64, cpu_all_cores, cpu_twin)
 }
 
 /// The compute pass alone: by wall clock (submit and wait) and, where the adapter has

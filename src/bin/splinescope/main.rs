@@ -676,9 +676,14 @@ fn eval(path: &Path, req: &EvalRequest<'_>, gpu: &GpuArgs) -> Result<()> {
                     .zip(&per_curve)
                     .map(|(&i, ts)| {
                         let c = &scene.curves[i].curve;
+                        if k == 0 {
+                            // Points: the batch evaluator over the exact lowering.
+                            let mut out = vec![DVec3::ZERO; ts.len()];
+                            splinescope::geom::batch::CurveSampler::new(c).eval_into(ts, &mut out);
+                            return out;
+                        }
                         ts.iter()
                             .map(|&t| match k {
-                                0 => c.eval(t),
                                 1 => c.eval_deriv(t),
                                 _ => c.eval_second_deriv(t),
                             })

@@ -1,0 +1,145 @@
+//! Batch evaluation against independent truth: Bézier curves of degrees 1–40 against exact
+//! rational evaluation (the Bernstein sum in rationals of the same `f64` inputs) within the
+//! documented bound; every family's sampler against the family's own evaluation (de Boor
+//! for B-splines, the dual form for NUBMP curves, the bump for modified curves); the
+//! parallel batch equal to the serial one.
+
+use glam::DVec3;
+use num_traits::{One, ToPrimitive, Zero};
+use splinescope::geom::ParamCurve;
+use splinescope::geom::batch::{CurveSampler, bezier_into, sample_many, uniform};
+use splinescope::geom::exact::{Rational, rational_from_f64};
+use splinescope::scene::generate::Rng;
+
+fn exact_bezier(points: &[DVec3], u: f64) -> [f64; 3] {
+    let n = points.len() - 1;
+    let t = rational_from_f64(u).expect("finite");
+    let s = Rational::one() - t.clone();
+    let mut sum = [Rational::zero(), Rational::zero(), Rational::zero()];
+    let powers = |x: &Rational| {
+        let mut v = vec![Rational::one()];
+        for k in 0..n {
+            let next = v[k].clone() * x.clone();
+            v.push(next);
+        }
+        v
+    };
+    let (tp, sp) = (powers(&t), powers(&s));
+    let mut binomial = Rational::one();
+    for (i, p) in points.iter().enumerate() {
+        if i > 0 {
+            binomial = binomial * Rational::from_integer((n + 1 - i).into())
+                / Rational::from_integer(i.into());
+        }
+        let w = binomial.clone() * tp[i].clone() * sp[n - i].clone();
+        for (acc, c) in sum.iter_mut().zip(p.to_array()) {
+            *acc = acc.clone() + w.clone() * rational_from_f64(c).expect("finite");
+        }
+    }
+    sum.map(|r| r.to_f64().expect("representable"))
+}
+
+#[test]
+fn bezier_batches_are_within_the_bound_of_exact_evaluation() {
+    let mut rng = Rng::new(21);
+    for degree in 1..=40usize {
+        let points: Vec<DVec3> = (0..=degree)
+            .map(|_| {
+                DVec3::new(
+                    rng.range(-3.0, 3.0),
+                    rng.range(-3.0, 3.0),
+                    rng.range(-3.0, 3.0),
+                )
+            })
+            .collect();
+        let mut us: Vec<f64> = (0..20).map(|_| rng.unit()).collect();
+        us.extend([0.0, 1.0, 0.5]);
+        let mut out = vec![DVec3::ZERO; us.len()];
+        bezier_into(&points, &us, &mut out);
+        for (&u, got) in us.iter().zip(&out) {
+            let want = exact_bezier(&points, u);
+            // 2 n ε Σ |P_i| B_i(u) ≤ 2 n ε max |P_i| (the Bernstein weights sum to 1).
+            let scale = points
+                .iter()
+                .map(|p| p.abs().max_element())
+                .fold(0.0, f64::max);
+            let bound = 2.0 * degree as f64 * f64::EPSILON / 2.0 * scale;
+            for (g, w) in got.to_array().iter().zip(want) {
+                assert!(
+                    (g - w).abs() <= bound,
+                    "degree {degree}, u = {u}: {g} vs exact {w} (bound {bound:e})"
+                );
+            }
+        }
+        // The ends are the end points exactly.
+        assert_eq!(out[us.len() - 3], points[0]);
+        assert_eq!(out[us.len() - 2], points[degree]);
+    }
+}
+
+#[test]
+fn every_family_samples_like_its_own_evaluation() {
+    let scene = splinescope::scene::gallery::gallery();
+    for (i, c) in scene.curves.iter().enumerate() {
+        let sampler = CurveSampler::new(&c.curve);
+        let (a, b) = c.curve.domain();
+        assert_eq!(sampler.domain(), (a, b), "curves[{i}]");
+        let count = 257;
+        let mut out = vec![DVec3::ZERO; count];
+        sampler.sample_uniform_into(count, &mut out);
+        let scale = c
+            .curve
+            .control_points()
+            .iter()
+            .map(|p| p.length())
+            .fold(1.0, f64::max);
+        for (j, got) in out.iter().enumerate() {
+            let t = uniform(a, b, j, count);
+            let want = c.curve.eval(t);
+            assert!(
+                (*got - want).length() <= 1e-12 * scale,
+                "curves[{i}] ({}) at t = {t}: {got} vs {want}",
+                c.curve.family()
+            );
+        }
+        // Unsorted parameters, repeated ones, and ones outside the domain (extrapolated
+        // from the end segments, as the family does for a Bézier curve).
+        let ts = [b, a, 0.5 * (a + b), a, b];
+        let mut out = [DVec3::ZERO; 5];
+        sampler.eval_into(&ts, &mut out);
+        for (t, got) in ts.iter().zip(out) {
+            assert!(
+                (got - c.curve.eval(*t)).length() <= 1e-12 * scale,
+                "curves[{i}] at {t}"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_parallel_batch_equals_the_serial_one() {
+    let scene = splinescope::scene::generate::random_bezier_scene(
+        splinescope::scene::generate::StressOptions {
+            curves: 3000,
+            degree: 5,
+            ..Default::default()
+        },
+    );
+    let samplers: Vec<CurveSampler> = scene
+        .curves
+        .iter()
+        .map(|c| CurveSampler::new(&c.curve))
+        .collect();
+    let count = 33;
+    let mut parallel = vec![DVec3::ZERO; samplers.len() * count];
+    sample_many(&samplers, count, &mut parallel);
+    for (c, s) in samplers.iter().enumerate() {
+        let mut serial = vec![DVec3::ZERO; count];
+        s.sample_uniform_into(count, &mut serial);
+        assert_eq!(
+            &parallel[c * count..(c + 1) * count],
+            serial.as_slice(),
+            "curve {c}"
+        );
+    }
+}
