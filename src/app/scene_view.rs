@@ -3,7 +3,7 @@
 //! tessellated and drawn every frame.
 
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicU8, Ordering};
 
 use super::AppError;
 use super::interaction::Toggles;
@@ -34,8 +34,15 @@ pub(crate) struct SceneView {
 /// one copy in flight at a time.
 struct StatsReader {
     staging: Option<wgpu::Buffer>,
-    ready: Option<Arc<AtomicBool>>,
+    ready: Option<Arc<AtomicU8>>,
 }
+
+/// States of a mapping request.
+pub(crate) const PENDING: u8 = 0;
+/// The buffer is mapped.
+pub(crate) const MAPPED: u8 = 1;
+/// The mapping failed.
+pub(crate) const FAILED: u8 = 2;
 
 const STATS_BYTES: u64 = (WORK_HEADER * 4) as u64;
 
@@ -86,20 +93,25 @@ impl StatsReader {
         let Some(staging) = &self.staging else {
             return;
         };
-        let flag = Arc::new(AtomicBool::new(false));
+        let flag = Arc::new(AtomicU8::new(PENDING));
         let done = flag.clone();
         staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
-            done.store(r.is_ok(), Ordering::Release);
+            done.store(if r.is_ok() { MAPPED } else { FAILED }, Ordering::Release);
         });
         self.ready = Some(flag);
     }
 
     /// The statistics, once the mapping completed.
     fn take(&mut self) -> Option<Vec<FrameStats>> {
-        if !self.ready.as_ref()?.load(Ordering::Acquire) {
-            return None;
+        match self.ready.as_ref()?.load(Ordering::Acquire) {
+            PENDING => return None,
+            MAPPED => self.ready = None,
+            _ => {
+                // The mapping failed: try again with the next frame.
+                self.ready = None;
+                return None;
+            }
         }
-        self.ready = None;
         let staging = self.staging.as_ref()?;
         let stats = {
             let data = staging.slice(..).get_mapped_range().ok()?;

@@ -3,8 +3,9 @@
 //! waiting, like the frame statistics.
 
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicU8, Ordering};
 
+use super::scene_view::{FAILED, MAPPED, PENDING};
 use crate::gpu::GpuContext;
 
 /// The stages timed, in the order of their timestamp pairs.
@@ -15,7 +16,7 @@ pub(crate) struct StageTimer {
     set: wgpu::QuerySet,
     resolve: wgpu::Buffer,
     staging: wgpu::Buffer,
-    ready: Option<Arc<AtomicBool>>,
+    ready: Option<Arc<AtomicU8>>,
     period_ns: f64,
     /// The last frame's milliseconds per stage.
     pub last_ms: Option<[f64; 4]>,
@@ -95,12 +96,12 @@ impl StageTimer {
 
     /// After submission: asks for the mapping.
     pub fn request(&mut self) {
-        let flag = Arc::new(AtomicBool::new(false));
+        let flag = Arc::new(AtomicU8::new(PENDING));
         let done = flag.clone();
         self.staging
             .slice(..)
             .map_async(wgpu::MapMode::Read, move |r| {
-                done.store(r.is_ok(), Ordering::Release)
+                done.store(if r.is_ok() { MAPPED } else { FAILED }, Ordering::Release)
             });
         self.ready = Some(flag);
     }
@@ -110,10 +111,15 @@ impl StageTimer {
         let Some(flag) = &self.ready else {
             return;
         };
-        if !flag.load(Ordering::Acquire) {
-            return;
+        match flag.load(Ordering::Acquire) {
+            PENDING => return,
+            MAPPED => self.ready = None,
+            _ => {
+                // The mapping failed: time a later frame instead.
+                self.ready = None;
+                return;
+            }
         }
-        self.ready = None;
         let ticks: Vec<u64> = match self.staging.slice(..).get_mapped_range() {
             Ok(data) => bytemuck::pod_collect_to_vec(&data),
             Err(_) => return,
