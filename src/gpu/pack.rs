@@ -157,10 +157,11 @@ pub struct PreparedScene {
     pub sample_counts: Vec<Vec<u32>>,
 }
 
-/// The new control points of a curve whose lowering kept its structure (same segments,
-/// degrees and sample counts: `samples` is the curve's fixed count, `None` for automatic),
-/// as `(chunk, first point, points)` writes; `None` when the structure changed and the
-/// scene must be packed again.
+/// The new control points of a curve whose lowering kept its structure (the same number
+/// of segments of the same degrees and, for a fixed count `samples`, the same count; an
+/// automatic count is chosen by the GPU every frame, so it may change freely), as
+/// `(chunk, first point, points)` writes; `None` when the structure changed and the scene
+/// must be packed again.
 #[must_use]
 pub fn repack_points(
     placements: &[Placement],
@@ -171,10 +172,10 @@ pub fn repack_points(
     if segments.len() != packed_counts.len() {
         return None;
     }
-    for (seg, &count) in segments.iter().zip(packed_counts) {
-        if samples.unwrap_or_else(|| auto_samples(seg.bezier.points())) != count {
-            return None;
-        }
+    if let Some(fixed) = samples
+        && packed_counts.iter().any(|&count| count != fixed)
+    {
+        return None;
     }
     placements
         .iter()
