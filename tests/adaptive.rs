@@ -59,6 +59,8 @@ struct Run {
     stats: splinescope::gpu::layout::FrameStats,
     samples: Vec<GpuVertex>,
     requested: Vec<u32>,
+    /// The frame uniform the passes read.
+    frame: splinescope::gpu::layout::GpuFrame,
 }
 
 fn run_chunk(
@@ -92,6 +94,7 @@ fn run_chunk(
         stats: *bytemuck::from_bytes(bytemuck::cast_slice(&work[..WORK_HEADER])),
         samples,
         requested,
+        frame: a.frame_uniform(settings),
     }
 }
 
@@ -151,10 +154,7 @@ fn check(ctx: &GpuContext, scene: &Scene, camera: &Camera, tolerance_px: f64, wh
         }
         let capacity = chunk.segments.len() as u32 * MAX_SAMPLES_PER_SEGMENT;
         let run = run_chunk(ctx, chunk, &settings, capacity);
-        let frame = ctx
-            .adaptive
-            .upload(&ctx.device, chunk, capacity, wgpu::BufferUsages::empty())
-            .frame_uniform(&settings);
+        let frame = run.frame;
         // Count: the twin's Wang count, up to the rounding of a value on an integer.
         for (s, seg) in chunk.segments.iter().enumerate() {
             let want = twin::wang_count(&frame, &chunk.points, seg);

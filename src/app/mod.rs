@@ -17,6 +17,7 @@
 pub mod edit;
 mod egui_layer;
 pub mod interaction;
+mod readback;
 mod scene_view;
 mod stress;
 mod surface;

@@ -2,11 +2,9 @@
 //! the panel's switches (curves rewritten in place when their structure is unchanged),
 //! tessellated and drawn every frame.
 
-use std::sync::Arc;
-use std::sync::atomic::{AtomicU8, Ordering};
-
 use super::AppError;
 use super::interaction::Toggles;
+use super::readback::Readback;
 use super::ui;
 use crate::geom::Lower;
 use crate::gpu::adaptive::FrameSettings;
@@ -30,28 +28,16 @@ pub(crate) struct SceneView {
     pub last_stats: Vec<FrameStats>,
 }
 
-/// Reads the chunks' frame statistics back a few frames late, never waiting for the GPU:
-/// one copy in flight at a time.
+/// Reads the chunks' frame statistics back a few frames late, never waiting for the GPU.
 struct StatsReader {
-    staging: Option<wgpu::Buffer>,
-    ready: Option<Arc<AtomicU8>>,
+    readback: Option<Readback>,
 }
-
-/// States of a mapping request.
-pub(crate) const PENDING: u8 = 0;
-/// The buffer is mapped.
-pub(crate) const MAPPED: u8 = 1;
-/// The mapping failed.
-pub(crate) const FAILED: u8 = 2;
 
 const STATS_BYTES: u64 = (WORK_HEADER * 4) as u64;
 
 impl StatsReader {
     fn new() -> StatsReader {
-        StatsReader {
-            staging: None,
-            ready: None,
-        }
+        StatsReader { readback: None }
     }
 
     /// Records copies of every chunk's statistics when no read is in flight; whether it did.
@@ -61,26 +47,19 @@ impl StatsReader {
         encoder: &mut wgpu::CommandEncoder,
         gpu: &GpuScene,
     ) -> bool {
-        if self.ready.is_some() || gpu.chunks.is_empty() {
+        if gpu.chunks.is_empty() || self.readback.as_ref().is_some_and(|r| !r.idle()) {
             return false;
         }
         let size = STATS_BYTES * gpu.chunks.len() as u64;
-        if self.staging.as_ref().is_none_or(|b| b.size() != size) {
-            self.staging = Some(ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("frame statistics"),
-                size,
-                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            }));
-        }
-        let Some(staging) = &self.staging else {
-            return false;
+        let readback = match &mut self.readback {
+            Some(r) if r.staging().size() == size => r,
+            slot => slot.insert(Readback::new(&ctx.device, "frame statistics", size)),
         };
         for (i, c) in gpu.chunks.iter().enumerate() {
             encoder.copy_buffer_to_buffer(
                 &c.adaptive.work,
                 0,
-                staging,
+                readback.staging(),
                 i as u64 * STATS_BYTES,
                 STATS_BYTES,
             );
@@ -90,35 +69,14 @@ impl StatsReader {
 
     /// After the recorded copies were submitted: asks for the mapping.
     fn request(&mut self) {
-        let Some(staging) = &self.staging else {
-            return;
-        };
-        let flag = Arc::new(AtomicU8::new(PENDING));
-        let done = flag.clone();
-        staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
-            done.store(if r.is_ok() { MAPPED } else { FAILED }, Ordering::Release);
-        });
-        self.ready = Some(flag);
+        if let Some(r) = &mut self.readback {
+            r.request();
+        }
     }
 
     /// The statistics, once the mapping completed.
     fn take(&mut self) -> Option<Vec<FrameStats>> {
-        match self.ready.as_ref()?.load(Ordering::Acquire) {
-            PENDING => return None,
-            MAPPED => self.ready = None,
-            _ => {
-                // The mapping failed: try again with the next frame.
-                self.ready = None;
-                return None;
-            }
-        }
-        let staging = self.staging.as_ref()?;
-        let stats = {
-            let data = staging.slice(..).get_mapped_range().ok()?;
-            bytemuck::pod_collect_to_vec::<u8, FrameStats>(&data)
-        };
-        staging.unmap();
-        Some(stats)
+        self.readback.as_mut()?.take()
     }
 }
 

@@ -2,10 +2,7 @@
 //! timestamp queries, where the adapter has them; read back a few frames late without
 //! waiting, like the frame statistics.
 
-use std::sync::Arc;
-use std::sync::atomic::{AtomicU8, Ordering};
-
-use super::scene_view::{FAILED, MAPPED, PENDING};
+use super::readback::Readback;
 use crate::gpu::GpuContext;
 
 /// The stages timed, in the order of their timestamp pairs.
@@ -15,8 +12,7 @@ pub(crate) const STAGES: [&str; 4] = ["count", "scan", "tessellate", "draw"];
 pub(crate) struct StageTimer {
     set: wgpu::QuerySet,
     resolve: wgpu::Buffer,
-    staging: wgpu::Buffer,
-    ready: Option<Arc<AtomicU8>>,
+    readback: Readback,
     period_ns: f64,
     /// The last frame's milliseconds per stage.
     pub last_ms: Option<[f64; 4]>,
@@ -49,13 +45,7 @@ impl StageTimer {
                 usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             }),
-            staging: ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("stage times readback"),
-                size,
-                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            }),
-            ready: None,
+            readback: Readback::new(&ctx.device, "stage times readback", size),
             period_ns: f64::from(ctx.queue.get_timestamp_period()),
             last_ms: None,
             sums: [0.0; 4],
@@ -65,7 +55,7 @@ impl StageTimer {
 
     /// Whether this frame is timed (no read in flight).
     pub fn active(&self) -> bool {
-        self.ready.is_none()
+        self.readback.idle()
     }
 
     /// The compute passes' timestamp writes (count, scan, tessellate).
@@ -91,40 +81,25 @@ impl StageTimer {
     /// After the frame's passes: resolves the queries and copies them for reading.
     pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
         encoder.resolve_query_set(&self.set, 0..QUERIES, &self.resolve, 0);
-        encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.staging, 0, self.resolve.size());
+        encoder.copy_buffer_to_buffer(
+            &self.resolve,
+            0,
+            self.readback.staging(),
+            0,
+            self.resolve.size(),
+        );
     }
 
     /// After submission: asks for the mapping.
     pub fn request(&mut self) {
-        let flag = Arc::new(AtomicU8::new(PENDING));
-        let done = flag.clone();
-        self.staging
-            .slice(..)
-            .map_async(wgpu::MapMode::Read, move |r| {
-                done.store(if r.is_ok() { MAPPED } else { FAILED }, Ordering::Release)
-            });
-        self.ready = Some(flag);
+        self.readback.request();
     }
 
     /// Takes the times when the mapping completed.
     pub fn poll(&mut self) {
-        let Some(flag) = &self.ready else {
+        let Some(ticks) = self.readback.take::<u64>() else {
             return;
         };
-        match flag.load(Ordering::Acquire) {
-            PENDING => return,
-            MAPPED => self.ready = None,
-            _ => {
-                // The mapping failed: time a later frame instead.
-                self.ready = None;
-                return;
-            }
-        }
-        let ticks: Vec<u64> = match self.staging.slice(..).get_mapped_range() {
-            Ok(data) => bytemuck::pod_collect_to_vec(&data),
-            Err(_) => return,
-        };
-        self.staging.unmap();
         let mut ms = [0.0; 4];
         for (i, slot) in ms.iter_mut().enumerate() {
             *slot = ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * self.period_ns * 1e-6;

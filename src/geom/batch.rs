@@ -48,15 +48,10 @@ pub fn bezier_into(points: &[DVec3], us: &[f64], out: &mut [DVec3]) {
         _ if points.len() <= STACK => {
             let n = points.len();
             let mut buf = [DVec3::ZERO; STACK];
+            // One scratch buffer for the whole run (not one zeroed per point).
             for (o, &u) in out.iter_mut().zip(us) {
-                let s = 1.0 - u;
                 buf[..n].copy_from_slice(points);
-                for m in (1..n).rev() {
-                    for i in 0..m {
-                        buf[i] = s * buf[i] + u * buf[i + 1];
-                    }
-                }
-                *o = buf[0];
+                *o = super::bezier::de_casteljau_in_place(&mut buf[..n], u);
             }
         }
         _ => {
@@ -168,7 +163,7 @@ pub fn uniform(a: f64, b: f64, j: usize, count: usize) -> f64 {
     } else if j + 1 == count {
         b
     } else {
-        a + (b - a) * (j as f64 / (count - 1) as f64)
+        a + (b - a) * j as f64 / (count - 1) as f64
     }
 }
 

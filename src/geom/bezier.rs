@@ -96,19 +96,22 @@ impl Aabb {
     }
 }
 
+/// De Casteljau on `p` itself (overwritten), at `t`: `P_nⁿ`. `p` must not be empty.
+pub(crate) fn de_casteljau_in_place(p: &mut [DVec3], t: f64) -> DVec3 {
+    let s = 1.0 - t;
+    let n = p.len() - 1;
+    for r in 1..=n {
+        for i in 0..=(n - r) {
+            p[i] = s * p[i] + t * p[i + 1];
+        }
+    }
+    p[0]
+}
+
 /// Runs de Casteljau on a scratch copy of `points` at `t` and returns `P_nⁿ` (on the stack
 /// for up to [`STACK_POINTS`] points).
 pub(crate) fn de_casteljau(points: &[DVec3], t: f64) -> DVec3 {
-    fn run(p: &mut [DVec3], t: f64) -> DVec3 {
-        let s = 1.0 - t;
-        let n = p.len() - 1;
-        for r in 1..=n {
-            for i in 0..=(n - r) {
-                p[i] = s * p[i] + t * p[i + 1];
-            }
-        }
-        p[0]
-    }
+    let run = de_casteljau_in_place;
     if points.is_empty() {
         return DVec3::ZERO;
     }

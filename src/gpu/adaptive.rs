@@ -9,7 +9,7 @@ use super::layout::{
     MAX_SAMPLES_PER_SEGMENT, SCAN_BLOCK, TESSELLATE_KERNELS, WORK_HEADER,
 };
 use super::pack::TessChunk;
-use super::tessellator::dispatch_grid;
+use super::tessellator::{compute_pipelines, control_points_buffer, dispatch_grid};
 use super::{GpuError, shaders};
 
 /// The default tolerance: a drawn polyline stays within this many pixels of its curve.
@@ -106,34 +106,28 @@ impl AdaptiveTessellator {
     #[must_use]
     pub fn new(device: &wgpu::Device) -> AdaptiveTessellator {
         let module = shaders::ADAPTIVE.module(device);
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("adaptive"),
-            entries: &super::bindings::adaptive()[0],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("adaptive"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = |entry: &str| {
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(entry),
-                layout: Some(&pipeline_layout),
-                module: &module,
-                entry_point: Some(entry),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                cache: None,
-            })
-        };
+        let passes = ["count", "scan_blocks", "scan_sums", "finalize"];
+        let entries: Vec<&str> = passes
+            .into_iter()
+            .chain(TESSELLATE_KERNELS.iter().map(|(e, _)| *e))
+            .collect();
+        let (layout, mut pipelines) = compute_pipelines(
+            device,
+            "adaptive",
+            &module,
+            &super::bindings::adaptive()[0],
+            &entries,
+        );
+        let kernels = pipelines.split_off(passes.len());
+        let [count, scan_blocks, scan_sums, finalize]: [wgpu::ComputePipeline; 4] = pipelines
+            .try_into()
+            .unwrap_or_else(|_| unreachable!("four passes"));
         AdaptiveTessellator {
-            count: pipeline("count"),
-            scan_blocks: pipeline("scan_blocks"),
-            scan_sums: pipeline("scan_sums"),
-            finalize: pipeline("finalize"),
-            kernels: TESSELLATE_KERNELS
-                .iter()
-                .map(|(e, _)| pipeline(e))
-                .collect(),
+            count,
+            scan_blocks,
+            scan_sums,
+            finalize,
+            kernels,
             layout,
             max_groups_per_dim: device.limits().max_compute_workgroups_per_dimension,
         }
@@ -149,12 +143,7 @@ impl AdaptiveTessellator {
         capacity: u32,
         sample_usage: wgpu::BufferUsages,
     ) -> AdaptiveChunk {
-        let points = super::init_buffer(
-            device,
-            "control points",
-            bytemuck::cast_slice(&pad(&chunk.points)),
-            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-        );
+        let points = control_points_buffer(device, chunk);
         let segments = super::init_buffer(
             device,
             "adaptive segments",

@@ -97,28 +97,14 @@ impl Tessellator {
     /// (the kernel self-test's own tests hand it a deliberately wrong kernel).
     #[must_use]
     pub fn with_module(device: &wgpu::Device, module: &wgpu::ShaderModule) -> Tessellator {
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("tessellate"),
-            entries: &super::bindings::tessellate()[0],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("tessellate"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipelines = TESSELLATE_KERNELS
-            .iter()
-            .map(|(entry, _)| {
-                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: Some(entry),
-                    layout: Some(&pipeline_layout),
-                    module,
-                    entry_point: Some(entry),
-                    compilation_options: wgpu::PipelineCompilationOptions::default(),
-                    cache: None,
-                })
-            })
-            .collect();
+        let entries: Vec<&str> = TESSELLATE_KERNELS.iter().map(|(e, _)| *e).collect();
+        let (layout, pipelines) = compute_pipelines(
+            device,
+            "tessellate",
+            module,
+            &super::bindings::tessellate()[0],
+            &entries,
+        );
         Tessellator {
             layout,
             pipelines,
@@ -135,12 +121,7 @@ impl Tessellator {
         chunk: &TessChunk,
         sample_usage: wgpu::BufferUsages,
     ) -> ChunkBuffers {
-        let points = super::init_buffer(
-            device,
-            "control points",
-            bytemuck::cast_slice(&chunk.points),
-            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-        );
+        let points = control_points_buffer(device, chunk);
         let segments = super::init_buffer(
             device,
             "segments",
@@ -259,6 +240,62 @@ impl Tessellator {
         }
         Ok(())
     }
+}
+
+/// A chunk's control points on the GPU, rewritable in place (at least one element:
+/// storage bindings may not be empty).
+#[must_use]
+pub(crate) fn control_points_buffer(device: &wgpu::Device, chunk: &TessChunk) -> wgpu::Buffer {
+    let empty = [GpuVertex {
+        position: [0.0; 3],
+        id: 0,
+    }];
+    let points = if chunk.points.is_empty() {
+        &empty[..]
+    } else {
+        &chunk.points[..]
+    };
+    super::init_buffer(
+        device,
+        "control points",
+        bytemuck::cast_slice(points),
+        wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+    )
+}
+
+/// A bind-group layout from `entries` and one compute pipeline per entry point of
+/// `module`, all sharing that layout.
+#[must_use]
+pub(crate) fn compute_pipelines(
+    device: &wgpu::Device,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    layout_entries: &[wgpu::BindGroupLayoutEntry],
+    entry_points: &[&str],
+) -> (wgpu::BindGroupLayout, Vec<wgpu::ComputePipeline>) {
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries: layout_entries,
+    });
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &[Some(&layout)],
+        immediate_size: 0,
+    });
+    let pipelines = entry_points
+        .iter()
+        .map(|entry| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&pipeline_layout),
+                module,
+                entry_point: Some(entry),
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+                cache: None,
+            })
+        })
+        .collect();
+    (layout, pipelines)
 }
 
 /// What sample buffers hold before the kernel writes them (NaN, tag `u32::MAX`).

@@ -654,14 +654,8 @@ fn eval(path: &Path, req: &EvalRequest<'_>, gpu: &GpuArgs) -> Result<()> {
                 }
                 ts.clone()
             }
-            (None, Some(n)) => (0..n)
-                .map(|j| {
-                    if j + 1 == n {
-                        b
-                    } else {
-                        a + (b - a) * f64::from(j) / f64::from(n - 1)
-                    }
-                })
+            (None, Some(n)) => (0..n as usize)
+                .map(|j| splinescope::geom::batch::uniform(a, b, j, n as usize))
                 .collect(),
             (None, None) => unreachable!("checked above"),
         };
