@@ -213,10 +213,21 @@ struct AdaptiveWork {
     ok: bool,
 }
 
-fn adaptive_work(group: vec3<u32>) -> AdaptiveWork {
+// Twin: ADAPTIVE_SEGMENT_LANES in src/gpu/layout.rs. The invocations that share one
+// segment in the cubic and quartic kernels, whose workgroups tessellate
+// TESSELLATE_WORKGROUP_SIZE / SEGMENT_LANES segments each. The general kernel keeps a
+// whole workgroup per segment: its de Casteljau loops are long, and llvmpipe ends every
+// loop of an invocation once all its loops together ran 65,535 iterations
+// (LP_MAX_TGSI_LOOP_ITERATIONS; a stride of 8 reached it for degree 13 at 4,096 samples,
+// while a stride of 64 stays under it up to degree 31).
+const SEGMENT_LANES: u32 = 8u;
+const SEGMENTS_PER_GROUP: u32 = TESSELLATE_WORKGROUP_SIZE / SEGMENT_LANES;
+
+// Segment `slot` of the dispatch's range.
+fn adaptive_work(slot: u32) -> AdaptiveWork {
     var w: AdaptiveWork;
     w.ok = false;
-    let s = range.record_start + group.x + group.y * range.groups_x;
+    let s = range.record_start + slot;
     if (s >= range.record_end) {
         return w;
     }
@@ -243,9 +254,11 @@ fn adaptive_param(j: u32, count: u32) -> f32 {
 @compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
 fn tessellate_cubic(
     @builtin(workgroup_id) group: vec3<u32>,
-    @builtin(local_invocation_index) lane: u32,
+    @builtin(local_invocation_index) index: u32,
 ) {
-    let w = adaptive_work(group);
+    let slot = (group.x + group.y * range.groups_x) * SEGMENTS_PER_GROUP + index / SEGMENT_LANES;
+    let w = adaptive_work(slot);
+    let lane = index % SEGMENT_LANES;
     if (!w.ok) {
         return;
     }
@@ -256,7 +269,7 @@ fn tessellate_cubic(
     let p1 = control(seg, 1u);
     let p2 = control(seg, 2u);
     let p3 = control(seg, 3u);
-    for (var j = lane; j < count; j += TESSELLATE_WORKGROUP_SIZE) {
+    for (var j = lane; j < count; j += SEGMENT_LANES) {
         let u = adaptive_param(j, count);
         samples[first + j] = Vertex(cubic(p0, p1, p2, p3, u, 1.0 - u), seg.curve);
     }
@@ -265,9 +278,11 @@ fn tessellate_cubic(
 @compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
 fn tessellate_quartic(
     @builtin(workgroup_id) group: vec3<u32>,
-    @builtin(local_invocation_index) lane: u32,
+    @builtin(local_invocation_index) index: u32,
 ) {
-    let w = adaptive_work(group);
+    let slot = (group.x + group.y * range.groups_x) * SEGMENTS_PER_GROUP + index / SEGMENT_LANES;
+    let w = adaptive_work(slot);
+    let lane = index % SEGMENT_LANES;
     if (!w.ok) {
         return;
     }
@@ -279,7 +294,7 @@ fn tessellate_quartic(
     let p2 = control(seg, 2u);
     let p3 = control(seg, 3u);
     let p4 = control(seg, 4u);
-    for (var j = lane; j < count; j += TESSELLATE_WORKGROUP_SIZE) {
+    for (var j = lane; j < count; j += SEGMENT_LANES) {
         let u = adaptive_param(j, count);
         let v = 1.0 - u;
         let p = cubic(v * p0 + u * p1, v * p1 + u * p2, v * p2 + u * p3, v * p3 + u * p4, u, v);
@@ -292,7 +307,7 @@ fn tessellate_any(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(local_invocation_index) lane: u32,
 ) {
-    let w = adaptive_work(group);
+    let w = adaptive_work(group.x + group.y * range.groups_x);
     if (!w.ok) {
         return;
     }

@@ -3,8 +3,9 @@
 
 use naga::{Module, TypeInner};
 use splinescope::gpu::layout::{
-    GpuCamera, GpuFrame, GpuLineStyle, GpuRecord, GpuSegment, GpuTessParams, GpuVertex,
-    MAX_GPU_DEGREE, SCAN_BLOCK, TESSELLATE_KERNELS, TESSELLATE_WORKGROUP_SIZE, WORK_HEADER,
+    ADAPTIVE_SEGMENT_LANES, GpuCamera, GpuFrame, GpuLineStyle, GpuRecord, GpuSegment,
+    GpuTessParams, GpuVertex, MAX_GPU_DEGREE, SCAN_BLOCK, TESSELLATE_KERNELS,
+    TESSELLATE_WORKGROUP_SIZE, WORK_HEADER,
 };
 use splinescope::gpu::shaders::{self, ALL};
 
@@ -64,6 +65,10 @@ fn every_shader_validates() {
 fn adaptive_constants_match_their_rust_twins() {
     let (module, _) = shaders::ADAPTIVE.validate().expect("valid");
     assert_eq!(constant_u32(&module, "SCAN_BLOCK"), SCAN_BLOCK);
+    assert_eq!(
+        constant_u32(&module, "SEGMENT_LANES"),
+        ADAPTIVE_SEGMENT_LANES
+    );
     assert_eq!(constant_u32(&module, "WORK_COUNTS") as usize, WORK_HEADER);
 }
 

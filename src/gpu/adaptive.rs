@@ -5,8 +5,9 @@
 //! Twins: [`super::twin::wang_count`], [`super::twin::scan_and_place`].
 
 use super::layout::{
-    FrameStats, GpuCamera, GpuFrame, GpuLineStyle, GpuTessParams, GpuVertex,
-    MAX_SAMPLES_PER_SEGMENT, SCAN_BLOCK, TESSELLATE_KERNELS, WORK_HEADER,
+    ADAPTIVE_SEGMENT_LANES, FrameStats, GpuCamera, GpuFrame, GpuLineStyle, GpuTessParams,
+    GpuVertex, MAX_SAMPLES_PER_SEGMENT, SCAN_BLOCK, TESSELLATE_KERNELS, TESSELLATE_WORKGROUP_SIZE,
+    WORK_HEADER,
 };
 use super::pack::TessChunk;
 use super::tessellator::{compute_pipelines, control_points_buffer, dispatch_grid};
@@ -241,7 +242,7 @@ impl AdaptiveTessellator {
             .iter()
             .map(|&(kernel, params)| {
                 let grid = dispatch_grid(
-                    params.record_end - params.record_start,
+                    adaptive_groups(kernel, params.record_end - params.record_start),
                     self.max_groups_per_dim,
                 );
                 let params = GpuTessParams {
@@ -448,6 +449,17 @@ fn sample_buffer(device: &wgpu::Device, capacity: u32, usage: wgpu::BufferUsages
         usage: wgpu::BufferUsages::STORAGE | usage,
         mapped_at_creation: false,
     })
+}
+
+/// Workgroups the adaptive kernel `kernel` (index in [`TESSELLATE_KERNELS`]) needs for
+/// `segments` segments: the single-degree kernels tessellate several segments per
+/// workgroup ([`ADAPTIVE_SEGMENT_LANES`] invocations each), the general kernel one.
+#[must_use]
+pub fn adaptive_groups(kernel: usize, segments: u32) -> u32 {
+    match TESSELLATE_KERNELS.get(kernel) {
+        Some((_, Some(_))) => segments.div_ceil(TESSELLATE_WORKGROUP_SIZE / ADAPTIVE_SEGMENT_LANES),
+        _ => segments,
+    }
 }
 
 /// Storage bindings may not be empty: an empty list becomes one zeroed element.

@@ -124,6 +124,14 @@ pub const MAX_SAMPLES_PER_SEGMENT: u32 = crate::scene::MAX_SAMPLES_PER_SEGMENT;
 /// [`SCAN_BLOCK`] and then at most [`SCAN_BLOCK`] block totals in one workgroup.
 pub const MAX_ADAPTIVE_SEGMENTS: usize = (SCAN_BLOCK * SCAN_BLOCK) as usize;
 
+/// Invocations that share one segment in the adaptive cubic and quartic kernels: a
+/// workgroup of [`TESSELLATE_WORKGROUP_SIZE`] invocations tessellates that many segments
+/// divided by this, each segment's samples strided over its lanes. On screen most segments
+/// need a few samples, so a whole workgroup per segment left most invocations idle (and a
+/// CPU adapter still runs them). The general kernel keeps one segment per workgroup (see
+/// `shaders/adaptive.wgsl`). Twin: `SEGMENT_LANES` in `shaders/adaptive.wgsl`.
+pub const ADAPTIVE_SEGMENT_LANES: u32 = 8;
+
 /// Segments per block of the prefix sum. Twin: `SCAN_BLOCK` in `shaders/adaptive.wgsl`.
 pub const SCAN_BLOCK: u32 = 256;
 
