@@ -70,7 +70,9 @@ fn bench(c: &mut Criterion) {
 /// splinescope's batch evaluator (one thread, then every core), in one run: the ratios
 /// are what BENCHMARKS.md records.
 fn peers(c: &mut Criterion) {
-    use splinescope::geom::batch::{CurveSampler, sample_many};
+    use splinescope::geom::batch::{
+        CurveSampler, UniformCubicWeights, for_each_sampled, sample_many,
+    };
     const CURVES: usize = 100_000;
     const SAMPLES: usize = 64;
     let scene = random_bezier_scene(StressOptions {
@@ -101,16 +103,15 @@ fn peers(c: &mut Criterion) {
                 kurbo::CubicBez::new(q[0], q[1], q[2], q[3])
             })
             .collect();
+        let mut out = vec![kurbo::Point::ZERO; SAMPLES];
         b.iter(|| {
             use kurbo::ParamCurve as _;
-            let mut s = 0.0;
             for c in &curves {
-                for &t in &ts {
-                    let p = c.eval(t);
-                    s += p.x + p.y;
+                for (o, &t) in out.iter_mut().zip(&ts) {
+                    *o = c.eval(t);
                 }
+                black_box(&mut out);
             }
-            black_box(s)
         });
     });
     g.bench_function("lyon_geom", |b| {
@@ -126,15 +127,14 @@ fn peers(c: &mut Criterion) {
                 }
             })
             .collect();
+        let mut out = vec![lyon_geom::point(0.0, 0.0); SAMPLES];
         b.iter(|| {
-            let mut s = 0.0;
             for c in &curves {
-                for &t in &ts {
-                    let p = c.sample(t);
-                    s += p.x + p.y;
+                for (o, &t) in out.iter_mut().zip(&ts) {
+                    *o = c.sample(t);
                 }
+                black_box(&mut out);
             }
-            black_box(s)
         });
     });
     let samplers: Vec<CurveSampler> = scene
@@ -144,16 +144,22 @@ fn peers(c: &mut Criterion) {
         .collect();
     g.bench_function("splinescope", |b| {
         let mut out = vec![DVec3::ZERO; SAMPLES];
+        let weights = UniformCubicWeights::new(SAMPLES);
         b.iter(|| {
-            let mut s = 0.0;
             for c in &samplers {
-                c.eval_into(&ts, &mut out);
-                s += out.iter().map(|p| p.x + p.y).sum::<f64>();
+                c.sample_uniform_with(&weights, &mut out);
+                black_box(&mut out);
             }
-            black_box(s)
         });
     });
     g.bench_function("splinescope_all_cores", |b| {
+        b.iter(|| {
+            for_each_sampled(&samplers, SAMPLES, |_, points| {
+                black_box(points);
+            });
+        });
+    });
+    g.bench_function("splinescope_all_cores_stored", |b| {
         let mut out = vec![DVec3::ZERO; CURVES * SAMPLES];
         b.iter(|| {
             sample_many(&samplers, SAMPLES, &mut out);

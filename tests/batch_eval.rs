@@ -7,8 +7,11 @@
 use glam::DVec3;
 use num_traits::{One, ToPrimitive, Zero};
 use splinescope::geom::ParamCurve;
-use splinescope::geom::batch::{CurveSampler, bezier_into, sample_many, uniform};
+use splinescope::geom::batch::{
+    CurveSampler, UniformCubicWeights, bezier_into, for_each_sampled, sample_many, uniform,
+};
 use splinescope::geom::exact::{Rational, rational_from_f64};
+use splinescope::geom::{Bezier, Curve};
 use splinescope::scene::generate::Rng;
 
 fn exact_bezier(points: &[DVec3], u: f64) -> [f64; 3] {
@@ -141,5 +144,79 @@ fn the_parallel_batch_equals_the_serial_one() {
             serial.as_slice(),
             "curve {c}"
         );
+    }
+}
+
+#[test]
+fn shared_cubic_weights_sample_within_the_bound_of_exact_evaluation() {
+    let mut rng = Rng::new(77);
+    for count in [2usize, 3, 17, 64, 65, 1000] {
+        let weights = UniformCubicWeights::new(count);
+        assert_eq!(weights.count(), count);
+        for trial in 0..20 {
+            // Coordinates far from the origin too: the bound scales with them.
+            let offset = if trial % 2 == 0 { 0.0 } else { 1e6 };
+            let points: Vec<DVec3> = (0..4)
+                .map(|_| {
+                    DVec3::new(
+                        offset + rng.range(-3.0, 3.0),
+                        rng.range(-3.0, 3.0),
+                        -offset + rng.range(-3.0, 3.0),
+                    )
+                })
+                .collect();
+            let sampler = CurveSampler::new(&Curve::Bezier(Bezier::new(points.clone())));
+            let mut out = vec![DVec3::ZERO; count];
+            sampler.sample_uniform_with(&weights, &mut out);
+            let scale = points
+                .iter()
+                .map(|p| p.abs().max_element())
+                .fold(0.0, f64::max);
+            let bound = 3.0 * f64::EPSILON * scale;
+            for (j, got) in out.iter().enumerate() {
+                let u = uniform(0.0, 1.0, j, count);
+                let want = exact_bezier(&points, u);
+                for (g, w) in got.to_array().iter().zip(want) {
+                    assert!(
+                        (g - w).abs() <= bound,
+                        "count {count}, sample {j}: {g} vs exact {w} (bound {bound:e})"
+                    );
+                }
+            }
+            assert_eq!(out[0], points[0], "the start exactly");
+            assert_eq!(out[count - 1], points[3], "the end exactly");
+        }
+    }
+}
+
+#[test]
+fn streamed_samples_equal_the_serial_ones_curve_by_curve() {
+    let mut curves = splinescope::scene::generate::random_bezier_scene(
+        splinescope::scene::generate::StressOptions {
+            curves: 2000,
+            degree: 3,
+            ..Default::default()
+        },
+    )
+    .curves;
+    // Other families and degrees take the general path.
+    curves.extend(splinescope::scene::gallery::gallery().curves);
+    let samplers: Vec<CurveSampler> = curves.iter().map(|c| CurveSampler::new(&c.curve)).collect();
+    let count = 40;
+    let weights = UniformCubicWeights::new(count);
+    let seen = std::sync::Mutex::new(vec![None; samplers.len()]);
+    for_each_sampled(&samplers, count, |i, points| {
+        let mut seen = seen.lock().expect("lock");
+        assert!(seen[i].is_none(), "curve {i} handed over twice");
+        seen[i] = Some(points.to_vec());
+    });
+    for (i, (s, got)) in samplers
+        .iter()
+        .zip(seen.into_inner().expect("lock"))
+        .enumerate()
+    {
+        let mut serial = vec![DVec3::ZERO; count];
+        s.sample_uniform_with(&weights, &mut serial);
+        assert_eq!(got.as_deref(), Some(serial.as_slice()), "curve {i}");
     }
 }

@@ -75,14 +75,26 @@ fn cubic(p0: DVec3, p1: DVec3, p2: DVec3, p3: DVec3, u: f64) -> DVec3 {
 #[derive(Debug, Clone, PartialEq)]
 pub struct CurveSampler {
     segments: Vec<BezierSegment>,
+    /// A curve of one cubic segment keeps its control points inline too, so that
+    /// sampling many such curves reads one contiguous array.
+    single_cubic: Option<[DVec3; 4]>,
 }
 
 impl CurveSampler {
     /// Lowers `curve` (the only allocation).
     #[must_use]
     pub fn new(curve: &Curve) -> CurveSampler {
+        let segments = curve.lower();
+        let single_cubic = match segments.as_slice() {
+            [seg] => match *seg.bezier.points() {
+                [a, b, c, d] => Some([a, b, c, d]),
+                _ => None,
+            },
+            _ => None,
+        };
         CurveSampler {
-            segments: curve.lower(),
+            segments,
+            single_cubic,
         }
     }
 
@@ -135,6 +147,22 @@ impl CurveSampler {
         }
     }
 
+    /// `weights.count()` uniform parameters over the domain (ends included) into `out`,
+    /// as [`CurveSampler::sample_uniform_into`] but with the weights computed once for
+    /// many curves: a curve of one cubic segment is then four multiplies and three adds per
+    /// coordinate and sample (the same Bernstein sum, so the same bound); any other curve
+    /// takes the general path.
+    ///
+    /// # Panics
+    /// If `out.len() != weights.count()`.
+    pub fn sample_uniform_with(&self, weights: &UniformCubicWeights, out: &mut [DVec3]) {
+        assert_eq!(out.len(), weights.count(), "one output per sample");
+        match self.single_cubic {
+            Some(p) => cubic_weighted(p, weights, out),
+            None => self.sample_uniform_into(out.len(), out),
+        }
+    }
+
     /// `count` uniform parameters over the domain (ends included) into `out`.
     ///
     /// # Panics
@@ -155,6 +183,69 @@ impl CurveSampler {
     }
 }
 
+/// The cubic Bernstein weights `(s³, 3s²u, 3su², u³)` of `count` uniform parameters
+/// `u_j = j / (count − 1)` on `[0, 1]`, computed once and shared by every curve sampled
+/// at those parameters ([`CurveSampler::sample_uniform_with`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct UniformCubicWeights {
+    /// Weight `i` of every parameter, one array per `i`.
+    w: [Vec<f64>; 4],
+}
+
+impl UniformCubicWeights {
+    /// The weights of `count` uniform parameters (ends exact).
+    #[must_use]
+    pub fn new(count: usize) -> UniformCubicWeights {
+        let mut w: [Vec<f64>; 4] = Default::default();
+        for j in 0..count {
+            let u = uniform(0.0, 1.0, j, count);
+            let s = 1.0 - u;
+            let (s2, u2) = (s * s, u * u);
+            for (v, x) in w
+                .iter_mut()
+                .zip([s2 * s, 3.0 * s2 * u, 3.0 * s * u2, u2 * u])
+            {
+                v.push(x);
+            }
+        }
+        UniformCubicWeights { w }
+    }
+
+    /// How many parameters.
+    #[must_use]
+    pub fn count(&self) -> usize {
+        self.w[0].len()
+    }
+}
+
+/// `out[j] = Σ w_i[j] P_i`: a single cubic at precomputed weights. Each point is computed
+/// as one four-lane sum (x, y, z and a zero lane) of the control points scaled by the
+/// sample's weights as fused multiply-adds, which vectorises across coordinates. The
+/// function is compiled also for AVX2 + FMA and chosen at run time (`multiversion`); a CPU
+/// without FMA gets the same fused operations from software (slower, same results). The
+/// fused sum rounds less than the plain one, within the same bound.
+#[multiversion::multiversion(targets("x86_64+avx2+fma"))]
+fn cubic_weighted(p: [DVec3; 4], weights: &UniformCubicWeights, out: &mut [DVec3]) {
+    let lanes = p.map(|q| [q.x, q.y, q.z, 0.0]);
+    let [w0, w1, w2, w3] = &weights.w;
+    let n = out.len();
+    let (w0, w1, w2, w3) = (&w0[..n], &w1[..n], &w2[..n], &w3[..n]);
+    for (k, o) in out.iter_mut().enumerate() {
+        let (a, b, c, d) = (w0[k], w1[k], w2[k], w3[k]);
+        let mut acc = [0.0_f64; 4];
+        for (lane, v) in acc.iter_mut().enumerate() {
+            *v = a.mul_add(
+                lanes[0][lane],
+                b.mul_add(
+                    lanes[1][lane],
+                    c.mul_add(lanes[2][lane], d * lanes[3][lane]),
+                ),
+            );
+        }
+        *o = DVec3::new(acc[0], acc[1], acc[2]);
+    }
+}
+
 /// Parameter `j` of `count` uniform ones over `[a, b]`, ends exact.
 #[must_use]
 pub fn uniform(a: f64, b: f64, j: usize, count: usize) -> f64 {
@@ -168,7 +259,7 @@ pub fn uniform(a: f64, b: f64, j: usize, count: usize) -> f64 {
 }
 
 /// `count` uniform samples of every curve, curve `c` into `out[c · count ..][..count]`,
-/// spread over every core.
+/// spread over every core (the cubic weights computed once for all).
 ///
 /// # Panics
 /// If `out.len() != curves.len() · count`.
@@ -177,7 +268,27 @@ pub fn sample_many(curves: &[CurveSampler], count: usize, out: &mut [DVec3]) {
     if count == 0 {
         return;
     }
+    let weights = UniformCubicWeights::new(count);
     out.par_chunks_mut(count)
         .zip(curves.par_iter())
-        .for_each(|(o, c)| c.sample_uniform_into(count, o));
+        .for_each(|(o, c)| c.sample_uniform_with(&weights, o));
+}
+
+/// `count` uniform samples of every curve, handed to `consume(curve index, samples)`
+/// curve by curve, spread over every core: each worker thread fills one reused buffer,
+/// so nothing is allocated per curve and the samples need not all fit in memory at once
+/// (what a consumer computing bounds, lengths or nearest points needs). The cubic weights
+/// are computed once for all.
+pub fn for_each_sampled<F>(curves: &[CurveSampler], count: usize, consume: F)
+where
+    F: Fn(usize, &[DVec3]) + Sync,
+{
+    let weights = UniformCubicWeights::new(count);
+    curves.par_iter().enumerate().for_each_init(
+        || vec![DVec3::ZERO; count],
+        |buf, (i, c)| {
+            c.sample_uniform_with(&weights, buf);
+            consume(i, buf);
+        },
+    );
 }
