@@ -255,7 +255,7 @@ impl Projector {
         let mut best = best_sq.sqrt();
         // Computed only when another sampled minimum needs the pruning test.
         let mut speed = None;
-        for k in 0..=samples {
+        for (k, &dk) in d.iter().enumerate() {
             if k == best_k || !is_min(k) {
                 continue;
             }
@@ -266,7 +266,7 @@ impl Projector {
                         .map(|w| (w[1] - w[0]).length())
                         .fold(0.0, f64::max)
             });
-            if d[k].sqrt() - v * h > best {
+            if dk.sqrt() - v * h > best {
                 continue;
             }
             let (t, sq) = refine(points, target, bracket(k), start(k), scale, buf);
