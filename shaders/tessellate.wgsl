@@ -131,3 +131,19 @@ fn tessellate_any(
     }
     samples[seg.first_sample + w.j] = Vertex(p[0], seg.curve);
 }
+
+// The bound of the kernels above for their output: the same records, the same invocations
+// and the same writes, but no control point read and no arithmetic besides the parameter
+// (sample j of a record holds (u, 0, 0) and the record's tag). `splinescope bench` times it
+// next to the kernels on the same records.
+@compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
+fn write_only(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let w = work(group, lane);
+    if (!w.ok) {
+        return;
+    }
+    samples[w.seg.first_sample + w.j] = Vertex(vec3<f32>(w.u, 0.0, 0.0), w.seg.curve);
+}

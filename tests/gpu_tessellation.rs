@@ -17,7 +17,7 @@ use glam::{DVec3, Vec3};
 use splinescope::geom::{Bezier, ParamCurve};
 use splinescope::gpu::layout::{GpuLineStyle, MAX_GPU_DEGREE};
 use splinescope::gpu::pack::{ChunkBuilder, ChunkLimits, TessChunk, prepare_scene};
-use splinescope::gpu::tessellator::{POISON, Tessellator, plan};
+use splinescope::gpu::tessellator::{POISON, Tessellator, plan, read_buffer};
 use splinescope::gpu::twin;
 use splinescope::scene::Color;
 use splinescope::scene::generate::{Rng, StressOptions, random_bezier_scene};
@@ -361,4 +361,74 @@ fn the_kernel_self_test_refuses_a_wrong_kernel() {
             "{message}"
         );
     });
+}
+
+#[test]
+fn the_write_only_kernel_writes_exactly_the_kernels_samples() {
+    common::on_each_gpu(
+        "the_write_only_kernel_writes_exactly_the_kernels_samples",
+        |backend| {
+            let ctx = &backend.ctx;
+            let name = &backend.name;
+            let mut rng = Rng::new(9);
+            let cases: Vec<Case> = (0..30)
+                .map(|i| Case {
+                    curve: random_curve(&mut rng, 1 + i % 12, false),
+                    samples: rng.int(2, 150) as u32,
+                })
+                .collect();
+            let limits = ChunkLimits {
+                max_samples: 500,
+                max_points: 100,
+                max_records: 20,
+                max_styles: 10,
+            };
+            let chunks = pack(&cases, limits);
+            let tess = Tessellator::new(&ctx.device);
+            for chunk in &chunks {
+                let buffers = tess.upload(
+                    &ctx.device,
+                    chunk,
+                    wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+                );
+                let poison = vec![POISON; chunk.sample_count as usize];
+                ctx.queue
+                    .write_buffer(&buffers.samples, 0, bytemuck::cast_slice(&poison));
+                let mut encoder = ctx.device.create_command_encoder(&Default::default());
+                tess.encode_write_only(&mut encoder, [&buffers], None);
+                ctx.queue.submit([encoder.finish()]);
+                let mut encoder = ctx.device.create_command_encoder(&Default::default());
+                let got: Vec<splinescope::gpu::layout::GpuVertex> =
+                    read_buffer(&ctx.device, &ctx.queue, &mut encoder, &buffers.samples)
+                        .expect("readback");
+                // Every sample the kernels write, and nothing else, holds its parameter.
+                let mut written = vec![false; got.len()];
+                for seg in &chunk.records {
+                    let lanes = seg.sample_offset..(seg.sample_offset + 64).min(seg.sample_count);
+                    for j in lanes {
+                        let k = (seg.first_sample + j) as usize;
+                        written[k] = true;
+                        assert_eq!(got[k].id, seg.curve, "{name}: sample {k} tag");
+                        // The parameter in f32 (a fused multiply-add on some adapters).
+                        let [u, y, z] = got[k].position;
+                        let want = twin::sample_param(seg, j);
+                        assert!(
+                            (u - want).abs() <= 4.0 * f32::EPSILON && y == 0.0 && z == 0.0,
+                            "{name}: sample {k}: {:?}, want ({want}, 0, 0)",
+                            got[k].position
+                        );
+                    }
+                }
+                for (k, w) in written.iter().enumerate() {
+                    if !w {
+                        assert_eq!(
+                            got[k].id, POISON.id,
+                            "{name}: sample {k} written by no record"
+                        );
+                    }
+                }
+                assert!(written.iter().all(|&w| w), "{name}: packing leaves no gap");
+            }
+        },
+    );
 }

@@ -11,6 +11,7 @@ use super::shaders;
 pub struct Tessellator {
     layout: wgpu::BindGroupLayout,
     pipelines: Vec<wgpu::ComputePipeline>,
+    write_only: wgpu::ComputePipeline,
     max_groups_per_dim: u32,
 }
 
@@ -86,6 +87,9 @@ pub fn plan(chunk: &TessChunk, max_groups_per_dim: u32) -> Vec<PlannedDispatch> 
     out
 }
 
+/// The entry point of the write-only kernel in `shaders/tessellate.wgsl`.
+pub const WRITE_ONLY: &str = "write_only";
+
 impl Tessellator {
     /// Builds the pipelines of `shaders/tessellate.wgsl` on `device`.
     #[must_use]
@@ -97,17 +101,25 @@ impl Tessellator {
     /// (the kernel self-test's own tests hand it a deliberately wrong kernel).
     #[must_use]
     pub fn with_module(device: &wgpu::Device, module: &wgpu::ShaderModule) -> Tessellator {
-        let entries: Vec<&str> = TESSELLATE_KERNELS.iter().map(|(e, _)| *e).collect();
-        let (layout, pipelines) = compute_pipelines(
+        let entries: Vec<&str> = TESSELLATE_KERNELS
+            .iter()
+            .map(|(e, _)| *e)
+            .chain([WRITE_ONLY])
+            .collect();
+        let (layout, mut pipelines) = compute_pipelines(
             device,
             "tessellate",
             module,
             &super::bindings::tessellate()[0],
             &entries,
         );
+        let write_only = pipelines
+            .pop()
+            .unwrap_or_else(|| unreachable!("the write-only kernel"));
         Tessellator {
             layout,
             pipelines,
+            write_only,
             max_groups_per_dim: device.limits().max_compute_workgroups_per_dimension,
         }
     }
@@ -201,6 +213,29 @@ impl Tessellator {
         for chunk in chunks {
             for d in &chunk.dispatches {
                 pass.set_pipeline(&self.pipelines[d.kernel]);
+                pass.set_bind_group(0, &d.bind_group, &[]);
+                pass.dispatch_workgroups(d.groups.0, d.groups.1, 1);
+            }
+        }
+    }
+
+    /// Records one compute pass dispatching the write-only kernel (`write_only` in
+    /// `shaders/tessellate.wgsl`) over exactly the records and invocations
+    /// [`Tessellator::encode`] dispatches: the adapter's bound for this output, against
+    /// which the kernels are measured. Sample `j` of a record gets `(u_j, 0, 0)`.
+    pub fn encode_write_only<'a>(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        chunks: impl IntoIterator<Item = &'a ChunkBuffers>,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("write only"),
+            timestamp_writes,
+        });
+        pass.set_pipeline(&self.write_only);
+        for chunk in chunks {
+            for d in &chunk.dispatches {
                 pass.set_bind_group(0, &d.bind_group, &[]);
                 pass.dispatch_workgroups(d.groups.0, d.groups.1, 1);
             }

@@ -81,7 +81,13 @@ pub fn run(args: &BenchArgs) -> Result<()> {
                 .upload(&ctx.device, c, wgpu::BufferUsages::COPY_SRC)
         })
         .collect();
-    let (gpu_wall, gpu_pass) = gpu_compute_rates(&ctx, &records, args)?;
+    let (gpu_wall, gpu_pass) = gpu_compute_rates(&ctx, &records, args, Kernel::Tessellate)?;
+    let (limit_wall, limit_pass) = gpu_compute_rates(&ctx, &records, args, Kernel::WriteOnly)?;
+    // The share of the write-only bound, by timestamps where the adapter has them.
+    let share = match (gpu_pass, limit_pass) {
+        (Some(k), Some(l)) => k / l,
+        _ => gpu_wall / limit_wall,
+    };
 
     // GPU compute + readback of every sample.
     let started = Instant::now();
@@ -115,6 +121,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         cpu_f32_twin_one_thread_samples_per_s: cpu_twin,
         gpu_compute_wall_samples_per_s: gpu_wall,
         gpu_compute_timestamp_samples_per_s: gpu_pass,
+        gpu_write_limit_samples_per_s: limit_pass.unwrap_or(limit_wall),
+        gpu_kernel_share_of_write_limit: share,
         gpu_compute_with_readback_samples_per_s: gpu_readback,
         frames_per_s_1920x1080: frame_fps,
     };
@@ -139,6 +147,8 @@ struct BenchReport {
     cpu_f32_twin_one_thread_samples_per_s: f64,
     gpu_compute_wall_samples_per_s: f64,
     gpu_compute_timestamp_samples_per_s: Option<f64>,
+    gpu_write_limit_samples_per_s: f64,
+    gpu_kernel_share_of_write_limit: f64,
     gpu_compute_with_readback_samples_per_s: f64,
     frames_per_s_1920x1080: Option<f64>,
 }
@@ -175,6 +185,11 @@ fn print_report(r: &BenchReport) -> Result<()> {
         Some(v) => say!("  GPU compute (timestamps)           {}", m(v)),
         None => say!("  GPU compute (timestamps)           not supported by this adapter"),
     }
+    say!(
+        "  GPU write-only kernel (the limit)  {}   kernel at {:.0} % of it",
+        m(r.gpu_write_limit_samples_per_s),
+        100.0 * r.gpu_kernel_share_of_write_limit
+    );
     say!(
         "  GPU compute + readback             {}",
         m(r.gpu_compute_with_readback_samples_per_s)
@@ -246,12 +261,22 @@ fn cpu_rates(
     (cpu_f64, cpu_all_cores, cpu_twin)
 }
 
+/// Which compute pass [`gpu_compute_rates`] times.
+#[derive(Debug, Clone, Copy)]
+enum Kernel {
+    /// The de Casteljau kernels.
+    Tessellate,
+    /// The write-only kernel over the same records: the bound for this output.
+    WriteOnly,
+}
+
 /// The compute pass alone: by wall clock (submit and wait) and, where the adapter has
 /// them, by timestamps.
 fn gpu_compute_rates(
     ctx: &GpuContext,
     records: &[splinescope::gpu::tessellator::ChunkBuffers],
     args: &BenchArgs,
+    kernel: Kernel,
 ) -> Result<(f64, Option<f64>)> {
     let total = args.curves * u64::from(args.samples);
     let timestamps = Timestamps::new(ctx);
@@ -259,11 +284,13 @@ fn gpu_compute_rates(
     let mut wall = Duration::ZERO;
     for i in 0..=args.iterations {
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        ctx.tessellator.encode(
-            &mut encoder,
-            records,
-            timestamps.as_ref().map(Timestamps::writes),
-        );
+        let writes = timestamps.as_ref().map(Timestamps::writes);
+        match kernel {
+            Kernel::Tessellate => ctx.tessellator.encode(&mut encoder, records, writes),
+            Kernel::WriteOnly => ctx
+                .tessellator
+                .encode_write_only(&mut encoder, records, writes),
+        }
         let started = Instant::now();
         if let Some(ts) = &timestamps {
             let ns = ts.resolve_and_read(ctx, encoder)?;
