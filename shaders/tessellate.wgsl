@@ -7,10 +7,9 @@
 //
 // There is one entry point per degree class. Packing sorts each chunk's records by class
 // and the tessellator dispatches each class's range with its own pipeline: the cubic and
-// quartic kernels are written out and stay in registers, while the general kernel's
-// scratch array (MAX_DEGREE + 1 points, indexed dynamically) would slow every invocation
-// that merely shares a pipeline with it. All three perform the same operations in the
-// same order. CPU twin: src/gpu/twin.rs.
+// quartic kernels write de Casteljau out, the general kernel sums the Bernstein form by
+// Horner's rule (bernstein_horner). CPU twin: src/gpu/twin.rs, with the same operations in
+// the same order.
 
 @group(0) @binding(0) var<uniform> params: TessParams;
 @group(0) @binding(1) var<storage, read> points: array<Vertex>;
@@ -114,22 +113,40 @@ fn tessellate_any(
     let seg = w.seg;
     let u = w.u;
     let v = 1.0 - u;
-    // Packing rejects degrees over MAX_DEGREE; the min only keeps p[] in bounds.
+    // Packing rejects degrees over MAX_DEGREE; the min keeps the loop bounded.
     let n = min(seg.degree, MAX_DEGREE);
-    var p: array<vec3<f32>, 32>;
-    for (var i = 0u; i <= n; i++) {
-        p[i] = control_point(seg, i);
-    }
-    // Level by level, m points left to combine. Written with the level's length counting
-    // down rather than as `i <= n - r` under an outer `r`: Mesa's GLSL compiler (llvmpipe,
-    // Mesa 22.3) miscompiles that inner bound and the GL backend returned P_0 for every
-    // sample. The operations and their order are the same either way.
-    for (var m = n; m > 0u; m--) {
-        for (var i = 0u; i < m; i++) {
-            p[i] = v * p[i] + u * p[i + 1u];
+    let p = bernstein_horner(seg, n, u, v);
+    samples[seg.first_sample + w.j] = Vertex(p, seg.curve);
+}
+
+// The Bernstein sum of degree n by Horner's rule in x = u / v, scaled by v^n (u ≤ 1/2), or
+// in x = v / u from the other end, scaled by u^n: O(n) with the binomials built along the
+// way and no scratch array (de Casteljau's triangle is O(n²) through a dynamically indexed
+// array, which a CPU adapter keeps in memory). The ends are exact: x = 0 there.
+fn bernstein_horner(seg: Record, n: u32, u: f32, v: f32) -> vec3<f32> {
+    var acc: vec3<f32>;
+    var scale = 1.0;
+    var binomial = 1.0;
+    if (u <= 0.5) {
+        let x = u / v;
+        acc = control_point(seg, n);
+        for (var i = n; i > 0u; i--) {
+            // C(n, i − 1) = C(n, i) · i / (n − i + 1)
+            binomial = binomial * f32(i) / f32(n - i + 1u);
+            acc = acc * x + binomial * control_point(seg, i - 1u);
+            scale = scale * v;
+        }
+    } else {
+        let x = v / u;
+        acc = control_point(seg, 0u);
+        for (var i = 1u; i <= n; i++) {
+            // C(n, i) = C(n, i − 1) · (n − i + 1) / i
+            binomial = binomial * f32(n - i + 1u) / f32(i);
+            acc = acc * x + binomial * control_point(seg, i);
+            scale = scale * u;
         }
     }
-    samples[seg.first_sample + w.j] = Vertex(p[0], seg.curve);
+    return acc * scale;
 }
 
 // The bound of the kernels above for their output: the same records, the same invocations

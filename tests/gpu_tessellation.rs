@@ -330,12 +330,12 @@ fn the_kernel_self_test_refuses_a_wrong_kernel() {
             "{}: the real kernels pass",
             backend.name
         );
-        let write = "samples[seg.first_sample + w.j] = Vertex(p[0], seg.curve);";
-        assert!(TESSELLATE.body.contains(write));
-        let broken_body = TESSELLATE.body.replace(
-            write,
-            "samples[seg.first_sample + w.j] = Vertex(control_point(seg, 0u), seg.curve);",
-        );
+        // The general kernel returns P_0 instead of the curve.
+        let sum = "let p = bernstein_horner(seg, n, u, v);";
+        assert_eq!(TESSELLATE.body.matches(sum).count(), 1);
+        let broken_body = TESSELLATE
+            .body
+            .replace(sum, "let p = control_point(seg, 0u) + 0.0 * f32(n) * v;");
         let module = ctx
             .device
             .create_shader_module(wgpu::ShaderModuleDescriptor {

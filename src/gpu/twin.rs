@@ -21,8 +21,9 @@ pub fn sample_param(seg: &GpuRecord, j: u32) -> f32 {
 }
 
 /// The kernels' de Casteljau: degree `n` from `points[first ..= first + n]` at `u`.
-/// `tessellate_any` is this loop; `tessellate_cubic` and `tessellate_quartic` write it out
-/// for one degree, with exactly this loop's operations in this order.
+/// The adaptive `tessellate_any` is this loop; the `tessellate_cubic` and
+/// `tessellate_quartic` kernels write it out for one degree, with exactly this loop's
+/// operations in this order.
 #[must_use]
 pub fn de_casteljau(points: &[GpuVertex], first: u32, n: u32, u: f32) -> Vec3 {
     let v = 1.0 - u;
@@ -39,6 +40,47 @@ pub fn de_casteljau(points: &[GpuVertex], first: u32, n: u32, u: f32) -> Vec3 {
     p[0]
 }
 
+/// `bernstein_horner` of `shaders/tessellate.wgsl` (the general kernel of the fixed
+/// tessellator): the Bernstein sum of degree `n` by Horner's rule in `x = u / v` scaled by
+/// `vⁿ` (`u ≤ ½`), else in `x = v / u` scaled by `uⁿ`, the binomials built along the way.
+#[must_use]
+pub fn bernstein_horner(points: &[GpuVertex], first: u32, n: u32, u: f32) -> Vec3 {
+    let v = 1.0 - u;
+    let n = n.min(MAX_GPU_DEGREE as u32);
+    let p = |i: u32| Vec3::from(points[(first + i) as usize].position);
+    let (mut scale, mut binomial) = (1.0_f32, 1.0_f32);
+    let mut acc;
+    if u <= 0.5 {
+        let x = u / v;
+        acc = p(n);
+        for i in (1..=n).rev() {
+            binomial = binomial * i as f32 / (n - i + 1) as f32;
+            acc = acc * x + binomial * p(i - 1);
+            scale *= v;
+        }
+    } else {
+        let x = v / u;
+        acc = p(0);
+        for i in 1..=n {
+            binomial = binomial * (n - i + 1) as f32 / i as f32;
+            acc = acc * x + binomial * p(i);
+            scale *= u;
+        }
+    }
+    acc * scale
+}
+
+/// What the fixed tessellator's kernel for `degree` computes: de Casteljau written out for
+/// cubics and quartics, [`bernstein_horner`] for every other degree.
+#[must_use]
+pub fn fixed_kernel(points: &[GpuVertex], first: u32, degree: u32, u: f32) -> Vec3 {
+    if degree == 3 || degree == 4 {
+        de_casteljau(points, first, degree, u)
+    } else {
+        bernstein_horner(points, first, degree, u)
+    }
+}
+
 /// One workgroup's body: every lane of `record` writes its sample (the kernel's `work()`
 /// and entry point).
 fn run_record(record: &GpuRecord, points: &[GpuVertex], samples: &mut [GpuVertex]) {
@@ -49,7 +91,7 @@ fn run_record(record: &GpuRecord, points: &[GpuVertex], samples: &mut [GpuVertex
         }
         let u = sample_param(record, j);
         samples[(record.first_sample + j) as usize] = GpuVertex {
-            position: de_casteljau(points, record.first_point, record.degree, u).to_array(),
+            position: fixed_kernel(points, record.first_point, record.degree, u).to_array(),
             id: record.curve,
         };
     }
