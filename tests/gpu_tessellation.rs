@@ -263,6 +263,7 @@ fn one_million_cubics_tessellate_correctly_in_chunks() {
                 samples: 64,
                 three_d: false,
                 seed: 99,
+                ..Default::default()
             });
             let limits = ChunkLimits::for_binding_size(ctx.max_binding_bytes());
             let prepared = prepare_scene(&scene, limits).expect("packs");

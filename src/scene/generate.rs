@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::{Color, DEFAULT_SAMPLES_PER_SEGMENT, Scene, SceneCurve, Style, ViewSpec};
-use crate::geom::{Bezier, Curve};
+use crate::geom::{BSpline, Bezier, Curve, KnotVector, Nubmp};
 
 /// A small, fast, seedable generator (SplitMix64): the same seed gives the same scene on
 /// every machine.
@@ -56,6 +56,41 @@ pub struct StressOptions {
     pub three_d: bool,
     /// The generator's seed.
     pub seed: u64,
+    /// The family of the curves.
+    pub family: StressFamily,
+}
+
+/// The family of generated curves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum StressFamily {
+    /// Bézier curves of the degree.
+    #[default]
+    Bezier,
+    /// Clamped uniform B-splines of the degree with four spans (four Bézier segments).
+    BSpline,
+    /// The standard NUBMP curves of those B-splines (four segments of one degree more).
+    Nubmp,
+}
+
+impl StressFamily {
+    /// The family's name in scene files and on the command line.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            StressFamily::Bezier => "bezier",
+            StressFamily::BSpline => "bspline",
+            StressFamily::Nubmp => "nubmp",
+        }
+    }
+
+    /// Control points of one curve of `degree`.
+    #[must_use]
+    pub fn points(self, degree: usize) -> usize {
+        match self {
+            StressFamily::Bezier => degree + 1,
+            StressFamily::BSpline | StressFamily::Nubmp => degree + 4,
+        }
+    }
 }
 
 impl Default for StressOptions {
@@ -66,6 +101,7 @@ impl Default for StressOptions {
             samples: DEFAULT_SAMPLES_PER_SEGMENT,
             three_d: false,
             seed: 1,
+            family: StressFamily::Bezier,
         }
     }
 }
@@ -79,7 +115,7 @@ pub fn random_bezier_scene(opts: StressOptions) -> Scene {
     let curves = (0..opts.curves)
         .map(|i| {
             let origin = DVec3::new((i % side) as f64, (i / side) as f64, 0.0);
-            let points = (0..=opts.degree)
+            let points: Vec<DVec3> = (0..opts.family.points(opts.degree))
                 .map(|_| {
                     let z = if opts.three_d {
                         rng.range(0.0, 1.0)
@@ -92,7 +128,7 @@ pub fn random_bezier_scene(opts: StressOptions) -> Scene {
             let hue = rng.unit() as f32;
             SceneCurve {
                 name: None,
-                curve: Curve::Bezier(Bezier::new(points)),
+                curve: family_curve(opts.family, opts.degree, points),
                 style: Style {
                     color: Color([0.2 + 0.6 * hue, 0.3, 0.8 - 0.6 * hue, 1.0]),
                     width: 1.0,
@@ -113,6 +149,30 @@ pub fn random_bezier_scene(opts: StressOptions) -> Scene {
         view: ViewSpec::Auto,
         curves,
         annotations: Vec::new(),
+    }
+}
+
+fn family_curve(family: StressFamily, degree: usize, points: Vec<DVec3>) -> Curve {
+    let spline = || {
+        let knots = KnotVector::clamped_uniform(degree + 1, points.len())
+            .unwrap_or_else(|e| unreachable!("degree + 4 points fit order degree + 1: {e}"));
+        (points.clone(), knots)
+    };
+    match family {
+        StressFamily::Bezier => Curve::Bezier(Bezier::new(points)),
+        StressFamily::BSpline => {
+            let (p, k) = spline();
+            Curve::BSpline(
+                BSpline::from_parts(p, k).unwrap_or_else(|e| unreachable!("finite points: {e}")),
+            )
+        }
+        StressFamily::Nubmp => {
+            let (p, k) = spline();
+            Curve::Nubmp(
+                Nubmp::standard(p, k)
+                    .unwrap_or_else(|e| unreachable!("uniform knots elevate finitely: {e}")),
+            )
+        }
     }
 }
 

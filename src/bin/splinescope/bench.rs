@@ -12,67 +12,348 @@ use super::say;
 
 use splinescope::gpu::GpuContext;
 use splinescope::gpu::layout::GpuVertex;
+use splinescope::gpu::layout::MAX_GPU_DEGREE;
 use splinescope::gpu::offscreen::OFFSCREEN_FORMAT;
 use splinescope::gpu::pack::{ChunkLimits, prepare_scene};
 use splinescope::gpu::renderer::{Renderer, camera_uniform};
 use splinescope::gpu::tessellator::read_buffer;
 use splinescope::gpu::twin;
-use splinescope::scene::generate::{StressOptions, random_bezier_scene};
+use splinescope::scene::generate::{StressFamily, StressOptions, random_bezier_scene};
 
-/// Options of `splinescope bench`.
+mod compare;
+
+/// Options of `splinescope bench`. Every list is comma-separated; the benchmark runs one
+/// row per combination (families × degrees × curves × samples).
 #[derive(Debug, clap::Args)]
 pub struct BenchArgs {
-    /// Number of random curves.
-    #[arg(long, default_value_t = 100_000, value_parser = clap::value_parser!(u64).range(1..=10_000_000))]
-    curves: u64,
-    /// Their degree.
-    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=31))]
-    degree: u64,
-    /// Samples per curve.
-    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(2..=4096))]
-    samples: u32,
+    /// Numbers of random curves (`1e5` style accepted), e.g. `1e3,1e4,1e5,1e6`.
+    #[arg(long, value_delimiter = ',', default_value = "100000", value_parser = parse_count)]
+    curves: Vec<u64>,
+    /// Degrees, e.g. `3,5,12,31` (above the GPU's maximum of 31 only the CPU rows run).
+    #[arg(long = "degrees", visible_alias = "degree", value_delimiter = ',', default_value = "3", value_parser = clap::value_parser!(u64).range(1..=63))]
+    degrees: Vec<u64>,
+    /// Families: `bezier`, `bspline` (clamped uniform, four spans), `nubmp` (their standard
+    /// NUBMP curves).
+    #[arg(long, value_delimiter = ',', default_value = "bezier")]
+    families: Vec<FamilyArg>,
+    /// Samples per Bézier segment (per curve for Bézier curves), e.g. `16,64,256`.
+    #[arg(long, value_delimiter = ',', default_value = "64", value_parser = clap::value_parser!(u32).range(2..=4096))]
+    samples: Vec<u32>,
     /// Timed repetitions of each GPU measurement (after one warm-up).
     #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=10_000))]
     iterations: u32,
     /// Also draw this many whole frames offscreen (compute + lines) at 1920×1080; 0 skips.
     #[arg(long, default_value_t = 5)]
     frames: u32,
-    /// Print the results as JSON instead of a table.
+    /// Print the results as JSON (one object for one row, else an array) instead of a table.
     #[arg(long)]
     json: bool,
+    /// Also write the rows as CSV to this file.
+    #[arg(long, value_name = "FILE")]
+    csv: Option<std::path::PathBuf>,
+    /// Compare with an earlier `bench --json` output: print each rate's change per row and
+    /// exit non-zero when one fell by more than `--threshold`.
+    #[arg(long, value_name = "PREVIOUS.json")]
+    compare: Option<std::path::PathBuf>,
+    /// The largest fall that `--compare` tolerates, in percent (`10%` or `10`).
+    #[arg(long, default_value = "10%", value_parser = parse_percent)]
+    threshold: f64,
     #[command(flatten)]
     gpu: super::GpuArgs,
+}
+
+/// A family on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum FamilyArg {
+    /// Bézier curves.
+    Bezier,
+    /// B-splines.
+    Bspline,
+    /// NUBMP curves.
+    Nubmp,
+}
+
+impl FamilyArg {
+    fn family(self) -> StressFamily {
+        match self {
+            FamilyArg::Bezier => StressFamily::Bezier,
+            FamilyArg::Bspline => StressFamily::BSpline,
+            FamilyArg::Nubmp => StressFamily::Nubmp,
+        }
+    }
+}
+
+/// A count such as `100000` or `1e5` (a whole number of at least 1).
+fn parse_count(s: &str) -> Result<u64, String> {
+    let v: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("{s:?} is not a number"))?;
+    if !(v.is_finite() && v >= 1.0 && v.fract() == 0.0 && v <= 1e9) {
+        return Err(format!(
+            "{s:?}: the number of curves must be a whole number from 1 to 1e9"
+        ));
+    }
+    Ok(v as u64)
+}
+
+/// A percentage such as `10%` or `10`, as a fraction.
+fn parse_percent(s: &str) -> Result<f64, String> {
+    let v: f64 = s
+        .trim()
+        .trim_end_matches('%')
+        .parse()
+        .map_err(|_| format!("{s:?} is not a percentage"))?;
+    if !(v.is_finite() && (0.0..=1000.0).contains(&v)) {
+        return Err(format!("{s:?}: the threshold must be between 0% and 1000%"));
+    }
+    Ok(v / 100.0)
 }
 
 fn rate(samples: u64, elapsed: Duration) -> f64 {
     samples as f64 / elapsed.as_secs_f64().max(1e-12)
 }
 
+/// One row of the matrix.
+#[derive(Debug, Clone, Copy)]
+struct Row {
+    family: StressFamily,
+    curves: u64,
+    degree: u64,
+    samples: u32,
+}
+
+impl Row {
+    /// Bézier segments per curve.
+    fn segments(self) -> u64 {
+        match self.family {
+            StressFamily::Bezier => 1,
+            StressFamily::BSpline | StressFamily::Nubmp => 4,
+        }
+    }
+
+    /// The degree of those segments (a NUBMP curve lowers through its dual, one higher).
+    fn segment_degree(self) -> u64 {
+        match self.family {
+            StressFamily::Nubmp => self.degree + 1,
+            _ => self.degree,
+        }
+    }
+
+    fn total_samples(self) -> u64 {
+        self.curves * self.segments() * u64::from(self.samples)
+    }
+}
+
+impl std::fmt::Display for Row {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "--families {} --curves {} --degrees {} --samples {}",
+            self.family.name(),
+            self.curves,
+            self.degree,
+            self.samples
+        )
+    }
+}
+
 /// Runs the benchmark and prints its report.
 ///
 /// # Errors
-/// GPU setup or readback errors.
+/// A row beyond the limits (before anything is allocated), GPU setup or readback errors,
+/// an unreadable `--compare` file, or a regression beyond `--threshold`.
 pub fn run(args: &BenchArgs) -> Result<()> {
-    // Checked before the scene is generated: curves × samples bounds every buffer.
-    splinescope::limits::SAMPLES
-        .check(args.curves * u64::from(args.samples))
-        .with_context(|| format!("bench --curves {} --samples {}", args.curves, args.samples))?;
+    let mut rows = Vec::new();
+    for &f in &args.families {
+        for &degree in &args.degrees {
+            for &curves in &args.curves {
+                for &samples in &args.samples {
+                    rows.push(Row {
+                        family: f.family(),
+                        curves,
+                        degree,
+                        samples,
+                    });
+                }
+            }
+        }
+    }
+    // Every row is checked before the first one allocates anything.
+    for row in &rows {
+        splinescope::limits::SAMPLES
+            .check(row.total_samples())
+            .with_context(|| format!("bench row {row}: {} samples", row.total_samples()))?;
+        splinescope::limits::CURVES
+            .check(row.curves)
+            .with_context(|| format!("bench row {row}"))?;
+    }
+    let previous = match &args.compare {
+        Some(path) => Some(compare::read(path)?),
+        None => None,
+    };
+    let ctx = args.gpu.context()?;
+    let meta = Meta::collect(&ctx);
+    let progress = indicatif::ProgressBar::with_draw_target(
+        Some(rows.len() as u64),
+        indicatif::ProgressDrawTarget::stderr(),
+    );
+    let mut reports = Vec::with_capacity(rows.len());
+    for row in &rows {
+        progress.set_message(row.to_string());
+        reports.push(run_row(&ctx, *row, args, &meta)?);
+        progress.inc(1);
+    }
+    progress.finish_and_clear();
+    if args.json {
+        if let [one] = reports.as_slice() {
+            say!("{}", serde_json::to_string_pretty(one)?);
+        } else {
+            say!("{}", serde_json::to_string_pretty(&reports)?);
+        }
+    } else {
+        for r in &reports {
+            print_report(r)?;
+        }
+    }
+    if let Some(path) = &args.csv {
+        splinescope::files::write_atomic(path, csv(&reports).as_bytes())
+            .with_context(|| format!("writing {}", path.display()))?;
+    }
+    if let Some(previous) = previous {
+        let regressions = compare::print(&previous, &reports, args.threshold)?;
+        if !regressions.is_empty() {
+            anyhow::bail!(
+                "{} rate(s) fell by more than {:.0} %: {}",
+                regressions.len(),
+                args.threshold * 100.0,
+                regressions.join("; ")
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Where and how the figures were taken.
+#[derive(Debug, Clone, serde::Serialize)]
+struct Meta {
+    adapter: String,
+    cpu_model: String,
+    cores: usize,
+    build: String,
+    date: String,
+}
+
+impl Meta {
+    fn collect(ctx: &GpuContext) -> Meta {
+        let cpu_model = std::fs::read_to_string("/proc/cpuinfo")
+            .ok()
+            .and_then(|s| {
+                s.lines()
+                    .find(|l| l.starts_with("model name"))
+                    .and_then(|l| l.split_once(':'))
+                    .map(|(_, v)| v.trim().to_owned())
+            })
+            .unwrap_or_else(|| std::env::consts::ARCH.to_owned());
+        Meta {
+            adapter: ctx.describe(),
+            cpu_model,
+            cores: std::thread::available_parallelism().map_or(1, std::num::NonZero::get),
+            build: format!(
+                "splinescope {} ({})",
+                env!("CARGO_PKG_VERSION"),
+                if cfg!(debug_assertions) {
+                    "debug"
+                } else {
+                    "release"
+                }
+            ),
+            date: utc_now(),
+        }
+    }
+}
+
+/// The current UTC time as `YYYY-MM-DDTHH:MM:SSZ` (civil date from days since 1970).
+fn utc_now() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let (days, rem) = ((secs / 86_400) as i64, secs % 86_400);
+    // Howard Hinnant's days-to-civil.
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z.rem_euclid(146_097);
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!(
+        "{year:04}-{month:02}-{day:02}T{:02}:{:02}:{:02}Z",
+        rem / 3600,
+        rem / 60 % 60,
+        rem % 60
+    )
+}
+
+/// One row: CPU rates always, GPU rates unless the segments' degree is over the GPU's
+/// maximum (then `notes` says so).
+fn run_row(ctx: &GpuContext, row: Row, args: &BenchArgs, meta: &Meta) -> Result<BenchReport> {
     let scene = random_bezier_scene(StressOptions {
-        curves: args.curves as usize,
-        degree: args.degree as usize,
-        samples: args.samples,
+        curves: row.curves as usize,
+        degree: row.degree as usize,
+        samples: row.samples,
         three_d: false,
         seed: 7,
+        family: row.family,
     });
-    let ctx = args.gpu.context()?;
+    let per_curve = (row.segments() * u64::from(row.samples)) as usize;
+    let (cpu_f64, cpu_all_cores) = cpu_rates(&scene, per_curve);
+    let mut report = BenchReport {
+        family: row.family.name(),
+        curves: row.curves,
+        degree: row.degree,
+        samples_per_curve: per_curve as u32,
+        chunks: None,
+        cpu_f64_one_thread_samples_per_s: cpu_f64,
+        cpu_f64_all_cores_samples_per_s: cpu_all_cores,
+        cpu_f32_twin_one_thread_samples_per_s: None,
+        gpu_compute_wall_samples_per_s: None,
+        gpu_compute_timestamp_samples_per_s: None,
+        gpu_write_limit_samples_per_s: None,
+        gpu_kernel_share_of_write_limit: None,
+        gpu_compute_with_readback_samples_per_s: None,
+        frames_per_s_1920x1080: None,
+        notes: Vec::new(),
+        meta: meta.clone(),
+    };
+    if row.segment_degree() > MAX_GPU_DEGREE as u64 {
+        report.notes.push(format!(
+            "GPU rows skipped: the curves' Bézier segments have degree {}, over the GPU maximum of {MAX_GPU_DEGREE}",
+            row.segment_degree()
+        ));
+        return Ok(report);
+    }
+    gpu_rates(ctx, &scene, row, args, &mut report)?;
+    Ok(report)
+}
+
+/// The GPU rows of `report`: the kernels, the write-only bound, readback, whole frames.
+fn gpu_rates(
+    ctx: &GpuContext,
+    scene: &splinescope::scene::Scene,
+    row: Row,
+    args: &BenchArgs,
+    report: &mut BenchReport,
+) -> Result<()> {
     let prepared = prepare_scene(
-        &scene,
+        scene,
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )?;
-    let (cpu_f64, cpu_all_cores, cpu_twin) = cpu_rates(&scene, &prepared, args);
-    let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
-    let gpu_scene = renderer.upload(&ctx, &prepared);
-    // The kernel's throughput: every record of the packing, fixed counts.
+    report.chunks = Some(prepared.chunks.len());
+    report.cpu_f32_twin_one_thread_samples_per_s = Some(twin_rate(&prepared));
+    let total = row.total_samples();
     let records: Vec<_> = prepared
         .chunks
         .iter()
@@ -81,89 +362,109 @@ pub fn run(args: &BenchArgs) -> Result<()> {
                 .upload(&ctx.device, c, wgpu::BufferUsages::COPY_SRC)
         })
         .collect();
-    let (gpu_wall, gpu_pass) = gpu_compute_rates(&ctx, &records, args, Kernel::Tessellate)?;
-    let (limit_wall, limit_pass) = gpu_compute_rates(&ctx, &records, args, Kernel::WriteOnly)?;
+    let (wall, pass) =
+        gpu_compute_rates(ctx, &records, total, args.iterations, Kernel::Tessellate)?;
+    let (limit_wall, limit_pass) =
+        gpu_compute_rates(ctx, &records, total, args.iterations, Kernel::WriteOnly)?;
+    drop(records);
+    report.gpu_compute_wall_samples_per_s = Some(wall);
+    report.gpu_compute_timestamp_samples_per_s = pass;
+    report.gpu_write_limit_samples_per_s = Some(limit_pass.unwrap_or(limit_wall));
     // The share of the write-only bound, by timestamps where the adapter has them.
-    let share = match (gpu_pass, limit_pass) {
+    report.gpu_kernel_share_of_write_limit = Some(match (pass, limit_pass) {
         (Some(k), Some(l)) => k / l,
-        _ => gpu_wall / limit_wall,
-    };
-
-    // GPU compute + readback of every sample.
+        _ => wall / limit_wall,
+    });
     let started = Instant::now();
     let mut read = 0u64;
     ctx.tessellator
         .tessellate_and_read(&ctx.device, &ctx.queue, &prepared.chunks, |_, s| {
             read += s.len() as u64;
         })?;
-    let gpu_readback = rate(read, started.elapsed());
-
-    // Whole frames offscreen.
-    let frame_fps = if args.frames > 0 {
-        Some(draw_frames(
-            &ctx,
-            &renderer,
-            &gpu_scene,
-            &scene,
-            args.frames,
-        )?)
-    } else {
-        None
-    };
-    let report = BenchReport {
-        adapter: ctx.describe(),
-        curves: args.curves,
-        degree: args.degree,
-        samples_per_curve: args.samples,
-        chunks: prepared.chunks.len(),
-        cpu_f64_one_thread_samples_per_s: cpu_f64,
-        cpu_f64_all_cores_samples_per_s: cpu_all_cores,
-        cpu_f32_twin_one_thread_samples_per_s: cpu_twin,
-        gpu_compute_wall_samples_per_s: gpu_wall,
-        gpu_compute_timestamp_samples_per_s: gpu_pass,
-        gpu_write_limit_samples_per_s: limit_pass.unwrap_or(limit_wall),
-        gpu_kernel_share_of_write_limit: share,
-        gpu_compute_with_readback_samples_per_s: gpu_readback,
-        frames_per_s_1920x1080: frame_fps,
-    };
-    if args.json {
-        say!("{}", serde_json::to_string_pretty(&report)?);
-    } else {
-        print_report(&report)?;
+    report.gpu_compute_with_readback_samples_per_s = Some(rate(read, started.elapsed()));
+    if args.frames > 0 {
+        let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
+        let gpu_scene = renderer.upload(ctx, &prepared);
+        report.frames_per_s_1920x1080 =
+            Some(draw_frames(ctx, &renderer, &gpu_scene, scene, args.frames)?);
     }
     Ok(())
 }
 
-/// What `bench --json` prints (rates in samples per second).
+/// What `bench --json` prints per row (rates in samples per second; `null` where a path
+/// did not run, with the reason in `notes`).
 #[derive(Debug, serde::Serialize)]
 struct BenchReport {
-    adapter: String,
+    family: &'static str,
     curves: u64,
     degree: u64,
     samples_per_curve: u32,
-    chunks: usize,
+    chunks: Option<usize>,
     cpu_f64_one_thread_samples_per_s: f64,
     cpu_f64_all_cores_samples_per_s: f64,
-    cpu_f32_twin_one_thread_samples_per_s: f64,
-    gpu_compute_wall_samples_per_s: f64,
+    cpu_f32_twin_one_thread_samples_per_s: Option<f64>,
+    gpu_compute_wall_samples_per_s: Option<f64>,
     gpu_compute_timestamp_samples_per_s: Option<f64>,
-    gpu_write_limit_samples_per_s: f64,
-    gpu_kernel_share_of_write_limit: f64,
-    gpu_compute_with_readback_samples_per_s: f64,
+    gpu_write_limit_samples_per_s: Option<f64>,
+    gpu_kernel_share_of_write_limit: Option<f64>,
+    gpu_compute_with_readback_samples_per_s: Option<f64>,
     frames_per_s_1920x1080: Option<f64>,
+    notes: Vec<String>,
+    #[serde(flatten)]
+    meta: Meta,
+}
+
+/// The rows as CSV: one header line, one line per row, empty cells where a path did not
+/// run.
+fn csv(reports: &[BenchReport]) -> String {
+    let mut out = String::new();
+    for (i, r) in reports.iter().enumerate() {
+        let Ok(serde_json::Value::Object(map)) = serde_json::to_value(r) else {
+            continue;
+        };
+        if i == 0 {
+            out.push_str(&map.keys().cloned().collect::<Vec<_>>().join(","));
+            out.push('\n');
+        }
+        let cells: Vec<String> = map
+            .values()
+            .map(|v| {
+                let text = match v {
+                    serde_json::Value::Null => String::new(),
+                    serde_json::Value::String(s) => s.clone(),
+                    serde_json::Value::Array(a) => a
+                        .iter()
+                        .filter_map(|x| x.as_str())
+                        .collect::<Vec<_>>()
+                        .join(" | "),
+                    other => other.to_string(),
+                };
+                if text.contains([',', '"', '\n']) {
+                    format!("\"{}\"", text.replace('"', "\"\""))
+                } else {
+                    text
+                }
+            })
+            .collect();
+        out.push_str(&cells.join(","));
+        out.push('\n');
+    }
+    out
 }
 
 fn print_report(r: &BenchReport) -> Result<()> {
     let m = |v: f64| format!("{:>10.1} M samples/s", v / 1e6);
     let total = r.curves * u64::from(r.samples_per_curve);
     say!(
-        "adapter: {}\n{} curves of degree {}, {} samples each ({} samples, {} chunk(s))",
-        r.adapter,
+        "adapter: {}\n{} {} curves of degree {}, {} samples each ({} samples{})",
+        r.meta.adapter,
         r.curves,
+        r.family,
         r.degree,
         r.samples_per_curve,
         total,
         r.chunks
+            .map_or(String::new(), |c| format!(", {c} chunk(s)"))
     );
     say!(
         "  CPU f64 batch evaluator, 1 thread  {}",
@@ -173,80 +474,80 @@ fn print_report(r: &BenchReport) -> Result<()> {
         "  CPU f64 batch evaluator, all cores {}",
         m(r.cpu_f64_all_cores_samples_per_s)
     );
-    say!(
-        "  CPU f32 kernel twin, 1 thread      {}",
-        m(r.cpu_f32_twin_one_thread_samples_per_s)
-    );
-    say!(
-        "  GPU compute (wall, submit+wait)    {}",
-        m(r.gpu_compute_wall_samples_per_s)
-    );
+    for note in &r.notes {
+        say!("  {note}");
+    }
+    let (Some(twin), Some(wall), Some(limit), Some(share), Some(readback)) = (
+        r.cpu_f32_twin_one_thread_samples_per_s,
+        r.gpu_compute_wall_samples_per_s,
+        r.gpu_write_limit_samples_per_s,
+        r.gpu_kernel_share_of_write_limit,
+        r.gpu_compute_with_readback_samples_per_s,
+    ) else {
+        return Ok(());
+    };
+    say!("  CPU f32 kernel twin, 1 thread      {}", m(twin));
+    say!("  GPU compute (wall, submit+wait)    {}", m(wall));
     match r.gpu_compute_timestamp_samples_per_s {
         Some(v) => say!("  GPU compute (timestamps)           {}", m(v)),
         None => say!("  GPU compute (timestamps)           not supported by this adapter"),
     }
     say!(
         "  GPU write-only kernel (the limit)  {}   kernel at {:.0} % of it",
-        m(r.gpu_write_limit_samples_per_s),
-        100.0 * r.gpu_kernel_share_of_write_limit
+        m(limit),
+        100.0 * share
     );
-    say!(
-        "  GPU compute + readback             {}",
-        m(r.gpu_compute_with_readback_samples_per_s)
-    );
+    say!("  GPU compute + readback             {}", m(readback));
     if let Some(fps) = r.frames_per_s_1920x1080 {
-        say!(
-            "  whole frames 1920×1080 (compute + {} line pieces) {fps:.2} frames/s",
-            total.saturating_sub(r.curves)
-        );
+        say!("  whole frames 1920×1080 (compute + lines) {fps:.2} frames/s");
     }
     Ok(())
 }
 
-/// CPU rates over at most 2M samples each: the batch `f64` evaluator on one thread and on
-/// every core, and the `f32` twin of the kernel (one thread) over the first chunk's records.
-fn cpu_rates(
-    scene: &splinescope::scene::Scene,
-    prepared: &splinescope::gpu::pack::PreparedScene,
-    args: &BenchArgs,
-) -> (f64, f64, f64) {
+/// CPU rates over at most 2M samples: the batch `f64` evaluator on one thread and on
+/// every core, `per_curve` uniform samples of each curve.
+fn cpu_rates(scene: &splinescope::scene::Scene, per_curve: usize) -> (f64, f64) {
     use splinescope::geom::batch::{CurveSampler, UniformCubicWeights, for_each_sampled};
-    let cpu_curves = (2_000_000 / u64::from(args.samples)).clamp(1, args.curves) as usize;
+    let cpu_curves = (2_000_000 / per_curve).clamp(1, scene.curves.len());
     let samplers: Vec<CurveSampler> = scene.curves[..cpu_curves]
         .iter()
         .map(|c| CurveSampler::new(&c.curve))
         .collect();
-    let count = args.samples as usize;
-    let mut out = vec![glam::DVec3::ZERO; count];
-    let weights = UniformCubicWeights::new(count);
+    let total = (cpu_curves * per_curve) as u64;
+    let mut out = vec![glam::DVec3::ZERO; per_curve];
+    let weights = UniformCubicWeights::new(per_curve);
     let started = Instant::now();
     for s in &samplers {
         s.sample_uniform_with(&weights, &mut out);
         std::hint::black_box(&mut out);
     }
-    let cpu_f64 = rate(
-        cpu_curves as u64 * u64::from(args.samples),
-        started.elapsed(),
-    );
+    let one = rate(total, started.elapsed());
     let mut started = Instant::now();
     // A first pass starts rayon's threads; the second is timed.
     for pass in 0..2 {
         if pass == 1 {
             started = Instant::now();
         }
-        for_each_sampled(&samplers, count, |_, points| {
+        for_each_sampled(&samplers, per_curve, |_, points| {
             std::hint::black_box(points);
         });
     }
-    let cpu_all_cores = rate(
-        cpu_curves as u64 * u64::from(args.samples),
-        started.elapsed(),
-    );
+    (one, rate(total, started.elapsed()))
+}
+
+/// The `f32` twin of the kernel, one thread, over at most 2M samples of the first chunk.
+fn twin_rate(prepared: &splinescope::gpu::pack::PreparedScene) -> f64 {
     let chunk = &prepared.chunks[0];
-    let records = chunk
+    let mut samples = 0u64;
+    let records: Vec<_> = chunk
         .records
-        .len()
-        .min((2_000_000 / args.samples as usize).max(1));
+        .iter()
+        .take_while(|r| {
+            samples += u64::from(r.sample_count.min(64));
+            samples <= 2_000_000
+        })
+        .copied()
+        .collect();
     let mut out = vec![
         GpuVertex {
             position: [0.0; 3],
@@ -255,10 +556,14 @@ fn cpu_rates(
         chunk.sample_count as usize
     ];
     let started = Instant::now();
-    twin::tessellate(&chunk.points, &chunk.records[..records], &mut out);
-    let cpu_twin = rate(records as u64 * u64::from(args.samples), started.elapsed());
+    twin::tessellate(&chunk.points, &records, &mut out);
+    let elapsed = started.elapsed();
     std::hint::black_box(&out);
-    (cpu_f64, cpu_all_cores, cpu_twin)
+    let written: u64 = records
+        .iter()
+        .map(|r| u64::from((r.sample_count - r.sample_offset).min(64)))
+        .sum();
+    rate(written, elapsed)
 }
 
 /// Which compute pass [`gpu_compute_rates`] times.
@@ -275,14 +580,14 @@ enum Kernel {
 fn gpu_compute_rates(
     ctx: &GpuContext,
     records: &[splinescope::gpu::tessellator::ChunkBuffers],
-    args: &BenchArgs,
+    total: u64,
+    iterations: u32,
     kernel: Kernel,
 ) -> Result<(f64, Option<f64>)> {
-    let total = args.curves * u64::from(args.samples);
     let timestamps = Timestamps::new(ctx);
     let mut gpu_pass_ns = Vec::new();
     let mut wall = Duration::ZERO;
-    for i in 0..=args.iterations {
+    for i in 0..=iterations {
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         let writes = timestamps.as_ref().map(Timestamps::writes);
         match kernel {
@@ -307,7 +612,7 @@ fn gpu_compute_rates(
             wall += started.elapsed();
         }
     }
-    let gpu_wall = rate(total * u64::from(args.iterations), wall);
+    let gpu_wall = rate(total * u64::from(iterations), wall);
     let gpu_pass = (!gpu_pass_ns.is_empty()).then(|| {
         let mean = gpu_pass_ns.iter().sum::<f64>() / gpu_pass_ns.len() as f64;
         total as f64 / (mean * 1e-9)
