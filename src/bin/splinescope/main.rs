@@ -239,7 +239,8 @@ enum Command {
         #[command(flatten)]
         gpu: GpuArgs,
     },
-    /// Measure tessellation throughput: CPU (f64 and the f32 twin, one thread) and GPU.
+    /// Measure evaluation throughput (CPU f64 one thread and all cores, the f32 twin, GPU
+    /// kernels against a write-only bound) over a matrix of rows; JSON, CSV, --compare.
     Bench(bench::BenchArgs),
 }
 
