@@ -21,6 +21,7 @@ use splinescope::gpu::twin;
 use splinescope::scene::generate::{StressFamily, StressOptions, random_bezier_scene};
 
 mod compare;
+mod plot;
 
 /// Options of `splinescope bench`. Every list is comma-separated; the benchmark runs one
 /// row per combination (families × degrees × curves × samples).
@@ -51,6 +52,9 @@ pub struct BenchArgs {
     /// Also write the rows as CSV to this file.
     #[arg(long, value_name = "FILE")]
     csv: Option<std::path::PathBuf>,
+    /// Also draw throughput against problem size per path to this file (`.png` or `.svg`).
+    #[arg(long, value_name = "FILE")]
+    plot: Option<std::path::PathBuf>,
     /// Compare with an earlier `bench --json` output: print each rate's change per row and
     /// exit non-zero when one fell by more than `--threshold`.
     #[arg(long, value_name = "PREVIOUS.json")]
@@ -188,6 +192,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             .check(row.curves)
             .with_context(|| format!("bench row {row}"))?;
     }
+    if let Some(path) = &args.plot {
+        plot::check_path(path)?;
+    }
     let previous = match &args.compare {
         Some(path) => Some(compare::read(path)?),
         None => None,
@@ -219,6 +226,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     if let Some(path) = &args.csv {
         splinescope::files::write_atomic(path, csv(&reports).as_bytes())
             .with_context(|| format!("writing {}", path.display()))?;
+    }
+    if let Some(path) = &args.plot {
+        plot::write(path, &reports)?;
     }
     if let Some(previous) = previous {
         let regressions = compare::print(&previous, &reports, args.threshold)?;
