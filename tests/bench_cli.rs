@@ -206,20 +206,9 @@ fn an_svg_plot_names_every_path_and_other_extensions_are_refused() {
     ] {
         assert!(text_svg.contains(label), "legend {label}");
     }
+    // Refused before any row runs.
     let bad = dir.join("plot.txt");
-    let out = run(&[
-        "bench",
-        "--curves",
-        "100",
-        "--samples",
-        "8",
-        "--frames",
-        "0",
-        "--iterations",
-        "1",
-        "--plot",
-        &bad.to_string_lossy(),
-    ]);
+    let out = run(&["bench", "--plot", &bad.to_string_lossy()]);
     assert_eq!(out.status.code(), Some(1), "{}", text(&out));
     assert!(
         text(&out).contains("must end in .png or .svg"),

@@ -206,17 +206,7 @@ impl Tessellator {
         chunks: impl IntoIterator<Item = &'a ChunkBuffers>,
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("tessellate"),
-            timestamp_writes,
-        });
-        for chunk in chunks {
-            for d in &chunk.dispatches {
-                pass.set_pipeline(&self.pipelines[d.kernel]);
-                pass.set_bind_group(0, &d.bind_group, &[]);
-                pass.dispatch_workgroups(d.groups.0, d.groups.1, 1);
-            }
-        }
+        self.record(encoder, chunks, timestamp_writes, None);
     }
 
     /// Records one compute pass dispatching the write-only kernel (`write_only` in
@@ -229,13 +219,29 @@ impl Tessellator {
         chunks: impl IntoIterator<Item = &'a ChunkBuffers>,
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
+        self.record(encoder, chunks, timestamp_writes, Some(&self.write_only));
+    }
+
+    /// One pass over every dispatch of `chunks`, each with its class's kernel or with
+    /// `instead`.
+    fn record<'a>(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        chunks: impl IntoIterator<Item = &'a ChunkBuffers>,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        instead: Option<&wgpu::ComputePipeline>,
+    ) {
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("write only"),
+            label: Some(if instead.is_some() {
+                "write only"
+            } else {
+                "tessellate"
+            }),
             timestamp_writes,
         });
-        pass.set_pipeline(&self.write_only);
         for chunk in chunks {
             for d in &chunk.dispatches {
+                pass.set_pipeline(instead.unwrap_or(&self.pipelines[d.kernel]));
                 pass.set_bind_group(0, &d.bind_group, &[]);
                 pass.dispatch_workgroups(d.groups.0, d.groups.1, 1);
             }
