@@ -6,9 +6,9 @@
 // samples.
 //
 // There is one entry point per degree class. Packing sorts each chunk's records by class
-// and the tessellator dispatches each class's range with its own pipeline: the cubic and
-// quartic kernels write de Casteljau out, the general kernel sums the Bernstein form by
-// Horner's rule (bernstein_horner). CPU twin: src/gpu/twin.rs, with the same operations in
+// and the tessellator dispatches each class's range with its own pipeline: the cubic kernel
+// sums its Bernstein form, the quartic kernel writes de Casteljau out, the general kernel
+// sums the Bernstein form by Horner's rule (bernstein_horner). CPU twin: src/gpu/twin.rs, with the same operations in
 // the same order.
 
 @group(0) @binding(0) var<uniform> params: TessParams;
@@ -68,14 +68,13 @@ fn tessellate_cubic(
     let seg = w.seg;
     let u = w.u;
     let v = 1.0 - u;
-    let p = cubic(
-        control_point(seg, 0u),
-        control_point(seg, 1u),
-        control_point(seg, 2u),
-        control_point(seg, 3u),
-        u,
-        v,
-    );
+    // The Bernstein form, v³P₀ + 3v²uP₁ + 3vu²P₂ + u³P₃: half de Casteljau's operations.
+    let v2 = v * v;
+    let u2 = u * u;
+    let p = (v2 * v) * control_point(seg, 0u)
+        + (3.0 * v2 * u) * control_point(seg, 1u)
+        + (3.0 * v * u2) * control_point(seg, 2u)
+        + (u2 * u) * control_point(seg, 3u);
     samples[seg.first_sample + w.j] = Vertex(p, seg.curve);
 }
 

@@ -156,7 +156,21 @@ fn kernel_workgroup_and_scratch_match_the_rust_constants() {
             "{entry}"
         );
     }
-    // The general kernel's private scratch must hold MAX_GPU_DEGREE + 1 points.
+    // The fixed tessellator's general kernel sums by Horner's rule: no scratch array.
+    let any = module
+        .entry_points
+        .iter()
+        .find(|e| e.name == "tessellate_any")
+        .expect("general kernel");
+    assert!(
+        any.function
+            .local_variables
+            .iter()
+            .all(|(_, v)| !matches!(module.types[v.ty].inner, TypeInner::Array { .. })),
+        "tessellate_any keeps no array"
+    );
+    // The adaptive general kernel's de Casteljau scratch must hold MAX_GPU_DEGREE + 1 points.
+    let (module, _) = shaders::ADAPTIVE.validate().expect("valid");
     let any = module
         .entry_points
         .iter()

@@ -70,14 +70,20 @@ pub fn bernstein_horner(points: &[GpuVertex], first: u32, n: u32, u: f32) -> Vec
     acc * scale
 }
 
-/// What the fixed tessellator's kernel for `degree` computes: de Casteljau written out for
-/// cubics and quartics, [`bernstein_horner`] for every other degree.
+/// What the fixed tessellator's kernel for `degree` computes: the cubic's Bernstein form
+/// `v³P₀ + 3v²uP₁ + 3vu²P₂ + u³P₃` (`tessellate_cubic`), de Casteljau written out for
+/// quartics, [`bernstein_horner`] for every other degree.
 #[must_use]
 pub fn fixed_kernel(points: &[GpuVertex], first: u32, degree: u32, u: f32) -> Vec3 {
-    if degree == 3 || degree == 4 {
-        de_casteljau(points, first, degree, u)
-    } else {
-        bernstein_horner(points, first, degree, u)
+    match degree {
+        3 => {
+            let p = |i: u32| Vec3::from(points[(first + i) as usize].position);
+            let v = 1.0 - u;
+            let (v2, u2) = (v * v, u * u);
+            (v2 * v) * p(0) + (3.0 * v2 * u) * p(1) + (3.0 * v * u2) * p(2) + (u2 * u) * p(3)
+        }
+        4 => de_casteljau(points, first, degree, u),
+        _ => bernstein_horner(points, first, degree, u),
     }
 }
 
