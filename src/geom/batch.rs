@@ -62,13 +62,20 @@ pub fn bezier_into(points: &[DVec3], us: &[f64], out: &mut [DVec3]) {
     }
 }
 
+/// The cubic Bernstein weights at `u`: `(s³, 3s²u, 3su², u³)`, `s = 1 − u`.
+#[inline]
+fn cubic_weights(u: f64) -> [f64; 4] {
+    let s = 1.0 - u;
+    let (s2, u2) = (s * s, u * u);
+    [s2 * s, 3.0 * s2 * u, 3.0 * s * u2, u2 * u]
+}
+
 /// A cubic in Bernstein form, `s³P₀ + 3s²uP₁ + 3su²P₂ + u³P₃` (`s = 1 − u`): fewer
 /// operations than de Casteljau's six interpolations, within the same bound.
 #[inline]
 fn cubic(p0: DVec3, p1: DVec3, p2: DVec3, p3: DVec3, u: f64) -> DVec3 {
-    let s = 1.0 - u;
-    let (s2, u2) = (s * s, u * u);
-    (s2 * s) * p0 + (3.0 * s2 * u) * p1 + (3.0 * s * u2) * p2 + (u2 * u) * p3
+    let [a, b, c, d] = cubic_weights(u);
+    a * p0 + b * p1 + c * p2 + d * p3
 }
 
 /// A curve lowered once, ready to be evaluated at many parameters without allocating.
@@ -149,9 +156,9 @@ impl CurveSampler {
 
     /// `weights.count()` uniform parameters over the domain (ends included) into `out`,
     /// as [`CurveSampler::sample_uniform_into`] but with the weights computed once for
-    /// many curves: a curve of one cubic segment is then four multiplies and three adds per
-    /// coordinate and sample (the same Bernstein sum, so the same bound); any other curve
-    /// takes the general path.
+    /// many curves: a curve of one cubic segment is then one fused four-lane sum per
+    /// sample (the same Bernstein sum, within the same bound); any other curve takes the
+    /// general path.
     ///
     /// # Panics
     /// If `out.len() != weights.count()`.
@@ -198,13 +205,7 @@ impl UniformCubicWeights {
     pub fn new(count: usize) -> UniformCubicWeights {
         let mut w: [Vec<f64>; 4] = Default::default();
         for j in 0..count {
-            let u = uniform(0.0, 1.0, j, count);
-            let s = 1.0 - u;
-            let (s2, u2) = (s * s, u * u);
-            for (v, x) in w
-                .iter_mut()
-                .zip([s2 * s, 3.0 * s2 * u, 3.0 * s * u2, u2 * u])
-            {
+            for (v, x) in w.iter_mut().zip(cubic_weights(uniform(0.0, 1.0, j, count))) {
                 v.push(x);
             }
         }

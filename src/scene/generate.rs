@@ -83,6 +83,25 @@ impl StressFamily {
         }
     }
 
+    /// Bézier segments one curve lowers to.
+    #[must_use]
+    pub fn segments(self) -> usize {
+        match self {
+            StressFamily::Bezier => 1,
+            StressFamily::BSpline | StressFamily::Nubmp => 4,
+        }
+    }
+
+    /// The degree of those segments for curves of `degree` (a NUBMP curve lowers through
+    /// its dual, one degree higher).
+    #[must_use]
+    pub fn segment_degree(self, degree: usize) -> usize {
+        match self {
+            StressFamily::Nubmp => degree + 1,
+            _ => degree,
+        }
+    }
+
     /// Control points of one curve of `degree`.
     #[must_use]
     pub fn points(self, degree: usize) -> usize {

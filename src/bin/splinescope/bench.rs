@@ -12,7 +12,7 @@ use super::say;
 
 use splinescope::gpu::GpuContext;
 use splinescope::gpu::layout::GpuVertex;
-use splinescope::gpu::layout::MAX_GPU_DEGREE;
+use splinescope::gpu::layout::{MAX_GPU_DEGREE, TESSELLATE_WORKGROUP_SIZE};
 use splinescope::gpu::offscreen::OFFSCREEN_FORMAT;
 use splinescope::gpu::pack::{ChunkLimits, prepare_scene};
 use splinescope::gpu::renderer::{Renderer, camera_uniform};
@@ -130,18 +130,12 @@ struct Row {
 impl Row {
     /// Bézier segments per curve.
     fn segments(self) -> u64 {
-        match self.family {
-            StressFamily::Bezier => 1,
-            StressFamily::BSpline | StressFamily::Nubmp => 4,
-        }
+        self.family.segments() as u64
     }
 
-    /// The degree of those segments (a NUBMP curve lowers through its dual, one higher).
+    /// The degree of those segments.
     fn segment_degree(self) -> u64 {
-        match self.family {
-            StressFamily::Nubmp => self.degree + 1,
-            _ => self.degree,
-        }
+        self.family.segment_degree(self.degree as usize) as u64
     }
 
     fn total_samples(self) -> u64 {
@@ -532,28 +526,31 @@ fn cpu_rates(scene: &splinescope::scene::Scene, per_curve: usize) -> (f64, f64) 
         std::hint::black_box(&mut out);
     }
     let one = rate(total, started.elapsed());
-    let mut started = Instant::now();
-    // A first pass starts rayon's threads; the second is timed.
-    for pass in 0..2 {
-        if pass == 1 {
-            started = Instant::now();
-        }
+    let all_cores = || {
         for_each_sampled(&samplers, per_curve, |_, points| {
             std::hint::black_box(points);
         });
-    }
+    };
+    // A first pass starts rayon's threads; the second is timed.
+    all_cores();
+    let started = Instant::now();
+    all_cores();
     (one, rate(total, started.elapsed()))
 }
 
 /// The `f32` twin of the kernel, one thread, over at most 2M samples of the first chunk.
 fn twin_rate(prepared: &splinescope::gpu::pack::PreparedScene) -> f64 {
     let chunk = &prepared.chunks[0];
+    // A record writes at most one workgroup's worth of its segment's samples.
+    let written = |r: &splinescope::gpu::layout::GpuRecord| {
+        u64::from((r.sample_count - r.sample_offset).min(TESSELLATE_WORKGROUP_SIZE))
+    };
     let mut samples = 0u64;
     let records: Vec<_> = chunk
         .records
         .iter()
         .take_while(|r| {
-            samples += u64::from(r.sample_count.min(64));
+            samples += written(r);
             samples <= 2_000_000
         })
         .copied()
@@ -569,11 +566,7 @@ fn twin_rate(prepared: &splinescope::gpu::pack::PreparedScene) -> f64 {
     twin::tessellate(&chunk.points, &records, &mut out);
     let elapsed = started.elapsed();
     std::hint::black_box(&out);
-    let written: u64 = records
-        .iter()
-        .map(|r| u64::from((r.sample_count - r.sample_offset).min(64)))
-        .sum();
-    rate(written, elapsed)
+    rate(records.iter().map(written).sum(), elapsed)
 }
 
 /// Which compute pass [`gpu_compute_rates`] times.
