@@ -169,10 +169,13 @@ fn nubmp_sliders_set_one_parameter_with_the_last_member_absorbing() {
     let g2 = &now.groups()[3];
     assert_eq!(g2.value(i), Some(0.1));
     assert!((g2.value(last).unwrap() - (pair - 0.1)).abs() < 1e-15);
-    // Now not standard: a reset button appears and restores the standard curve.
+    // Now not standard: the reset button (always listed) restores the standard curve.
     let reset = control(&e.scene().curves[0].curve, "reset to the standard curve");
     e.apply_control(0, &reset, ControlValue::Press);
     assert_eq!(e.scene().curves[0].curve, Curve::Nubmp(n));
+    e.finish();
+    let history = e.history_len();
+    let standard = e.scene().clone();
     // A value beyond the pair would make the absorber negative: refused.
     e.apply_control(0, &slider, ControlValue::Number(pair + 0.5));
     assert!(
@@ -180,4 +183,15 @@ fn nubmp_sliders_set_one_parameter_with_the_last_member_absorbing() {
         "{:?}",
         e.message
     );
+    // A negative one too; neither changes the curve (not even to −0) nor leaves an undo
+    // step.
+    e.apply_control(0, &slider, ControlValue::Number(-0.5));
+    assert!(
+        e.message.clone().unwrap().contains("≥ 0"),
+        "{:?}",
+        e.message
+    );
+    e.finish();
+    assert_eq!(e.scene(), &standard);
+    assert_eq!(e.history_len(), history);
 }

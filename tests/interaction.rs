@@ -1,6 +1,6 @@
 //! The viewer's window-free interaction model driven as a user would drive the window:
 //! pointer drags edit control points and pan, the wheel zooms about the cursor, keys
-//! toggle, undo, fit, save and quit. Expected values come from the camera's own
+//! toggle, undo, fit, save and quit (Ctrl+Q; Esc never quits). Expected values come from the camera's own
 //! pixel↔world maps and from the scene before the input.
 
 use glam::{DVec2, DVec3};
@@ -155,13 +155,15 @@ fn keys_toggle_the_overlays_and_panel_save_and_quit() {
     assert_eq!(saved.curves[0].curve, m.scene().curves[0].curve);
     assert!(!m.handle(key('q', false)).exit);
     assert!(
-        m.handle(Input::Key {
+        !m.handle(Input::Key {
             key: Key::Escape,
             ctrl: false,
             shift: false
         })
-        .exit
+        .exit,
+        "Esc never quits"
     );
+    assert!(m.handle(key('q', true)).exit, "Ctrl+Q quits a saved scene");
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -1,6 +1,8 @@
 //! The viewer's editing model, free of GPU and window types: picking, dragging control
 //! points, pulling a Bézier curve through the pointer (paper 000's single-target solve),
-//! setting a curve from the panel, undo/redo that keeps every edit, and atomic saving.
+//! setting a curve from the panel, structural edits (curves added, duplicated, deleted;
+//! points inserted, removed, typed), undo/redo that keeps every edit, atomic saving, and
+//! a recovery file that holds unsaved edits until they are saved or discarded.
 
 use std::path::{Path, PathBuf};
 
@@ -35,13 +37,54 @@ pub enum Hit {
     },
 }
 
-/// One committed change of one curve.
+/// One committed change.
+#[derive(Debug, Clone)]
+enum Change {
+    /// One curve replaced.
+    Curve {
+        curve: usize,
+        before: Box<SceneCurve>,
+        after: Box<SceneCurve>,
+    },
+    /// The list of curves replaced (a curve added, duplicated or deleted; a recovered
+    /// scene restored).
+    List {
+        before: Vec<SceneCurve>,
+        after: Vec<SceneCurve>,
+    },
+}
+
+/// One committed, undoable edit.
 #[derive(Debug, Clone)]
 struct Edit {
     id: u64,
-    curve: usize,
-    before: SceneCurve,
-    after: SceneCurve,
+    change: Change,
+}
+
+/// What changed since the window layer last looked ([`Editor::take_changed`]).
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Changes {
+    /// Curves changed in place (each once, ascending).
+    pub curves: Vec<usize>,
+    /// The list of curves changed (added, removed, reordered): everything is new.
+    pub list: bool,
+}
+
+impl Changes {
+    /// Whether nothing changed.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.curves.is_empty() && !self.list
+    }
+}
+
+/// The recovery file kept next to a scene file while it has unsaved edits:
+/// `scene.json` → `scene.json.recovery`.
+#[must_use]
+pub fn recovery_path(path: &Path) -> PathBuf {
+    let mut name = path.file_name().unwrap_or_default().to_os_string();
+    name.push(".recovery");
+    path.with_file_name(name)
 }
 
 /// What the open (uncommitted) edit is doing.
@@ -72,9 +115,12 @@ pub struct Editor {
     next_id: u64,
     saved: Option<u64>,
     changed: Vec<usize>,
+    list_changed: bool,
     path: Option<PathBuf>,
     /// The selected curve, if any.
     pub selected: Option<usize>,
+    /// The selected control point of the selected curve, if any.
+    pub selected_point: Option<usize>,
     /// The last message for the user (an error, or where a save went).
     pub message: Option<String>,
 }
@@ -91,8 +137,10 @@ impl Editor {
             next_id: 1,
             saved: None,
             changed: Vec::new(),
+            list_changed: false,
             path,
             selected: None,
+            selected_point: None,
             message: None,
         }
     }
@@ -103,12 +151,35 @@ impl Editor {
         &self.scene
     }
 
-    /// The curves changed since the last call (each once).
-    pub fn take_changed(&mut self) -> Vec<usize> {
+    /// What changed since the last call.
+    pub fn take_changed(&mut self) -> Changes {
         let mut c = std::mem::take(&mut self.changed);
         c.sort_unstable();
         c.dedup();
-        c
+        Changes {
+            curves: c,
+            list: std::mem::take(&mut self.list_changed),
+        }
+    }
+
+    fn set_list(&mut self, curves: Vec<SceneCurve>) {
+        self.scene.curves = curves;
+        self.list_changed = true;
+        self.selected_point = None;
+        if self.selected.is_some_and(|s| s >= self.scene.curves.len()) {
+            self.selected = None;
+        }
+    }
+
+    /// Records a committed change, drops the redo branch and keeps the recovery file.
+    fn commit(&mut self, change: Change) {
+        self.history.push(Edit {
+            id: self.next_id,
+            change,
+        });
+        self.next_id += 1;
+        self.undone.clear();
+        self.sync_recovery();
     }
 
     fn set(&mut self, curve: usize, value: SceneCurve) {
@@ -117,7 +188,8 @@ impl Editor {
     }
 
     /// The nearest control point within `radius_px` of `pixel` (only where `points_shown`),
-    /// else the nearest curve within `radius_px` (2D views only).
+    /// else the nearest curve within `radius_px` (2D views only). At equal distance the
+    /// curve drawn on top (the later one) wins.
     #[must_use]
     pub fn pick(
         &self,
@@ -129,7 +201,9 @@ impl Editor {
     ) -> Option<Hit> {
         let mut best: Option<(f64, Hit)> = None;
         if points_shown {
-            for (c, sc) in self.scene.curves.iter().enumerate() {
+            // Later curves are drawn on top: search them first, so that a shared point goes
+            // to the curve the user sees.
+            for (c, sc) in self.scene.curves.iter().enumerate().rev() {
                 if !sc.style.show_points {
                     continue;
                 }
@@ -159,7 +233,7 @@ impl Editor {
         };
         let world = camera.world_from_pixel(pixel, viewport);
         let radius = radius_px / c2.pixels_per_unit;
-        for (c, sc) in self.scene.curves.iter().enumerate() {
+        for (c, sc) in self.scene.curves.iter().enumerate().rev() {
             if sc.curve.control_box().distance_to(world) > radius {
                 continue;
             }
@@ -182,11 +256,19 @@ impl Editor {
     pub fn begin_point_drag(&mut self, curve: usize, index: usize) {
         self.finish();
         self.selected = Some(curve);
+        self.selected_point = Some(index);
         self.open = Some(Open {
             curve,
             before: self.scene.curves[curve].clone(),
             gesture: Gesture::Point { index },
         });
+    }
+
+    /// Whether curve `curve` can be pulled through the pointer (a Bézier curve of degree
+    /// ≥ 2); other curves are edited by their points.
+    #[must_use]
+    pub fn can_pull(&self, curve: usize) -> bool {
+        matches!(self.scene.curves.get(curve).map(|c| &c.curve), Some(Curve::Bezier(b)) if b.degree() >= 2)
     }
 
     /// Starts pulling a Bézier curve's point at `t` through the pointer: while dragging, the
@@ -198,6 +280,7 @@ impl Editor {
     pub fn begin_pull(&mut self, curve: usize, t: f64) -> Result<(), String> {
         self.finish();
         self.selected = Some(curve);
+        self.selected_point = None;
         let Curve::Bezier(b) = &self.scene.curves[curve].curve else {
             return Err(format!(
                 "pulling a curve through a point modifies Bézier curves; curves[{curve}] is {} (drag its control points)",
@@ -293,42 +376,81 @@ impl Editor {
     }
 
     /// Commits the open edit, if it changed anything (pointer released, another control
-    /// used).
+    /// used, a typed value entered).
     pub fn finish(&mut self) {
         let Some(open) = self.open.take() else {
             return;
         };
         let after = self.scene.curves[open.curve].clone();
         if after != open.before {
-            self.history.push(Edit {
-                id: self.next_id,
+            self.commit(Change::Curve {
                 curve: open.curve,
-                before: open.before,
-                after,
+                before: Box::new(open.before),
+                after: Box::new(after),
             });
-            self.next_id += 1;
-            self.undone.clear();
         }
     }
 
-    /// Undoes the last edit; returns the curve it changed.
-    pub fn undo(&mut self) -> Option<usize> {
-        self.finish();
-        let edit = self.history.pop()?;
-        self.set(edit.curve, edit.before.clone());
-        let curve = edit.curve;
-        self.undone.push(edit);
-        Some(curve)
+    /// Cancels the open edit (Esc): the curve goes back to how it was before the drag or
+    /// slider started, and nothing enters the history. Whether there was one.
+    pub fn cancel(&mut self) -> bool {
+        let Some(open) = self.open.take() else {
+            return false;
+        };
+        if self.scene.curves[open.curve] != open.before {
+            self.set(open.curve, open.before);
+        }
+        self.message = Some("edit cancelled".into());
+        true
     }
 
-    /// Redoes the last undone edit; returns the curve it changed.
-    pub fn redo(&mut self) -> Option<usize> {
+    /// Whether an edit is open (a drag or a slider not yet committed).
+    #[must_use]
+    pub fn is_open(&self) -> bool {
+        self.open.is_some()
+    }
+
+    fn apply(&mut self, change: &Change, forward: bool) {
+        match change {
+            Change::Curve {
+                curve,
+                before,
+                after,
+            } => {
+                let value = if forward { after } else { before };
+                self.set(*curve, (**value).clone());
+                self.selected = Some(*curve);
+                self.selected_point = None;
+            }
+            Change::List { before, after } => {
+                let value = if forward { after } else { before };
+                self.set_list(value.clone());
+            }
+        }
+    }
+
+    /// Undoes the last edit; whether there was one.
+    pub fn undo(&mut self) -> bool {
         self.finish();
-        let edit = self.undone.pop()?;
-        self.set(edit.curve, edit.after.clone());
-        let curve = edit.curve;
+        let Some(edit) = self.history.pop() else {
+            return false;
+        };
+        self.apply(&edit.change, false);
+        self.undone.push(edit);
+        self.sync_recovery();
+        true
+    }
+
+    /// Redoes the last undone edit; whether there was one.
+    pub fn redo(&mut self) -> bool {
+        self.finish();
+        let Some(edit) = self.undone.pop() else {
+            return false;
+        };
+        self.apply(&edit.change, true);
         self.history.push(edit);
-        Some(curve)
+        self.sync_recovery();
+        true
     }
 
     /// How many edits can be undone and redone.
@@ -340,7 +462,11 @@ impl Editor {
     /// Whether the scene differs from the last save (or the file it came from).
     #[must_use]
     pub fn is_dirty(&self) -> bool {
-        self.open.is_some() || self.history.last().map(|e| e.id) != self.saved
+        self.open.is_some() || self.committed_dirty()
+    }
+
+    fn committed_dirty(&self) -> bool {
+        self.history.last().map(|e| e.id) != self.saved
     }
 
     /// Where [`Editor::save`] writes without an explicit path.
@@ -349,7 +475,23 @@ impl Editor {
         self.path.as_deref()
     }
 
+    /// The window title: the file's name (or the scene's), `*` when there are unsaved
+    /// changes.
+    #[must_use]
+    pub fn title(&self) -> String {
+        let name = self
+            .path
+            .as_deref()
+            .and_then(Path::file_name)
+            .map(|n| n.to_string_lossy().into_owned())
+            .or_else(|| self.scene.name.clone())
+            .unwrap_or_else(|| "untitled".into());
+        let star = if self.is_dirty() { "*" } else { "" };
+        format!("{name}{star} — splinescope")
+    }
+
     /// Writes the scene atomically to `path` (or the editor's own path) and remembers it.
+    /// The recovery file is removed.
     ///
     /// # Errors
     /// A message naming the file when there is no path or writing fails (the previous
@@ -363,10 +505,226 @@ impl Editor {
         self.scene
             .save(&path)
             .map_err(|e| format!("{}: cannot save: {e}", path.display()))?;
+        if self.path.as_deref() != Some(path.as_path()) {
+            self.discard_recovery();
+        }
         self.saved = self.history.last().map(|e| e.id);
         self.path = Some(path.clone());
+        self.sync_recovery();
         self.message = Some(format!("saved {}", path.display()));
         Ok(path)
+    }
+
+    /// Keeps the recovery file in step with the committed edits: written (atomically)
+    /// while they differ from the saved file, removed once they do not.
+    fn sync_recovery(&mut self) {
+        let Some(path) = self.path.as_deref() else {
+            return;
+        };
+        let recovery = recovery_path(path);
+        if self.committed_dirty() {
+            if let Err(e) = self.scene.save(&recovery) {
+                self.message = Some(format!(
+                    "{}: cannot write the recovery file: {e}",
+                    recovery.display()
+                ));
+            }
+        } else if recovery.exists()
+            && let Err(e) = std::fs::remove_file(&recovery)
+        {
+            self.message = Some(format!("{}: cannot remove: {e}", recovery.display()));
+        }
+    }
+
+    /// The recovery file left by an earlier session of this file (unsaved edits), if
+    /// any: its path and the scene it holds, or why it cannot be read.
+    #[must_use]
+    pub fn find_recovery(&self) -> Option<(PathBuf, Result<Scene, String>)> {
+        let recovery = recovery_path(self.path.as_deref()?);
+        if !recovery.exists() {
+            return None;
+        }
+        let scene = Scene::load(&recovery).map_err(|e| e.to_string());
+        Some((recovery, scene))
+    }
+
+    /// Restores the curves of a recovered scene as one undoable edit (the scene is then
+    /// unsaved, and the recovery file kept until it is saved).
+    pub fn restore(&mut self, recovered: &Scene) {
+        self.finish();
+        if recovered.curves == self.scene.curves {
+            return;
+        }
+        let before = self.scene.curves.clone();
+        self.set_list(recovered.curves.clone());
+        self.commit(Change::List {
+            before,
+            after: recovered.curves.clone(),
+        });
+        self.message = Some("unsaved edits restored".into());
+    }
+
+    /// Removes the recovery file (the user discarded the unsaved edits).
+    pub fn discard_recovery(&mut self) {
+        if let Some(path) = self.path.as_deref() {
+            let recovery = recovery_path(path);
+            if recovery.exists()
+                && let Err(e) = std::fs::remove_file(&recovery)
+            {
+                self.message = Some(format!("{}: cannot remove: {e}", recovery.display()));
+            }
+        }
+    }
+
+    /// Replaces the list of curves as one undoable edit, selecting `select`.
+    fn edit_list(&mut self, after: Vec<SceneCurve>, select: Option<usize>) {
+        self.finish();
+        let before = self.scene.curves.clone();
+        self.set_list(after.clone());
+        self.commit(Change::List { before, after });
+        self.selected = select;
+    }
+
+    /// Adds `curve` at the end (drawn on top) and selects it; its index.
+    pub fn add_curve(&mut self, curve: SceneCurve) -> usize {
+        let mut after = self.scene.curves.clone();
+        after.push(curve);
+        let index = after.len() - 1;
+        self.edit_list(after, Some(index));
+        self.message = Some(format!("added curves[{index}]"));
+        index
+    }
+
+    /// Adds a copy of curve `index`, moved by `offset`, on top, and selects it.
+    ///
+    /// # Errors
+    /// A message when there is no such curve or the moved copy is invalid.
+    pub fn duplicate(&mut self, index: usize, offset: DVec3) -> Result<usize, String> {
+        let mut copy = self
+            .scene
+            .curves
+            .get(index)
+            .cloned()
+            .ok_or_else(|| format!("curves[{index}] does not exist"))?;
+        let moved: Vec<DVec3> = copy
+            .curve
+            .control_points()
+            .iter()
+            .map(|&p| p + offset)
+            .collect();
+        for (i, &p) in moved.iter().enumerate() {
+            copy.curve = copy
+                .curve
+                .with_control_point(i, p)
+                .map_err(|e| format!("curves[{index}]: {e}"))?;
+        }
+        copy.name = copy.name.map(|n| format!("{n} (copy)"));
+        Ok(self.add_curve(copy))
+    }
+
+    /// Deletes curve `index`.
+    ///
+    /// # Errors
+    /// A message when there is no such curve.
+    pub fn delete_curve(&mut self, index: usize) -> Result<(), String> {
+        if index >= self.scene.curves.len() {
+            return Err(format!("curves[{index}] does not exist"));
+        }
+        let mut after = self.scene.curves.clone();
+        after.remove(index);
+        self.edit_list(after, None);
+        self.message = Some(format!("deleted curves[{index}] (Ctrl+Z brings it back)"));
+        Ok(())
+    }
+
+    /// Replaces curve `index` by `curve` as one edit of its own.
+    fn edit_curve(&mut self, index: usize, curve: Curve) {
+        self.finish();
+        let before = self.scene.curves[index].clone();
+        let mut after = before.clone();
+        after.curve = curve;
+        self.set(index, after.clone());
+        self.commit(Change::Curve {
+            curve: index,
+            before: Box::new(before),
+            after: Box::new(after),
+        });
+        self.selected = Some(index);
+    }
+
+    /// Inserts a control point into curve `index` near `at`: on the control polygon
+    /// (Bézier families) or by inserting the knot at the curve parameter nearest to `at`
+    /// (B-splines, NUBMP; the curve keeps its shape). Returns the new point's index.
+    ///
+    /// # Errors
+    /// A message naming the curve and the reason.
+    pub fn insert_point(&mut self, index: usize, at: DVec3) -> Result<usize, String> {
+        let sc = self
+            .scene
+            .curves
+            .get(index)
+            .ok_or_else(|| format!("curves[{index}] does not exist"))?;
+        let fail = |e: crate::geom::GeomError| format!("curves[{index}]: {e}");
+        let (curve, point) = if sc.curve.inserts_by_knot() {
+            let t = nearest(&sc.curve, at, None).t;
+            let curve = sc.curve.with_knot_inserted(t).map_err(fail)?;
+            // The new point is the one the old list lacks.
+            let old = sc.curve.control_points();
+            let point = curve
+                .control_points()
+                .iter()
+                .zip(old)
+                .position(|(a, b)| a != b)
+                .unwrap_or(old.len());
+            (curve, point)
+        } else {
+            sc.curve.with_point_on_polygon(at).map_err(fail)?
+        };
+        self.edit_curve(index, curve);
+        self.message = Some(format!("inserted point {point} into curves[{index}]"));
+        Ok(point)
+    }
+
+    /// Removes control point `point` of curve `index` (B-splines and NUBMP curves lose a
+    /// knot with it).
+    ///
+    /// # Errors
+    /// A message naming the curve and the reason.
+    pub fn delete_point(&mut self, index: usize, point: usize) -> Result<(), String> {
+        let sc = self
+            .scene
+            .curves
+            .get(index)
+            .ok_or_else(|| format!("curves[{index}] does not exist"))?;
+        let curve = sc
+            .curve
+            .with_point_removed(point)
+            .map_err(|e| format!("curves[{index}]: {e}"))?;
+        self.edit_curve(index, curve);
+        self.message = Some(format!("deleted point {point} of curves[{index}]"));
+        Ok(())
+    }
+
+    /// Moves control point `point` of curve `index` to the typed position `p`, as one
+    /// edit.
+    ///
+    /// # Errors
+    /// A message naming the curve, the point and the reason; the curve is unchanged.
+    pub fn set_point(&mut self, index: usize, point: usize, p: DVec3) -> Result<(), String> {
+        let sc = self
+            .scene
+            .curves
+            .get(index)
+            .ok_or_else(|| format!("curves[{index}] does not exist"))?;
+        let curve = sc
+            .curve
+            .with_control_point(point, p)
+            .map_err(|e| format!("curves[{index}].points[{point}]: {e}"))?;
+        if curve != sc.curve {
+            self.edit_curve(index, curve);
+        }
+        self.message = None;
+        Ok(())
     }
 }
 
@@ -473,13 +831,13 @@ mod tests {
         }
         // Three edits: the drag, the slider (one edit), the NUBMP drag.
         assert_eq!(e.history_len(), (3, 0));
-        assert_eq!(e.undo(), Some(1));
-        assert_eq!(e.undo(), Some(1));
+        assert!(e.undo());
+        assert!(e.undo());
         assert_eq!(e.scene(), &after_drag);
-        assert_eq!(e.undo(), Some(0));
+        assert!(e.undo());
         assert_eq!(e.scene(), &original);
-        assert_eq!(e.undo(), None);
-        assert_eq!(e.redo(), Some(0));
+        assert!(!e.undo());
+        assert!(e.redo());
         assert_eq!(e.scene(), &after_drag);
         assert_eq!(e.history_len(), (1, 2));
         // A new edit drops the redo branch.

@@ -2,11 +2,13 @@
 //! the camera, the edited scene and the panel's switches change. The window layer only
 //! translates winit events into [`Input`]; tests drive this model directly.
 
+use std::path::PathBuf;
+
 use glam::{DVec2, DVec3};
 
 use super::edit::{Editor, Hit};
 use crate::camera::Camera;
-use crate::scene::Scene;
+use crate::scene::{Scene, SceneCurve, Style};
 
 /// What the side panel can change.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -45,8 +47,118 @@ pub enum Button {
 pub enum Key {
     /// A character key (case-insensitive).
     Char(char),
-    /// Escape.
+    /// Escape: cancels a drag, a prompt, the help or the selection (it never quits).
     Escape,
+    /// Delete or Backspace: deletes the selected point, else the selected curve.
+    Delete,
+    /// F1: the list of shortcuts (also `?`).
+    Help,
+}
+
+/// A question the viewer is asking; nothing else is edited until it is answered.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Prompt {
+    /// The window is closing with unsaved changes: save, discard or cancel?
+    Close,
+    /// A recovery file holds unsaved edits of this file from an earlier session.
+    Recovery {
+        /// The recovery file.
+        path: PathBuf,
+        /// What it holds.
+        scene: Box<Scene>,
+    },
+}
+
+/// An answer to a [`Prompt`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Answer {
+    /// Close: save, then close. Recovery: restore the edits.
+    Accept,
+    /// Close: close without saving (the recovery file is removed). Recovery: delete
+    /// the recovery file.
+    Discard,
+    /// Keep going as before (Close: the window stays open; Recovery: keep the file for
+    /// later and open the scene as saved).
+    Cancel,
+}
+
+/// A curve family a new curve can be added from ([`Interaction::add_curve`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Template {
+    /// A cubic Bézier curve.
+    Bezier,
+    /// A modified cubic Bézier curve (paper 002).
+    Modified,
+    /// Cubic interpolation of four points (paper 002).
+    Interpolation,
+    /// A clamped cubic B-spline of six points.
+    BSpline,
+    /// A standard order-4 NUBMP curve of seven points (paper 001).
+    Nubmp,
+}
+
+impl Template {
+    /// Every template, in menu order.
+    pub const ALL: [Template; 5] = [
+        Template::Bezier,
+        Template::Modified,
+        Template::Interpolation,
+        Template::BSpline,
+        Template::Nubmp,
+    ];
+
+    /// The family name shown in menus.
+    #[must_use]
+    pub fn label(self) -> &'static str {
+        match self {
+            Template::Bezier => "Bézier (cubic)",
+            Template::Modified => "modified Bézier",
+            Template::Interpolation => "interpolation",
+            Template::BSpline => "B-spline (cubic)",
+            Template::Nubmp => "NUBMP (order 4)",
+        }
+    }
+
+    /// The template's curve centred on `center`, about `size` wide, in the plane z =
+    /// `center.z`.
+    #[must_use]
+    pub fn curve(self, center: DVec3, size: f64) -> crate::geom::Curve {
+        use crate::geom::{BSpline, Bezier, CubicInterpolation, Curve, ModifiedBezier, Nubmp};
+        let at = |x: f64, y: f64| center + DVec3::new(x * size, y * size, 0.0);
+        let zigzag = |n: usize| -> Vec<DVec3> {
+            (0..n)
+                .map(|i| {
+                    let x = i as f64 / (n - 1) as f64 - 0.5;
+                    at(x, if i % 2 == 0 { -0.2 } else { 0.2 })
+                })
+                .collect()
+        };
+        let arch = vec![at(-0.5, -0.2), at(-0.2, 0.3), at(0.2, 0.3), at(0.5, -0.2)];
+        let clamped = |n: usize, k: usize| -> Vec<f64> {
+            let inner = n - k;
+            let mut knots = vec![0.0; k];
+            knots.extend((1..=inner).map(|i| i as f64 / (inner + 1) as f64));
+            knots.extend(vec![1.0; k]);
+            knots
+        };
+        // The templates are valid by construction (finite points, fixed knots).
+        match self {
+            Template::Bezier => Curve::Bezier(Bezier::new(arch)),
+            Template::Modified => Curve::Modified(
+                ModifiedBezier::try_new(Bezier::new(arch), 0.5, DVec3::new(0.0, 0.2 * size, 0.0))
+                    .expect("template"),
+            ),
+            Template::Interpolation => Curve::Interpolation(
+                CubicInterpolation::try_new(zigzag(4), None, None).expect("template"),
+            ),
+            Template::BSpline => {
+                Curve::BSpline(BSpline::try_new(zigzag(6), clamped(6, 4), 4).expect("template"))
+            }
+            Template::Nubmp => {
+                Curve::Nubmp(Nubmp::try_new(zigzag(7), clamped(7, 4), 4).expect("template"))
+            }
+        }
+    }
 }
 
 /// One input event, in physical pixels.
@@ -101,8 +213,20 @@ pub struct Interaction {
     /// Why control polygons and points cannot be shown, when they cannot (`P` and `C` then
     /// show this reason instead).
     pub overlays_locked: Option<&'static str>,
+    /// The question being asked, if any.
+    pub prompt: Option<Prompt>,
+    /// Whether the list of shortcuts is shown (F1, `?`).
+    pub show_help: bool,
+    /// What the pointer is over (control point or curve), for highlighting.
+    pub hovered: Option<Hit>,
+    /// Where a context menu was asked for (secondary click without a drag), in pixels.
+    pub context_menu: Option<DVec2>,
+    /// The window should close (a prompt was answered that way).
+    pub exit_requested: bool,
     cursor: DVec2,
     dragging: Option<Button>,
+    /// Where the secondary button went down (a click opens the context menu, a drag pans).
+    secondary_from: Option<DVec2>,
     /// The point being edited by the primary drag (its depth anchors 3D drags).
     editing: Option<DVec3>,
 }
@@ -125,14 +249,175 @@ impl Interaction {
             editable: true,
             tolerance_px: crate::gpu::adaptive::DEFAULT_TOLERANCE_PX,
             overlays_locked: None,
+            prompt: None,
+            show_help: false,
+            hovered: None,
+            context_menu: None,
+            exit_requested: false,
             cursor: DVec2::ZERO,
             dragging: None,
+            secondary_from: None,
             editing: None,
         };
         if model.auto_fit {
             model.fit();
         }
         model
+    }
+
+    /// Offers the recovery file of an earlier session, if the editor's file has one
+    /// (an unreadable one is reported and left in place).
+    pub fn offer_recovery(&mut self) {
+        match self.editor.find_recovery() {
+            Some((path, Ok(scene))) => {
+                self.prompt = Some(Prompt::Recovery {
+                    path,
+                    scene: Box::new(scene),
+                });
+            }
+            Some((path, Err(e))) => {
+                self.editor.message = Some(format!(
+                    "{}: unsaved edits could not be read ({e}); the file is left in place",
+                    path.display()
+                ));
+            }
+            None => {}
+        }
+    }
+
+    /// The window is asked to close: closes at once when nothing is unsaved (or editing
+    /// is off), otherwise asks (save / discard / cancel).
+    pub fn request_close(&mut self) -> Response {
+        self.cancel_gesture();
+        if !self.editable || !self.editor.is_dirty() {
+            self.exit_requested = true;
+            return Response { exit: true };
+        }
+        self.prompt = Some(Prompt::Close);
+        Response::default()
+    }
+
+    /// Answers the open prompt.
+    pub fn answer(&mut self, answer: Answer) -> Response {
+        let Some(prompt) = self.prompt.take() else {
+            return Response::default();
+        };
+        match (prompt, answer) {
+            (Prompt::Close, Answer::Accept) => {
+                self.save();
+                if self.editor.is_dirty() {
+                    // The save failed (its message says why): stay open.
+                    return Response::default();
+                }
+                self.exit_requested = true;
+            }
+            (Prompt::Close, Answer::Discard) => {
+                self.editor.discard_recovery();
+                self.exit_requested = true;
+            }
+            (Prompt::Recovery { scene, .. }, Answer::Accept) => self.editor.restore(&scene),
+            (Prompt::Recovery { path, .. }, Answer::Discard) => {
+                self.editor.discard_recovery();
+                self.editor.message = Some(format!("deleted {}", path.display()));
+            }
+            (Prompt::Recovery { path, .. }, Answer::Cancel) => {
+                self.editor.message = Some(format!(
+                    "unsaved edits kept in {} (offered again next time)",
+                    path.display()
+                ));
+            }
+            (Prompt::Close, Answer::Cancel) => {}
+        }
+        Response {
+            exit: self.exit_requested,
+        }
+    }
+
+    /// The pointer's position in pixels.
+    #[must_use]
+    pub fn cursor(&self) -> DVec2 {
+        self.cursor
+    }
+
+    /// The pointer's position in the scene (2D views; in 3D on the plane through the
+    /// orbit target facing the camera).
+    #[must_use]
+    pub fn cursor_world(&self) -> DVec3 {
+        self.camera.world_from_pixel(self.cursor, self.viewport)
+    }
+
+    /// The world size of `px` physical pixels around the view's centre (for templates
+    /// and duplicate offsets).
+    #[must_use]
+    pub fn world_per_pixel(&self, px: f64) -> f64 {
+        match &self.camera {
+            Camera::Ortho2d(c) => px / c.pixels_per_unit,
+            Camera::Orbit3d(c) => px * c.distance / self.viewport.y.max(1.0),
+        }
+    }
+
+    /// Adds a curve of `template`'s family centred at `center` (the pointer, or the view's
+    /// centre), about 200 pixels wide; one undoable edit.
+    pub fn add_curve(&mut self, template: Template, center: DVec3) -> usize {
+        let index = self.editor.scene().curves.len();
+        let curve = SceneCurve {
+            name: None,
+            curve: template.curve(center, self.world_per_pixel(200.0)),
+            style: Style::default_for(index),
+        };
+        self.auto_fit = false;
+        self.editor.add_curve(curve)
+    }
+
+    /// Duplicates the selected curve, 20 pixels right and down; one undoable edit.
+    pub fn duplicate_selected(&mut self) {
+        let Some(index) = self.editor.selected else {
+            self.editor.message = Some("select a curve to duplicate".into());
+            return;
+        };
+        let d = self.world_per_pixel(20.0);
+        if let Err(e) = self.editor.duplicate(index, DVec3::new(d, -d, 0.0)) {
+            self.editor.message = Some(e);
+        }
+    }
+
+    /// Inserts a control point into the selected curve at the pointer (on its polygon,
+    /// or by knot insertion at the nearest curve parameter).
+    pub fn insert_point_at_cursor(&mut self) {
+        let Some(index) = self.editor.selected else {
+            self.editor.message = Some("select a curve to insert a point into".into());
+            return;
+        };
+        let at = self.cursor_world();
+        match self.editor.insert_point(index, at) {
+            Ok(point) => self.editor.selected_point = Some(point),
+            Err(e) => self.editor.message = Some(e),
+        }
+    }
+
+    /// Deletes the selected control point, else the selected curve.
+    pub fn delete_selection(&mut self) {
+        let result = match (self.editor.selected, self.editor.selected_point) {
+            (Some(c), Some(p)) => self.editor.delete_point(c, p),
+            (Some(c), None) => self.editor.delete_curve(c),
+            (None, _) => Err("select a curve or a control point to delete".into()),
+        };
+        self.editor.selected_point = None;
+        if let Err(e) = result {
+            self.editor.message = Some(e);
+        }
+    }
+
+    /// Cancels a drag in progress (the edit is undone, not recorded); whether there was
+    /// one.
+    fn cancel_gesture(&mut self) -> bool {
+        self.dragging = None;
+        self.secondary_from = None;
+        if self.editing.take().is_some() {
+            self.editor.cancel();
+            return true;
+        }
+        self.editor.cancel()
     }
 
     /// The scene being shown.
@@ -147,16 +432,48 @@ impl Interaction {
         self.editing.is_some()
     }
 
-    /// Applies one input.
+    /// Applies one input. While a prompt is open only Esc (cancel) and the camera act.
     pub fn handle(&mut self, input: Input) -> Response {
+        let response = self.handle_input(input);
+        // What lies under the pointer may have changed (a drag ended, an undo moved a
+        // point, the view moved): the highlight follows.
+        if self.dragging.is_none() && self.editing.is_none() {
+            self.hovered = self.pick();
+        }
+        response
+    }
+
+    fn handle_input(&mut self, input: Input) -> Response {
+        if self.prompt.is_some() {
+            if let Input::Key {
+                key: Key::Escape, ..
+            } = input
+            {
+                return self.answer(Answer::Cancel);
+            }
+            if matches!(input, Input::Pressed(_) | Input::Key { .. }) {
+                return Response::default();
+            }
+        }
         match input {
             Input::PointerMoved(p) => self.pointer_moved(p),
             Input::Pressed(button) => {
+                self.context_menu = None;
+                if button == Button::Secondary {
+                    self.secondary_from = Some(self.cursor);
+                }
                 if !(button == Button::Primary && self.begin_edit()) {
                     self.dragging = Some(button);
                 }
             }
             Input::Released => {
+                // A secondary click that did not move opens the context menu.
+                if let Some(from) = self.secondary_from.take()
+                    && (self.cursor - from).length() <= 3.0 * self.scale_factor
+                    && self.editable
+                {
+                    self.context_menu = Some(self.cursor);
+                }
                 self.dragging = None;
                 if self.editing.take().is_some() {
                     self.editor.finish();
@@ -190,10 +507,34 @@ impl Interaction {
 
     fn key(&mut self, key: Key, ctrl: bool, shift: bool) -> Response {
         let c = match key {
-            Key::Escape => return Response { exit: true },
+            Key::Escape => {
+                // Esc backs out of one thing at a time; it never quits.
+                if self.context_menu.take().is_some() || self.cancel_gesture() {
+                } else if self.show_help {
+                    self.show_help = false;
+                } else {
+                    self.editor.selected_point = None;
+                    self.editor.selected = None;
+                }
+                return Response::default();
+            }
+            Key::Help => {
+                self.show_help ^= true;
+                return Response::default();
+            }
+            Key::Delete => {
+                if self.editable {
+                    self.delete_selection();
+                }
+                return Response::default();
+            }
             Key::Char(c) => c.to_ascii_lowercase(),
         };
         match c {
+            '?' => self.show_help ^= true,
+            'q' if ctrl => return self.request_close(),
+            'd' if ctrl && self.editable => self.duplicate_selected(),
+            'i' if self.editable => self.insert_point_at_cursor(),
             'z' if ctrl && !shift => {
                 self.editor.undo();
             }
@@ -239,32 +580,44 @@ impl Interaction {
         }
     }
 
-    /// Starts an edit under the pointer (a control point, or a Bézier curve to pull);
-    /// `false` when there is nothing to edit there.
-    fn begin_edit(&mut self) -> bool {
+    /// What is under the pointer (nothing when editing is off).
+    fn pick(&self) -> Option<Hit> {
         if !self.editable {
-            return false;
+            return None;
         }
-        let radius = 9.0 * self.scale_factor;
-        let hit = self.editor.pick(
+        self.editor.pick(
             &self.camera,
             self.viewport,
             self.cursor,
-            radius,
+            9.0 * self.scale_factor,
             self.toggles.show_points,
-        );
-        let at = match hit {
+        )
+    }
+
+    /// Starts an edit under the pointer (a control point, or a Bézier curve to pull);
+    /// `false` when there is nothing to edit there. A curve that cannot be pulled is
+    /// selected (and the drag pans).
+    fn begin_edit(&mut self) -> bool {
+        let at = match self.pick() {
             Some(Hit::Point { curve, index, at }) => {
                 self.editor.begin_point_drag(curve, index);
                 at
             }
-            Some(Hit::Curve { curve, t, at }) => match self.editor.begin_pull(curve, t) {
-                Ok(()) => at,
-                Err(message) => {
-                    self.editor.message = Some(message);
+            Some(Hit::Curve { curve, t, at }) => {
+                if !self.editor.can_pull(curve) {
+                    self.editor.finish();
+                    self.editor.selected = Some(curve);
+                    self.editor.selected_point = None;
                     return false;
                 }
-            },
+                match self.editor.begin_pull(curve, t) {
+                    Ok(()) => at,
+                    Err(message) => {
+                        self.editor.message = Some(message);
+                        return false;
+                    }
+                }
+            }
             None => return false,
         };
         self.editing = Some(at);

@@ -4,9 +4,13 @@
 //!
 //! Mouse: left drag on a control point moves it; left drag on a Bézier curve pulls the
 //! curve through the pointer (paper 000's least-squares single-target modification);
-//! elsewhere left drag pans (2D) or orbits (3D); right or middle drag pans; the wheel
-//! zooms at the cursor. Keys: `F` fit, `P` control polygons, `C` control points, `H`
-//! panel, `Ctrl+Z` undo, `Ctrl+Shift+Z` / `Ctrl+Y` redo, `Ctrl+S` save, `Esc` quit.
+//! elsewhere left drag pans (2D) or orbits (3D); right or middle drag pans, a right click
+//! opens a menu (add a curve there, insert or delete a point, duplicate); the wheel zooms
+//! at the cursor. Keys: `F` fit, `P` control polygons, `C` control points, `H` panel,
+//! `I` insert a point, `Delete` delete, `Ctrl+D` duplicate, `Ctrl+Z` undo,
+//! `Ctrl+Shift+Z` / `Ctrl+Y` redo, `Ctrl+S` save, `Esc` cancel, `Ctrl+Q` quit, `F1` / `?`
+//! the list of shortcuts ([`ui::SHORTCUTS`]). Closing with unsaved changes asks first; a
+//! recovery file holds unsaved edits until they are saved or discarded.
 
 //!
 //! Rooms: [`interaction`] is the window-free model (camera, editing, switches) that tests
@@ -171,6 +175,8 @@ struct Running {
     last_presented: Option<Instant>,
     /// Milliseconds of every stress solve, summed, and their number.
     solve_ms: (f64, u32),
+    /// The window's title as last set.
+    title: String,
 }
 
 /// `SPLINESCOPE_LOSE_DEVICE_AFTER_FRAMES=N`: destroy the device after `N` presented
@@ -209,7 +215,7 @@ impl App {
                 return;
             }
         }
-        if self.opts.frames.is_some_and(|n| r.frames_presented >= n) {
+        if r.model.exit_requested || self.opts.frames.is_some_and(|n| r.frames_presented >= n) {
             event_loop.exit();
             return;
         }
@@ -238,7 +244,9 @@ impl ApplicationHandler for App {
         let consumed = r.egui.on_window_event(&r.surface.window, &event);
         let input = match event {
             WindowEvent::CloseRequested => {
-                event_loop.exit();
+                if r.model.request_close().exit {
+                    event_loop.exit();
+                }
                 return;
             }
             WindowEvent::Resized(_) | WindowEvent::ScaleFactorChanged { .. } => {
@@ -276,6 +284,8 @@ impl ApplicationHandler for App {
             {
                 let key = match event.logical_key.as_ref() {
                     Key::Named(NamedKey::Escape) => interaction::Key::Escape,
+                    Key::Named(NamedKey::F1) => interaction::Key::Help,
+                    Key::Named(NamedKey::Delete | NamedKey::Backspace) => interaction::Key::Delete,
                     Key::Character(s) => match s.chars().next() {
                         Some(c) => interaction::Key::Char(c),
                         None => return,
@@ -346,6 +356,9 @@ impl Running {
             ui::PANEL_WIDTH_POINTS,
         );
         model.editable = stress.is_none();
+        if model.editable {
+            model.offer_recovery();
+        }
         model.tolerance_px = opts.tolerance_px;
         model.toggles = toggles;
         if stress.is_some() {
@@ -353,7 +366,10 @@ impl Running {
                 "the solver moves every control point on the GPU each frame: polygons and points are not drawn while solving",
             );
         }
+        let title = model.editor.title();
+        surface.window.set_title(&title);
         Ok(Running {
+            title,
             timer: timing::StageTimer::new(&ctx),
             first_presented: None,
             last_presented: None,
@@ -461,17 +477,61 @@ impl Running {
         self.surface.window.pre_present_notify();
         self.ctx.queue.present(frame);
         self.egui.finish(&panel);
-        if actions.fit {
-            self.model.auto_fit = true;
-        }
-        if actions.save {
-            self.model.save();
+        self.apply_actions(actions);
+        let title = self.model.editor.title();
+        if title != self.title {
+            self.surface.window.set_title(&title);
+            self.title = title;
         }
         if self.model.auto_fit {
             // The panel's width is known only after it is drawn: fit to what it leaves.
             self.model.fit();
         }
         Ok(true)
+    }
+
+    /// Carries out what the panel, the context menu and the prompt asked for this frame.
+    fn apply_actions(&mut self, actions: ui::Actions) {
+        let model = &mut self.model;
+        if actions.fit {
+            model.auto_fit = true;
+        }
+        if actions.save {
+            model.save();
+        }
+        if let Some(answer) = actions.answer {
+            model.answer(answer);
+        }
+        if let Some(t) = actions.add {
+            let center = model.camera.world_from_pixel(
+                glam::DVec2::new(
+                    0.5 * (model.viewport.x + model.panel_width_px),
+                    0.5 * model.viewport.y,
+                ),
+                model.viewport,
+            );
+            model.add_curve(t, center);
+        }
+        let menu_at = model.context_menu;
+        if let (Some(t), Some(at)) = (actions.add_at_menu, menu_at) {
+            let center = model.camera.world_from_pixel(at, model.viewport);
+            model.add_curve(t, center);
+            model.context_menu = None;
+        }
+        if let Some(item) = actions.menu {
+            match item {
+                ui::MenuItem::InsertPoint => {
+                    // At the point where the menu was opened.
+                    if let Some(at) = menu_at {
+                        model.handle(Input::PointerMoved(at));
+                    }
+                    model.insert_point_at_cursor();
+                }
+                ui::MenuItem::DeleteSelection => model.delete_selection(),
+                ui::MenuItem::Duplicate => model.duplicate_selected(),
+            }
+            model.context_menu = None;
+        }
     }
 
     /// The figures `--stats` prints.
@@ -529,7 +589,6 @@ impl Running {
             camera: &camera,
             solving: self.stress.as_ref().map(|s| (s.curves, s.last_solve_ms)),
         };
-        let editable = self.model.editable;
         let tolerance_before = self.model.tolerance_px;
         let model = &mut self.model;
         let mut panel_width = 0.0_f32;
@@ -537,15 +596,8 @@ impl Running {
         let (frame, pixels_per_point) =
             self.egui
                 .run(&self.surface.window, &self.ctx, encoder, size, |ui| {
-                    panel_width = ui::panel(
-                        ui,
-                        &info,
-                        &mut model.tolerance_px,
-                        &mut model.toggles,
-                        &mut model.editor,
-                        editable,
-                        &mut actions,
-                    );
+                    panel_width = ui::panel(ui, &info, model, &mut actions);
+                    ui::canvas(ui, model, &mut actions);
                 });
         self.model.panel_width_px = f64::from(panel_width) * f64::from(pixels_per_point);
         let t = self.model.tolerance_px;

@@ -3,6 +3,7 @@
 //! tessellated and drawn every frame.
 
 use super::AppError;
+use super::edit::Changes;
 use super::interaction::Toggles;
 use super::readback::Readback;
 use super::ui;
@@ -100,22 +101,25 @@ impl SceneView {
         })
     }
 
-    /// Brings the GPU up to date with the `changed` curves of `scene` and the panel's
-    /// switches: curves whose lowering kept its structure are rewritten in place;
-    /// otherwise the scene is packed again. Overlays are rebuilt when anything changed.
+    /// Brings the GPU up to date with the `changes` of `scene` and the panel's switches:
+    /// curves whose lowering kept its structure are rewritten in place; otherwise (or when
+    /// curves were added or removed) the scene is packed again. Overlays are rebuilt when anything changed.
     pub fn sync(
         &mut self,
         ctx: &GpuContext,
         scene: &Scene,
-        changed: &[usize],
+        changes: &Changes,
         toggles: Toggles,
     ) -> Result<(), AppError> {
-        if changed.is_empty() && toggles == self.uploaded_toggles {
+        if changes.is_empty() && toggles == self.uploaded_toggles {
             return Ok(());
         }
         let shown = shown_scene(scene, toggles);
         let in_place = toggles == self.uploaded_toggles
-            && changed
+            && !changes.list
+            && scene.curves.len() == self.prepared.placements.len()
+            && changes
+                .curves
                 .iter()
                 .all(|&c| self.rewrite_in_place(ctx, &shown, c));
         if in_place {
@@ -132,7 +136,11 @@ impl SceneView {
             self.stats = StatsReader::new();
             self.last_stats.clear();
         }
-        ui::refresh(&mut self.summaries, scene, changed);
+        if changes.list {
+            self.summaries = ui::summarize(scene);
+        } else {
+            ui::refresh(&mut self.summaries, scene, &changes.curves);
+        }
         Ok(())
     }
 

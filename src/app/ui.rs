@@ -9,8 +9,8 @@ use crate::camera::Camera;
 use crate::geom::{Control, ControlKind, ControlValue, Lower, ParamCurve};
 use crate::scene::{Scene, SceneCurve};
 
-use super::edit::Editor;
-use super::interaction::Toggles;
+use super::edit::{Editor, Hit};
+use super::interaction::{Answer, Interaction, Prompt, Template};
 
 /// The panel's default width in points.
 pub(crate) const PANEL_WIDTH_POINTS: f64 = 260.0;
@@ -87,6 +87,22 @@ pub(crate) struct PanelInfo<'a> {
 pub(crate) struct Actions {
     pub fit: bool,
     pub save: bool,
+    /// The answer to the open prompt.
+    pub answer: Option<Answer>,
+    /// A curve to add at the view's centre.
+    pub add: Option<Template>,
+    /// A curve to add at the context menu's position.
+    pub add_at_menu: Option<Template>,
+    /// The context menu's (or a panel button's) other entries.
+    pub menu: Option<MenuItem>,
+}
+
+/// An entry of the canvas's context menu (some also panel buttons).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum MenuItem {
+    InsertPoint,
+    DeleteSelection,
+    Duplicate,
 }
 
 /// Frames per second over the last second.
@@ -125,12 +141,16 @@ impl FpsCounter {
 pub(crate) fn panel(
     ui: &mut egui::Ui,
     info: &PanelInfo<'_>,
-    tolerance_px: &mut f64,
-    toggles: &mut Toggles,
-    editor: &mut Editor,
-    editable: bool,
+    model: &mut Interaction,
     actions: &mut Actions,
 ) -> f32 {
+    let editable = model.editable;
+    let Interaction {
+        tolerance_px,
+        toggles,
+        editor,
+        ..
+    } = model;
     if !toggles.show_panel {
         return 0.0;
     }
@@ -169,6 +189,7 @@ pub(crate) fn panel(
             ui.add(
                 egui::Slider::new(tolerance_px, 0.05..=8.0)
                     .logarithmic(true)
+                    .update_while_editing(false)
                     .text("tolerance (px)"),
             )
             .on_hover_text("the largest distance between a drawn polyline and its curve");
@@ -198,7 +219,7 @@ pub(crate) fn panel(
                 Camera::Ortho2d(_) => "2D · drag: pan · wheel: zoom",
                 Camera::Orbit3d(_) => "3D · left drag: orbit · right drag: pan · wheel: zoom",
             });
-            ui.small("H hides this panel · Esc quits");
+            ui.small("F1 or ? lists every shortcut · H hides this panel");
             ui.separator();
             if editable {
                 edit_section(ui, editor, actions);
@@ -230,20 +251,21 @@ pub(crate) fn panel(
     response.response.rect.width()
 }
 
-/// Undo/redo/save, the selected curve and its family's controls.
+/// Undo/redo/save, adding curves, the selected curve with its points and its family's
+/// controls.
 fn edit_section(ui: &mut egui::Ui, editor: &mut Editor, actions: &mut Actions) {
     let (undo, redo) = editor.history_len();
     ui.horizontal(|ui| {
         if ui
             .add_enabled(undo > 0, egui::Button::new(format!("undo ({undo})")))
-            .on_hover_text("Ctrl+Z")
+            .on_hover_text("Ctrl+Z: undo the last edit")
             .clicked()
         {
             editor.undo();
         }
         if ui
             .add_enabled(redo > 0, egui::Button::new(format!("redo ({redo})")))
-            .on_hover_text("Ctrl+Shift+Z")
+            .on_hover_text("Ctrl+Shift+Z or Ctrl+Y: redo")
             .clicked()
         {
             editor.redo();
@@ -259,37 +281,110 @@ fn edit_section(ui: &mut egui::Ui, editor: &mut Editor, actions: &mut Actions) {
         {
             actions.save = true;
         }
+        ui.menu_button("add curve…", |ui| {
+            for t in Template::ALL {
+                if ui.button(t.label()).clicked() {
+                    actions.add = Some(t);
+                    ui.close();
+                }
+            }
+        })
+        .response
+        .on_hover_text(
+            "add a curve of any family at the centre of the view (right-click the canvas: at the pointer)",
+        );
     });
-    if let Some(m) = &editor.message {
-        ui.small(m.clone());
-    }
+    // The message keeps its line even when empty, so the layout does not jump.
+    ui.small(editor.message.clone().unwrap_or_default());
     let Some(index) = editor.selected else {
         ui.small(
-            "Drag a control point to move it, or a Bézier curve to pull it through the pointer.",
+            "Click a curve to select it; drag a control point to move it, or a Bézier curve to pull it through the pointer.",
         );
         return;
     };
-    let sc = editor.scene().curves[index].clone();
+    let Some(sc) = editor.scene().curves.get(index).cloned() else {
+        return;
+    };
+    let planar = editor.scene().is_planar();
     ui.label(format!(
         "{index}: {} ({})",
         sc.name.as_deref().unwrap_or("unnamed"),
         sc.curve.family()
     ));
     ui.small(sc.curve.summary());
+    ui.horizontal(|ui| {
+        if ui
+            .button("duplicate")
+            .on_hover_text("Ctrl+D: a copy of this curve, moved a little")
+            .clicked()
+        {
+            actions.menu = Some(MenuItem::Duplicate);
+        }
+        if ui
+            .button("delete curve")
+            .on_hover_text("Delete (with no point selected): remove this curve")
+            .clicked()
+            && let Err(e) = editor.delete_curve(index)
+        {
+            editor.message = Some(e);
+        }
+    });
+    if let Some(point) = editor.selected_point
+        && let Some(&p) = sc.curve.control_points().get(point)
+    {
+        ui.horizontal(|ui| {
+            ui.label(format!("point {point}"));
+            let mut v = p;
+            if vector_row(ui, "", &mut v, planar)
+                && let Err(e) = editor.set_point(index, point, v)
+            {
+                editor.message = Some(e);
+            }
+        });
+        if ui
+            .button("delete point")
+            .on_hover_text(if sc.curve.inserts_by_knot() {
+                "Delete: remove this point with the knot nearest it"
+            } else {
+                "Delete: remove this point"
+            })
+            .clicked()
+        {
+            if let Err(e) = editor.delete_point(index, point) {
+                editor.message = Some(e);
+            }
+            editor.selected_point = None;
+        }
+    } else {
+        ui.small(if sc.curve.inserts_by_knot() {
+            "I inserts a knot at the curve point nearest the pointer (the shape stays); click a point to type its coordinates."
+        } else {
+            "I inserts a point on the control polygon at the pointer; click a point to type its coordinates."
+        });
+    }
     egui::ScrollArea::vertical()
         .id_salt("controls")
         .max_height(240.0)
         .show(ui, |ui| {
             for control in sc.curve.controls() {
-                if let Some(value) = control_widget(ui, &control) {
+                if let Some((value, typed)) = control_widget(ui, &control, planar) {
                     editor.apply_control(index, &control, value);
+                    if typed {
+                        // A typed value is an edit of its own (a slider drag ends on release).
+                        editor.finish();
+                    }
                 }
             }
         });
 }
 
-/// Draws one of a family's controls; the value the user gave, if any.
-fn control_widget(ui: &mut egui::Ui, control: &Control) -> Option<ControlValue> {
+/// Draws one of a family's controls; the value the user gave, if any, and whether it
+/// was typed or clicked (complete) rather than dragged (continuing).
+fn control_widget(
+    ui: &mut egui::Ui,
+    control: &Control,
+    planar: bool,
+) -> Option<(ControlValue, bool)> {
     let hint = control.hint.as_deref().unwrap_or_default();
     match &control.kind {
         ControlKind::Note { warning } => {
@@ -303,25 +398,35 @@ fn control_widget(ui: &mut egui::Ui, control: &Control) -> Option<ControlValue> 
         }
         ControlKind::Number { value, range } => {
             let mut v = *value;
-            // Typed values are not clamped: the family refuses invalid ones, with a message.
+            // Typed values are not clamped and only given once complete (Enter or focus
+            // lost): the family accepts or refuses them whole, with a message.
             let slider = egui::Slider::new(&mut v, range.0..=range.1)
                 .clamping(egui::SliderClamping::Never)
+                .update_while_editing(false)
                 .text(&control.label);
             if !hint.is_empty() {
                 ui.small(hint);
             }
-            ui.add(slider).changed().then_some(ControlValue::Number(v))
+            let response = ui.add(slider).on_hover_text(if hint.is_empty() {
+                "drag, or double-click the number to type a value"
+            } else {
+                hint
+            });
+            response
+                .changed()
+                .then_some((ControlValue::Number(v), !response.dragged()))
         }
         ControlKind::Vector { value } => {
             let mut v = *value;
-            vector_row(ui, &control.label, &mut v).then_some(ControlValue::Vector(v))
+            vector_row(ui, &control.label, &mut v, planar)
+                .then_some((ControlValue::Vector(v), true))
         }
         ControlKind::Toggle { value } => {
             let mut on = *value;
             ui.checkbox(&mut on, &control.label)
                 .on_hover_text(hint)
                 .changed()
-                .then_some(ControlValue::Toggle(on))
+                .then_some((ControlValue::Toggle(on), true))
         }
         ControlKind::Choice { options, selected } => {
             let mut choice = *selected;
@@ -331,32 +436,292 @@ fn control_widget(ui: &mut egui::Ui, control: &Control) -> Option<ControlValue> 
                     ui.radio_value(&mut choice, i, *option);
                 }
             });
-            (choice != *selected).then_some(ControlValue::Choice(choice))
+            (choice != *selected).then_some((ControlValue::Choice(choice), true))
         }
         ControlKind::Action => ui
             .button(&control.label)
             .on_hover_text(hint)
             .clicked()
-            .then_some(ControlValue::Press),
+            .then_some((ControlValue::Press, true)),
     }
 }
 
-/// A row of drag values for a vector; whether it changed.
-fn vector_row(ui: &mut egui::Ui, label: &str, v: &mut DVec3) -> bool {
+/// A row of drag values for a vector (no z field in a planar scene); whether it
+/// changed. Typed values are given once complete.
+fn vector_row(ui: &mut egui::Ui, label: &str, v: &mut DVec3, planar: bool) -> bool {
     ui.horizontal(|ui| {
-        ui.label(label);
-        let mut changed = ui
-            .add(egui::DragValue::new(&mut v.x).speed(0.01).prefix("x "))
-            .changed();
-        changed |= ui
-            .add(egui::DragValue::new(&mut v.y).speed(0.01).prefix("y "))
-            .changed();
-        changed |= ui
-            .add(egui::DragValue::new(&mut v.z).speed(0.01).prefix("z "))
-            .changed();
+        if !label.is_empty() {
+            ui.label(label);
+        }
+        let field = |ui: &mut egui::Ui, x: &mut f64, prefix: &str| {
+            ui.add(
+                egui::DragValue::new(x)
+                    .speed(0.01)
+                    .update_while_editing(false)
+                    .prefix(prefix),
+            )
+            .on_hover_text("drag, or click to type")
+            .changed()
+        };
+        let mut changed = field(ui, &mut v.x, "x ");
+        changed |= field(ui, &mut v.y, "y ");
+        if !planar {
+            changed |= field(ui, &mut v.z, "z ");
+        }
         changed
     })
     .inner
+}
+
+/// Every shortcut, as the help window lists them.
+pub(crate) const SHORTCUTS: &[(&str, &str)] = &[
+    ("left drag on a point", "move the control point"),
+    (
+        "left drag on a Bézier curve",
+        "pull the curve through the pointer (paper 000)",
+    ),
+    ("left click on a curve", "select it"),
+    ("left drag elsewhere", "pan (2D) / orbit (3D)"),
+    ("right or middle drag", "pan"),
+    (
+        "right click",
+        "menu: add a curve here, insert or delete a point, duplicate",
+    ),
+    ("wheel", "zoom at the pointer"),
+    ("F", "fit the scene"),
+    ("P / C", "control polygons / control points"),
+    ("H", "hide or show the panel"),
+    ("I", "insert a point into the selected curve at the pointer"),
+    (
+        "Delete, Backspace",
+        "delete the selected point, else the selected curve",
+    ),
+    ("Ctrl+D", "duplicate the selected curve"),
+    ("Ctrl+Z", "undo"),
+    ("Ctrl+Shift+Z, Ctrl+Y", "redo"),
+    ("Ctrl+S", "save"),
+    (
+        "Esc",
+        "cancel the drag, the menu, this help or the selection (never quits)",
+    ),
+    (
+        "Ctrl+Q, closing the window",
+        "quit (asks when there are unsaved changes)",
+    ),
+    ("F1, ?", "this list"),
+];
+
+/// Everything drawn over the canvas: the highlight of the selected, hovered and dragged
+/// curve and point, the pointer's coordinates, labels of the 3D axes, the context menu,
+/// the help window and the open prompt.
+pub(crate) fn canvas(ui: &mut egui::Ui, model: &Interaction, actions: &mut Actions) {
+    let ctx = ui.ctx().clone();
+    let ppp = f64::from(ctx.pixels_per_point());
+    let to_pos = |p: glam::DVec2| egui::pos2((p.x / ppp) as f32, (p.y / ppp) as f32);
+    let pixel = |w: DVec3| model.camera.pixel_from_world(w, model.viewport).map(to_pos);
+    let painter = ctx.layer_painter(egui::LayerId::background());
+    let scene = model.scene();
+    let accent = egui::Color32::from_rgb(255, 140, 0);
+    let curve_line = |index: usize, stroke: egui::Stroke| {
+        let Some(sc) = scene.curves.get(index) else {
+            return;
+        };
+        let (a, b) = sc.curve.domain();
+        let points: Vec<egui::Pos2> = (0..=256)
+            .filter_map(|j| pixel(sc.curve.eval(a + (b - a) * f64::from(j) / 256.0)))
+            .collect();
+        painter.add(egui::Shape::line(points, stroke));
+    };
+    let ring = |at: DVec3, radius: f32, color: egui::Color32, fill: bool| {
+        if let Some(p) = pixel(at) {
+            if fill {
+                painter.circle_filled(p, radius, color);
+            } else {
+                painter.circle_stroke(p, radius, egui::Stroke::new(2.0, color));
+            }
+        }
+    };
+    if let Some(index) = model.editor.selected {
+        curve_line(index, egui::Stroke::new(7.0, accent.gamma_multiply(0.35)));
+        if let Some(point) = model.editor.selected_point
+            && let Some(&p) = scene
+                .curves
+                .get(index)
+                .and_then(|c| c.curve.control_points().get(point))
+        {
+            ring(p, 8.0, accent, model.is_editing());
+            if !model.is_editing() {
+                ring(p, 8.0, accent, false);
+            }
+        }
+    }
+    let mut status = String::new();
+    match model.hovered {
+        Some(Hit::Point { curve, index, at }) if !model.is_editing() => {
+            ring(at, 9.0, accent.gamma_multiply(0.8), false);
+            ctx.set_cursor_icon(egui::CursorIcon::Grab);
+            status = format!(
+                "curves[{curve}].points[{index}] = {}",
+                coords(at, scene.is_planar())
+            );
+        }
+        Some(Hit::Curve { curve, t, at }) if !model.is_editing() => {
+            if model.editor.selected != Some(curve) {
+                curve_line(curve, egui::Stroke::new(5.0, accent.gamma_multiply(0.2)));
+            }
+            if model.editor.can_pull(curve) {
+                ctx.set_cursor_icon(egui::CursorIcon::Grab);
+            } else {
+                ctx.set_cursor_icon(egui::CursorIcon::PointingHand);
+            }
+            status = format!(
+                "curves[{curve}] at t = {t:.4}: {}",
+                coords(at, scene.is_planar())
+            );
+        }
+        _ => {}
+    }
+    if model.is_editing() {
+        ctx.set_cursor_icon(egui::CursorIcon::Grabbing);
+    }
+    if status.is_empty() {
+        status = match model.camera {
+            Camera::Ortho2d(_) => format!("pointer {}", coords(model.cursor_world(), true)),
+            Camera::Orbit3d(_) => String::new(),
+        };
+    }
+    if !status.is_empty() {
+        let rect = ctx.content_rect();
+        painter.text(
+            rect.right_bottom() - egui::vec2(8.0, 6.0),
+            egui::Align2::RIGHT_BOTTOM,
+            status,
+            egui::FontId::monospace(12.0),
+            ui.visuals().text_color(),
+        );
+    }
+    if !scene.is_planar() {
+        // Labels at the ends of the axis triad drawn at the scene's lowest corner.
+        let bounds = scene.bounds();
+        let length = 0.2 * bounds.diagonal();
+        for (axis, name, color) in [
+            (DVec3::X, "x", egui::Color32::from_rgb(217, 51, 51)),
+            (DVec3::Y, "y", egui::Color32::from_rgb(51, 153, 51)),
+            (DVec3::Z, "z", egui::Color32::from_rgb(51, 89, 217)),
+        ] {
+            if let Some(p) = pixel(bounds.min + axis * length * 1.08) {
+                painter.text(
+                    p,
+                    egui::Align2::CENTER_CENTER,
+                    name,
+                    egui::FontId::proportional(14.0),
+                    color,
+                );
+            }
+        }
+    }
+    if let Some(at) = model.context_menu {
+        egui::Area::new(egui::Id::unique("splinescope-context-menu"))
+            .fixed_pos(to_pos(at))
+            .order(egui::Order::Foreground)
+            .show(&ctx, |ui| {
+                egui::Frame::menu(ui.style()).show(ui, |ui| {
+                    ui.menu_button("add curve here", |ui| {
+                        for t in Template::ALL {
+                            if ui.button(t.label()).clicked() {
+                                actions.add_at_menu = Some(t);
+                            }
+                        }
+                    });
+                    let selected = model.editor.selected.is_some();
+                    if ui
+                        .add_enabled(selected, egui::Button::new("insert point here (I)"))
+                        .clicked()
+                    {
+                        actions.menu = Some(MenuItem::InsertPoint);
+                    }
+                    let what = if model.editor.selected_point.is_some() {
+                        "delete point (Delete)"
+                    } else {
+                        "delete curve (Delete)"
+                    };
+                    if ui.add_enabled(selected, egui::Button::new(what)).clicked() {
+                        actions.menu = Some(MenuItem::DeleteSelection);
+                    }
+                    if ui
+                        .add_enabled(selected, egui::Button::new("duplicate curve (Ctrl+D)"))
+                        .clicked()
+                    {
+                        actions.menu = Some(MenuItem::Duplicate);
+                    }
+                });
+            });
+    }
+    if model.show_help {
+        egui::Window::new("shortcuts (F1, ?)")
+            .collapsible(false)
+            .resizable(false)
+            .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
+            .show(&ctx, |ui| {
+                egui::Grid::new("shortcuts").striped(true).show(ui, |ui| {
+                    for (keys, what) in SHORTCUTS {
+                        ui.strong(*keys);
+                        ui.label(*what);
+                        ui.end_row();
+                    }
+                });
+                ui.small("Esc closes this list.");
+            });
+    }
+    if let Some(prompt) = &model.prompt {
+        let (title, text, accept, discard) = match prompt {
+            Prompt::Close => (
+                "unsaved changes",
+                format!(
+                    "{} has unsaved changes. Save them before closing?",
+                    model
+                        .editor
+                        .path()
+                        .map_or_else(|| "The scene".to_owned(), |p| p.display().to_string())
+                ),
+                "save and close",
+                "close without saving",
+            ),
+            Prompt::Recovery { path, .. } => (
+                "unsaved edits found",
+                format!(
+                    "{} holds edits that were never saved (the viewer closed or was killed). Restore them?",
+                    path.display()
+                ),
+                "restore",
+                "delete them",
+            ),
+        };
+        egui::Modal::new(egui::Id::unique("splinescope-prompt")).show(&ctx, |ui| {
+            ui.heading(title);
+            ui.label(text);
+            ui.horizontal(|ui| {
+                if ui.button(accept).clicked() {
+                    actions.answer = Some(Answer::Accept);
+                }
+                if ui.button(discard).clicked() {
+                    actions.answer = Some(Answer::Discard);
+                }
+                if ui.button("cancel").on_hover_text("Esc").clicked() {
+                    actions.answer = Some(Answer::Cancel);
+                }
+            });
+        });
+    }
+}
+
+/// A point as the status line shows it (no z in planar scenes).
+fn coords(p: DVec3, planar: bool) -> String {
+    if planar {
+        format!("({:.4}, {:.4})", p.x, p.y)
+    } else {
+        format!("({:.4}, {:.4}, {:.4})", p.x, p.y, p.z)
+    }
 }
 
 #[cfg(test)]

@@ -238,6 +238,14 @@ pub enum GeomError {
         /// The domain's end.
         end: f64,
     },
+    /// A structural edit (inserting or removing a point) the curve cannot take.
+    #[error("{family}: {reason}")]
+    StructureRefused {
+        /// The curve's family.
+        family: &'static str,
+        /// Why, in words.
+        reason: String,
+    },
     /// A panel control the curve does not have, or a value of the wrong kind for it.
     #[error("{family} curves have no control {control}")]
     UnknownControl {
@@ -279,9 +287,9 @@ impl GeomError {
             | GeomError::SameAbsorber { .. }
             | GeomError::AbsorberNegative { .. }
             | GeomError::GroupOutsideDomain { .. } => "shape".to_owned(),
-            GeomError::ParameterOutsideDomain { .. } | GeomError::UnknownControl { .. } => {
-                String::new()
-            }
+            GeomError::ParameterOutsideDomain { .. }
+            | GeomError::UnknownControl { .. }
+            | GeomError::StructureRefused { .. } => String::new(),
         }
     }
 }

@@ -20,6 +20,7 @@ pub mod knots;
 pub mod lowering;
 pub mod modified;
 pub mod nubmp;
+pub mod structure;
 
 pub use bezier::{Aabb, Bezier};
 pub use bspline::BSpline;

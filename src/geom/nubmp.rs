@@ -703,15 +703,18 @@ impl Family for Nubmp {
     /// A slider per shape parameter of every effective group (the group's last member
     /// absorbs the change), with Theorem 1's value and the permissible ranges for order 4.
     fn controls(&self) -> Vec<Control> {
-        let mut out = Vec::new();
-        if !self.is_standard() {
-            out.push(Control {
-                id: ControlId::new("reset"),
-                label: "reset to the standard curve".into(),
-                hint: Some("every a^i_j back to its standard value c^i_j".into()),
-                kind: ControlKind::Action,
-            });
-        }
+        // The reset button is always listed (pressing it on the standard curve changes
+        // nothing), so that the panel does not gain a row in the middle of a drag.
+        let mut out = vec![Control {
+            id: ControlId::new("reset"),
+            label: "reset to the standard curve".into(),
+            hint: Some(if self.is_standard() {
+                "already the standard curve".into()
+            } else {
+                "every a^i_j back to its standard value c^i_j".into()
+            }),
+            kind: ControlKind::Action,
+        }];
         for (j, g) in self.groups.iter().enumerate() {
             if !g.effective || g.members.len() < 2 {
                 continue;
