@@ -9,25 +9,10 @@ use splinescope::geom::{
     Bezier, Control, ControlKind, ControlValue, CubicInterpolation, Curve, ModifiedBezier, Nubmp,
     ParamCurve, Reading,
 };
-use splinescope::scene::{Color, Scene, SceneCurve, Style, ViewSpec};
+use splinescope::scene::Scene;
 
 fn scene_of(curves: Vec<Curve>) -> Scene {
-    Scene {
-        name: None,
-        background: Color::WHITE,
-        samples_per_segment: None,
-        view: ViewSpec::Auto,
-        curves: curves
-            .into_iter()
-            .enumerate()
-            .map(|(i, curve)| SceneCurve {
-                name: None,
-                curve,
-                style: Style::default_for(i),
-            })
-            .collect(),
-        annotations: Vec::new(),
-    }
+    Scene::of_curves(curves)
 }
 
 fn control(curve: &Curve, label: &str) -> Control {

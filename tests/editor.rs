@@ -14,7 +14,7 @@ use splinescope::app::interaction::{
     Answer, Button, Input, Interaction, Key, Prompt, Response, Template,
 };
 use splinescope::geom::{BSpline, Bezier, Curve, Nubmp, ParamCurve};
-use splinescope::scene::{Color, Scene, SceneCurve, Style, ViewSpec, to_json_string};
+use splinescope::scene::{Scene, to_json_string};
 
 const VIEWPORT: DVec2 = DVec2::new(1000.0, 700.0);
 
@@ -37,22 +37,7 @@ fn bspline() -> Curve {
 }
 
 fn scene(curves: Vec<Curve>) -> Scene {
-    Scene {
-        name: None,
-        background: Color::WHITE,
-        samples_per_segment: None,
-        view: ViewSpec::Auto,
-        curves: curves
-            .into_iter()
-            .enumerate()
-            .map(|(i, curve)| SceneCurve {
-                name: None,
-                curve,
-                style: Style::default_for(i),
-            })
-            .collect(),
-        annotations: Vec::new(),
-    }
+    Scene::of_curves(curves)
 }
 
 fn model(s: Scene, path: Option<PathBuf>) -> Interaction {

@@ -576,6 +576,14 @@ impl Editor {
         }
     }
 
+    /// Curve `index`, or a message saying it does not exist.
+    fn curve_at(&self, index: usize) -> Result<&SceneCurve, String> {
+        self.scene
+            .curves
+            .get(index)
+            .ok_or_else(|| format!("curves[{index}] does not exist"))
+    }
+
     /// Replaces the list of curves as one undoable edit, selecting `select`.
     fn edit_list(&mut self, after: Vec<SceneCurve>, select: Option<usize>) {
         self.finish();
@@ -600,12 +608,7 @@ impl Editor {
     /// # Errors
     /// A message when there is no such curve or the moved copy is invalid.
     pub fn duplicate(&mut self, index: usize, offset: DVec3) -> Result<usize, String> {
-        let mut copy = self
-            .scene
-            .curves
-            .get(index)
-            .cloned()
-            .ok_or_else(|| format!("curves[{index}] does not exist"))?;
+        let mut copy = self.curve_at(index)?.clone();
         let moved: Vec<DVec3> = copy
             .curve
             .control_points()
@@ -627,9 +630,7 @@ impl Editor {
     /// # Errors
     /// A message when there is no such curve.
     pub fn delete_curve(&mut self, index: usize) -> Result<(), String> {
-        if index >= self.scene.curves.len() {
-            return Err(format!("curves[{index}] does not exist"));
-        }
+        self.curve_at(index)?;
         let mut after = self.scene.curves.clone();
         after.remove(index);
         self.edit_list(after, None);
@@ -659,11 +660,7 @@ impl Editor {
     /// # Errors
     /// A message naming the curve and the reason.
     pub fn insert_point(&mut self, index: usize, at: DVec3) -> Result<usize, String> {
-        let sc = self
-            .scene
-            .curves
-            .get(index)
-            .ok_or_else(|| format!("curves[{index}] does not exist"))?;
+        let sc = self.curve_at(index)?;
         let fail = |e: crate::geom::GeomError| format!("curves[{index}]: {e}");
         let (curve, point) = if sc.curve.inserts_by_knot() {
             let t = nearest(&sc.curve, at, None).t;
@@ -691,11 +688,7 @@ impl Editor {
     /// # Errors
     /// A message naming the curve and the reason.
     pub fn delete_point(&mut self, index: usize, point: usize) -> Result<(), String> {
-        let sc = self
-            .scene
-            .curves
-            .get(index)
-            .ok_or_else(|| format!("curves[{index}] does not exist"))?;
+        let sc = self.curve_at(index)?;
         let curve = sc
             .curve
             .with_point_removed(point)
@@ -711,11 +704,7 @@ impl Editor {
     /// # Errors
     /// A message naming the curve, the point and the reason; the curve is unchanged.
     pub fn set_point(&mut self, index: usize, point: usize, p: DVec3) -> Result<(), String> {
-        let sc = self
-            .scene
-            .curves
-            .get(index)
-            .ok_or_else(|| format!("curves[{index}] does not exist"))?;
+        let sc = self.curve_at(index)?;
         let curve = sc
             .curve
             .with_control_point(point, p)

@@ -508,11 +508,12 @@ impl Interaction {
     fn key(&mut self, key: Key, ctrl: bool, shift: bool) -> Response {
         let c = match key {
             Key::Escape => {
-                // Esc backs out of one thing at a time; it never quits.
-                if self.context_menu.take().is_some() || self.cancel_gesture() {
-                } else if self.show_help {
+                // Esc backs out of one thing at a time (menu, drag, help, selection); it
+                // never quits.
+                let backed_out = self.context_menu.take().is_some() || self.cancel_gesture();
+                if !backed_out && self.show_help {
                     self.show_help = false;
-                } else {
+                } else if !backed_out {
                     self.editor.selected_point = None;
                     self.editor.selected = None;
                 }

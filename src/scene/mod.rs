@@ -289,6 +289,28 @@ impl SceneError {
 }
 
 impl Scene {
+    /// A scene of `curves` with the defaults of a file that gives nothing else: white
+    /// background, automatic samples and view, each curve in its palette style.
+    #[must_use]
+    pub fn of_curves(curves: impl IntoIterator<Item = crate::geom::Curve>) -> Scene {
+        Scene {
+            name: None,
+            background: Color::WHITE,
+            samples_per_segment: None,
+            view: ViewSpec::Auto,
+            curves: curves
+                .into_iter()
+                .enumerate()
+                .map(|(i, curve)| SceneCurve {
+                    name: None,
+                    curve,
+                    style: Style::default_for(i),
+                })
+                .collect(),
+            annotations: Vec::new(),
+        }
+    }
+
     /// Reads and validates a scene file.
     ///
     /// # Errors
