@@ -525,10 +525,9 @@ fn inspect_reports_the_papers_derived_data() {
         "--curve",
         "0",
     ]));
-    assert_eq!(
-        v["curves"][0]["inner_points"][0],
-        serde_json::json!([[-1.0, 3.0, 0.0], [-1.0, 5.0, 0.0]])
-    );
+    let inner: Vec<Vec<f64>> =
+        serde_json::from_value(v["curves"][0]["inner_points"][0].clone()).unwrap();
+    assert_eq!(inner, vec![vec![-1.0, 3.0, 0.0], vec![-1.0, 5.0, 0.0]]);
 }
 
 #[test]

@@ -349,7 +349,7 @@ pub(crate) fn write_pretty(v: &Value, indent: usize, out: &mut String) {
                 if i > 0 {
                     out.push_str(", ");
                 }
-                out.push_str(&item.to_string());
+                write_scalar(item, out);
             }
             out.push(']');
         }
@@ -375,7 +375,23 @@ pub(crate) fn write_pretty(v: &Value, indent: usize, out: &mut String) {
             pad(indent, out);
             out.push('}');
         }
-        other => out.push_str(&other.to_string()),
+        other => write_scalar(other, out),
+    }
+}
+
+/// A scalar as JSON; numbers in their shortest round-trip form, whole numbers without a
+/// fraction (`1`, not `1.0`), so that a written file reads as people write it.
+fn write_scalar(v: &Value, out: &mut String) {
+    match v.as_f64() {
+        // Whole numbers up to 2^53 are exact as integers.
+        Some(x) if v.is_f64() && x.fract() == 0.0 && x.abs() < 9_007_199_254_740_992.0 => {
+            if x == 0.0 && x.is_sign_negative() {
+                out.push_str("-0");
+            } else {
+                out.push_str(&format!("{x:.0}"));
+            }
+        }
+        _ => out.push_str(&v.to_string()),
     }
 }
 
@@ -421,6 +437,18 @@ mod tests {
             matches!(e.kind, SceneErrorKind::Syntax { line: 1, .. }),
             "{e}"
         );
+    }
+
+    #[test]
+    fn whole_numbers_are_written_without_a_fraction_and_others_round_trip() {
+        let v = serde_json::json!([1.0, -2.0, 0.5, 0.1, 1e300, 3, -0.0, 9007199254740992.0]);
+        let text = pretty_json(&v);
+        assert_eq!(text, "[1, -2, 0.5, 0.1, 1e+300, 3, -0, 9007199254740992.0]");
+        let back: Vec<f64> = serde_json::from_str(&text).unwrap();
+        let want: [f64; 8] = [1.0, -2.0, 0.5, 0.1, 1e300, 3.0, -0.0, 9007199254740992.0];
+        for (a, b) in back.iter().zip(want) {
+            assert_eq!(a.to_bits(), b.to_bits(), "{a} vs {b}");
+        }
     }
 
     #[test]
