@@ -615,12 +615,10 @@ impl Editor {
             .iter()
             .map(|&p| p + offset)
             .collect();
-        for (i, &p) in moved.iter().enumerate() {
-            copy.curve = copy
-                .curve
-                .with_control_point(i, p)
-                .map_err(|e| format!("curves[{index}]: {e}"))?;
-        }
+        copy.curve = copy
+            .curve
+            .with_control_points(moved)
+            .map_err(|e| format!("curves[{index}]: {e}"))?;
         copy.name = copy.name.map(|n| format!("{n} (copy)"));
         Ok(self.add_curve(copy))
     }

@@ -579,6 +579,7 @@ impl Running {
         let mut actions = ui::Actions::default();
         let camera = self.model.camera;
         let info = ui::PanelInfo {
+            facts: &self.view.facts,
             summaries: &self.view.summaries,
             adapter: &self.adapter,
             fps: self.fps.fps(),
@@ -597,7 +598,7 @@ impl Running {
             self.egui
                 .run(&self.surface.window, &self.ctx, encoder, size, |ui| {
                     panel_width = ui::panel(ui, &info, model, &mut actions);
-                    ui::canvas(ui, model, &mut actions);
+                    ui::canvas(ui, model, info.facts, &mut actions);
                 });
         self.model.panel_width_px = f64::from(panel_width) * f64::from(pixels_per_point);
         let t = self.model.tolerance_px;

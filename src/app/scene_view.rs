@@ -24,6 +24,8 @@ pub(crate) struct SceneView {
     pub prepared: PreparedScene,
     uploaded_toggles: Toggles,
     pub summaries: Vec<ui::CurveSummary>,
+    /// What the panel and canvas overlay need of the scene, derived on each change.
+    pub facts: ui::SceneFacts,
     stats: StatsReader,
     /// The chunks' statistics of a recent frame (read back without waiting).
     pub last_stats: Vec<FrameStats>,
@@ -96,6 +98,7 @@ impl SceneView {
             prepared,
             uploaded_toggles: toggles,
             summaries: ui::summarize(scene),
+            facts: ui::SceneFacts::of(scene),
             stats: StatsReader::new(),
             last_stats: Vec::new(),
         })
@@ -117,7 +120,6 @@ impl SceneView {
         let shown = shown_scene(scene, toggles);
         let in_place = toggles == self.uploaded_toggles
             && !changes.list
-            && scene.curves.len() == self.prepared.placements.len()
             && changes
                 .curves
                 .iter()
@@ -136,6 +138,7 @@ impl SceneView {
             self.stats = StatsReader::new();
             self.last_stats.clear();
         }
+        self.facts = ui::SceneFacts::of(scene);
         if changes.list {
             self.summaries = ui::summarize(scene);
         } else {

@@ -65,8 +65,32 @@ fn summarize_curve(i: usize, c: &SceneCurve) -> CurveSummary {
     }
 }
 
+/// What the panel and the canvas overlay need to know of the scene, derived when it
+/// changes (not every frame: both walk every curve).
+pub(crate) struct SceneFacts {
+    /// Every point has z = 0 (no z fields, 2D coordinates).
+    pub planar: bool,
+    /// The 3D axis triad to label (empty in planar scenes).
+    pub axes: Vec<crate::scene::draw::Axis>,
+}
+
+impl SceneFacts {
+    pub fn of(scene: &Scene) -> SceneFacts {
+        let planar = scene.is_planar();
+        SceneFacts {
+            planar,
+            axes: if planar {
+                Vec::new()
+            } else {
+                crate::scene::draw::axis_triad(scene).to_vec()
+            },
+        }
+    }
+}
+
 /// What the panel shows.
 pub(crate) struct PanelInfo<'a> {
+    pub facts: &'a SceneFacts,
     pub summaries: &'a [CurveSummary],
     pub adapter: &'a str,
     pub fps: f64,
@@ -222,7 +246,7 @@ pub(crate) fn panel(
             ui.small("F1 or ? lists every shortcut · H hides this panel");
             ui.separator();
             if editable {
-                edit_section(ui, editor, actions);
+                edit_section(ui, editor, actions, info.facts.planar);
                 ui.separator();
             }
             egui::ScrollArea::vertical().show(ui, |ui| {
@@ -253,7 +277,7 @@ pub(crate) fn panel(
 
 /// Undo/redo/save, adding curves, the selected curve with its points and its family's
 /// controls.
-fn edit_section(ui: &mut egui::Ui, editor: &mut Editor, actions: &mut Actions) {
+fn edit_section(ui: &mut egui::Ui, editor: &mut Editor, actions: &mut Actions, planar: bool) {
     let (undo, redo) = editor.history_len();
     ui.horizontal(|ui| {
         if ui
@@ -305,7 +329,6 @@ fn edit_section(ui: &mut egui::Ui, editor: &mut Editor, actions: &mut Actions) {
     let Some(sc) = editor.scene().curves.get(index).cloned() else {
         return;
     };
-    let planar = editor.scene().is_planar();
     ui.label(format!(
         "{index}: {} ({})",
         sc.name.as_deref().unwrap_or("unnamed"),
@@ -514,7 +537,12 @@ pub(crate) const SHORTCUTS: &[(&str, &str)] = &[
 /// Everything drawn over the canvas: the highlight of the selected, hovered and dragged
 /// curve and point, the pointer's coordinates, labels of the 3D axes, the context menu,
 /// the help window and the open prompt.
-pub(crate) fn canvas(ui: &mut egui::Ui, model: &Interaction, actions: &mut Actions) {
+pub(crate) fn canvas(
+    ui: &mut egui::Ui,
+    model: &Interaction,
+    facts: &SceneFacts,
+    actions: &mut Actions,
+) {
     let ctx = ui.ctx().clone();
     let ppp = f64::from(ctx.pixels_per_point());
     let to_pos = |p: glam::DVec2| egui::pos2((p.x / ppp) as f32, (p.y / ppp) as f32);
@@ -549,10 +577,8 @@ pub(crate) fn canvas(ui: &mut egui::Ui, model: &Interaction, actions: &mut Actio
                 .get(index)
                 .and_then(|c| c.curve.control_points().get(point))
         {
+            // Filled while it is being dragged.
             ring(p, 8.0, accent, model.is_editing());
-            if !model.is_editing() {
-                ring(p, 8.0, accent, false);
-            }
         }
     }
     let mut status = String::new();
@@ -562,7 +588,7 @@ pub(crate) fn canvas(ui: &mut egui::Ui, model: &Interaction, actions: &mut Actio
             ctx.set_cursor_icon(egui::CursorIcon::Grab);
             status = format!(
                 "curves[{curve}].points[{index}] = {}",
-                coords(at, scene.is_planar())
+                coords(at, facts.planar)
             );
         }
         Some(Hit::Curve { curve, t, at }) if !model.is_editing() => {
@@ -576,7 +602,7 @@ pub(crate) fn canvas(ui: &mut egui::Ui, model: &Interaction, actions: &mut Actio
             }
             status = format!(
                 "curves[{curve}] at t = {t:.4}: {}",
-                coords(at, scene.is_planar())
+                coords(at, facts.planar)
             );
         }
         _ => {}
@@ -600,24 +626,18 @@ pub(crate) fn canvas(ui: &mut egui::Ui, model: &Interaction, actions: &mut Actio
             ui.visuals().text_color(),
         );
     }
-    if !scene.is_planar() {
-        // Labels at the ends of the axis triad drawn at the scene's lowest corner.
-        let bounds = scene.bounds();
-        let length = 0.2 * bounds.diagonal();
-        for (axis, name, color) in [
-            (DVec3::X, "x", egui::Color32::from_rgb(217, 51, 51)),
-            (DVec3::Y, "y", egui::Color32::from_rgb(51, 153, 51)),
-            (DVec3::Z, "z", egui::Color32::from_rgb(51, 89, 217)),
-        ] {
-            if let Some(p) = pixel(bounds.min + axis * length * 1.08) {
-                painter.text(
-                    p,
-                    egui::Align2::CENTER_CENTER,
-                    name,
-                    egui::FontId::proportional(14.0),
-                    color,
-                );
-            }
+    // Labels just past the ends of the 3D axis triad.
+    for axis in &facts.axes {
+        let [r, g, b, _] = axis.color.0.map(|v| (v * 255.0).round() as u8);
+        let color = egui::Color32::from_rgb(r, g, b);
+        if let Some(p) = pixel(axis.from + (axis.to - axis.from) * 1.08) {
+            painter.text(
+                p,
+                egui::Align2::CENTER_CENTER,
+                axis.name,
+                egui::FontId::proportional(14.0),
+                color,
+            );
         }
     }
     if let Some(at) = model.context_menu {

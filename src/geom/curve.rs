@@ -124,6 +124,15 @@ impl Curve {
         }
         let mut pts = self.control_points().to_vec();
         pts[index] = p;
+        self.with_control_points(pts)
+    }
+
+    /// The same curve with every [`Curve::control_points`] replaced (same count); every
+    /// other property is kept.
+    ///
+    /// # Errors
+    /// [`GeomError::NonFinitePoint`] for a non-finite point, or the family's own error.
+    pub fn with_control_points(&self, pts: Vec<DVec3>) -> Result<Curve, GeomError> {
         crate::geom::bezier::check_finite(&pts)?;
         each_family!(self, c => c.with_control_points(pts).map(Into::into))
     }

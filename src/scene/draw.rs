@@ -89,6 +89,37 @@ pub fn overlay_point_style(kind: OverlayKind, curve: Color) -> Option<Stroke> {
     }
 }
 
+/// One axis of the triad drawn in 3D scenes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Axis {
+    /// `"x"`, `"y"` or `"z"`.
+    pub name: &'static str,
+    /// Where it starts (the scene's lowest corner).
+    pub from: DVec3,
+    /// Where it ends (a fifth of the scene's diagonal along the axis).
+    pub to: DVec3,
+    /// x red, y green, z blue.
+    pub color: Color,
+}
+
+/// The axis triad at the lowest corner of `scene`'s bounds.
+#[must_use]
+pub fn axis_triad(scene: &Scene) -> [Axis; 3] {
+    let bounds = scene.bounds();
+    let length = 0.2 * bounds.diagonal();
+    let axis = |name, dir: DVec3, color| Axis {
+        name,
+        from: bounds.min,
+        to: bounds.min + dir * length,
+        color,
+    };
+    [
+        axis("x", DVec3::X, Color([0.85, 0.2, 0.2, 1.0])),
+        axis("y", DVec3::Y, Color([0.2, 0.6, 0.2, 1.0])),
+        axis("z", DVec3::Z, Color([0.2, 0.35, 0.85, 1.0])),
+    ]
+}
+
 /// The overlay polylines and points of a scene (control polygons, control points, the
 /// families' explaining polylines, 3D axes, annotations), each with its resolved stroke,
 /// in one pass over the scene.
@@ -117,18 +148,8 @@ pub fn draw_list(scene: &Scene) -> DrawList {
         }
     }
     if !scene.is_planar() {
-        // An axis triad at the scene's lowest corner: x red, y green, z blue.
-        let bounds = scene.bounds();
-        let length = 0.2 * bounds.diagonal();
-        for (axis, color) in [
-            (DVec3::X, Color([0.85, 0.2, 0.2, 1.0])),
-            (DVec3::Y, Color([0.2, 0.6, 0.2, 1.0])),
-            (DVec3::Z, Color([0.2, 0.35, 0.85, 1.0])),
-        ] {
-            lines.push((
-                vec![bounds.min, bounds.min + axis * length],
-                Stroke::solid(color, 2.0),
-            ));
+        for axis in axis_triad(scene) {
+            lines.push((vec![axis.from, axis.to], Stroke::solid(axis.color, 2.0)));
         }
     }
     for a in &scene.annotations {
