@@ -140,7 +140,12 @@ fn nubmp_sliders_set_one_parameter_with_the_last_member_absorbing() {
     let g = &n.groups()[3];
     let (i, last) = (g.members[0], *g.members.last().unwrap());
     let slider = control(&curve, &format!("a^{i}_3"));
-    let ControlKind::Number { value, range } = slider.kind else {
+    let ControlKind::Number {
+        value,
+        range,
+        bands: _,
+    } = slider.kind
+    else {
         panic!("{slider:?}")
     };
     assert_eq!(value, g.standard[0]);
@@ -179,4 +184,96 @@ fn nubmp_sliders_set_one_parameter_with_the_last_member_absorbing() {
     e.finish();
     assert_eq!(e.scene(), &standard);
     assert_eq!(e.history_len(), history);
+}
+
+#[test]
+fn nubmp_sliders_carry_their_vd_band_and_groups_say_when_they_leave_it() {
+    let pts: Vec<DVec3> = (0..7)
+        .map(|i| DVec3::new(f64::from(i), f64::from(i % 2), 0.0))
+        .collect();
+    let knots = vec![0., 0., 0., 0., 0.3, 0.5, 0.89, 1., 1., 1., 1.];
+    let n = Nubmp::try_new(pts, knots, 4).unwrap();
+    let curve = Curve::Nubmp(n.clone());
+    // Every parameter of an order 4 curve has a band; the standard curve is variation
+    // diminishing: its values lie in their bands, inside the sliders' ranges.
+    let mut narrow = None;
+    for c in curve.controls() {
+        let ControlKind::Number {
+            value,
+            range,
+            bands,
+        } = c.kind
+        else {
+            continue;
+        };
+        let [(lo, hi)] = bands[..] else {
+            panic!("{}: one VD band on the standard curve: {bands:?}", c.label)
+        };
+        assert!(
+            lo <= value && value <= hi,
+            "{}: {lo} ≤ {value} ≤ {hi}",
+            c.label
+        );
+        assert!(range.0 <= lo && hi <= range.1, "{bands:?} in {range:?}");
+        assert!(!c.hint.unwrap().starts_with("outside"));
+        if hi < range.1 - 1e-9 && narrow.is_none() {
+            narrow = Some((c.label, range, hi));
+        }
+    }
+    let (label, range, hi) = narrow.expect("a band that ends inside its slider");
+    let notes = |c: &Curve| -> Vec<(String, bool)> {
+        c.controls()
+            .into_iter()
+            .filter_map(|c| match c.kind {
+                ControlKind::Note { warning } => Some((c.label, warning)),
+                _ => None,
+            })
+            .collect()
+    };
+    let standard = notes(&curve);
+    assert!(standard.iter().all(|(_, w)| !w), "{standard:?}");
+    assert!(
+        standard
+            .iter()
+            .any(|(l, _)| l.contains("variation diminishing")),
+        "{standard:?}"
+    );
+    // At the band's upper end some Theorem 1 value reaches 1; beyond it one exceeds 1,
+    // a group says it is outside the range and the slider's hint says so.
+    let mut e = Editor::new(Scene::of_curves(vec![curve]), None);
+    let at = |e: &mut Editor, v: f64| {
+        let s = control(&e.scene().curves[0].curve, &label);
+        e.apply_control(0, &s, ControlValue::Number(v));
+        e.finish();
+        let Curve::Nubmp(now) = e.scene().curves[0].curve.clone() else {
+            panic!()
+        };
+        now
+    };
+    let edge = at(&mut e, hi);
+    let worst = |m: &Nubmp| {
+        (0..m.groups().len())
+            .filter_map(|j| m.vd_value(j))
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    assert!((worst(&edge) - 1.0).abs() < 1e-6, "{}", worst(&edge));
+    let beyond = at(&mut e, (hi + range.1) / 2.0);
+    assert!(worst(&beyond) > 1.0);
+    let c = Curve::Nubmp(beyond);
+    assert!(
+        notes(&c)
+            .iter()
+            .any(|(l, w)| *w && l.contains("outside the variation-diminishing range"))
+    );
+    let s = control(&c, &label);
+    let hint = s.hint.clone().unwrap();
+    assert!(hint.starts_with("outside its VD range"), "{hint}");
+    // The band is the same whatever the current value (the slider keeps showing it).
+    let ControlKind::Number { bands, .. } = s.kind else {
+        panic!("{s:?}")
+    };
+    assert!(
+        bands.iter().any(|&(_, h)| (h - hi).abs() < 1e-12),
+        "{bands:?} {hi}"
+    );
 }

@@ -193,7 +193,7 @@ pub(crate) fn panel(
             ));
             if info.capped {
                 ui.colored_label(
-                    egui::Color32::from_rgb(200, 40, 40),
+                    WARNING,
                     "sample buffer full: curves drawn coarser than the tolerance",
                 );
             }
@@ -412,14 +412,18 @@ fn control_widget(
     match &control.kind {
         ControlKind::Note { warning } => {
             let color = if *warning {
-                egui::Color32::from_rgb(200, 40, 40)
+                WARNING
             } else {
                 ui.visuals().text_color()
             };
             ui.colored_label(color, &control.label);
             None
         }
-        ControlKind::Number { value, range } => {
+        ControlKind::Number {
+            value,
+            range,
+            bands,
+        } => {
             let mut v = *value;
             // Typed values are not clamped and only given once complete (Enter or focus
             // lost): the family accepts or refuses them whole, with a message.
@@ -428,13 +432,22 @@ fn control_widget(
                 .update_while_editing(false)
                 .text(&control.label);
             if !hint.is_empty() {
-                ui.small(hint);
+                let outside = !bands.is_empty()
+                    && !bands.iter().any(|&(lo, hi)| lo <= *value && *value <= hi);
+                if outside {
+                    ui.colored_label(WARNING, egui::RichText::new(hint).small());
+                } else {
+                    ui.small(hint);
+                }
             }
             let response = ui.add(slider).on_hover_text(if hint.is_empty() {
                 "drag, or double-click the number to type a value"
             } else {
                 hint
             });
+            for band in bands {
+                paint_band(ui, &response, *range, *band);
+            }
             response
                 .changed()
                 .then_some((ControlValue::Number(v), !response.dragged()))
@@ -467,6 +480,35 @@ fn control_widget(
             .clicked()
             .then_some((ControlValue::Press, true)),
     }
+}
+
+/// The colour of warnings (a group outside its variation-diminishing range).
+const WARNING: egui::Color32 = egui::Color32::from_rgb(200, 40, 40);
+
+/// Marks `band` (a part of the slider's `range`) as a green strip under the slider's
+/// rail, where the handle's centre would stand at the band's ends.
+fn paint_band(ui: &egui::Ui, response: &egui::Response, range: (f64, f64), band: (f64, f64)) {
+    let (lo, hi) = range;
+    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
+        return;
+    }
+    // The slider's own rect starts the response (the value field and the label follow);
+    // its handle's centre runs over the rect's width less a handle radius at each end.
+    let height = ui.spacing().interact_size.y;
+    let width = ui.spacing().slider_width;
+    let left = response.rect.left();
+    let radius = height / 2.5;
+    let x = |v: f64| {
+        let f = ((v - lo) / (hi - lo)).clamp(0.0, 1.0) as f32;
+        left + radius + f * (width - 2.0 * radius)
+    };
+    let bottom = response.rect.top() + height;
+    let strip = egui::Rect::from_min_max(
+        egui::pos2(x(band.0), bottom - 3.0),
+        egui::pos2(x(band.1).max(x(band.0) + 1.0), bottom - 1.0),
+    );
+    ui.painter()
+        .rect_filled(strip, 1.0, egui::Color32::from_rgb(40, 170, 70));
 }
 
 /// A row of drag values for a vector (no z field in a planar scene); whether it

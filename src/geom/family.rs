@@ -156,6 +156,9 @@ pub enum ControlKind {
         value: f64,
         /// The slider's range.
         range: (f64, f64),
+        /// The bands of values with a wanted property (a NUBMP parameter's
+        /// variation-diminishing ranges), drawn on the slider; empty when there are none.
+        bands: Vec<(f64, f64)>,
     },
     /// A vector.
     Vector {

@@ -359,6 +359,7 @@ impl Family for CubicInterpolation {
                 kind: ControlKind::Number {
                     value: m.t_star,
                     range: (0.01, 0.99),
+                    bands: Vec::new(),
                 },
             });
             out.push(Control {

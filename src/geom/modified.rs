@@ -262,6 +262,7 @@ impl Family for ModifiedBezier {
                 kind: ControlKind::Number {
                     value: self.t_star,
                     range: (0.01, 0.99),
+                    bands: Vec::new(),
                 },
             },
             Control {

@@ -82,6 +82,14 @@ pub struct PermissibleRange {
     pub max: f64,
 }
 
+/// The pieces of one parameter's range between the points where a Theorem 1 condition
+/// can change truth ([`Nubmp::vd_scan`]).
+struct VdScan {
+    cuts: Vec<f64>,
+    point_ok: Vec<bool>,
+    gap_ok: Vec<bool>,
+}
+
 impl Nubmp {
     /// The standard NUBMP curve (all `a = c`) on `points`, `knots` and `order`.
     ///
@@ -482,6 +490,74 @@ impl Nubmp {
         i: usize,
         absorber: usize,
     ) -> Result<Option<PermissibleRange>, GeomError> {
+        let current = self.groups.get(j).and_then(|g| g.value(i)).unwrap_or(0.0);
+        let Some(scan) = self.vd_scan(j, i, absorber, Some(current))? else {
+            return Ok(None);
+        };
+        let at = scan.cuts.iter().position(|&c| c == current).unwrap_or(0);
+        if !scan.point_ok[at] {
+            return Ok(None);
+        }
+        let mut lo = at;
+        while lo > 0 && scan.gap_ok[lo - 1] && scan.point_ok[lo - 1] {
+            lo -= 1;
+        }
+        let mut hi = at;
+        while hi + 1 < scan.cuts.len() && scan.gap_ok[hi] && scan.point_ok[hi + 1] {
+            hi += 1;
+        }
+        Ok(Some(PermissibleRange {
+            min: scan.cuts[lo],
+            max: scan.cuts[hi],
+        }))
+    }
+
+    /// Every interval of values of `a^i_j` (with `a^absorber_j` absorbing the change, as
+    /// in [`Nubmp::permissible_range`]) that keeps the conditions of 001's Theorem 1,
+    /// whatever the parameter's current value: the bands a slider shows. Empty for
+    /// orders other than 4.
+    ///
+    /// # Errors
+    /// [`GeomError`] when a member is not in the group or the two are the same.
+    pub fn vd_bands(
+        &self,
+        j: usize,
+        i: usize,
+        absorber: usize,
+    ) -> Result<Vec<PermissibleRange>, GeomError> {
+        let Some(scan) = self.vd_scan(j, i, absorber, None)? else {
+            return Ok(Vec::new());
+        };
+        let mut out: Vec<PermissibleRange> = Vec::new();
+        let mut run: Option<usize> = None;
+        for k in 0..scan.cuts.len() {
+            if !scan.point_ok[k] {
+                run = None;
+                continue;
+            }
+            let start = *run.get_or_insert(k);
+            let continues = k + 1 < scan.cuts.len() && scan.gap_ok[k] && scan.point_ok[k + 1];
+            if !continues {
+                out.push(PermissibleRange {
+                    min: scan.cuts[start],
+                    max: scan.cuts[k],
+                });
+                run = None;
+            }
+        }
+        Ok(out)
+    }
+
+    /// The points where a Theorem 1 condition involving `a^i_j` can change truth (plus
+    /// `extra`), sorted in `[0, a^i_j + a^absorber_j]`, and whether the conditions hold at
+    /// each point and in each gap between neighbours. `None` for orders other than 4.
+    fn vd_scan(
+        &self,
+        j: usize,
+        i: usize,
+        absorber: usize,
+        extra: Option<f64>,
+    ) -> Result<Option<VdScan>, GeomError> {
         let pi = self.member_position(j, i)?;
         let pa = self.member_position(j, absorber)?;
         if pi == pa {
@@ -492,7 +568,6 @@ impl Nubmp {
         }
         let g = &self.groups[j];
         let pair = g.values[pi] + g.values[pa];
-        let current = g.values[pi];
         let value_at = |s: f64| {
             move |grp: usize, mem: usize| -> Option<f64> {
                 if grp == j && mem == i {
@@ -519,9 +594,6 @@ impl Nubmp {
                 terms_at(h, s).is_some_and(|[a, b, c, d]| ratio(a, b) + ratio(c, d) <= 1.0 + 1e-12)
             })
         };
-        if !holds(current) {
-            return Ok(None);
-        }
         let mut cuts = vec![0.0, pair];
         for &h in &involved {
             let q = |s: f64| {
@@ -545,21 +617,18 @@ impl Nubmp {
             }
         }
         cuts.retain(|&c| (0.0..=pair).contains(&c));
-        cuts.push(current);
+        cuts.extend(extra);
         cuts.sort_by(f64::total_cmp);
         cuts.dedup();
-        let at = cuts.iter().position(|&c| c == current).unwrap_or(0);
-        let mut lo = at;
-        while lo > 0 && holds(0.5 * (cuts[lo - 1] + cuts[lo])) && holds(cuts[lo - 1]) {
-            lo -= 1;
-        }
-        let mut hi = at;
-        while hi + 1 < cuts.len() && holds(0.5 * (cuts[hi] + cuts[hi + 1])) && holds(cuts[hi + 1]) {
-            hi += 1;
-        }
-        Ok(Some(PermissibleRange {
-            min: cuts[lo],
-            max: cuts[hi],
+        let point_ok = cuts.iter().map(|&c| holds(c)).collect();
+        let gap_ok = cuts
+            .windows(2)
+            .map(|w| holds(0.5 * (w[0] + w[1])))
+            .collect();
+        Ok(Some(VdScan {
+            cuts,
+            point_ok,
+            gap_ok,
         }))
     }
 
@@ -722,7 +791,12 @@ impl Family for Nubmp {
             let vd = self.vd_value(j);
             out.push(Control::note(
                 match vd {
-                    Some(v) => format!("A_{j}: Theorem 1 value {v:.3}"),
+                    Some(v) if v > 1.0 => format!(
+                        "A_{j}: outside the variation-diminishing range (Theorem 1 value {v:.3} > 1)"
+                    ),
+                    Some(v) => format!(
+                        "A_{j}: variation diminishing (Theorem 1 value {v:.3} ≤ 1)"
+                    ),
                     None => format!("A_{j}"),
                 },
                 vd.is_some_and(|v| v > 1.0),
@@ -732,12 +806,24 @@ impl Family for Nubmp {
                 let (Some(a), Some(b)) = (g.value(i), g.value(last)) else {
                     continue;
                 };
-                let hint = match self.permissible_range(j, i, last) {
-                    Ok(Some(r)) => format!(
-                        "VD range [{:.4}, {:.4}] (a^{last}_{j} absorbs)",
-                        r.min, r.max
-                    ),
-                    _ => format!("a^{last}_{j} absorbs"),
+                let bands: Vec<(f64, f64)> = self
+                    .vd_bands(j, i, last)
+                    .unwrap_or_default()
+                    .into_iter()
+                    .map(|r| (r.min, r.max))
+                    .collect();
+                let listed = bands
+                    .iter()
+                    .map(|(lo, hi)| format!("[{lo:.4}, {hi:.4}]"))
+                    .collect::<Vec<_>>()
+                    .join(" ∪ ");
+                let inside = bands.iter().any(|&(lo, hi)| lo <= a && a <= hi);
+                let hint = if bands.is_empty() {
+                    format!("a^{last}_{j} absorbs")
+                } else if inside {
+                    format!("VD range {listed} (a^{last}_{j} absorbs)")
+                } else {
+                    format!("outside its VD range {listed} (a^{last}_{j} absorbs)")
                 };
                 out.push(Control {
                     id: ControlId {
@@ -749,6 +835,7 @@ impl Family for Nubmp {
                     kind: ControlKind::Number {
                         value: a,
                         range: (0.0, a + b),
+                        bands,
                     },
                 });
             }
