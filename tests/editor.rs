@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use glam::{DVec2, DVec3};
 use splinescope::app::edit::{Editor, Hit, recovery_path};
 use splinescope::app::interaction::{
-    Answer, Button, Input, Interaction, Key, Prompt, Response, Template,
+    Answer, Button, Input, Interaction, Key, Pending, Prompt, Response, Template,
 };
 use splinescope::geom::{BSpline, Bezier, Curve, Nubmp, ParamCurve};
 use splinescope::scene::{Scene, to_json_string};
@@ -135,7 +135,12 @@ fn closing_with_unsaved_changes_asks_save_discard_or_cancel() {
         m.editor.title()
     );
     assert!(!m.request_close().exit);
-    assert_eq!(m.prompt, Some(Prompt::Close));
+    assert_eq!(
+        m.prompt,
+        Some(Prompt::Unsaved {
+            then: Pending::Close
+        })
+    );
     // While asking, clicks and keys edit nothing.
     m.handle(Input::Pressed(Button::Primary));
     m.handle(Input::Released);

@@ -145,6 +145,12 @@ impl Editor {
         }
     }
 
+    /// Marks every curve as new for [`Editor::take_changed`]: this editor replaces
+    /// another (a file opened, a new scene), so everything shown must be rebuilt.
+    pub fn mark_replaced(&mut self) {
+        self.list_changed = true;
+    }
+
     /// The scene as edited so far.
     #[must_use]
     pub fn scene(&self) -> &Scene {

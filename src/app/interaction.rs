@@ -2,11 +2,12 @@
 //! the camera, the edited scene and the panel's switches change. The window layer only
 //! translates winit events into [`Input`]; tests drive this model directly.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use glam::{DVec2, DVec3};
 
 use super::edit::{Editor, Hit};
+use super::files::{DialogMode, FileDialog, RecentFiles};
 use crate::camera::Camera;
 use crate::scene::{Scene, SceneCurve, Style};
 
@@ -55,11 +56,33 @@ pub enum Key {
     Help,
 }
 
+/// What replaces or ends the edited scene, and so asks first when it has unsaved
+/// changes ([`Interaction::request`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Pending {
+    /// Close the window.
+    Close,
+    /// Open this scene file in place of the edited one.
+    Open(PathBuf),
+    /// Start a new, empty scene.
+    New,
+}
+
 /// A question the viewer is asking; nothing else is edited until it is answered.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Prompt {
-    /// The window is closing with unsaved changes: save, discard or cancel?
-    Close,
+    /// The scene has unsaved changes and is about to be closed or replaced: save,
+    /// discard or cancel?
+    Unsaved {
+        /// What happens once the changes are saved or discarded.
+        then: Pending,
+    },
+    /// Something the user asked for failed (a file that does not load); the edited scene
+    /// is as it was. Any answer closes it.
+    Failed {
+        /// What failed and why.
+        message: String,
+    },
     /// A recovery file holds unsaved edits of this file from an earlier session.
     Recovery {
         /// The recovery file.
@@ -72,13 +95,14 @@ pub enum Prompt {
 /// An answer to a [`Prompt`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Answer {
-    /// Close: save, then close. Recovery: restore the edits.
+    /// Unsaved: save, then go on (a scene without a file asks where first). Recovery:
+    /// restore the edits.
     Accept,
-    /// Close: close without saving (the recovery file is removed). Recovery: delete
+    /// Unsaved: go on without saving (the recovery file is removed). Recovery: delete
     /// the recovery file.
     Discard,
-    /// Keep going as before (Close: the window stays open; Recovery: keep the file for
-    /// later and open the scene as saved).
+    /// Keep going as before (Unsaved: nothing is closed or replaced; Recovery: keep the
+    /// file for later and open the scene as saved).
     Cancel,
 }
 
@@ -223,6 +247,15 @@ pub struct Interaction {
     pub context_menu: Option<DVec2>,
     /// The window should close (a prompt was answered that way).
     pub exit_requested: bool,
+    /// The open file dialog, if any (open, save as).
+    pub dialog: Option<FileDialog>,
+    /// The recently opened and saved files.
+    pub recent: RecentFiles,
+    /// What to do once the save-as dialog has saved (a close or a replacement that
+    /// asked to save a scene without a file first).
+    after_save: Option<Pending>,
+    /// The directory of the file edited before this scene replaced it.
+    last_dir: Option<PathBuf>,
     cursor: DVec2,
     dragging: Option<Button>,
     /// Where the secondary button went down (a click opens the context menu, a drag pans).
@@ -254,6 +287,10 @@ impl Interaction {
             hovered: None,
             context_menu: None,
             exit_requested: false,
+            dialog: None,
+            recent: RecentFiles::default(),
+            after_save: None,
+            last_dir: None,
             cursor: DVec2::ZERO,
             dragging: None,
             secondary_from: None,
@@ -288,13 +325,176 @@ impl Interaction {
     /// The window is asked to close: closes at once when nothing is unsaved (or editing
     /// is off), otherwise asks (save / discard / cancel).
     pub fn request_close(&mut self) -> Response {
+        self.request(Pending::Close)
+    }
+
+    /// Closes or replaces the scene: at once when nothing is unsaved (or editing is off),
+    /// otherwise after asking (save / discard / cancel).
+    pub fn request(&mut self, action: Pending) -> Response {
         self.cancel_gesture();
-        if !self.editable || !self.editor.is_dirty() {
-            self.exit_requested = true;
-            return Response { exit: true };
+        if !self.editable && action != Pending::Close {
+            self.editor.message = Some("files cannot be opened while solving".into());
+            return Response::default();
         }
-        self.prompt = Some(Prompt::Close);
+        if !self.editable || !self.editor.is_dirty() {
+            return self.carry_out(action, false);
+        }
+        self.prompt = Some(Prompt::Unsaved { then: action });
         Response::default()
+    }
+
+    /// Does what was asked, without asking. With `discard`, the unsaved edits' recovery
+    /// file is removed once the scene is really closed or replaced (a file that fails to
+    /// load keeps both the edits and their recovery file).
+    fn carry_out(&mut self, action: Pending, discard: bool) -> Response {
+        match action {
+            Pending::Close => {
+                if discard {
+                    self.editor.discard_recovery();
+                }
+                self.exit_requested = true;
+                return Response { exit: true };
+            }
+            Pending::Open(path) => self.load(&path, discard),
+            Pending::New => {
+                if discard {
+                    self.editor.discard_recovery();
+                }
+                self.replace_editor(Editor::new(Scene::of_curves([]), None));
+                self.editor.message = Some(
+                    "new scene: right-click the canvas or use add curve… to add curves".into(),
+                );
+            }
+        }
+        Response::default()
+    }
+
+    /// Loads `path` in place of the edited scene; a file that does not load leaves the
+    /// scene as it was and says why in a prompt.
+    fn load(&mut self, path: &Path, discard: bool) {
+        match Scene::load(path) {
+            Ok(scene) => {
+                if discard {
+                    self.editor.discard_recovery();
+                }
+                self.replace_editor(Editor::new(scene, Some(path.to_path_buf())));
+                self.editor.message = Some(format!("opened {}", path.display()));
+                self.remember(path);
+                self.offer_recovery();
+            }
+            Err(e) => {
+                self.prompt = Some(Prompt::Failed {
+                    message: format!(
+                        "{} was not opened: {e}. The scene shown is unchanged.",
+                        path.display()
+                    ),
+                });
+            }
+        }
+    }
+
+    /// Puts `path` first among the recent files (a list that cannot be kept says so).
+    fn remember(&mut self, path: &Path) {
+        if let Err(e) = self.recent.add(path) {
+            self.editor.message = Some(e);
+        }
+    }
+
+    /// Shows `editor`'s scene instead of the current one: camera, selection, hover and
+    /// menus start afresh; the window redraws everything.
+    fn replace_editor(&mut self, mut editor: Editor) {
+        if let Some(dir) = self.editor.path().and_then(Path::parent) {
+            self.last_dir = Some(dir.to_path_buf());
+        }
+        editor.mark_replaced();
+        self.editor = editor;
+        self.hovered = None;
+        self.context_menu = None;
+        self.dialog = None;
+        self.camera = self.editor.scene().camera(self.viewport);
+        self.auto_fit = self.editor.scene().view == crate::scene::ViewSpec::Auto;
+        if self.auto_fit {
+            self.fit();
+        }
+    }
+
+    /// Opens the scene file at `path` (a dropped file, a recent one), asking first when
+    /// the scene has unsaved changes.
+    pub fn open_path(&mut self, path: &Path) -> Response {
+        self.request(Pending::Open(path.to_path_buf()))
+    }
+
+    /// The directory the file dialogs start in: the edited file's, else the one of the
+    /// file edited before (a new scene), else the current one.
+    fn dialog_dir(&self) -> PathBuf {
+        self.editor
+            .path()
+            .and_then(Path::parent)
+            .or(self.last_dir.as_deref())
+            .filter(|d| !d.as_os_str().is_empty())
+            .map_or_else(
+                || std::env::current_dir().unwrap_or_else(|_| PathBuf::from(".")),
+                Path::to_path_buf,
+            )
+    }
+
+    /// Shows the open dialog (Ctrl+O).
+    pub fn open_dialog(&mut self) {
+        self.cancel_gesture();
+        self.dialog = Some(FileDialog::new(DialogMode::Open, &self.dialog_dir(), ""));
+    }
+
+    /// Shows the save-as dialog (Ctrl+Shift+S), proposing the file's name.
+    pub fn save_as_dialog(&mut self) {
+        self.cancel_gesture();
+        let name = self
+            .editor
+            .path()
+            .and_then(Path::file_name)
+            .map_or_else(|| "scene.json".into(), |n| n.to_string_lossy().into_owned());
+        self.dialog = Some(FileDialog::new(
+            DialogMode::SaveAs,
+            &self.dialog_dir(),
+            &name,
+        ));
+    }
+
+    /// Closes the file dialog without choosing (what was waiting for a save is dropped).
+    pub fn cancel_dialog(&mut self) {
+        self.dialog = None;
+        self.after_save = None;
+    }
+
+    /// Confirms the file dialog's choice: opens the file (asking first when there are
+    /// unsaved changes) or saves to it, then does what waited for the save. A choice
+    /// that cannot be used keeps the dialog open with the reason.
+    pub fn confirm_dialog(&mut self) -> Response {
+        let Some(dialog) = self.dialog.as_mut() else {
+            return Response::default();
+        };
+        let Some(path) = dialog.confirm() else {
+            return Response::default();
+        };
+        match dialog.mode {
+            DialogMode::Open => {
+                self.dialog = None;
+                self.open_path(&path)
+            }
+            DialogMode::SaveAs => match self.editor.save(Some(&path)) {
+                Ok(saved) => {
+                    self.dialog = None;
+                    self.remember(&saved);
+                    match self.after_save.take() {
+                        Some(then) => self.carry_out(then, false),
+                        None => Response::default(),
+                    }
+                }
+                Err(e) => {
+                    dialog.error = Some(e);
+                    Response::default()
+                }
+            },
+        }
     }
 
     /// Answers the open prompt.
@@ -303,18 +503,21 @@ impl Interaction {
             return Response::default();
         };
         match (prompt, answer) {
-            (Prompt::Close, Answer::Accept) => {
-                self.save();
-                if self.editor.is_dirty() {
-                    // The save failed (its message says why): stay open.
+            (Prompt::Unsaved { then }, Answer::Accept) => {
+                if self.editor.path().is_none() {
+                    // Where to? The dialog saves, then goes on.
+                    self.save_as_dialog();
+                    self.after_save = Some(then);
                     return Response::default();
                 }
-                self.exit_requested = true;
+                self.save();
+                if self.editor.is_dirty() {
+                    // The save failed (its message says why): nothing is closed.
+                    return Response::default();
+                }
+                return self.carry_out(then, false);
             }
-            (Prompt::Close, Answer::Discard) => {
-                self.editor.discard_recovery();
-                self.exit_requested = true;
-            }
+            (Prompt::Unsaved { then }, Answer::Discard) => return self.carry_out(then, true),
             (Prompt::Recovery { scene, .. }, Answer::Accept) => self.editor.restore(&scene),
             (Prompt::Recovery { path, .. }, Answer::Discard) => {
                 self.editor.discard_recovery();
@@ -326,7 +529,7 @@ impl Interaction {
                     path.display()
                 ));
             }
-            (Prompt::Close, Answer::Cancel) => {}
+            (Prompt::Unsaved { .. } | Prompt::Failed { .. }, _) => {}
         }
         Response {
             exit: self.exit_requested,
@@ -444,6 +647,18 @@ impl Interaction {
     }
 
     fn handle_input(&mut self, input: Input) -> Response {
+        if self.dialog.is_some() && self.prompt.is_none() {
+            if let Input::Key {
+                key: Key::Escape, ..
+            } = input
+            {
+                self.cancel_dialog();
+                return Response::default();
+            }
+            if matches!(input, Input::Pressed(_) | Input::Key { .. }) {
+                return Response::default();
+            }
+        }
         if self.prompt.is_some() {
             if let Input::Key {
                 key: Key::Escape, ..
@@ -542,7 +757,10 @@ impl Interaction {
             'z' | 'y' if ctrl => {
                 self.editor.redo();
             }
+            's' if ctrl && shift => self.save_as_dialog(),
             's' if ctrl => self.save(),
+            'o' if ctrl => self.open_dialog(),
+            'n' if ctrl => return self.request(Pending::New),
             'f' => {
                 self.auto_fit = true;
                 self.fit();
@@ -558,10 +776,16 @@ impl Interaction {
         Response::default()
     }
 
-    /// Saves to the editor's file; a failure is shown as the editor's message.
+    /// Saves to the editor's file (a scene without one asks where, in the save-as
+    /// dialog); a failure is shown as the editor's message.
     pub fn save(&mut self) {
-        if let Err(message) = self.editor.save(None) {
-            self.editor.message = Some(message);
+        if self.editor.path().is_none() {
+            self.save_as_dialog();
+            return;
+        }
+        match self.editor.save(None) {
+            Ok(path) => self.remember(&path),
+            Err(message) => self.editor.message = Some(message),
         }
     }
 

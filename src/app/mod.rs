@@ -20,6 +20,7 @@
 
 pub mod edit;
 mod egui_layer;
+pub mod files;
 pub mod interaction;
 mod readback;
 mod scene_view;
@@ -259,6 +260,10 @@ impl ApplicationHandler for App {
                 self.redraw(event_loop);
                 return;
             }
+            WindowEvent::DroppedFile(path) => {
+                r.model.open_path(&path);
+                return;
+            }
             WindowEvent::ModifiersChanged(m) => {
                 r.modifiers = m.state();
                 return;
@@ -356,6 +361,13 @@ impl Running {
             ui::PANEL_WIDTH_POINTS,
         );
         model.editable = stress.is_none();
+        model.recent = files::RecentFiles::load(files::RecentFiles::default_store());
+        if model.editable
+            && let Some(path) = opts.path.as_deref().filter(|p| p.is_file())
+            && let Err(e) = model.recent.add(path)
+        {
+            model.editor.message = Some(e);
+        }
         if model.editable {
             model.offer_recovery();
         }
@@ -502,6 +514,21 @@ impl Running {
         if let Some(answer) = actions.answer {
             model.answer(answer);
         }
+        match actions.file {
+            Some(ui::FileAction::New) => {
+                model.request(interaction::Pending::New);
+            }
+            Some(ui::FileAction::Open) => model.open_dialog(),
+            Some(ui::FileAction::SaveAs) => model.save_as_dialog(),
+            Some(ui::FileAction::OpenRecent(path)) => {
+                model.open_path(&path);
+            }
+            Some(ui::FileAction::ConfirmDialog) => {
+                model.confirm_dialog();
+            }
+            Some(ui::FileAction::CancelDialog) => model.cancel_dialog(),
+            None => {}
+        }
         if let Some(t) = actions.add {
             let center = model.camera.world_from_pixel(
                 glam::DVec2::new(
@@ -599,6 +626,11 @@ impl Running {
                 .run(&self.surface.window, &self.ctx, encoder, size, |ui| {
                     panel_width = ui::panel(ui, &info, model, &mut actions);
                     ui::canvas(ui, model, info.facts, &mut actions);
+                    if model.prompt.is_none()
+                        && let Some(dialog) = model.dialog.as_mut()
+                    {
+                        ui::file_dialog(ui.ctx(), dialog, &mut actions);
+                    }
                 });
         self.model.panel_width_px = f64::from(panel_width) * f64::from(pixels_per_point);
         let t = self.model.tolerance_px;

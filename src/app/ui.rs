@@ -10,7 +10,8 @@ use crate::geom::{Control, ControlKind, ControlValue, Lower, ParamCurve};
 use crate::scene::{Scene, SceneCurve};
 
 use super::edit::{Editor, Hit};
-use super::interaction::{Answer, Interaction, Prompt, Template};
+use super::files::{DialogMode, FileDialog};
+use super::interaction::{Answer, Interaction, Pending, Prompt, Template};
 
 /// The panel's default width in points.
 pub(crate) const PANEL_WIDTH_POINTS: f64 = 260.0;
@@ -119,6 +120,19 @@ pub(crate) struct Actions {
     pub add_at_menu: Option<Template>,
     /// The context menu's (or a panel button's) other entries.
     pub menu: Option<MenuItem>,
+    /// The file menu's entries and the file dialog's buttons.
+    pub file: Option<FileAction>,
+}
+
+/// What the file menu or the file dialog asked for.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) enum FileAction {
+    New,
+    Open,
+    SaveAs,
+    OpenRecent(std::path::PathBuf),
+    ConfirmDialog,
+    CancelDialog,
 }
 
 /// An entry of the canvas's context menu (some also panel buttons).
@@ -173,6 +187,7 @@ pub(crate) fn panel(
         tolerance_px,
         toggles,
         editor,
+        recent,
         ..
     } = model;
     if !toggles.show_panel {
@@ -246,6 +261,7 @@ pub(crate) fn panel(
             ui.small("F1 or ? lists every shortcut · H hides this panel");
             ui.separator();
             if editable {
+                file_row(ui, editor, &recent.paths, actions);
                 edit_section(ui, editor, actions, info.facts.planar);
                 ui.separator();
             }
@@ -275,6 +291,54 @@ pub(crate) fn panel(
     response.response.rect.width()
 }
 
+/// The file menu (new, open, recent, save, save as) and the file's name with `*` when
+/// it has unsaved changes.
+fn file_row(
+    ui: &mut egui::Ui,
+    editor: &Editor,
+    recent: &[std::path::PathBuf],
+    actions: &mut Actions,
+) {
+    ui.horizontal(|ui| {
+        ui.menu_button("file", |ui| {
+            let item = |ui: &mut egui::Ui, label: &str, keys: &str| {
+                ui.add(egui::Button::new(label).shortcut_text(keys))
+                    .clicked()
+            };
+            if item(ui, "new", "Ctrl+N") {
+                actions.file = Some(FileAction::New);
+            }
+            if item(ui, "open…", "Ctrl+O") {
+                actions.file = Some(FileAction::Open);
+            }
+            ui.menu_button("open recent", |ui| {
+                if recent.is_empty() {
+                    ui.small("no recent files");
+                }
+                for path in recent {
+                    if ui.button(path.display().to_string()).clicked() {
+                        actions.file = Some(FileAction::OpenRecent(path.clone()));
+                    }
+                }
+            });
+            if item(ui, "save", "Ctrl+S") {
+                actions.save = true;
+            }
+            if item(ui, "save as…", "Ctrl+Shift+S") {
+                actions.file = Some(FileAction::SaveAs);
+            }
+        })
+        .response
+        .on_hover_text("new, open (also: drop a scene file on the window), recent, save, save as");
+        let name = editor
+            .path()
+            .map_or_else(|| "untitled".to_owned(), |p| p.display().to_string());
+        let star = if editor.is_dirty() { "*" } else { "" };
+        ui.label(format!("{name}{star}"))
+            .on_hover_text("the scene's file (* = unsaved changes)");
+    });
+}
+
 /// Undo/redo/save, adding curves, the selected curve with its points and its family's
 /// controls.
 fn edit_section(ui: &mut egui::Ui, editor: &mut Editor, actions: &mut Actions, planar: bool) {
@@ -293,17 +357,6 @@ fn edit_section(ui: &mut egui::Ui, editor: &mut Editor, actions: &mut Actions, p
             .clicked()
         {
             editor.redo();
-        }
-        let label = if editor.is_dirty() { "save*" } else { "save" };
-        let target = editor
-            .path()
-            .map_or_else(String::new, |p| p.display().to_string());
-        if ui
-            .button(label)
-            .on_hover_text(format!("Ctrl+S: write {target} (* = unsaved changes)"))
-            .clicked()
-        {
-            actions.save = true;
         }
         ui.menu_button("add curve…", |ui| {
             for t in Template::ALL {
@@ -564,10 +617,13 @@ pub(crate) const SHORTCUTS: &[(&str, &str)] = &[
     ("Ctrl+D", "duplicate the selected curve"),
     ("Ctrl+Z", "undo"),
     ("Ctrl+Shift+Z, Ctrl+Y", "redo"),
-    ("Ctrl+S", "save"),
+    ("Ctrl+S", "save (a new scene asks where)"),
+    ("Ctrl+Shift+S", "save as"),
+    ("Ctrl+O", "open a scene (or drop a file on the window)"),
+    ("Ctrl+N", "new, empty scene"),
     (
         "Esc",
-        "cancel the drag, the menu, this help or the selection (never quits)",
+        "cancel the drag, the menu, the dialog, this help or the selection (never quits)",
     ),
     (
         "Ctrl+Q, closing the window",
@@ -736,45 +792,155 @@ pub(crate) fn canvas(
             });
     }
     if let Some(prompt) = &model.prompt {
-        let (title, text, accept, discard) = match prompt {
-            Prompt::Close => (
+        prompt_modal(&ctx, model, prompt, actions);
+    }
+}
+
+/// The open question, as a modal window.
+fn prompt_modal(ctx: &egui::Context, model: &Interaction, prompt: &Prompt, actions: &mut Actions) {
+    let file = model
+        .editor
+        .path()
+        .map_or_else(|| "The scene".to_owned(), |p| p.display().to_string());
+    let (title, text, accept, discard) = match prompt {
+        Prompt::Unsaved { then } => {
+            let (before, accept, discard) = match then {
+                Pending::Close => (
+                    "closing".to_owned(),
+                    "save and close",
+                    "close without saving",
+                ),
+                Pending::Open(path) => (
+                    format!("opening {}", path.display()),
+                    "save, then open",
+                    "open without saving",
+                ),
+                Pending::New => (
+                    "starting a new scene".to_owned(),
+                    "save, then start anew",
+                    "start anew without saving",
+                ),
+            };
+            (
                 "unsaved changes",
-                format!(
-                    "{} has unsaved changes. Save them before closing?",
-                    model
-                        .editor
-                        .path()
-                        .map_or_else(|| "The scene".to_owned(), |p| p.display().to_string())
-                ),
-                "save and close",
-                "close without saving",
+                format!("{file} has unsaved changes. Save them before {before}?"),
+                Some(accept),
+                Some(discard),
+            )
+        }
+        Prompt::Recovery { path, .. } => (
+            "unsaved edits found",
+            format!(
+                "{} holds edits that were never saved (the viewer closed or was killed). Restore them?",
+                path.display()
             ),
-            Prompt::Recovery { path, .. } => (
-                "unsaved edits found",
-                format!(
-                    "{} holds edits that were never saved (the viewer closed or was killed). Restore them?",
-                    path.display()
-                ),
-                "restore",
-                "delete them",
-            ),
-        };
-        egui::Modal::new(egui::Id::unique("splinescope-prompt")).show(&ctx, |ui| {
-            ui.heading(title);
-            ui.label(text);
-            ui.horizontal(|ui| {
-                if ui.button(accept).clicked() {
-                    actions.answer = Some(Answer::Accept);
+            Some("restore"),
+            Some("delete them"),
+        ),
+        Prompt::Failed { message } => ("could not open the file", message.clone(), None, None),
+    };
+    egui::Modal::new(egui::Id::unique("splinescope-prompt")).show(ctx, |ui| {
+        ui.set_max_width(480.0);
+        ui.heading(title);
+        ui.label(text);
+        ui.horizontal(|ui| {
+            if let Some(accept) = accept
+                && ui.button(accept).clicked()
+            {
+                actions.answer = Some(Answer::Accept);
+            }
+            if let Some(discard) = discard
+                && ui.button(discard).clicked()
+            {
+                actions.answer = Some(Answer::Discard);
+            }
+            let cancel = if accept.is_some() { "cancel" } else { "OK" };
+            if ui.button(cancel).on_hover_text("Esc").clicked() {
+                actions.answer = Some(Answer::Cancel);
+            }
+        });
+    });
+}
+
+/// The open or save-as dialog (drawn in egui: no desktop portal needed). Clicking a
+/// directory enters it, clicking a file takes its name, double-clicking a file or
+/// pressing Enter in the name field confirms, Esc cancels.
+pub(crate) fn file_dialog(ctx: &egui::Context, dialog: &mut FileDialog, actions: &mut Actions) {
+    let (title, verb) = match dialog.mode {
+        DialogMode::Open => ("open a scene", "open"),
+        DialogMode::SaveAs => ("save the scene as", "save"),
+    };
+    egui::Modal::new(egui::Id::unique("splinescope-file-dialog")).show(ctx, |ui| {
+        ui.set_width(460.0);
+        ui.heading(title);
+        ui.horizontal(|ui| {
+            if ui
+                .button("up")
+                .on_hover_text("the parent directory")
+                .clicked()
+            {
+                dialog.up();
+            }
+            ui.label(dialog.dir.display().to_string());
+        });
+        let mut picked = None;
+        egui::ScrollArea::vertical()
+            .id_salt("files")
+            .max_height(260.0)
+            .auto_shrink([false, true])
+            .show(ui, |ui| {
+                if dialog.entries.is_empty() {
+                    ui.small("no scene files (.json) or directories here");
                 }
-                if ui.button(discard).clicked() {
-                    actions.answer = Some(Answer::Discard);
-                }
-                if ui.button("cancel").on_hover_text("Esc").clicked() {
-                    actions.answer = Some(Answer::Cancel);
+                for (i, entry) in dialog.entries.iter().enumerate() {
+                    let label = if entry.is_dir {
+                        format!("{}/", entry.name)
+                    } else {
+                        entry.name.clone()
+                    };
+                    let chosen = !entry.is_dir && entry.name == dialog.name;
+                    let row = ui.add(egui::Button::selectable(chosen, label));
+                    if row.clicked() {
+                        picked = Some((i, false));
+                    }
+                    if row.double_clicked() && !entry.is_dir {
+                        picked = Some((i, true));
+                    }
                 }
             });
+        if let Some((i, confirm)) = picked {
+            dialog.pick(i);
+            if confirm {
+                actions.file = Some(FileAction::ConfirmDialog);
+            }
+        }
+        ui.horizontal(|ui| {
+            ui.label("file");
+            let field = ui.add(
+                egui::TextEdit::singleline(&mut dialog.name)
+                    .desired_width(320.0)
+                    .hint_text("name.json, or a path"),
+            );
+            if std::mem::take(&mut dialog.focus_name) {
+                field.request_focus();
+            }
+            if field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter)) {
+                actions.file = Some(FileAction::ConfirmDialog);
+            }
         });
-    }
+        ui.add_space(2.0);
+        ui.colored_label(WARNING, dialog.error.clone().unwrap_or_default());
+        ui.horizontal(|ui| {
+            if ui.button(verb).on_hover_text("Enter").clicked() {
+                actions.file = Some(FileAction::ConfirmDialog);
+            }
+            if ui.button("cancel").on_hover_text("Esc").clicked()
+                || ui.input(|i| i.key_pressed(egui::Key::Escape))
+            {
+                actions.file = Some(FileAction::CancelDialog);
+            }
+        });
+    });
 }
 
 /// A point as the status line shows it (no z in planar scenes).
