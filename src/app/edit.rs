@@ -117,6 +117,9 @@ pub struct Editor {
     changed: Vec<usize>,
     list_changed: bool,
     path: Option<PathBuf>,
+    /// The text of the file the scene came from (or was last saved as): saving keeps
+    /// its form ([`crate::scene::to_json_string_keeping`]).
+    source: Option<String>,
     /// The selected curve, if any.
     pub selected: Option<usize>,
     /// The selected control point of the selected curve, if any.
@@ -126,10 +129,16 @@ pub struct Editor {
 }
 
 impl Editor {
-    /// An editor of `scene`, saving to `path` (`None`: the scene has no file yet).
+    /// An editor of `scene`, saving to `path` (`None`: the scene has no file yet). When
+    /// `path` holds `scene` (it was read from there), saving keeps the file's form.
     #[must_use]
     pub fn new(scene: Scene, path: Option<PathBuf>) -> Editor {
+        let source = path
+            .as_deref()
+            .and_then(|p| crate::limits::read_bounded(p).ok())
+            .filter(|text| crate::scene::from_json_str(text).is_ok_and(|s| s == scene));
         Editor {
+            source,
             scene,
             history: Vec::new(),
             undone: Vec::new(),
@@ -508,9 +517,14 @@ impl Editor {
             .map(Path::to_path_buf)
             .or_else(|| self.path.clone())
             .ok_or("no file to save to")?;
-        self.scene
-            .save(&path)
+        // Unchanged curves, styles and shorthands are written as the file had them.
+        let text = match &self.source {
+            Some(source) => crate::scene::to_json_string_keeping(&self.scene, source),
+            None => crate::scene::to_json_string(&self.scene),
+        };
+        crate::files::write_atomic(&path, text.as_bytes())
             .map_err(|e| format!("{}: cannot save: {e}", path.display()))?;
+        self.source = Some(text);
         if self.path.as_deref() != Some(path.as_path()) {
             self.discard_recovery();
         }

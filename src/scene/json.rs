@@ -199,7 +199,7 @@ fn decode_view(node: &Node<'_>) -> Result<ViewSpec, SceneError> {
     }
 }
 
-fn decode_curve(node: &Node<'_>, index: usize) -> Result<SceneCurve, SceneError> {
+pub(super) fn decode_curve(node: &Node<'_>, index: usize) -> Result<SceneCurve, SceneError> {
     let Value::Object(map) = node.value else {
         return Err(node.wrong_type("a curve object"));
     };
@@ -304,7 +304,7 @@ pub fn to_doc(scene: &Scene) -> SceneDoc {
     }
 }
 
-fn curve_doc(c: &SceneCurve) -> CurveDoc {
+pub(super) fn curve_doc(c: &SceneCurve) -> CurveDoc {
     let s = &c.style;
     CurveDoc {
         family: codec::encode(&c.curve),

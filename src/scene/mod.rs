@@ -10,6 +10,7 @@ pub mod draw;
 pub mod gallery;
 pub mod generate;
 mod json;
+mod preserve;
 
 use std::path::Path;
 
@@ -20,6 +21,7 @@ use crate::camera::{Camera, Camera2d, Camera3d};
 use crate::geom::{Aabb, Curve};
 
 pub use json::{from_json_str, pretty_json, to_doc, to_json_string};
+pub use preserve::to_json_string_keeping;
 
 /// The scene format version this build reads and writes.
 pub const FORMAT_VERSION: u32 = 1;
