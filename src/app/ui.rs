@@ -56,13 +56,23 @@ fn summarize_curve(i: usize, c: &SceneCurve) -> CurveSummary {
     let (a, b) = c.curve.domain();
     let [r, g, bl, _] = c.style.color.0.map(|v| (v * 255.0).round() as u8);
     CurveSummary {
-        label: format!("{i}: {}", c.name.as_deref().unwrap_or(c.curve.family())),
+        label: format!("{i}: {}", label(c)),
         details: format!(
             "{} · domain [{a}, {b}] · {} segment(s), degree ≤ {degree}",
             c.curve.family(),
             segments.len()
         ),
         color: egui::Color32::from_rgb(r, g, bl),
+    }
+}
+
+/// A curve's name (or family) with its shape parameters as they are now, so that the
+/// label never goes stale when they are edited.
+fn label(c: &SceneCurve) -> String {
+    let name = c.name.as_deref().unwrap_or(c.curve.family());
+    match c.curve.parameter_text() {
+        Some(p) => format!("{name} · {p}"),
+        None => name.to_owned(),
     }
 }
 
@@ -382,11 +392,7 @@ fn edit_section(ui: &mut egui::Ui, editor: &mut Editor, actions: &mut Actions, p
     let Some(sc) = editor.scene().curves.get(index).cloned() else {
         return;
     };
-    ui.label(format!(
-        "{index}: {} ({})",
-        sc.name.as_deref().unwrap_or("unnamed"),
-        sc.curve.family()
-    ));
+    ui.label(format!("{index}: {} ({})", label(&sc), sc.curve.family()));
     ui.small(sc.curve.summary());
     ui.horizontal(|ui| {
         if ui
@@ -979,6 +985,44 @@ mod tests {
             summaries[1].details.contains("1 segment(s), degree ≤ 1"),
             "{}",
             summaries[1].details
+        );
+    }
+
+    #[test]
+    fn labels_show_the_parameters_as_they_are_now() {
+        use crate::app::edit::Editor;
+        use crate::geom::{ControlValue, Nubmp};
+        let scene = crate::scene::gallery::gallery();
+        let i = scene
+            .curves
+            .iter()
+            .position(|c| matches!(c.curve, Curve::Modified(_)))
+            .unwrap();
+        let mut e = Editor::new(scene, None);
+        let label = |e: &Editor| summarize(e.scene())[i].label.clone();
+        assert!(label(&e).contains("t* = 0.3,"), "{}", label(&e));
+        let control = e.scene().curves[i]
+            .curve
+            .controls()
+            .into_iter()
+            .find(|c| c.label == "t*")
+            .unwrap();
+        e.apply_control(i, &control, ControlValue::Number(0.45));
+        e.finish();
+        let now = label(&e);
+        assert!(now.contains("t* = 0.45,") && !now.contains("0.3"), "{now}");
+        // A NUBMP label lists the parameters that differ from the standard curve's.
+        let pts: Vec<DVec3> = (0..7).map(|k| DVec3::new(f64::from(k), 0.0, 0.0)).collect();
+        let knots = vec![0., 0., 0., 0., 0.3, 0.5, 0.89, 1., 1., 1., 1.];
+        let mut n = Nubmp::try_new(pts, knots, 4).unwrap();
+        assert_eq!(Curve::Nubmp(n.clone()).parameter_text(), None);
+        let g = n.groups()[4].clone();
+        n.set_parameter(4, g.members[0], 0.2, *g.members.last().unwrap())
+            .unwrap();
+        let text = Curve::Nubmp(n).parameter_text().unwrap();
+        assert!(
+            text.contains(&format!("a^{}_4 = 0.2", g.members[0])),
+            "{text}"
         );
     }
 }

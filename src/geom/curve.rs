@@ -161,6 +161,12 @@ impl Curve {
         each_family!(self, c => c.summary())
     }
 
+    /// The shape parameters as they are now: [`Family::parameter_text`].
+    #[must_use]
+    pub fn parameter_text(&self) -> Option<String> {
+        each_family!(self, c => c.parameter_text())
+    }
+
     /// The family's derived data for `inspect`: [`Family::details`].
     ///
     /// # Errors

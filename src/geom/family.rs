@@ -60,6 +60,13 @@ pub trait Family: ParamCurve + Lower + Clone + std::fmt::Debug + Into<Curve> {
     /// One line describing the curve's structure for the panel ("degree 3", …).
     fn summary(&self) -> String;
 
+    /// The curve's shape parameters as they are now, for labels that must not go stale
+    /// when they are edited (`t* = 0.3, v = (1, 2)`; a NUBMP curve's parameters that
+    /// differ from the standard curve's). `None` for families without parameters.
+    fn parameter_text(&self) -> Option<String> {
+        None
+    }
+
     /// The family's derived data, as `inspect` reports it.
     ///
     /// # Errors
@@ -273,4 +280,33 @@ pub struct GroupAtTau {
     pub weight: f64,
     /// The vertices of the reachable region (segment, triangle, …).
     pub region: Vec<Xyz>,
+}
+
+/// A number for a label: at most four decimals, trailing zeros dropped (`0.3`, `1`,
+/// `0.1255`).
+#[must_use]
+pub fn short_number(x: f64) -> String {
+    let text = format!("{x:.4}");
+    let text = text.trim_end_matches('0').trim_end_matches('.');
+    if text == "-0" {
+        "0".into()
+    } else {
+        text.into()
+    }
+}
+
+/// `t* = …, v = (…)` for the bump families (no z for a planar `v`).
+pub(crate) fn bump_text(t_star: f64, v: DVec3) -> String {
+    let n = short_number;
+    if v.z == 0.0 {
+        format!("t* = {}, v = ({}, {})", n(t_star), n(v.x), n(v.y))
+    } else {
+        format!(
+            "t* = {}, v = ({}, {}, {})",
+            n(t_star),
+            n(v.x),
+            n(v.y),
+            n(v.z)
+        )
+    }
 }

@@ -316,6 +316,11 @@ impl Family for CubicInterpolation {
         format!("{} points, {kind}", self.points.len())
     }
 
+    fn parameter_text(&self) -> Option<String> {
+        self.modification
+            .map(|m| crate::geom::family::bump_text(m.t_star, m.v))
+    }
+
     fn details(&self) -> Result<InterpolationDetails, GeomError> {
         // Paper 002 §5: chord slopes C_i and the parabola weights α_i behind s_i.
         let (p, t) = (&self.points, &self.params);

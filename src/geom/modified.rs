@@ -240,6 +240,10 @@ impl Family for ModifiedBezier {
         format!("degree {}, t* = {}", self.base.degree(), self.t_star)
     }
 
+    fn parameter_text(&self) -> Option<String> {
+        Some(crate::geom::family::bump_text(self.t_star, self.v))
+    }
+
     fn details(&self) -> Result<ModifiedDetails, GeomError> {
         Ok(ModifiedDetails {
             degree: self.base.degree(),

@@ -749,6 +749,30 @@ impl Family for Nubmp {
         "knots"
     }
 
+    /// The parameters that differ from the standard curve's (the first three, then a
+    /// count); `None` for the standard curve.
+    fn parameter_text(&self) -> Option<String> {
+        let changed: Vec<String> = self
+            .groups
+            .iter()
+            .enumerate()
+            .flat_map(|(j, g)| {
+                g.members
+                    .iter()
+                    .zip(g.values.iter().zip(&g.standard))
+                    .filter(|(_, (a, c))| a != c)
+                    .map(move |(i, (a, _))| {
+                        format!("a^{i}_{j} = {}", crate::geom::family::short_number(*a))
+                    })
+            })
+            .collect();
+        match changed.len() {
+            0 => None,
+            n if n <= 3 => Some(changed.join(", ")),
+            n => Some(format!("{}, … ({n} changed)", changed[..3].join(", "))),
+        }
+    }
+
     fn summary(&self) -> String {
         format!(
             "order {}, {} groups, {} free parameters",
