@@ -28,6 +28,8 @@ mod stress;
 mod surface;
 mod timing;
 mod ui;
+#[cfg(test)]
+mod ui_tests;
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -504,61 +506,7 @@ impl Running {
 
     /// Carries out what the panel, the context menu and the prompt asked for this frame.
     fn apply_actions(&mut self, actions: ui::Actions) {
-        let model = &mut self.model;
-        if actions.fit {
-            model.auto_fit = true;
-        }
-        if actions.save {
-            model.save();
-        }
-        if let Some(answer) = actions.answer {
-            model.answer(answer);
-        }
-        match actions.file {
-            Some(ui::FileAction::New) => {
-                model.request(interaction::Pending::New);
-            }
-            Some(ui::FileAction::Open) => model.open_dialog(),
-            Some(ui::FileAction::SaveAs) => model.save_as_dialog(),
-            Some(ui::FileAction::OpenRecent(path)) => {
-                model.open_path(&path);
-            }
-            Some(ui::FileAction::ConfirmDialog) => {
-                model.confirm_dialog();
-            }
-            Some(ui::FileAction::CancelDialog) => model.cancel_dialog(),
-            None => {}
-        }
-        if let Some(t) = actions.add {
-            let center = model.camera.world_from_pixel(
-                glam::DVec2::new(
-                    0.5 * (model.viewport.x + model.panel_width_px),
-                    0.5 * model.viewport.y,
-                ),
-                model.viewport,
-            );
-            model.add_curve(t, center);
-        }
-        let menu_at = model.context_menu;
-        if let (Some(t), Some(at)) = (actions.add_at_menu, menu_at) {
-            let center = model.camera.world_from_pixel(at, model.viewport);
-            model.add_curve(t, center);
-            model.context_menu = None;
-        }
-        if let Some(item) = actions.menu {
-            match item {
-                ui::MenuItem::InsertPoint => {
-                    // At the point where the menu was opened.
-                    if let Some(at) = menu_at {
-                        model.handle(Input::PointerMoved(at));
-                    }
-                    model.insert_point_at_cursor();
-                }
-                ui::MenuItem::DeleteSelection => model.delete_selection(),
-                ui::MenuItem::Duplicate => model.duplicate_selected(),
-            }
-            model.context_menu = None;
-        }
+        ui::apply(&mut self.model, actions);
     }
 
     /// The figures `--stats` prints.
@@ -624,13 +572,7 @@ impl Running {
         let (frame, pixels_per_point) =
             self.egui
                 .run(&self.surface.window, &self.ctx, encoder, size, |ui| {
-                    panel_width = ui::panel(ui, &info, model, &mut actions);
-                    ui::canvas(ui, model, info.facts, &mut actions);
-                    if model.prompt.is_none()
-                        && let Some(dialog) = model.dialog.as_mut()
-                    {
-                        ui::file_dialog(ui.ctx(), dialog, &mut actions);
-                    }
+                    panel_width = ui::draw(ui, &info, model, &mut actions);
                 });
         self.model.panel_width_px = f64::from(panel_width) * f64::from(pixels_per_point);
         let t = self.model.tolerance_px;

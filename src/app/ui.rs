@@ -11,7 +11,7 @@ use crate::scene::{Scene, SceneCurve};
 
 use super::edit::{Editor, Hit};
 use super::files::{DialogMode, FileDialog};
-use super::interaction::{Answer, Interaction, Pending, Prompt, Template};
+use super::interaction::{Answer, Input, Interaction, Pending, Prompt, Template};
 
 /// The panel's default width in points.
 pub(crate) const PANEL_WIDTH_POINTS: f64 = 260.0;
@@ -347,6 +347,83 @@ fn file_row(
         ui.label(format!("{name}{star}"))
             .on_hover_text("the scene's file (* = unsaved changes)");
     });
+}
+
+/// Carries out what the panel, the context menu, the prompt and the file dialog asked
+/// for this frame.
+pub(crate) fn apply(model: &mut Interaction, actions: Actions) {
+    if actions.fit {
+        model.auto_fit = true;
+    }
+    if actions.save {
+        model.save();
+    }
+    if let Some(answer) = actions.answer {
+        model.answer(answer);
+    }
+    match actions.file {
+        Some(FileAction::New) => {
+            model.request(Pending::New);
+        }
+        Some(FileAction::Open) => model.open_dialog(),
+        Some(FileAction::SaveAs) => model.save_as_dialog(),
+        Some(FileAction::OpenRecent(path)) => {
+            model.open_path(&path);
+        }
+        Some(FileAction::ConfirmDialog) => {
+            model.confirm_dialog();
+        }
+        Some(FileAction::CancelDialog) => model.cancel_dialog(),
+        None => {}
+    }
+    if let Some(t) = actions.add {
+        let center = model.camera.world_from_pixel(
+            glam::DVec2::new(
+                0.5 * (model.viewport.x + model.panel_width_px),
+                0.5 * model.viewport.y,
+            ),
+            model.viewport,
+        );
+        model.add_curve(t, center);
+    }
+    let menu_at = model.context_menu;
+    if let (Some(t), Some(at)) = (actions.add_at_menu, menu_at) {
+        let center = model.camera.world_from_pixel(at, model.viewport);
+        model.add_curve(t, center);
+        model.context_menu = None;
+    }
+    if let Some(item) = actions.menu {
+        match item {
+            MenuItem::InsertPoint => {
+                // At the point where the menu was opened.
+                if let Some(at) = menu_at {
+                    model.handle(Input::PointerMoved(at));
+                }
+                model.insert_point_at_cursor();
+            }
+            MenuItem::DeleteSelection => model.delete_selection(),
+            MenuItem::Duplicate => model.duplicate_selected(),
+        }
+        model.context_menu = None;
+    }
+}
+
+/// The whole overlay of one frame: the side panel, the canvas's feedback, menus and
+/// prompt, and the file dialog. Returns the panel's width in points.
+pub(crate) fn draw(
+    ui: &mut egui::Ui,
+    info: &PanelInfo<'_>,
+    model: &mut Interaction,
+    actions: &mut Actions,
+) -> f32 {
+    let width = panel(ui, info, model, actions);
+    canvas(ui, model, info.facts, actions);
+    if model.prompt.is_none()
+        && let Some(dialog) = model.dialog.as_mut()
+    {
+        file_dialog(ui.ctx(), dialog, actions);
+    }
+    width
 }
 
 /// Undo/redo/save, adding curves, the selected curve with its points and its family's

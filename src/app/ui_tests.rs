@@ -1,0 +1,242 @@
+//! The panel, the canvas's menus and prompts and the file dialog driven headless through
+//! egui's test harness (`egui_kittest`, AccessKit queries): the widgets a user clicks and
+//! types into, with the same drawing ([`ui::draw`]) and the same handling of what they
+//! asked for ([`ui::apply`]) as the window. Expected values come from the scene before
+//! the input and the files the tests write.
+
+use std::path::PathBuf;
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use glam::{DVec2, DVec3};
+
+use super::edit::Editor;
+use super::interaction::{Interaction, Pending, Prompt};
+use super::ui::{self, Actions, CurveSummary, PanelInfo, SceneFacts};
+use crate::geom::{Bezier, Curve, ModifiedBezier};
+use crate::scene::Scene;
+
+/// What the window keeps between frames, for the harness.
+struct Viewer {
+    model: Interaction,
+    facts: SceneFacts,
+    summaries: Vec<CurveSummary>,
+}
+
+impl Viewer {
+    fn new(scene: Scene, path: Option<PathBuf>) -> Viewer {
+        let facts = SceneFacts::of(&scene);
+        let summaries = ui::summarize(&scene);
+        Viewer {
+            model: Interaction::new(
+                Editor::new(scene, path),
+                DVec2::new(1200.0, 800.0),
+                1.0,
+                ui::PANEL_WIDTH_POINTS,
+            ),
+            facts,
+            summaries,
+        }
+    }
+
+    /// One frame as the window runs it.
+    fn frame(&mut self, ui: &mut egui::Ui) {
+        let camera = self.model.camera;
+        let info = PanelInfo {
+            facts: &self.facts,
+            summaries: &self.summaries,
+            adapter: "test",
+            fps: 60.0,
+            samples_per_frame: 0,
+            capped: false,
+            stage_ms: None,
+            overlays_locked: None,
+            camera: &camera,
+            solving: None,
+        };
+        let mut actions = Actions::default();
+        ui::draw(ui, &info, &mut self.model, &mut actions);
+        ui::apply(&mut self.model, actions);
+        if !self.model.is_editing() && ui.input(|i| i.pointer.any_released()) {
+            self.model.editor.finish();
+        }
+        let changed = self.model.editor.take_changed();
+        if changed.list {
+            self.summaries = ui::summarize(self.model.scene());
+        } else {
+            ui::refresh(&mut self.summaries, self.model.scene(), &changed.curves);
+        }
+        if !changed.is_empty() {
+            self.facts = SceneFacts::of(self.model.scene());
+        }
+    }
+}
+
+fn harness(scene: Scene, path: Option<PathBuf>) -> Harness<'static, Viewer> {
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1200.0, 800.0))
+        .build_ui_state(|ui, v: &mut Viewer| v.frame(ui), Viewer::new(scene, path));
+    h.run();
+    h
+}
+
+fn cubic(y: f64) -> Curve {
+    Curve::Bezier(Bezier::new(vec![
+        DVec3::new(0.0, y, 0.0),
+        DVec3::new(1.0, y + 2.0, 0.0),
+        DVec3::new(3.0, y + 2.0, 0.0),
+        DVec3::new(4.0, y, 0.0),
+    ]))
+}
+
+fn modified() -> Curve {
+    let base = Bezier::new(vec![
+        DVec3::ZERO,
+        DVec3::new(1.0, 2.0, 0.0),
+        DVec3::new(3.0, 2.0, 0.0),
+        DVec3::new(4.0, 0.0, 0.0),
+    ]);
+    Curve::Modified(ModifiedBezier::try_new(base, 0.3, DVec3::new(0.0, 1.0, 0.0)).unwrap())
+}
+
+#[test]
+fn clicking_a_listed_curve_selects_it_and_duplicate_undo_redo_work_from_the_panel() {
+    let mut h = harness(Scene::of_curves([cubic(0.0), cubic(5.0)]), None);
+    assert_eq!(h.state().model.editor.selected, None);
+    h.get_by_label("1: bezier").click();
+    h.run();
+    assert_eq!(h.state().model.editor.selected, Some(1));
+    h.get_by_label("duplicate").click();
+    h.run();
+    let scene = h.state().model.scene().clone();
+    assert_eq!(scene.curves.len(), 3);
+    assert_eq!(scene.curves[2].curve.control_points().len(), 4);
+    // The list and the undo button follow.
+    h.get_by_label("2: bezier");
+    h.get_by_label("undo (1)").click();
+    h.run();
+    assert_eq!(h.state().model.scene().curves.len(), 2);
+    assert!(h.query_by_label("2: bezier").is_none());
+    h.get_by_label("redo (1)").click();
+    h.run();
+    assert_eq!(h.state().model.scene(), &scene);
+    // Delete from the panel, undone the same way.
+    h.get_by_label("2: bezier").click();
+    h.run();
+    h.get_by_label("delete curve").click();
+    h.run();
+    assert_eq!(h.state().model.scene().curves.len(), 2);
+    h.get_by_label("undo (2)").click();
+    h.run();
+    assert_eq!(h.state().model.scene(), &scene);
+}
+
+/// Types `text` into the number field whose current value reads `value`, then Enter.
+fn type_into(h: &mut Harness<'static, Viewer>, value: &str, text: &str) {
+    h.get_by_value(value).click();
+    h.run();
+    // The field being edited has the keyboard: select its text and type over it.
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.get_by_label("file").type_text(text);
+    h.run();
+    h.key_press(egui::Key::Enter);
+    h.run();
+}
+
+#[test]
+fn a_typed_parameter_is_one_edit_and_an_out_of_range_one_is_refused_whole() {
+    let mut h = harness(Scene::of_curves([modified()]), None);
+    h.get_by_label("0: modified_bezier · t* = 0.3, v = (0, 1)")
+        .click();
+    h.run();
+    type_into(&mut h, "0.30", "0.45");
+    let Curve::Modified(m) = &h.state().model.scene().curves[0].curve else {
+        panic!()
+    };
+    assert_eq!(m.t_star(), 0.45);
+    assert_eq!(h.state().model.editor.history_len(), (1, 0));
+    // The label follows the value.
+    h.get_by_label("0: modified_bezier · t* = 0.45, v = (0, 1)");
+    // 1.5 is outside (0, 1): refused with the reason; nothing changes, no undo step.
+    let before = h.state().model.scene().clone();
+    type_into(&mut h, "0.45", "1.5");
+    assert_eq!(h.state().model.scene(), &before);
+    assert_eq!(h.state().model.editor.history_len(), (1, 0));
+    let message = h.state().model.editor.message.clone().unwrap_or_default();
+    assert!(message.contains("1.5"), "{message}");
+    h.get_by_label(&message);
+}
+
+#[test]
+fn the_unsaved_changes_prompt_answers_from_its_buttons() {
+    let mut h = harness(Scene::of_curves([cubic(0.0)]), None);
+    h.state_mut()
+        .model
+        .editor
+        .set_point(0, 1, DVec3::new(1.0, 3.0, 0.0))
+        .unwrap();
+    h.state_mut().model.request_close();
+    h.run();
+    assert_eq!(
+        h.state().model.prompt,
+        Some(Prompt::Unsaved {
+            then: Pending::Close
+        })
+    );
+    h.get_by_label("unsaved changes");
+    h.get_by_label("cancel").click();
+    h.run();
+    assert_eq!(h.state().model.prompt, None);
+    assert!(!h.state().model.exit_requested);
+    h.state_mut().model.request_close();
+    h.run();
+    h.get_by_label("close without saving").click();
+    h.run();
+    assert!(h.state().model.exit_requested);
+}
+
+#[test]
+fn the_file_dialog_opens_a_clicked_file_and_the_file_menu_saves_as() {
+    let dir = std::env::temp_dir().join(format!("splinescope-ui-files-{}", std::process::id()));
+    std::fs::remove_dir_all(&dir).ok();
+    std::fs::create_dir_all(&dir).unwrap();
+    let a = dir.join("a.json");
+    Scene::of_curves([cubic(0.0)]).save(&a).unwrap();
+    let other = Scene::of_curves([cubic(3.0), cubic(6.0)]);
+    other.save(&dir.join("other.json")).unwrap();
+    let mut h = harness(Scene::load(&a).unwrap(), Some(a.clone()));
+    h.get_by_label("file").click();
+    h.run();
+    h.get_by_label_contains("open…").click();
+    h.run();
+    h.get_by_label("open a scene");
+    h.get_by_label("other.json").click();
+    h.run();
+    h.get_by_label("open").click();
+    h.run();
+    assert_eq!(h.state().model.dialog, None);
+    let want = Scene::load(&dir.join("other.json")).unwrap();
+    assert_eq!(h.state().model.scene(), &want);
+    assert_eq!(h.state().summaries.len(), 2, "the list shows the new scene");
+
+    // Save as, typing a new name.
+    h.get_by_label("file").click();
+    h.run();
+    h.get_by_label_contains("save as…").click();
+    h.run();
+    h.get_by_label("save the scene as");
+    // The name field has the keyboard as the dialog opens, proposing the file's name.
+    assert_eq!(
+        h.state().model.dialog.as_ref().map(|d| d.name.as_str()),
+        Some("other.json")
+    );
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.get_by_label("save the scene as").type_text("copy");
+    h.run();
+    h.get_by_label("save").click();
+    h.run();
+    let copy = dir.join("copy.json");
+    assert_eq!(Scene::load(&copy).unwrap(), want);
+    assert_eq!(h.state().model.editor.path(), Some(copy.as_path()));
+    std::fs::remove_dir_all(&dir).ok();
+}
