@@ -491,3 +491,23 @@ fn f1_and_question_mark_toggle_the_shortcuts() {
     m.handle(key(Key::Char('?'), false));
     assert!(m.show_help);
 }
+
+#[test]
+fn brackets_select_the_next_and_previous_curve_wrapping_around() {
+    let mut m = model(scene(vec![cubic(), bspline(), cubic()]), None);
+    let mut seen = Vec::new();
+    for _ in 0..4 {
+        m.handle(key(Key::Char(']'), false));
+        seen.push(m.editor.selected);
+    }
+    assert_eq!(seen, [Some(0), Some(1), Some(2), Some(0)]);
+    m.handle(key(Key::Char('['), false));
+    assert_eq!(m.editor.selected, Some(2));
+    m.handle(key(Key::Escape, false));
+    m.handle(key(Key::Char('['), false));
+    assert_eq!(m.editor.selected, Some(2), "from nothing, [ takes the last");
+    // Nothing to select in an empty scene.
+    let mut m = model(scene(vec![]), None);
+    m.handle(key(Key::Char(']'), false));
+    assert_eq!(m.editor.selected, None);
+}

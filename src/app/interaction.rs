@@ -748,6 +748,8 @@ impl Interaction {
         };
         match c {
             '?' => self.show_help ^= true,
+            ']' => self.select_next(1),
+            '[' => self.select_next(-1),
             'q' if ctrl => return self.request_close(),
             'd' if ctrl && self.editable => self.duplicate_selected(),
             'i' if self.editable => self.insert_point_at_cursor(),
@@ -774,6 +776,24 @@ impl Interaction {
             _ => {}
         }
         Response::default()
+    }
+
+    /// Selects the curve `step` places after the selected one (before it when negative),
+    /// wrapping around; the first (or last) when none is selected.
+    pub fn select_next(&mut self, step: isize) {
+        let n = self.scene().curves.len();
+        if n == 0 || !self.editable {
+            return;
+        }
+        self.cancel_gesture();
+        let next = match self.editor.selected {
+            Some(i) => (i as isize + step).rem_euclid(n as isize) as usize,
+            None if step < 0 => n - 1,
+            None => 0,
+        };
+        self.editor.finish();
+        self.editor.selected = Some(next);
+        self.editor.selected_point = None;
     }
 
     /// Saves to the editor's file (a scene without one asks where, in the save-as

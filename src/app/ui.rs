@@ -682,6 +682,7 @@ pub(crate) const SHORTCUTS: &[(&str, &str)] = &[
         "pull the curve through the pointer (paper 000)",
     ),
     ("left click on a curve", "select it"),
+    ("] / [", "select the next / previous curve"),
     ("left drag elsewhere", "pan (2D) / orbit (3D)"),
     ("right or middle drag", "pan"),
     (
