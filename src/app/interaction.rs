@@ -440,6 +440,10 @@ impl Interaction {
 
     /// Shows the open dialog (Ctrl+O).
     pub fn open_dialog(&mut self) {
+        if !self.editable {
+            self.editor.message = Some("files cannot be opened while solving".into());
+            return;
+        }
         self.cancel_gesture();
         self.dialog = Some(FileDialog::new(DialogMode::Open, &self.dialog_dir(), ""));
     }

@@ -7,10 +7,12 @@
 //! elsewhere left drag pans (2D) or orbits (3D); right or middle drag pans, a right click
 //! opens a menu (add a curve there, insert or delete a point, duplicate); the wheel zooms
 //! at the cursor. Keys: `F` fit, `P` control polygons, `C` control points, `H` panel,
-//! `I` insert a point, `Delete` delete, `Ctrl+D` duplicate, `Ctrl+Z` undo,
-//! `Ctrl+Shift+Z` / `Ctrl+Y` redo, `Ctrl+S` save, `Esc` cancel, `Ctrl+Q` quit, `F1` / `?`
-//! the list of shortcuts ([`ui::SHORTCUTS`]). Closing with unsaved changes asks first; a
-//! recovery file holds unsaved edits until they are saved or discarded.
+//! `I` insert a point, `Delete` delete, `Ctrl+D` duplicate, `]` / `[` select the next /
+//! previous curve, `Ctrl+Z` undo, `Ctrl+Shift+Z` / `Ctrl+Y` redo, `Ctrl+S` save,
+//! `Ctrl+Shift+S` save as, `Ctrl+O` open (or drop a file on the window), `Ctrl+N` new,
+//! `Esc` cancel, `Ctrl+Q` quit, `F1` / `?` the list of shortcuts ([`ui::SHORTCUTS`]).
+//! Closing or replacing a scene with unsaved changes asks first; a recovery file holds
+//! unsaved edits until they are saved or discarded; saving keeps the file's form.
 
 //!
 //! Rooms: [`interaction`] is the window-free model (camera, editing, switches) that tests
