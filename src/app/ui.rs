@@ -1000,14 +1000,30 @@ pub(crate) fn file_dialog(ctx: &egui::Context, dialog: &mut FileDialog, actions:
         }
         ui.horizontal(|ui| {
             ui.label("file");
-            let field = ui.add(
-                egui::TextEdit::singleline(&mut dialog.name)
-                    .desired_width(320.0)
-                    .hint_text("name.json, or a path"),
-            );
+            let mut output = egui::TextEdit::singleline(&mut dialog.name)
+                .desired_width(320.0)
+                .hint_text("name.json, or a path")
+                .show(ui);
             if std::mem::take(&mut dialog.focus_name) {
-                field.request_focus();
+                // The proposed name's stem is selected, so typing replaces it and keeps
+                // the extension.
+                let stem = dialog
+                    .name
+                    .rfind('.')
+                    .filter(|&i| i > 0)
+                    .unwrap_or(dialog.name.len());
+                let stem = dialog.name[..stem].chars().count();
+                output
+                    .state
+                    .cursor
+                    .set_char_range(Some(egui::text_selection::CCursorRange::two(
+                        egui::text::CCursor::new(0),
+                        egui::text::CCursor::new(stem),
+                    )));
+                output.state.store(ui.ctx(), output.response.id);
+                output.response.request_focus();
             }
+            let field = output.response.response;
             if field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter)) {
                 actions.file = Some(FileAction::ConfirmDialog);
             }

@@ -225,14 +225,18 @@ fn the_file_dialog_opens_a_clicked_file_and_the_file_menu_saves_as() {
     h.get_by_label_contains("save as…").click();
     h.run();
     h.get_by_label("save the scene as");
-    // The name field has the keyboard as the dialog opens, proposing the file's name.
+    // The name field has the keyboard as the dialog opens, proposing the file's name
+    // with its stem selected: typing replaces the stem and keeps the extension.
     assert_eq!(
         h.state().model.dialog.as_ref().map(|d| d.name.as_str()),
         Some("other.json")
     );
-    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
     h.get_by_label("save the scene as").type_text("copy");
     h.run();
+    assert_eq!(
+        h.state().model.dialog.as_ref().map(|d| d.name.as_str()),
+        Some("copy.json")
+    );
     h.get_by_label("save").click();
     h.run();
     let copy = dir.join("copy.json");
