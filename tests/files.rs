@@ -33,9 +33,9 @@ fn fresh_dir(tag: &str) -> PathBuf {
 
 /// A viewer of the scene saved at `path`, keeping its recent files in `dir`.
 fn viewer(path: &Path, dir: &Path) -> Interaction {
-    let scene = Scene::load(path).unwrap();
+    let (scene, text) = Scene::read(path).unwrap();
     let mut m = Interaction::new(
-        Editor::new(scene, Some(path.to_path_buf())),
+        Editor::of_file(scene, path.to_path_buf(), text),
         VIEWPORT,
         1.0,
         260.0,

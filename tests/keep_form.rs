@@ -55,8 +55,8 @@ fn changed_lines(a: &str, b: &str) -> Vec<(String, String)> {
 /// Opens `path` in an editor, moves control point `point` of curve `curve` to `to`,
 /// saves, and returns the saved text.
 fn edit_one_point(path: &Path, curve: usize, point: usize, to: DVec3) -> (String, Scene) {
-    let scene = Scene::load(path).unwrap();
-    let mut e = Editor::new(scene, Some(path.to_path_buf()));
+    let (scene, text) = Scene::read(path).unwrap();
+    let mut e = Editor::of_file(scene, path.to_path_buf(), text);
     e.set_point(curve, point, to).unwrap();
     let edited = e.scene().clone();
     e.save(None).unwrap();
@@ -134,8 +134,8 @@ fn an_unedited_save_rewrites_nothing_and_shorthands_and_implicit_styles_stay() {
 }
 "#;
     std::fs::write(&path, original).unwrap();
-    let scene = Scene::load(&path).unwrap();
-    let mut e = Editor::new(scene, Some(path.clone()));
+    let (scene, text) = Scene::read(&path).unwrap();
+    let mut e = Editor::of_file(scene, path.clone(), text);
     e.save(None).unwrap();
     assert_eq!(std::fs::read_to_string(&path).unwrap(), original);
 
@@ -148,7 +148,9 @@ fn an_unedited_save_rewrites_nothing_and_shorthands_and_implicit_styles_stay() {
     );
 
     // A second save of the same edit changes nothing more.
-    let mut e = Editor::new(edited.clone(), Some(path.clone()));
+    let (again, text) = Scene::read(&path).unwrap();
+    assert!(same_file(&again, &edited));
+    let mut e = Editor::of_file(again, path.clone(), text);
     e.save(None).unwrap();
     assert_eq!(std::fs::read_to_string(&path).unwrap(), saved);
     std::fs::remove_dir_all(&dir).ok();

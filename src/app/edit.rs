@@ -129,16 +129,11 @@ pub struct Editor {
 }
 
 impl Editor {
-    /// An editor of `scene`, saving to `path` (`None`: the scene has no file yet). When
-    /// `path` holds `scene` (it was read from there), saving keeps the file's form.
+    /// An editor of `scene`, saving to `path` (`None`: the scene has no file yet).
     #[must_use]
     pub fn new(scene: Scene, path: Option<PathBuf>) -> Editor {
-        let source = path
-            .as_deref()
-            .and_then(|p| crate::limits::read_bounded(p).ok())
-            .filter(|text| crate::scene::from_json_str(text).is_ok_and(|s| s == scene));
         Editor {
-            source,
+            source: None,
             scene,
             history: Vec::new(),
             undone: Vec::new(),
@@ -151,6 +146,16 @@ impl Editor {
             selected: None,
             selected_point: None,
             message: None,
+        }
+    }
+
+    /// An editor of the scene read from `path` as `text` ([`Scene::read`]): saving keeps
+    /// that text's form ([`crate::scene::to_json_string_keeping`]).
+    #[must_use]
+    pub fn of_file(scene: Scene, path: PathBuf, text: String) -> Editor {
+        Editor {
+            source: Some(text),
+            ..Editor::new(scene, Some(path))
         }
     }
 
@@ -549,8 +554,15 @@ impl Editor {
                     recovery.display()
                 ));
             }
-        } else if recovery.exists()
-            && let Err(e) = std::fs::remove_file(&recovery)
+        } else {
+            self.remove_recovery(&recovery);
+        }
+    }
+
+    /// Removes the recovery file `recovery` if it exists (a failure is the message).
+    fn remove_recovery(&mut self, recovery: &Path) {
+        if recovery.exists()
+            && let Err(e) = std::fs::remove_file(recovery)
         {
             self.message = Some(format!("{}: cannot remove: {e}", recovery.display()));
         }
@@ -575,12 +587,7 @@ impl Editor {
         if recovered.curves == self.scene.curves {
             return;
         }
-        let before = self.scene.curves.clone();
-        self.set_list(recovered.curves.clone());
-        self.commit(Change::List {
-            before,
-            after: recovered.curves.clone(),
-        });
+        self.edit_list(recovered.curves.clone(), None);
         self.message = Some("unsaved edits restored".into());
     }
 
@@ -588,11 +595,7 @@ impl Editor {
     pub fn discard_recovery(&mut self) {
         if let Some(path) = self.path.as_deref() {
             let recovery = recovery_path(path);
-            if recovery.exists()
-                && let Err(e) = std::fs::remove_file(&recovery)
-            {
-                self.message = Some(format!("{}: cannot remove: {e}", recovery.display()));
-            }
+            self.remove_recovery(&recovery);
         }
     }
 

@@ -332,8 +332,7 @@ impl Interaction {
     /// otherwise after asking (save / discard / cancel).
     pub fn request(&mut self, action: Pending) -> Response {
         self.cancel_gesture();
-        if !self.editable && action != Pending::Close {
-            self.editor.message = Some("files cannot be opened while solving".into());
+        if action != Pending::Close && self.refuse_files() {
             return Response::default();
         }
         if !self.editable || !self.editor.is_dirty() {
@@ -345,22 +344,39 @@ impl Interaction {
 
     /// Does what was asked, without asking. With `discard`, the unsaved edits' recovery
     /// file is removed once the scene is really closed or replaced (a file that fails to
-    /// load keeps both the edits and their recovery file).
+    /// load keeps both the edits and their recovery file, and says why in a prompt).
     fn carry_out(&mut self, action: Pending, discard: bool) -> Response {
+        let replacement = match &action {
+            Pending::Close => None,
+            Pending::Open(path) => match Scene::read(path) {
+                Ok((scene, text)) => Some(Editor::of_file(scene, path.clone(), text)),
+                Err(e) => {
+                    self.prompt = Some(Prompt::Failed {
+                        message: format!(
+                            "{} was not opened: {e}. The scene shown is unchanged.",
+                            path.display()
+                        ),
+                    });
+                    return Response::default();
+                }
+            },
+            Pending::New => Some(Editor::new(Scene::of_curves([]), None)),
+        };
+        if discard {
+            self.editor.discard_recovery();
+        }
+        let Some(editor) = replacement else {
+            self.exit_requested = true;
+            return Response { exit: true };
+        };
+        self.replace_editor(editor);
         match action {
-            Pending::Close => {
-                if discard {
-                    self.editor.discard_recovery();
-                }
-                self.exit_requested = true;
-                return Response { exit: true };
+            Pending::Open(path) => {
+                self.editor.message = Some(format!("opened {}", path.display()));
+                self.remember(&path);
+                self.offer_recovery();
             }
-            Pending::Open(path) => self.load(&path, discard),
-            Pending::New => {
-                if discard {
-                    self.editor.discard_recovery();
-                }
-                self.replace_editor(Editor::new(Scene::of_curves([]), None));
+            _ => {
                 self.editor.message = Some(
                     "new scene: right-click the canvas or use add curve… to add curves".into(),
                 );
@@ -369,28 +385,12 @@ impl Interaction {
         Response::default()
     }
 
-    /// Loads `path` in place of the edited scene; a file that does not load leaves the
-    /// scene as it was and says why in a prompt.
-    fn load(&mut self, path: &Path, discard: bool) {
-        match Scene::load(path) {
-            Ok(scene) => {
-                if discard {
-                    self.editor.discard_recovery();
-                }
-                self.replace_editor(Editor::new(scene, Some(path.to_path_buf())));
-                self.editor.message = Some(format!("opened {}", path.display()));
-                self.remember(path);
-                self.offer_recovery();
-            }
-            Err(e) => {
-                self.prompt = Some(Prompt::Failed {
-                    message: format!(
-                        "{} was not opened: {e}. The scene shown is unchanged.",
-                        path.display()
-                    ),
-                });
-            }
+    /// Whether files cannot be opened (editing is off while solving); says so.
+    fn refuse_files(&mut self) -> bool {
+        if !self.editable {
+            self.editor.message = Some("files cannot be opened while solving".into());
         }
+        !self.editable
     }
 
     /// Puts `path` first among the recent files (a list that cannot be kept says so).
@@ -440,8 +440,7 @@ impl Interaction {
 
     /// Shows the open dialog (Ctrl+O).
     pub fn open_dialog(&mut self) {
-        if !self.editable {
-            self.editor.message = Some("files cannot be opened while solving".into());
+        if self.refuse_files() {
             return;
         }
         self.cancel_gesture();
@@ -508,13 +507,13 @@ impl Interaction {
         };
         match (prompt, answer) {
             (Prompt::Unsaved { then }, Answer::Accept) => {
-                if self.editor.path().is_none() {
-                    // Where to? The dialog saves, then goes on.
-                    self.save_as_dialog();
+                let asks_where = self.editor.path().is_none();
+                self.save();
+                if asks_where {
+                    // The save-as dialog saves, then goes on.
                     self.after_save = Some(then);
                     return Response::default();
                 }
-                self.save();
                 if self.editor.is_dirty() {
                     // The save failed (its message says why): nothing is closed.
                     return Response::default();
@@ -651,24 +650,18 @@ impl Interaction {
     }
 
     fn handle_input(&mut self, input: Input) -> Response {
-        if self.dialog.is_some() && self.prompt.is_none() {
+        // A prompt or a file dialog is modal: Esc answers "cancel", other clicks and keys
+        // on the canvas do nothing (the camera still follows the pointer).
+        if self.prompt.is_some() || self.dialog.is_some() {
             if let Input::Key {
                 key: Key::Escape, ..
             } = input
             {
+                if self.prompt.is_some() {
+                    return self.answer(Answer::Cancel);
+                }
                 self.cancel_dialog();
                 return Response::default();
-            }
-            if matches!(input, Input::Pressed(_) | Input::Key { .. }) {
-                return Response::default();
-            }
-        }
-        if self.prompt.is_some() {
-            if let Input::Key {
-                key: Key::Escape, ..
-            } = input
-            {
-                return self.answer(Answer::Cancel);
             }
             if matches!(input, Input::Pressed(_) | Input::Key { .. }) {
                 return Response::default();
@@ -795,7 +788,6 @@ impl Interaction {
             None if step < 0 => n - 1,
             None => 0,
         };
-        self.editor.finish();
         self.editor.selected = Some(next);
         self.editor.selected_point = None;
     }

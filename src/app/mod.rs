@@ -73,6 +73,9 @@ pub struct ViewOptions {
     /// Where `Ctrl+S` saves the edited scene (`None`: `splinescope-scene.json` in the
     /// current directory).
     pub path: Option<PathBuf>,
+    /// The text `scene` was read from at `path` ([`Scene::read`]), so that saving keeps
+    /// the file's form; `None` for a scene that is not a file's (the gallery, stress).
+    pub source: Option<String>,
 }
 
 /// Where an unnamed scene is saved.
@@ -350,14 +353,14 @@ impl Running {
             None
         };
         let egui = EguiLayer::new(&surface.window, &ctx, surface.format());
-        let editor = edit::Editor::new(
-            scene,
-            Some(
-                opts.path
-                    .clone()
-                    .unwrap_or_else(|| PathBuf::from(DEFAULT_SAVE_NAME)),
-            ),
-        );
+        let path = opts
+            .path
+            .clone()
+            .unwrap_or_else(|| PathBuf::from(DEFAULT_SAVE_NAME));
+        let editor = match opts.source.clone() {
+            Some(text) => edit::Editor::of_file(scene, path, text),
+            None => edit::Editor::new(scene, Some(path)),
+        };
         let mut model = Interaction::new(
             editor,
             surface.viewport(),
@@ -366,13 +369,12 @@ impl Running {
         );
         model.editable = stress.is_none();
         model.recent = files::RecentFiles::load(files::RecentFiles::default_store());
-        if model.editable
-            && let Some(path) = opts.path.as_deref().filter(|p| p.is_file())
-            && let Err(e) = model.recent.add(path)
-        {
-            model.editor.message = Some(e);
-        }
         if model.editable {
+            if let Some(path) = opts.path.as_deref().filter(|p| p.is_file())
+                && let Err(e) = model.recent.add(path)
+            {
+                model.editor.message = Some(e);
+            }
             model.offer_recovery();
         }
         model.tolerance_px = opts.tolerance_px;
@@ -493,7 +495,7 @@ impl Running {
         self.surface.window.pre_present_notify();
         self.ctx.queue.present(frame);
         self.egui.finish(&panel);
-        self.apply_actions(actions);
+        ui::apply(&mut self.model, actions);
         let title = self.model.editor.title();
         if title != self.title {
             self.surface.window.set_title(&title);
@@ -504,11 +506,6 @@ impl Running {
             self.model.fit();
         }
         Ok(true)
-    }
-
-    /// Carries out what the panel, the context menu and the prompt asked for this frame.
-    fn apply_actions(&mut self, actions: ui::Actions) {
-        ui::apply(&mut self.model, actions);
     }
 
     /// The figures `--stats` prints.
@@ -556,8 +553,7 @@ impl Running {
         let mut actions = ui::Actions::default();
         let camera = self.model.camera;
         let info = ui::PanelInfo {
-            facts: &self.view.facts,
-            summaries: &self.view.summaries,
+            digest: &self.view.digest,
             adapter: &self.adapter,
             fps: self.fps.fps(),
             samples_per_frame: self.view.samples_per_frame(),

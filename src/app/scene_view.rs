@@ -23,9 +23,8 @@ pub(crate) struct SceneView {
     pub gpu: GpuScene,
     pub prepared: PreparedScene,
     uploaded_toggles: Toggles,
-    pub summaries: Vec<ui::CurveSummary>,
-    /// What the panel and canvas overlay need of the scene, derived on each change.
-    pub facts: ui::SceneFacts,
+    /// What the panel and canvas overlay show of the scene, derived on each change.
+    pub digest: ui::SceneDigest,
     stats: StatsReader,
     /// The chunks' statistics of a recent frame (read back without waiting).
     pub last_stats: Vec<FrameStats>,
@@ -97,8 +96,7 @@ impl SceneView {
             gpu,
             prepared,
             uploaded_toggles: toggles,
-            summaries: ui::summarize(scene),
-            facts: ui::SceneFacts::of(scene),
+            digest: ui::SceneDigest::of(scene),
             stats: StatsReader::new(),
             last_stats: Vec::new(),
         })
@@ -138,12 +136,7 @@ impl SceneView {
             self.stats = StatsReader::new();
             self.last_stats.clear();
         }
-        self.facts = ui::SceneFacts::of(scene);
-        if changes.list {
-            self.summaries = ui::summarize(scene);
-        } else {
-            ui::refresh(&mut self.summaries, scene, &changes.curves);
-        }
+        self.digest.update(scene, changes);
         Ok(())
     }
 

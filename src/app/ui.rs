@@ -99,10 +99,39 @@ impl SceneFacts {
     }
 }
 
+/// What the panel and the canvas overlay show of the scene (its listed curves and its
+/// facts), brought up to date only when the scene changes.
+pub(crate) struct SceneDigest {
+    pub summaries: Vec<CurveSummary>,
+    pub facts: SceneFacts,
+}
+
+impl SceneDigest {
+    pub fn of(scene: &Scene) -> SceneDigest {
+        SceneDigest {
+            summaries: summarize(scene),
+            facts: SceneFacts::of(scene),
+        }
+    }
+
+    /// Follows the editor's `changes` of `scene` (a changed list is summarised anew,
+    /// curves changed in place are refreshed; nothing is done when nothing changed).
+    pub fn update(&mut self, scene: &Scene, changes: &super::edit::Changes) {
+        if changes.is_empty() {
+            return;
+        }
+        self.facts = SceneFacts::of(scene);
+        if changes.list {
+            self.summaries = summarize(scene);
+        } else {
+            refresh(&mut self.summaries, scene, &changes.curves);
+        }
+    }
+}
+
 /// What the panel shows.
 pub(crate) struct PanelInfo<'a> {
-    pub facts: &'a SceneFacts,
-    pub summaries: &'a [CurveSummary],
+    pub digest: &'a SceneDigest,
     pub adapter: &'a str,
     pub fps: f64,
     pub samples_per_frame: u64,
@@ -272,11 +301,11 @@ pub(crate) fn panel(
             ui.separator();
             if editable {
                 file_row(ui, editor, &recent.paths, actions);
-                edit_section(ui, editor, actions, info.facts.planar);
+                edit_section(ui, editor, actions, info.digest.facts.planar);
                 ui.separator();
             }
             egui::ScrollArea::vertical().show(ui, |ui| {
-                for (i, c) in info.summaries.iter().enumerate() {
+                for (i, c) in info.digest.summaries.iter().enumerate() {
                     let selected = editor.selected == Some(i);
                     let row = ui
                         .horizontal(|ui| {
@@ -417,7 +446,7 @@ pub(crate) fn draw(
     actions: &mut Actions,
 ) -> f32 {
     let width = panel(ui, info, model, actions);
-    canvas(ui, model, info.facts, actions);
+    canvas(ui, model, &info.digest.facts, actions);
     if model.prompt.is_none()
         && let Some(dialog) = model.dialog.as_mut()
     {

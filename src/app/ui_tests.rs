@@ -12,21 +12,19 @@ use glam::{DVec2, DVec3};
 
 use super::edit::Editor;
 use super::interaction::{Interaction, Pending, Prompt};
-use super::ui::{self, Actions, CurveSummary, PanelInfo, SceneFacts};
+use super::ui::{self, Actions, PanelInfo, SceneDigest};
 use crate::geom::{Bezier, Curve, ModifiedBezier};
 use crate::scene::Scene;
 
 /// What the window keeps between frames, for the harness.
 struct Viewer {
     model: Interaction,
-    facts: SceneFacts,
-    summaries: Vec<CurveSummary>,
+    digest: SceneDigest,
 }
 
 impl Viewer {
     fn new(scene: Scene, path: Option<PathBuf>) -> Viewer {
-        let facts = SceneFacts::of(&scene);
-        let summaries = ui::summarize(&scene);
+        let digest = SceneDigest::of(&scene);
         Viewer {
             model: Interaction::new(
                 Editor::new(scene, path),
@@ -34,8 +32,7 @@ impl Viewer {
                 1.0,
                 ui::PANEL_WIDTH_POINTS,
             ),
-            facts,
-            summaries,
+            digest,
         }
     }
 
@@ -43,8 +40,7 @@ impl Viewer {
     fn frame(&mut self, ui: &mut egui::Ui) {
         let camera = self.model.camera;
         let info = PanelInfo {
-            facts: &self.facts,
-            summaries: &self.summaries,
+            digest: &self.digest,
             adapter: "test",
             fps: 60.0,
             samples_per_frame: 0,
@@ -61,14 +57,7 @@ impl Viewer {
             self.model.editor.finish();
         }
         let changed = self.model.editor.take_changed();
-        if changed.list {
-            self.summaries = ui::summarize(self.model.scene());
-        } else {
-            ui::refresh(&mut self.summaries, self.model.scene(), &changed.curves);
-        }
-        if !changed.is_empty() {
-            self.facts = SceneFacts::of(self.model.scene());
-        }
+        self.digest.update(self.model.scene(), &changed);
     }
 }
 
@@ -217,7 +206,11 @@ fn the_file_dialog_opens_a_clicked_file_and_the_file_menu_saves_as() {
     assert_eq!(h.state().model.dialog, None);
     let want = Scene::load(&dir.join("other.json")).unwrap();
     assert_eq!(h.state().model.scene(), &want);
-    assert_eq!(h.state().summaries.len(), 2, "the list shows the new scene");
+    assert_eq!(
+        h.state().digest.summaries.len(),
+        2,
+        "the list shows the new scene"
+    );
 
     // Save as, typing a new name.
     h.get_by_label("file").click();

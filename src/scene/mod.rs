@@ -318,9 +318,19 @@ impl Scene {
     /// # Errors
     /// A [`SceneError`] naming the offending value (or the I/O problem).
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        Scene::read(path).map(|(scene, _)| scene)
+    }
+
+    /// Reads and validates a scene file, keeping the text it was read from (for saving
+    /// in the same form, [`to_json_string_keeping`]).
+    ///
+    /// # Errors
+    /// A [`SceneError`] naming the offending value (or the I/O problem).
+    pub fn read(path: &Path) -> Result<(Scene, String), SceneError> {
         let text = crate::limits::read_bounded(path)
             .map_err(|e| SceneError::new("(root)", SceneErrorKind::Io(e)))?;
-        from_json_str(&text)
+        let scene = from_json_str(&text)?;
+        Ok((scene, text))
     }
 
     /// Writes the scene as JSON, atomically (temporary file, then rename).

@@ -395,6 +395,7 @@ fn view(
     if solve && degree < 2 {
         bail!("--solve needs --degree 2 or more (a line has no interior control point to move)");
     }
+    let mut source = None;
     let loaded = match stress {
         Some(n) => {
             splinescope::limits::SAMPLES
@@ -418,10 +419,18 @@ fn view(
             }
             generated
         }
-        None => load_scene_or_gallery(scene.as_deref())?,
+        None => match scene.as_deref() {
+            Some(p) => {
+                let (read, text) = Scene::read(p).with_context(|| format!("{}", p.display()))?;
+                source = Some(text);
+                read
+            }
+            None => gallery::gallery(),
+        },
     };
     let stats = splinescope::app::run(splinescope::app::ViewOptions {
         scene: loaded,
+        source,
         frames,
         backend: gpu.gpu_backend,
         solve,
@@ -474,6 +483,7 @@ fn default_job() -> Result<()> {
             tolerance_px: splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX,
             overlays_hidden: false,
             path: None,
+            source: None,
         })?;
         return Ok(());
     }
