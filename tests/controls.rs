@@ -127,13 +127,18 @@ fn interpolation_toggle_and_reading_are_single_edits() {
     assert_eq!(e.history_len(), (3, 0));
 }
 
-#[test]
-fn nubmp_sliders_set_one_parameter_with_the_last_member_absorbing() {
+/// The standard order-4 NUBMP curve on paper 001's knot vector over a zigzag polygon.
+fn zigzag_nubmp() -> Nubmp {
     let pts: Vec<DVec3> = (0..7)
         .map(|i| DVec3::new(f64::from(i), f64::from(i % 2), 0.0))
         .collect();
     let knots = vec![0., 0., 0., 0., 0.3, 0.5, 0.89, 1., 1., 1., 1.];
-    let n = Nubmp::try_new(pts, knots, 4).unwrap();
+    Nubmp::try_new(pts, knots, 4).unwrap()
+}
+
+#[test]
+fn nubmp_sliders_set_one_parameter_with_the_last_member_absorbing() {
+    let n = zigzag_nubmp();
     let mut e = Editor::new(scene_of(vec![Curve::Nubmp(n.clone())]), None);
     let curve = e.scene().curves[0].curve.clone();
     // The first adjustable parameter of group 3.
@@ -188,11 +193,7 @@ fn nubmp_sliders_set_one_parameter_with_the_last_member_absorbing() {
 
 #[test]
 fn nubmp_sliders_carry_their_vd_band_and_groups_say_when_they_leave_it() {
-    let pts: Vec<DVec3> = (0..7)
-        .map(|i| DVec3::new(f64::from(i), f64::from(i % 2), 0.0))
-        .collect();
-    let knots = vec![0., 0., 0., 0., 0.3, 0.5, 0.89, 1., 1., 1., 1.];
-    let n = Nubmp::try_new(pts, knots, 4).unwrap();
+    let n = zigzag_nubmp();
     let curve = Curve::Nubmp(n.clone());
     // Every parameter of an order 4 curve has a band; the standard curve is variation
     // diminishing: its values lie in their bands, inside the sliders' ranges.
