@@ -62,44 +62,90 @@ pub const SAMPLES: Limit = Limit {
     default: 1 << 27,
 };
 
-/// Every limit, for the documentation and `--help`.
-pub const ALL: [Limit; 6] = [SCENE_BYTES, CURVES, POINTS, DEGREE, ORDER, SAMPLES];
+/// Pixels of an image read from a file (`diff`, `regress`'s references) or compared with
+/// one (`regress`'s renders): the header's `width × height` is checked before the pixels
+/// are decoded. The default, 8192 × 8192, is 256 MiB of RGBA; a comparison holds several
+/// such images and NVIDIA FLIP's floating-point planes besides.
+pub const IMAGE_PIXELS: Limit = Limit {
+    what: "pixels per image",
+    var: "SPLINESCOPE_MAX_IMAGE_PIXELS",
+    default: 1 << 26,
+};
 
-/// A value over its limit.
+/// Every limit, for the documentation and `--help`.
+pub const ALL: [Limit; 7] = [
+    SCENE_BYTES,
+    CURVES,
+    POINTS,
+    DEGREE,
+    ORDER,
+    SAMPLES,
+    IMAGE_PIXELS,
+];
+
+/// A value over its limit, or a limit's variable that does not hold a whole number.
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
-#[error(
-    "{found} is over the limit of {limit} {what} (raise it with the environment variable {var}=N)"
-)]
-pub struct LimitError {
-    /// What is counted.
-    pub what: &'static str,
-    /// The value found.
-    pub found: u64,
-    /// The limit in force.
-    pub limit: u64,
-    /// The variable that raises it.
-    pub var: &'static str,
+pub enum LimitError {
+    /// The value is over the limit in force.
+    #[error(
+        "{found} is over the limit of {limit} {what} (raise it with the environment variable {var}=N)"
+    )]
+    Exceeded {
+        /// What is counted.
+        what: &'static str,
+        /// The value found.
+        found: u64,
+        /// The limit in force.
+        limit: u64,
+        /// The variable that raises it.
+        var: &'static str,
+    },
+    /// The environment variable is set but is not a whole number: refused rather than
+    /// silently replaced by the default.
+    #[error(
+        "the environment variable {var}={value:?} is not a whole number (it sets the limit of {what})"
+    )]
+    BadVariable {
+        /// What the variable limits.
+        what: &'static str,
+        /// The variable.
+        var: &'static str,
+        /// What it holds.
+        value: String,
+    },
 }
 
 impl Limit {
-    /// The limit in force: the environment variable when it holds a whole number, else
-    /// the default.
-    #[must_use]
-    pub fn value(&self) -> u64 {
-        std::env::var(self.var)
-            .ok()
-            .and_then(|v| v.trim().replace('_', "").parse::<u64>().ok())
-            .unwrap_or(self.default)
+    /// The limit in force: the environment variable when set (a whole number, `_` allowed
+    /// between digits), else the default.
+    ///
+    /// # Errors
+    /// [`LimitError::BadVariable`] when the variable is set to anything else.
+    pub fn value(&self) -> Result<u64, LimitError> {
+        match std::env::var(self.var) {
+            Err(_) => Ok(self.default),
+            Ok(text) => {
+                text.trim()
+                    .replace('_', "")
+                    .parse::<u64>()
+                    .map_err(|_| LimitError::BadVariable {
+                        what: self.what,
+                        var: self.var,
+                        value: text,
+                    })
+            }
+        }
     }
 
     /// Checks `found` against the limit.
     ///
     /// # Errors
-    /// [`LimitError`] naming the value, the limit and the variable.
+    /// [`LimitError::Exceeded`] naming the value, the limit and the variable, or
+    /// [`LimitError::BadVariable`].
     pub fn check(&self, found: u64) -> Result<(), LimitError> {
-        let limit = self.value();
+        let limit = self.value()?;
         if found > limit {
-            Err(LimitError {
+            Err(LimitError::Exceeded {
                 what: self.what,
                 found,
                 limit,
@@ -122,7 +168,7 @@ pub fn read_bounded(path: &std::path::Path) -> Result<String, String> {
     }
     // A FIFO or device has no size: read at most one byte past the limit.
     use std::io::Read;
-    let limit = SCENE_BYTES.value();
+    let limit = SCENE_BYTES.value().map_err(|e| e.to_string())?;
     let mut bytes = Vec::new();
     std::fs::File::open(path)
         .and_then(|f| f.take(limit.saturating_add(1)).read_to_end(&mut bytes))
@@ -141,6 +187,14 @@ mod tests {
     fn a_breach_names_the_value_the_limit_and_the_variable() {
         assert!(ORDER.check(ORDER.default).is_ok());
         let e = ORDER.check(ORDER.default + 1).unwrap_err();
+        assert!(matches!(
+            e,
+            LimitError::Exceeded {
+                found: 65,
+                limit: 64,
+                ..
+            }
+        ));
         assert_eq!(
             e.to_string(),
             "65 is over the limit of 64 for the order of a B-spline or NUBMP curve (raise it with the environment variable SPLINESCOPE_MAX_ORDER=N)"
