@@ -15,7 +15,9 @@
 //!
 //! [`write_all_atomic`] writes several files all or none: every file is first written to
 //! its temporary beside the target; only when all of them succeeded are they renamed into
-//! place (renames in one directory do not fail for lack of space).
+//! place (renames in one directory do not fail for lack of space). [`stage_all`] is its
+//! first half, for commands that stage something else too (a report directory) before
+//! committing anything.
 
 use std::fs;
 use std::io::{self, Write};
@@ -124,6 +126,7 @@ fn temp_path_beside(path: &Path) -> PathBuf {
 }
 
 /// A file staged for replacement: its temporary, written in full.
+#[derive(Debug)]
 struct Staged {
     tmp: PathBuf,
     dest: PathBuf,
@@ -173,42 +176,115 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> io::Result<()> {
 /// The first refusal or I/O error, naming its path; then no target has changed (a FIFO or
 /// device written through is written last, after every staged file is in place).
 pub fn write_all_atomic(files: &[(&Path, &[u8])]) -> io::Result<()> {
+    stage_all(files)?.commit()
+}
+
+/// Files written in full to temporaries beside their targets, not yet in place:
+/// [`StagedFiles::commit`] moves them there; dropping them uncommitted removes the
+/// temporaries and leaves every target as it was. A command that writes several kinds of
+/// output (files and a report directory, say) stages them all before it commits any.
+#[derive(Debug)]
+#[must_use = "staged files are removed unless committed"]
+pub struct StagedFiles<'a> {
+    staged: Vec<Staged>,
+    through: Vec<(PathBuf, &'a [u8])>,
+}
+
+/// Checks every target and stages every replacement of `files` (see [`StagedFiles`]).
+///
+/// # Errors
+/// The first refusal or I/O error, naming its path; nothing is left behind.
+pub fn stage_all<'a>(files: &[(&Path, &'a [u8])]) -> io::Result<StagedFiles<'a>> {
     let targets: Vec<Target> = files
         .iter()
         .map(|(p, _)| target(p))
         .collect::<io::Result<_>>()?;
-    let mut staged = Vec::new();
-    let mut through = Vec::new();
+    let mut out = StagedFiles {
+        staged: Vec::new(),
+        through: Vec::new(),
+    };
     for (t, (_, bytes)) in targets.into_iter().zip(files) {
         match t {
-            Target::Through(p) => through.push((p, *bytes)),
-            Target::Replace(dest, perms) => match stage(dest, perms, bytes) {
-                Ok(s) => staged.push(s),
-                Err(e) => {
-                    for s in &staged {
-                        let _ = fs::remove_file(&s.tmp);
-                    }
-                    return Err(e);
+            Target::Through(p) => out.through.push((p, *bytes)),
+            // On an error `out` is dropped, removing what was staged so far.
+            Target::Replace(dest, perms) => out.staged.push(stage(dest, perms, bytes)?),
+        }
+    }
+    Ok(out)
+}
+
+impl StagedFiles<'_> {
+    /// Moves every staged file into place (renames within a directory), then writes the
+    /// FIFOs and devices through.
+    ///
+    /// # Errors
+    /// A rename or write that failed, naming its path; the temporaries not yet moved are
+    /// removed.
+    pub fn commit(mut self) -> io::Result<()> {
+        let staged = std::mem::take(&mut self.staged);
+        for (i, s) in staged.iter().enumerate() {
+            if let Err(e) = fs::rename(&s.tmp, &s.dest) {
+                for rest in &staged[i..] {
+                    let _ = fs::remove_file(&rest.tmp);
                 }
-            },
-        }
-    }
-    for (i, s) in staged.iter().enumerate() {
-        if let Err(e) = fs::rename(&s.tmp, &s.dest) {
-            for rest in &staged[i..] {
-                let _ = fs::remove_file(&rest.tmp);
+                return Err(io::Error::new(
+                    e.kind(),
+                    format!("{}: {e}", s.dest.display()),
+                ));
             }
-            return Err(io::Error::new(
-                e.kind(),
-                format!("{}: {e}", s.dest.display()),
-            ));
+        }
+        for (p, bytes) in std::mem::take(&mut self.through) {
+            write_through(&p, bytes)
+                .map_err(|e| io::Error::new(e.kind(), format!("{}: {e}", p.display())))?;
+        }
+        Ok(())
+    }
+}
+
+impl Drop for StagedFiles<'_> {
+    fn drop(&mut self) {
+        for s in &self.staged {
+            let _ = fs::remove_file(&s.tmp);
         }
     }
-    for (p, bytes) in through {
-        write_through(&p, bytes)
-            .map_err(|e| io::Error::new(e.kind(), format!("{}: {e}", p.display())))?;
+}
+
+/// `path` made absolute with every symbolic link resolved, for telling whether two paths
+/// name the same place or one lies inside the other. The part that does not exist yet is
+/// appended as written, with `.` and `..` resolved by name.
+#[must_use]
+pub fn resolved(path: &Path) -> PathBuf {
+    let absolute = if path.is_absolute() {
+        path.to_path_buf()
+    } else {
+        std::env::current_dir()
+            .unwrap_or_else(|_| PathBuf::from("/"))
+            .join(path)
+    };
+    let mut existing = absolute.as_path();
+    let mut rest = Vec::new();
+    loop {
+        if let Ok(real) = fs::canonicalize(existing) {
+            let mut out = real;
+            for part in rest.iter().rev() {
+                match part {
+                    std::path::Component::ParentDir => {
+                        out.pop();
+                    }
+                    std::path::Component::CurDir => {}
+                    other => out.push(other.as_os_str()),
+                }
+            }
+            return out;
+        }
+        let Some(parent) = existing.parent() else {
+            return absolute;
+        };
+        if let Some(last) = existing.components().next_back() {
+            rest.push(last);
+        }
+        existing = parent;
     }
-    Ok(())
 }
 
 #[cfg(test)]

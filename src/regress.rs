@@ -3,9 +3,12 @@
 //! NVIDIA FLIP ([`crate::image::compare_images`]), bless new references on request, and
 //! write an HTML report with the actual, reference, diff and FLIP images.
 //!
-//! A failure writes nothing partial: references are written atomically, one by one, and
-//! the report is built in a hidden directory beside its destination and moved into place
-//! only when complete.
+//! A run writes all or nothing: the references it blesses are staged beside their
+//! targets and the report is built in a hidden directory beside its destination; only
+//! when every one of them is complete are they moved into place. The report directory may
+//! not be, contain or lie inside the references or scenes directory (replacing it would
+//! delete them), and a `--report` path that is a symbolic link is followed, like every
+//! other output.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -159,6 +162,26 @@ pub enum RegressError {
         "{0}: exists and is not an earlier splinescope report (no index.html) nor empty; choose another --report directory"
     )]
     ReportDirInUse(PathBuf),
+    /// The report directory would replace (or sit among) the references or the scenes.
+    #[error(
+        "--report {report}: {relation} the {what} directory {other}; replacing it would delete them, so choose a report directory outside it"
+    )]
+    ReportOverlaps {
+        /// The report directory, as given.
+        report: PathBuf,
+        /// "is", "is inside" or "contains".
+        relation: &'static str,
+        /// "references" or "scenes".
+        what: &'static str,
+        /// That directory, as given.
+        other: PathBuf,
+    },
+    /// The render size is over [`crate::limits::IMAGE_PIXELS`].
+    #[error("--width × --height: {0}")]
+    TooLarge(crate::limits::LimitError),
+    /// The blessed references could not be written (none was).
+    #[error("{0}; nothing was written")]
+    Bless(std::io::Error),
     /// Writing the report failed (nothing was left behind).
     #[error("{path}: cannot write the report: {message}")]
     Report {
@@ -193,6 +216,19 @@ fn scene_files(dir: &Path) -> Result<Vec<PathBuf>, RegressError> {
     Ok(files)
 }
 
+/// Where the report goes: `report` itself, or the directory a symbolic link there points
+/// to (a link to nothing is refused, as for every output).
+fn report_target(report: &Path) -> Result<PathBuf, RegressError> {
+    let is_link = std::fs::symlink_metadata(report).is_ok_and(|m| m.file_type().is_symlink());
+    if !is_link {
+        return Ok(report.to_path_buf());
+    }
+    std::fs::canonicalize(report).map_err(|_| RegressError::Report {
+        path: report.to_path_buf(),
+        message: "is a symbolic link to nothing; not written".into(),
+    })
+}
+
 /// Checks that `report` can be (re)placed: absent, empty, or an earlier report.
 fn check_report_dir(report: &Path) -> Result<(), RegressError> {
     let parent = report
@@ -218,9 +254,39 @@ fn check_report_dir(report: &Path) -> Result<(), RegressError> {
     }
 }
 
+/// Refuses a report directory that is, contains or lies inside `dirs` (as given and
+/// resolved: links and `..` cannot hide an overlap).
+fn check_report_apart(
+    report: &Path,
+    resolved_report: &Path,
+    dirs: [(&'static str, &Path); 2],
+) -> Result<(), RegressError> {
+    for (what, dir) in dirs {
+        let other = crate::files::resolved(dir);
+        let relation = if other == resolved_report {
+            "is"
+        } else if resolved_report.starts_with(&other) {
+            "is inside"
+        } else if other.starts_with(resolved_report) {
+            "contains"
+        } else {
+            continue;
+        };
+        return Err(RegressError::ReportOverlaps {
+            report: report.to_path_buf(),
+            relation,
+            what,
+            other: dir.to_path_buf(),
+        });
+    }
+    Ok(())
+}
+
 /// One scene rendered and compared: the result and, for the report, its images.
 struct Compared {
     result: SceneResult,
+    /// Whether `actual` is to become the reference (`--bless`).
+    bless: bool,
     actual: Option<RgbaImage>,
     reference: Option<RgbaImage>,
     pictures: Option<ComparisonImages>,
@@ -242,6 +308,7 @@ fn compare_one(ctx: &GpuContext, path: &Path, refs: &Path, opts: &RegressOptions
             comparison: None,
             message: None,
         },
+        bless: false,
         actual: None,
         reference: None,
         pictures: None,
@@ -259,18 +326,15 @@ fn compare_one(ctx: &GpuContext, path: &Path, refs: &Path, opts: &RegressOptions
             return out;
         }
     };
-    let bless = |out: &mut Compared, actual: &RgbaImage, why: &str| match actual
-        .write_png(&reference_path)
-    {
-        Ok(()) => {
-            out.result.status = Status::Blessed;
-            out.result.message = Some(format!("{why}: wrote {}", reference_path.display()));
-        }
-        Err(e) => out.result.message = Some(e.to_string()),
+    // Blessing is decided here and written by `run` with every other output.
+    let bless = |out: &mut Compared, why: &str| {
+        out.bless = true;
+        out.result.status = Status::Blessed;
+        out.result.message = Some(format!("{why}: wrote {}", reference_path.display()));
     };
     if !reference_path.exists() {
         if opts.bless {
-            bless(&mut out, &actual, "no reference");
+            bless(&mut out, "no reference");
         } else {
             out.result.status = Status::Missing;
             out.result.message = Some(format!(
@@ -285,7 +349,7 @@ fn compare_one(ctx: &GpuContext, path: &Path, refs: &Path, opts: &RegressOptions
         Ok(r) => r,
         Err(e) => {
             if opts.bless {
-                bless(&mut out, &actual, &format!("unreadable reference ({e})"));
+                bless(&mut out, &format!("unreadable reference ({e})"));
             } else {
                 out.result.message = Some(format!("reference {e}"));
             }
@@ -296,7 +360,7 @@ fn compare_one(ctx: &GpuContext, path: &Path, refs: &Path, opts: &RegressOptions
     match compare_images(&actual, &reference, &opts.tolerance) {
         Err(mismatch) => {
             if opts.bless {
-                bless(&mut out, &actual, &mismatch.to_string());
+                bless(&mut out, &mismatch.to_string());
             } else {
                 out.result.message = Some(format!("{}: {mismatch}", reference_path.display()));
             }
@@ -308,7 +372,7 @@ fn compare_one(ctx: &GpuContext, path: &Path, refs: &Path, opts: &RegressOptions
             if matches {
                 out.result.status = Status::Match;
             } else if opts.bless {
-                bless(&mut out, &actual, "changed");
+                bless(&mut out, "changed");
             } else {
                 out.result.status = Status::Differs;
             }
@@ -317,6 +381,42 @@ fn compare_one(ctx: &GpuContext, path: &Path, refs: &Path, opts: &RegressOptions
     out.actual = Some(actual);
     out.reference = Some(reference);
     out
+}
+
+/// Checks a run's directories and sizes before anything is rendered (and before a GPU is
+/// opened, when called first): the scenes to compare, and where the report goes (the
+/// directory a `--report` link points to).
+///
+/// # Errors
+/// No scenes, a references path that is not a directory, a report directory that is in
+/// use, is, contains or lies inside the references or scenes directory, or a render size
+/// over [`crate::limits::IMAGE_PIXELS`].
+pub fn check_options(
+    scenes: &Path,
+    refs: &Path,
+    opts: &RegressOptions,
+) -> Result<(Vec<PathBuf>, Option<PathBuf>), RegressError> {
+    let files = scene_files(scenes)?;
+    if refs.exists() && !refs.is_dir() {
+        return Err(RegressError::RefsNotDir(refs.to_path_buf()));
+    }
+    let report_dir = match &opts.report {
+        Some(report) => {
+            let target = report_target(report)?;
+            check_report_apart(
+                report,
+                &crate::files::resolved(&target),
+                [("references", refs), ("scenes", scenes)],
+            )?;
+            check_report_dir(&target)?;
+            Some(target)
+        }
+        None => None,
+    };
+    crate::limits::IMAGE_PIXELS
+        .check(u64::from(opts.width) * u64::from(opts.height))
+        .map_err(RegressError::TooLarge)?;
+    Ok((files, report_dir))
 }
 
 /// Renders every scene in `scenes` on `ctx` and compares it with `refs/<stem>.png`.
@@ -330,19 +430,7 @@ pub fn run(
     refs: &Path,
     opts: &RegressOptions,
 ) -> Result<RegressReport, RegressError> {
-    let files = scene_files(scenes)?;
-    if refs.exists() && !refs.is_dir() {
-        return Err(RegressError::RefsNotDir(refs.to_path_buf()));
-    }
-    if let Some(report) = &opts.report {
-        check_report_dir(report)?;
-    }
-    if opts.bless {
-        std::fs::create_dir_all(refs).map_err(|source| RegressError::RefsCreate {
-            path: refs.to_path_buf(),
-            source,
-        })?;
-    }
+    let (files, report_dir) = check_options(scenes, refs, opts)?;
     let compared: Vec<Compared> = files
         .iter()
         .map(|f| compare_one(ctx, f, refs, opts))
@@ -352,14 +440,66 @@ pub fn run(
         tolerance: opts.tolerance.to_string(),
         report_page: None,
     };
-    if let Some(dir) = &opts.report {
-        write_report(dir, &compared, &report).map_err(|message| RegressError::Report {
-            path: dir.clone(),
+    // Every output staged before any is committed: the blessed references, then the report.
+    let blessed = encode_blessed(&compared)?;
+    let made_refs = !blessed.is_empty() && !refs.exists();
+    if !blessed.is_empty() {
+        std::fs::create_dir_all(refs).map_err(|source| RegressError::RefsCreate {
+            path: refs.to_path_buf(),
+            source,
+        })?;
+    }
+    let undo_refs = || {
+        if made_refs {
+            let _ = std::fs::remove_dir(refs);
+        }
+    };
+    let pairs: Vec<(&Path, &[u8])> = blessed
+        .iter()
+        .map(|(p, b)| (p.as_path(), b.as_slice()))
+        .collect();
+    let staged = crate::files::stage_all(&pairs).map_err(|e| {
+        undo_refs();
+        RegressError::Bless(e)
+    })?;
+    let report_staging = match &report_dir {
+        Some(dir) => match stage_report(dir, &compared, &report) {
+            Ok(staging) => Some(staging),
+            Err(message) => {
+                drop(staged);
+                undo_refs();
+                return Err(RegressError::Report {
+                    path: opts.report.clone().unwrap_or_default(),
+                    message,
+                });
+            }
+        },
+        None => None,
+    };
+    staged.commit().map_err(RegressError::Bless)?;
+    if let (Some(dir), Some(staging)) = (&report_dir, report_staging) {
+        place_report(dir, &staging).map_err(|message| RegressError::Report {
+            path: opts.report.clone().unwrap_or_default(),
             message,
         })?;
-        report.report_page = Some(dir.join("index.html"));
+        report.report_page = opts.report.as_ref().map(|r| r.join("index.html"));
     }
     Ok(report)
+}
+
+/// The PNG bytes of every reference to bless, with its path.
+fn encode_blessed(compared: &[Compared]) -> Result<Vec<(PathBuf, Vec<u8>)>, RegressError> {
+    compared
+        .iter()
+        .filter(|c| c.bless)
+        .filter_map(|c| c.actual.as_ref().map(|a| (&c.result.reference, a)))
+        .map(|(path, actual)| {
+            actual
+                .png_bytes(path)
+                .map(|bytes| (path.clone(), bytes))
+                .map_err(|e| RegressError::Bless(std::io::Error::other(e.to_string())))
+        })
+        .collect()
 }
 
 fn html_escape(text: &str) -> String {
@@ -369,21 +509,33 @@ fn html_escape(text: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// Builds the report in a hidden directory beside `dir`, then moves it into place.
-fn write_report(dir: &Path, compared: &[Compared], report: &RegressReport) -> Result<(), String> {
+/// Builds the report in a hidden directory beside `dir` and returns that directory.
+fn stage_report(
+    dir: &Path,
+    compared: &[Compared],
+    report: &RegressReport,
+) -> Result<PathBuf, String> {
     let name = dir
         .file_name()
         .map_or_else(|| "report".to_owned(), |n| n.to_string_lossy().into_owned());
     let staging = dir.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
     let _ = std::fs::remove_dir_all(&staging);
-    let result = fill_report(&staging, compared, report).and_then(|()| {
+    fill_report(&staging, compared, report).inspect_err(|_| {
+        let _ = std::fs::remove_dir_all(&staging);
+    })?;
+    Ok(staging)
+}
+
+/// Moves a staged report into place, replacing an earlier report at `dir`.
+fn place_report(dir: &Path, staging: &Path) -> Result<(), String> {
+    let result = (|| {
         if dir.exists() {
             std::fs::remove_dir_all(dir).map_err(|e| e.to_string())?;
         }
-        std::fs::rename(&staging, dir).map_err(|e| e.to_string())
-    });
+        std::fs::rename(staging, dir).map_err(|e| e.to_string())
+    })();
     if result.is_err() {
-        let _ = std::fs::remove_dir_all(&staging);
+        let _ = std::fs::remove_dir_all(staging);
     }
     result
 }

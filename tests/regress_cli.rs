@@ -191,7 +191,7 @@ fn regress_names_each_bad_input_and_still_compares_the_rest() {
         "the scene and the value are named: {all}"
     );
     assert!(
-        all.contains("bezier3d.png: PNG error"),
+        all.contains("bezier3d.png: not a valid PNG image"),
         "unreadable reference named: {all}"
     );
     assert!(
@@ -255,6 +255,168 @@ fn regress_names_each_bad_input_and_still_compares_the_rest() {
         std::fs::read(refs.join("broken.png")).unwrap(),
         b"not a png"
     );
+}
+
+/// Refused before any GPU is opened: these need no adapter.
+#[test]
+fn a_report_directory_that_overlaps_the_references_or_scenes_is_refused() {
+    let dir = workspace("overlap");
+    let (scenes, refs) = (dir.join("scenes"), dir.join("refs"));
+    std::fs::create_dir_all(&refs).unwrap();
+    std::fs::write(refs.join("kept.png"), b"blessed earlier").unwrap();
+    #[cfg(unix)]
+    std::os::unix::fs::symlink(&refs, dir.join("refs-link")).unwrap();
+    let mut cases = vec![
+        (s(&refs), "is the references directory"),
+        (format!("{}/", s(&refs)), "is the references directory"),
+        (
+            s(&refs.join("report")),
+            "is inside the references directory",
+        ),
+        (s(&scenes), "is the scenes directory"),
+        (s(&scenes.join("sub/..")), "is the scenes directory"),
+        (s(&scenes.join("out")), "is inside the scenes directory"),
+        (s(&dir), "contains the references directory"),
+    ];
+    if cfg!(unix) {
+        cases.push((s(&dir.join("refs-link")), "is the references directory"));
+    }
+    for (report, says) in cases {
+        let out = run(&[
+            "regress",
+            &s(&scenes),
+            &s(&refs),
+            "--bless",
+            "--report",
+            &report,
+        ]);
+        let all = text(&out);
+        assert_eq!(out.status.code(), Some(1), "{report}: {all}");
+        assert!(all.contains(says), "{report}: should say {says:?}: {all}");
+        assert!(!all.contains("adapter"), "refused before the GPU: {all}");
+        assert_eq!(
+            std::fs::read(refs.join("kept.png")).unwrap(),
+            b"blessed earlier",
+            "{report}: the references are untouched"
+        );
+        assert_eq!(std::fs::read_dir(&refs).unwrap().count(), 1, "{report}");
+    }
+    // A first bless whose references directory does not exist yet: still refused.
+    let fresh = dir.join("fresh-refs");
+    let out = run(&[
+        "regress",
+        &s(&scenes),
+        &s(&fresh),
+        "--bless",
+        "--report",
+        &s(&fresh),
+    ]);
+    assert!(
+        text(&out).contains("is the references directory"),
+        "{}",
+        text(&out)
+    );
+    assert!(!fresh.exists(), "nothing created");
+}
+
+#[test]
+fn bless_and_report_are_written_all_or_none_and_report_links_are_followed() {
+    if common::gpus("regress all or none").is_empty() {
+        return;
+    }
+    let dir = workspace("all-or-none");
+    let (scenes, refs) = (dir.join("scenes"), dir.join("refs"));
+    let go = |extra: &[&str]| {
+        let mut a = vec!["regress".to_owned(), s(&scenes), s(&refs)];
+        a.extend(["--width", "200", "--height", "150"].map(str::to_owned));
+        a.extend(extra.iter().map(|x| (*x).to_owned()));
+        bin().args(&a).output().expect("run")
+    };
+    // One reference to replace is read-only: the other, missing one is not written either.
+    std::fs::create_dir_all(&refs).unwrap();
+    let ro = refs.join("bezier3d.png");
+    RgbaImage::filled(3, 3, [9; 4]).write_png(&ro).unwrap();
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o444)).unwrap();
+        let out = go(&["--bless"]);
+        assert_eq!(out.status.code(), Some(1), "{}", text(&out));
+        assert!(
+            text(&out).contains("read-only") && text(&out).contains("nothing was written"),
+            "{}",
+            text(&out)
+        );
+        assert!(!refs.join("paper002_fig1.png").exists(), "none written");
+        std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o644)).unwrap();
+    }
+    let out = go(&["--bless"]);
+    assert!(out.status.success(), "{}", text(&out));
+    assert!(refs.join("paper002_fig1.png").is_file());
+    // A report path that is a link to an earlier report: the link stays, its target is
+    // replaced.
+    let first = dir.join("report-1");
+    assert!(go(&["--report", &s(&first)]).status.success());
+    std::fs::write(first.join("stale.txt"), "from before").unwrap();
+    #[cfg(unix)]
+    {
+        let link = dir.join("latest");
+        std::os::unix::fs::symlink(&first, &link).unwrap();
+        let out = go(&["--report", &s(&link)]);
+        assert!(out.status.success(), "{}", text(&out));
+        assert!(
+            std::fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink(),
+            "the link is still a link"
+        );
+        assert!(first.join("index.html").is_file());
+        assert!(
+            !first.join("stale.txt").exists(),
+            "the earlier report was replaced"
+        );
+        let dangling = dir.join("dangling");
+        std::os::unix::fs::symlink(dir.join("nowhere"), &dangling).unwrap();
+        let out = go(&["--report", &s(&dangling)]);
+        assert_eq!(out.status.code(), Some(1));
+        assert!(
+            text(&out).contains("symbolic link to nothing"),
+            "{}",
+            text(&out)
+        );
+    }
+}
+
+#[test]
+fn a_reference_whose_header_declares_a_huge_image_is_an_error_not_an_abort() {
+    if common::gpus("regress huge reference").is_empty() {
+        return;
+    }
+    let dir = workspace("huge-ref");
+    let (scenes, refs) = (dir.join("scenes"), dir.join("refs"));
+    std::fs::create_dir_all(&refs).unwrap();
+    let png = common::crafted_png_header(100_000, 100_000);
+    for scene in ["paper002_fig1", "bezier3d"] {
+        std::fs::write(refs.join(format!("{scene}.png")), &png).unwrap();
+    }
+    let out = run(&[
+        "regress",
+        &s(&scenes),
+        &s(&refs),
+        "--width",
+        "200",
+        "--height",
+        "150",
+    ]);
+    let all = text(&out);
+    assert_eq!(out.status.code(), Some(1), "{all}");
+    assert!(
+        all.contains("bezier3d.png: a 100000×100000 image")
+            && all.contains("SPLINESCOPE_MAX_IMAGE_PIXELS"),
+        "{all}"
+    );
+    assert!(all.contains("2 error(s)"), "{all}");
 }
 
 #[test]
@@ -325,7 +487,7 @@ fn diff_compares_two_images_and_writes_the_diff() {
         ),
         (
             vec!["diff", &s(&pa), &s(&dir.join("text.png"))],
-            format!("{}: PNG error", s(&dir.join("text.png"))),
+            format!("{}: not a valid PNG image", s(&dir.join("text.png"))),
         ),
         (
             vec!["diff", &s(&dir.join("none.png")), &s(&pa)],

@@ -101,13 +101,13 @@ fn parse_count(s: &str) -> Result<u64, String> {
     Ok(v as u64)
 }
 
-/// A percentage such as `10%` or `10`, as a fraction.
+/// A percentage such as `10%` or `10`, as a fraction (one `%` at most).
 fn parse_percent(s: &str) -> Result<f64, String> {
-    let v: f64 = s
-        .trim()
-        .trim_end_matches('%')
+    let number = s.trim();
+    let number = number.strip_suffix('%').unwrap_or(number).trim_end();
+    let v: f64 = number
         .parse()
-        .map_err(|_| format!("{s:?} is not a percentage"))?;
+        .map_err(|_| format!("{s:?} is not a percentage (such as 10% or 10)"))?;
     if !(v.is_finite() && (0.0..=1000.0).contains(&v)) {
         return Err(format!("{s:?}: the threshold must be between 0% and 1000%"));
     }
@@ -217,13 +217,17 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             print_report(r)?;
         }
     }
+    // The CSV and the plot are written all or none.
+    let mut outputs: Vec<(&std::path::Path, Vec<u8>)> = Vec::new();
     if let Some(path) = &args.csv {
-        splinescope::files::write_atomic(path, csv(&reports).as_bytes())
-            .with_context(|| format!("writing {}", path.display()))?;
+        outputs.push((path, csv(&reports).into_bytes()));
     }
     if let Some(path) = &args.plot {
-        plot::write(path, &reports)?;
+        outputs.push((path, plot::encode(path, &reports)?));
     }
+    let files: Vec<(&std::path::Path, &[u8])> =
+        outputs.iter().map(|(p, b)| (*p, b.as_slice())).collect();
+    splinescope::files::write_all_atomic(&files).context("nothing was written")?;
     if let Some(previous) = previous {
         let regressions = compare::print(&previous, &reports, args.threshold)?;
         if !regressions.is_empty() {

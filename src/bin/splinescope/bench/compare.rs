@@ -15,7 +15,8 @@ use crate::say;
 /// # Errors
 /// An unreadable file, or JSON that is not `bench --json` output (naming what is wrong).
 pub fn read(path: &Path) -> Result<Vec<Value>> {
-    let text = std::fs::read_to_string(path)
+    let text = splinescope::limits::read_bounded(path)
+        .map_err(anyhow::Error::msg)
         .with_context(|| format!("reading --compare {}", path.display()))?;
     let value: Value = serde_json::from_str(&text)
         .with_context(|| format!("--compare {}: not JSON", path.display()))?;
@@ -36,8 +37,33 @@ pub fn read(path: &Path) -> Result<Vec<Value>> {
                 );
             }
         }
+        if let Some(family) = row.get("family")
+            && !family.is_string()
+        {
+            bail!(
+                "--compare {}: row {i}: `family` is {family}, not a family's name",
+                path.display()
+            );
+        }
+        // Every rate is a number (or null where it was not measured): a rate that is
+        // text would silently compare with nothing.
+        for (name, value) in row.as_object().into_iter().flatten() {
+            let numeric =
+                value.is_null() || value.as_f64().is_some_and(|v| v.is_finite() && v >= 0.0);
+            if is_rate(name) && !numeric {
+                bail!(
+                    "--compare {}: row {i}: `{name}` is {value}, not a rate (a number of at least 0, or null)",
+                    path.display()
+                );
+            }
+        }
     }
     Ok(rows)
+}
+
+/// Whether a report field is a rate that `--compare` compares.
+fn is_rate(name: &str) -> bool {
+    name.ends_with("_samples_per_s") || name.starts_with("frames_per_s")
 }
 
 /// The row's identity: family (Bézier when an older report has none), curves, degree and
@@ -86,7 +112,7 @@ pub fn print(previous: &[Value], now: &[BenchReport], threshold: f64) -> Result<
             continue;
         };
         for (name, value) in fields {
-            let rate_like = name.ends_with("_samples_per_s") || name.starts_with("frames_per_s");
+            let rate_like = is_rate(name);
             let (Some(new), Some(old)) = (value.as_f64(), before.get(name).and_then(Value::as_f64))
             else {
                 continue;

@@ -50,11 +50,12 @@ pub fn check_path(path: &Path) -> Result<()> {
     }
 }
 
-/// Draws the rows to `path` (PNG or SVG by its extension), 1000 × 640.
+/// Draws the rows as the bytes of `path`'s format (PNG or SVG by its extension),
+/// 1000 × 640; the caller writes them.
 ///
 /// # Errors
-/// An extension other than `.png` or `.svg`, or a file that cannot be written.
-pub fn write(path: &Path, reports: &[BenchReport]) -> Result<()> {
+/// An extension other than `.png` or `.svg`, or a drawing that fails.
+pub fn encode(path: &Path, reports: &[BenchReport]) -> Result<Vec<u8>> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -74,8 +75,7 @@ pub fn write(path: &Path, reports: &[BenchReport]) -> Result<()> {
                 SVGBackend::with_string(&mut svg, size).into_drawing_area(),
                 reports,
             )?;
-            splinescope::files::write_atomic(path, svg.as_bytes())
-                .with_context(|| format!("writing {}", path.display()))
+            Ok(svg.into_bytes())
         }
         Some("png") => {
             let mut rgb = vec![0u8; (size.0 * size.1 * 3) as usize];
@@ -92,8 +92,8 @@ pub fn write(path: &Path, reports: &[BenchReport]) -> Result<()> {
                     .collect(),
             };
             image
-                .write_png(path)
-                .with_context(|| format!("writing {}", path.display()))
+                .png_bytes(path)
+                .with_context(|| format!("drawing {}", path.display()))
         }
         _ => bail!(
             "--plot {}: the file must end in .png or .svg",
