@@ -429,3 +429,319 @@ fn limits_are_named_with_the_variable_that_raises_them() {
     );
     assert!(!d.join("x.png").exists());
 }
+
+/// Exits 2 (an argument refused by the parser) with every `says` in the message.
+fn refused_saying(args: &[&str], says: &[&str]) {
+    let out = run(args);
+    let all = text(&out);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {all}");
+    for s in says {
+        assert!(all.contains(s), "{args:?} should say {s:?}: {all}");
+    }
+}
+
+#[test]
+fn option_values_are_parsed_strictly_and_named() {
+    let d = dir("options");
+    let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let scenes = scenes.to_string_lossy();
+    let refs = d.join("refs").to_string_lossy().into_owned();
+    for (bad, says) in [
+        ("", "is empty"),
+        (" ", "is empty"),
+        ("channel=4,", "empty item"),
+        ("channel=4,,flip=0.1", "empty item"),
+        ("channel=4,channel=5", "gives channel twice"),
+        ("pixels=1%%", "pixels=1%%"),
+        ("flip=", "flip="),
+    ] {
+        refused_saying(
+            &["regress", &scenes, &refs, "--tolerance", bad],
+            &["--tolerance", says],
+        );
+        refused_saying(&["diff", "a.png", "b.png", "--tolerance", bad], &[says]);
+    }
+    assert!(!d.join("refs").exists(), "nothing was created");
+    for bad in ["", "10%%", "%", "ten", "nan%", "-1"] {
+        refused_saying(&["bench", &format!("--threshold={bad}")], &["--threshold"]);
+    }
+    // A --compare file whose rates are not numbers names the row, the field and the value.
+    let rows = |rate: &str| {
+        format!(
+            r#"[{{"family": "bezier", "curves": 10, "degree": 3, "samples_per_curve": 8, "cpu_f64_one_thread_samples_per_s": 5.0}},
+               {{"family": "bezier", "curves": 20, "degree": 3, "samples_per_curve": 8, "cpu_f64_one_thread_samples_per_s": {rate}}}]"#
+        )
+    };
+    for (name, rate, says) in [
+        (
+            "string",
+            r#""1.5e8""#,
+            r#"row 1: `cpu_f64_one_thread_samples_per_s` is "1.5e8""#,
+        ),
+        (
+            "negative",
+            "-3",
+            "row 1: `cpu_f64_one_thread_samples_per_s` is -3",
+        ),
+        (
+            "object",
+            r#"{"v": 1}"#,
+            "row 1: `cpu_f64_one_thread_samples_per_s` is {",
+        ),
+    ] {
+        let file = write(&d, &format!("{name}.json"), &rows(rate));
+        fails_saying(&["bench", "--compare", &file], &["--compare", says]);
+    }
+    let family = write(
+        &d,
+        "family.json",
+        r#"{"family": 3, "curves": 10, "degree": 3, "samples_per_curve": 8}"#,
+    );
+    fails_saying(&["bench", "--compare", &family], &["`family` is 3"]);
+}
+
+#[cfg(unix)]
+#[test]
+fn schema_write_is_all_or_none() {
+    use std::os::unix::fs::PermissionsExt;
+    let names = ["scene", "request", "report", "inspect", "eval", "check"];
+    let listing = |d: &Path| {
+        let mut n: Vec<String> = std::fs::read_dir(d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        n.sort();
+        n
+    };
+    // Each kind of bad target, alone: the run fails naming it and writes no other file.
+    for bad in ["read-only", "directory", "dangling-link"] {
+        let d = dir(&format!("schema-{bad}"));
+        let target = d.join("report.schema.json");
+        match bad {
+            "read-only" => {
+                std::fs::write(&target, "keep").unwrap();
+                std::fs::set_permissions(&target, std::fs::Permissions::from_mode(0o444)).unwrap();
+            }
+            "directory" => std::fs::create_dir(&target).unwrap(),
+            _ => std::os::unix::fs::symlink(d.join("nowhere"), &target).unwrap(),
+        }
+        let before = listing(&d);
+        fails_saying(
+            &["schema", "--write", &d.to_string_lossy()],
+            &["nothing was written", "report.schema.json"],
+        );
+        assert_eq!(listing(&d), before, "{bad}: no file added or left behind");
+        if bad == "read-only" {
+            assert_eq!(std::fs::read_to_string(&target).unwrap(), "keep");
+            std::fs::set_permissions(&target, std::fs::Permissions::from_mode(0o644)).unwrap();
+        }
+    }
+    // A good directory (made for the purpose): every schema written.
+    let d = dir("schema-good").join("new");
+    let out = run(&["schema", "--write", &d.to_string_lossy()]);
+    assert!(out.status.success(), "{}", text(&out));
+    let want: Vec<String> = {
+        let mut w: Vec<String> = names.iter().map(|n| format!("{n}.schema.json")).collect();
+        w.sort();
+        w
+    };
+    for w in &want {
+        assert!(listing(&d).contains(w), "{w} written: {:?}", listing(&d));
+    }
+}
+
+/// The numbers of a JSON document that are `null` inside an array (where a number was
+/// due), with their paths.
+fn nulls_in_arrays(v: &serde_json::Value, at: &str, out: &mut Vec<String>) {
+    match v {
+        serde_json::Value::Array(a) => {
+            for (i, x) in a.iter().enumerate() {
+                if x.is_null() {
+                    out.push(format!("{at}[{i}]"));
+                }
+                nulls_in_arrays(x, &format!("{at}[{i}]"), out);
+            }
+        }
+        serde_json::Value::Object(m) => {
+            for (k, x) in m {
+                nulls_in_arrays(x, &format!("{at}.{k}"), out);
+            }
+        }
+        _ => {}
+    }
+}
+
+#[test]
+fn inspect_falls_back_to_exact_coefficients_beyond_f64() {
+    let d = dir("inspect-huge");
+    let scene = write(
+        &d,
+        "huge.json",
+        r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1e308, 0], [0, 1], [-1e308, 0]]}]}"#,
+    );
+    let out = run(&["inspect", &scene]);
+    assert!(out.status.success(), "{}", text(&out));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let mut nulls = Vec::new();
+    nulls_in_arrays(&v, "", &mut nulls);
+    assert!(nulls.is_empty(), "null where numbers were due: {nulls:?}");
+    let pb = &v["curves"][0]["power_basis"];
+    assert!(pb.get("values").is_none(), "{pb}");
+    assert!(
+        pb["values_unavailable"]
+            .as_str()
+            .unwrap()
+            .contains("a_1.x is beyond the range of f64"),
+        "{pb}"
+    );
+    // a_1 = 3 (P1 − P0) = 3e308 and a_2 = 3 (P0 − 2 P1 + P2) = −6e308, exactly.
+    let big = |lead: &str| format!("{lead}{}", "0".repeat(308));
+    assert_eq!(pb["exact"][1][0].as_str().unwrap(), big("3"));
+    assert_eq!(pb["exact"][2][0].as_str().unwrap(), big("-6"));
+    assert_eq!(pb["exact"][2][1].as_str().unwrap(), "3");
+}
+
+/// A quadratic 10⁻¹¹¹ across: `P′(0) = (2, 0)·10⁻¹¹¹` and `κ(0) = 5·10¹¹⁰` (the unit
+/// curve's 1/2, divided by the scale); `|P′|³` underflows `f64`.
+fn tiny_quadratic(d: &Path) -> String {
+    write(
+        d,
+        "tiny.json",
+        r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1e-111, 0], [1e-111, 1e-111]]}]}"#,
+    )
+}
+
+fn eval_values(out: &std::process::Output, key: &str) -> Vec<serde_json::Value> {
+    assert!(out.status.success(), "{}", text(out));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    v["curves"][0][key].as_array().unwrap().clone()
+}
+
+#[test]
+fn curvature_is_null_only_where_the_tangent_vanishes() {
+    let d = dir("curvature");
+    let tiny = tiny_quadratic(&d);
+    let out = run(&["eval", &tiny, "--params", "0,0.5,1", "--derivatives", "2"]);
+    let ks = eval_values(&out, "curvature");
+    // κ(t) of the unit quadratic (0,0), (1,0), (1,1): P′ = 2((1−t), t), P″ = 2(−1, 1),
+    // κ = |P′ × P″| / |P′|³ = 8 / (8 ((1−t)² + t²)^{3/2}); times 10¹¹¹.
+    for (t, k) in [0.0_f64, 0.5, 1.0].iter().zip(&ks) {
+        let unit = 1.0 / ((1.0 - t).powi(2) + t * t).powf(1.5);
+        let want = unit * 0.5 * 1e111;
+        let got = k.as_f64().unwrap_or_else(|| panic!("t = {t}: κ is {k}"));
+        assert!(
+            (got / want - 1.0).abs() < 1e-12,
+            "t = {t}: {got:e} vs {want:e}"
+        );
+    }
+    // A point where P′ really is zero: a quadratic whose middle point doubles back.
+    let cusp = write(
+        &d,
+        "cusp.json",
+        r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1, 0], [0, 0]]}]}"#,
+    );
+    let out = run(&["eval", &cusp, "--params", "0.25,0.5", "--derivatives", "2"]);
+    let ks = eval_values(&out, "curvature");
+    assert_eq!(ks[0].as_f64(), Some(0.0), "a straight piece: κ = 0");
+    assert!(ks[1].is_null(), "P′(1/2) = 0: κ is null, got {}", ks[1]);
+}
+
+#[test]
+fn gpu_eval_of_coordinates_below_f32_is_rescaled_not_flushed() {
+    let d = dir("gpu-tiny");
+    let tiny = tiny_quadratic(&d);
+    common::on_each_gpu("gpu eval of tiny coordinates", |backend| {
+        let out = run(&[
+            "eval",
+            &tiny,
+            "--params",
+            "0,0.5,1",
+            "--derivatives",
+            "2",
+            "--backend",
+            "gpu",
+            "--gpu-backend",
+            &backend.name,
+        ]);
+        let samples = eval_values(&out, "samples");
+        let d1 = eval_values(&out, "d1");
+        let ks = eval_values(&out, "curvature");
+        // P(1/2) = (0.75, 0.25)·10⁻¹¹¹, P′(0) = (2, 0)·10⁻¹¹¹, P′(1) = (0, 2)·10⁻¹¹¹:
+        // within the documented f32 bound, 1e-6 of the curve's size.
+        let near = |got: &serde_json::Value, want: [f64; 2]| {
+            for (g, w) in got.as_array().unwrap().iter().zip(want) {
+                let g = g.as_f64().unwrap();
+                assert!((g - w).abs() <= 2e-6 * 1e-111, "{g:e} vs {w:e}");
+            }
+        };
+        near(&samples[1], [0.75e-111, 0.25e-111]);
+        near(&d1[0], [2e-111, 0.0]);
+        near(&d1[2], [0.0, 2e-111]);
+        let k0 = ks[0].as_f64().unwrap();
+        assert!((k0 / 5e110 - 1.0).abs() < 1e-5, "κ(0) = {k0:e}");
+        // Printed at f32 precision: at most 9 significant digits.
+        let printed = String::from_utf8_lossy(&out.stdout).into_owned();
+        assert!(printed.contains("e-111"), "{printed}");
+    });
+}
+
+#[test]
+fn a_solve_writes_only_scenes_that_check_passes() {
+    let d = dir("solve-check");
+    let out = d.join("out.json");
+    for (name, request) in [
+        (
+            "project",
+            r#"{"curve": 0, "method": "project", "target": [1e300, 0]}"#,
+        ),
+        (
+            "single",
+            r#"{"curve": 0, "method": "single_target", "target": [2, 1e308]}"#,
+        ),
+        (
+            "single-huge",
+            r#"{"curve": 0, "method": "single_target", "target": [1e39, 0], "t": 0.5}"#,
+        ),
+        (
+            "project-huge",
+            r#"{"curve": 0, "method": "project", "target": [1e39, 0]}"#,
+        ),
+        (
+            "single-fine",
+            r#"{"curve": 0, "method": "single_target", "target": [2, 2.5]}"#,
+        ),
+    ] {
+        let _ = std::fs::remove_file(&out);
+        let req = write(&d, &format!("{name}.json"), request);
+        let solved = run(&["solve", &demo(), &req, "-o", &out.to_string_lossy()]);
+        match solved.status.code() {
+            Some(0) => {
+                let check = run(&["check", &out.to_string_lossy()]);
+                assert!(
+                    check.status.success(),
+                    "{name}: the solve wrote a scene that check refuses: {}",
+                    text(&check)
+                );
+            }
+            Some(1) => {
+                assert!(!out.exists(), "{name}: a failed solve wrote its scene");
+                assert!(!text(&solved).contains("panicked"), "{}", text(&solved));
+            }
+            other => panic!("{name}: exit {other:?}: {}", text(&solved)),
+        }
+        if name == "single-fine" {
+            assert!(
+                out.exists(),
+                "an ordinary solve still writes: {}",
+                text(&solved)
+            );
+        }
+        if name.ends_with("-huge") {
+            assert!(
+                text(&solved).contains("would not pass `check`"),
+                "{}",
+                text(&solved)
+            );
+        }
+    }
+}

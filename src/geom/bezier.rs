@@ -543,13 +543,19 @@ pub const POWER_BASIS_MAX_DEGREE: usize = 64;
 pub struct PowerBasis {
     /// Each `a_k` as exact rationals (`"p/q"`) per coordinate.
     pub exact: Vec<[String; 3]>,
-    /// Each `a_k` rounded to `f64`.
-    pub values: Vec<Xyz>,
+    /// Each `a_k` rounded to `f64`; absent when some coefficient is beyond `f64`'s range
+    /// (the binomial factors multiply coordinates near ±1.8e308 past it), and then
+    /// `values_unavailable` names it and `exact` alone holds the coefficients.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub values: Option<Vec<Xyz>>,
+    /// Why `values` is absent: the first coefficient beyond `f64`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub values_unavailable: Option<String>,
 }
 
 /// `a_k = C(n,k) Σ_{i≤k} (−1)^{k−i} C(k,i) P_i`, as exact rationals of each coordinate's
 /// shortest decimal form (the decimal written in the scene file, for inputs of up to 15
-/// significant digits) and as `f64`.
+/// significant digits) and, when every one is within its range, as `f64`.
 fn power_basis(pts: &[DVec3]) -> PowerBasis {
     use super::exact::{Rational, Scalar, format_rational, parse_decimal};
     let n = pts.len() - 1;
@@ -587,15 +593,24 @@ fn power_basis(pts: &[DVec3]) -> PowerBasis {
             sum.map(|s| s * ck.clone())
         })
         .collect();
+    let values: Vec<Xyz> = coefficients
+        .iter()
+        .map(|c| c.clone().map(|r| r.to_f64()))
+        .collect();
+    let beyond = values.iter().enumerate().find_map(|(k, a)| {
+        let axis = a.iter().position(|v| !v.is_finite())?;
+        Some(format!(
+            "a_{k}.{} is beyond the range of f64 (±1.8e308); `exact` holds every coefficient",
+            ["x", "y", "z"][axis]
+        ))
+    });
     PowerBasis {
         exact: coefficients
             .iter()
             .map(|c| c.clone().map(|r| format_rational(&r)))
             .collect(),
-        values: coefficients
-            .iter()
-            .map(|c| c.clone().map(|r| r.to_f64()))
-            .collect(),
+        values: beyond.is_none().then_some(values),
+        values_unavailable: beyond,
     }
 }
 

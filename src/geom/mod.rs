@@ -48,3 +48,117 @@ pub trait ParamCurve {
     /// The second derivative with respect to `t`.
     fn eval_second_deriv(&self, t: f64) -> DVec3;
 }
+
+/// The curvature `κ = |P′ × P″| / |P′|³` from the first and second derivatives, or `None`
+/// where `P′ = 0` (no tangent, no curvature).
+///
+/// Computed without intermediate underflow or overflow: each derivative is scaled by its
+/// largest component before the cross product and the cube, and the scales are put back
+/// by their binary exponents at the end. So a subnormal but nonzero `P′` still has a
+/// curvature, and the result is `+∞` or `0` only when the curvature itself is beyond
+/// `f64`'s range.
+#[must_use]
+pub fn curvature(d1: DVec3, d2: DVec3) -> Option<f64> {
+    let m1 = d1.abs().max_element();
+    if m1 == 0.0 {
+        return None;
+    }
+    let m2 = d2.abs().max_element();
+    if m2 == 0.0 {
+        return Some(0.0);
+    }
+    // u, w have largest component ±1: |u| ∈ [1, √3], |u × w| ≤ 2.
+    let (u, w) = (d1 / m1, d2 / m2);
+    let c = u.cross(w).length() / u.length().powi(3);
+    if c == 0.0 {
+        return Some(0.0);
+    }
+    // κ = c · m2 / m1², each factor split into a mantissa in [1, 2) and a binary exponent.
+    let ((fc, ec), (f2, e2), (f1, e1)) =
+        (split_exponent(c), split_exponent(m2), split_exponent(m1));
+    Some(scale_by_power_of_two(fc * f2 / (f1 * f1), ec + e2 - 2 * e1))
+}
+
+/// `x = f · 2^e` with `f ∈ [1, 2)`, for a finite positive `x` (subnormals included).
+fn split_exponent(x: f64) -> (f64, i32) {
+    // Subnormals are brought into the normal range first (2⁶⁰ is exact).
+    let (x, bias) = if x < f64::MIN_POSITIVE {
+        (x * 2f64.powi(60), -60)
+    } else {
+        (x, 0)
+    };
+    let bits = x.to_bits();
+    let e = ((bits >> 52) & 0x7ff) as i32 - 1023;
+    let f = f64::from_bits((bits & !(0x7ff << 52)) | (1023 << 52));
+    (f, e + bias)
+}
+
+/// `x · 2^e`, in steps that cannot overflow or underflow on the way (only the result can).
+fn scale_by_power_of_two(mut x: f64, mut e: i32) -> f64 {
+    while e != 0 {
+        let step = e.clamp(-1000, 1000);
+        x *= 2f64.powi(step);
+        e -= step;
+        if x == 0.0 || x.is_infinite() {
+            break;
+        }
+    }
+    x
+}
+
+#[cfg(test)]
+mod curvature_tests {
+    use super::*;
+
+    #[test]
+    fn curvature_of_a_circle_at_any_scale() {
+        // P(t) = r (cos t, sin t): P′ = r(−sin, cos), P″ = −r(cos, sin), κ = 1/r, whatever
+        // r is — subnormal, tiny, huge — as long as 1/r is an f64.
+        for r in [1.0, 3.0, 1e-300, 1e-308, 6e-309, 1e-111, 1e300] {
+            let t = 0.7_f64;
+            let d1 = DVec3::new(-t.sin(), t.cos(), 0.0) * r;
+            let d2 = DVec3::new(-t.cos(), -t.sin(), 0.0) * r;
+            let k = curvature(d1, d2).unwrap();
+            // Subnormal r holds few bits: the tolerance follows the precision left.
+            let bits_left = if r < f64::MIN_POSITIVE {
+                (r / 5e-324).log2()
+            } else {
+                52.0
+            };
+            let tol = 4.0 * 2f64.powf(-bits_left);
+            assert!(
+                ((k * r) - 1.0).abs() <= tol,
+                "r = {r:e}: κ = {k:e}, want {:e}",
+                1.0 / r
+            );
+        }
+        // A straight line: zero; no tangent: none.
+        assert_eq!(curvature(DVec3::X, DVec3::X * 5.0), Some(0.0));
+        assert_eq!(curvature(DVec3::X, DVec3::ZERO), Some(0.0));
+        assert_eq!(curvature(DVec3::ZERO, DVec3::Y), None);
+        // Beyond f64: infinite, not NaN or a silent zero (1/r > f64::MAX for this r).
+        let k = curvature(DVec3::X * 5e-324, DVec3::Y * 1e300).unwrap();
+        assert!(k.is_infinite(), "{k}");
+        let r = 5e-320;
+        let k = curvature(DVec3::Y * r, DVec3::X * -r).unwrap();
+        assert!(k.is_infinite() && k > 0.0, "{k}");
+    }
+
+    #[test]
+    fn the_exponent_split_is_exact() {
+        for x in [
+            1.0,
+            1.5,
+            3.0,
+            1e-310,
+            5e-324,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            0.1,
+        ] {
+            let (f, e) = split_exponent(x);
+            assert!((1.0..2.0).contains(&f), "{x:e}: {f}");
+            assert_eq!(scale_by_power_of_two(f, e).to_bits(), x.to_bits(), "{x:e}");
+        }
+    }
+}

@@ -2,6 +2,12 @@
 //!
 //! Each requested parameter becomes a one-sample record of the segment that holds it, so
 //! the kernel evaluates exactly that parameter (rounded to `f32`); results are read back.
+//!
+//! Each segment goes to the kernel scaled by a power of two that brings its largest
+//! coordinate into `[1, 2)`, and its values are scaled back after: exact in both
+//! directions, so a curve whose coordinates are far below `f32`'s normal range (`1e-111`)
+//! is evaluated within the same relative bound as any other instead of being flushed to
+//! zero, while ordinary curves get the very values they got unscaled.
 
 use glam::DVec3;
 
@@ -43,18 +49,26 @@ pub fn evaluate_with_limits(
 ) -> Result<Vec<Vec<DVec3>>, GpuError> {
     let style = super::layout::GpuLineStyle::solid(Color::WHITE, 1.0);
     let mut builder = ChunkBuilder::new(limits);
+    // The power of two each sample's value is to be multiplied by.
+    let mut scales: Vec<f64> = Vec::with_capacity(params.iter().map(Vec::len).sum());
     for (slot, ((index, segments), ts)) in curves.iter().zip(params).enumerate() {
         check_gpu_fit(*index, segments)?;
-        let mut open: Option<usize> = None;
+        let mut open: Option<(usize, f64)> = None;
         for &t in ts {
             let Some((s, u)) = locate(segments, t) else {
                 continue;
             };
-            if open != Some(s) {
-                builder.begin_segment(slot, style, segments[s].bezier.points())?;
-                open = Some(s);
-            }
+            let scale = match open {
+                Some((o, scale)) if o == s => scale,
+                _ => {
+                    let (points, scale) = unit_scaled(segments[s].bezier.points());
+                    builder.begin_segment(slot, style, &points)?;
+                    open = Some((s, scale));
+                    scale
+                }
+            };
             builder.add_samples(1, u, u);
+            scales.push(scale);
         }
     }
     let chunks = builder.finish();
@@ -75,17 +89,47 @@ pub fn evaluate_with_limits(
         )));
     }
     let mut out = Vec::with_capacity(curves.len());
-    let mut it = all.into_iter();
+    let mut it = all
+        .into_iter()
+        .zip(scales)
+        .map(|(v, scale)| glam::Vec3::from(v.position).as_dvec3() * scale);
     for ((_, segments), ts) in curves.iter().zip(params) {
         let n = if segments.is_empty() { 0 } else { ts.len() };
-        out.push(
-            it.by_ref()
-                .take(n)
-                .map(|v| glam::Vec3::from(v.position).as_dvec3())
-                .collect(),
-        );
+        out.push(it.by_ref().take(n).collect());
     }
     Ok(out)
+}
+
+/// `points` divided by the power of two `2^e` that brings their largest coordinate
+/// magnitude into `[1, 2)`, and `2^e` (1 for all-zero points). Both multiplications are
+/// exact (barring points below `2^e · 2⁻¹⁰⁷⁴`, which no `f32` result could show anyway).
+#[must_use]
+pub fn unit_scaled(points: &[DVec3]) -> (Vec<DVec3>, f64) {
+    let largest = points
+        .iter()
+        .map(|p| p.abs().max_element())
+        .fold(0.0, f64::max);
+    if largest == 0.0 || !largest.is_finite() {
+        return (points.to_vec(), 1.0);
+    }
+    let exponent = if largest < f64::MIN_POSITIVE {
+        // Subnormal: its exponent from the leading bit of its mantissa.
+        -1074 + (63 - largest.to_bits().leading_zeros() as i32)
+    } else {
+        ((largest.to_bits() >> 52) & 0x7ff) as i32 - 1023
+    };
+    // 2^e and 2^−e, each in up to two exact factors (one of them may be outside f64's
+    // range on its own at the extremes).
+    let power = |e: i32| {
+        let half = e / 2;
+        (2f64.powi(half), 2f64.powi(e - half))
+    };
+    let (down_a, down_b) = power(-exponent);
+    let (up_a, up_b) = power(exponent);
+    (
+        points.iter().map(|p| *p * down_a * down_b).collect(),
+        up_a * up_b,
+    )
 }
 
 /// The `order`-th hodograph of each lowered segment (same `t0`, `t1`): the Bézier curve

@@ -555,6 +555,21 @@ fn solve(path: &Path, request: &Path, output: Option<&Path>, report: Option<&Pat
     let text = splinescope::scene::pretty_json(&serde_json::to_value(&solved)?);
     // The scene and the report are written all or none.
     let scene_text = splinescope::scene::to_json_string(&outcome.scene);
+    if let Some(out) = output {
+        // The scene written must be one that `check` passes: it reads back, and the GPU
+        // can draw it (a target far beyond f32 would put an annotation there).
+        let name = out.display().to_string();
+        let reread = splinescope::scene::from_json_str(&scene_text).with_context(|| {
+            format!("{name}: the solved scene would not read back; nothing was written")
+        })?;
+        let problems = splinescope::outputs::CheckOutput::of(&name, &reread).gpu_problems;
+        if !problems.is_empty() {
+            bail!(
+                "{name}: the solved scene would not pass `check` (not drawable on the GPU: {}); nothing was written",
+                problems.join("; ")
+            );
+        }
+    }
     let report_text = format!("{text}\n");
     let mut files: Vec<(&Path, &[u8])> = Vec::new();
     if let Some(out) = output {
@@ -731,9 +746,45 @@ fn eval(path: &Path, req: &EvalRequest<'_>, gpu: &GpuArgs) -> Result<()> {
             }
         }
     }
+    // κ = |P′ × P″| / |P′|³ from the values above, scaled so that it underflows nowhere:
+    // null only where P′ = 0; a curvature beyond f64 fails like any other value.
+    let curvatures: Option<Vec<Vec<Option<f64>>>> = (values.len() == 3).then(|| {
+        values[1]
+            .iter()
+            .zip(&values[2])
+            .map(|(d1s, d2s)| {
+                d1s.iter()
+                    .zip(d2s)
+                    .map(|(d1, d2)| splinescope::geom::curvature(*d1, *d2))
+                    .collect()
+            })
+            .collect()
+    });
+    for ((&i, ts), ks) in indices
+        .iter()
+        .zip(&per_curve)
+        .zip(curvatures.iter().flatten())
+    {
+        if let Some((t, k)) = ts
+            .iter()
+            .zip(ks)
+            .find_map(|(t, k)| k.filter(|k| !k.is_finite()).map(|k| (t, k)))
+        {
+            bail!(
+                "{}: curves[{i}] at t = {t}: the curvature {k} is beyond f64 (P′ is nearly zero where P″ is not)",
+                path.display()
+            );
+        }
+    }
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());
-    write_eval_json(&mut out, &indices, &values, backend == EvalBackend::Gpu)?;
+    write_eval_json(
+        &mut out,
+        &indices,
+        &values,
+        curvatures.as_deref(),
+        backend == EvalBackend::Gpu,
+    )?;
     out.flush()?;
     Ok(())
 }
@@ -745,13 +796,13 @@ fn write_eval_json(
     out: &mut impl Write,
     indices: &[usize],
     values: &[Vec<Vec<DVec3>>],
+    curvatures: Option<&[Vec<Option<f64>>]>,
     from_f32: bool,
 ) -> Result<()> {
     let shortest = |p: DVec3| -> [f64; 3] {
         p.to_array().map(|v| {
             if from_f32 {
-                // Shortest decimal that reads back as the same f32.
-                format!("{}", v as f32).parse::<f64>().unwrap_or(v)
+                shortest_f32_precision(v)
             } else {
                 v
             }
@@ -763,16 +814,10 @@ fn write_eval_json(
         if k > 0 {
             write!(out, ",")?;
         }
-        let curvature = (values.len() == 3).then(|| {
-            // κ = |P′ × P″| / |P′|³; null where P′ = 0 (no tangent, no curvature).
-            values[1][k]
+        let curvature = curvatures.map(|ks| {
+            ks[k]
                 .iter()
-                .zip(&values[2][k])
-                .map(|(d1, d2)| {
-                    let speed = d1.length();
-                    let kappa = d1.cross(*d2).length() / (speed * speed * speed);
-                    (speed > 0.0 && kappa.is_finite()).then(|| shortest(DVec3::splat(kappa))[0])
-                })
+                .map(|kappa| kappa.map(|v| shortest(DVec3::splat(v))[0]))
                 .collect()
         });
         let curve = splinescope::outputs::EvalCurve {
@@ -787,6 +832,27 @@ fn write_eval_json(
     }
     writeln!(out, "\n]}}")?;
     Ok(())
+}
+
+/// The shortest decimal that reads back as `v` rounded to `f32`'s 24 significant bits, at
+/// `v`'s own binary exponent — so a GPU value (an `f32` that `eval` may have scaled by a
+/// power of two to keep it out of `f32`'s subnormal range) prints as few digits as an `f32`
+/// does, whatever its magnitude.
+fn shortest_f32_precision(v: f64) -> f64 {
+    if v == 0.0 || !v.is_finite() || v.abs() < f64::MIN_POSITIVE {
+        return v;
+    }
+    let exponent = ((v.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    // Exact: a power of two (subnormal for exponent 1023, still exact) into [1, 2).
+    let scale = 2f64.powi(-exponent);
+    let target = (v * scale) as f32;
+    for digits in 0..9 {
+        let x: f64 = format!("{v:.digits$e}").parse().unwrap_or(v);
+        if (x * scale) as f32 == target {
+            return x;
+        }
+    }
+    v
 }
 
 fn check(path: &Path, json: bool) -> Result<()> {
@@ -838,14 +904,30 @@ fn check(path: &Path, json: bool) -> Result<()> {
 fn schema(name: Option<&str>, write: Option<&Path>) -> Result<()> {
     let all = splinescope::schemas::all();
     if let Some(dir) = write {
+        // All or none: every schema is staged beside its target before any is moved into
+        // place; a directory made for them is removed again when that fails.
+        let made = !dir.exists();
         std::fs::create_dir_all(dir).with_context(|| format!("{}", dir.display()))?;
-        for (stem, schema) in &all {
-            let path = dir.join(format!("{stem}.schema.json"));
-            splinescope::files::write_atomic(
-                &path,
-                splinescope::schemas::to_text(schema).as_bytes(),
-            )
-            .with_context(|| format!("{}", path.display()))?;
+        let texts: Vec<(PathBuf, String)> = all
+            .iter()
+            .map(|(stem, schema)| {
+                (
+                    dir.join(format!("{stem}.schema.json")),
+                    splinescope::schemas::to_text(schema),
+                )
+            })
+            .collect();
+        let files: Vec<(&Path, &[u8])> = texts
+            .iter()
+            .map(|(p, t)| (p.as_path(), t.as_bytes()))
+            .collect();
+        if let Err(e) = splinescope::files::write_all_atomic(&files) {
+            if made {
+                let _ = std::fs::remove_dir(dir);
+            }
+            return Err(anyhow::Error::new(e).context("nothing was written"));
+        }
+        for (path, _) in &texts {
             say!("wrote {}", path.display());
         }
         return Ok(());
@@ -944,6 +1026,8 @@ fn regress(
     json: bool,
     gpu: &GpuArgs,
 ) -> Result<()> {
+    // Bad directories and sizes are refused before a GPU is opened.
+    splinescope::regress::check_options(scenes, refs, opts)?;
     let ctx = gpu.context()?;
     let report = splinescope::regress::run(&ctx, scenes, refs, opts)?;
     if json {
