@@ -1,12 +1,18 @@
 //! Structured fuzzing of every input path: valid scenes and solve requests mutated field by
 //! field (extreme, subnormal and non-finite numbers, wrong types, removed and duplicated
-//! keys, arrays truncated or grown past the limits, families swapped), and argument lists
-//! for the CPU commands. Invariants, for the library and the command line:
+//! keys, arrays truncated or grown past the limits, families swapped), argument lists
+//! for the CPU commands, PNG images (bits flipped, cut short, headers rewritten to other
+//! sizes, depths and colour types) for `diff`, and the commands that write several files
+//! or read option values (`schema --write` among obstacles, `regress` tolerances and report
+//! directories, `bench --compare` files and thresholds). Invariants, for the library and
+//! the command line:
 //!
 //! * nothing panics (the CLI never exits 101 or by a signal);
 //! * a command that exits 0 printed only finite numbers, and a loaded scene evaluates to
 //!   finite points;
-//! * a command that fails writes no output file;
+//! * a command that fails writes no output file; `schema --write` writes all or none;
+//!   `regress` never touches the references when it fails;
+//! * a scene that `solve -o` wrote passes `check`;
 //! * every run finishes within the time bound, under a memory cap (`ulimit -v`).
 //!
 //! A bounded run (a fixed number of cases from a fixed seed) is part of the test suite;
@@ -264,6 +270,80 @@ fn non_finite_in(stdout: &str) -> Option<String> {
     walk(&v, "")
 }
 
+/// The names in `dir`, sorted.
+fn listing(dir: &Path) -> Vec<String> {
+    let mut n: Vec<String> = std::fs::read_dir(dir)
+        .map(|d| {
+            d.filter_map(Result::ok)
+                .map(|e| e.file_name().to_string_lossy().into_owned())
+                .collect()
+        })
+        .unwrap_or_default();
+    n.sort();
+    n
+}
+
+#[cfg(unix)]
+fn set_mode(path: &Path, mode: u32) {
+    use std::os::unix::fs::PermissionsExt;
+    if std::fs::symlink_metadata(path).is_ok_and(|m| m.is_file()) {
+        let _ = std::fs::set_permissions(path, std::fs::Permissions::from_mode(mode));
+    }
+}
+
+#[cfg(not(unix))]
+fn set_mode(_: &Path, _: u32) {}
+
+#[cfg(unix)]
+fn symlink(to: &Path, at: &Path) {
+    std::os::unix::fs::symlink(to, at).expect("symlink");
+}
+
+#[cfg(not(unix))]
+fn symlink(_: &Path, _: &Path) {}
+
+/// Seed images for the image cases: 8-bit RGBA (the first, also the comparison's other
+/// side), 16-bit RGB, a palette image and 8-bit grey.
+fn image_seeds() -> Vec<Vec<u8>> {
+    let mut rgba = splinescope::image::RgbaImage::filled(6, 5, [30, 60, 90, 255]);
+    rgba.data[7] = 200;
+    let first = rgba.png_bytes(Path::new("seed.png")).expect("encode seed");
+    let encode = |color: png::ColorType, depth: png::BitDepth, data: &[u8], palette: bool| {
+        let mut bytes = Vec::new();
+        let mut e = png::Encoder::new(&mut bytes, 6, 5);
+        e.set_color(color);
+        e.set_depth(depth);
+        if palette {
+            e.set_palette(vec![0, 0, 0, 255, 0, 0, 0, 255, 0, 255, 255, 255]);
+        }
+        let mut w = e.write_header().expect("header");
+        w.write_image_data(data).expect("data");
+        w.finish().expect("finish");
+        bytes
+    };
+    vec![
+        first,
+        encode(
+            png::ColorType::Rgb,
+            png::BitDepth::Sixteen,
+            &[0x42; 6 * 5 * 6],
+            false,
+        ),
+        encode(
+            png::ColorType::Indexed,
+            png::BitDepth::Eight,
+            &[1, 2, 3, 0, 1, 2].repeat(5),
+            true,
+        ),
+        encode(
+            png::ColorType::Grayscale,
+            png::BitDepth::Eight,
+            &[128; 30],
+            false,
+        ),
+    ]
+}
+
 struct Fuzz {
     rng: Rng,
     dir: PathBuf,
@@ -319,7 +399,7 @@ impl Fuzz {
 
     /// The command line side for one argument list: no panic or signal, finite output on
     /// success, no output file on failure, within the time bound.
-    fn cli(&mut self, args: Vec<String>, output: Option<&Path>, case: &str, input: &str) {
+    fn cli(&mut self, args: Vec<String>, output: Option<&Path>, case: &str, input: &str) -> Output {
         if let Some(o) = output {
             let _ = std::fs::remove_file(o);
         }
@@ -365,6 +445,7 @@ impl Fuzz {
         if took > Duration::from_secs(30) {
             self.fail(format!("took {took:?}: {}", show()));
         }
+        out
     }
 
     fn scene_case(&mut self, seeds: &[Value], requests: &[Value]) {
@@ -383,12 +464,21 @@ impl Fuzz {
         let s = |x: &str| x.to_owned();
         let command = self.rng.int(0, 3);
         match command {
-            0 => self.cli(vec![s("check"), p], None, &case, &text),
+            0 => {
+                self.cli(vec![s("check"), p], None, &case, &text);
+            }
             1 => {
                 let n = ["2", "3", "17"][self.rng.int(0, 2)];
-                self.cli(vec![s("eval"), p, s("--samples"), s(n)], None, &case, &text);
+                let mut args = vec![s("eval"), p, s("--samples"), s(n)];
+                if self.rng.unit() < 0.5 {
+                    args.push(s("--derivatives"));
+                    args.push(s(["1", "2"][self.rng.int(0, 1)]));
+                }
+                self.cli(args, None, &case, &text);
             }
-            2 => self.cli(vec![s("inspect"), p], None, &case, &text),
+            2 => {
+                self.cli(vec![s("inspect"), p], None, &case, &text);
+            }
             _ => {
                 let req = mutate(
                     &requests[self.rng.int(0, requests.len() - 1)],
@@ -409,6 +499,18 @@ impl Fuzz {
                     &case,
                     &format!("{text}\nrequest: {req}"),
                 );
+                if out.exists() {
+                    let (checked, _) = run_bounded(
+                        &[s("check"), out.to_string_lossy().into_owned()],
+                        Duration::from_secs(30),
+                    );
+                    if !checked.status.success() {
+                        self.fail(format!(
+                            "{case}: solve wrote a scene that check refuses: {}\ninput: {text}\nrequest: {req}",
+                            String::from_utf8_lossy(&checked.stderr)
+                        ));
+                    }
+                }
             }
         }
     }
@@ -476,6 +578,225 @@ impl Fuzz {
         let case = format!("argument case {}", self.cases);
         self.cli(args, None, &case, "(arguments only)");
     }
+
+    /// Images: valid PNGs with bits flipped, cut short, or their header rewritten to
+    /// another size, depth or colour type (its CRC made right, so the decoder believes
+    /// it), compared by `diff` — the reader `regress` uses for its references too.
+    fn image_case(&mut self, seeds: &[Vec<u8>]) {
+        let good = &seeds[0];
+        let mut png = seeds[self.rng.int(0, seeds.len() - 1)].clone();
+        let fix_ihdr_crc = |png: &mut Vec<u8>| {
+            if png.len() >= 33 {
+                let crc = common::crc32(&png[12..29]);
+                png[29..33].copy_from_slice(&crc.to_be_bytes());
+            }
+        };
+        match self.rng.int(0, 3) {
+            0 => {
+                for _ in 0..self.rng.int(1, 8) {
+                    let i = self.rng.int(0, png.len() - 1);
+                    png[i] ^= 1 << self.rng.int(0, 7);
+                }
+            }
+            1 => {
+                let n = self.rng.int(0, png.len() - 1);
+                png.truncate(n);
+            }
+            2 => {
+                let dims = [
+                    0_u32,
+                    1,
+                    2,
+                    3,
+                    255,
+                    8192,
+                    65_535,
+                    100_000,
+                    1 << 31,
+                    u32::MAX,
+                ];
+                let w = dims[self.rng.int(0, dims.len() - 1)];
+                let h = dims[self.rng.int(0, dims.len() - 1)];
+                png[16..20].copy_from_slice(&w.to_be_bytes());
+                png[20..24].copy_from_slice(&h.to_be_bytes());
+                fix_ihdr_crc(&mut png);
+            }
+            _ => {
+                png[24] = [1, 2, 4, 8, 16, 7][self.rng.int(0, 5)];
+                png[25] = [0, 2, 3, 4, 6, 5][self.rng.int(0, 5)];
+                png[28] = [0, 1, 2][self.rng.int(0, 2)];
+                fix_ihdr_crc(&mut png);
+            }
+        }
+        let a = self.dir.join("image.png");
+        let b = self.dir.join("good.png");
+        std::fs::write(&a, &png).expect("write case");
+        std::fs::write(&b, good).expect("write seed");
+        let out = self.dir.join("diff.png");
+        let (first, second) = if self.rng.unit() < 0.5 {
+            (&a, &b)
+        } else {
+            (&b, &a)
+        };
+        let case = format!("image case {}", self.cases);
+        let shown: String = png.iter().map(|x| format!("{x:02x}")).collect();
+        let _ = std::fs::remove_file(&out);
+        let result = self.cli(
+            vec![
+                "diff".into(),
+                first.to_string_lossy().into_owned(),
+                second.to_string_lossy().into_owned(),
+                "-o".into(),
+                out.to_string_lossy().into_owned(),
+            ],
+            None,
+            &case,
+            &format!("PNG bytes {shown}"),
+        );
+        // The diff image is written when both images were read and compared, whether they
+        // match (exit 0) or differ (exit 1): never after a failure to read one.
+        let compared = result.status.success()
+            || String::from_utf8_lossy(&result.stderr).contains("beyond the tolerance");
+        if out.exists() != compared {
+            self.fail(format!(
+                "{case}: diff {} the diff image: {}\nPNG bytes {shown}",
+                if compared {
+                    "compared but did not write"
+                } else {
+                    "failed but wrote"
+                },
+                String::from_utf8_lossy(&result.stderr)
+            ));
+        }
+    }
+
+    /// The commands that write several files or read option values: `schema --write`
+    /// among read-only files, directories and dangling links (all or none); `regress`
+    /// with random tolerances and report directories (the references are never touched);
+    /// `bench --compare` with mutated earlier reports and thresholds. The GPU commands run
+    /// with `--gpu-backend metal`, which has no adapter here, so that what is fuzzed is
+    /// everything checked before a device opens.
+    fn output_case(&mut self, bench_seed: &Value) {
+        let case = format!("output case {}", self.cases);
+        match self.rng.int(0, 2) {
+            0 => {
+                let dir = self.dir.join("schemas");
+                let _ = std::fs::remove_dir_all(&dir);
+                std::fs::create_dir_all(&dir).expect("schema dir");
+                let names = ["scene", "request", "report", "inspect", "eval", "check"];
+                let mut obstacles = Vec::new();
+                for name in names {
+                    let target = dir.join(format!("{name}.schema.json"));
+                    match self.rng.int(0, 7) {
+                        0 => {
+                            std::fs::write(&target, "old").expect("obstacle");
+                            set_mode(&target, 0o444);
+                        }
+                        1 => std::fs::create_dir(&target).expect("obstacle"),
+                        2 => symlink(&dir.join("nowhere"), &target),
+                        _ => continue,
+                    }
+                    obstacles.push(name);
+                }
+                let before = listing(&dir);
+                let (out, _) = run_bounded(
+                    &[
+                        "schema".into(),
+                        "--write".into(),
+                        dir.to_string_lossy().into_owned(),
+                    ],
+                    Duration::from_secs(30),
+                );
+                let after = listing(&dir);
+                match out.status.code() {
+                    Some(0) if obstacles.is_empty() && after.len() == names.len() => {}
+                    Some(1) if !obstacles.is_empty() && after == before => {}
+                    other => self.fail(format!(
+                        "{case}: schema --write with obstacles {obstacles:?}: exit {other:?}, files before {before:?}, after {after:?}: {}",
+                        String::from_utf8_lossy(&out.stderr)
+                    )),
+                }
+                for name in names {
+                    set_mode(&dir.join(format!("{name}.schema.json")), 0o644);
+                }
+            }
+            1 => {
+                let root = manifest("scenes").to_string_lossy().into_owned();
+                let refs = self.dir.join("refs");
+                let _ = std::fs::create_dir_all(&refs);
+                std::fs::write(refs.join("kept.png"), b"blessed").expect("ref");
+                let tolerance = [
+                    "",
+                    ",",
+                    "channel=",
+                    "channel=300",
+                    "pixels=1%%",
+                    "flip=nan",
+                    "channel=4,channel=4",
+                    "channel=24,pixels=0.1%",
+                    "x=1",
+                    " pixels = 5 % ",
+                ][self.rng.int(0, 9)];
+                let report = [
+                    refs.clone(),
+                    refs.join("r"),
+                    self.dir.clone(),
+                    manifest("scenes"),
+                    manifest("scenes").join("r"),
+                    self.dir.join("report"),
+                    PathBuf::from("/dev/null"),
+                    PathBuf::new(),
+                ][self.rng.int(0, 7)]
+                .to_string_lossy()
+                .into_owned();
+                let args = vec![
+                    "regress".into(),
+                    root,
+                    refs.to_string_lossy().into_owned(),
+                    "--bless".into(),
+                    "--tolerance".into(),
+                    tolerance.into(),
+                    "--report".into(),
+                    report,
+                    "--gpu-backend".into(),
+                    "metal".into(),
+                ];
+                let input = format!("{args:?}");
+                self.cli(args, None, &case, &input);
+                if std::fs::read(refs.join("kept.png")).ok().as_deref()
+                    != Some(b"blessed".as_slice())
+                    || listing(&refs).len() != 1
+                {
+                    self.fail(format!("{case}: regress touched the references: {input}"));
+                }
+            }
+            _ => {
+                let text = mutate(bench_seed, &mut self.rng);
+                let file = self.dir.join("compare.json");
+                std::fs::write(&file, &text).expect("compare file");
+                let threshold =
+                    ["10%", "", "5", "10%%", "nan", "-1", "1e3", "abc", "0%"][self.rng.int(0, 8)];
+                self.cli(
+                    vec![
+                        "bench".into(),
+                        "--curves".into(),
+                        "10".into(),
+                        "--samples".into(),
+                        "4".into(),
+                        "--compare".into(),
+                        file.to_string_lossy().into_owned(),
+                        "--threshold".into(),
+                        threshold.into(),
+                        "--gpu-backend".into(),
+                        "metal".into(),
+                    ],
+                    None,
+                    &case,
+                    &text,
+                );
+            }
+        }
+    }
 }
 
 #[test]
@@ -492,6 +813,12 @@ fn fuzz_every_input_path() {
     let bounded_cases = 1500;
     let scenes = seeds("scenes");
     let requests = seeds("scenes/requests");
+    let images = image_seeds();
+    let bench_seed = json!({
+        "family": "bezier", "curves": 10, "degree": 3, "samples_per_curve": 4,
+        "cpu_f64_one_thread_samples_per_s": 1.5e8, "cpu_f64_all_cores_samples_per_s": 2.9e8,
+        "gpu_compute_wall_samples_per_s": null, "frames_per_s_1920x1080": 20.5
+    });
     // One directory per run: concurrent runs (a long one beside the test suite) must not
     // share their files.
     let dir = common::out_dir(&format!("fuzz/{}", std::process::id()));
@@ -510,10 +837,15 @@ fn fuzz_every_input_path() {
         if seconds > 0 && start.elapsed() > Duration::from_secs(seconds) {
             break;
         }
-        if f.rng.unit() < 0.8 {
+        let pick = f.rng.unit();
+        if pick < 0.7 {
             f.scene_case(&scenes, &requests);
-        } else {
+        } else if pick < 0.82 {
             f.argument_case();
+        } else if pick < 0.94 {
+            f.image_case(&images);
+        } else {
+            f.output_case(&bench_seed);
         }
         f.cases += 1;
         if f.failures.len() >= 10 {
