@@ -1,19 +1,22 @@
 //! splinescope: a GPU-rendered, real-time viewer and evaluation engine for families of
 //! parametric curves.
 //!
-//! The library is layered (arrows point down only):
+//! The library is a workspace of layers, one crate each (arrows point down only, and the
+//! compiler keeps them):
 //!
-//! * [`geom`] — the exact curve math in `f64`: Bézier curves of any degree and the
-//!   lowering of every family to Bézier segments. No GPU types.
-//! * [`scene`] — the JSON scene model (curves, styles, view) with typed, path-naming
-//!   errors, the built-in gallery and stress-scene generators.
-//! * [`gpu`] — the only layer that names `wgpu`: device setup, the `#[repr(C)]` layout
-//!   shared with the WGSL shaders, the compute tessellator (and its CPU twin), the
-//!   renderer and offscreen capture.
-//! * [`solve`] — the CPU solvers: closest points, least-squares shape modification of
-//!   Bézier curves (paper 000), constrained modification of NUBMP curves (paper 001), and
-//!   parallel batches. No GPU types.
-//! * [`app`] — the interactive `winit` viewer.
+//! * [`splinescope_core`] — [`geom`], the exact curve math in `f64` (every family and its
+//!   lowering to Bézier segments), and [`solve`], the solvers of papers 000 and 001. No
+//!   GPU, window, command-line or image crate in its dependency tree.
+//! * [`splinescope_scene`] — the JSON [`scene`] and [`request`] formats with typed,
+//!   path-naming errors, the input [`limits`], the [`camera`] and the output-path policy
+//!   ([`files`]).
+//! * [`splinescope_gpu`] ([`gpu`]) — the only layer that names `wgpu`: device setup, the
+//!   WGSL kernels and their CPU twin, the renderer, offscreen capture.
+//! * [`splinescope_viewer`] ([`app`]) — the interactive winit + egui viewer.
+//! * this package — the command line, and what only it prints or writes: [`inspect`]
+//!   reports, [`outputs`] of `eval`/`check`, [`regress`]ion runs, image comparison
+//!   ([`image`]) and the JSON [`schemas`]. It re-exports the layers under their module
+//!   names, so `splinescope::geom`, `splinescope::gpu` and the rest name one thing each.
 //!
 //! The road through the program: scene → curve families → lowering to Bézier segments →
 //! packing (f32) → compute de Casteljau (`shaders/tessellate.wgsl`) → render pass →
@@ -21,19 +24,13 @@
 
 #![forbid(unsafe_code)]
 
-pub mod app;
-pub mod camera;
-pub mod files;
-pub mod geom;
-pub mod gpu;
+pub use splinescope_core::{geom, num, solve};
+pub use splinescope_gpu as gpu;
+pub use splinescope_scene::{camera, files, limits, request, scene};
+pub use splinescope_viewer as app;
+
 pub mod image;
 pub mod inspect;
-mod jsonread;
-pub mod limits;
-pub mod num;
 pub mod outputs;
 pub mod regress;
-pub mod request;
-pub mod scene;
 pub mod schemas;
-pub mod solve;

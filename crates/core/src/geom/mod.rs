@@ -6,6 +6,7 @@
 //! Points are [`glam::DVec3`]; planar curves have `z = 0`. Nothing in this module knows
 //! about the GPU.
 
+pub mod aabb;
 pub mod batch;
 pub mod bernstein;
 pub mod bezier;
@@ -22,12 +23,14 @@ pub mod modified;
 pub mod nubmp;
 pub mod structure;
 
-pub use bezier::{Aabb, Bezier};
+pub use aabb::Aabb;
+pub use bezier::Bezier;
 pub use bspline::BSpline;
-pub(crate) use curve::each_family;
-pub use curve::{Curve, OverlayKind, OverlayPolyline};
+pub use curve::{Curve, FamilyDetails};
 pub use error::GeomError;
-pub use family::{Control, ControlId, ControlKind, ControlValue, Family, FamilyDetails};
+pub use family::{
+    Control, ControlId, ControlKind, ControlValue, Family, OverlayKind, OverlayPolyline,
+};
 pub use interp::{CubicInterpolation, Modification, Reading};
 pub use knots::KnotVector;
 pub use lowering::{BezierSegment, Lower, locate};

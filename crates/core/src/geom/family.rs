@@ -8,17 +8,40 @@ use glam::DVec3;
 use schemars::JsonSchema;
 use serde::Serialize;
 
-use super::{Aabb, Curve, GeomError, Lower, OverlayKind, OverlayPolyline, ParamCurve};
+use super::aabb::Aabb;
+use super::{GeomError, Lower, ParamCurve};
+
+/// What an overlay polyline shows, so that the renderer can style it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum OverlayKind {
+    /// The control polygon the user edits.
+    ControlPolygon,
+    /// The dual control polygon of a NUBMP curve (`P*_j`).
+    DualPolygon,
+    /// An interpolation piece's inner Bézier points, joined to its ends (tangent handles).
+    TangentHandles,
+    /// The vector `v` of a modified curve, drawn from `Q(t*)` to `R(t*) = Q(t*) + v`.
+    BumpVector,
+}
+
+/// A polyline drawn over a curve to explain it (control polygon, dual polygon, …).
+#[derive(Debug, Clone, PartialEq)]
+pub struct OverlayPolyline {
+    /// What it shows.
+    pub kind: OverlayKind,
+    /// Its vertices, in order.
+    pub points: Vec<DVec3>,
+}
 
 /// A curve family: exact `f64` evaluation ([`ParamCurve`]), exact lowering to Bézier
 /// segments ([`Lower`]), and what the editor, the reports and the drawing need.
-pub trait Family: ParamCurve + Lower + Clone + std::fmt::Debug + Into<Curve> {
+pub trait Family: ParamCurve + Lower + Clone + std::fmt::Debug {
     /// The family's name as written in scene files (`"bezier"`, …).
     const NAME: &'static str;
 
     /// What `splinescope inspect` reports for this family beyond the common fields
     /// (`docs/inspect-format.md`).
-    type Details: Serialize + JsonSchema + Into<FamilyDetails>;
+    type Details: Serialize + JsonSchema;
 
     /// The points the user places (drawn as dots): control points, or the interpolated
     /// points.
@@ -238,22 +261,6 @@ pub type Xyz = [f64; 3];
 #[must_use]
 pub fn xyz(points: &[DVec3]) -> Vec<Xyz> {
     points.iter().map(|p| p.to_array()).collect()
-}
-
-/// The per-family part of an `inspect` report (flattened into the curve's object).
-#[derive(Debug, Clone, Serialize, JsonSchema)]
-#[serde(untagged)]
-pub enum FamilyDetails {
-    /// A Bézier curve.
-    Bezier(super::bezier::BezierDetails),
-    /// A modified Bézier curve.
-    Modified(super::modified::ModifiedDetails),
-    /// An interpolating spline.
-    Interpolation(super::interp::InterpolationDetails),
-    /// A B-spline (with the structure of the standard NUBMP curve on its knots).
-    BSpline(super::bspline::BSplineDetails),
-    /// A NUBMP curve.
-    Nubmp(super::nubmp::NubmpDetails),
 }
 
 /// What a NUBMP curve (or a B-spline, as the standard NUBMP curve) allows at `τ` (paper

@@ -1,12 +1,19 @@
-//! Everything that names `wgpu`: device setup, the data layout shared with the WGSL
-//! shaders, packing, the compute tessellator and its CPU twin, the renderer, offscreen
-//! capture and GPU evaluation.
+//! splinescope's GPU layer, the only one that names `wgpu` and `naga`: device setup, the
+//! data layout shared with the WGSL shaders, packing, the compute tessellator and its CPU
+//! twin, the renderer, offscreen capture (into an [`image::RgbaImage`]) and GPU
+//! evaluation.
+//!
+//! What it may use: [`splinescope_core`] and [`splinescope_scene`], wgpu, naga, png. No
+//! window or command-line crate: the viewer and the command line build on it.
+
+#![forbid(unsafe_code)]
 
 pub mod adaptive;
 pub mod bindings;
 pub mod chunks;
 pub mod context;
 pub mod eval;
+pub mod image;
 pub mod layout;
 pub mod offscreen;
 pub mod overlays;
@@ -18,6 +25,10 @@ pub mod tessellator;
 pub mod twin;
 
 use thiserror::Error;
+
+// The lower layers' modules under the names the code of this layer uses (`crate::geom`).
+use splinescope_core::{geom, num};
+use splinescope_scene::{camera, files, limits, scene};
 
 /// A buffer holding `contents` (like wgpu's `create_buffer_init`, which panics when the
 /// device is lost: here the failure goes to the device's error handler and shows in

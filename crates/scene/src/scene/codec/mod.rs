@@ -23,7 +23,7 @@ use super::SceneError;
 use super::doc::FamilyDoc;
 
 /// How one family reads and writes its curve object.
-pub(crate) trait Codec: Family {
+pub(crate) trait Codec: Family + Into<Curve> {
     /// The family's own fields (beyond `type`, `name` and `style`).
     const FIELDS: &'static [&'static str];
 
@@ -80,7 +80,7 @@ pub(crate) fn family_names() -> Vec<&'static str> {
 
 /// The written form of a curve's family fields.
 pub(crate) fn encode(curve: &Curve) -> FamilyDoc {
-    crate::geom::each_family!(curve, c => c.encode().into())
+    splinescope_core::each_family!(curve, c => c.encode().into())
 }
 
 /// A [`GeomError`] at its field of the curve at `curve` (`prefix` before the field, e.g.

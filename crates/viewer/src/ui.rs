@@ -1113,7 +1113,7 @@ mod tests {
 
     #[test]
     fn labels_show_the_parameters_as_they_are_now() {
-        use crate::app::edit::Editor;
+        use crate::edit::Editor;
         use crate::geom::{ControlValue, Nubmp};
         let scene = crate::scene::gallery::gallery();
         let i = scene

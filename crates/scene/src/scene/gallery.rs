@@ -3,7 +3,7 @@
 use super::{Scene, from_json_str};
 
 /// The gallery's JSON text, as shipped.
-pub const GALLERY_JSON: &str = include_str!("../../scenes/gallery.json");
+pub const GALLERY_JSON: &str = include_str!("../../../../scenes/gallery.json");
 
 /// The built-in gallery: one curve of each family and degree range splinescope shows,
 /// including reconstructions of the papers' figures.

@@ -2,7 +2,15 @@
 
 use glam::DVec3;
 
-use super::family::{AtTau, Control, ControlId, ControlValue, Family, FamilyDetails};
+use schemars::JsonSchema;
+use serde::Serialize;
+
+use super::bezier::BezierDetails;
+use super::bspline::BSplineDetails;
+use super::family::{AtTau, Control, ControlId, ControlValue, Family, OverlayPolyline};
+use super::interp::InterpolationDetails;
+use super::modified::ModifiedDetails;
+use super::nubmp::NubmpDetails;
 use super::{
     Aabb, BSpline, Bezier, BezierSegment, CubicInterpolation, GeomError, Lower, ModifiedBezier,
     Nubmp, ParamCurve,
@@ -26,41 +34,67 @@ pub enum Curve {
     Nubmp(Nubmp),
 }
 
-/// What an overlay polyline shows, so that the renderer can style it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum OverlayKind {
-    /// The control polygon the user edits.
-    ControlPolygon,
-    /// The dual control polygon of a NUBMP curve (`P*_j`).
-    DualPolygon,
-    /// An interpolation piece's inner Bézier points, joined to its ends (tangent handles).
-    TangentHandles,
-    /// The vector `v` of a modified curve, drawn from `Q(t*)` to `R(t*) = Q(t*) + v`.
-    BumpVector,
+/// The per-family part of an `inspect` report (flattened into the curve's object).
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[serde(untagged)]
+pub enum FamilyDetails {
+    /// A Bézier curve.
+    Bezier(BezierDetails),
+    /// A modified Bézier curve.
+    Modified(ModifiedDetails),
+    /// An interpolating spline.
+    Interpolation(InterpolationDetails),
+    /// A B-spline (with the structure of the standard NUBMP curve on its knots).
+    BSpline(BSplineDetails),
+    /// A NUBMP curve.
+    Nubmp(NubmpDetails),
 }
 
-/// A polyline drawn over a curve to explain it (control polygon, dual polygon, …).
-#[derive(Debug, Clone, PartialEq)]
-pub struct OverlayPolyline {
-    /// What it shows.
-    pub kind: OverlayKind,
-    /// Its vertices, in order.
-    pub points: Vec<DVec3>,
+impl From<BezierDetails> for FamilyDetails {
+    fn from(d: BezierDetails) -> FamilyDetails {
+        FamilyDetails::Bezier(d)
+    }
 }
 
-/// Calls `$body` with `$c` bound to the family inside a [`Curve`].
+impl From<ModifiedDetails> for FamilyDetails {
+    fn from(d: ModifiedDetails) -> FamilyDetails {
+        FamilyDetails::Modified(d)
+    }
+}
+
+impl From<InterpolationDetails> for FamilyDetails {
+    fn from(d: InterpolationDetails) -> FamilyDetails {
+        FamilyDetails::Interpolation(d)
+    }
+}
+
+impl From<BSplineDetails> for FamilyDetails {
+    fn from(d: BSplineDetails) -> FamilyDetails {
+        FamilyDetails::BSpline(d)
+    }
+}
+
+impl From<NubmpDetails> for FamilyDetails {
+    fn from(d: NubmpDetails) -> FamilyDetails {
+        FamilyDetails::Nubmp(d)
+    }
+}
+
+/// Calls `$body` with `$c` bound to the family inside a [`Curve`] (for the layers above,
+/// which dispatch one generic call over every family the same way).
+#[doc(hidden)]
+#[macro_export]
 macro_rules! each_family {
     ($curve:expr, $c:ident => $body:expr) => {
         match $curve {
-            Curve::Bezier($c) => $body,
-            Curve::Modified($c) => $body,
-            Curve::Interpolation($c) => $body,
-            Curve::BSpline($c) => $body,
-            Curve::Nubmp($c) => $body,
+            $crate::geom::Curve::Bezier($c) => $body,
+            $crate::geom::Curve::Modified($c) => $body,
+            $crate::geom::Curve::Interpolation($c) => $body,
+            $crate::geom::Curve::BSpline($c) => $body,
+            $crate::geom::Curve::Nubmp($c) => $body,
         }
     };
 }
-pub(crate) use each_family;
 
 impl Curve {
     /// Checks the values derived from the input: every control point of the lowering

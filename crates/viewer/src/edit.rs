@@ -527,7 +527,7 @@ impl Editor {
             Some(source) => crate::scene::to_json_string_keeping(&self.scene, source),
             None => crate::scene::to_json_string(&self.scene),
         };
-        crate::files::write_atomic(&path, text.as_bytes())
+        crate::file_output::write_atomic(&path, text.as_bytes())
             .map_err(|e| format!("{}: cannot save: {e}", path.display()))?;
         self.source = Some(text);
         if self.path.as_deref() != Some(path.as_path()) {

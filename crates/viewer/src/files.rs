@@ -248,7 +248,7 @@ impl RecentFiles {
             if let Some(dir) = store.parent() {
                 std::fs::create_dir_all(dir)?;
             }
-            crate::files::write_atomic(store, text.as_bytes())
+            crate::file_output::write_atomic(store, text.as_bytes())
         };
         write().map_err(|e| format!("{}: cannot keep the recent files: {e}", store.display()))
     }

@@ -9,7 +9,7 @@ use super::exact::Scalar;
 use schemars::JsonSchema;
 use serde::Serialize;
 
-use super::family::{AtTau, Family, FamilyDetails};
+use super::family::{AtTau, Family};
 use super::nubmp::{NubmpDetails, NubmpStructure, SplineDetails, nubmp_at_tau};
 use super::{Bezier, BezierSegment, GeomError, KnotVector, Lower, Nubmp, ParamCurve};
 
@@ -461,12 +461,6 @@ impl BSpline {
 #[derive(Debug, Clone, Serialize, JsonSchema)]
 #[serde(transparent)]
 pub struct BSplineDetails(pub NubmpDetails);
-
-impl From<BSplineDetails> for FamilyDetails {
-    fn from(d: BSplineDetails) -> FamilyDetails {
-        FamilyDetails::BSpline(d)
-    }
-}
 
 #[cfg(test)]
 mod tests {

@@ -12,12 +12,11 @@ use schemars::JsonSchema;
 use serde::Serialize;
 
 use super::family::{
-    AtTau, Control, ControlId, ControlKind, ControlValue, Family, FamilyDetails, GroupAtTau, Xyz,
-    unknown_control, xyz,
+    AtTau, Control, ControlId, ControlKind, ControlValue, Family, GroupAtTau, Xyz, unknown_control,
+    xyz,
 };
-use super::{
-    BSpline, BezierSegment, GeomError, KnotVector, Lower, OverlayKind, OverlayPolyline, ParamCurve,
-};
+use super::family::{OverlayKind, OverlayPolyline};
+use super::{BSpline, BezierSegment, GeomError, KnotVector, Lower, ParamCurve};
 
 /// How far a group's sum may be from 1 and still be accepted.
 pub const GROUP_SUM_TOLERANCE: f64 = 1e-9;
@@ -943,12 +942,6 @@ pub struct NubmpDetails {
     /// The multiple-shape-parameter structure.
     #[serde(flatten)]
     pub structure: NubmpStructure,
-}
-
-impl From<NubmpDetails> for FamilyDetails {
-    fn from(d: NubmpDetails) -> FamilyDetails {
-        FamilyDetails::Nubmp(d)
-    }
 }
 
 /// The highest order for which `inspect` reports the elevation coefficients as exact

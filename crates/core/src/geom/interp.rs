@@ -10,11 +10,10 @@ use schemars::JsonSchema;
 use serde::Serialize;
 
 use super::family::{
-    Control, ControlId, ControlKind, ControlValue, Family, FamilyDetails, Xyz, unknown_control, xyz,
+    Control, ControlId, ControlKind, ControlValue, Family, Xyz, unknown_control, xyz,
 };
-use super::{
-    Aabb, Bezier, BezierSegment, GeomError, Lower, OverlayKind, OverlayPolyline, ParamCurve,
-};
+use super::family::{OverlayKind, OverlayPolyline};
+use super::{Aabb, Bezier, BezierSegment, GeomError, Lower, ParamCurve};
 
 /// Which reading of paper 002's modified interpolation to use (docs/math.md §1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -441,12 +440,6 @@ pub struct ModificationReport {
     pub v: Xyz,
     /// `"paper"` or `"bump_added"`.
     pub reading: &'static str,
-}
-
-impl From<InterpolationDetails> for FamilyDetails {
-    fn from(d: InterpolationDetails) -> FamilyDetails {
-        FamilyDetails::Interpolation(d)
-    }
 }
 
 #[cfg(test)]

@@ -3,7 +3,7 @@
 use thiserror::Error;
 
 /// `shaders/common.wgsl`: the structs and constants every pipeline shares.
-pub const COMMON: &str = include_str!("../../shaders/common.wgsl");
+pub const COMMON: &str = include_str!("../../../shaders/common.wgsl");
 
 /// One pipeline's shader file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -17,26 +17,26 @@ pub struct ShaderSource {
 /// `shaders/tessellate.wgsl`: the de Casteljau compute kernel.
 pub const TESSELLATE: ShaderSource = ShaderSource {
     file: "tessellate.wgsl",
-    body: include_str!("../../shaders/tessellate.wgsl"),
+    body: include_str!("../../../shaders/tessellate.wgsl"),
 };
 
 /// `shaders/adaptive.wgsl`: per-frame sample counts, their prefix sum, and the de Casteljau
 /// kernels writing exactly those samples.
 pub const ADAPTIVE: ShaderSource = ShaderSource {
     file: "adaptive.wgsl",
-    body: include_str!("../../shaders/adaptive.wgsl"),
+    body: include_str!("../../../shaders/adaptive.wgsl"),
 };
 
 /// `shaders/lines.wgsl`: anti-aliased polylines.
 pub const LINES: ShaderSource = ShaderSource {
     file: "lines.wgsl",
-    body: include_str!("../../shaders/lines.wgsl"),
+    body: include_str!("../../../shaders/lines.wgsl"),
 };
 
 /// `shaders/points.wgsl`: anti-aliased discs.
 pub const POINTS: ShaderSource = ShaderSource {
     file: "points.wgsl",
-    body: include_str!("../../shaders/points.wgsl"),
+    body: include_str!("../../../shaders/points.wgsl"),
 };
 
 /// Every pipeline shader.

@@ -19,6 +19,12 @@
 //! drive; `surface` owns the window's surface; `egui_layer` runs and paints the panel
 //! (`ui` draws it); `scene_view` keeps the scene on the GPU; this file only turns winit
 //! events into [`interaction::Input`] and composes a frame.
+//!
+//! This crate is splinescope's viewer layer: it may use every layer below
+//! ([`splinescope_core`], [`splinescope_scene`], [`splinescope_gpu`]), winit and egui; no
+//! command-line crate.
+
+#![forbid(unsafe_code)]
 
 pub mod edit;
 mod egui_layer;
@@ -43,6 +49,11 @@ use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{Key, ModifiersState, NamedKey};
 use winit::window::WindowId;
+
+// The lower layers' modules under the names the code of this layer uses (`crate::gpu`).
+use splinescope_core::{geom, solve};
+use splinescope_gpu as gpu;
+use splinescope_scene::{camera, files as file_output, scene};
 
 use crate::gpu::renderer::camera_uniform;
 use crate::gpu::{BackendChoice, ContextOptions, GpuContext, GpuError};

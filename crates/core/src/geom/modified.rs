@@ -7,12 +7,9 @@ use glam::DVec3;
 use schemars::JsonSchema;
 use serde::Serialize;
 
-use super::family::{
-    Control, ControlId, ControlKind, ControlValue, Family, FamilyDetails, Xyz, unknown_control,
-};
-use super::{
-    Aabb, Bezier, BezierSegment, GeomError, Lower, OverlayKind, OverlayPolyline, ParamCurve,
-};
+use super::family::{Control, ControlId, ControlKind, ControlValue, Family, Xyz, unknown_control};
+use super::family::{OverlayKind, OverlayPolyline};
+use super::{Aabb, Bezier, BezierSegment, GeomError, Lower, ParamCurve};
 
 /// The bump `S` of paper 002 for `t* ∈ (0, 1)`:
 ///
@@ -317,12 +314,6 @@ pub struct Peak {
     pub q: Xyz,
     /// `R(t*)`.
     pub r: Xyz,
-}
-
-impl From<ModifiedDetails> for FamilyDetails {
-    fn from(d: ModifiedDetails) -> FamilyDetails {
-        FamilyDetails::Modified(d)
-    }
 }
 
 #[cfg(test)]

@@ -1,0 +1,13 @@
+//! splinescope's core layer: the exact curve math in `f64` ([`geom`]) and the solvers
+//! ([`solve`]), with the number formatting both use in messages ([`num`]).
+//!
+//! What it may use: glam, nalgebra, rayon, exact rationals, serde and schemars (reports
+//! are serialisable). Nothing GPU, window, command-line or image related is in its
+//! dependency tree, so a program that only evaluates or modifies curves compiles this
+//! crate alone. Every layer above (scene, gpu, viewer, the command line) builds on it.
+
+#![forbid(unsafe_code)]
+
+pub mod geom;
+pub mod num;
+pub mod solve;
