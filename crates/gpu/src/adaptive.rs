@@ -155,7 +155,7 @@ impl AdaptiveTessellator {
         let blocks = n.div_ceil(SCAN_BLOCK).max(1);
         let work_words = WORK_HEADER as u64 + 3 * u64::from(n) + 2 * u64::from(blocks);
         let mut header = vec![0u32; work_words as usize];
-        header[0] = super::renderer::LINE_CORNERS;
+        header[0] = super::layout::LINE_CORNERS;
         let work = super::init_buffer(
             device,
             "adaptive work",

@@ -8,7 +8,7 @@ use super::layout::{
     GpuLineStyle, GpuRecord, GpuSegment, GpuVertex, MAX_ADAPTIVE_SEGMENTS, TESSELLATE_KERNELS,
     TESSELLATE_WORKGROUP_SIZE as WORKGROUP, kernel_class,
 };
-use super::pack::PackError;
+use super::pack_error::PackError;
 
 /// The most each chunk may hold, derived from the device's binding and buffer limits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -210,3 +210,7 @@ pub struct GpuLineStyle {
     /// Keeps the size a multiple of 16 bytes.
     pub _padding1: u32,
 }
+
+/// Vertices per line piece: a triangle strip around the piece's capsule
+/// (`shaders/lines.wgsl`); the adaptive kernel writes it into the draw arguments.
+pub const LINE_CORNERS: u32 = 4;

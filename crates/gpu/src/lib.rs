@@ -18,6 +18,7 @@ pub mod layout;
 pub mod offscreen;
 pub mod overlays;
 pub mod pack;
+pub mod pack_error;
 pub mod renderer;
 pub mod selftest;
 pub mod shaders;

@@ -11,9 +11,7 @@ use super::pack::{LineBatch, PreparedScene};
 use super::shaders;
 use crate::camera::Camera;
 
-/// Vertices per line piece: a triangle strip around the piece's capsule
-/// (`shaders/lines.wgsl`).
-pub const LINE_CORNERS: u32 = 4;
+pub use super::layout::LINE_CORNERS;
 
 /// Line and point pipelines for one colour target format, and the camera uniform.
 #[derive(Debug)]

@@ -228,7 +228,7 @@ pub fn scan_and_place(counts: &[u32], capacity: u32) -> (Vec<u32>, Vec<u32>, Fra
         finals.push(end - start);
     }
     let stats = FrameStats {
-        vertex_count: super::renderer::LINE_CORNERS,
+        vertex_count: super::layout::LINE_CORNERS,
         instance_count: end.max(1) - 1,
         first_vertex: 0,
         first_instance: 0,

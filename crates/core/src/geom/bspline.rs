@@ -1,17 +1,15 @@
 //! Non-uniform B-spline curves of any order (paper 001, §2), and exact degree elevation.
 //! Formulas (extraction by blossoms, elevation coefficients by dual functionals):
-//! `docs/math.md` §3.
+//! `docs/math.md` §3. A B-spline's [`Family`](super::Family) side — its report is the
+//! structure of the standard NUBMP curve on its knots — is in [`super::nubmp`], which
+//! builds on this file (never the other way round).
 
 use glam::DVec3;
 
 use super::bezier::check_finite;
 use super::exact::Scalar;
-use schemars::JsonSchema;
-use serde::Serialize;
 
-use super::family::{AtTau, Family};
-use super::nubmp::{NubmpDetails, NubmpStructure, SplineDetails, nubmp_at_tau};
-use super::{Bezier, BezierSegment, GeomError, KnotVector, Lower, Nubmp, ParamCurve};
+use super::{Bezier, BezierSegment, GeomError, KnotVector, Lower, ParamCurve};
 
 /// A non-uniform B-spline curve of order `k` (degree `k − 1`):
 ///
@@ -411,56 +409,6 @@ impl Lower for BSpline {
         self.bezier_segments()
     }
 }
-
-impl Family for BSpline {
-    const NAME: &'static str = "bspline";
-    type Details = BSplineDetails;
-
-    fn control_points(&self) -> &[DVec3] {
-        self.points()
-    }
-
-    fn with_control_points(&self, points: Vec<DVec3>) -> Result<BSpline, GeomError> {
-        BSpline::from_parts(points, self.knots.clone())
-    }
-
-    fn derived_field(&self) -> &'static str {
-        "knots"
-    }
-
-    fn summary(&self) -> String {
-        format!("order {}, knots {:?}", self.order(), self.knots.knots())
-    }
-
-    /// A B-spline is the standard NUBMP curve on its knots: that structure is reported.
-    fn details(&self) -> Result<BSplineDetails, GeomError> {
-        let standard = self.standard_nubmp()?;
-        Ok(BSplineDetails(NubmpDetails {
-            spline: SplineDetails::of(&self.knots),
-            structure: NubmpStructure::of(&standard),
-        }))
-    }
-
-    fn at_tau(&self, tau: f64) -> Result<Option<AtTau>, GeomError> {
-        nubmp_at_tau(&self.standard_nubmp()?, tau).map(Some)
-    }
-}
-
-impl BSpline {
-    /// The standard NUBMP curve on this spline's points and knots (the same curve).
-    ///
-    /// # Errors
-    /// [`GeomError::DerivedNotFinite`] when its structure overflows `f64`.
-    pub fn standard_nubmp(&self) -> Result<Nubmp, GeomError> {
-        Nubmp::standard(self.points().to_vec(), self.knots.clone())
-    }
-}
-
-/// What `inspect` reports for a B-spline: the structure of the standard NUBMP curve on its
-/// knots.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
-#[serde(transparent)]
-pub struct BSplineDetails(pub NubmpDetails);
 
 #[cfg(test)]
 mod tests {

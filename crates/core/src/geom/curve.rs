@@ -6,11 +6,10 @@ use schemars::JsonSchema;
 use serde::Serialize;
 
 use super::bezier::BezierDetails;
-use super::bspline::BSplineDetails;
 use super::family::{AtTau, Control, ControlId, ControlValue, Family, OverlayPolyline};
 use super::interp::InterpolationDetails;
 use super::modified::ModifiedDetails;
-use super::nubmp::NubmpDetails;
+use super::nubmp::{BSplineDetails, NubmpDetails};
 use super::{
     Aabb, BSpline, Bezier, BezierSegment, CubicInterpolation, GeomError, Lower, ModifiedBezier,
     Nubmp, ParamCurve,

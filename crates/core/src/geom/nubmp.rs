@@ -16,6 +16,7 @@ use super::family::{
     xyz,
 };
 use super::family::{OverlayKind, OverlayPolyline};
+
 use super::{BSpline, BezierSegment, GeomError, KnotVector, Lower, ParamCurve};
 
 /// How far a group's sum may be from 1 and still be accepted.
@@ -1105,6 +1106,59 @@ impl Nubmp {
         }
     }
 }
+
+// The B-spline as a family: it is the standard NUBMP curve on its knots (paper 001, §3),
+// so its report and its `at_tau` are that curve's.
+
+impl Family for BSpline {
+    const NAME: &'static str = "bspline";
+    type Details = BSplineDetails;
+
+    fn control_points(&self) -> &[DVec3] {
+        self.points()
+    }
+
+    fn with_control_points(&self, points: Vec<DVec3>) -> Result<BSpline, GeomError> {
+        BSpline::from_parts(points, self.knots().clone())
+    }
+
+    fn derived_field(&self) -> &'static str {
+        "knots"
+    }
+
+    fn summary(&self) -> String {
+        format!("order {}, knots {:?}", self.order(), self.knots().knots())
+    }
+
+    /// A B-spline is the standard NUBMP curve on its knots: that structure is reported.
+    fn details(&self) -> Result<BSplineDetails, GeomError> {
+        let standard = self.standard_nubmp()?;
+        Ok(BSplineDetails(NubmpDetails {
+            spline: SplineDetails::of(self.knots()),
+            structure: NubmpStructure::of(&standard),
+        }))
+    }
+
+    fn at_tau(&self, tau: f64) -> Result<Option<AtTau>, GeomError> {
+        nubmp_at_tau(&self.standard_nubmp()?, tau).map(Some)
+    }
+}
+
+impl BSpline {
+    /// The standard NUBMP curve on this spline's points and knots (the same curve).
+    ///
+    /// # Errors
+    /// [`GeomError::DerivedNotFinite`] when its structure overflows `f64`.
+    pub fn standard_nubmp(&self) -> Result<Nubmp, GeomError> {
+        Nubmp::standard(self.points().to_vec(), self.knots().clone())
+    }
+}
+
+/// What `inspect` reports for a B-spline: the structure of the standard NUBMP curve on its
+/// knots.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[serde(transparent)]
+pub struct BSplineDetails(pub NubmpDetails);
 
 #[cfg(test)]
 mod tests {

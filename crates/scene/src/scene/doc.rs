@@ -4,11 +4,13 @@
 //! hand instead, to name the path of the first offending value; a test checks that every
 //! document it accepts validates against the schema.
 
-use glam::DVec3;
 use schemars::JsonSchema;
 use serde::Serialize;
 
-use super::codec::{BSplineDoc, BezierDoc, InterpolationDoc, ModifiedBezierDoc, NubmpDoc};
+pub use super::point_doc::PointDoc;
+
+use super::codec::{BSplineDoc, BezierDoc, Codec, InterpolationDoc, ModifiedBezierDoc, NubmpDoc};
+use crate::geom::Curve;
 
 /// A scene document (format version 1, `docs/scene-format.md`).
 #[derive(Debug, Clone, Serialize, JsonSchema)]
@@ -34,29 +36,6 @@ pub struct SceneDoc {
     /// Marks drawn over the curves.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub annotations: Vec<AnnotationDoc>,
-}
-
-/// A point: `[x, y]` (`z = 0`) or `[x, y, z]`.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
-#[serde(transparent)]
-pub struct PointDoc(#[schemars(length(min = 2, max = 3))] pub Vec<f64>);
-
-impl PointDoc {
-    /// `[x, y]` when `z = 0`, else `[x, y, z]`.
-    #[must_use]
-    pub fn of(p: DVec3) -> PointDoc {
-        if p.z == 0.0 {
-            PointDoc(vec![p.x, p.y])
-        } else {
-            PointDoc(vec![p.x, p.y, p.z])
-        }
-    }
-
-    /// Every point of `points`.
-    #[must_use]
-    pub fn all(points: &[DVec3]) -> Vec<PointDoc> {
-        points.iter().copied().map(PointDoc::of).collect()
-    }
 }
 
 /// A colour: `"#rrggbb"`, `"#rrggbbaa"`, or `[r, g, b]` / `[r, g, b, a]` in `[0, 1]`.
@@ -168,6 +147,41 @@ pub enum FamilyDoc {
     /// `"nubmp"`.
     #[serde(rename = "nubmp")]
     Nubmp(NubmpDoc),
+}
+
+impl From<BezierDoc> for FamilyDoc {
+    fn from(d: BezierDoc) -> FamilyDoc {
+        FamilyDoc::Bezier(d)
+    }
+}
+
+impl From<ModifiedBezierDoc> for FamilyDoc {
+    fn from(d: ModifiedBezierDoc) -> FamilyDoc {
+        FamilyDoc::ModifiedBezier(d)
+    }
+}
+
+impl From<InterpolationDoc> for FamilyDoc {
+    fn from(d: InterpolationDoc) -> FamilyDoc {
+        FamilyDoc::Interpolation(d)
+    }
+}
+
+impl From<BSplineDoc> for FamilyDoc {
+    fn from(d: BSplineDoc) -> FamilyDoc {
+        FamilyDoc::BSpline(d)
+    }
+}
+
+impl From<NubmpDoc> for FamilyDoc {
+    fn from(d: NubmpDoc) -> FamilyDoc {
+        FamilyDoc::Nubmp(d)
+    }
+}
+
+/// The written form of a curve's family fields.
+pub(crate) fn encode(curve: &Curve) -> FamilyDoc {
+    splinescope_core::each_family!(curve, c => c.encode().into())
 }
 
 /// How a curve is drawn.

@@ -307,7 +307,7 @@ pub fn to_doc(scene: &Scene) -> SceneDoc {
 pub(super) fn curve_doc(c: &SceneCurve) -> CurveDoc {
     let s = &c.style;
     CurveDoc {
-        family: codec::encode(&c.curve),
+        family: super::doc::encode(&c.curve),
         name: c.name.clone(),
         style: Some(StyleDoc {
             color: Some(ColorDoc::Hex(s.color.to_hex())),

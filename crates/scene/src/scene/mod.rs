@@ -10,6 +10,7 @@ pub mod draw;
 pub mod gallery;
 pub mod generate;
 mod json;
+pub mod point_doc;
 mod preserve;
 
 use std::path::Path;

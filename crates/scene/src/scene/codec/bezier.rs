@@ -7,7 +7,7 @@ use super::{Codec, geom_error};
 use crate::geom::{Bezier, Family};
 use crate::jsonread::{Node, Obj};
 use crate::scene::SceneError;
-use crate::scene::doc::{FamilyDoc, PointDoc};
+use crate::scene::point_doc::PointDoc;
 
 /// A Bézier curve's fields.
 #[derive(Debug, Clone, Serialize, JsonSchema)]
@@ -15,12 +15,6 @@ pub struct BezierDoc {
     /// The control points `P_0 … P_n` (degree `n` = count − 1).
     #[schemars(length(min = 2))]
     pub points: Vec<PointDoc>,
-}
-
-impl From<BezierDoc> for FamilyDoc {
-    fn from(d: BezierDoc) -> FamilyDoc {
-        FamilyDoc::Bezier(d)
-    }
 }
 
 impl Codec for Bezier {

@@ -9,7 +9,7 @@ use crate::geom::exact::{Rational, parse_decimal};
 use crate::geom::{BSpline, Family, KnotVector};
 use crate::jsonread::{Node, Obj};
 use crate::scene::SceneError;
-use crate::scene::doc::{FamilyDoc, PointDoc};
+use crate::scene::point_doc::PointDoc;
 
 /// A B-spline's fields.
 #[derive(Debug, Clone, Serialize, JsonSchema)]
@@ -40,12 +40,6 @@ pub enum NamedKnots {
     /// `"clamped_uniform"`.
     #[serde(rename = "clamped_uniform")]
     ClampedUniform,
-}
-
-impl From<BSplineDoc> for FamilyDoc {
-    fn from(d: BSplineDoc) -> FamilyDoc {
-        FamilyDoc::BSpline(d)
-    }
 }
 
 impl Codec for BSpline {

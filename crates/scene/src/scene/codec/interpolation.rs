@@ -7,7 +7,7 @@ use super::{Codec, geom_error};
 use crate::geom::{CubicInterpolation, GeomError, Modification, Reading};
 use crate::jsonread::{Node, Obj};
 use crate::scene::SceneError;
-use crate::scene::doc::{FamilyDoc, PointDoc};
+use crate::scene::point_doc::PointDoc;
 
 /// An interpolating spline's fields.
 #[derive(Debug, Clone, Serialize, JsonSchema)]
@@ -45,12 +45,6 @@ pub enum ReadingDoc {
     Paper,
     /// The bump added to plain pieces.
     BumpAdded,
-}
-
-impl From<InterpolationDoc> for FamilyDoc {
-    fn from(d: InterpolationDoc) -> FamilyDoc {
-        FamilyDoc::Interpolation(d)
-    }
 }
 
 impl Codec for CubicInterpolation {

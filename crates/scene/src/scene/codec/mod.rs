@@ -20,7 +20,6 @@ use crate::geom::{
 use crate::jsonread::{Node, Obj};
 
 use super::SceneError;
-use super::doc::FamilyDoc;
 
 /// How one family reads and writes its curve object.
 pub(crate) trait Codec: Family + Into<Curve> {
@@ -28,7 +27,7 @@ pub(crate) trait Codec: Family + Into<Curve> {
     const FIELDS: &'static [&'static str];
 
     /// The written form of the family's fields.
-    type Doc: Into<FamilyDoc>;
+    type Doc;
 
     /// Reads the family's fields of the curve object `obj` (at `node`).
     fn decode(node: &Node<'_>, obj: &Obj<'_>) -> Result<Self, SceneError>;
@@ -76,11 +75,6 @@ pub(crate) fn decode<'a>(
 /// The families' names, for error messages.
 pub(crate) fn family_names() -> Vec<&'static str> {
     CODECS.iter().map(|(name, _)| *name).collect()
-}
-
-/// The written form of a curve's family fields.
-pub(crate) fn encode(curve: &Curve) -> FamilyDoc {
-    splinescope_core::each_family!(curve, c => c.encode().into())
 }
 
 /// A [`GeomError`] at its field of the curve at `curve` (`prefix` before the field, e.g.

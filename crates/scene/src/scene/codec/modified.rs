@@ -8,7 +8,7 @@ use super::{Codec, geom_error};
 use crate::geom::{Bezier, ModifiedBezier};
 use crate::jsonread::{Node, Obj};
 use crate::scene::SceneError;
-use crate::scene::doc::{FamilyDoc, PointDoc};
+use crate::scene::point_doc::PointDoc;
 
 /// A modified Bézier curve's fields.
 #[derive(Debug, Clone, Serialize, JsonSchema)]
@@ -21,12 +21,6 @@ pub struct ModifiedBezierDoc {
     pub t_star: f64,
     /// The vector `v`.
     pub v: PointDoc,
-}
-
-impl From<ModifiedBezierDoc> for FamilyDoc {
-    fn from(d: ModifiedBezierDoc) -> FamilyDoc {
-        FamilyDoc::ModifiedBezier(d)
-    }
 }
 
 impl Codec for ModifiedBezier {

@@ -7,7 +7,7 @@ use super::bspline::{KnotsDoc, decode_spline_parts};
 use super::{Codec, geom_error};
 use crate::geom::{Family, GeomError, Nubmp};
 use crate::jsonread::{Node, Obj};
-use crate::scene::doc::{FamilyDoc, PointDoc};
+use crate::scene::point_doc::PointDoc;
 use crate::scene::{SceneError, SceneErrorKind};
 
 /// A NUBMP curve's fields.
@@ -48,12 +48,6 @@ pub enum ShapeSettingDoc {
         /// The member `l` whose `a^l_j` absorbs the change.
         absorber: usize,
     },
-}
-
-impl From<NubmpDoc> for FamilyDoc {
-    fn from(d: NubmpDoc) -> FamilyDoc {
-        FamilyDoc::Nubmp(d)
-    }
 }
 
 impl Codec for Nubmp {
