@@ -49,68 +49,121 @@ impl std::fmt::Display for Tolerance {
     }
 }
 
+/// What the tolerance text gets wrong, naming it.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum ToleranceError {
+    /// Nothing was given.
+    #[error("{text:?} is empty; {EXPECTED_TOLERANCE}")]
+    Empty {
+        /// The text.
+        text: String,
+    },
+    /// Two commas with nothing between, or one at an end.
+    #[error("{text:?} has an empty item; {EXPECTED_TOLERANCE}")]
+    EmptyItem {
+        /// The text.
+        text: String,
+    },
+    /// A key given twice.
+    #[error("{text:?} gives {key} twice")]
+    Twice {
+        /// The text.
+        text: String,
+        /// The key.
+        key: String,
+    },
+    /// An item without `=`.
+    #[error("{item:?}: expected key=value (channel=24, pixels=0.1%, flip=0.05)")]
+    NotKeyValue {
+        /// The item.
+        item: String,
+    },
+    /// A key that is not `channel`, `pixels` or `flip`.
+    #[error("unknown tolerance key {key:?} (expected channel, pixels or flip)")]
+    UnknownKey {
+        /// The key.
+        key: String,
+    },
+    /// A value that is not what its key takes (a finite number in range; for `channel`
+    /// a whole number 0..=255).
+    #[error("{key}={value}: {expected}")]
+    BadValue {
+        /// The key.
+        key: &'static str,
+        /// The value as given.
+        value: String,
+        /// What it must be.
+        expected: String,
+    },
+}
+
+/// What a tolerance looks like, for messages.
+const EXPECTED_TOLERANCE: &str =
+    "expected key=value items such as channel=24,pixels=0.1%,flip=0.05";
+
 impl std::str::FromStr for Tolerance {
-    type Err = String;
+    type Err = ToleranceError;
     /// Strict: an empty text, an empty item (`channel=4,`), a key given twice, or a value
     /// that is not a number in range is an error naming it; keys left out keep their
     /// defaults.
-    fn from_str(text: &str) -> Result<Tolerance, String> {
-        const EXPECTED: &str = "expected key=value items such as channel=24,pixels=0.1%,flip=0.05";
+    fn from_str(text: &str) -> Result<Tolerance, ToleranceError> {
         if text.trim().is_empty() {
-            return Err(format!("{text:?} is empty; {EXPECTED}"));
+            return Err(ToleranceError::Empty { text: text.into() });
         }
         let mut tol = Tolerance::default();
         let mut seen: Vec<&str> = Vec::new();
         for item in text.split(',').map(str::trim) {
             if item.is_empty() {
-                return Err(format!("{text:?} has an empty item; {EXPECTED}"));
+                return Err(ToleranceError::EmptyItem { text: text.into() });
             }
             let Some((key, value)) = item.split_once('=') else {
-                return Err(format!(
-                    "{item:?}: expected key=value (channel=24, pixels=0.1%, flip=0.05)"
-                ));
+                return Err(ToleranceError::NotKeyValue { item: item.into() });
             };
             let key_name = key.trim();
             if seen.contains(&key_name) {
-                return Err(format!("{text:?} gives {key_name} twice"));
+                return Err(ToleranceError::Twice {
+                    text: text.into(),
+                    key: key_name.into(),
+                });
             }
             seen.push(key_name);
-            let number = |v: &str| -> Result<f64, String> {
+            let bad = |key: &'static str, expected: String| ToleranceError::BadValue {
+                key,
+                value: value.into(),
+                expected,
+            };
+            let number = |key: &'static str, v: &str| -> Result<f64, ToleranceError> {
                 v.trim()
                     .parse::<f64>()
                     .ok()
                     .filter(|x| x.is_finite())
-                    .ok_or_else(|| format!("{key}={value}: {v:?} is not a finite number"))
+                    .ok_or_else(|| bad(key, format!("{v:?} is not a finite number")))
             };
             match key_name {
                 "channel" => {
                     tol.channel = value
                         .trim()
                         .parse::<u8>()
-                        .map_err(|_| format!("channel={value}: expected a whole number 0..=255"))?;
+                        .map_err(|_| bad("channel", "expected a whole number 0..=255".into()))?;
                 }
                 "pixels" => {
                     let fraction = match value.trim().strip_suffix('%') {
-                        Some(pct) => number(pct)? / 100.0,
-                        None => number(value)?,
+                        Some(pct) => number("pixels", pct)? / 100.0,
+                        None => number("pixels", value)?,
                     };
                     if !(0.0..=1.0).contains(&fraction) {
-                        return Err(format!("pixels={value}: outside 0..=100 %"));
+                        return Err(bad("pixels", "outside 0..=100 %".into()));
                     }
                     tol.max_differing_fraction = fraction;
                 }
                 "flip" => {
-                    let flip = number(value)?;
+                    let flip = number("flip", value)?;
                     if !(0.0..=1.0).contains(&flip) {
-                        return Err(format!("flip={value}: outside 0..=1"));
+                        return Err(bad("flip", "outside 0..=1".into()));
                     }
                     tol.max_flip_mean = Some(flip);
                 }
-                other => {
-                    return Err(format!(
-                        "unknown tolerance key {other:?} (expected channel, pixels or flip)"
-                    ));
-                }
+                other => return Err(ToleranceError::UnknownKey { key: other.into() }),
             }
         }
         Ok(tol)
@@ -372,7 +425,7 @@ mod tests {
             ("colour=3", "\"colour\""),
             ("channel", "key=value"),
         ] {
-            let e = bad.parse::<Tolerance>().unwrap_err();
+            let e = bad.parse::<Tolerance>().unwrap_err().to_string();
             assert!(e.contains(says), "{bad}: {e}");
         }
         let round: Tolerance = Tolerance::default().to_string().parse().unwrap();

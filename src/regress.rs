@@ -470,7 +470,7 @@ pub fn run(
                 undo_refs();
                 return Err(RegressError::Report {
                     path: opts.report.clone().unwrap_or_default(),
-                    message,
+                    message: message.to_string(),
                 });
             }
         },
@@ -480,7 +480,7 @@ pub fn run(
     if let (Some(dir), Some(staging)) = (&report_dir, report_staging) {
         place_report(dir, &staging).map_err(|message| RegressError::Report {
             path: opts.report.clone().unwrap_or_default(),
-            message,
+            message: message.to_string(),
         })?;
         report.report_page = opts.report.as_ref().map(|r| r.join("index.html"));
     }
@@ -514,7 +514,7 @@ fn stage_report(
     dir: &Path,
     compared: &[Compared],
     report: &RegressReport,
-) -> Result<PathBuf, String> {
+) -> std::io::Result<PathBuf> {
     let name = dir
         .file_name()
         .map_or_else(|| "report".to_owned(), |n| n.to_string_lossy().into_owned());
@@ -527,12 +527,12 @@ fn stage_report(
 }
 
 /// Moves a staged report into place, replacing an earlier report at `dir`.
-fn place_report(dir: &Path, staging: &Path) -> Result<(), String> {
+fn place_report(dir: &Path, staging: &Path) -> std::io::Result<()> {
     let result = (|| {
         if dir.exists() {
-            std::fs::remove_dir_all(dir).map_err(|e| e.to_string())?;
+            std::fs::remove_dir_all(dir)?;
         }
-        std::fs::rename(staging, dir).map_err(|e| e.to_string())
+        std::fs::rename(staging, dir)
     })();
     if result.is_err() {
         let _ = std::fs::remove_dir_all(staging);
@@ -544,8 +544,9 @@ fn fill_report(
     staging: &Path,
     compared: &[Compared],
     report: &RegressReport,
-) -> Result<(), String> {
-    std::fs::create_dir(staging).map_err(|e| format!("{}: {e}", staging.display()))?;
+) -> std::io::Result<()> {
+    std::fs::create_dir(staging)
+        .map_err(|e| std::io::Error::new(e.kind(), format!("{}: {e}", staging.display())))?;
     let mut rows = String::new();
     for c in compared {
         let r = &c.result;
@@ -564,7 +565,7 @@ fn fill_report(
                     let file = format!("{stem}.{kind}.png");
                     image
                         .write_png(&staging.join(&file))
-                        .map_err(|e| e.to_string())?;
+                        .map_err(|e| std::io::Error::other(e.to_string()))?;
                     let file = html_escape(&file);
                     let _ = write!(
                         cells,
@@ -609,7 +610,6 @@ th{{max-width:18em;font-weight:normal}}img{{width:240px;image-rendering:pixelate
         html_escape(&summary)
     );
     crate::files::write_atomic(&staging.join("index.html"), page.as_bytes())
-        .map_err(|e| e.to_string())
 }
 
 #[cfg(test)]

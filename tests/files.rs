@@ -351,7 +351,7 @@ fn recent_files_keep_the_newest_ten_and_survive_a_missing_store() {
     std::fs::write(dir.join("file"), "").unwrap();
     let mut r = RecentFiles::load(Some(dir.join("file").join("recent.txt")));
     let err = r.add(&dir.join("x.json")).unwrap_err();
-    assert!(err.contains("recent"), "{err}");
+    assert!(err.to_string().contains("recent"), "{err}");
     assert_eq!(r.paths, [dir.join("x.json")]);
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -20,19 +20,24 @@ pub const DEFAULT_TOLERANCE_PX: f64 = 0.25;
 /// decides the distance.
 pub const MIN_TOLERANCE_PX: f64 = 0.01;
 
+/// A tolerance that is not a finite number of at least [`MIN_TOLERANCE_PX`].
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[error(
+    "tolerance {} px: must be a finite number of at least {MIN_TOLERANCE_PX} px",
+    crate::num::Num(*.0)
+)]
+pub struct ToleranceError(pub f64);
+
 /// Checks a tolerance given by the user.
 ///
 /// # Errors
-/// A message naming the value when it is not a finite number of at least
+/// [`ToleranceError`] naming the value when it is not a finite number of at least
 /// [`MIN_TOLERANCE_PX`].
-pub fn check_tolerance(tolerance_px: f64) -> Result<f64, String> {
+pub fn check_tolerance(tolerance_px: f64) -> Result<f64, ToleranceError> {
     if tolerance_px.is_finite() && tolerance_px >= MIN_TOLERANCE_PX {
         Ok(tolerance_px)
     } else {
-        Err(format!(
-            "tolerance {} px: must be a finite number of at least {MIN_TOLERANCE_PX} px",
-            crate::num::Num(tolerance_px)
-        ))
+        Err(ToleranceError(tolerance_px))
     }
 }
 

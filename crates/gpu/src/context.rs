@@ -271,14 +271,28 @@ pub fn survey(opts: &ContextOptions) -> Vec<AdapterReport> {
 /// and the tested tessellation pipelines, or why the adapter is refused.
 fn open_and_test(
     adapter: &wgpu::Adapter,
-) -> Result<(wgpu::Device, wgpu::Queue, Tessellator), String> {
-    let (device, queue) = open_device(adapter).map_err(|e| e.to_string())?;
+) -> Result<(wgpu::Device, wgpu::Queue, Tessellator), Refusal> {
+    let (device, queue) = open_device(adapter).map_err(Refusal::Device)?;
     let tessellator = Tessellator::new(&device);
     match selftest::run(&device, &queue, &tessellator) {
         Ok(None) => Ok((device, queue, tessellator)),
-        Ok(Some(fault)) => Err(fault.to_string()),
-        Err(e) => Err(format!("kernel self-test failed: {e}")),
+        Ok(Some(fault)) => Err(Refusal::Fault(fault)),
+        Err(e) => Err(Refusal::SelfTest(e)),
     }
+}
+
+/// Why an adapter was refused.
+#[derive(Debug, thiserror::Error)]
+enum Refusal {
+    /// Its device could not be opened.
+    #[error("{0}")]
+    Device(GpuError),
+    /// A kernel gave a wrong value (the fault names kernel, degree and values).
+    #[error("{0}")]
+    Fault(selftest::KernelFault),
+    /// The self-test could not run.
+    #[error("kernel self-test failed: {0}")]
+    SelfTest(GpuError),
 }
 
 /// Opens `adapter`'s device with its own limits and timestamp queries when it has them.

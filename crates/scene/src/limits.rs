@@ -157,26 +157,37 @@ impl Limit {
     }
 }
 
+/// A text file that could not be read within the limits.
+#[derive(Debug, Error)]
+pub enum ReadError {
+    /// The file system's error.
+    #[error("{0}")]
+    Io(#[from] std::io::Error),
+    /// The file is larger than [`SCENE_BYTES`] (or its variable is malformed).
+    #[error("{0}")]
+    Limit(#[from] LimitError),
+    /// The bytes are not UTF-8 text.
+    #[error("not UTF-8 text: {0}")]
+    NotText(#[from] std::string::FromUtf8Error),
+}
+
 /// Reads a text file after checking its size against [`SCENE_BYTES`].
 ///
 /// # Errors
-/// The I/O error or the limit, as a message.
-pub fn read_bounded(path: &std::path::Path) -> Result<String, String> {
-    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+/// [`ReadError`]: the I/O error, the limit, or bytes that are not text.
+pub fn read_bounded(path: &std::path::Path) -> Result<String, ReadError> {
+    let meta = std::fs::metadata(path)?;
     if meta.is_file() {
-        SCENE_BYTES.check(meta.len()).map_err(|e| e.to_string())?;
+        SCENE_BYTES.check(meta.len())?;
     }
     // A FIFO or device has no size: read at most one byte past the limit.
     use std::io::Read;
-    let limit = SCENE_BYTES.value().map_err(|e| e.to_string())?;
+    let limit = SCENE_BYTES.value()?;
     let mut bytes = Vec::new();
     std::fs::File::open(path)
-        .and_then(|f| f.take(limit.saturating_add(1)).read_to_end(&mut bytes))
-        .map_err(|e| e.to_string())?;
-    SCENE_BYTES
-        .check(bytes.len() as u64)
-        .map_err(|e| e.to_string())?;
-    String::from_utf8(bytes).map_err(|e| format!("not UTF-8 text: {e}"))
+        .and_then(|f| f.take(limit.saturating_add(1)).read_to_end(&mut bytes))?;
+    SCENE_BYTES.check(bytes.len() as u64)?;
+    Ok(String::from_utf8(bytes)?)
 }
 
 #[cfg(test)]

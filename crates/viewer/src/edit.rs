@@ -14,6 +14,62 @@ use crate::scene::{Scene, SceneCurve};
 use crate::solve::nearest;
 use crate::solve::shape::{SingleTargetOptions, single_target};
 
+/// Why an edit, a pull or a save was refused; the scene is unchanged.
+#[derive(Debug, thiserror::Error)]
+pub enum EditError {
+    /// No curve has this index.
+    #[error("curves[{index}] does not exist")]
+    NoSuchCurve {
+        /// The index asked for.
+        index: usize,
+    },
+    /// The curve refused the change (its message names the field).
+    #[error("curves[{index}]: {reason}")]
+    Curve {
+        /// The curve.
+        index: usize,
+        /// What the family said.
+        reason: crate::geom::GeomError,
+    },
+    /// A typed control point the curve refused.
+    #[error("curves[{index}].points[{point}]: {reason}")]
+    Point {
+        /// The curve.
+        index: usize,
+        /// The point.
+        point: usize,
+        /// What the family said.
+        reason: crate::geom::GeomError,
+    },
+    /// Pulling through a point modifies Bézier curves only.
+    #[error(
+        "pulling a curve through a point modifies Bézier curves; curves[{index}] is {family} (drag its control points)"
+    )]
+    NotBezier {
+        /// The curve.
+        index: usize,
+        /// Its family.
+        family: &'static str,
+    },
+    /// The grab was at an end point (fixed by the solve) or the curve is a line.
+    #[error("grab the curve away from its fixed end points (and degree ≥ 2)")]
+    PullAtEnd,
+    /// A deletion with nothing selected.
+    #[error("select a curve or a control point to delete")]
+    NothingSelected,
+    /// The scene has no file yet.
+    #[error("no file to save to")]
+    NoFile,
+    /// Writing the file failed (the previous file is intact).
+    #[error("{}: cannot save: {reason}", path.display())]
+    Save {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        reason: std::io::Error,
+    },
+}
+
 /// What the pointer is over.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Hit {
@@ -297,18 +353,18 @@ impl Editor {
     ///
     /// # Errors
     /// A message when the curve is not a Bézier curve of degree ≥ 2 or `t` is an end.
-    pub fn begin_pull(&mut self, curve: usize, t: f64) -> Result<(), String> {
+    pub fn begin_pull(&mut self, curve: usize, t: f64) -> Result<(), EditError> {
         self.finish();
         self.selected = Some(curve);
         self.selected_point = None;
         let Curve::Bezier(b) = &self.scene.curves[curve].curve else {
-            return Err(format!(
-                "pulling a curve through a point modifies Bézier curves; curves[{curve}] is {} (drag its control points)",
-                self.scene.curves[curve].curve.family()
-            ));
+            return Err(EditError::NotBezier {
+                index: curve,
+                family: self.scene.curves[curve].curve.family(),
+            });
         };
         if b.degree() < 2 || t <= 0.0 || t >= 1.0 {
-            return Err("grab the curve away from its fixed end points (and degree ≥ 2)".into());
+            return Err(EditError::PullAtEnd);
         }
         self.open = Some(Open {
             curve,
@@ -516,19 +572,23 @@ impl Editor {
     /// # Errors
     /// A message naming the file when there is no path or writing fails (the previous
     /// file is left intact).
-    pub fn save(&mut self, path: Option<&Path>) -> Result<PathBuf, String> {
+    pub fn save(&mut self, path: Option<&Path>) -> Result<PathBuf, EditError> {
         self.finish();
         let path = path
             .map(Path::to_path_buf)
             .or_else(|| self.path.clone())
-            .ok_or("no file to save to")?;
+            .ok_or(EditError::NoFile)?;
         // Unchanged curves, styles and shorthands are written as the file had them.
         let text = match &self.source {
             Some(source) => crate::scene::to_json_string_keeping(&self.scene, source),
             None => crate::scene::to_json_string(&self.scene),
         };
-        crate::file_output::write_atomic(&path, text.as_bytes())
-            .map_err(|e| format!("{}: cannot save: {e}", path.display()))?;
+        crate::file_output::write_atomic(&path, text.as_bytes()).map_err(|reason| {
+            EditError::Save {
+                path: path.clone(),
+                reason,
+            }
+        })?;
         self.source = Some(text);
         if self.path.as_deref() != Some(path.as_path()) {
             self.discard_recovery();
@@ -571,12 +631,12 @@ impl Editor {
     /// The recovery file left by an earlier session of this file (unsaved edits), if
     /// any: its path and the scene it holds, or why it cannot be read.
     #[must_use]
-    pub fn find_recovery(&self) -> Option<(PathBuf, Result<Scene, String>)> {
+    pub fn find_recovery(&self) -> Option<(PathBuf, Result<Scene, crate::scene::SceneError>)> {
         let recovery = recovery_path(self.path.as_deref()?);
         if !recovery.exists() {
             return None;
         }
-        let scene = Scene::load(&recovery).map_err(|e| e.to_string());
+        let scene = Scene::load(&recovery);
         Some((recovery, scene))
     }
 
@@ -600,11 +660,11 @@ impl Editor {
     }
 
     /// Curve `index`, or a message saying it does not exist.
-    fn curve_at(&self, index: usize) -> Result<&SceneCurve, String> {
+    fn curve_at(&self, index: usize) -> Result<&SceneCurve, EditError> {
         self.scene
             .curves
             .get(index)
-            .ok_or_else(|| format!("curves[{index}] does not exist"))
+            .ok_or(EditError::NoSuchCurve { index })
     }
 
     /// Replaces the list of curves as one undoable edit, selecting `select`.
@@ -630,7 +690,7 @@ impl Editor {
     ///
     /// # Errors
     /// A message when there is no such curve or the moved copy is invalid.
-    pub fn duplicate(&mut self, index: usize, offset: DVec3) -> Result<usize, String> {
+    pub fn duplicate(&mut self, index: usize, offset: DVec3) -> Result<usize, EditError> {
         let mut copy = self.curve_at(index)?.clone();
         let moved: Vec<DVec3> = copy
             .curve
@@ -641,7 +701,7 @@ impl Editor {
         copy.curve = copy
             .curve
             .with_control_points(moved)
-            .map_err(|e| format!("curves[{index}]: {e}"))?;
+            .map_err(|reason| EditError::Curve { index, reason })?;
         copy.name = copy.name.map(|n| format!("{n} (copy)"));
         Ok(self.add_curve(copy))
     }
@@ -650,7 +710,7 @@ impl Editor {
     ///
     /// # Errors
     /// A message when there is no such curve.
-    pub fn delete_curve(&mut self, index: usize) -> Result<(), String> {
+    pub fn delete_curve(&mut self, index: usize) -> Result<(), EditError> {
         self.curve_at(index)?;
         let mut after = self.scene.curves.clone();
         after.remove(index);
@@ -680,9 +740,9 @@ impl Editor {
     ///
     /// # Errors
     /// A message naming the curve and the reason.
-    pub fn insert_point(&mut self, index: usize, at: DVec3) -> Result<usize, String> {
+    pub fn insert_point(&mut self, index: usize, at: DVec3) -> Result<usize, EditError> {
         let sc = self.curve_at(index)?;
-        let fail = |e: crate::geom::GeomError| format!("curves[{index}]: {e}");
+        let fail = |reason| EditError::Curve { index, reason };
         let (curve, point) = if sc.curve.inserts_by_knot() {
             let t = nearest(&sc.curve, at, None).t;
             let curve = sc.curve.with_knot_inserted(t).map_err(fail)?;
@@ -708,12 +768,12 @@ impl Editor {
     ///
     /// # Errors
     /// A message naming the curve and the reason.
-    pub fn delete_point(&mut self, index: usize, point: usize) -> Result<(), String> {
+    pub fn delete_point(&mut self, index: usize, point: usize) -> Result<(), EditError> {
         let sc = self.curve_at(index)?;
         let curve = sc
             .curve
             .with_point_removed(point)
-            .map_err(|e| format!("curves[{index}]: {e}"))?;
+            .map_err(|reason| EditError::Curve { index, reason })?;
         self.edit_curve(index, curve);
         self.message = Some(format!("deleted point {point} of curves[{index}]"));
         Ok(())
@@ -724,12 +784,16 @@ impl Editor {
     ///
     /// # Errors
     /// A message naming the curve, the point and the reason; the curve is unchanged.
-    pub fn set_point(&mut self, index: usize, point: usize, p: DVec3) -> Result<(), String> {
+    pub fn set_point(&mut self, index: usize, point: usize, p: DVec3) -> Result<(), EditError> {
         let sc = self.curve_at(index)?;
         let curve = sc
             .curve
             .with_control_point(point, p)
-            .map_err(|e| format!("curves[{index}].points[{point}]: {e}"))?;
+            .map_err(|reason| EditError::Point {
+                index,
+                point,
+                reason,
+            })?;
         if curve != sc.curve {
             self.edit_curve(index, curve);
         }

@@ -230,8 +230,9 @@ impl RecentFiles {
     /// Puts `path` first (made absolute) and writes the list.
     ///
     /// # Errors
-    /// A message naming the list's file when it cannot be written.
-    pub fn add(&mut self, path: &Path) -> Result<(), String> {
+    /// [`RecentError`] naming the list's file when it cannot be written (the list is kept
+    /// in memory).
+    pub fn add(&mut self, path: &Path) -> Result<(), RecentError> {
         let path = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
         self.paths.retain(|p| p != &path);
         self.paths.insert(0, path);
@@ -250,6 +251,19 @@ impl RecentFiles {
             }
             crate::file_output::write_atomic(store, text.as_bytes())
         };
-        write().map_err(|e| format!("{}: cannot keep the recent files: {e}", store.display()))
+        write().map_err(|reason| RecentError {
+            store: store.to_path_buf(),
+            reason,
+        })
     }
+}
+
+/// The list of recent files could not be written.
+#[derive(Debug, thiserror::Error)]
+#[error("{}: cannot keep the recent files: {reason}", store.display())]
+pub struct RecentError {
+    /// The list's file.
+    pub store: std::path::PathBuf,
+    /// The cause.
+    pub reason: std::io::Error,
 }

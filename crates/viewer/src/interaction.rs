@@ -396,7 +396,7 @@ impl Interaction {
     /// Puts `path` first among the recent files (a list that cannot be kept says so).
     fn remember(&mut self, path: &Path) {
         if let Err(e) = self.recent.add(path) {
-            self.editor.message = Some(e);
+            self.editor.message = Some(e.to_string());
         }
     }
 
@@ -493,7 +493,7 @@ impl Interaction {
                     }
                 }
                 Err(e) => {
-                    dialog.error = Some(e);
+                    dialog.error = Some(e.to_string());
                     Response::default()
                 }
             },
@@ -583,7 +583,7 @@ impl Interaction {
         };
         let d = self.world_per_pixel(20.0);
         if let Err(e) = self.editor.duplicate(index, DVec3::new(d, -d, 0.0)) {
-            self.editor.message = Some(e);
+            self.editor.message = Some(e.to_string());
         }
     }
 
@@ -597,7 +597,7 @@ impl Interaction {
         let at = self.cursor_world();
         match self.editor.insert_point(index, at) {
             Ok(point) => self.editor.selected_point = Some(point),
-            Err(e) => self.editor.message = Some(e),
+            Err(e) => self.editor.message = Some(e.to_string()),
         }
     }
 
@@ -606,11 +606,11 @@ impl Interaction {
         let result = match (self.editor.selected, self.editor.selected_point) {
             (Some(c), Some(p)) => self.editor.delete_point(c, p),
             (Some(c), None) => self.editor.delete_curve(c),
-            (None, _) => Err("select a curve or a control point to delete".into()),
+            (None, _) => Err(crate::edit::EditError::NothingSelected),
         };
         self.editor.selected_point = None;
         if let Err(e) = result {
-            self.editor.message = Some(e);
+            self.editor.message = Some(e.to_string());
         }
     }
 
@@ -801,7 +801,7 @@ impl Interaction {
         }
         match self.editor.save(None) {
             Ok(path) => self.remember(&path),
-            Err(message) => self.editor.message = Some(message),
+            Err(message) => self.editor.message = Some(message.to_string()),
         }
     }
 
@@ -854,7 +854,7 @@ impl Interaction {
                 match self.editor.begin_pull(curve, t) {
                     Ok(()) => at,
                     Err(message) => {
-                        self.editor.message = Some(message);
+                        self.editor.message = Some(message.to_string());
                         return false;
                     }
                 }

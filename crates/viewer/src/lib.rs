@@ -384,7 +384,7 @@ impl Running {
             if let Some(path) = opts.path.as_deref().filter(|p| p.is_file())
                 && let Err(e) = model.recent.add(path)
             {
-                model.editor.message = Some(e);
+                model.editor.message = Some(e.to_string());
             }
             model.offer_recovery();
         }

@@ -514,7 +514,7 @@ fn edit_section(ui: &mut egui::Ui, editor: &mut Editor, actions: &mut Actions, p
             .clicked()
             && let Err(e) = editor.delete_curve(index)
         {
-            editor.message = Some(e);
+            editor.message = Some(e.to_string());
         }
     });
     if let Some(point) = editor.selected_point
@@ -526,7 +526,7 @@ fn edit_section(ui: &mut egui::Ui, editor: &mut Editor, actions: &mut Actions, p
             if vector_row(ui, "", &mut v, planar)
                 && let Err(e) = editor.set_point(index, point, v)
             {
-                editor.message = Some(e);
+                editor.message = Some(e.to_string());
             }
         });
         if ui
@@ -539,7 +539,7 @@ fn edit_section(ui: &mut egui::Ui, editor: &mut Editor, actions: &mut Actions, p
             .clicked()
         {
             if let Err(e) = editor.delete_point(index, point) {
-                editor.message = Some(e);
+                editor.message = Some(e.to_string());
             }
             editor.selected_point = None;
         }

@@ -48,11 +48,12 @@ fn parse_backend(s: &str) -> Result<BackendChoice, String> {
 /// Parses `--tolerance-px`.
 fn parse_tolerance_px(s: &str) -> Result<f64, String> {
     let v: f64 = s.parse().map_err(|_| format!("{s:?} is not a number"))?;
-    splinescope::gpu::adaptive::check_tolerance(v)
+    splinescope::gpu::adaptive::check_tolerance(v).map_err(|e| e.to_string())
 }
 
 fn parse_tolerance(s: &str) -> Result<splinescope::image::Tolerance, String> {
     s.parse()
+        .map_err(|e: splinescope::image::ToleranceError| e.to_string())
 }
 
 impl GpuArgs {
@@ -545,7 +546,6 @@ fn select_curves(scene: &Scene, only: Option<usize>) -> Result<Vec<usize>> {
 fn solve(path: &Path, request: &Path, output: Option<&Path>, report: Option<&Path>) -> Result<()> {
     let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
     let text = splinescope::limits::read_bounded(request)
-        .map_err(anyhow::Error::msg)
         .with_context(|| format!("{}: cannot read the request", request.display()))?;
     let outcome = splinescope::request::apply_text(&scene, &text)
         .with_context(|| format!("{}", request.display()))?;

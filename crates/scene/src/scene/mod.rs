@@ -329,7 +329,7 @@ impl Scene {
     /// A [`SceneError`] naming the offending value (or the I/O problem).
     pub fn read(path: &Path) -> Result<(Scene, String), SceneError> {
         let text = crate::limits::read_bounded(path)
-            .map_err(|e| SceneError::new("(root)", SceneErrorKind::Io(e)))?;
+            .map_err(|e| SceneError::new("(root)", SceneErrorKind::Io(e.to_string())))?;
         let scene = from_json_str(&text)?;
         Ok((scene, text))
     }

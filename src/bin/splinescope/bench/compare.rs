@@ -16,7 +16,6 @@ use crate::say;
 /// An unreadable file, or JSON that is not `bench --json` output (naming what is wrong).
 pub fn read(path: &Path) -> Result<Vec<Value>> {
     let text = splinescope::limits::read_bounded(path)
-        .map_err(anyhow::Error::msg)
         .with_context(|| format!("reading --compare {}", path.display()))?;
     let value: Value = serde_json::from_str(&text)
         .with_context(|| format!("--compare {}: not JSON", path.display()))?;
