@@ -20,15 +20,20 @@ fn bench(c: &mut Criterion) {
     let (width, height) = (1280, 800);
     let mut g = c.benchmark_group(format!("offscreen frame 1280x800 ({})", ctx.describe()));
     g.sample_size(10);
-    for (name, adaptive) in [("10000 cubics, adaptive", true), ("10000 cubics, 64 fixed", false)] {
+    for (name, adaptive) in [
+        ("10000 cubics, adaptive", true),
+        ("10000 cubics, 64 fixed", false),
+    ] {
         let mut scene = random_bezier_scene(StressOptions::default());
         if adaptive {
             // As `view --stress` draws it.
             scene.samples_per_segment = None;
         }
-        let prepared =
-            prepare_scene(&scene, ChunkLimits::for_binding_size(ctx.max_binding_bytes()))
-                .expect("the stress scene packs");
+        let prepared = prepare_scene(
+            &scene,
+            ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
+        )
+        .expect("the stress scene packs");
         let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
         let mut gpu_scene = renderer.upload(&ctx, &prepared);
         let camera = scene.camera(DVec2::new(f64::from(width), f64::from(height)));

@@ -1,0 +1,306 @@
+//! `splinescope eval`: evaluate curves (and their derivatives) on the CPU or the GPU and print JSON.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, bail};
+use glam::DVec3;
+
+use splinescope::geom::{Lower, ParamCurve};
+use splinescope::num::Num;
+use splinescope::scene::Scene;
+
+use crate::{GpuArgs, select_curves};
+
+/// The arguments of `splinescope eval`.
+#[derive(Debug, clap::Args)]
+pub struct EvalArgs {
+    /// Scene file (JSON).
+    pub scene: PathBuf,
+    /// Number of uniform parameters over each curve's whole domain (ends included).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(2..=10_000_000), conflicts_with = "params")]
+    pub samples: Option<u32>,
+    /// Comma-separated parameters, in each curve's own parameter.
+    #[arg(long, value_name = "T0,T1,...", allow_hyphen_values = true)]
+    pub params: Option<String>,
+    /// Where to evaluate: the exact f64 CPU path, or the GPU kernel (f32).
+    #[arg(long, value_enum, default_value_t = EvalBackend::Cpu)]
+    pub backend: EvalBackend,
+    /// Only this curve (index in the scene).
+    #[arg(long)]
+    pub curve: Option<usize>,
+    /// Also print the first derivative P′ (`1`), or P′, P″ and the curvature (`2`), at
+    /// each parameter.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=2))]
+    pub derivatives: Option<u32>,
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+}
+
+/// Runs `splinescope eval`.
+///
+/// # Errors
+/// A scene that does not load, parameters outside a domain, values that are not finite.
+pub fn run(a: &EvalArgs) -> Result<()> {
+    eval(
+        &a.scene,
+        &EvalRequest {
+            samples: a.samples,
+            params: a.params.as_deref(),
+            backend: a.backend,
+            only: a.curve,
+            derivatives: a.derivatives.unwrap_or(0),
+        },
+        &a.gpu,
+    )
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum EvalBackend {
+    /// Exact f64 evaluation of each family.
+    Cpu,
+    /// The WGSL de Casteljau kernel, read back (f32).
+    Gpu,
+}
+
+/// Parses `--params`: comma-separated finite numbers.
+fn parse_params(text: &str) -> Result<Vec<f64>> {
+    text.split(',')
+        .enumerate()
+        .map(|(i, item)| {
+            let item = item.trim();
+            match item.parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                Ok(v) => bail!("--params[{i}]: {v} is not a finite number"),
+                Err(_) => bail!("--params[{i}]: {item:?} is not a number"),
+            }
+        })
+        .collect()
+}
+
+/// What `eval` was asked for.
+struct EvalRequest<'a> {
+    samples: Option<u32>,
+    params: Option<&'a str>,
+    backend: EvalBackend,
+    only: Option<usize>,
+    /// 0: points only; 1: and P′; 2: and P″ and the curvature.
+    derivatives: u32,
+}
+
+fn eval(path: &Path, req: &EvalRequest<'_>, gpu: &GpuArgs) -> Result<()> {
+    let EvalRequest {
+        samples,
+        params,
+        backend,
+        only,
+        derivatives,
+    } = *req;
+    let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
+    let indices = select_curves(&scene, only)?;
+    let given = params.map(parse_params).transpose()?;
+    if given.is_none() && samples.is_none() {
+        bail!("give --samples N or --params T0,T1,...");
+    }
+    let per = given
+        .as_ref()
+        .map_or_else(|| u64::from(samples.unwrap_or(0)), |g| g.len() as u64);
+    splinescope::limits::SAMPLES
+        .check(per.saturating_mul(indices.len() as u64))
+        .with_context(|| {
+            format!(
+                "{} curve(s) × {per} parameter(s) to evaluate",
+                indices.len()
+            )
+        })?;
+    let mut per_curve = Vec::with_capacity(indices.len());
+    for &i in &indices {
+        let (a, b) = scene.curves[i].curve.domain();
+        let ts = match (&given, samples) {
+            (Some(ts), _) => {
+                for (k, &t) in ts.iter().enumerate() {
+                    if !(a..=b).contains(&t) {
+                        bail!(
+                            "--params[{k}] = {} is outside the domain [{}, {}] of curves[{i}]",
+                            Num(t),
+                            Num(a),
+                            Num(b)
+                        );
+                    }
+                }
+                ts.clone()
+            }
+            (None, Some(n)) => (0..n as usize)
+                .map(|j| splinescope::geom::batch::uniform(a, b, j, n as usize))
+                .collect(),
+            (None, None) => unreachable!("checked above"),
+        };
+        per_curve.push(ts);
+    }
+    // values[0]: the points; values[k]: the k-th derivative.
+    let values: Vec<Vec<Vec<DVec3>>> = match backend {
+        EvalBackend::Cpu => (0..=derivatives)
+            .map(|k| {
+                indices
+                    .iter()
+                    .zip(&per_curve)
+                    .map(|(&i, ts)| {
+                        let c = &scene.curves[i].curve;
+                        if k == 0 {
+                            // Points: the batch evaluator over the exact lowering.
+                            let mut out = vec![DVec3::ZERO; ts.len()];
+                            splinescope::geom::batch::CurveSampler::new(c).eval_into(ts, &mut out);
+                            return out;
+                        }
+                        ts.iter()
+                            .map(|&t| match k {
+                                1 => c.eval_deriv(t),
+                                _ => c.eval_second_deriv(t),
+                            })
+                            .collect()
+                    })
+                    .collect()
+            })
+            .collect(),
+        EvalBackend::Gpu => {
+            let ctx = gpu.context()?;
+            let lowered: Vec<_> = indices
+                .iter()
+                .map(|&i| (i, scene.curves[i].curve.lower()))
+                .collect();
+            let mut v = vec![splinescope::gpu::eval::evaluate(
+                &ctx, &lowered, &per_curve,
+            )?];
+            for k in 1..=derivatives {
+                v.push(splinescope::gpu::eval::evaluate_derivative(
+                    &ctx, &lowered, &per_curve, k,
+                )?);
+            }
+            v
+        }
+    };
+    // Every number printed is finite, or the command fails naming where it overflowed.
+    for (k, pts_all) in values.iter().enumerate() {
+        for ((&i, ts), pts) in indices.iter().zip(&per_curve).zip(pts_all) {
+            if let Some((t, p)) = ts.iter().zip(pts).find(|(_, p)| !p.is_finite()) {
+                bail!(
+                    "{}: curves[{i}] at t = {t}: the {} {p} is not finite (the curve's coordinates are too large for this computation in {})",
+                    path.display(),
+                    ["value", "first derivative", "second derivative"][k],
+                    if backend == EvalBackend::Gpu {
+                        "f32"
+                    } else {
+                        "f64"
+                    }
+                );
+            }
+        }
+    }
+    // κ = |P′ × P″| / |P′|³ from the values above, scaled so that it underflows nowhere:
+    // null only where P′ = 0; a curvature beyond f64 fails like any other value.
+    let curvatures: Option<Vec<Vec<Option<f64>>>> = (values.len() == 3).then(|| {
+        values[1]
+            .iter()
+            .zip(&values[2])
+            .map(|(d1s, d2s)| {
+                d1s.iter()
+                    .zip(d2s)
+                    .map(|(d1, d2)| splinescope::geom::curvature(*d1, *d2))
+                    .collect()
+            })
+            .collect()
+    });
+    for ((&i, ts), ks) in indices
+        .iter()
+        .zip(&per_curve)
+        .zip(curvatures.iter().flatten())
+    {
+        if let Some((t, k)) = ts
+            .iter()
+            .zip(ks)
+            .find_map(|(t, k)| k.filter(|k| !k.is_finite()).map(|k| (t, k)))
+        {
+            bail!(
+                "{}: curves[{i}] at t = {t}: the curvature {k} is beyond f64 (P′ is nearly zero where P″ is not)",
+                path.display()
+            );
+        }
+    }
+    let stdout = std::io::stdout();
+    let mut out = std::io::BufWriter::new(stdout.lock());
+    write_eval_json(
+        &mut out,
+        &indices,
+        &values,
+        curvatures.as_deref(),
+        backend == EvalBackend::Gpu,
+    )?;
+    out.flush()?;
+    Ok(())
+}
+
+/// Writes [`EvalOutput`](splinescope::outputs::EvalOutput), streamed curve by curve
+/// (scenes may be large), with `"d1"` (P′), `"d2"` (P″) and `"curvature"` when derivatives
+/// were asked for. GPU values are `f32`: they are printed in their shortest `f32` form.
+fn write_eval_json(
+    out: &mut impl Write,
+    indices: &[usize],
+    values: &[Vec<Vec<DVec3>>],
+    curvatures: Option<&[Vec<Option<f64>>]>,
+    from_f32: bool,
+) -> Result<()> {
+    let shortest = |p: DVec3| -> [f64; 3] {
+        p.to_array().map(|v| {
+            if from_f32 {
+                shortest_f32_precision(v)
+            } else {
+                v
+            }
+        })
+    };
+    let list = |pts: &[DVec3]| pts.iter().copied().map(shortest).collect::<Vec<_>>();
+    write!(out, "{{\"curves\":[")?;
+    for (k, &index) in indices.iter().enumerate() {
+        if k > 0 {
+            write!(out, ",")?;
+        }
+        let curvature = curvatures.map(|ks| {
+            ks[k]
+                .iter()
+                .map(|kappa| kappa.map(|v| shortest(DVec3::splat(v))[0]))
+                .collect()
+        });
+        let curve = splinescope::outputs::EvalCurve {
+            index,
+            samples: list(&values[0][k]),
+            d1: values.get(1).map(|v| list(&v[k])),
+            d2: values.get(2).map(|v| list(&v[k])),
+            curvature,
+        };
+        writeln!(out)?;
+        serde_json::to_writer(&mut *out, &curve)?;
+    }
+    writeln!(out, "\n]}}")?;
+    Ok(())
+}
+
+/// The shortest decimal that reads back as `v` rounded to `f32`'s 24 significant bits, at
+/// `v`'s own binary exponent — so a GPU value (an `f32` that `eval` may have scaled by a
+/// power of two to keep it out of `f32`'s subnormal range) prints as few digits as an `f32`
+/// does, whatever its magnitude.
+fn shortest_f32_precision(v: f64) -> f64 {
+    if v == 0.0 || !v.is_finite() || v.abs() < f64::MIN_POSITIVE {
+        return v;
+    }
+    let exponent = ((v.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    // Exact: a power of two (subnormal for exponent 1023, still exact) into [1, 2).
+    let scale = 2f64.powi(-exponent);
+    let target = (v * scale) as f32;
+    for digits in 0..9 {
+        let x: f64 = format!("{v:.digits$e}").parse().unwrap_or(v);
+        if (x * scale) as f32 == target {
+            return x;
+        }
+    }
+    v
+}

@@ -1,0 +1,79 @@
+//! `splinescope render`: a scene (default: the built-in gallery) drawn offscreen to a PNG.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+
+use splinescope::scene::{Scene, gallery};
+
+use crate::{GpuArgs, parse_tolerance_px, say};
+
+/// The arguments of `splinescope render`.
+#[derive(Debug, clap::Args)]
+pub struct RenderArgs {
+    /// Scene file (JSON); omit for the built-in gallery.
+    pub scene: Option<PathBuf>,
+    /// Output PNG.
+    #[arg(short, long, value_name = "PNG")]
+    pub output: PathBuf,
+    /// Image width in pixels.
+    #[arg(long, default_value_t = 1200, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub width: u32,
+    /// Image height in pixels.
+    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub height: u32,
+    /// How far, in pixels, a drawn polyline may stray from its curve.
+    #[arg(long, default_value_t = splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX, value_parser = parse_tolerance_px)]
+    pub tolerance_px: f64,
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+}
+
+/// Runs `splinescope render`.
+///
+/// # Errors
+/// A scene that does not load, a GPU failure, or a file that cannot be written.
+pub fn run(a: &RenderArgs) -> Result<()> {
+    render(
+        a.scene.as_deref(),
+        &a.output,
+        (a.width, a.height),
+        a.tolerance_px,
+        &a.gpu,
+    )
+}
+
+/// `render`: a scene (or the gallery) to a PNG.
+fn render(
+    scene: Option<&Path>,
+    output: &Path,
+    (width, height): (u32, u32),
+    tolerance_px: f64,
+    gpu: &GpuArgs,
+) -> Result<()> {
+    let scene = load_scene_or_gallery(scene)?;
+    let ctx = gpu.context()?;
+    let image = splinescope::gpu::offscreen::render_scene_with(
+        &ctx,
+        &scene,
+        None,
+        (width, height),
+        tolerance_px,
+    )?;
+    image.write_png(output)?;
+    say!(
+        "rendered {} curve(s) to {} ({width}×{height}, {})",
+        scene.curves.len(),
+        output.display(),
+        ctx.describe()
+    );
+    Ok(())
+}
+
+fn load_scene_or_gallery(path: Option<&Path>) -> Result<Scene> {
+    match path {
+        None => Ok(gallery::gallery()),
+        Some(p) => Scene::load(p).with_context(|| format!("{}", p.display())),
+    }
+}

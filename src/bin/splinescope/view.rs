@@ -1,0 +1,158 @@
+//! `splinescope view`: a scene in a window to view and edit; and the default job (the gallery, or its PNG without a display).
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, bail};
+
+use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext};
+use splinescope::scene::{Scene, gallery};
+
+use crate::{GpuArgs, parse_tolerance_px, say};
+
+/// The arguments of `splinescope view`.
+#[derive(Debug, clap::Args)]
+pub struct ViewArgs {
+    /// Scene file (JSON); omit for the built-in gallery.
+    pub scene: Option<PathBuf>,
+    /// Exit after this many presented frames (smoke tests).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    pub frames: Option<u64>,
+    /// Instead of a scene, show this many random Bézier curves (stress mode).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=10_000_000), conflicts_with = "scene")]
+    pub stress: Option<u64>,
+    /// Degree of the stress curves.
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=31), requires = "stress")]
+    pub degree: u64,
+    /// With --stress: re-solve every curve each frame (paper 000, one moving target
+    /// per curve) and draw the result.
+    #[arg(long, requires = "stress")]
+    pub solve: bool,
+    /// How far, in pixels, a drawn polyline may stray from its curve (sample counts
+    /// are chosen every frame for it; a scene's fixed `samples` still win).
+    #[arg(long, default_value_t = splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX, value_parser = parse_tolerance_px)]
+    pub tolerance_px: f64,
+    /// At exit, print one JSON object: frames, fps, samples and line pieces per frame,
+    /// milliseconds per stage, adapter (for benchmarking the viewer by script).
+    #[arg(long)]
+    pub stats: bool,
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+}
+
+/// Runs `splinescope view`.
+///
+/// # Errors
+/// No display, a scene that does not load, or a window or GPU failure.
+pub fn run(a: &ViewArgs) -> Result<()> {
+    view(
+        a.scene.clone(),
+        a.frames,
+        (a.stress, a.degree),
+        (a.solve, a.stats),
+        a.tolerance_px,
+        &a.gpu,
+    )
+}
+
+/// `view`: a scene (or the gallery, or a generated stress scene) in a window.
+fn view(
+    scene: Option<PathBuf>,
+    frames: Option<u64>,
+    (stress, degree): (Option<u64>, u64),
+    (solve, print_stats): (bool, bool),
+    tolerance_px: f64,
+    gpu: &GpuArgs,
+) -> Result<()> {
+    if !splinescope::app::display_available() {
+        bail!(
+            "no display found (DISPLAY and WAYLAND_DISPLAY are unset); use `splinescope render` for a PNG, or run under xvfb-run"
+        );
+    }
+    if solve && degree < 2 {
+        bail!("--solve needs --degree 2 or more (a line has no interior control point to move)");
+    }
+    let mut source = None;
+    let loaded = match stress {
+        Some(n) => {
+            splinescope::limits::SAMPLES
+                .check(n.saturating_mul(u64::from(
+                    splinescope::scene::generate::StressOptions::default().samples,
+                )))
+                .with_context(|| format!("view --stress {n}"))?;
+            let mut generated = splinescope::scene::generate::random_bezier_scene(
+                splinescope::scene::generate::StressOptions {
+                    curves: n as usize,
+                    degree: degree as usize,
+                    ..Default::default()
+                },
+            );
+            // Drawn like any scene: sample counts chosen every frame for the tolerance, and
+            // control polygons and points shown when P and C turn them on (off at first).
+            generated.samples_per_segment = None;
+            for c in &mut generated.curves {
+                c.style.show_polygon = true;
+                c.style.show_points = true;
+            }
+            generated
+        }
+        None => match scene.as_deref() {
+            Some(p) => {
+                let (read, text) = Scene::read(p).with_context(|| format!("{}", p.display()))?;
+                source = Some(text);
+                read
+            }
+            None => gallery::gallery(),
+        },
+    };
+    let stats = splinescope::app::run(splinescope::app::ViewOptions {
+        scene: loaded,
+        source,
+        frames,
+        backend: gpu.gpu_backend,
+        solve,
+        tolerance_px,
+        overlays_hidden: stress.is_some(),
+        path: scene,
+    })?;
+    if print_stats {
+        say!("{}", serde_json::to_string(&stats)?);
+    }
+    Ok(())
+}
+
+/// No arguments: the gallery in a window, or with no display a PNG of it.
+pub fn default_job() -> Result<()> {
+    let scene = gallery::gallery();
+    if splinescope::app::display_available() {
+        splinescope::app::run(splinescope::app::ViewOptions {
+            scene,
+            frames: None,
+            backend: BackendChoice::Auto,
+            solve: false,
+            tolerance_px: splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX,
+            overlays_hidden: false,
+            path: None,
+            source: None,
+        })?;
+        return Ok(());
+    }
+    let ctx = GpuContext::new(&ContextOptions::from_env(BackendChoice::Auto))?;
+    let path = std::env::current_dir()
+        .context("cannot read the current directory")?
+        .join("splinescope-gallery.png");
+    render_to(&ctx, &scene, &path, 1600, 1000)?;
+    say!(
+        "no display found: rendered the gallery ({} curves) to {} (1600×1000, {}).\nOpen it with an image viewer, or run `splinescope view` where a display exists.",
+        scene.curves.len(),
+        path.display(),
+        ctx.describe()
+    );
+    Ok(())
+}
+
+fn render_to(ctx: &GpuContext, scene: &Scene, path: &Path, width: u32, height: u32) -> Result<()> {
+    let image = splinescope::gpu::offscreen::render_scene(ctx, scene, None, width, height)?;
+    image.write_png(path)?;
+    Ok(())
+}
