@@ -852,61 +852,72 @@ pub(crate) fn canvas(
         }
     }
     if let Some(at) = model.context_menu {
-        egui::Area::new(egui::Id::unique("splinescope-context-menu"))
-            .fixed_pos(to_pos(at))
-            .order(egui::Order::Foreground)
-            .show(&ctx, |ui| {
-                egui::Frame::menu(ui.style()).show(ui, |ui| {
-                    ui.menu_button("add curve here", |ui| {
-                        for t in Template::ALL {
-                            if ui.button(t.label()).clicked() {
-                                actions.add_at_menu = Some(t);
-                            }
-                        }
-                    });
-                    let selected = model.editor.selected.is_some();
-                    if ui
-                        .add_enabled(selected, egui::Button::new("insert point here (I)"))
-                        .clicked()
-                    {
-                        actions.menu = Some(MenuItem::InsertPoint);
-                    }
-                    let what = if model.editor.selected_point.is_some() {
-                        "delete point (Delete)"
-                    } else {
-                        "delete curve (Delete)"
-                    };
-                    if ui.add_enabled(selected, egui::Button::new(what)).clicked() {
-                        actions.menu = Some(MenuItem::DeleteSelection);
-                    }
-                    if ui
-                        .add_enabled(selected, egui::Button::new("duplicate curve (Ctrl+D)"))
-                        .clicked()
-                    {
-                        actions.menu = Some(MenuItem::Duplicate);
-                    }
-                });
-            });
+        context_menu(&ctx, model, to_pos(at), actions);
     }
     if model.show_help {
-        egui::Window::new("shortcuts (F1, ?)")
-            .collapsible(false)
-            .resizable(false)
-            .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
-            .show(&ctx, |ui| {
-                egui::Grid::new("shortcuts").striped(true).show(ui, |ui| {
-                    for (keys, what) in SHORTCUTS {
-                        ui.strong(*keys);
-                        ui.label(*what);
-                        ui.end_row();
-                    }
-                });
-                ui.small("Esc closes this list.");
-            });
+        help_window(&ctx);
     }
     if let Some(prompt) = &model.prompt {
         prompt_modal(&ctx, model, prompt, actions);
     }
+}
+
+/// The right-click menu at `at` (points): add a curve there, insert or delete a point,
+/// duplicate.
+fn context_menu(ctx: &egui::Context, model: &Interaction, at: egui::Pos2, actions: &mut Actions) {
+    egui::Area::new(egui::Id::unique("splinescope-context-menu"))
+        .fixed_pos(at)
+        .order(egui::Order::Foreground)
+        .show(ctx, |ui| {
+            egui::Frame::menu(ui.style()).show(ui, |ui| {
+                ui.menu_button("add curve here", |ui| {
+                    for t in Template::ALL {
+                        if ui.button(t.label()).clicked() {
+                            actions.add_at_menu = Some(t);
+                        }
+                    }
+                });
+                let selected = model.editor.selected.is_some();
+                if ui
+                    .add_enabled(selected, egui::Button::new("insert point here (I)"))
+                    .clicked()
+                {
+                    actions.menu = Some(MenuItem::InsertPoint);
+                }
+                let what = if model.editor.selected_point.is_some() {
+                    "delete point (Delete)"
+                } else {
+                    "delete curve (Delete)"
+                };
+                if ui.add_enabled(selected, egui::Button::new(what)).clicked() {
+                    actions.menu = Some(MenuItem::DeleteSelection);
+                }
+                if ui
+                    .add_enabled(selected, egui::Button::new("duplicate curve (Ctrl+D)"))
+                    .clicked()
+                {
+                    actions.menu = Some(MenuItem::Duplicate);
+                }
+            });
+        });
+}
+
+/// The list of shortcuts ([`SHORTCUTS`]) in a window.
+fn help_window(ctx: &egui::Context) {
+    egui::Window::new("shortcuts (F1, ?)")
+        .collapsible(false)
+        .resizable(false)
+        .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
+        .show(ctx, |ui| {
+            egui::Grid::new("shortcuts").striped(true).show(ui, |ui| {
+                for (keys, what) in SHORTCUTS {
+                    ui.strong(*keys);
+                    ui.label(*what);
+                    ui.end_row();
+                }
+            });
+            ui.small("Esc closes this list.");
+        });
 }
 
 /// The open question, as a modal window.

@@ -89,22 +89,36 @@ struct EvalRequest<'a> {
 }
 
 fn eval(path: &Path, req: &EvalRequest<'_>, gpu: &GpuArgs) -> Result<()> {
-    let EvalRequest {
-        samples,
-        params,
-        backend,
-        only,
-        derivatives,
-    } = *req;
     let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
-    let indices = select_curves(&scene, only)?;
-    let given = params.map(parse_params).transpose()?;
-    if given.is_none() && samples.is_none() {
-        bail!("give --samples N or --params T0,T1,...");
-    }
-    let per = given
-        .as_ref()
-        .map_or_else(|| u64::from(samples.unwrap_or(0)), |g| g.len() as u64);
+    let indices = select_curves(&scene, req.only)?;
+    let per_curve = parameters(&scene, &indices, req)?;
+    // values[0]: the points; values[k]: the k-th derivative.
+    let values = match req.backend {
+        EvalBackend::Cpu => cpu_values(&scene, &indices, &per_curve, req.derivatives),
+        EvalBackend::Gpu => gpu_values(&scene, &indices, &per_curve, req.derivatives, gpu)?,
+    };
+    let from_f32 = req.backend == EvalBackend::Gpu;
+    check_finite(path, &indices, &per_curve, &values, from_f32)?;
+    let curvatures = (values.len() == 3)
+        .then(|| curvatures(path, &indices, &per_curve, &values[1], &values[2]))
+        .transpose()?;
+    let stdout = std::io::stdout();
+    let mut out = std::io::BufWriter::new(stdout.lock());
+    write_eval_json(&mut out, &indices, &values, curvatures.as_deref(), from_f32)?;
+    out.flush()?;
+    Ok(())
+}
+
+/// Each selected curve's parameters: the `--params` given (each checked against the
+/// curve's domain) or `--samples` uniform ones, after the total is checked against
+/// [`splinescope::limits::SAMPLES`].
+fn parameters(scene: &Scene, indices: &[usize], req: &EvalRequest<'_>) -> Result<Vec<Vec<f64>>> {
+    let given = req.params.map(parse_params).transpose()?;
+    let per = match (&given, req.samples) {
+        (Some(ts), _) => ts.len() as u64,
+        (None, Some(n)) => u64::from(n),
+        (None, None) => bail!("give --samples N or --params T0,T1,..."),
+    };
     splinescope::limits::SAMPLES
         .check(per.saturating_mul(indices.len() as u64))
         .with_context(|| {
@@ -114,107 +128,130 @@ fn eval(path: &Path, req: &EvalRequest<'_>, gpu: &GpuArgs) -> Result<()> {
             )
         })?;
     let mut per_curve = Vec::with_capacity(indices.len());
-    for &i in &indices {
+    for &i in indices {
         let (a, b) = scene.curves[i].curve.domain();
-        let ts = match (&given, samples) {
-            (Some(ts), _) => {
-                for (k, &t) in ts.iter().enumerate() {
-                    if !(a..=b).contains(&t) {
-                        bail!(
-                            "--params[{k}] = {} is outside the domain [{}, {}] of curves[{i}]",
-                            Num(t),
-                            Num(a),
-                            Num(b)
-                        );
-                    }
+        let ts = match &given {
+            Some(ts) => {
+                if let Some((k, &t)) = ts.iter().enumerate().find(|(_, t)| !(a..=b).contains(*t)) {
+                    bail!(
+                        "--params[{k}] = {} is outside the domain [{}, {}] of curves[{i}]",
+                        Num(t),
+                        Num(a),
+                        Num(b)
+                    );
                 }
                 ts.clone()
             }
-            (None, Some(n)) => (0..n as usize)
-                .map(|j| splinescope::geom::batch::uniform(a, b, j, n as usize))
-                .collect(),
-            (None, None) => unreachable!("checked above"),
+            None => {
+                let n = per as usize;
+                (0..n)
+                    .map(|j| splinescope::geom::batch::uniform(a, b, j, n))
+                    .collect()
+            }
         };
         per_curve.push(ts);
     }
-    // values[0]: the points; values[k]: the k-th derivative.
-    let values: Vec<Vec<Vec<DVec3>>> = match backend {
-        EvalBackend::Cpu => (0..=derivatives)
-            .map(|k| {
-                indices
-                    .iter()
-                    .zip(&per_curve)
-                    .map(|(&i, ts)| {
-                        let c = &scene.curves[i].curve;
-                        if k == 0 {
-                            // Points: the batch evaluator over the exact lowering.
-                            let mut out = vec![DVec3::ZERO; ts.len()];
-                            splinescope::geom::batch::CurveSampler::new(c).eval_into(ts, &mut out);
-                            return out;
-                        }
-                        ts.iter()
-                            .map(|&t| match k {
-                                1 => c.eval_deriv(t),
-                                _ => c.eval_second_deriv(t),
-                            })
-                            .collect()
-                    })
-                    .collect()
-            })
-            .collect(),
-        EvalBackend::Gpu => {
-            let ctx = gpu.context()?;
-            let lowered: Vec<_> = indices
+    Ok(per_curve)
+}
+
+/// The exact `f64` values: points by the batch evaluator over the exact lowering, then
+/// each family's own first and second derivatives.
+fn cpu_values(
+    scene: &Scene,
+    indices: &[usize],
+    per_curve: &[Vec<f64>],
+    derivatives: u32,
+) -> Vec<Vec<Vec<DVec3>>> {
+    (0..=derivatives)
+        .map(|k| {
+            indices
                 .iter()
-                .map(|&i| (i, scene.curves[i].curve.lower()))
-                .collect();
-            let mut v = vec![splinescope::gpu::eval::evaluate(
-                &ctx, &lowered, &per_curve,
-            )?];
-            for k in 1..=derivatives {
-                v.push(splinescope::gpu::eval::evaluate_derivative(
-                    &ctx, &lowered, &per_curve, k,
-                )?);
-            }
-            v
-        }
-    };
-    // Every number printed is finite, or the command fails naming where it overflowed.
+                .zip(per_curve)
+                .map(|(&i, ts)| {
+                    let c = &scene.curves[i].curve;
+                    if k == 0 {
+                        let mut out = vec![DVec3::ZERO; ts.len()];
+                        splinescope::geom::batch::CurveSampler::new(c).eval_into(ts, &mut out);
+                        return out;
+                    }
+                    ts.iter()
+                        .map(|&t| match k {
+                            1 => c.eval_deriv(t),
+                            _ => c.eval_second_deriv(t),
+                        })
+                        .collect()
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The GPU kernel's values (`f32`): the points, then each derivative through the
+/// hodographs.
+fn gpu_values(
+    scene: &Scene,
+    indices: &[usize],
+    per_curve: &[Vec<f64>],
+    derivatives: u32,
+    gpu: &GpuArgs,
+) -> Result<Vec<Vec<Vec<DVec3>>>> {
+    let ctx = gpu.context()?;
+    let lowered: Vec<_> = indices
+        .iter()
+        .map(|&i| (i, scene.curves[i].curve.lower()))
+        .collect();
+    let mut v = vec![splinescope::gpu::eval::evaluate(&ctx, &lowered, per_curve)?];
+    for k in 1..=derivatives {
+        v.push(splinescope::gpu::eval::evaluate_derivative(
+            &ctx, &lowered, per_curve, k,
+        )?);
+    }
+    Ok(v)
+}
+
+/// Every number printed is finite, or the command fails naming where it overflowed.
+fn check_finite(
+    path: &Path,
+    indices: &[usize],
+    per_curve: &[Vec<f64>],
+    values: &[Vec<Vec<DVec3>>],
+    from_f32: bool,
+) -> Result<()> {
     for (k, pts_all) in values.iter().enumerate() {
-        for ((&i, ts), pts) in indices.iter().zip(&per_curve).zip(pts_all) {
+        for ((&i, ts), pts) in indices.iter().zip(per_curve).zip(pts_all) {
             if let Some((t, p)) = ts.iter().zip(pts).find(|(_, p)| !p.is_finite()) {
                 bail!(
                     "{}: curves[{i}] at t = {t}: the {} {p} is not finite (the curve's coordinates are too large for this computation in {})",
                     path.display(),
                     ["value", "first derivative", "second derivative"][k],
-                    if backend == EvalBackend::Gpu {
-                        "f32"
-                    } else {
-                        "f64"
-                    }
+                    if from_f32 { "f32" } else { "f64" }
                 );
             }
         }
     }
-    // κ = |P′ × P″| / |P′|³ from the values above, scaled so that it underflows nowhere:
-    // null only where P′ = 0; a curvature beyond f64 fails like any other value.
-    let curvatures: Option<Vec<Vec<Option<f64>>>> = (values.len() == 3).then(|| {
-        values[1]
-            .iter()
-            .zip(&values[2])
-            .map(|(d1s, d2s)| {
-                d1s.iter()
-                    .zip(d2s)
-                    .map(|(d1, d2)| splinescope::geom::curvature(*d1, *d2))
-                    .collect()
-            })
-            .collect()
-    });
-    for ((&i, ts), ks) in indices
+    Ok(())
+}
+
+/// κ = |P′ × P″| / |P′|³ from the derivatives, scaled so that it underflows nowhere:
+/// `None` only where P′ = 0; a curvature beyond f64 fails like any other value.
+fn curvatures(
+    path: &Path,
+    indices: &[usize],
+    per_curve: &[Vec<f64>],
+    d1: &[Vec<DVec3>],
+    d2: &[Vec<DVec3>],
+) -> Result<Vec<Vec<Option<f64>>>> {
+    let all: Vec<Vec<Option<f64>>> = d1
         .iter()
-        .zip(&per_curve)
-        .zip(curvatures.iter().flatten())
-    {
+        .zip(d2)
+        .map(|(d1s, d2s)| {
+            d1s.iter()
+                .zip(d2s)
+                .map(|(a, b)| splinescope::geom::curvature(*a, *b))
+                .collect()
+        })
+        .collect();
+    for ((&i, ts), ks) in indices.iter().zip(per_curve).zip(&all) {
         if let Some((t, k)) = ts
             .iter()
             .zip(ks)
@@ -226,17 +263,7 @@ fn eval(path: &Path, req: &EvalRequest<'_>, gpu: &GpuArgs) -> Result<()> {
             );
         }
     }
-    let stdout = std::io::stdout();
-    let mut out = std::io::BufWriter::new(stdout.lock());
-    write_eval_json(
-        &mut out,
-        &indices,
-        &values,
-        curvatures.as_deref(),
-        backend == EvalBackend::Gpu,
-    )?;
-    out.flush()?;
-    Ok(())
+    Ok(all)
 }
 
 /// Writes [`EvalOutput`](splinescope::outputs::EvalOutput), streamed curve by curve
