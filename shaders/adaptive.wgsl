@@ -216,7 +216,7 @@ struct AdaptiveWork {
 // Twin: ADAPTIVE_SEGMENT_LANES in src/gpu/layout.rs. The invocations that share one
 // segment in the cubic and quartic kernels, whose workgroups tessellate
 // TESSELLATE_WORKGROUP_SIZE / SEGMENT_LANES segments each. The general kernel keeps a
-// whole workgroup per segment: its de Casteljau loops are long, and llvmpipe ends every
+// whole workgroup per segment: its loops over the degree are long, and llvmpipe ends every
 // loop of an invocation once all its loops together ran 65,535 iterations
 // (LP_MAX_TGSI_LOOP_ITERATIONS; a stride of 8 reached it for degree 13 at 4,096 samples,
 // while a stride of 64 stays under it up to degree 31).
@@ -236,10 +236,6 @@ fn adaptive_work(slot: u32) -> AdaptiveWork {
     w.first = work[scan_base() + 2u * s];
     w.ok = true;
     return w;
-}
-
-fn control(seg: Segment, i: u32) -> vec3<f32> {
-    return points[seg.first_point + i].position;
 }
 
 // The parameter of sample j of count: j / (count − 1), exactly 0 and 1 at the ends (a
@@ -265,13 +261,13 @@ fn tessellate_cubic(
     let seg = w.seg;
     let count = w.count;
     let first = w.first;
-    let p0 = control(seg, 0u);
-    let p1 = control(seg, 1u);
-    let p2 = control(seg, 2u);
-    let p3 = control(seg, 3u);
+    let p0 = control_point(seg.first_point, 0u);
+    let p1 = control_point(seg.first_point, 1u);
+    let p2 = control_point(seg.first_point, 2u);
+    let p3 = control_point(seg.first_point, 3u);
     for (var j = lane; j < count; j += SEGMENT_LANES) {
         let u = adaptive_param(j, count);
-        samples[first + j] = Vertex(cubic(p0, p1, p2, p3, u, 1.0 - u), seg.curve);
+        samples[first + j] = Vertex(cubic_bernstein(p0, p1, p2, p3, u, 1.0 - u), seg.curve);
     }
 }
 
@@ -289,16 +285,14 @@ fn tessellate_quartic(
     let seg = w.seg;
     let count = w.count;
     let first = w.first;
-    let p0 = control(seg, 0u);
-    let p1 = control(seg, 1u);
-    let p2 = control(seg, 2u);
-    let p3 = control(seg, 3u);
-    let p4 = control(seg, 4u);
+    let p0 = control_point(seg.first_point, 0u);
+    let p1 = control_point(seg.first_point, 1u);
+    let p2 = control_point(seg.first_point, 2u);
+    let p3 = control_point(seg.first_point, 3u);
+    let p4 = control_point(seg.first_point, 4u);
     for (var j = lane; j < count; j += SEGMENT_LANES) {
         let u = adaptive_param(j, count);
-        let v = 1.0 - u;
-        let p = cubic(v * p0 + u * p1, v * p1 + u * p2, v * p2 + u * p3, v * p3 + u * p4, u, v);
-        samples[first + j] = Vertex(p, seg.curve);
+        samples[first + j] = Vertex(quartic(p0, p1, p2, p3, p4, u, 1.0 - u), seg.curve);
     }
 }
 
@@ -317,17 +311,6 @@ fn tessellate_any(
     let n = min(seg.degree, MAX_DEGREE);
     for (var j = lane; j < count; j += TESSELLATE_WORKGROUP_SIZE) {
         let u = adaptive_param(j, count);
-        let v = 1.0 - u;
-        var p: array<vec3<f32>, 32>;
-        for (var i = 0u; i <= n; i++) {
-            p[i] = control(seg, i);
-        }
-        // Counting each level's length down, as in tessellate.wgsl (Mesa's GL compiler).
-        for (var m = n; m > 0u; m--) {
-            for (var i = 0u; i < m; i++) {
-                p[i] = v * p[i] + u * p[i + 1u];
-            }
-        }
-        samples[first + j] = Vertex(p[0], seg.curve);
+        samples[first + j] = Vertex(bernstein_horner(seg.first_point, n, u, 1.0 - u), seg.curve);
     }
 }

@@ -73,14 +73,3 @@ struct LineStyle {
     _padding0: u32,
     _padding1: u32,
 }
-
-// De Casteljau of a cubic, written out (its three levels): the cubic and quartic kernels
-// of tessellate.wgsl and adaptive.wgsl. v = 1 − u.
-fn cubic(p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32>, p3: vec3<f32>, u: f32, v: f32) -> vec3<f32> {
-    let q0 = v * p0 + u * p1;
-    let q1 = v * p1 + u * p2;
-    let q2 = v * p2 + u * p3;
-    let r0 = v * q0 + u * q1;
-    let r1 = v * q1 + u * q2;
-    return v * r0 + u * r1;
-}

@@ -633,3 +633,63 @@ fn moving_one_control_point_keeps_everything_else_and_rejects_bad_indices() {
         "{err:?}"
     );
 }
+
+/// Every family is listed in each place that lists families — a scene codec, an entry in
+/// the scene schema, a viewer template — and nothing lists a family the core lacks. A new
+/// `Curve` variant without one of them fails here.
+#[test]
+fn every_family_has_a_codec_a_schema_entry_and_a_template() {
+    use splinescope::app::interaction::Template;
+    use splinescope::geom::Curve;
+    let names = Curve::FAMILY_NAMES;
+    // The core's own list agrees with its variants.
+    for t in Template::ALL {
+        let c = t.curve(glam::DVec3::ZERO, 1.0);
+        assert_eq!(names[c.family_index()], c.family(), "{}", t.label());
+    }
+    // Templates: one per family, every family.
+    let mut templates: Vec<&str> = Template::ALL
+        .iter()
+        .map(|t| t.curve(glam::DVec3::ZERO, 1.0).family())
+        .collect();
+    templates.sort_unstable();
+    let mut want = names.to_vec();
+    want.sort_unstable();
+    assert_eq!(templates, want, "one viewer template per family");
+    // Codecs: the reader knows each family (a missing field, not an unknown type), and
+    // knows no other (its list of types is exactly the families).
+    for name in names {
+        let text = format!(r#"{{"version": 1, "curves": [{{"type": "{name}"}}]}}"#);
+        let e = splinescope::scene::from_json_str(&text).unwrap_err().to_string();
+        assert!(!e.contains("unknown curve type"), "{name} has no codec: {e}");
+    }
+    let e = splinescope::scene::from_json_str(
+        r#"{"version": 1, "curves": [{"type": "no_such_family"}]}"#,
+    )
+    .unwrap_err()
+    .to_string();
+    let listed = e
+        .split("expected one of: ")
+        .nth(1)
+        .unwrap_or_else(|| panic!("the reader lists its families: {e}"));
+    let mut listed: Vec<&str> = listed
+        .trim_end_matches(')')
+        .split(", ")
+        .map(str::trim)
+        .collect();
+    listed.sort_unstable();
+    assert_eq!(listed, want, "the codecs are exactly the families");
+    // The generated scene schema has each family's `type`.
+    let schema = splinescope::schemas::all()
+        .into_iter()
+        .find(|(n, _)| *n == "scene")
+        .expect("scene schema")
+        .1;
+    let text = serde_json::to_string(&schema).unwrap();
+    for name in names {
+        assert!(
+            text.contains(&format!("\"const\":\"{name}\"")),
+            "the scene schema has no entry for {name}"
+        );
+    }
+}

@@ -321,7 +321,7 @@ fn one_million_cubics_tessellate_correctly_in_chunks() {
 #[test]
 fn the_kernel_self_test_refuses_a_wrong_kernel() {
     use splinescope::gpu::selftest;
-    use splinescope::gpu::shaders::{COMMON, TESSELLATE};
+    use splinescope::gpu::shaders::TESSELLATE;
     common::on_each_gpu("the_kernel_self_test_refuses_a_wrong_kernel", |backend| {
         let ctx = &backend.ctx;
         let good = Tessellator::new(&ctx.device);
@@ -332,16 +332,17 @@ fn the_kernel_self_test_refuses_a_wrong_kernel() {
             backend.name
         );
         // The general kernel returns P_0 instead of the curve.
-        let sum = "let p = bernstein_horner(seg, n, u, v);";
+        let sum = "let p = bernstein_horner(seg.first_point, n, u, v);";
         assert_eq!(TESSELLATE.body.matches(sum).count(), 1);
-        let broken_body = TESSELLATE
-            .body
-            .replace(sum, "let p = control_point(seg, 0u) + 0.0 * f32(n) * v;");
+        let broken_body = TESSELLATE.body.replace(
+            sum,
+            "let p = control_point(seg.first_point, 0u) + 0.0 * f32(n) * v;",
+        );
         let module = ctx
             .device
             .create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some("broken tessellate"),
-                source: wgpu::ShaderSource::Wgsl(format!("{COMMON}\n{broken_body}").into()),
+                source: wgpu::ShaderSource::Wgsl(TESSELLATE.composed_with(&broken_body).into()),
             });
         let broken = Tessellator::with_module(&ctx.device, &module);
         let fault = selftest::run(&ctx.device, &ctx.queue, &broken)

@@ -156,39 +156,54 @@ fn kernel_workgroup_and_scratch_match_the_rust_constants() {
             "{entry}"
         );
     }
-    // The fixed tessellator's general kernel sums by Horner's rule: no scratch array.
-    let any = module
-        .entry_points
-        .iter()
-        .find(|e| e.name == "tessellate_any")
-        .expect("general kernel");
-    assert!(
-        any.function
-            .local_variables
+    // Both tessellators' general kernels sum by Horner's rule (bezier.wgsl): no
+    // tessellation kernel, and no evaluation function they call, keeps a scratch array.
+    let evaluation = [
+        "control_point",
+        "cubic",
+        "cubic_bernstein",
+        "quartic",
+        "bernstein_horner",
+    ];
+    for source in [shaders::TESSELLATE, shaders::ADAPTIVE] {
+        let (module, _) = source.validate().expect("valid");
+        for ep in module
+            .entry_points
             .iter()
-            .all(|(_, v)| !matches!(module.types[v.ty].inner, TypeInner::Array { .. })),
-        "tessellate_any keeps no array"
-    );
-    // The adaptive general kernel's de Casteljau scratch must hold MAX_GPU_DEGREE + 1 points.
-    let (module, _) = shaders::ADAPTIVE.validate().expect("valid");
-    let any = module
-        .entry_points
-        .iter()
-        .find(|e| e.name == "tessellate_any")
-        .expect("general kernel");
-    let scratch = any
-        .function
-        .local_variables
-        .iter()
-        .find(|(_, v)| v.name.as_deref() == Some("p"))
-        .expect("scratch array p")
-        .1;
-    match module.types[scratch.ty].inner {
-        TypeInner::Array {
-            size: naga::ArraySize::Constant(n),
-            ..
-        } => assert_eq!(n.get() as usize, MAX_GPU_DEGREE + 1),
-        ref other => panic!("p is not a fixed array: {other:?}"),
+            .filter(|e| e.name.starts_with("tessellate"))
+        {
+            assert!(
+                ep.function
+                    .local_variables
+                    .iter()
+                    .all(|(_, v)| !matches!(module.types[v.ty].inner, TypeInner::Array { .. })),
+                "{}: {} keeps no array",
+                source.file,
+                ep.name
+            );
+        }
+        for (_, f) in module
+            .functions
+            .iter()
+            .filter(|(_, f)| f.name.as_deref().is_some_and(|n| evaluation.contains(&n)))
+        {
+            assert!(
+                f.local_variables
+                    .iter()
+                    .all(|(_, v)| !matches!(module.types[v.ty].inner, TypeInner::Array { .. })),
+                "{}: {:?} keeps no array",
+                source.file,
+                f.name
+            );
+        }
+        assert!(
+            evaluation.iter().all(|name| module
+                .functions
+                .iter()
+                .any(|(_, f)| f.name.as_deref() == Some(name))),
+            "{}: the shared evaluation functions are in the module",
+            source.file
+        );
     }
 }
 
@@ -197,6 +212,7 @@ fn a_broken_shader_is_reported_with_its_file_and_span() {
     let broken = shaders::ShaderSource {
         file: "broken.wgsl",
         body: "fn f() -> f32 { return undefined_name; }",
+        evaluates: false,
     };
     let err = broken.validate().expect_err("must fail").to_string();
     assert!(err.contains("broken.wgsl"), "{err}");
@@ -211,6 +227,7 @@ fn shader_errors_name_the_right_file_and_line() {
     let parse = shaders::ShaderSource {
         file: "parse.wgsl",
         body: "// one\n// two\nfn f() -> f32 { return 1.0 +; }\n",
+        evaluates: false,
     };
     let err = parse.validate().expect_err("must fail").to_string();
     assert!(err.starts_with("shaders/parse.wgsl:3:"), "{err}");
@@ -218,6 +235,7 @@ fn shader_errors_name_the_right_file_and_line() {
     let unknown = shaders::ShaderSource {
         file: "unknown.wgsl",
         body: "// one\n// two\nfn g() -> u32 { return h(); }\n",
+        evaluates: false,
     };
     let err = unknown.validate().expect_err("must fail").to_string();
     assert!(err.starts_with("shaders/unknown.wgsl:3:24:"), "{err}");

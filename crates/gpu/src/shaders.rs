@@ -1,9 +1,17 @@
 //! The WGSL sources, composed with the shared declarations and validated with naga.
+//!
+//! Every pipeline's source is `common.wgsl` (the structs and constants every pipeline
+//! shares), then, for the two tessellators, `bezier.wgsl` (the evaluation both kernels
+//! share), then the pipeline's own file.
 
 use thiserror::Error;
 
 /// `shaders/common.wgsl`: the structs and constants every pipeline shares.
 pub const COMMON: &str = include_str!("../../../shaders/common.wgsl");
+
+/// `shaders/bezier.wgsl`: the Bézier evaluation both tessellators share (the cubic's
+/// Bernstein form, the quartic's de Casteljau, Horner's rule for every other degree).
+pub const BEZIER: &str = include_str!("../../../shaders/bezier.wgsl");
 
 /// One pipeline's shader file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -12,31 +20,37 @@ pub struct ShaderSource {
     pub file: &'static str,
     /// Its text (without the shared declarations).
     pub body: &'static str,
+    /// Whether `bezier.wgsl` goes before it (the tessellators).
+    pub evaluates: bool,
 }
 
 /// `shaders/tessellate.wgsl`: the de Casteljau compute kernel.
 pub const TESSELLATE: ShaderSource = ShaderSource {
     file: "tessellate.wgsl",
     body: include_str!("../../../shaders/tessellate.wgsl"),
+    evaluates: true,
 };
 
-/// `shaders/adaptive.wgsl`: per-frame sample counts, their prefix sum, and the de Casteljau
-/// kernels writing exactly those samples.
+/// `shaders/adaptive.wgsl`: per-frame sample counts, their prefix sum, and the kernels
+/// writing exactly those samples.
 pub const ADAPTIVE: ShaderSource = ShaderSource {
     file: "adaptive.wgsl",
     body: include_str!("../../../shaders/adaptive.wgsl"),
+    evaluates: true,
 };
 
 /// `shaders/lines.wgsl`: anti-aliased polylines.
 pub const LINES: ShaderSource = ShaderSource {
     file: "lines.wgsl",
     body: include_str!("../../../shaders/lines.wgsl"),
+    evaluates: false,
 };
 
 /// `shaders/points.wgsl`: anti-aliased discs.
 pub const POINTS: ShaderSource = ShaderSource {
     file: "points.wgsl",
     body: include_str!("../../../shaders/points.wgsl"),
+    evaluates: false,
 };
 
 /// Every pipeline shader.
@@ -53,22 +67,48 @@ pub struct ShaderError {
 }
 
 impl ShaderSource {
+    /// The shared files that go before this one, in order, with their names.
+    #[must_use]
+    pub fn preludes(&self) -> Vec<(&'static str, &'static str)> {
+        let mut out = vec![("common.wgsl", COMMON)];
+        if self.evaluates {
+            out.push(("bezier.wgsl", BEZIER));
+        }
+        out
+    }
+
     /// The full source: the shared declarations, then this file.
     #[must_use]
     pub fn composed(&self) -> String {
-        format!("{COMMON}\n{}", self.body)
+        self.composed_with(self.body)
+    }
+
+    /// The full source with `body` in place of this file's text (the self-test's tests
+    /// compose deliberately broken kernels this way).
+    #[must_use]
+    pub fn composed_with(&self, body: &str) -> String {
+        let mut out = String::new();
+        for (_, text) in self.preludes() {
+            out.push_str(text);
+            out.push('\n');
+        }
+        out.push_str(body);
+        out
     }
 
     /// Where line `line` (1-based) of [`ShaderSource::composed`] comes from: the file and
-    /// its own line there (`common.wgsl` is prepended, then one joining newline).
+    /// its own line there (each prelude is followed by one joining newline).
     #[must_use]
     pub fn origin(&self, line: u32) -> (&'static str, u32) {
-        let common_lines = COMMON.lines().count() as u32 + 1;
-        if line <= common_lines {
-            ("common.wgsl", line)
-        } else {
-            (self.file, line - common_lines)
+        let mut line = line;
+        for (file, text) in self.preludes() {
+            let lines = text.lines().count() as u32 + 1;
+            if line <= lines {
+                return (file, line);
+            }
+            line -= lines;
         }
+        (self.file, line)
     }
 
     /// `shaders/FILE:LINE:COLUMN: MESSAGE` and the offending line, with the line counted

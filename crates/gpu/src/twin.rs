@@ -20,9 +20,8 @@ pub fn sample_param(seg: &GpuRecord, j: u32) -> f32 {
     seg.u0 * (1.0 - f) + seg.u1 * f
 }
 
-/// The kernels' de Casteljau: degree `n` from `points[first ..= first + n]` at `u`.
-/// The adaptive `tessellate_any` is this loop; the `tessellate_cubic` and
-/// `tessellate_quartic` kernels write it out for one degree, with exactly this loop's
+/// De Casteljau of degree `n` from `points[first ..= first + n]` at `u`: what the
+/// quartic kernels (`quartic` of `shaders/bezier.wgsl`) write out, with exactly this loop's
 /// operations in this order.
 #[must_use]
 pub fn de_casteljau(points: &[GpuVertex], first: u32, n: u32, u: f32) -> Vec3 {
@@ -40,8 +39,8 @@ pub fn de_casteljau(points: &[GpuVertex], first: u32, n: u32, u: f32) -> Vec3 {
     p[0]
 }
 
-/// `bernstein_horner` of `shaders/tessellate.wgsl` (the general kernel of the fixed
-/// tessellator): the Bernstein sum of degree `n` by Horner's rule in `x = u / v` scaled by
+/// `bernstein_horner` of `shaders/bezier.wgsl` (the general kernel of both
+/// tessellators): the Bernstein sum of degree `n` by Horner's rule in `x = u / v` scaled by
 /// `vⁿ` (`u ≤ ½`), else in `x = v / u` scaled by `uⁿ`, the binomials built along the way.
 #[must_use]
 pub fn bernstein_horner(points: &[GpuVertex], first: u32, n: u32, u: f32) -> Vec3 {
@@ -70,8 +69,8 @@ pub fn bernstein_horner(points: &[GpuVertex], first: u32, n: u32, u: f32) -> Vec
     acc * scale
 }
 
-/// What the fixed tessellator's kernel for `degree` computes: the cubic's Bernstein form
-/// `v³P₀ + 3v²uP₁ + 3vu²P₂ + u³P₃` (`tessellate_cubic`), de Casteljau written out for
+/// What both tessellators' kernels compute for `degree` (`shaders/bezier.wgsl`): the
+/// cubic's Bernstein form `v³P₀ + 3v²uP₁ + 3vu²P₂ + u³P₃`, de Casteljau written out for
 /// quartics, [`bernstein_horner`] for every other degree.
 #[must_use]
 pub fn fixed_kernel(points: &[GpuVertex], first: u32, degree: u32, u: f32) -> Vec3 {
@@ -260,7 +259,7 @@ pub fn tessellate_adaptive(
                 j as f32 / (count - 1) as f32
             };
             samples[(first + j) as usize] = GpuVertex {
-                position: de_casteljau(points, seg.first_point, seg.degree, u).to_array(),
+                position: fixed_kernel(points, seg.first_point, seg.degree, u).to_array(),
                 id: seg.curve,
             };
         }

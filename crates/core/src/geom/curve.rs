@@ -137,6 +137,30 @@ impl Curve {
         each_family!(self, c => name(c))
     }
 
+    /// Every family's name ([`Family::NAME`]), in the order of the variants: what the
+    /// layers above check their own lists against (the scene codecs, the schema, the
+    /// viewer's templates).
+    pub const FAMILY_NAMES: [&'static str; 5] = [
+        Bezier::NAME,
+        ModifiedBezier::NAME,
+        CubicInterpolation::NAME,
+        BSpline::NAME,
+        Nubmp::NAME,
+    ];
+
+    /// The variant's position in [`Curve::FAMILY_NAMES`] (an exhaustive match: a new
+    /// variant does not compile until it has a place there).
+    #[must_use]
+    pub fn family_index(&self) -> usize {
+        match self {
+            Curve::Bezier(_) => 0,
+            Curve::Modified(_) => 1,
+            Curve::Interpolation(_) => 2,
+            Curve::BSpline(_) => 3,
+            Curve::Nubmp(_) => 4,
+        }
+    }
+
     /// The points the user places (drawn as dots): [`Family::control_points`].
     #[must_use]
     pub fn control_points(&self) -> &[DVec3] {

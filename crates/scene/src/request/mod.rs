@@ -16,16 +16,70 @@ use crate::solve::SolveError;
 use methods::Fields;
 use types::{MethodReport, Report, Request};
 
-/// The methods a request may name.
-pub const METHODS: [&str; 7] = [
-    "single_target",
-    "tangent_kept",
-    "multi_target",
-    "cubic_region",
-    "nubmp_constrained",
-    "nubmp_find_tau",
-    "project",
+/// One solve method: its name in requests, the fields it reads (beyond `curve` and
+/// `method`) and its reader. [`METHOD_TABLE`] is the only list of methods: the names
+/// requests may use, the fields each may give and the reader each gets all come from it,
+/// and every match on [`Request`] is exhaustive, so a method added to the enum without a
+/// row (or a row without a variant) does not compile or fails the table's test.
+struct Method {
+    name: &'static str,
+    fields: &'static [&'static str],
+    read: fn(&Fields<'_, '_>) -> Result<Request, RequestError>,
+}
+
+/// Every solve method, in the order messages list them.
+const METHOD_TABLE: [Method; 7] = [
+    Method {
+        name: "single_target",
+        fields: &["target", "t", "first", "count", "accuracy"],
+        read: |f| Ok(Request::SingleTarget(methods::read_single_target(f)?)),
+    },
+    Method {
+        name: "tangent_kept",
+        fields: &["target", "t", "accuracy"],
+        read: |f| Ok(Request::TangentKept(methods::read_tangent_kept(f)?)),
+    },
+    Method {
+        name: "multi_target",
+        fields: &["targets", "params", "accuracy"],
+        read: |f| Ok(Request::MultiTarget(methods::read_multi_target(f)?)),
+    },
+    Method {
+        name: "cubic_region",
+        fields: &["target", "limited", "reach"],
+        read: |f| Ok(Request::CubicRegion(methods::read_cubic_region(f)?)),
+    },
+    Method {
+        name: "nubmp_constrained",
+        fields: &["target", "tau", "group", "respect_vd"],
+        read: |f| {
+            Ok(Request::NubmpConstrained(methods::read_nubmp_constrained(
+                f,
+            )?))
+        },
+    },
+    Method {
+        name: "nubmp_find_tau",
+        fields: &["target", "group", "apply", "respect_vd"],
+        read: |f| Ok(Request::NubmpFindTau(methods::read_nubmp_find_tau(f)?)),
+    },
+    Method {
+        name: "project",
+        fields: &["target", "accuracy"],
+        read: |f| Ok(Request::Project(methods::read_project(f)?)),
+    },
 ];
+
+/// The methods a request may name (from [`METHOD_TABLE`]).
+pub const METHODS: [&str; METHOD_TABLE.len()] = {
+    let mut names = [""; METHOD_TABLE.len()];
+    let mut i = 0;
+    while i < names.len() {
+        names[i] = METHOD_TABLE[i].name;
+        i += 1;
+    }
+    names
+};
 
 /// Why a request could not be applied: the path of the offending value in the request
 /// document (`[1].target`, `first`) and what is wrong.
@@ -174,20 +228,6 @@ fn check_outputs(scene: &Scene, node: &Node<'_>, report: &Report) -> Result<(), 
 /// discs), so the result can be checked by eye.
 pub const TARGET_COLOR: Color = Color([0.85, 0.1, 0.1, 1.0]);
 
-/// The fields each method reads (beyond `curve` and `method`).
-fn method_fields(method: &str) -> &'static [&'static str] {
-    match method {
-        "single_target" => &["target", "t", "first", "count", "accuracy"],
-        "tangent_kept" => &["target", "t", "accuracy"],
-        "multi_target" => &["targets", "params", "accuracy"],
-        "cubic_region" => &["target", "limited", "reach"],
-        "nubmp_constrained" => &["target", "tau", "group", "respect_vd"],
-        "nubmp_find_tau" => &["target", "group", "apply", "respect_vd"],
-        "project" => &["target", "accuracy"],
-        _ => &[],
-    }
-}
-
 pub(crate) fn field_path(node: &Node<'_>, field: &str) -> String {
     if node.path.is_empty() {
         field.to_owned()
@@ -196,46 +236,34 @@ pub(crate) fn field_path(node: &Node<'_>, field: &str) -> String {
     }
 }
 
-/// Every field any method reads.
-const FIELDS: [&str; 15] = [
-    "curve",
-    "method",
-    "target",
-    "targets",
-    "t",
-    "params",
-    "first",
-    "count",
-    "accuracy",
-    "limited",
-    "tau",
-    "group",
-    "respect_vd",
-    "apply",
-    "reach",
-];
-
 /// Reads one request object into its typed request: the method, only the fields it
 /// reads, an existing curve, then the method's own fields.
 fn read(scene: &Scene, node: &Node<'_>) -> Result<Request, RequestError> {
-    let obj = node.object(&FIELDS)?;
+    // Every field any method reads.
+    let mut known = vec!["curve", "method"];
+    for field in METHOD_TABLE.iter().flat_map(|m| m.fields) {
+        if !known.contains(field) {
+            known.push(field);
+        }
+    }
+    let obj = node.object(&known)?;
     let method_node = obj.req("method")?;
-    let method = method_node.string()?;
-    if !METHODS.contains(&method) {
+    let name = method_node.string()?;
+    let Some(method) = METHOD_TABLE.iter().find(|m| m.name == name) else {
         return Err(method_node
             .invalid(format!(
-                "unknown method {method:?} (expected one of: {})",
+                "unknown method {name:?} (expected one of: {})",
                 METHODS.join(", ")
             ))
             .into());
-    }
+    };
     for key in obj.map.keys() {
-        if key != "curve" && key != "method" && !method_fields(method).contains(&key.as_str()) {
+        if key != "curve" && key != "method" && !method.fields.contains(&key.as_str()) {
             return Err(RequestError {
                 path: field_path(node, key),
                 message: format!(
-                    "not used by {method} (it reads: curve, method, {})",
-                    method_fields(method).join(", ")
+                    "not used by {name} (it reads: curve, method, {})",
+                    method.fields.join(", ")
                 ),
             });
         }
@@ -250,16 +278,7 @@ fn read(scene: &Scene, node: &Node<'_>) -> Result<Request, RequestError> {
             ))
             .into());
     }
-    let f = Fields { node, obj, curve };
-    Ok(match method {
-        "single_target" => Request::SingleTarget(methods::read_single_target(&f)?),
-        "tangent_kept" => Request::TangentKept(methods::read_tangent_kept(&f)?),
-        "multi_target" => Request::MultiTarget(methods::read_multi_target(&f)?),
-        "cubic_region" => Request::CubicRegion(methods::read_cubic_region(&f)?),
-        "nubmp_constrained" => Request::NubmpConstrained(methods::read_nubmp_constrained(&f)?),
-        "nubmp_find_tau" => Request::NubmpFindTau(methods::read_nubmp_find_tau(&f)?),
-        _ => Request::Project(methods::read_project(&f)?),
-    })
+    (method.read)(&Fields { node, obj, curve })
 }
 
 /// Applies a typed request to `scene`: one function per method.
@@ -307,5 +326,54 @@ fn targets_of(request: &Request) -> Vec<DVec3> {
         Request::NubmpConstrained(r) => vec![r.target],
         Request::NubmpFindTau(r) => vec![r.target],
         Request::Project(r) => vec![r.target],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each method has exactly one row, and the row's reader makes the request of that
+    /// method (a row pointing at another method's reader would otherwise go unnoticed).
+    #[test]
+    fn every_method_has_one_row_whose_reader_makes_its_request() {
+        for (i, m) in METHOD_TABLE.iter().enumerate() {
+            assert!(
+                METHOD_TABLE[..i].iter().all(|o| o.name != m.name),
+                "{} has two rows",
+                m.name
+            );
+            assert!(m.fields.contains(&"target") || m.fields.contains(&"targets"));
+        }
+        let scene = crate::scene::Scene::load(
+            &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/solve_demo.json"),
+        )
+        .expect("the demo scene");
+        // One request per method, on the demo scene's Bézier curves (0, 1) and NUBMP curve (2).
+        let requests = [
+            r#"{"curve": 1, "method": "single_target", "target": [9, 3.5]}"#,
+            r#"{"curve": 0, "method": "tangent_kept", "target": [2, 2.2]}"#,
+            r#"{"curve": 1, "method": "multi_target", "targets": [[7, 3], [9.5, 2.5]]}"#,
+            r#"{"curve": 0, "method": "cubic_region", "target": [2, 3], "limited": true}"#,
+            r#"{"curve": 2, "method": "nubmp_constrained", "tau": 0.4, "group": 5, "target": [16.45, 1.75]}"#,
+            r#"{"curve": 2, "method": "nubmp_find_tau", "group": 5, "target": [16.45, 1.75]}"#,
+            r#"{"curve": 2, "method": "project", "target": [17, 3]}"#,
+        ];
+        let mut seen = Vec::new();
+        for text in requests {
+            let value = parse_document(text).expect("JSON");
+            let request =
+                read(&scene, &Node::root(&value)).unwrap_or_else(|e| panic!("{text}: {e}"));
+            assert_eq!(
+                Some(request.method()),
+                value["method"].as_str(),
+                "the reader of {text}"
+            );
+            seen.push(request.method());
+        }
+        seen.sort_unstable();
+        let mut all = METHODS.to_vec();
+        all.sort_unstable();
+        assert_eq!(seen, all, "one request per method");
     }
 }
