@@ -660,8 +660,13 @@ fn every_family_has_a_codec_a_schema_entry_and_a_template() {
     // knows no other (its list of types is exactly the families).
     for name in names {
         let text = format!(r#"{{"version": 1, "curves": [{{"type": "{name}"}}]}}"#);
-        let e = splinescope::scene::from_json_str(&text).unwrap_err().to_string();
-        assert!(!e.contains("unknown curve type"), "{name} has no codec: {e}");
+        let e = splinescope::scene::from_json_str(&text)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            !e.contains("unknown curve type"),
+            "{name} has no codec: {e}"
+        );
     }
     let e = splinescope::scene::from_json_str(
         r#"{"version": 1, "curves": [{"type": "no_such_family"}]}"#,

@@ -3,7 +3,7 @@
 
 use super::chunks::{BatchBuilder, ChunkLimits, LineBatch};
 use super::layout::GpuLineStyle;
-use crate::scene::draw::{Stroke, draw_list};
+use crate::scene::draw::{Stroke, Switches, draw_list_with};
 use crate::scene::{Color, Scene};
 
 impl GpuLineStyle {
@@ -30,7 +30,17 @@ impl From<Stroke> for GpuLineStyle {
 /// edited in place.
 #[must_use]
 pub fn prepare_overlays(scene: &Scene, limits: ChunkLimits) -> (Vec<LineBatch>, Vec<LineBatch>) {
-    let list = draw_list(scene);
+    prepare_overlays_with(scene, Switches::ALL, limits)
+}
+
+/// [`prepare_overlays`] with the curves' overlays limited by `switches`.
+#[must_use]
+pub fn prepare_overlays_with(
+    scene: &Scene,
+    switches: Switches,
+    limits: ChunkLimits,
+) -> (Vec<LineBatch>, Vec<LineBatch>) {
+    let list = draw_list_with(scene, switches);
     let mut lines = BatchBuilder::new(limits);
     let mut points = BatchBuilder::new(limits);
     for (pts, stroke) in &list.lines {

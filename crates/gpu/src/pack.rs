@@ -10,9 +10,10 @@ use glam::DVec3;
 
 pub use super::chunks::{BatchBuilder, ChunkBuilder, ChunkLimits, LineBatch, Placement, TessChunk};
 use super::layout::{GpuLineStyle, GpuVertex, MAX_GPU_DEGREE};
-pub use super::overlays::prepare_overlays;
+pub use super::overlays::{prepare_overlays, prepare_overlays_with};
 pub use super::pack_error::{GPU_COORDINATE_LIMIT, PackError};
 use crate::geom::{BezierSegment, Lower};
+use crate::scene::draw::Switches;
 use crate::scene::{AnnotationShape, Color, Scene, auto_samples};
 
 /// Checks that the kernel can evaluate every segment: its degree is at most
@@ -141,6 +142,19 @@ pub fn repack_points(
 /// [`PackError`] when a segment's degree is over the GPU maximum or a coordinate beyond
 /// [`GPU_COORDINATE_LIMIT`].
 pub fn prepare_scene(scene: &Scene, limits: ChunkLimits) -> Result<PreparedScene, PackError> {
+    prepare_scene_with(scene, Switches::ALL, limits)
+}
+
+/// [`prepare_scene`] with the curves' overlays limited by `switches` (the viewer's `P`
+/// and `C`).
+///
+/// # Errors
+/// As [`prepare_scene`].
+pub fn prepare_scene_with(
+    scene: &Scene,
+    switches: Switches,
+    limits: ChunkLimits,
+) -> Result<PreparedScene, PackError> {
     // Lower, check and count first: the sample total is checked before any buffer is
     // built.
     let mut lowered = Vec::with_capacity(scene.curves.len());
@@ -171,7 +185,7 @@ pub fn prepare_scene(scene: &Scene, limits: ChunkLimits) -> Result<PreparedScene
         sample_counts.push(counts);
     }
     check_annotations(scene)?;
-    let (lines, points) = prepare_overlays(scene, limits);
+    let (lines, points) = prepare_overlays_with(scene, switches, limits);
     let (chunks, placements) = chunks.finish_with_placements();
     Ok(PreparedScene {
         chunks,

@@ -7,22 +7,25 @@ use super::edit::Changes;
 use super::interaction::Toggles;
 use super::readback::Readback;
 use super::ui;
+use crate::geom::BezierSegment;
 use crate::geom::Lower;
 use crate::gpu::adaptive::FrameSettings;
 use crate::gpu::layout::{FrameStats, WORK_HEADER};
 use crate::gpu::pack::{
-    ChunkLimits, PreparedScene, prepare_overlays, prepare_scene, repack_points,
+    ChunkLimits, PreparedScene, prepare_overlays_with, prepare_scene_with, repack_points,
 };
 use crate::gpu::renderer::{GpuScene, Renderer};
 use crate::gpu::{GpuContext, GpuError};
 use crate::scene::Scene;
+use crate::scene::draw::Switches;
 
 /// What the GPU holds of the scene, and the panel's per-curve summaries.
 pub(crate) struct SceneView {
     pub renderer: Renderer,
     pub gpu: GpuScene,
     pub prepared: PreparedScene,
-    uploaded_toggles: Toggles,
+    /// The overlay switches the GPU's overlays were built with.
+    uploaded: Switches,
     /// What the panel and canvas overlay show of the scene, derived on each change.
     pub digest: ui::SceneDigest,
     stats: StatsReader,
@@ -90,12 +93,13 @@ impl SceneView {
         toggles: Toggles,
     ) -> Result<SceneView, AppError> {
         let renderer = Renderer::new(&ctx.device, format);
-        let (gpu, prepared) = upload(ctx, &renderer, scene, toggles)?;
+        let switches = switches(toggles);
+        let (gpu, prepared) = upload(ctx, &renderer, scene, switches)?;
         Ok(SceneView {
             renderer,
             gpu,
             prepared,
-            uploaded_toggles: toggles,
+            uploaded: switches,
             digest: ui::SceneDigest::of(scene),
             stats: StatsReader::new(),
             last_stats: Vec::new(),
@@ -103,8 +107,10 @@ impl SceneView {
     }
 
     /// Brings the GPU up to date with the `changes` of `scene` and the panel's switches:
-    /// curves whose lowering kept its structure are rewritten in place; otherwise (or when
-    /// curves were added or removed) the scene is packed again. Overlays are rebuilt when anything changed.
+    /// curves whose lowering kept its structure are rewritten in place (each lowered
+    /// once, for the GPU and the panel alike); otherwise (or when curves were added or
+    /// removed, or an overlay switch changed) the scene is packed again. The scene is never
+    /// copied: the switches are applied as the overlays are built.
     pub fn sync(
         &mut self,
         ctx: &GpuContext,
@@ -112,44 +118,52 @@ impl SceneView {
         changes: &Changes,
         toggles: Toggles,
     ) -> Result<(), AppError> {
-        if changes.is_empty() && toggles == self.uploaded_toggles {
+        let switches = switches(toggles);
+        if changes.is_empty() && switches == self.uploaded {
             return Ok(());
         }
-        let shown = shown_scene(scene, toggles);
-        let in_place = toggles == self.uploaded_toggles
+        let mut lowered = Vec::with_capacity(changes.curves.len());
+        let in_place = switches == self.uploaded
             && !changes.list
-            && changes
-                .curves
-                .iter()
-                .all(|&c| self.rewrite_in_place(ctx, &shown, c));
+            && changes.curves.iter().all(|&c| {
+                let segments = scene.curves[c].curve.lower();
+                let ok = self.rewrite_in_place(ctx, scene, c, &segments);
+                lowered.push((c, segments));
+                ok
+            });
         if in_place {
             let limits = ChunkLimits::for_binding_size(ctx.max_binding_bytes());
-            let (lines, points) = prepare_overlays(&shown, limits);
+            let (lines, points) = prepare_overlays_with(scene, switches, limits);
             self.renderer
                 .replace_overlays(&ctx.device, &mut self.gpu, &lines, &points);
         } else {
-            let (gpu, prepared) = upload(ctx, &self.renderer, scene, toggles)?;
+            let (gpu, prepared) = upload(ctx, &self.renderer, scene, switches)?;
             self.gpu = gpu;
             self.prepared = prepared;
-            self.uploaded_toggles = toggles;
+            self.uploaded = switches;
             // Statistics of the old chunks no longer apply.
             self.stats = StatsReader::new();
             self.last_stats.clear();
         }
-        self.digest.update(scene, changes);
+        self.digest.update(scene, changes, &lowered);
         Ok(())
     }
 
-    /// Writes curve `c`'s new points where its samples already are; `false` when its
-    /// structure changed (segment count, degree or samples).
-    fn rewrite_in_place(&mut self, ctx: &GpuContext, shown: &Scene, c: usize) -> bool {
-        let segments = shown.curves[c].curve.lower();
+    /// Writes curve `c`'s new points (its lowering, `segments`) where its samples already
+    /// are; `false` when its structure changed (segment count, degree or samples).
+    fn rewrite_in_place(
+        &mut self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        c: usize,
+        segments: &[BezierSegment],
+    ) -> bool {
         let writes = self
             .prepared
             .placements
             .get(c)
             .zip(self.prepared.sample_counts.get(c))
-            .and_then(|(p, n)| repack_points(p, n, &segments, shown.samples_for(c)));
+            .and_then(|(p, n)| repack_points(p, n, segments, scene.samples_for(c)));
         let Some(writes) = writes else {
             return false;
         };
@@ -218,14 +232,12 @@ impl SceneView {
     }
 }
 
-/// The scene with the panel's overlay switches applied.
-fn shown_scene(scene: &Scene, toggles: Toggles) -> Scene {
-    let mut shown = scene.clone();
-    for c in &mut shown.curves {
-        c.style.show_polygon &= toggles.show_polygons;
-        c.style.show_points &= toggles.show_points;
+/// The overlay switches of the panel's toggles.
+fn switches(toggles: Toggles) -> Switches {
+    Switches {
+        polygons: toggles.show_polygons,
+        points: toggles.show_points,
     }
-    shown
 }
 
 /// Prepares and uploads the scene with the panel's overlay switches applied.
@@ -233,11 +245,11 @@ fn upload(
     ctx: &GpuContext,
     renderer: &Renderer,
     scene: &Scene,
-    toggles: Toggles,
+    switches: Switches,
 ) -> Result<(GpuScene, PreparedScene), AppError> {
-    let shown = shown_scene(scene, toggles);
-    let prepared = prepare_scene(
-        &shown,
+    let prepared = prepare_scene_with(
+        scene,
+        switches,
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )
     .map_err(GpuError::from)?;

@@ -6,7 +6,7 @@ use std::time::Instant;
 use glam::DVec3;
 
 use crate::camera::Camera;
-use crate::geom::{Control, ControlKind, ControlValue, Lower, ParamCurve};
+use crate::geom::{BezierSegment, Control, ControlKind, ControlValue, Lower, ParamCurve};
 use crate::scene::{Scene, SceneCurve};
 
 use super::edit::{Editor, Hit};
@@ -37,17 +37,28 @@ pub(crate) fn summarize(scene: &Scene) -> Vec<CurveSummary> {
 }
 
 /// Refreshes the summaries of the `changed` curves (edits change curves in place; the
-/// others keep theirs).
-pub(crate) fn refresh(summaries: &mut [CurveSummary], scene: &Scene, changed: &[usize]) {
+/// others keep theirs), with the lowerings in `lowered` where the caller has them.
+pub(crate) fn refresh(
+    summaries: &mut [CurveSummary],
+    scene: &Scene,
+    changed: &[usize],
+    lowered: &[(usize, Vec<BezierSegment>)],
+) {
     for &i in changed {
         if let Some(slot) = summaries.get_mut(i) {
-            *slot = summarize_curve(i, &scene.curves[i]);
+            *slot = match lowered.iter().find(|(c, _)| *c == i) {
+                Some((_, segments)) => summarize_lowered(i, &scene.curves[i], segments),
+                None => summarize_curve(i, &scene.curves[i]),
+            };
         }
     }
 }
 
 fn summarize_curve(i: usize, c: &SceneCurve) -> CurveSummary {
-    let segments = c.curve.lower();
+    summarize_lowered(i, c, &c.curve.lower())
+}
+
+fn summarize_lowered(i: usize, c: &SceneCurve, segments: &[BezierSegment]) -> CurveSummary {
     let degree = segments
         .iter()
         .map(|s| s.bezier.degree())
@@ -115,8 +126,14 @@ impl SceneDigest {
     }
 
     /// Follows the editor's `changes` of `scene` (a changed list is summarised anew,
-    /// curves changed in place are refreshed; nothing is done when nothing changed).
-    pub fn update(&mut self, scene: &Scene, changes: &super::edit::Changes) {
+    /// curves changed in place are refreshed, from `lowered` where it holds their
+    /// lowering; nothing is done when nothing changed).
+    pub fn update(
+        &mut self,
+        scene: &Scene,
+        changes: &super::edit::Changes,
+        lowered: &[(usize, Vec<BezierSegment>)],
+    ) {
         if changes.is_empty() {
             return;
         }
@@ -124,7 +141,7 @@ impl SceneDigest {
         if changes.list {
             self.summaries = summarize(scene);
         } else {
-            refresh(&mut self.summaries, scene, &changes.curves);
+            refresh(&mut self.summaries, scene, &changes.curves, lowered);
         }
     }
 }
@@ -1095,7 +1112,7 @@ fn coords(p: DVec3, planar: bool) -> String {
 #[cfg(test)]
 mod tests {
     use super::{refresh, summarize};
-    use crate::geom::{Bezier, Curve};
+    use crate::geom::{Bezier, Curve, Lower};
     use glam::DVec3;
 
     #[test]
@@ -1106,7 +1123,7 @@ mod tests {
         scene.curves[1].curve = Curve::Bezier(Bezier::new(vec![DVec3::ZERO, DVec3::X]));
         scene.curves[1].name = None;
         let before_0 = summaries[0].details.clone();
-        refresh(&mut summaries, &scene, &[1]);
+        refresh(&mut summaries, &scene, &[1], &[]);
         let full = summarize(&scene);
         assert_eq!(summaries.len(), full.len());
         for (got, want) in summaries.iter().zip(&full) {
@@ -1120,6 +1137,16 @@ mod tests {
             "{}",
             summaries[1].details
         );
+        // Given the curve's lowering (as a drag has it), the summary is the same.
+        let mut given = summarize(&crate::scene::gallery::gallery());
+        refresh(
+            &mut given,
+            &scene,
+            &[1],
+            &[(1, scene.curves[1].curve.lower())],
+        );
+        assert_eq!(given[1].details, full[1].details);
+        assert_eq!(given[1].label, full[1].label);
     }
 
     #[test]

@@ -57,7 +57,7 @@ impl Viewer {
             self.model.editor.finish();
         }
         let changed = self.model.editor.take_changed();
-        self.digest.update(self.model.scene(), &changed);
+        self.digest.update(self.model.scene(), &changed, &[]);
     }
 }
 

@@ -125,10 +125,36 @@ pub fn axis_triad(scene: &Scene) -> [Axis; 3] {
 /// in one pass over the scene.
 #[must_use]
 pub fn draw_list(scene: &Scene) -> DrawList {
+    draw_list_with(scene, Switches::ALL)
+}
+
+/// Which curve overlays are drawn, over and above each curve's own style: the viewer's
+/// `P` (control polygons and the families' explaining polylines) and `C` (control points)
+/// switches. A curve's overlay is drawn when its style and the switch both ask for it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Switches {
+    /// Control polygons and explaining polylines.
+    pub polygons: bool,
+    /// Control points.
+    pub points: bool,
+}
+
+impl Switches {
+    /// Everything the curves' styles ask for.
+    pub const ALL: Switches = Switches {
+        polygons: true,
+        points: true,
+    };
+}
+
+/// [`draw_list`] with the curves' overlays further limited by `switches` (the scene is
+/// not copied to apply them).
+#[must_use]
+pub fn draw_list_with(scene: &Scene, switches: Switches) -> DrawList {
     let mut list = DrawList::default();
     let (lines, points) = (&mut list.lines, &mut list.points);
     for sc in &scene.curves {
-        if sc.style.show_polygon {
+        if sc.style.show_polygon && switches.polygons {
             for overlay in sc.curve.overlays() {
                 lines.push((
                     overlay.points.clone(),
@@ -139,7 +165,7 @@ pub fn draw_list(scene: &Scene) -> DrawList {
                 }
             }
         }
-        if sc.style.show_points {
+        if sc.style.show_points && switches.points {
             let dot = sc.style.color.mix(Color([0.0, 0.0, 0.0, 1.0]), 0.15);
             points.push((
                 sc.curve.control_points().to_vec(),
@@ -194,5 +220,37 @@ mod tests {
             list.points[1].1,
             Stroke::solid(Color([1.0, 0.0, 0.0, 1.0]), 9.0)
         );
+    }
+
+    /// Switching overlays off draws what the same scene with those styles turned off
+    /// draws (what the viewer used to build by copying the scene), without a copy.
+    #[test]
+    fn switches_draw_what_the_styles_turned_off_would() {
+        let scene = crate::scene::gallery::gallery();
+        for (polygons, points) in [(true, true), (false, true), (true, false), (false, false)] {
+            let mut styled = scene.clone();
+            for c in &mut styled.curves {
+                c.style.show_polygon &= polygons;
+                c.style.show_points &= points;
+            }
+            let want = draw_list(&styled);
+            let got = draw_list_with(&scene, Switches { polygons, points });
+            assert_eq!(
+                got.lines, want.lines,
+                "polygons {polygons}, points {points}"
+            );
+            assert_eq!(
+                got.points, want.points,
+                "polygons {polygons}, points {points}"
+            );
+        }
+        let none = draw_list_with(
+            &scene,
+            Switches {
+                polygons: false,
+                points: false,
+            },
+        );
+        assert!(none.lines.len() < draw_list(&scene).lines.len());
     }
 }
