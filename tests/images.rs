@@ -254,7 +254,7 @@ fn an_edit_written_in_place_renders_like_a_fresh_upload() {
     use splinescope::geom::Lower;
     use splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX;
     use splinescope::gpu::offscreen::{OFFSCREEN_FORMAT, render_uploaded};
-    use splinescope::gpu::pack::{ChunkLimits, prepare_overlays, prepare_scene, repack_points};
+    use splinescope::gpu::pack::{ChunkLimits, prepare_scene, repack_points};
     use splinescope::gpu::renderer::Renderer;
     common::on_each_gpu(
         "an_edit_written_in_place_renders_like_a_fresh_upload",
@@ -314,8 +314,13 @@ fn an_edit_written_in_place_renders_like_a_fresh_upload() {
             for (chunk, first, verts) in writes {
                 gpu.write_points(&ctx.queue, chunk, first, &verts);
             }
-            let (lines, points) = prepare_overlays(&edited, limits);
-            renderer.replace_overlays(&ctx.device, &mut gpu, &lines, &points);
+            // The overlays (control polygon, dual polygon, points) are written in place
+            // too, as the viewer does during a drag.
+            let (lines, points) = prepared
+                .overlay_map
+                .rewrite(&edited, splinescope::scene::draw::Switches::ALL, &[0])
+                .expect("the overlays keep their shape");
+            gpu.write_overlays(&ctx.queue, &lines, &points);
             let in_place = render_uploaded(
                 ctx,
                 &renderer,

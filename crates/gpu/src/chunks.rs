@@ -387,9 +387,11 @@ impl BatchBuilder {
     }
 
     /// Adds one polyline (or point set) drawn with `style`. Polylines longer than a batch
-    /// continue in the next one from their last vertex.
-    pub fn push(&mut self, points: &[DVec3], style: GpuLineStyle) {
+    /// continue in the next one from their last vertex. Returns where its vertices went.
+    pub fn push(&mut self, points: &[DVec3], style: GpuLineStyle) -> Vec<BatchPiece> {
+        let mut pieces = Vec::new();
         let mut rest = points;
+        let mut from = 0;
         while !rest.is_empty() {
             let full = {
                 let b = self
@@ -401,6 +403,7 @@ impl BatchBuilder {
             if full {
                 self.batches.push(LineBatch::default());
             }
+            let batch = self.batches.len() - 1;
             let b = self
                 .batches
                 .last_mut()
@@ -408,6 +411,13 @@ impl BatchBuilder {
             let tag = b.styles.len() as u32;
             b.styles.push(style);
             let take = rest.len().min(self.max_vertices - b.vertices.len());
+            pieces.push(BatchPiece {
+                batch,
+                first: b.vertices.len(),
+                tag,
+                from,
+                len: take,
+            });
             b.vertices.extend(rest[..take].iter().map(|p| GpuVertex {
                 position: p.as_vec3().to_array(),
                 id: tag,
@@ -417,10 +427,13 @@ impl BatchBuilder {
             }
             // Repeat the last vertex in the next batch so the polyline stays joined.
             rest = &rest[take - 1..];
+            from += take - 1;
         }
+        pieces
     }
 
-    /// The batches built, without empty ones.
+    /// The batches built, without empty ones (only the first can be: batches are opened
+    /// for a polyline's vertices, so the [`BatchPiece::batch`] indices stay right).
     #[must_use]
     pub fn finish(self) -> Vec<LineBatch> {
         self.batches
@@ -428,4 +441,20 @@ impl BatchBuilder {
             .filter(|b| !b.vertices.is_empty())
             .collect()
     }
+}
+
+/// Where part of a polyline went: `len` of its vertices from its `from`-th on, at vertex
+/// `first` of batch `batch`, with style tag `tag` there.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BatchPiece {
+    /// The batch.
+    pub batch: usize,
+    /// The first vertex in the batch.
+    pub first: usize,
+    /// The style tag the vertices carry.
+    pub tag: u32,
+    /// The first vertex of the polyline this piece holds.
+    pub from: usize,
+    /// How many vertices.
+    pub len: usize,
 }

@@ -1,9 +1,11 @@
 //! Packing the scene's draw list ([`crate::scene::draw`]) for the GPU: strokes become
 //! [`GpuLineStyle`] table entries, polylines and points binding-sized batches.
 
-use super::chunks::{BatchBuilder, ChunkLimits, LineBatch};
-use super::layout::GpuLineStyle;
-use crate::scene::draw::{Stroke, Switches, draw_list_with};
+use std::ops::Range;
+
+use super::chunks::{BatchBuilder, BatchPiece, ChunkLimits, LineBatch};
+use super::layout::{GpuLineStyle, GpuVertex};
+use crate::scene::draw::{Stroke, Switches, axis_lines, curve_overlays, draw_list_with};
 use crate::scene::{Color, Scene};
 
 impl GpuLineStyle {
@@ -40,14 +42,190 @@ pub fn prepare_overlays_with(
     switches: Switches,
     limits: ChunkLimits,
 ) -> (Vec<LineBatch>, Vec<LineBatch>) {
+    let (lines, points, _) = prepare_overlays_mapped(scene, switches, limits);
+    (lines, points)
+}
+
+/// One draw-list entry as packed: where its vertices went, how many it has, its stroke.
+#[derive(Debug, Clone, PartialEq)]
+struct Entry {
+    pieces: Vec<BatchPiece>,
+    len: usize,
+    stroke: Stroke,
+}
+
+/// Where every overlay entry went in the batches, and which entries are each curve's and
+/// the axis triad's: what rewriting one curve's overlays in place needs.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct OverlayMap {
+    lines: Vec<Entry>,
+    points: Vec<Entry>,
+    curves: Vec<(Range<usize>, Range<usize>)>,
+    axes: Range<usize>,
+    switches: Option<Switches>,
+}
+
+/// Vertex writes into overlay batches: `(batch, first vertex, vertices)`.
+pub type BatchWrites = Vec<(usize, usize, Vec<GpuVertex>)>;
+
+/// [`prepare_overlays_with`], and the [`OverlayMap`] of what it packed.
+#[must_use]
+pub fn prepare_overlays_mapped(
+    scene: &Scene,
+    switches: Switches,
+    limits: ChunkLimits,
+) -> (Vec<LineBatch>, Vec<LineBatch>, OverlayMap) {
     let list = draw_list_with(scene, switches);
-    let mut lines = BatchBuilder::new(limits);
-    let mut points = BatchBuilder::new(limits);
-    for (pts, stroke) in &list.lines {
-        lines.push(pts, GpuLineStyle::from(*stroke));
+    let pack = |entries: &[(Vec<glam::DVec3>, Stroke)]| {
+        let mut builder = BatchBuilder::new(limits);
+        let map: Vec<Entry> = entries
+            .iter()
+            .map(|(pts, stroke)| Entry {
+                pieces: builder.push(pts, GpuLineStyle::from(*stroke)),
+                len: pts.len(),
+                stroke: *stroke,
+            })
+            .collect();
+        (builder.finish(), map)
+    };
+    let (lines, line_map) = pack(&list.lines);
+    let (points, point_map) = pack(&list.points);
+    let map = OverlayMap {
+        lines: line_map,
+        points: point_map,
+        curves: list.curves,
+        axes: list.axes,
+        switches: Some(switches),
+    };
+    (lines, points, map)
+}
+
+impl OverlayMap {
+    /// The writes that put the overlays of `curves` (as `scene` has them now) and the 3D
+    /// axis triad (which follows the scene's bounds) where their old vertices are, as
+    /// `(line writes, point writes)`; `None` when their shape changed — another number of
+    /// polylines or vertices, another stroke, other switches — and the overlays must be
+    /// packed again.
+    #[must_use]
+    pub fn rewrite(
+        &self,
+        scene: &Scene,
+        switches: Switches,
+        curves: &[usize],
+    ) -> Option<(BatchWrites, BatchWrites)> {
+        if self.switches != Some(switches) || self.curves.len() != scene.curves.len() {
+            return None;
+        }
+        let (mut line_writes, mut point_writes) = (Vec::new(), Vec::new());
+        for &c in curves {
+            let (lines, points) = curve_overlays(scene.curves.get(c)?, switches);
+            let (line_range, point_range) = self.curves.get(c)?.clone();
+            write_entries(&self.lines[line_range], &lines, &mut line_writes)?;
+            write_entries(&self.points[point_range], &points, &mut point_writes)?;
+        }
+        write_entries(
+            &self.lines[self.axes.clone()],
+            &axis_lines(scene),
+            &mut line_writes,
+        )?;
+        Some((line_writes, point_writes))
     }
-    for (pts, stroke) in &list.points {
-        points.push(pts, GpuLineStyle::from(*stroke));
+}
+
+/// The writes of `new` entries over `old` ones of the same shape (`None` otherwise).
+fn write_entries(
+    old: &[Entry],
+    new: &[(Vec<glam::DVec3>, Stroke)],
+    writes: &mut BatchWrites,
+) -> Option<()> {
+    if old.len() != new.len() {
+        return None;
     }
-    (lines.finish(), points.finish())
+    for (entry, (pts, stroke)) in old.iter().zip(new) {
+        if entry.len != pts.len() || entry.stroke != *stroke {
+            return None;
+        }
+        for piece in &entry.pieces {
+            let verts = pts[piece.from..piece.from + piece.len]
+                .iter()
+                .map(|p| GpuVertex {
+                    position: p.as_vec3().to_array(),
+                    id: piece.tag,
+                })
+                .collect();
+            writes.push((piece.batch, piece.first, verts));
+        }
+    }
+    Some(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::ParamCurve;
+    use glam::DVec3;
+
+    fn apply(batches: &mut [LineBatch], writes: &BatchWrites) {
+        for (batch, first, verts) in writes {
+            batches[*batch].vertices[*first..*first + verts.len()].copy_from_slice(verts);
+        }
+    }
+
+    /// Rewriting a curve's overlays in place gives exactly the batches a fresh packing of
+    /// the edited scene gives — also with batches so small that polylines are split
+    /// across them — and a change of shape asks for a fresh packing instead.
+    #[test]
+    fn rewritten_overlays_equal_a_fresh_packing() {
+        let scene = crate::scene::gallery::gallery();
+        for limits in [
+            ChunkLimits::for_binding_size(1 << 20),
+            ChunkLimits {
+                max_samples: 64,
+                max_points: 7,
+                max_records: 64,
+                max_styles: 3,
+            },
+        ] {
+            let (mut lines, mut points, map) =
+                prepare_overlays_mapped(&scene, Switches::ALL, limits);
+            let mut edited = scene.clone();
+            // A curve with a drawn polygon and points (the 3D one, so the axes move too).
+            let c = (0..scene.curves.len())
+                .rev()
+                .find(|&i| {
+                    let (l, p) = curve_overlays(&scene.curves[i], Switches::ALL);
+                    !l.is_empty() && !p.is_empty()
+                })
+                .expect("a curve with overlays");
+            let mut pts = edited.curves[c].curve.control_points().to_vec();
+            pts[1] += DVec3::new(0.3, -0.7, 0.0);
+            edited.curves[c].curve = edited.curves[c]
+                .curve
+                .with_control_points(pts)
+                .expect("valid");
+            assert!(edited.curves[c].curve.domain().1 > 0.0);
+            let (line_writes, point_writes) = map
+                .rewrite(&edited, Switches::ALL, &[c])
+                .expect("the same shape");
+            assert!(!line_writes.is_empty() && !point_writes.is_empty());
+            apply(&mut lines, &line_writes);
+            apply(&mut points, &point_writes);
+            let (fresh_lines, fresh_points, _) =
+                prepare_overlays_mapped(&edited, Switches::ALL, limits);
+            assert_eq!(lines, fresh_lines, "lines at {limits:?}");
+            assert_eq!(points, fresh_points, "points at {limits:?}");
+            // Another shape: the curve's polygon hidden, other switches, another colour.
+            let mut hidden = scene.clone();
+            hidden.curves[c].style.show_polygon = false;
+            assert!(map.rewrite(&hidden, Switches::ALL, &[c]).is_none());
+            let off = Switches {
+                polygons: false,
+                points: true,
+            };
+            assert!(map.rewrite(&scene, off, &[c]).is_none());
+            let mut recoloured = scene.clone();
+            recoloured.curves[c].style.color = crate::scene::Color([0.1, 0.2, 0.3, 1.0]);
+            assert!(map.rewrite(&recoloured, Switches::ALL, &[c]).is_none());
+        }
+    }
 }

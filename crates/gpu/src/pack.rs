@@ -10,7 +10,9 @@ use glam::DVec3;
 
 pub use super::chunks::{BatchBuilder, ChunkBuilder, ChunkLimits, LineBatch, Placement, TessChunk};
 use super::layout::{GpuLineStyle, GpuVertex, MAX_GPU_DEGREE};
-pub use super::overlays::{prepare_overlays, prepare_overlays_with};
+pub use super::overlays::{
+    OverlayMap, prepare_overlays, prepare_overlays_mapped, prepare_overlays_with,
+};
 pub use super::pack_error::{GPU_COORDINATE_LIMIT, PackError};
 use crate::geom::{BezierSegment, Lower};
 use crate::scene::draw::Switches;
@@ -91,6 +93,8 @@ pub struct PreparedScene {
     pub placements: Vec<Vec<Placement>>,
     /// Per curve, the sample count each of its segments was packed with.
     pub sample_counts: Vec<Vec<u32>>,
+    /// Where the overlays' vertices are (for in-place updates).
+    pub overlay_map: OverlayMap,
 }
 
 /// The new control points of a curve whose lowering kept its structure (the same number
@@ -185,7 +189,7 @@ pub fn prepare_scene_with(
         sample_counts.push(counts);
     }
     check_annotations(scene)?;
-    let (lines, points) = prepare_overlays_with(scene, switches, limits);
+    let (lines, points, overlay_map) = prepare_overlays_mapped(scene, switches, limits);
     let (chunks, placements) = chunks.finish_with_placements();
     Ok(PreparedScene {
         chunks,
@@ -194,6 +198,7 @@ pub fn prepare_scene_with(
         lines,
         points,
         background: scene.background,
+        overlay_map,
     })
 }
 

@@ -29,7 +29,8 @@ pub struct Renderer {
 pub struct DrawBatch {
     bind_group: wgpu::BindGroup,
     vertex_count: u32,
-    _buffers: Vec<wgpu::Buffer>,
+    /// The vertices, then the styles.
+    buffers: Vec<wgpu::Buffer>,
 }
 
 /// A curve chunk on the GPU: the adaptive tessellation's buffers plus the draw bind
@@ -54,6 +55,33 @@ pub struct GpuScene {
 }
 
 impl GpuScene {
+    /// Overwrites overlay vertices in place: `lines` and `points` as
+    /// [`super::pack::OverlayMap::rewrite`] gives them.
+    ///
+    /// # Panics
+    /// If a write falls outside its batch (a bug in the caller).
+    pub fn write_overlays(
+        &self,
+        queue: &wgpu::Queue,
+        lines: &[(usize, usize, Vec<GpuVertex>)],
+        points: &[(usize, usize, Vec<GpuVertex>)],
+    ) {
+        for (batches, writes) in [(&self.lines, lines), (&self.points, points)] {
+            for (batch, first, verts) in writes {
+                let b = &batches[*batch];
+                assert!(
+                    first + verts.len() <= b.vertex_count as usize,
+                    "overlay write outside its batch"
+                );
+                queue.write_buffer(
+                    &b.buffers[0],
+                    (*first * size_of::<GpuVertex>()) as u64,
+                    bytemuck::cast_slice(verts),
+                );
+            }
+        }
+    }
+
     /// Overwrites control points of chunk `chunk` from `first_point` on (a curve whose
     /// lowering kept its structure: see [`super::pack::repack_points`]).
     ///
@@ -277,7 +305,7 @@ impl Renderer {
         DrawBatch {
             bind_group,
             vertex_count,
-            _buffers: vec![vertices, styles],
+            buffers: vec![vertices, styles],
         }
     }
 
@@ -286,7 +314,8 @@ impl Renderer {
             device,
             "overlay vertices",
             bytemuck::cast_slice::<GpuVertex, u8>(&batch.vertices),
-            wgpu::BufferUsages::STORAGE,
+            // Written in place when an edit keeps the overlays' shape.
+            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         );
         self.batch(device, vertices, batch.vertices.len() as u32, &batch.styles)
     }

@@ -12,7 +12,7 @@ use crate::geom::Lower;
 use crate::gpu::adaptive::FrameSettings;
 use crate::gpu::layout::{FrameStats, WORK_HEADER};
 use crate::gpu::pack::{
-    ChunkLimits, PreparedScene, prepare_overlays_with, prepare_scene_with, repack_points,
+    ChunkLimits, PreparedScene, prepare_overlays_mapped, prepare_scene_with, repack_points,
 };
 use crate::gpu::renderer::{GpuScene, Renderer};
 use crate::gpu::{GpuContext, GpuError};
@@ -132,10 +132,7 @@ impl SceneView {
                 ok
             });
         if in_place {
-            let limits = ChunkLimits::for_binding_size(ctx.max_binding_bytes());
-            let (lines, points) = prepare_overlays_with(scene, switches, limits);
-            self.renderer
-                .replace_overlays(&ctx.device, &mut self.gpu, &lines, &points);
+            self.sync_overlays(ctx, scene, &changes.curves, switches);
         } else {
             let (gpu, prepared) = upload(ctx, &self.renderer, scene, switches)?;
             self.gpu = gpu;
@@ -147,6 +144,29 @@ impl SceneView {
         }
         self.digest.update(scene, changes, &lowered);
         Ok(())
+    }
+
+    /// Brings the overlays up to date after in-place edits of `curves`: their polylines
+    /// and points (and the 3D axis triad) are written over the old ones when they keep
+    /// their shape; otherwise every overlay is packed again.
+    fn sync_overlays(
+        &mut self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        curves: &[usize],
+        switches: Switches,
+    ) {
+        if let Some((lines, points)) = self.prepared.overlay_map.rewrite(scene, switches, curves) {
+            self.gpu.write_overlays(&ctx.queue, &lines, &points);
+            return;
+        }
+        let limits = ChunkLimits::for_binding_size(ctx.max_binding_bytes());
+        let (lines, points, map) = prepare_overlays_mapped(scene, switches, limits);
+        self.renderer
+            .replace_overlays(&ctx.device, &mut self.gpu, &lines, &points);
+        self.prepared.lines = lines;
+        self.prepared.points = points;
+        self.prepared.overlay_map = map;
     }
 
     /// Writes curve `c`'s new points (its lowering, `segments`) where its samples already

@@ -5,7 +5,7 @@
 
 use glam::DVec3;
 
-use super::{AnnotationShape, Color, Scene};
+use super::{AnnotationShape, Color, Scene, SceneCurve};
 use crate::geom::OverlayKind;
 
 /// How a polyline or a point set is drawn.
@@ -38,6 +38,53 @@ pub struct DrawList {
     pub lines: Vec<(Vec<DVec3>, Stroke)>,
     /// Point sets (drawn as discs of the stroke's width).
     pub points: Vec<(Vec<DVec3>, Stroke)>,
+    /// Per curve, which entries of `lines` and `points` are its overlays (so that an edit
+    /// of one curve can rewrite its overlays alone).
+    pub curves: Vec<(std::ops::Range<usize>, std::ops::Range<usize>)>,
+    /// The entries of `lines` that are the 3D axis triad (which follows the scene's
+    /// bounds, so any edit may move it).
+    pub axes: std::ops::Range<usize>,
+}
+
+/// One curve's overlays as the draw list holds them: its polylines and point sets.
+pub type CurveOverlays = (Vec<(Vec<DVec3>, Stroke)>, Vec<(Vec<DVec3>, Stroke)>);
+
+/// Curve `sc`'s overlay polylines and point sets under `switches` (its entries of
+/// [`draw_list_with`]).
+#[must_use]
+pub fn curve_overlays(sc: &SceneCurve, switches: Switches) -> CurveOverlays {
+    let (mut lines, mut points) = (Vec::new(), Vec::new());
+    if sc.style.show_polygon && switches.polygons {
+        for overlay in sc.curve.overlays() {
+            lines.push((
+                overlay.points.clone(),
+                overlay_style(overlay.kind, sc.style.color),
+            ));
+            if let Some(style) = overlay_point_style(overlay.kind, sc.style.color) {
+                points.push((overlay.points.clone(), style));
+            }
+        }
+    }
+    if sc.style.show_points && switches.points {
+        let dot = sc.style.color.mix(Color([0.0, 0.0, 0.0, 1.0]), 0.15);
+        points.push((
+            sc.curve.control_points().to_vec(),
+            Stroke::solid(dot, POINT_DIAMETER_PX),
+        ));
+    }
+    (lines, points)
+}
+
+/// The 3D axis triad's polylines (none for a planar scene).
+#[must_use]
+pub fn axis_lines(scene: &Scene) -> Vec<(Vec<DVec3>, Stroke)> {
+    if scene.is_planar() {
+        return Vec::new();
+    }
+    axis_triad(scene)
+        .into_iter()
+        .map(|axis| (vec![axis.from, axis.to], Stroke::solid(axis.color, 2.0)))
+        .collect()
 }
 
 /// Width in pixels of control polygons.
@@ -152,32 +199,18 @@ impl Switches {
 #[must_use]
 pub fn draw_list_with(scene: &Scene, switches: Switches) -> DrawList {
     let mut list = DrawList::default();
-    let (lines, points) = (&mut list.lines, &mut list.points);
     for sc in &scene.curves {
-        if sc.style.show_polygon && switches.polygons {
-            for overlay in sc.curve.overlays() {
-                lines.push((
-                    overlay.points.clone(),
-                    overlay_style(overlay.kind, sc.style.color),
-                ));
-                if let Some(style) = overlay_point_style(overlay.kind, sc.style.color) {
-                    points.push((overlay.points.clone(), style));
-                }
-            }
-        }
-        if sc.style.show_points && switches.points {
-            let dot = sc.style.color.mix(Color([0.0, 0.0, 0.0, 1.0]), 0.15);
-            points.push((
-                sc.curve.control_points().to_vec(),
-                Stroke::solid(dot, POINT_DIAMETER_PX),
-            ));
-        }
+        let (lines, points) = curve_overlays(sc, switches);
+        let (l0, p0) = (list.lines.len(), list.points.len());
+        list.lines.extend(lines);
+        list.points.extend(points);
+        list.curves
+            .push((l0..list.lines.len(), p0..list.points.len()));
     }
-    if !scene.is_planar() {
-        for axis in axis_triad(scene) {
-            lines.push((vec![axis.from, axis.to], Stroke::solid(axis.color, 2.0)));
-        }
-    }
+    let a0 = list.lines.len();
+    list.lines.extend(axis_lines(scene));
+    list.axes = a0..list.lines.len();
+    let (lines, points) = (&mut list.lines, &mut list.points);
     for a in &scene.annotations {
         let style = Stroke::solid(a.color, a.width);
         match &a.shape {
