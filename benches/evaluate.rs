@@ -8,8 +8,9 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use glam::DVec3;
 use splinescope::geom::{BSpline, Bezier, Curve, Nubmp, ParamCurve};
 use splinescope::gpu::layout::GpuVertex;
-use splinescope::gpu::pack::{ChunkLimits, prepare_scene};
+use splinescope::gpu::pack::{ChunkLimits, prepare};
 use splinescope::gpu::twin;
+use splinescope::scene::encoding::Encoding;
 use splinescope::scene::generate::{Rng, StressOptions, random_bezier_scene};
 
 fn bench(c: &mut Criterion) {
@@ -49,7 +50,11 @@ fn bench(c: &mut Criterion) {
         samples: 64,
         ..Default::default()
     });
-    let prepared = prepare_scene(&scene, ChunkLimits::for_binding_size(1 << 27)).unwrap();
+    let prepared = prepare(
+        &Encoding::of(&scene),
+        ChunkLimits::for_binding_size(1 << 27),
+    )
+    .unwrap();
     let chunk = &prepared.chunks[0];
     let mut out = vec![
         GpuVertex {

@@ -9,9 +9,10 @@
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::DVec2;
 use splinescope::gpu::offscreen::{OFFSCREEN_FORMAT, render_uploaded};
-use splinescope::gpu::pack::{ChunkLimits, prepare_scene};
+use splinescope::gpu::pack::{ChunkLimits, prepare};
 use splinescope::gpu::renderer::Renderer;
 use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext};
+use splinescope::scene::encoding::Encoding;
 use splinescope::scene::generate::{StressOptions, random_bezier_scene};
 
 fn bench(c: &mut Criterion) {
@@ -29,8 +30,8 @@ fn bench(c: &mut Criterion) {
             // As `view --stress` draws it.
             scene.samples_per_segment = None;
         }
-        let prepared = prepare_scene(
-            &scene,
+        let prepared = prepare(
+            &Encoding::of(&scene),
             ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
         )
         .expect("the stress scene packs");

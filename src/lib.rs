@@ -15,7 +15,8 @@
 //! * [`splinescope_viewer`] ([`app`]) — the interactive winit + egui viewer.
 //! * this package — the command line, and what only it prints or writes: [`inspect`]
 //!   reports, [`outputs`] of `eval`/`check`, [`regress`]ion runs, image comparison
-//!   ([`image`]) and the JSON [`schemas`]. It re-exports the layers under their module
+//!   ([`image`]), the JSON [`schemas`], and drawing a scene offscreen ([`offscreen`]:
+//!   its encoding and camera handed to the GPU layer). It re-exports the layers under their module
 //!   names, so `splinescope::geom`, `splinescope::gpu` and the rest name one thing each.
 //!
 //! The road through the program: scene → curve families → lowering to Bézier segments →
@@ -31,6 +32,7 @@ pub use splinescope_viewer as app;
 
 pub mod image;
 pub mod inspect;
+pub mod offscreen;
 pub mod outputs;
 pub mod regress;
 pub mod schemas;

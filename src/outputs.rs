@@ -96,7 +96,9 @@ impl CheckOutput {
                 }
             })
             .collect();
-        if let Err(e) = crate::gpu::pack::check_annotations(scene) {
+        if let Err(e) =
+            crate::gpu::pack::check_annotations(&crate::scene::encoding::annotation_points(scene))
+        {
             gpu_problems.push(e.to_string());
         }
         CheckOutput {

@@ -316,7 +316,7 @@ fn compare_one(ctx: &GpuContext, path: &Path, refs: &Path, opts: &RegressOptions
     let rendered = Scene::load(path)
         .map_err(|e| format!("{}: {e}", path.display()))
         .and_then(|scene| {
-            crate::gpu::offscreen::render_scene(ctx, &scene, None, opts.width, opts.height)
+            crate::offscreen::render_scene(ctx, &scene, None, opts.width, opts.height)
                 .map_err(|e| format!("{}: {e}", path.display()))
         });
     let actual = match rendered {

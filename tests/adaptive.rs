@@ -15,10 +15,11 @@ use splinescope::geom::{Bezier, Curve, Lower};
 use splinescope::gpu::GpuContext;
 use splinescope::gpu::adaptive::{FrameSettings, Stage, read_work};
 use splinescope::gpu::layout::{GpuVertex, MAX_SAMPLES_PER_SEGMENT, WORK_HEADER};
-use splinescope::gpu::pack::{ChunkLimits, PreparedScene, prepare_scene};
+use splinescope::gpu::pack::{ChunkLimits, PreparedScene, prepare};
 use splinescope::gpu::renderer::camera_uniform;
 use splinescope::gpu::tessellator::read_buffer;
 use splinescope::gpu::twin;
+use splinescope::scene::encoding::Encoding;
 use splinescope::scene::generate::Rng;
 use splinescope::scene::{Scene, SceneCurve, Style};
 
@@ -136,8 +137,8 @@ fn exact_segments(scene: &Scene, prepared: &PreparedScene, c: usize) -> Vec<(u32
 
 /// Checks one scene under one camera: GPU against twins, and the tolerance.
 fn check(ctx: &GpuContext, scene: &Scene, camera: &Camera, tolerance_px: f64, what: &str) {
-    let prepared = prepare_scene(
-        scene,
+    let prepared = prepare(
+        &Encoding::of(scene),
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )
     .expect("pack");
@@ -333,8 +334,8 @@ fn a_full_buffer_coarsens_every_curve_in_proportion_and_writes_nothing_outside()
         |backend| {
             let ctx = &backend.ctx;
             let scene = random_scene(13, false);
-            let prepared = prepare_scene(
-                &scene,
+            let prepared = prepare(
+                &Encoding::of(&scene),
                 ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
             )
             .expect("pack");
@@ -395,8 +396,8 @@ fn an_offscreen_render_grows_a_buffer_the_view_outgrew_and_draws_uncapped() {
         |backend| {
             let ctx = &backend.ctx;
             let scene = random_scene(14, false);
-            let prepared = prepare_scene(
-                &scene,
+            let prepared = prepare(
+                &Encoding::of(&scene),
                 ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
             )
             .expect("pack");

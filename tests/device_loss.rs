@@ -7,8 +7,8 @@ mod common;
 use std::time::{Duration, Instant};
 
 use splinescope::geom::Lower;
-use splinescope::gpu::offscreen::render_scene;
 use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext, GpuError};
+use splinescope::offscreen::render_scene;
 use splinescope::scene::gallery;
 
 fn fresh(backend: &common::Backend) -> GpuContext {

@@ -16,10 +16,11 @@ mod common;
 use glam::{DVec3, Vec3};
 use splinescope::geom::{Bezier, ParamCurve};
 use splinescope::gpu::layout::{GpuLineStyle, MAX_GPU_DEGREE};
-use splinescope::gpu::pack::{ChunkBuilder, ChunkLimits, TessChunk, prepare_scene};
+use splinescope::gpu::pack::{ChunkBuilder, ChunkLimits, TessChunk, prepare};
 use splinescope::gpu::tessellator::{POISON, Tessellator, plan, read_buffer};
 use splinescope::gpu::twin;
 use splinescope::scene::Color;
+use splinescope::scene::encoding::Encoding;
 use splinescope::scene::generate::{Rng, StressOptions, random_bezier_scene};
 
 /// The bound for a curve of `degree` with control points `points` (see the module doc).
@@ -266,7 +267,7 @@ fn one_million_cubics_tessellate_correctly_in_chunks() {
                 ..Default::default()
             });
             let limits = ChunkLimits::for_binding_size(ctx.max_binding_bytes());
-            let prepared = prepare_scene(&scene, limits).expect("packs");
+            let prepared = prepare(&Encoding::of(&scene), limits).expect("packs");
             let total: u64 = prepared
                 .chunks
                 .iter()

@@ -15,8 +15,8 @@ use std::path::PathBuf;
 use glam::{DVec2, DVec3};
 use splinescope::camera::Camera;
 use splinescope::geom::{Bezier, Curve};
-use splinescope::gpu::offscreen::render_scene;
 use splinescope::image::{ComparisonImages, RgbaImage, Tolerance, compare_images};
+use splinescope::offscreen::render_scene;
 use splinescope::scene::{Color, Scene, SceneCurve, Style, ViewSpec, gallery};
 
 /// The golden references are compared with the same code as `splinescope regress`, at
@@ -254,8 +254,9 @@ fn an_edit_written_in_place_renders_like_a_fresh_upload() {
     use splinescope::geom::Lower;
     use splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX;
     use splinescope::gpu::offscreen::{OFFSCREEN_FORMAT, render_uploaded};
-    use splinescope::gpu::pack::{ChunkLimits, prepare_scene, repack_points};
+    use splinescope::gpu::pack::{ChunkLimits, prepare, repack_points};
     use splinescope::gpu::renderer::Renderer;
+    use splinescope::scene::encoding::Encoding;
     common::on_each_gpu(
         "an_edit_written_in_place_renders_like_a_fresh_upload",
         |backend| {
@@ -264,7 +265,7 @@ fn an_edit_written_in_place_renders_like_a_fresh_upload() {
             let scene = Scene::load(&path).expect("scene");
             let limits = ChunkLimits::for_binding_size(ctx.max_binding_bytes());
             let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
-            let prepared = prepare_scene(&scene, limits).expect("pack");
+            let prepared = prepare(&Encoding::of(&scene), limits).expect("pack");
             let mut gpu = renderer.upload(ctx, &prepared);
             let viewport = DVec2::new(320.0, 240.0);
             let camera = scene.camera(viewport);
@@ -316,9 +317,21 @@ fn an_edit_written_in_place_renders_like_a_fresh_upload() {
             }
             // The overlays (control polygon, dual polygon, points) are written in place
             // too, as the viewer does during a drag.
+            let edit = splinescope::gpu::pack::OverlayEdit {
+                switches: splinescope::scene::draw::Switches::ALL,
+                curve_count: edited.curves.len(),
+                curves: vec![(
+                    0,
+                    splinescope::scene::draw::curve_overlays(
+                        &edited.curves[0],
+                        splinescope::scene::draw::Switches::ALL,
+                    ),
+                )],
+                axes: splinescope::scene::draw::axis_lines(&edited),
+            };
             let (lines, points) = prepared
                 .overlay_map
-                .rewrite(&edited, splinescope::scene::draw::Switches::ALL, &[0])
+                .rewrite(&edit)
                 .expect("the overlays keep their shape");
             gpu.write_overlays(&ctx.queue, &lines, &points);
             let in_place = render_uploaded(

@@ -6,59 +6,56 @@ use glam::DVec2;
 use super::GpuError;
 use super::adaptive::{DEFAULT_TOLERANCE_PX, FrameSettings, read_stats};
 use super::context::GpuContext;
-use super::pack::{ChunkLimits, prepare_scene};
+use super::pack::{ChunkLimits, prepare};
 use super::renderer::{GpuScene, Renderer, camera_uniform};
 use super::tessellator::read_buffer;
 use crate::camera::Camera;
 use crate::image::RgbaImage;
-use crate::scene::Scene;
+use crate::scene::encoding::Encoding;
 
 /// The texture format offscreen images are drawn in: 8-bit RGBA, colours stored as given
 /// (sRGB values, blended as such, like the window's non-sRGB surface).
 pub const OFFSCREEN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
-/// Draws `scene` with `camera` (the scene's own when `None`) into a `width × height`
-/// image, tessellated as the window does for the default tolerance
-/// ([`DEFAULT_TOLERANCE_PX`]).
+/// Draws `encoding` seen by `camera` into a `width × height` image, tessellated as the
+/// window does for the default tolerance ([`DEFAULT_TOLERANCE_PX`]). The camera is the
+/// caller's (a scene's own is `Scene::camera` for the viewport).
 ///
 /// # Errors
 /// [`GpuError::ImageSize`] for a size the device cannot hold, [`GpuError::Pack`] for a
 /// scene over the GPU limits, [`GpuError::Readback`] when reading fails.
-pub fn render_scene(
+pub fn render(
     ctx: &GpuContext,
-    scene: &Scene,
-    camera: Option<Camera>,
-    width: u32,
-    height: u32,
+    encoding: &Encoding,
+    camera: &Camera,
+    (width, height): (u32, u32),
 ) -> Result<RgbaImage, GpuError> {
-    render_scene_with(ctx, scene, camera, (width, height), DEFAULT_TOLERANCE_PX)
+    render_with(ctx, encoding, camera, (width, height), DEFAULT_TOLERANCE_PX)
 }
 
-/// [`render_scene`] for a tolerance of `tolerance_px` pixels.
+/// [`render`] for a tolerance of `tolerance_px` pixels.
 ///
 /// # Errors
-/// As [`render_scene`].
-pub fn render_scene_with(
+/// As [`render`].
+pub fn render_with(
     ctx: &GpuContext,
-    scene: &Scene,
-    camera: Option<Camera>,
+    encoding: &Encoding,
+    camera: &Camera,
     (width, height): (u32, u32),
     tolerance_px: f64,
 ) -> Result<RgbaImage, GpuError> {
     check_size(ctx, width, height)?;
-    let prepared = prepare_scene(
-        scene,
+    let prepared = prepare(
+        encoding,
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )?;
     let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
     let mut gpu_scene = renderer.upload(ctx, &prepared);
-    let viewport = DVec2::new(f64::from(width), f64::from(height));
-    let camera = camera.unwrap_or_else(|| scene.camera(viewport));
     render_uploaded(
         ctx,
         &renderer,
         &mut gpu_scene,
-        &camera,
+        camera,
         (width, height),
         tolerance_px,
     )

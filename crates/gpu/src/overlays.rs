@@ -5,8 +5,8 @@ use std::ops::Range;
 
 use super::chunks::{BatchBuilder, BatchPiece, ChunkLimits, LineBatch};
 use super::layout::{GpuLineStyle, GpuVertex};
-use crate::scene::draw::{Stroke, Switches, axis_lines, curve_overlays, draw_list_with};
-use crate::scene::{Color, Scene};
+use crate::scene::Color;
+use crate::scene::draw::{CurveOverlays, DrawList, Stroke, Switches};
 
 impl GpuLineStyle {
     /// A solid style.
@@ -28,21 +28,11 @@ impl From<Stroke> for GpuLineStyle {
     }
 }
 
-/// The scene's overlay polylines and points, batched: rebuilt on their own when curves are
-/// edited in place.
+/// The overlay polylines and points of a draw list, batched: rebuilt on their own when
+/// curves are edited in a way that changes their overlays' shape.
 #[must_use]
-pub fn prepare_overlays(scene: &Scene, limits: ChunkLimits) -> (Vec<LineBatch>, Vec<LineBatch>) {
-    prepare_overlays_with(scene, Switches::ALL, limits)
-}
-
-/// [`prepare_overlays`] with the curves' overlays limited by `switches`.
-#[must_use]
-pub fn prepare_overlays_with(
-    scene: &Scene,
-    switches: Switches,
-    limits: ChunkLimits,
-) -> (Vec<LineBatch>, Vec<LineBatch>) {
-    let (lines, points, _) = prepare_overlays_mapped(scene, switches, limits);
+pub fn prepare_overlays(list: &DrawList, limits: ChunkLimits) -> (Vec<LineBatch>, Vec<LineBatch>) {
+    let (lines, points, _) = prepare_overlays_mapped(list, Switches::ALL, limits);
     (lines, points)
 }
 
@@ -68,14 +58,14 @@ pub struct OverlayMap {
 /// Vertex writes into overlay batches: `(batch, first vertex, vertices)`.
 pub type BatchWrites = Vec<(usize, usize, Vec<GpuVertex>)>;
 
-/// [`prepare_overlays_with`], and the [`OverlayMap`] of what it packed.
+/// [`prepare_overlays`] for a draw list made with `switches`, and the [`OverlayMap`] of
+/// what it packed.
 #[must_use]
 pub fn prepare_overlays_mapped(
-    scene: &Scene,
+    list: &DrawList,
     switches: Switches,
     limits: ChunkLimits,
 ) -> (Vec<LineBatch>, Vec<LineBatch>, OverlayMap) {
-    let list = draw_list_with(scene, switches);
     let pack = |entries: &[(Vec<glam::DVec3>, Stroke)]| {
         let mut builder = BatchBuilder::new(limits);
         let map: Vec<Entry> = entries
@@ -93,41 +83,45 @@ pub fn prepare_overlays_mapped(
     let map = OverlayMap {
         lines: line_map,
         points: point_map,
-        curves: list.curves,
-        axes: list.axes,
+        curves: list.curves.clone(),
+        axes: list.axes.clone(),
         switches: Some(switches),
     };
     (lines, points, map)
 }
 
+/// The new overlays of an edit: the changed curves' ([`crate::scene::draw::curve_overlays`]
+/// of each, with its index) and the 3D axis triad's ([`crate::scene::draw::axis_lines`]),
+/// drawn with `switches` for a scene of `curve_count` curves.
+#[derive(Debug, Clone)]
+pub struct OverlayEdit {
+    /// The overlay switches they were drawn with.
+    pub switches: Switches,
+    /// How many curves the scene has.
+    pub curve_count: usize,
+    /// Each changed curve's index and overlays.
+    pub curves: Vec<(usize, CurveOverlays)>,
+    /// The axis triad's polylines (none for a planar scene).
+    pub axes: Vec<(Vec<glam::DVec3>, Stroke)>,
+}
+
 impl OverlayMap {
-    /// The writes that put the overlays of `curves` (as `scene` has them now) and the 3D
-    /// axis triad (which follows the scene's bounds) where their old vertices are, as
-    /// `(line writes, point writes)`; `None` when their shape changed — another number of
-    /// polylines or vertices, another stroke, other switches — and the overlays must be
-    /// packed again.
+    /// The writes that put `edit`'s overlays where their old vertices are, as `(line
+    /// writes, point writes)`; `None` when their shape changed — another number of
+    /// polylines or vertices, another stroke, other switches, curves added or removed —
+    /// and the overlays must be packed again.
     #[must_use]
-    pub fn rewrite(
-        &self,
-        scene: &Scene,
-        switches: Switches,
-        curves: &[usize],
-    ) -> Option<(BatchWrites, BatchWrites)> {
-        if self.switches != Some(switches) || self.curves.len() != scene.curves.len() {
+    pub fn rewrite(&self, edit: &OverlayEdit) -> Option<(BatchWrites, BatchWrites)> {
+        if self.switches != Some(edit.switches) || self.curves.len() != edit.curve_count {
             return None;
         }
         let (mut line_writes, mut point_writes) = (Vec::new(), Vec::new());
-        for &c in curves {
-            let (lines, points) = curve_overlays(scene.curves.get(c)?, switches);
-            let (line_range, point_range) = self.curves.get(c)?.clone();
-            write_entries(&self.lines[line_range], &lines, &mut line_writes)?;
-            write_entries(&self.points[point_range], &points, &mut point_writes)?;
+        for (c, (lines, points)) in &edit.curves {
+            let (line_range, point_range) = self.curves.get(*c)?.clone();
+            write_entries(&self.lines[line_range], lines, &mut line_writes)?;
+            write_entries(&self.points[point_range], points, &mut point_writes)?;
         }
-        write_entries(
-            &self.lines[self.axes.clone()],
-            &axis_lines(scene),
-            &mut line_writes,
-        )?;
+        write_entries(&self.lines[self.axes.clone()], &edit.axes, &mut line_writes)?;
         Some((line_writes, point_writes))
     }
 }
@@ -163,7 +157,18 @@ fn write_entries(
 mod tests {
     use super::*;
     use crate::geom::ParamCurve;
+    use crate::scene::Scene;
+    use crate::scene::draw::{axis_lines, curve_overlays, draw_list};
     use glam::DVec3;
+
+    fn edit(scene: &Scene, switches: Switches, c: usize) -> OverlayEdit {
+        OverlayEdit {
+            switches,
+            curve_count: scene.curves.len(),
+            curves: vec![(c, curve_overlays(&scene.curves[c], switches))],
+            axes: axis_lines(scene),
+        }
+    }
 
     fn apply(batches: &mut [LineBatch], writes: &BatchWrites) {
         for (batch, first, verts) in writes {
@@ -187,7 +192,7 @@ mod tests {
             },
         ] {
             let (mut lines, mut points, map) =
-                prepare_overlays_mapped(&scene, Switches::ALL, limits);
+                prepare_overlays_mapped(&draw_list(&scene), Switches::ALL, limits);
             let mut edited = scene.clone();
             // A curve with a drawn polygon and points (the 3D one, so the axes move too).
             let c = (0..scene.curves.len())
@@ -205,27 +210,27 @@ mod tests {
                 .expect("valid");
             assert!(edited.curves[c].curve.domain().1 > 0.0);
             let (line_writes, point_writes) = map
-                .rewrite(&edited, Switches::ALL, &[c])
+                .rewrite(&edit(&edited, Switches::ALL, c))
                 .expect("the same shape");
             assert!(!line_writes.is_empty() && !point_writes.is_empty());
             apply(&mut lines, &line_writes);
             apply(&mut points, &point_writes);
             let (fresh_lines, fresh_points, _) =
-                prepare_overlays_mapped(&edited, Switches::ALL, limits);
+                prepare_overlays_mapped(&draw_list(&edited), Switches::ALL, limits);
             assert_eq!(lines, fresh_lines, "lines at {limits:?}");
             assert_eq!(points, fresh_points, "points at {limits:?}");
             // Another shape: the curve's polygon hidden, other switches, another colour.
             let mut hidden = scene.clone();
             hidden.curves[c].style.show_polygon = false;
-            assert!(map.rewrite(&hidden, Switches::ALL, &[c]).is_none());
+            assert!(map.rewrite(&edit(&hidden, Switches::ALL, c)).is_none());
             let off = Switches {
                 polygons: false,
                 points: true,
             };
-            assert!(map.rewrite(&scene, off, &[c]).is_none());
+            assert!(map.rewrite(&edit(&scene, off, c)).is_none());
             let mut recoloured = scene.clone();
             recoloured.curves[c].style.color = crate::scene::Color([0.1, 0.2, 0.3, 1.0]);
-            assert!(map.rewrite(&recoloured, Switches::ALL, &[c]).is_none());
+            assert!(map.rewrite(&edit(&recoloured, Switches::ALL, c)).is_none());
         }
     }
 }

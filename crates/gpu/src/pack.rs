@@ -10,13 +10,11 @@ use glam::DVec3;
 
 pub use super::chunks::{BatchBuilder, ChunkBuilder, ChunkLimits, LineBatch, Placement, TessChunk};
 use super::layout::{GpuLineStyle, GpuVertex, MAX_GPU_DEGREE};
-pub use super::overlays::{
-    OverlayMap, prepare_overlays, prepare_overlays_mapped, prepare_overlays_with,
-};
+pub use super::overlays::{OverlayEdit, OverlayMap, prepare_overlays, prepare_overlays_mapped};
 pub use super::pack_error::{GPU_COORDINATE_LIMIT, PackError};
-use crate::geom::{BezierSegment, Lower};
-use crate::scene::draw::Switches;
-use crate::scene::{AnnotationShape, Color, Scene, auto_samples};
+use crate::geom::BezierSegment;
+use crate::scene::encoding::Encoding;
+use crate::scene::{Color, auto_samples};
 
 /// Checks that the kernel can evaluate every segment: its degree is at most
 /// [`MAX_GPU_DEGREE`] and every coordinate is within [`GPU_COORDINATE_LIMIT`].
@@ -59,13 +57,13 @@ fn first_too_large(points: &[DVec3]) -> Option<(usize, f64)> {
     })
 }
 
-/// Checks every annotation point against [`GPU_COORDINATE_LIMIT`].
+/// Checks every annotation point (each annotation's points, in order) against
+/// [`GPU_COORDINATE_LIMIT`].
 ///
 /// # Errors
 /// [`PackError::AnnotationTooLarge`] naming the annotation and the point.
-pub fn check_annotations(scene: &Scene) -> Result<(), PackError> {
-    for (annotation, a) in scene.annotations.iter().enumerate() {
-        let (AnnotationShape::Polyline(points) | AnnotationShape::Points(points)) = &a.shape;
+pub fn check_annotations(annotations: &[Vec<DVec3>]) -> Result<(), PackError> {
+    for (annotation, points) in annotations.iter().enumerate() {
         if let Some((point, value)) = first_too_large(points) {
             return Err(PackError::AnnotationTooLarge {
                 annotation,
@@ -138,66 +136,54 @@ pub fn repack_points(
         .collect()
 }
 
-/// Lowers and packs every curve of `scene` for drawing: each Bézier segment gets the
-/// curve's sample count (or the automatic one, [`auto_samples`]), uniformly in its own
-/// parameter.
+/// Packs an [`Encoding`] for the GPU: every curve's segments into chunks (the sample
+/// total checked against [`crate::limits::SAMPLES`] before any buffer is built), the
+/// overlays into batches, with where everything went (for in-place updates).
 ///
 /// # Errors
-/// [`PackError`] when a segment's degree is over the GPU maximum or a coordinate beyond
-/// [`GPU_COORDINATE_LIMIT`].
-pub fn prepare_scene(scene: &Scene, limits: ChunkLimits) -> Result<PreparedScene, PackError> {
-    prepare_scene_with(scene, Switches::ALL, limits)
-}
-
-/// [`prepare_scene`] with the curves' overlays limited by `switches` (the viewer's `P`
-/// and `C`).
-///
-/// # Errors
-/// As [`prepare_scene`].
-pub fn prepare_scene_with(
-    scene: &Scene,
-    switches: Switches,
-    limits: ChunkLimits,
-) -> Result<PreparedScene, PackError> {
-    // Lower, check and count first: the sample total is checked before any buffer is
-    // built.
-    let mut lowered = Vec::with_capacity(scene.curves.len());
+/// A degree over the GPU maximum, a coordinate beyond the `f32` range, too many samples,
+/// or chunk limits too small for one segment.
+pub fn prepare(encoding: &Encoding, limits: ChunkLimits) -> Result<PreparedScene, PackError> {
+    // Check and count first: the sample total is checked before any buffer is built.
+    let mut counts_all = Vec::with_capacity(encoding.curves.len());
     let mut total = 0u64;
-    for (index, sc) in scene.curves.iter().enumerate() {
-        let segments = sc.curve.lower();
-        check_gpu_fit(index, &segments)?;
-        let samples = scene.samples_for(index);
-        let counts: Vec<u32> = segments
+    for (index, curve) in encoding.curves.iter().enumerate() {
+        check_gpu_fit(index, &curve.segments)?;
+        let counts: Vec<u32> = curve
+            .segments
             .iter()
-            .map(|seg| samples.unwrap_or_else(|| auto_samples(seg.bezier.points())))
+            .map(|seg| {
+                curve
+                    .samples
+                    .unwrap_or_else(|| auto_samples(seg.bezier.points()))
+            })
             .collect();
         total += counts.iter().map(|&c| u64::from(c)).sum::<u64>();
-        lowered.push((segments, counts));
+        counts_all.push(counts);
     }
     crate::limits::SAMPLES
         .check(total)
         .map_err(|e| PackError::TooManySamples(e.to_string()))?;
     let mut chunks = ChunkBuilder::new(limits);
-    let mut sample_counts = Vec::with_capacity(scene.curves.len());
-    for (index, (sc, (segments, counts))) in scene.curves.iter().zip(lowered).enumerate() {
-        let style = GpuLineStyle::solid(sc.style.color, sc.style.width);
-        let fixed = scene.samples_for(index).is_some();
-        for (seg, &count) in segments.iter().zip(&counts) {
+    for (index, (curve, counts)) in encoding.curves.iter().zip(&counts_all).enumerate() {
+        let style = GpuLineStyle::solid(curve.color, curve.width);
+        let fixed = curve.samples.is_some();
+        for (seg, &count) in curve.segments.iter().zip(counts) {
             chunks.begin_segment(index, style, seg.bezier.points())?;
             chunks.add_drawn_samples(count, fixed);
         }
-        sample_counts.push(counts);
     }
-    check_annotations(scene)?;
-    let (lines, points, overlay_map) = prepare_overlays_mapped(scene, switches, limits);
+    check_annotations(&encoding.annotations)?;
+    let (lines, points, overlay_map) =
+        prepare_overlays_mapped(&encoding.overlays, encoding.switches, limits);
     let (chunks, placements) = chunks.finish_with_placements();
     Ok(PreparedScene {
         chunks,
         placements,
-        sample_counts,
+        sample_counts: counts_all,
         lines,
         points,
-        background: scene.background,
+        background: encoding.background,
         overlay_map,
     })
 }
@@ -205,7 +191,8 @@ pub fn prepare_scene_with(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::Bezier;
+    use crate::geom::{Bezier, Lower};
+    use crate::scene::Scene;
 
     fn style() -> GpuLineStyle {
         GpuLineStyle::solid(Color::WHITE, 1.0)
@@ -380,12 +367,12 @@ mod tests {
             max_records: 1000,
             max_styles: 1000,
         };
-        let before = prepare_scene(&scene(&nub), limits).unwrap();
+        let before = prepare(&Encoding::of(&scene(&nub)), limits).unwrap();
         assert!(before.chunks.len() > 2);
         assert!(before.placements[1].len() > 4, "{:?}", before.placements[1]);
         let mut edited = nub.clone();
         edited.set_group(5, &[0.5, 0.2, 0.3]).unwrap();
-        let after = prepare_scene(&scene(&edited), limits).unwrap();
+        let after = prepare(&Encoding::of(&scene(&edited)), limits).unwrap();
         let mut chunks: Vec<Vec<GpuVertex>> =
             before.chunks.iter().map(|c| c.points.clone()).collect();
         let writes = repack_points(

@@ -12,12 +12,13 @@ use crate::geom::Lower;
 use crate::gpu::adaptive::FrameSettings;
 use crate::gpu::layout::{FrameStats, WORK_HEADER};
 use crate::gpu::pack::{
-    ChunkLimits, PreparedScene, prepare_overlays_mapped, prepare_scene_with, repack_points,
+    ChunkLimits, OverlayEdit, PreparedScene, prepare, prepare_overlays_mapped, repack_points,
 };
 use crate::gpu::renderer::{GpuScene, Renderer};
 use crate::gpu::{GpuContext, GpuError};
 use crate::scene::Scene;
-use crate::scene::draw::Switches;
+use crate::scene::draw::{Switches, axis_lines, curve_overlays, draw_list_with};
+use crate::scene::encoding::Encoding;
 
 /// What the GPU holds of the scene, and the panel's per-curve summaries.
 pub(crate) struct SceneView {
@@ -156,12 +157,22 @@ impl SceneView {
         curves: &[usize],
         switches: Switches,
     ) {
-        if let Some((lines, points)) = self.prepared.overlay_map.rewrite(scene, switches, curves) {
+        let edit = OverlayEdit {
+            switches,
+            curve_count: scene.curves.len(),
+            curves: curves
+                .iter()
+                .map(|&c| (c, curve_overlays(&scene.curves[c], switches)))
+                .collect(),
+            axes: axis_lines(scene),
+        };
+        if let Some((lines, points)) = self.prepared.overlay_map.rewrite(&edit) {
             self.gpu.write_overlays(&ctx.queue, &lines, &points);
             return;
         }
         let limits = ChunkLimits::for_binding_size(ctx.max_binding_bytes());
-        let (lines, points, map) = prepare_overlays_mapped(scene, switches, limits);
+        let (lines, points, map) =
+            prepare_overlays_mapped(&draw_list_with(scene, switches), switches, limits);
         self.renderer
             .replace_overlays(&ctx.device, &mut self.gpu, &lines, &points);
         self.prepared.lines = lines;
@@ -267,9 +278,8 @@ fn upload(
     scene: &Scene,
     switches: Switches,
 ) -> Result<(GpuScene, PreparedScene), AppError> {
-    let prepared = prepare_scene_with(
-        scene,
-        switches,
+    let prepared = prepare(
+        &Encoding::with(scene, switches),
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )
     .map_err(GpuError::from)?;

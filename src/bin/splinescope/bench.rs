@@ -14,10 +14,11 @@ use splinescope::gpu::GpuContext;
 use splinescope::gpu::layout::GpuVertex;
 use splinescope::gpu::layout::{MAX_GPU_DEGREE, TESSELLATE_WORKGROUP_SIZE};
 use splinescope::gpu::offscreen::OFFSCREEN_FORMAT;
-use splinescope::gpu::pack::{ChunkLimits, prepare_scene};
+use splinescope::gpu::pack::{ChunkLimits, prepare};
 use splinescope::gpu::renderer::{Renderer, camera_uniform};
 use splinescope::gpu::tessellator::read_buffer;
 use splinescope::gpu::twin;
+use splinescope::scene::encoding::Encoding;
 use splinescope::scene::generate::{StressFamily, StressOptions, random_bezier_scene};
 
 mod compare;
@@ -355,8 +356,8 @@ fn gpu_rates(
     args: &BenchArgs,
     report: &mut BenchReport,
 ) -> Result<()> {
-    let prepared = prepare_scene(
-        scene,
+    let prepared = prepare(
+        &Encoding::of(scene),
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )?;
     report.chunks = Some(prepared.chunks.len());

@@ -54,7 +54,7 @@ fn render(
 ) -> Result<()> {
     let scene = load_scene_or_gallery(scene)?;
     let ctx = gpu.context()?;
-    let image = splinescope::gpu::offscreen::render_scene_with(
+    let image = splinescope::offscreen::render_scene_with(
         &ctx,
         &scene,
         None,

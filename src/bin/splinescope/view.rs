@@ -152,7 +152,7 @@ pub fn default_job() -> Result<()> {
 }
 
 fn render_to(ctx: &GpuContext, scene: &Scene, path: &Path, width: u32, height: u32) -> Result<()> {
-    let image = splinescope::gpu::offscreen::render_scene(ctx, scene, None, width, height)?;
+    let image = splinescope::offscreen::render_scene(ctx, scene, None, width, height)?;
     image.write_png(path)?;
     Ok(())
 }

@@ -7,6 +7,7 @@
 pub mod codec;
 pub mod doc;
 pub mod draw;
+pub mod encoding;
 pub mod gallery;
 pub mod generate;
 mod json;

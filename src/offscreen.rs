@@ -1,0 +1,56 @@
+//! A scene drawn offscreen: its encoding ([`crate::scene::encoding::Encoding`]) handed to
+//! the GPU layer, seen by the scene's own camera for the image size (or the one given) —
+//! the GPU layer neither reads scenes nor chooses cameras.
+
+use glam::DVec2;
+
+use crate::camera::Camera;
+use crate::gpu::GpuError;
+use crate::gpu::context::GpuContext;
+use crate::gpu::image::RgbaImage;
+use crate::gpu::offscreen::render_with;
+use crate::scene::Scene;
+use crate::scene::encoding::Encoding;
+
+/// Draws `scene` into a `width × height` image with `camera` (the scene's own view for
+/// that size when `None`), at the default tolerance.
+///
+/// # Errors
+/// As [`crate::gpu::offscreen::render`].
+pub fn render_scene(
+    ctx: &GpuContext,
+    scene: &Scene,
+    camera: Option<Camera>,
+    width: u32,
+    height: u32,
+) -> Result<RgbaImage, GpuError> {
+    render_scene_with(
+        ctx,
+        scene,
+        camera,
+        (width, height),
+        crate::gpu::adaptive::DEFAULT_TOLERANCE_PX,
+    )
+}
+
+/// [`render_scene`] for a tolerance of `tolerance_px` pixels.
+///
+/// # Errors
+/// As [`crate::gpu::offscreen::render`].
+pub fn render_scene_with(
+    ctx: &GpuContext,
+    scene: &Scene,
+    camera: Option<Camera>,
+    (width, height): (u32, u32),
+    tolerance_px: f64,
+) -> Result<RgbaImage, GpuError> {
+    let camera =
+        camera.unwrap_or_else(|| scene.camera(DVec2::new(f64::from(width), f64::from(height))));
+    render_with(
+        ctx,
+        &Encoding::of(scene),
+        &camera,
+        (width, height),
+        tolerance_px,
+    )
+}
