@@ -1,4 +1,6 @@
-//! Numbers in messages: the shortest text that reads back as the same `f64`.
+//! Numbers in messages (the shortest text that reads back as the same `f64`), and exact
+//! binary scaling: splitting an `f64` into mantissa and exponent and scaling by powers of
+//! two without intermediate overflow or underflow.
 
 use std::fmt;
 
@@ -20,9 +22,39 @@ impl fmt::Display for Num {
     }
 }
 
+/// `x = f · 2^e` with `f ∈ [1, 2)`, for a finite positive `x` (subnormals included).
+#[must_use]
+pub fn split_exponent(x: f64) -> (f64, i32) {
+    // Subnormals are brought into the normal range first (2⁶⁰ is exact).
+    let (x, bias) = if x < f64::MIN_POSITIVE {
+        (x * 2f64.powi(60), -60)
+    } else {
+        (x, 0)
+    };
+    let bits = x.to_bits();
+    let e = ((bits >> 52) & 0x7ff) as i32 - 1023;
+    let f = f64::from_bits((bits & !(0x7ff << 52)) | (1023 << 52));
+    (f, e + bias)
+}
+
+/// `x · 2^e`, in steps that cannot overflow or underflow on the way (only the result can):
+/// exact whenever the result is representable.
+#[must_use]
+pub fn scale_by_power_of_two(mut x: f64, mut e: i32) -> f64 {
+    while e != 0 {
+        let step = e.clamp(-1000, 1000);
+        x *= 2f64.powi(step);
+        e -= step;
+        if x == 0.0 || x.is_infinite() {
+            break;
+        }
+    }
+    x
+}
+
 #[cfg(test)]
 mod tests {
-    use super::Num;
+    use super::{Num, scale_by_power_of_two, split_exponent};
 
     #[test]
     fn shortest_form_that_reads_back() {
@@ -43,6 +75,24 @@ mod tests {
             if x.is_finite() {
                 assert_eq!(s.parse::<f64>().unwrap().to_bits(), x.to_bits());
             }
+        }
+    }
+
+    #[test]
+    fn the_exponent_split_is_exact() {
+        for x in [
+            1.0,
+            1.5,
+            3.0,
+            1e-310,
+            5e-324,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            0.1,
+        ] {
+            let (f, e) = split_exponent(x);
+            assert!((1.0..2.0).contains(&f), "{x:e}: {f}");
+            assert_eq!(scale_by_power_of_two(f, e).to_bits(), x.to_bits(), "{x:e}");
         }
     }
 }

@@ -16,6 +16,7 @@ use super::context::GpuContext;
 use super::layout::GpuVertex;
 use super::pack::{ChunkBuilder, ChunkLimits, check_gpu_fit};
 use crate::geom::{BezierSegment, locate};
+use crate::num::{scale_by_power_of_two, split_exponent};
 use crate::scene::Color;
 
 /// Evaluates each curve (given as its lowered segments, with its scene index for error
@@ -49,11 +50,11 @@ pub fn evaluate_with_limits(
 ) -> Result<Vec<Vec<DVec3>>, GpuError> {
     let style = super::layout::GpuLineStyle::solid(Color::WHITE, 1.0);
     let mut builder = ChunkBuilder::new(limits);
-    // The power of two each sample's value is to be multiplied by.
-    let mut scales: Vec<f64> = Vec::with_capacity(params.iter().map(Vec::len).sum());
+    // The binary exponent each sample's value is to be scaled back by.
+    let mut scales: Vec<i32> = Vec::with_capacity(params.iter().map(Vec::len).sum());
     for (slot, ((index, segments), ts)) in curves.iter().zip(params).enumerate() {
         check_gpu_fit(*index, segments)?;
-        let mut open: Option<(usize, f64)> = None;
+        let mut open: Option<(usize, i32)> = None;
         for &t in ts {
             let Some((s, u)) = locate(segments, t) else {
                 continue;
@@ -89,10 +90,10 @@ pub fn evaluate_with_limits(
         )));
     }
     let mut out = Vec::with_capacity(curves.len());
-    let mut it = all
-        .into_iter()
-        .zip(scales)
-        .map(|(v, scale)| glam::Vec3::from(v.position).as_dvec3() * scale);
+    let mut it = all.into_iter().zip(scales).map(|(v, e)| {
+        let p = glam::Vec3::from(v.position).as_dvec3();
+        DVec3::from_array(p.to_array().map(|c| scale_by_power_of_two(c, e)))
+    });
     for ((_, segments), ts) in curves.iter().zip(params) {
         let n = if segments.is_empty() { 0 } else { ts.len() };
         out.push(it.by_ref().take(n).collect());
@@ -101,35 +102,21 @@ pub fn evaluate_with_limits(
 }
 
 /// `points` divided by the power of two `2^e` that brings their largest coordinate
-/// magnitude into `[1, 2)`, and `2^e` (1 for all-zero points). Both multiplications are
-/// exact (barring points below `2^e · 2⁻¹⁰⁷⁴`, which no `f32` result could show anyway).
+/// magnitude into `[1, 2)`, and `e` (0 for all-zero points). Exact (barring points below
+/// `2^e · 2⁻¹⁰⁷⁴`, which no `f32` result could show anyway); a value of the scaled points
+/// is scaled back with [`crate::num::scale_by_power_of_two`].
 #[must_use]
-pub fn unit_scaled(points: &[DVec3]) -> (Vec<DVec3>, f64) {
+pub fn unit_scaled(points: &[DVec3]) -> (Vec<DVec3>, i32) {
     let largest = points
         .iter()
         .map(|p| p.abs().max_element())
         .fold(0.0, f64::max);
     if largest == 0.0 || !largest.is_finite() {
-        return (points.to_vec(), 1.0);
+        return (points.to_vec(), 0);
     }
-    let exponent = if largest < f64::MIN_POSITIVE {
-        // Subnormal: its exponent from the leading bit of its mantissa.
-        -1074 + (63 - largest.to_bits().leading_zeros() as i32)
-    } else {
-        ((largest.to_bits() >> 52) & 0x7ff) as i32 - 1023
-    };
-    // 2^e and 2^−e, each in up to two exact factors (one of them may be outside f64's
-    // range on its own at the extremes).
-    let power = |e: i32| {
-        let half = e / 2;
-        (2f64.powi(half), 2f64.powi(e - half))
-    };
-    let (down_a, down_b) = power(-exponent);
-    let (up_a, up_b) = power(exponent);
-    (
-        points.iter().map(|p| *p * down_a * down_b).collect(),
-        up_a * up_b,
-    )
+    let (_, e) = split_exponent(largest);
+    let down = |p: &DVec3| DVec3::from_array(p.to_array().map(|c| scale_by_power_of_two(c, -e)));
+    (points.iter().map(down).collect(), e)
 }
 
 /// The `order`-th hodograph of each lowered segment (same `t0`, `t1`): the Bézier curve

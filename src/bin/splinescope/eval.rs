@@ -316,16 +316,17 @@ fn write_eval_json(
 /// power of two to keep it out of `f32`'s subnormal range) prints as few digits as an `f32`
 /// does, whatever its magnitude.
 fn shortest_f32_precision(v: f64) -> f64 {
-    if v == 0.0 || !v.is_finite() || v.abs() < f64::MIN_POSITIVE {
+    use splinescope::num::{scale_by_power_of_two, split_exponent};
+    if v == 0.0 || !v.is_finite() {
         return v;
     }
-    let exponent = ((v.to_bits() >> 52) & 0x7ff) as i32 - 1023;
-    // Exact: a power of two (subnormal for exponent 1023, still exact) into [1, 2).
-    let scale = 2f64.powi(-exponent);
-    let target = (v * scale) as f32;
+    // v and its candidates, brought exactly to v's binade [1, 2) before rounding to f32.
+    let (_, exponent) = split_exponent(v.abs());
+    let at_unit = |x: f64| scale_by_power_of_two(x, -exponent) as f32;
+    let target = at_unit(v);
     for digits in 0..9 {
         let x: f64 = format!("{v:.digits$e}").parse().unwrap_or(v);
-        if (x * scale) as f32 == target {
+        if at_unit(x) == target {
             return x;
         }
     }

@@ -77,36 +77,12 @@ pub fn curvature(d1: DVec3, d2: DVec3) -> Option<f64> {
         return Some(0.0);
     }
     // κ = c · m2 / m1², each factor split into a mantissa in [1, 2) and a binary exponent.
-    let ((fc, ec), (f2, e2), (f1, e1)) =
-        (split_exponent(c), split_exponent(m2), split_exponent(m1));
-    Some(scale_by_power_of_two(fc * f2 / (f1 * f1), ec + e2 - 2 * e1))
-}
-
-/// `x = f · 2^e` with `f ∈ [1, 2)`, for a finite positive `x` (subnormals included).
-fn split_exponent(x: f64) -> (f64, i32) {
-    // Subnormals are brought into the normal range first (2⁶⁰ is exact).
-    let (x, bias) = if x < f64::MIN_POSITIVE {
-        (x * 2f64.powi(60), -60)
-    } else {
-        (x, 0)
-    };
-    let bits = x.to_bits();
-    let e = ((bits >> 52) & 0x7ff) as i32 - 1023;
-    let f = f64::from_bits((bits & !(0x7ff << 52)) | (1023 << 52));
-    (f, e + bias)
-}
-
-/// `x · 2^e`, in steps that cannot overflow or underflow on the way (only the result can).
-fn scale_by_power_of_two(mut x: f64, mut e: i32) -> f64 {
-    while e != 0 {
-        let step = e.clamp(-1000, 1000);
-        x *= 2f64.powi(step);
-        e -= step;
-        if x == 0.0 || x.is_infinite() {
-            break;
-        }
-    }
-    x
+    let split = crate::num::split_exponent;
+    let ((fc, ec), (f2, e2), (f1, e1)) = (split(c), split(m2), split(m1));
+    Some(crate::num::scale_by_power_of_two(
+        fc * f2 / (f1 * f1),
+        ec + e2 - 2 * e1,
+    ))
 }
 
 #[cfg(test)]
@@ -145,23 +121,5 @@ mod curvature_tests {
         let r = 5e-320;
         let k = curvature(DVec3::Y * r, DVec3::X * -r).unwrap();
         assert!(k.is_infinite() && k > 0.0, "{k}");
-    }
-
-    #[test]
-    fn the_exponent_split_is_exact() {
-        for x in [
-            1.0,
-            1.5,
-            3.0,
-            1e-310,
-            5e-324,
-            f64::MAX,
-            f64::MIN_POSITIVE,
-            0.1,
-        ] {
-            let (f, e) = split_exponent(x);
-            assert!((1.0..2.0).contains(&f), "{x:e}: {f}");
-            assert_eq!(scale_by_power_of_two(f, e).to_bits(), x.to_bits(), "{x:e}");
-        }
     }
 }
