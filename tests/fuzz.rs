@@ -308,38 +308,29 @@ fn image_seeds() -> Vec<Vec<u8>> {
     let mut rgba = splinescope::image::RgbaImage::filled(6, 5, [30, 60, 90, 255]);
     rgba.data[7] = 200;
     let first = rgba.png_bytes(Path::new("seed.png")).expect("encode seed");
-    let encode = |color: png::ColorType, depth: png::BitDepth, data: &[u8], palette: bool| {
-        let mut bytes = Vec::new();
-        let mut e = png::Encoder::new(&mut bytes, 6, 5);
-        e.set_color(color);
-        e.set_depth(depth);
-        if palette {
-            e.set_palette(vec![0, 0, 0, 255, 0, 0, 0, 255, 0, 255, 255, 255]);
-        }
-        let mut w = e.write_header().expect("header");
-        w.write_image_data(data).expect("data");
-        w.finish().expect("finish");
-        bytes
-    };
+    let palette = [0, 0, 0, 255, 0, 0, 0, 255, 0, 255, 255, 255];
     vec![
         first,
-        encode(
+        common::encode_png(
+            (6, 5),
             png::ColorType::Rgb,
             png::BitDepth::Sixteen,
             &[0x42; 6 * 5 * 6],
-            false,
+            None,
         ),
-        encode(
+        common::encode_png(
+            (6, 5),
             png::ColorType::Indexed,
             png::BitDepth::Eight,
             &[1, 2, 3, 0, 1, 2].repeat(5),
-            true,
+            Some((&palette, &[])),
         ),
-        encode(
+        common::encode_png(
+            (6, 5),
             png::ColorType::Grayscale,
             png::BitDepth::Eight,
             &[128; 30],
-            false,
+            None,
         ),
     ]
 }

@@ -12,7 +12,8 @@ use splinescope::image::{ImageError, RgbaImage};
 use splinescope::limits::LimitError;
 
 use common::{
-    PNG_SIGNATURE as SIGNATURE, crafted_png_header as crafted_header, png_chunk as chunk, text,
+    PNG_SIGNATURE as SIGNATURE, crafted_png_header as crafted_header, encode_png,
+    png_chunk as chunk, text,
 };
 
 fn dir(name: &str) -> PathBuf {
@@ -20,32 +21,6 @@ fn dir(name: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     d
-}
-
-/// Encodes `data` with the given colour type and depth (and palette / tRNS).
-fn encode(
-    (width, height): (u32, u32),
-    color: png::ColorType,
-    depth: png::BitDepth,
-    data: &[u8],
-    palette: Option<(&[u8], &[u8])>,
-) -> Vec<u8> {
-    let mut bytes = Vec::new();
-    {
-        let mut e = png::Encoder::new(&mut bytes, width, height);
-        e.set_color(color);
-        e.set_depth(depth);
-        if let Some((plte, trns)) = palette {
-            e.set_palette(plte.to_vec());
-            if !trns.is_empty() {
-                e.set_trns(trns.to_vec());
-            }
-        }
-        let mut w = e.write_header().unwrap();
-        w.write_image_data(data).unwrap();
-        w.finish().unwrap();
-    }
-    bytes
 }
 
 /// A 2×2 RGBA image in every pixel format PNG has, with the RGBA each must read as.
@@ -56,13 +31,13 @@ fn valid_corpus() -> Vec<(&'static str, Vec<u8>, Vec<u8>)> {
     ];
     let mut out = vec![(
         "rgba8",
-        encode((2, 2), C::Rgba, D::Eight, &rgba8, None),
+        encode_png((2, 2), C::Rgba, D::Eight, &rgba8, None),
         rgba8.to_vec(),
     )];
     let rgb8 = [1, 2, 3, 4, 5, 6, 7, 8, 9, 250, 251, 252];
     out.push((
         "rgb8",
-        encode((2, 2), C::Rgb, D::Eight, &rgb8, None),
+        encode_png((2, 2), C::Rgb, D::Eight, &rgb8, None),
         vec![1, 2, 3, 255, 4, 5, 6, 255, 7, 8, 9, 255, 250, 251, 252, 255],
     ));
     // 16-bit RGBA: big-endian samples; the high byte is kept.
@@ -73,7 +48,7 @@ fn valid_corpus() -> Vec<(&'static str, Vec<u8>, Vec<u8>)> {
         .collect();
     out.push((
         "rgba16",
-        encode((2, 2), C::Rgba, D::Sixteen, &rgba16, None),
+        encode_png((2, 2), C::Rgba, D::Sixteen, &rgba16, None),
         [0x12, 0xab, 0x00, 0xff].repeat(4),
     ));
     let grey16: Vec<u8> = [0x8001_u16, 0x0000, 0xffff, 0x7f00]
@@ -82,7 +57,7 @@ fn valid_corpus() -> Vec<(&'static str, Vec<u8>, Vec<u8>)> {
         .collect();
     out.push((
         "grey16",
-        encode((2, 2), C::Grayscale, D::Sixteen, &grey16, None),
+        encode_png((2, 2), C::Grayscale, D::Sixteen, &grey16, None),
         vec![
             0x80, 0x80, 0x80, 255, 0, 0, 0, 255, 255, 255, 255, 255, 0x7f, 0x7f, 0x7f, 255,
         ],
@@ -92,7 +67,7 @@ fn valid_corpus() -> Vec<(&'static str, Vec<u8>, Vec<u8>)> {
     let plte = [255, 0, 0, 0, 255, 0, 0, 0, 255];
     out.push((
         "palette2",
-        encode(
+        encode_png(
             (2, 2),
             C::Indexed,
             D::Two,
@@ -106,7 +81,7 @@ fn valid_corpus() -> Vec<(&'static str, Vec<u8>, Vec<u8>)> {
     // 1-bit grey: row 0 = black, white; row 1 = white, black.
     out.push((
         "grey1",
-        encode(
+        encode_png(
             (2, 2),
             C::Grayscale,
             D::One,
@@ -119,7 +94,7 @@ fn valid_corpus() -> Vec<(&'static str, Vec<u8>, Vec<u8>)> {
     ));
     out.push((
         "grey-alpha8",
-        encode(
+        encode_png(
             (2, 2),
             C::GrayscaleAlpha,
             D::Eight,

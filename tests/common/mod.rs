@@ -179,3 +179,30 @@ pub fn crafted_png_header(width: u32, height: u32) -> Vec<u8> {
     png.extend(png_chunk(b"IEND", &[]));
     png
 }
+
+/// A PNG of `data` with the given colour type and depth (and palette and tRNS entries),
+/// written by the `png` encoder.
+pub fn encode_png(
+    (width, height): (u32, u32),
+    color: png::ColorType,
+    depth: png::BitDepth,
+    data: &[u8],
+    palette: Option<(&[u8], &[u8])>,
+) -> Vec<u8> {
+    let mut bytes = Vec::new();
+    {
+        let mut e = png::Encoder::new(&mut bytes, width, height);
+        e.set_color(color);
+        e.set_depth(depth);
+        if let Some((plte, trns)) = palette {
+            e.set_palette(plte.to_vec());
+            if !trns.is_empty() {
+                e.set_trns(trns.to_vec());
+            }
+        }
+        let mut w = e.write_header().unwrap();
+        w.write_image_data(data).unwrap();
+        w.finish().unwrap();
+    }
+    bytes
+}

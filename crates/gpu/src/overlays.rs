@@ -28,14 +28,6 @@ impl From<Stroke> for GpuLineStyle {
     }
 }
 
-/// The overlay polylines and points of a draw list, batched: rebuilt on their own when
-/// curves are edited in a way that changes their overlays' shape.
-#[must_use]
-pub fn prepare_overlays(list: &DrawList, limits: ChunkLimits) -> (Vec<LineBatch>, Vec<LineBatch>) {
-    let (lines, points, _) = prepare_overlays_mapped(list, Switches::ALL, limits);
-    (lines, points)
-}
-
 /// One draw-list entry as packed: where its vertices went, how many it has, its stroke.
 #[derive(Debug, Clone, PartialEq)]
 struct Entry {
@@ -58,8 +50,8 @@ pub struct OverlayMap {
 /// Vertex writes into overlay batches: `(batch, first vertex, vertices)`.
 pub type BatchWrites = Vec<(usize, usize, Vec<GpuVertex>)>;
 
-/// [`prepare_overlays`] for a draw list made with `switches`, and the [`OverlayMap`] of
-/// what it packed.
+/// The overlay polylines and points of a draw list made with `switches`, batched, and the
+/// [`OverlayMap`] of where each went.
 #[must_use]
 pub fn prepare_overlays_mapped(
     list: &DrawList,

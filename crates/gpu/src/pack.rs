@@ -10,7 +10,7 @@ use glam::DVec3;
 
 pub use super::chunks::{BatchBuilder, ChunkBuilder, ChunkLimits, LineBatch, Placement, TessChunk};
 use super::layout::{GpuLineStyle, GpuVertex, MAX_GPU_DEGREE};
-pub use super::overlays::{OverlayEdit, OverlayMap, prepare_overlays, prepare_overlays_mapped};
+pub use super::overlays::{OverlayEdit, OverlayMap, prepare_overlays_mapped};
 pub use super::pack_error::{GPU_COORDINATE_LIMIT, PackError};
 use crate::geom::BezierSegment;
 use crate::scene::encoding::Encoding;
