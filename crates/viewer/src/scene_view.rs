@@ -17,7 +17,7 @@ use crate::gpu::pack::{
 use crate::gpu::renderer::{GpuScene, Renderer};
 use crate::gpu::{GpuContext, GpuError};
 use crate::scene::Scene;
-use crate::scene::draw::{Switches, axis_lines, curve_overlays, draw_list_with};
+use crate::scene::draw::{Switches, axis_polylines, curve_overlays, draw_list_with};
 use crate::scene::encoding::Encoding;
 
 /// What the GPU holds of the scene, and the panel's per-curve summaries.
@@ -132,6 +132,9 @@ impl SceneView {
                 lowered.push((c, segments));
                 ok
             });
+        // The panel's digest first: its facts hold the 3D axis triad the overlays need, so
+        // the scene's bounds are walked once per edit.
+        self.digest.update(scene, changes, &lowered);
         if in_place {
             self.sync_overlays(ctx, scene, &changes.curves, switches);
         } else {
@@ -143,7 +146,6 @@ impl SceneView {
             self.stats = StatsReader::new();
             self.last_stats.clear();
         }
-        self.digest.update(scene, changes, &lowered);
         Ok(())
     }
 
@@ -164,7 +166,7 @@ impl SceneView {
                 .iter()
                 .map(|&c| (c, curve_overlays(&scene.curves[c], switches)))
                 .collect(),
-            axes: axis_lines(scene),
+            axes: axis_polylines(&self.digest.facts.axes),
         };
         if let Some((lines, points)) = self.prepared.overlay_map.rewrite(&edit) {
             self.gpu.write_overlays(&ctx.queue, &lines, &points);

@@ -81,8 +81,13 @@ pub fn axis_lines(scene: &Scene) -> Vec<(Vec<DVec3>, Stroke)> {
     if scene.is_planar() {
         return Vec::new();
     }
-    axis_triad(scene)
-        .into_iter()
+    axis_polylines(&axis_triad(scene))
+}
+
+/// The polylines that draw `axes` (for a caller that keeps the triad already).
+#[must_use]
+pub fn axis_polylines(axes: &[Axis]) -> Vec<(Vec<DVec3>, Stroke)> {
+    axes.iter()
         .map(|axis| (vec![axis.from, axis.to], Stroke::solid(axis.color, 2.0)))
         .collect()
 }
