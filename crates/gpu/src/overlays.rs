@@ -225,4 +225,34 @@ mod tests {
             assert!(map.rewrite(&edit(&recoloured, Switches::ALL, c)).is_none());
         }
     }
+
+    /// In a 3D scene the axis triad follows the bounds: moving a point past them moves the
+    /// triad, and the rewrite carries it too.
+    #[test]
+    fn the_axis_triad_is_rewritten_with_the_curve() {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/bezier3d.json");
+        let scene = Scene::load(&path).expect("the 3D scene");
+        assert!(!axis_lines(&scene).is_empty(), "a 3D scene has a triad");
+        let limits = ChunkLimits::for_binding_size(1 << 20);
+        let (mut lines, mut points, map) =
+            prepare_overlays_mapped(&draw_list(&scene), Switches::ALL, limits);
+        let mut edited = scene.clone();
+        let mut pts = edited.curves[0].curve.control_points().to_vec();
+        pts[0] -= DVec3::new(5.0, 5.0, 5.0);
+        edited.curves[0].curve = edited.curves[0]
+            .curve
+            .with_control_points(pts)
+            .expect("valid");
+        assert_ne!(axis_lines(&edited), axis_lines(&scene), "the triad moved");
+        let (line_writes, point_writes) = map
+            .rewrite(&edit(&edited, Switches::ALL, 0))
+            .expect("the same shape");
+        apply(&mut lines, &line_writes);
+        apply(&mut points, &point_writes);
+        let (fresh_lines, fresh_points, _) =
+            prepare_overlays_mapped(&draw_list(&edited), Switches::ALL, limits);
+        assert_eq!(lines, fresh_lines);
+        assert_eq!(points, fresh_points);
+    }
 }
