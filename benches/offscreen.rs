@@ -16,7 +16,7 @@ use splinescope::scene::encoding::Encoding;
 use splinescope::scene::generate::{StressOptions, random_bezier_scene};
 
 fn bench(c: &mut Criterion) {
-    let ctx = GpuContext::new(&ContextOptions::from_env(BackendChoice::Auto))
+    let (ctx, pipelines) = GpuContext::new(&ContextOptions::from_env(BackendChoice::Auto))
         .unwrap_or_else(|e| panic!("the offscreen benchmark needs a GPU adapter: {e}"));
     let (width, height) = (1280, 800);
     let mut g = c.benchmark_group(format!("offscreen frame 1280x800 ({})", ctx.describe()));
@@ -35,7 +35,7 @@ fn bench(c: &mut Criterion) {
             ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
         )
         .expect("the stress scene packs");
-        let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
+        let renderer = Renderer::new(&ctx.device, &pipelines, OFFSCREEN_FORMAT);
         let mut gpu_scene = renderer.upload(&ctx, &prepared);
         let camera = scene.camera(DVec2::new(f64::from(width), f64::from(height)));
         g.bench_function(BenchmarkId::from_parameter(name), |b| {

@@ -5,10 +5,10 @@
 use glam::DVec2;
 
 use crate::camera::Camera;
-use crate::gpu::GpuError;
 use crate::gpu::context::GpuContext;
 use crate::gpu::image::RgbaImage;
 use crate::gpu::offscreen::render_with;
+use crate::gpu::{GpuError, Pipelines};
 use crate::scene::Scene;
 use crate::scene::encoding::Encoding;
 
@@ -19,6 +19,7 @@ use crate::scene::encoding::Encoding;
 /// As [`crate::gpu::offscreen::render`].
 pub fn render_scene(
     ctx: &GpuContext,
+    pipelines: &Pipelines,
     scene: &Scene,
     camera: Option<Camera>,
     width: u32,
@@ -26,6 +27,7 @@ pub fn render_scene(
 ) -> Result<RgbaImage, GpuError> {
     render_scene_with(
         ctx,
+        pipelines,
         scene,
         camera,
         (width, height),
@@ -39,6 +41,7 @@ pub fn render_scene(
 /// As [`crate::gpu::offscreen::render`].
 pub fn render_scene_with(
     ctx: &GpuContext,
+    pipelines: &Pipelines,
     scene: &Scene,
     camera: Option<Camera>,
     (width, height): (u32, u32),
@@ -48,6 +51,7 @@ pub fn render_scene_with(
         camera.unwrap_or_else(|| scene.camera(DVec2::new(f64::from(width), f64::from(height))));
     render_with(
         ctx,
+        pipelines,
         &Encoding::of(scene),
         &camera,
         (width, height),

@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 use thiserror::Error;
 
-use crate::gpu::GpuContext;
+use crate::gpu::{GpuContext, Pipelines};
 use crate::image::{Comparison, ComparisonImages, RgbaImage, Tolerance, compare_images};
 use crate::scene::Scene;
 
@@ -292,7 +292,13 @@ struct Compared {
     pictures: Option<ComparisonImages>,
 }
 
-fn compare_one(ctx: &GpuContext, path: &Path, refs: &Path, opts: &RegressOptions) -> Compared {
+fn compare_one(
+    ctx: &GpuContext,
+    pipelines: &Pipelines,
+    path: &Path,
+    refs: &Path,
+    opts: &RegressOptions,
+) -> Compared {
     let name = path
         .file_name()
         .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
@@ -316,7 +322,7 @@ fn compare_one(ctx: &GpuContext, path: &Path, refs: &Path, opts: &RegressOptions
     let rendered = Scene::load(path)
         .map_err(|e| format!("{}: {e}", path.display()))
         .and_then(|scene| {
-            crate::offscreen::render_scene(ctx, &scene, None, opts.width, opts.height)
+            crate::offscreen::render_scene(ctx, pipelines, &scene, None, opts.width, opts.height)
                 .map_err(|e| format!("{}: {e}", path.display()))
         });
     let actual = match rendered {
@@ -419,13 +425,14 @@ pub fn check_options(
     Ok((files, report_dir))
 }
 
-/// Renders every scene in `scenes` on `ctx` and compares it with `refs/<stem>.png`.
+/// Renders every scene in `scenes` on `ctx` with `pipelines` and compares it with `refs/<stem>.png`.
 ///
 /// # Errors
 /// [`RegressError`] when the run cannot start (no scenes, unusable directories) or the
 /// report cannot be written; a scene that fails is reported in its [`SceneResult`].
 pub fn run(
     ctx: &GpuContext,
+    pipelines: &Pipelines,
     scenes: &Path,
     refs: &Path,
     opts: &RegressOptions,
@@ -433,7 +440,7 @@ pub fn run(
     let (files, report_dir) = check_options(scenes, refs, opts)?;
     let compared: Vec<Compared> = files
         .iter()
-        .map(|f| compare_one(ctx, f, refs, opts))
+        .map(|f| compare_one(ctx, pipelines, f, refs, opts))
         .collect();
     let mut report = RegressReport {
         scenes: compared.iter().map(|c| c.result.clone()).collect(),

@@ -12,7 +12,6 @@ mod common;
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use splinescope::camera::Camera;
 use splinescope::geom::{Bezier, Curve, Lower};
-use splinescope::gpu::GpuContext;
 use splinescope::gpu::adaptive::{FrameSettings, Stage, read_work};
 use splinescope::gpu::layout::{GpuVertex, MAX_SAMPLES_PER_SEGMENT, WORK_HEADER};
 use splinescope::gpu::pack::{ChunkLimits, PreparedScene, prepare};
@@ -65,19 +64,19 @@ struct Run {
 }
 
 fn run_chunk(
-    ctx: &GpuContext,
+    backend: &common::Backend,
     chunk: &splinescope::gpu::pack::TessChunk,
     settings: &FrameSettings,
     capacity: u32,
 ) -> Run {
-    let a = ctx
-        .adaptive
-        .upload(&ctx.device, chunk, capacity, wgpu::BufferUsages::COPY_SRC);
-    ctx.adaptive.prepare(&ctx.queue, [&a], settings);
+    let ctx = &backend.ctx;
+    let adaptive = &backend.pipelines.adaptive;
+    let a = adaptive.upload(&ctx.device, chunk, capacity, wgpu::BufferUsages::COPY_SRC);
+    adaptive.prepare(&ctx.queue, [&a], settings);
     let s = chunk.segments.len();
     let pass = |stage: Stage| {
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        ctx.adaptive.encode_until(&mut encoder, [&a], None, stage);
+        adaptive.encode_until(&mut encoder, [&a], None, stage);
         ctx.queue.submit([encoder.finish()]);
         read_work(&ctx.device, &ctx.queue, &a).expect("read work")
     };
@@ -136,7 +135,8 @@ fn exact_segments(scene: &Scene, prepared: &PreparedScene, c: usize) -> Vec<(u32
 }
 
 /// Checks one scene under one camera: GPU against twins, and the tolerance.
-fn check(ctx: &GpuContext, scene: &Scene, camera: &Camera, tolerance_px: f64, what: &str) {
+fn check(backend: &common::Backend, scene: &Scene, camera: &Camera, tolerance_px: f64, what: &str) {
+    let ctx = &backend.ctx;
     let prepared = prepare(
         &Encoding::of(scene),
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
@@ -154,7 +154,7 @@ fn check(ctx: &GpuContext, scene: &Scene, camera: &Camera, tolerance_px: f64, wh
             continue;
         }
         let capacity = chunk.segments.len() as u32 * MAX_SAMPLES_PER_SEGMENT;
-        let run = run_chunk(ctx, chunk, &settings, capacity);
+        let run = run_chunk(backend, chunk, &settings, capacity);
         let frame = run.frame;
         // Count: the twin's Wang count, up to the rounding of a value on an integer.
         for (s, seg) in chunk.segments.iter().enumerate() {
@@ -299,7 +299,6 @@ fn gpu_counts_scan_and_samples_match_the_twins_and_stay_within_the_tolerance() {
     common::on_each_gpu(
         "gpu_counts_scan_and_samples_match_the_twins_and_stay_within_the_tolerance",
         |backend| {
-            let ctx = &backend.ctx;
             let gallery = splinescope::scene::gallery::gallery();
             let scenes = [
                 ("gallery", gallery),
@@ -311,7 +310,7 @@ fn gpu_counts_scan_and_samples_match_the_twins_and_stay_within_the_tolerance() {
                 for factor in [0.4, 1.0, 3.0, 20.0] {
                     for tolerance in [0.25, 1.0] {
                         check(
-                            ctx,
+                            backend,
                             scene,
                             &zoomed(&base, factor, scene),
                             tolerance,
@@ -346,9 +345,9 @@ fn a_full_buffer_coarsens_every_curve_in_proportion_and_writes_nothing_outside()
             };
             let chunk = &prepared.chunks[0];
             let s = chunk.segments.len() as u32;
-            let roomy = run_chunk(ctx, chunk, &settings, s * MAX_SAMPLES_PER_SEGMENT);
+            let roomy = run_chunk(backend, chunk, &settings, s * MAX_SAMPLES_PER_SEGMENT);
             let capacity = 2 * s + roomy.stats.requested / 3;
-            let run = run_chunk(ctx, chunk, &settings, capacity);
+            let run = run_chunk(backend, chunk, &settings, capacity);
             let what = format!(
                 "{}: capacity {capacity} for {} requested",
                 backend.name, roomy.stats.requested
@@ -401,7 +400,7 @@ fn an_offscreen_render_grows_a_buffer_the_view_outgrew_and_draws_uncapped() {
                 ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
             )
             .expect("pack");
-            let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
+            let renderer = Renderer::new(&ctx.device, &backend.pipelines, OFFSCREEN_FORMAT);
             let mut gpu = renderer.upload(ctx, &prepared);
             let before = gpu.capacity();
             // A large image at the finest tolerance: far more samples than the object-space

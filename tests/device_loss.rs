@@ -7,11 +7,11 @@ mod common;
 use std::time::{Duration, Instant};
 
 use splinescope::geom::Lower;
-use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext, GpuError};
+use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext, GpuError, Pipelines};
 use splinescope::offscreen::render_scene;
 use splinescope::scene::gallery;
 
-fn fresh(backend: &common::Backend) -> GpuContext {
+fn fresh(backend: &common::Backend) -> (GpuContext, Pipelines) {
     let choice: BackendChoice = backend.name.parse().expect("backend name");
     GpuContext::new(&ContextOptions::from_env(choice)).expect("a second device")
 }
@@ -28,16 +28,17 @@ fn assert_failed_cleanly<T: std::fmt::Debug>(what: &str, r: Result<T, GpuError>,
 #[test]
 fn a_destroyed_device_gives_an_error_not_a_panic_or_a_hang() {
     common::on_each_gpu("destroyed device", |backend| {
-        let ctx = fresh(backend);
+        let (ctx, pipelines) = fresh(backend);
         assert!(ctx.check_health().is_ok());
         ctx.device.destroy();
         let scene = gallery::gallery();
         let start = Instant::now();
-        let r = render_scene(&ctx, &scene, None, 64, 48);
+        let r = render_scene(&ctx, &pipelines, &scene, None, 64, 48);
         assert_failed_cleanly(&format!("{}: render", backend.name), r, start.elapsed());
         let lowered = vec![(0, scene.curves[0].curve.lower())];
         let start = Instant::now();
-        let r = splinescope::gpu::eval::evaluate(&ctx, &lowered, &[vec![0.0, 0.5, 1.0]]);
+        let r =
+            splinescope::gpu::eval::evaluate(&ctx, &pipelines, &lowered, &[vec![0.0, 0.5, 1.0]]);
         assert_failed_cleanly(&format!("{}: eval", backend.name), r, start.elapsed());
         let e = ctx.check_health().expect_err("the loss is recorded");
         assert!(e.to_string().contains("the GPU device failed"), "{e}");
@@ -47,7 +48,7 @@ fn a_destroyed_device_gives_an_error_not_a_panic_or_a_hang() {
 #[test]
 fn an_uncaptured_validation_error_is_recorded_and_stops_the_work() {
     common::on_each_gpu("uncaptured validation error", |backend| {
-        let ctx = fresh(backend);
+        let (ctx, pipelines) = fresh(backend);
         // MAP_READ may only be combined with COPY_DST: an invalid buffer, outside any
         // error scope (wgpu's default handler would panic here).
         let _bad = ctx.device.create_buffer(&wgpu::BufferDescriptor {
@@ -60,7 +61,7 @@ fn an_uncaptured_validation_error_is_recorded_and_stops_the_work() {
         let e = ctx.check_health().expect_err("the error is recorded");
         assert!(matches!(e, GpuError::DeviceLost(_)), "{e:?}");
         let start = Instant::now();
-        let r = render_scene(&ctx, &gallery::gallery(), None, 64, 48);
+        let r = render_scene(&ctx, &pipelines, &gallery::gallery(), None, 64, 48);
         assert_failed_cleanly(&format!("{}: render", backend.name), r, start.elapsed());
     });
 }

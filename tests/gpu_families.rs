@@ -49,7 +49,7 @@ fn check(backend: &common::Backend, curves: &[(String, Curve)]) {
             ts
         })
         .collect();
-    let gpu = evaluate(ctx, &lowered, &params).expect("GPU evaluation");
+    let gpu = evaluate(ctx, &backend.pipelines, &lowered, &params).expect("GPU evaluation");
     for ((name, curve), (ts, got)) in curves.iter().zip(params.iter().zip(&gpu)) {
         assert_eq!(
             ts.len(),

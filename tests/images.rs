@@ -80,7 +80,8 @@ fn golden(name: &str, backend: &str, image: &RgbaImage) {
 fn gallery_matches_its_golden_image() {
     common::on_each_gpu("gallery_matches_its_golden_image", |backend| {
         let ctx = &backend.ctx;
-        let image = render_scene(ctx, &gallery::gallery(), None, 480, 320).expect("render");
+        let image = render_scene(ctx, &backend.pipelines, &gallery::gallery(), None, 480, 320)
+            .expect("render");
         golden("gallery", &backend.name, &image);
     });
 }
@@ -91,7 +92,7 @@ fn scene_golden(name: &str) {
         let ctx = &backend.ctx;
         let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{name}.json"));
         let scene = Scene::load(&path).expect("scene");
-        let image = render_scene(ctx, &scene, None, 320, 240).expect("render");
+        let image = render_scene(ctx, &backend.pipelines, &scene, None, 320, 240).expect("render");
         golden(name, &backend.name, &image);
     });
 }
@@ -166,7 +167,8 @@ fn a_straight_line_has_exactly_the_analytic_coverage() {
             let scene = single(line.clone(), 3.0, 2);
             let viewport = DVec2::new(f64::from(w), f64::from(h));
             let camera: Camera = scene.camera(viewport);
-            let image = render_scene(ctx, &scene, Some(camera), w, h).expect("render");
+            let image =
+                render_scene(ctx, &backend.pipelines, &scene, Some(camera), w, h).expect("render");
             let a = camera.pixel_from_world(line.points()[0], viewport).unwrap();
             let b = camera.pixel_from_world(line.points()[1], viewport).unwrap();
             let mut worst = 0.0_f64;
@@ -208,7 +210,8 @@ fn curve_pixels_hug_the_exact_curve() {
         let scene = single(cubic.clone(), width as f32, 512);
         let viewport = DVec2::new(f64::from(w), f64::from(h));
         let camera = scene.camera(viewport);
-        let image = render_scene(ctx, &scene, Some(camera), w, h).expect("render");
+        let image =
+            render_scene(ctx, &backend.pipelines, &scene, Some(camera), w, h).expect("render");
         // The exact curve, densely, in pixels.
         let dense: Vec<DVec2> = (0..=20_000)
             .map(|k| {
@@ -264,7 +267,7 @@ fn an_edit_written_in_place_renders_like_a_fresh_upload() {
             let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes/paper001_fig1.json");
             let scene = Scene::load(&path).expect("scene");
             let limits = ChunkLimits::for_binding_size(ctx.max_binding_bytes());
-            let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
+            let renderer = Renderer::new(&ctx.device, &backend.pipelines, OFFSCREEN_FORMAT);
             let prepared = prepare(&Encoding::of(&scene), limits).expect("pack");
             let mut gpu = renderer.upload(ctx, &prepared);
             let viewport = DVec2::new(320.0, 240.0);
@@ -343,7 +346,8 @@ fn an_edit_written_in_place_renders_like_a_fresh_upload() {
                 DEFAULT_TOLERANCE_PX,
             )
             .expect("render");
-            let fresh = render_scene(ctx, &edited, Some(camera), 320, 240).expect("render");
+            let fresh = render_scene(ctx, &backend.pipelines, &edited, Some(camera), 320, 240)
+                .expect("render");
             assert_eq!(
                 in_place, fresh,
                 "in-place update and fresh upload must draw the same pixels"

@@ -3,7 +3,7 @@
 
 use std::sync::OnceLock;
 
-use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext, GpuError};
+use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext, GpuError, Pipelines};
 
 /// The environment variable that lets GPU tests skip (and say so) when no adapter exists.
 pub const SKIP_VAR: &str = "SPLINESCOPE_SKIP_GPU_TESTS";
@@ -18,6 +18,8 @@ pub struct Backend {
     pub name: String,
     /// Its context.
     pub ctx: GpuContext,
+    /// The compute pipelines built on its device.
+    pub pipelines: Pipelines,
 }
 
 const ALL: [BackendChoice; 4] = [
@@ -48,9 +50,10 @@ fn open_all() -> Result<Vec<Backend>, String> {
     let mut missing = Vec::new();
     for choice in choices {
         match GpuContext::new(&ContextOptions::from_env(choice)) {
-            Ok(ctx) => found.push(Backend {
+            Ok((ctx, pipelines)) => found.push(Backend {
                 name: choice.to_string(),
                 ctx,
+                pipelines,
             }),
             // Without a list, a backend with no adapter at all is simply not present; one
             // whose adapter was refused (a kernel computing wrong samples) is a failure.

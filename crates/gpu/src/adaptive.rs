@@ -42,7 +42,7 @@ pub fn check_tolerance(tolerance_px: f64) -> Result<f64, ToleranceError> {
 }
 
 /// The passes' pipelines.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct AdaptiveTessellator {
     layout: wgpu::BindGroupLayout,
     count: wgpu::ComputePipeline,

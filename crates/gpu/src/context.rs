@@ -12,6 +12,7 @@ use std::str::FromStr;
 use std::sync::{Arc, Mutex};
 
 use super::GpuError;
+use super::pipelines::Pipelines;
 use super::selftest;
 use super::tessellator::Tessellator;
 
@@ -96,7 +97,8 @@ impl ContextOptions {
     }
 }
 
-/// An adapter, its device and queue.
+/// An adapter, its device and queue: what work is handed. The pipelines are a separate
+/// value ([`Pipelines`]), returned beside the context when it opens.
 #[derive(Debug)]
 pub struct GpuContext {
     /// The instance the adapter came from.
@@ -107,10 +109,6 @@ pub struct GpuContext {
     pub device: wgpu::Device,
     /// Its queue.
     pub queue: wgpu::Queue,
-    /// The tessellation pipelines, built once: the very ones the self-test checked.
-    pub tessellator: Tessellator,
-    /// The adaptive tessellation pipelines (drawing), built once.
-    pub adaptive: super::adaptive::AdaptiveTessellator,
     /// The first uncaptured error or loss the device reported (see
     /// [`GpuContext::check_health`]).
     health: Arc<Mutex<Option<String>>>,
@@ -323,11 +321,12 @@ pub fn describe_adapter(info: &wgpu::AdapterInfo) -> String {
 }
 
 impl GpuContext {
-    /// A context for offscreen work (no window).
+    /// A context for offscreen work (no window), with the compute pipelines built on its
+    /// device (the fixed-count ones are those the self-test checked).
     ///
     /// # Errors
     /// [`GpuError::NoAdapter`] with an installation hint, or the device request's error.
-    pub fn new(opts: &ContextOptions) -> Result<GpuContext, GpuError> {
+    pub fn new(opts: &ContextOptions) -> Result<(GpuContext, Pipelines), GpuError> {
         let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
             backends: opts.backend.backends(),
             ..wgpu::InstanceDescriptor::new_without_display_handle_from_env()
@@ -336,7 +335,7 @@ impl GpuContext {
     }
 
     /// A context from an existing instance, choosing an adapter that can present to
-    /// `surface` when one is given.
+    /// `surface` when one is given, with the compute pipelines built on its device.
     ///
     /// # Errors
     /// [`GpuError::NoAdapter`] with an installation hint, or the device request's error.
@@ -344,7 +343,7 @@ impl GpuContext {
         instance: wgpu::Instance,
         opts: &ContextOptions,
         surface: Option<&wgpu::Surface<'_>>,
-    ) -> Result<GpuContext, GpuError> {
+    ) -> Result<(GpuContext, Pipelines), GpuError> {
         let backends = opts.backend.backends();
         let all = pollster::block_on(instance.enumerate_adapters(backends));
         let seen: Vec<String> = all
@@ -380,16 +379,15 @@ impl GpuContext {
             match open_and_test(&adapter) {
                 Ok((device, queue, tessellator)) => {
                     let health = watch(&device);
-                    let adaptive = super::adaptive::AdaptiveTessellator::new(&device);
-                    return Ok(GpuContext {
+                    let pipelines = Pipelines::with_tessellator(&device, tessellator);
+                    let context = GpuContext {
                         instance,
                         adapter,
                         device,
                         queue,
-                        tessellator,
-                        adaptive,
                         health,
-                    });
+                    };
+                    return Ok((context, pipelines));
                 }
                 Err(why) => {
                     refused.push(format!("{}: {why}", describe_adapter(&adapter.get_info())))

@@ -15,6 +15,7 @@ use super::GpuError;
 use super::context::GpuContext;
 use super::layout::GpuVertex;
 use super::pack::{ChunkBuilder, ChunkLimits, check_gpu_fit};
+use super::pipelines::Pipelines;
 use crate::geom::{BezierSegment, locate};
 use crate::num::{scale_by_power_of_two, split_exponent};
 use crate::scene::Color;
@@ -27,11 +28,13 @@ use crate::scene::Color;
 /// reading fails or a sample was left unwritten.
 pub fn evaluate(
     ctx: &GpuContext,
+    pipelines: &Pipelines,
     curves: &[(usize, Vec<BezierSegment>)],
     params: &[Vec<f64>],
 ) -> Result<Vec<Vec<DVec3>>, GpuError> {
     evaluate_with_limits(
         ctx,
+        pipelines,
         curves,
         params,
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
@@ -44,6 +47,7 @@ pub fn evaluate(
 /// As [`evaluate`].
 pub fn evaluate_with_limits(
     ctx: &GpuContext,
+    pipelines: &Pipelines,
     curves: &[(usize, Vec<BezierSegment>)],
     params: &[Vec<f64>],
     limits: ChunkLimits,
@@ -73,7 +77,7 @@ pub fn evaluate_with_limits(
         }
     }
     let chunks = builder.finish();
-    let tessellator = &ctx.tessellator;
+    let tessellator = &pipelines.tessellator;
     let mut all: Vec<GpuVertex> = Vec::with_capacity(params.iter().map(Vec::len).sum());
     ctx.check_health()?;
     let read = tessellator.tessellate_and_read(&ctx.device, &ctx.queue, &chunks, |_, samples| {
@@ -148,6 +152,7 @@ pub fn hodographs(segments: &[BezierSegment], order: u32) -> Vec<BezierSegment> 
 /// As [`evaluate`].
 pub fn evaluate_derivative(
     ctx: &GpuContext,
+    pipelines: &Pipelines,
     curves: &[(usize, Vec<BezierSegment>)],
     params: &[Vec<f64>],
     order: u32,
@@ -156,7 +161,7 @@ pub fn evaluate_derivative(
         .iter()
         .map(|(i, segs)| (*i, hodographs(segs, order)))
         .collect();
-    let values = evaluate(ctx, &hodo, params)?;
+    let values = evaluate(ctx, pipelines, &hodo, params)?;
     Ok(curves
         .iter()
         .zip(params)

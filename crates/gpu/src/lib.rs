@@ -19,6 +19,7 @@ pub mod offscreen;
 pub mod overlays;
 pub mod pack;
 pub mod pack_error;
+pub mod pipelines;
 pub mod renderer;
 pub mod selftest;
 pub mod shaders;
@@ -58,6 +59,7 @@ pub fn init_buffer(
 
 pub use context::{AdapterReport, BackendChoice, ContextOptions, GpuContext};
 pub use pack::PackError;
+pub use pipelines::Pipelines;
 
 /// Why GPU work failed.
 #[derive(Debug, Clone, PartialEq, Error)]

@@ -7,6 +7,7 @@ use super::GpuError;
 use super::adaptive::{DEFAULT_TOLERANCE_PX, FrameSettings, read_stats};
 use super::context::GpuContext;
 use super::pack::{ChunkLimits, prepare};
+use super::pipelines::Pipelines;
 use super::renderer::{GpuScene, Renderer, camera_uniform};
 use super::tessellator::read_buffer;
 use crate::camera::Camera;
@@ -26,11 +27,19 @@ pub const OFFSCREEN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unor
 /// scene over the GPU limits, [`GpuError::Readback`] when reading fails.
 pub fn render(
     ctx: &GpuContext,
+    pipelines: &Pipelines,
     encoding: &Encoding,
     camera: &Camera,
     (width, height): (u32, u32),
 ) -> Result<RgbaImage, GpuError> {
-    render_with(ctx, encoding, camera, (width, height), DEFAULT_TOLERANCE_PX)
+    render_with(
+        ctx,
+        pipelines,
+        encoding,
+        camera,
+        (width, height),
+        DEFAULT_TOLERANCE_PX,
+    )
 }
 
 /// [`render`] for a tolerance of `tolerance_px` pixels.
@@ -39,6 +48,7 @@ pub fn render(
 /// As [`render`].
 pub fn render_with(
     ctx: &GpuContext,
+    pipelines: &Pipelines,
     encoding: &Encoding,
     camera: &Camera,
     (width, height): (u32, u32),
@@ -49,7 +59,7 @@ pub fn render_with(
         encoding,
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )?;
-    let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
+    let renderer = Renderer::new(&ctx.device, pipelines, OFFSCREEN_FORMAT);
     let mut gpu_scene = renderer.upload(ctx, &prepared);
     render_uploaded(
         ctx,
@@ -125,7 +135,8 @@ fn render_once(
     let camera = camera_uniform(camera, viewport, 1.0);
     renderer.set_camera(&ctx.queue, &camera);
     gpu_scene.prepare_frame(
-        ctx,
+        renderer,
+        &ctx.queue,
         &FrameSettings {
             camera,
             tolerance_px: tolerance_px as f32,
@@ -152,7 +163,7 @@ fn render_once(
         .create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("offscreen"),
         });
-    renderer.encode_frame(ctx, &mut encoder, gpu_scene, &view);
+    renderer.encode_frame(&mut encoder, gpu_scene, &view);
 
     // Rows of a texture copy are padded to 256 bytes.
     let row = width * 4;

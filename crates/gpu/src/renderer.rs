@@ -4,18 +4,21 @@
 
 use glam::DVec2;
 
-use super::adaptive::{AdaptiveChunk, FrameSettings, initial_capacity};
+use super::adaptive::{AdaptiveChunk, AdaptiveTessellator, FrameSettings, initial_capacity};
 use super::context::GpuContext;
 use super::layout::{FrameStats, GpuCamera, GpuLineStyle, GpuVertex};
 use super::pack::{LineBatch, PreparedScene};
+use super::pipelines::Pipelines;
 use super::shaders;
 use crate::camera::Camera;
 
 pub use super::layout::LINE_CORNERS;
 
-/// Line and point pipelines for one colour target format, and the camera uniform.
+/// Line and point pipelines for one colour target format, the camera uniform, and a
+/// handle to the adaptive tessellation passes it runs before drawing.
 #[derive(Debug)]
 pub struct Renderer {
+    adaptive: AdaptiveTessellator,
     camera_buffer: wgpu::Buffer,
     camera_bind_group: wgpu::BindGroup,
     batch_layout: wgpu::BindGroupLayout,
@@ -113,22 +116,25 @@ impl GpuScene {
     }
 
     /// Writes every chunk's frame uniform (camera and tolerance) for the next frame.
-    pub fn prepare_frame(&self, ctx: &GpuContext, settings: &FrameSettings) {
-        ctx.adaptive.prepare(
-            &ctx.queue,
-            self.chunks.iter().map(|c| &c.adaptive),
-            settings,
-        );
+    pub fn prepare_frame(
+        &self,
+        renderer: &Renderer,
+        queue: &wgpu::Queue,
+        settings: &FrameSettings,
+    ) {
+        renderer
+            .adaptive
+            .prepare(queue, self.chunks.iter().map(|c| &c.adaptive), settings);
     }
 
     /// Records the adaptive tessellation of every chunk.
     pub fn encode_tessellation(
         &self,
-        ctx: &GpuContext,
+        renderer: &Renderer,
         encoder: &mut wgpu::CommandEncoder,
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
-        ctx.adaptive.encode(
+        renderer.adaptive.encode(
             encoder,
             self.chunks.iter().map(|c| &c.adaptive),
             timestamp_writes,
@@ -148,7 +154,7 @@ impl GpuScene {
             }
             // Headroom, so that zooming in does not reallocate every frame.
             let capacity = (u64::from(s.requested) * 3 / 2).min(u64::from(limit)) as u32;
-            ctx.adaptive.grow(
+            renderer.adaptive.grow(
                 &ctx.device,
                 &mut chunk.adaptive,
                 capacity,
@@ -182,9 +188,14 @@ pub fn camera_uniform(camera: &Camera, viewport: DVec2, width_scale: f32) -> Gpu
 }
 
 impl Renderer {
-    /// Builds the pipelines for targets of `format`.
+    /// Builds the pipelines for targets of `format`, running `pipelines`' adaptive passes
+    /// to tessellate.
     #[must_use]
-    pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Renderer {
+    pub fn new(
+        device: &wgpu::Device,
+        pipelines: &Pipelines,
+        format: wgpu::TextureFormat,
+    ) -> Renderer {
         let layouts = super::bindings::draw();
         let camera_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("camera"),
@@ -260,6 +271,7 @@ impl Renderer {
             wgpu::PrimitiveTopology::TriangleList,
         );
         Renderer {
+            adaptive: pipelines.adaptive.clone(),
             camera_buffer,
             camera_bind_group,
             batch_layout,
@@ -330,7 +342,7 @@ impl Renderer {
             .iter()
             // Every chunk, even one without segments of its own: placements index them.
             .map(|chunk| {
-                let adaptive = ctx.adaptive.upload(
+                let adaptive = self.adaptive.upload(
                     device,
                     chunk,
                     initial_capacity(chunk, limit),
@@ -384,6 +396,13 @@ impl Renderer {
             .collect();
     }
 
+    /// The adaptive tessellation passes this renderer runs (for callers that record them
+    /// themselves, e.g. with per-stage timestamps).
+    #[must_use]
+    pub fn adaptive(&self) -> &AdaptiveTessellator {
+        &self.adaptive
+    }
+
     /// Sets the camera for the next frames.
     pub fn set_camera(&self, queue: &wgpu::Queue, camera: &GpuCamera) {
         queue.write_buffer(&self.camera_buffer, 0, bytemuck::bytes_of(camera));
@@ -395,12 +414,11 @@ impl Renderer {
     /// [`GpuScene::prepare_frame`]).
     pub fn encode_frame(
         &self,
-        ctx: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         scene: &GpuScene,
         target: &wgpu::TextureView,
     ) {
-        scene.encode_tessellation(ctx, encoder, None);
+        scene.encode_tessellation(self, encoder, None);
         let mut pass = self.begin_pass(encoder, target, wgpu::LoadOp::Clear(scene.background));
         self.draw(&mut pass, scene);
     }

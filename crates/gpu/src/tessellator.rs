@@ -7,7 +7,7 @@ use super::pack::TessChunk;
 use super::shaders;
 
 /// The tessellation compute pipelines, one per kernel of [`TESSELLATE_KERNELS`].
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct Tessellator {
     layout: wgpu::BindGroupLayout,
     pipelines: Vec<wgpu::ComputePipeline>,

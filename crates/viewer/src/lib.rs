@@ -335,7 +335,7 @@ impl Running {
             "splinescope — {}",
             opts.scene.name.as_deref().unwrap_or("scene")
         );
-        let (surface, ctx) =
+        let (surface, ctx, pipelines) =
             WindowSurface::open(event_loop, &title, &ContextOptions::from_env(opts.backend))?;
         let scene = opts.scene.clone();
         let mut toggles = Toggles::default();
@@ -343,7 +343,7 @@ impl Running {
             toggles.show_polygons = false;
             toggles.show_points = false;
         }
-        let view = SceneView::new(&ctx, surface.format(), &scene, toggles)?;
+        let view = SceneView::new(&ctx, &pipelines, surface.format(), &scene, toggles)?;
         let stress = if opts.solve {
             let chunk_points: Vec<usize> = view
                 .prepared

@@ -15,7 +15,7 @@ use crate::gpu::pack::{
     ChunkLimits, OverlayEdit, PreparedScene, prepare, prepare_overlays_mapped, repack_points,
 };
 use crate::gpu::renderer::{GpuScene, Renderer};
-use crate::gpu::{GpuContext, GpuError};
+use crate::gpu::{GpuContext, GpuError, Pipelines};
 use crate::scene::Scene;
 use crate::scene::draw::{Switches, axis_polylines, curve_overlays, draw_list_with};
 use crate::scene::encoding::Encoding;
@@ -89,11 +89,12 @@ impl StatsReader {
 impl SceneView {
     pub fn new(
         ctx: &GpuContext,
+        pipelines: &Pipelines,
         format: wgpu::TextureFormat,
         scene: &Scene,
         toggles: Toggles,
     ) -> Result<SceneView, AppError> {
-        let renderer = Renderer::new(&ctx.device, format);
+        let renderer = Renderer::new(&ctx.device, pipelines, format);
         let switches = switches(toggles);
         let (gpu, prepared) = upload(ctx, &renderer, scene, switches)?;
         Ok(SceneView {
@@ -227,13 +228,15 @@ impl SceneView {
         settings: &FrameSettings,
         timestamps: Option<[Option<wgpu::ComputePassTimestampWrites<'_>>; 3]>,
     ) -> bool {
-        self.gpu.prepare_frame(ctx, settings);
+        self.gpu.prepare_frame(&self.renderer, &ctx.queue, settings);
         match timestamps {
             Some(writes) => {
                 let chunks: Vec<_> = self.gpu.chunks.iter().map(|c| &c.adaptive).collect();
-                ctx.adaptive.encode_staged(encoder, &chunks, writes);
+                self.renderer
+                    .adaptive()
+                    .encode_staged(encoder, &chunks, writes);
             }
-            None => self.gpu.encode_tessellation(ctx, encoder, None),
+            None => self.gpu.encode_tessellation(&self.renderer, encoder, None),
         }
         self.stats.record(ctx, encoder, &self.gpu)
     }

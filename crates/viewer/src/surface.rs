@@ -8,7 +8,7 @@ use winit::event_loop::ActiveEventLoop;
 use winit::window::Window;
 
 use super::AppError;
-use crate::gpu::{ContextOptions, GpuContext};
+use crate::gpu::{ContextOptions, GpuContext, Pipelines};
 
 /// A window with its configured surface.
 pub(crate) struct WindowSurface {
@@ -18,12 +18,13 @@ pub(crate) struct WindowSurface {
 }
 
 impl WindowSurface {
-    /// Opens a window titled `title` and creates the GPU context able to present to it.
+    /// Opens a window titled `title` and creates the GPU context able to present to it,
+    /// with the compute pipelines built on its device.
     pub fn open(
         event_loop: &ActiveEventLoop,
         title: &str,
         options: &ContextOptions,
-    ) -> Result<(WindowSurface, GpuContext), AppError> {
+    ) -> Result<(WindowSurface, GpuContext, Pipelines), AppError> {
         let window = Arc::new(
             event_loop
                 .create_window(
@@ -42,7 +43,7 @@ impl WindowSurface {
         let surface = instance
             .create_surface(window.clone())
             .map_err(|e| AppError::Surface(e.to_string()))?;
-        let ctx = GpuContext::with_instance(instance, options, Some(&surface))?;
+        let (ctx, pipelines) = GpuContext::with_instance(instance, options, Some(&surface))?;
         let size = window.inner_size();
         let caps = surface.get_capabilities(&ctx.adapter);
         // Colours are sRGB values blended as such (like the offscreen images), so a
@@ -67,6 +68,7 @@ impl WindowSurface {
                 config,
             },
             ctx,
+            pipelines,
         ))
     }
 

@@ -10,7 +10,6 @@ use glam::DVec2;
 
 use super::say;
 
-use splinescope::gpu::GpuContext;
 use splinescope::gpu::layout::GpuVertex;
 use splinescope::gpu::layout::{MAX_GPU_DEGREE, TESSELLATE_WORKGROUP_SIZE};
 use splinescope::gpu::offscreen::OFFSCREEN_FORMAT;
@@ -18,6 +17,7 @@ use splinescope::gpu::pack::{ChunkLimits, prepare};
 use splinescope::gpu::renderer::{Renderer, camera_uniform};
 use splinescope::gpu::tessellator::read_buffer;
 use splinescope::gpu::twin;
+use splinescope::gpu::{GpuContext, Pipelines};
 use splinescope::scene::encoding::Encoding;
 use splinescope::scene::generate::{StressFamily, StressOptions, random_bezier_scene};
 
@@ -194,7 +194,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         Some(path) => Some(compare::read(path)?),
         None => None,
     };
-    let ctx = args.gpu.context()?;
+    let (ctx, pipelines) = args.gpu.context()?;
     let meta = Meta::collect(&ctx);
     let progress = indicatif::ProgressBar::with_draw_target(
         Some(rows.len() as u64),
@@ -203,7 +203,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let mut reports = Vec::with_capacity(rows.len());
     for row in &rows {
         progress.set_message(row.to_string());
-        reports.push(run_row(&ctx, *row, args, &meta)?);
+        reports.push(run_row(&ctx, &pipelines, *row, args, &meta)?);
         progress.inc(1);
     }
     progress.finish_and_clear();
@@ -308,7 +308,13 @@ fn utc_now() -> String {
 
 /// One row: CPU rates always, GPU rates unless the segments' degree is over the GPU's
 /// maximum (then `notes` says so).
-fn run_row(ctx: &GpuContext, row: Row, args: &BenchArgs, meta: &Meta) -> Result<BenchReport> {
+fn run_row(
+    ctx: &GpuContext,
+    pipelines: &Pipelines,
+    row: Row,
+    args: &BenchArgs,
+    meta: &Meta,
+) -> Result<BenchReport> {
     let scene = random_bezier_scene(StressOptions {
         curves: row.curves as usize,
         degree: row.degree as usize,
@@ -344,13 +350,14 @@ fn run_row(ctx: &GpuContext, row: Row, args: &BenchArgs, meta: &Meta) -> Result<
         ));
         return Ok(report);
     }
-    gpu_rates(ctx, &scene, row, args, &mut report)?;
+    gpu_rates(ctx, pipelines, &scene, row, args, &mut report)?;
     Ok(report)
 }
 
 /// The GPU rows of `report`: the kernels, the write-only bound, readback, whole frames.
 fn gpu_rates(
     ctx: &GpuContext,
+    pipelines: &Pipelines,
     scene: &splinescope::scene::Scene,
     row: Row,
     args: &BenchArgs,
@@ -367,14 +374,27 @@ fn gpu_rates(
         .chunks
         .iter()
         .map(|c| {
-            ctx.tessellator
+            pipelines
+                .tessellator
                 .upload(&ctx.device, c, wgpu::BufferUsages::COPY_SRC)
         })
         .collect();
-    let (wall, pass) =
-        gpu_compute_rates(ctx, &records, total, args.iterations, Kernel::Tessellate)?;
-    let (limit_wall, limit_pass) =
-        gpu_compute_rates(ctx, &records, total, args.iterations, Kernel::WriteOnly)?;
+    let (wall, pass) = gpu_compute_rates(
+        ctx,
+        pipelines,
+        &records,
+        total,
+        args.iterations,
+        Kernel::Tessellate,
+    )?;
+    let (limit_wall, limit_pass) = gpu_compute_rates(
+        ctx,
+        pipelines,
+        &records,
+        total,
+        args.iterations,
+        Kernel::WriteOnly,
+    )?;
     drop(records);
     report.gpu_compute_wall_samples_per_s = Some(wall);
     report.gpu_compute_timestamp_samples_per_s = pass;
@@ -386,13 +406,17 @@ fn gpu_rates(
     });
     let started = Instant::now();
     let mut read = 0u64;
-    ctx.tessellator
-        .tessellate_and_read(&ctx.device, &ctx.queue, &prepared.chunks, |_, s| {
+    pipelines.tessellator.tessellate_and_read(
+        &ctx.device,
+        &ctx.queue,
+        &prepared.chunks,
+        |_, s| {
             read += s.len() as u64;
-        })?;
+        },
+    )?;
     report.gpu_compute_with_readback_samples_per_s = Some(rate(read, started.elapsed()));
     if args.frames > 0 {
-        let renderer = Renderer::new(&ctx.device, OFFSCREEN_FORMAT);
+        let renderer = Renderer::new(&ctx.device, pipelines, OFFSCREEN_FORMAT);
         let gpu_scene = renderer.upload(ctx, &prepared);
         report.frames_per_s_1920x1080 =
             Some(draw_frames(ctx, &renderer, &gpu_scene, scene, args.frames)?);
@@ -587,6 +611,7 @@ enum Kernel {
 /// them, by timestamps.
 fn gpu_compute_rates(
     ctx: &GpuContext,
+    pipelines: &Pipelines,
     records: &[splinescope::gpu::tessellator::ChunkBuffers],
     total: u64,
     iterations: u32,
@@ -599,10 +624,12 @@ fn gpu_compute_rates(
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         let writes = timestamps.as_ref().map(Timestamps::writes);
         match kernel {
-            Kernel::Tessellate => ctx.tessellator.encode(&mut encoder, records, writes),
-            Kernel::WriteOnly => ctx
-                .tessellator
-                .encode_write_only(&mut encoder, records, writes),
+            Kernel::Tessellate => pipelines.tessellator.encode(&mut encoder, records, writes),
+            Kernel::WriteOnly => {
+                pipelines
+                    .tessellator
+                    .encode_write_only(&mut encoder, records, writes)
+            }
         }
         let started = Instant::now();
         if let Some(ts) = &timestamps {
@@ -640,7 +667,8 @@ fn draw_frames(
     let camera = camera_uniform(&scene.camera(viewport), viewport, 1.0);
     renderer.set_camera(&ctx.queue, &camera);
     gpu_scene.prepare_frame(
-        ctx,
+        renderer,
+        &ctx.queue,
         &splinescope::gpu::adaptive::FrameSettings {
             camera,
             tolerance_px: splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX as f32,
@@ -665,7 +693,7 @@ fn draw_frames(
     for i in 0..=frames {
         let started = Instant::now();
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        renderer.encode_frame(ctx, &mut encoder, gpu_scene, &view);
+        renderer.encode_frame(&mut encoder, gpu_scene, &view);
         ctx.queue.submit([encoder.finish()]);
         ctx.device
             .poll(wgpu::PollType::wait_indefinitely())

@@ -195,15 +195,17 @@ fn gpu_values(
     derivatives: u32,
     gpu: &GpuArgs,
 ) -> Result<Vec<Vec<Vec<DVec3>>>> {
-    let ctx = gpu.context()?;
+    let (ctx, pipelines) = gpu.context()?;
     let lowered: Vec<_> = indices
         .iter()
         .map(|&i| (i, scene.curves[i].curve.lower()))
         .collect();
-    let mut v = vec![splinescope::gpu::eval::evaluate(&ctx, &lowered, per_curve)?];
+    let mut v = vec![splinescope::gpu::eval::evaluate(
+        &ctx, &pipelines, &lowered, per_curve,
+    )?];
     for k in 1..=derivatives {
         v.push(splinescope::gpu::eval::evaluate_derivative(
-            &ctx, &lowered, per_curve, k,
+            &ctx, &pipelines, &lowered, per_curve, k,
         )?);
     }
     Ok(v)

@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use anyhow::{Result, bail};
 use clap::{Parser, Subcommand};
 
-use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext};
+use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext, Pipelines};
 use splinescope::scene::Scene;
 
 mod adapters;
@@ -64,7 +64,7 @@ fn parse_tolerance(s: &str) -> Result<splinescope::image::Tolerance, String> {
 }
 
 impl GpuArgs {
-    fn context(&self) -> Result<GpuContext> {
+    fn context(&self) -> Result<(GpuContext, Pipelines)> {
         Ok(GpuContext::new(&ContextOptions::from_env(
             self.gpu_backend,
         ))?)

@@ -67,8 +67,8 @@ fn regress(
 ) -> Result<()> {
     // Bad directories and sizes are refused before a GPU is opened.
     splinescope::regress::check_options(scenes, refs, opts)?;
-    let ctx = gpu.context()?;
-    let report = splinescope::regress::run(&ctx, scenes, refs, opts)?;
+    let (ctx, pipelines) = gpu.context()?;
+    let report = splinescope::regress::run(&ctx, &pipelines, scenes, refs, opts)?;
     if json {
         say!("{}", serde_json::to_string_pretty(&report)?);
     } else {

@@ -53,9 +53,10 @@ fn render(
     gpu: &GpuArgs,
 ) -> Result<()> {
     let scene = load_scene_or_gallery(scene)?;
-    let ctx = gpu.context()?;
+    let (ctx, pipelines) = gpu.context()?;
     let image = splinescope::offscreen::render_scene_with(
         &ctx,
+        &pipelines,
         &scene,
         None,
         (width, height),

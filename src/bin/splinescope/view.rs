@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 
-use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext};
+use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext, Pipelines};
 use splinescope::scene::{Scene, gallery};
 
 use crate::{GpuArgs, parse_tolerance_px, say};
@@ -137,11 +137,11 @@ pub fn default_job() -> Result<()> {
         })?;
         return Ok(());
     }
-    let ctx = GpuContext::new(&ContextOptions::from_env(BackendChoice::Auto))?;
+    let (ctx, pipelines) = GpuContext::new(&ContextOptions::from_env(BackendChoice::Auto))?;
     let path = std::env::current_dir()
         .context("cannot read the current directory")?
         .join("splinescope-gallery.png");
-    render_to(&ctx, &scene, &path, 1600, 1000)?;
+    render_to(&ctx, &pipelines, &scene, &path, 1600, 1000)?;
     say!(
         "no display found: rendered the gallery ({} curves) to {} (1600×1000, {}).\nOpen it with an image viewer, or run `splinescope view` where a display exists.",
         scene.curves.len(),
@@ -151,8 +151,15 @@ pub fn default_job() -> Result<()> {
     Ok(())
 }
 
-fn render_to(ctx: &GpuContext, scene: &Scene, path: &Path, width: u32, height: u32) -> Result<()> {
-    let image = splinescope::offscreen::render_scene(ctx, scene, None, width, height)?;
+fn render_to(
+    ctx: &GpuContext,
+    pipelines: &Pipelines,
+    scene: &Scene,
+    path: &Path,
+    width: u32,
+    height: u32,
+) -> Result<()> {
+    let image = splinescope::offscreen::render_scene(ctx, pipelines, scene, None, width, height)?;
     image.write_png(path)?;
     Ok(())
 }
