@@ -136,7 +136,10 @@ fn bad_bench_input_is_refused_naming_the_value() {
             vec!["bench", "--threshold", "fast"],
             "\"fast\" is not a percentage",
         ),
-        (vec!["bench", "--families", "nurbs"], "nurbs"),
+        (
+            vec!["bench", "--families", "conic"],
+            "unknown curve family \"conic\"",
+        ),
     ] {
         let out = run(&args);
         assert_eq!(out.status.code(), Some(2), "{args:?}: {}", text(&out));

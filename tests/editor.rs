@@ -184,7 +184,10 @@ fn a_recovery_file_keeps_unsaved_edits_across_a_kill_and_is_offered_next_time() 
     let edited = {
         let mut m = model(s.clone(), Some(path.clone()));
         drag_point(&mut m, DVec3::new(1.0, 2.0, 0.0), DVec2::new(25.0, -10.0));
-        m.add_curve(Template::Nubmp, DVec3::new(2.0, -2.0, 0.0));
+        m.add_curve(
+            Template::of_family("nubmp").expect("a NUBMP template"),
+            DVec3::new(2.0, -2.0, 0.0),
+        );
         let r = recovery_path(&path);
         assert_eq!(r, dir.join("scene.json.recovery"));
         assert!(same_file(&Scene::load(&r).unwrap(), m.scene()));
@@ -250,7 +253,7 @@ fn curves_are_added_from_every_template_duplicated_and_deleted_each_undoably() {
     let original = scene(vec![cubic()]);
     let mut m = model(original.clone(), None);
     let center = DVec3::new(2.0, 1.0, 0.0);
-    for (k, t) in Template::ALL.into_iter().enumerate() {
+    for (k, t) in Template::all().into_iter().enumerate() {
         let index = m.add_curve(t, center);
         assert_eq!(index, k + 1);
         assert_eq!(m.editor.selected, Some(index));

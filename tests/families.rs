@@ -643,19 +643,26 @@ fn every_family_has_a_codec_a_schema_entry_and_a_template() {
     use splinescope::geom::Curve;
     let names = Curve::FAMILY_NAMES;
     // The core's own list agrees with its variants.
-    for t in Template::ALL {
+    for t in Template::all() {
         let c = t.curve(glam::DVec3::ZERO, 1.0);
         assert_eq!(names[c.family_index()], c.family(), "{}", t.label());
     }
-    // Templates: one per family, every family.
-    let mut templates: Vec<&str> = Template::ALL
+    // Templates: at least one per family, every family, no label twice.
+    let mut templates: Vec<&str> = Template::all()
         .iter()
         .map(|t| t.curve(glam::DVec3::ZERO, 1.0).family())
         .collect();
-    templates.sort_unstable();
-    let mut want = names.to_vec();
-    want.sort_unstable();
-    assert_eq!(templates, want, "one viewer template per family");
+    templates.dedup();
+    assert_eq!(
+        templates,
+        names.to_vec(),
+        "templates of every family, in the table's order"
+    );
+    let mut labels: Vec<&str> = Template::all().iter().map(|t| t.label()).collect();
+    labels.sort_unstable();
+    let count = labels.len();
+    labels.dedup();
+    assert_eq!(labels.len(), count, "template labels are distinct");
     // Codecs: the reader knows each family (a missing field, not an unknown type), and
     // knows no other (its list of types is exactly the families).
     for name in names {
@@ -683,6 +690,8 @@ fn every_family_has_a_codec_a_schema_entry_and_a_template() {
         .map(str::trim)
         .collect();
     listed.sort_unstable();
+    let mut want = names.to_vec();
+    want.sort_unstable();
     assert_eq!(listed, want, "the codecs are exactly the families");
     // The generated scene schema has each family's `type`.
     let schema = splinescope::schemas::all()
@@ -697,4 +706,51 @@ fn every_family_has_a_codec_a_schema_entry_and_a_template() {
             "the scene schema has no entry for {name}"
         );
     }
+}
+
+/// The stress generator makes curves of every family in the table (what `bench
+/// --families` and `view --stress` take), deterministic, valid, and of the structure its
+/// segment counts promise.
+#[test]
+fn the_stress_generator_makes_valid_curves_of_every_family() {
+    use splinescope::scene::generate::{StressFamily, StressOptions, random_bezier_scene};
+    let all: Vec<StressFamily> = StressFamily::all().collect();
+    assert_eq!(
+        all.iter().map(|f| f.name()).collect::<Vec<_>>(),
+        splinescope::geom::Curve::FAMILY_NAMES.to_vec()
+    );
+    for family in all {
+        for degree in [2, 3, 5] {
+            let opts = StressOptions {
+                curves: 9,
+                degree,
+                family,
+                three_d: degree == 5,
+                ..StressOptions::default()
+            };
+            let scene = random_bezier_scene(opts);
+            assert_eq!(
+                scene,
+                random_bezier_scene(opts),
+                "{} is deterministic",
+                family.name()
+            );
+            assert_eq!(scene.curves.len(), 9);
+            for c in &scene.curves {
+                assert_eq!(c.curve.family(), family.name());
+                c.curve.check_derived().expect("finite lowering");
+                let lowered = c.curve.lower();
+                assert_eq!(lowered.len(), family.segments(degree), "{}", family.name());
+                assert_eq!(
+                    lowered.iter().map(|s| s.bezier.degree()).max(),
+                    Some(family.segment_degree(degree)),
+                    "{}",
+                    family.name()
+                );
+                assert_eq!(c.curve.control_points().len(), family.points(degree));
+            }
+        }
+    }
+    let e = "conic".parse::<StressFamily>().unwrap_err().to_string();
+    assert!(e.contains("\"conic\"") && e.contains("nubmp"), "{e}");
 }

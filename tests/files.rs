@@ -289,7 +289,10 @@ fn a_new_scene_asks_where_on_first_save_and_a_close_waits_for_that_save() {
         "{}",
         m.editor.title()
     );
-    let index = m.add_curve(splinescope::app::interaction::Template::Bezier, DVec3::ZERO);
+    let index = m.add_curve(
+        splinescope::app::interaction::Template::of_family("bezier").expect("a Bézier template"),
+        DVec3::ZERO,
+    );
     assert_eq!(index, 0);
     let drawn = m.scene().clone();
     // Ctrl+Q: unsaved; save → where? The dialog; its save writes, then the window closes.

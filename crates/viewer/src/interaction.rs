@@ -106,82 +106,44 @@ pub enum Answer {
     Cancel,
 }
 
-/// A curve family a new curve can be added from ([`Interaction::add_curve`]).
+/// A starting curve a new curve can be added from ([`Interaction::add_curve`]): one of
+/// the families' templates ([`crate::geom::Curve::templates`]), by position.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Template {
-    /// A cubic Bézier curve.
-    Bezier,
-    /// A modified cubic Bézier curve (paper 002).
-    Modified,
-    /// Cubic interpolation of four points (paper 002).
-    Interpolation,
-    /// A clamped cubic B-spline of six points.
-    BSpline,
-    /// A standard order-4 NUBMP curve of seven points (paper 001).
-    Nubmp,
-}
+pub struct Template(usize);
 
 impl Template {
-    /// Every template, in menu order.
-    pub const ALL: [Template; 5] = [
-        Template::Bezier,
-        Template::Modified,
-        Template::Interpolation,
-        Template::BSpline,
-        Template::Nubmp,
-    ];
+    /// Every template, in menu order (the family table's).
+    #[must_use]
+    pub fn all() -> Vec<Template> {
+        (0..crate::geom::Curve::templates(DVec3::ZERO, 1.0).len())
+            .map(Template)
+            .collect()
+    }
 
-    /// The family name shown in menus.
+    /// The first template of family `name` (a name of `Curve::FAMILY_NAMES`).
+    #[must_use]
+    pub fn of_family(name: &str) -> Option<Template> {
+        crate::geom::Curve::templates(DVec3::ZERO, 1.0)
+            .iter()
+            .position(|(_, c)| c.family() == name)
+            .map(Template)
+    }
+
+    /// The label shown in menus.
     #[must_use]
     pub fn label(self) -> &'static str {
-        match self {
-            Template::Bezier => "Bézier (cubic)",
-            Template::Modified => "modified Bézier",
-            Template::Interpolation => "interpolation",
-            Template::BSpline => "B-spline (cubic)",
-            Template::Nubmp => "NUBMP (order 4)",
-        }
+        crate::geom::Curve::templates(DVec3::ZERO, 1.0)
+            .get(self.0)
+            .map_or("?", |(label, _)| label)
     }
 
     /// The template's curve centred on `center`, about `size` wide, in the plane z =
     /// `center.z`.
     #[must_use]
     pub fn curve(self, center: DVec3, size: f64) -> crate::geom::Curve {
-        use crate::geom::{BSpline, Bezier, CubicInterpolation, Curve, ModifiedBezier, Nubmp};
-        let at = |x: f64, y: f64| center + DVec3::new(x * size, y * size, 0.0);
-        let zigzag = |n: usize| -> Vec<DVec3> {
-            (0..n)
-                .map(|i| {
-                    let x = i as f64 / (n - 1) as f64 - 0.5;
-                    at(x, if i % 2 == 0 { -0.2 } else { 0.2 })
-                })
-                .collect()
-        };
-        let arch = vec![at(-0.5, -0.2), at(-0.2, 0.3), at(0.2, 0.3), at(0.5, -0.2)];
-        let clamped = |n: usize, k: usize| -> Vec<f64> {
-            let inner = n - k;
-            let mut knots = vec![0.0; k];
-            knots.extend((1..=inner).map(|i| i as f64 / (inner + 1) as f64));
-            knots.extend(vec![1.0; k]);
-            knots
-        };
-        // The templates are valid by construction (finite points, fixed knots).
-        match self {
-            Template::Bezier => Curve::Bezier(Bezier::new(arch)),
-            Template::Modified => Curve::Modified(
-                ModifiedBezier::try_new(Bezier::new(arch), 0.5, DVec3::new(0.0, 0.2 * size, 0.0))
-                    .expect("template"),
-            ),
-            Template::Interpolation => Curve::Interpolation(
-                CubicInterpolation::try_new(zigzag(4), None, None).expect("template"),
-            ),
-            Template::BSpline => {
-                Curve::BSpline(BSpline::try_new(zigzag(6), clamped(6, 4), 4).expect("template"))
-            }
-            Template::Nubmp => {
-                Curve::Nubmp(Nubmp::try_new(zigzag(7), clamped(7, 4), 4).expect("template"))
-            }
-        }
+        let mut all = crate::geom::Curve::templates(center, size);
+        let index = self.0.min(all.len().saturating_sub(1));
+        all.swap_remove(index).1
     }
 }
 

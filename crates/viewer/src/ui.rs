@@ -492,7 +492,7 @@ fn edit_section(ui: &mut egui::Ui, editor: &mut Editor, actions: &mut Actions, p
             editor.redo();
         }
         ui.menu_button("add curve…", |ui| {
-            for t in Template::ALL {
+            for t in Template::all() {
                 if ui.button(t.label()).clicked() {
                     actions.add = Some(t);
                     ui.close();
@@ -888,7 +888,7 @@ fn context_menu(ctx: &egui::Context, model: &Interaction, at: egui::Pos2, action
         .show(ctx, |ui| {
             egui::Frame::menu(ui.style()).show(ui, |ui| {
                 ui.menu_button("add curve here", |ui| {
-                    for t in Template::ALL {
+                    for t in Template::all() {
                         if ui.button(t.label()).clicked() {
                             actions.add_at_menu = Some(t);
                         }

@@ -34,10 +34,11 @@ pub struct BenchArgs {
     /// Degrees, e.g. `3,5,12,31` (above the GPU's maximum of 31 only the CPU rows run).
     #[arg(long = "degrees", visible_alias = "degree", value_delimiter = ',', default_value = "3", value_parser = clap::value_parser!(u64).range(1..=63))]
     degrees: Vec<u64>,
-    /// Families: `bezier`, `bspline` (clamped uniform, four spans), `nubmp` (their standard
-    /// NUBMP curves).
-    #[arg(long, value_delimiter = ',', default_value = "bezier")]
-    families: Vec<FamilyArg>,
+    /// Families, any of the scene format's: `bezier`, `modified_bezier` (`t* = 1/2`),
+    /// `interpolation` (degree + 1 points, cubic pieces), `bspline` (clamped uniform, four
+    /// spans), `nubmp` (their standard NUBMP curves).
+    #[arg(long, value_delimiter = ',', default_value = "bezier", value_parser = parse_family)]
+    families: Vec<StressFamily>,
     /// Samples per Bézier segment (per curve for Bézier curves), e.g. `16,64,256`.
     #[arg(long, value_delimiter = ',', default_value = "64", value_parser = clap::value_parser!(u32).range(2..=4096))]
     samples: Vec<u32>,
@@ -67,25 +68,11 @@ pub struct BenchArgs {
     gpu: super::GpuArgs,
 }
 
-/// A family on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-enum FamilyArg {
-    /// Bézier curves.
-    Bezier,
-    /// B-splines.
-    Bspline,
-    /// NUBMP curves.
-    Nubmp,
-}
-
-impl FamilyArg {
-    fn family(self) -> StressFamily {
-        match self {
-            FamilyArg::Bezier => StressFamily::Bezier,
-            FamilyArg::Bspline => StressFamily::BSpline,
-            FamilyArg::Nubmp => StressFamily::Nubmp,
-        }
-    }
+/// A family on the command line: a name of the family table.
+fn parse_family(s: &str) -> Result<StressFamily, String> {
+    s.trim()
+        .parse()
+        .map_err(|e: splinescope::scene::generate::UnknownFamily| e.to_string())
 }
 
 /// A count such as `100000` or `1e5` (a whole number of at least 1).
@@ -131,7 +118,7 @@ struct Row {
 impl Row {
     /// Bézier segments per curve.
     fn segments(self) -> u64 {
-        self.family.segments() as u64
+        self.family.segments(self.degree as usize) as u64
     }
 
     /// The degree of those segments.
@@ -169,7 +156,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             for &curves in &args.curves {
                 for &samples in &args.samples {
                     rows.push(Row {
-                        family: f.family(),
+                        family: f,
                         curves,
                         degree,
                         samples,

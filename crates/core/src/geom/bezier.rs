@@ -364,6 +364,31 @@ impl Family for Bezier {
     const NAME: &'static str = "bezier";
     type Details = BezierDetails;
 
+    fn with_point_on_polygon(&self, at: DVec3) -> Result<(Bezier, usize), GeomError> {
+        let (points, leg, _) = super::structure::insert_on_polygon(self.points(), at);
+        Ok((Bezier::try_new(points)?, leg + 1))
+    }
+
+    fn with_point_removed(&self, index: usize) -> Result<Bezier, GeomError> {
+        Bezier::try_new(super::structure::without(
+            self.points(),
+            index,
+            2,
+            Self::NAME,
+        )?)
+    }
+
+    fn templates(center: DVec3, size: f64) -> Vec<(&'static str, Bezier)> {
+        vec![(
+            "Bézier (cubic)",
+            Bezier::new(super::template::arch(center, size)),
+        )]
+    }
+
+    fn generated(degree: usize, point: &mut dyn FnMut() -> DVec3) -> Result<Bezier, GeomError> {
+        Bezier::try_new((0..=degree).map(|_| point()).collect())
+    }
+
     fn control_points(&self) -> &[DVec3] {
         &self.points
     }

@@ -5,79 +5,135 @@ use glam::DVec3;
 use schemars::JsonSchema;
 use serde::Serialize;
 
-use super::bezier::BezierDetails;
 use super::family::{AtTau, Control, ControlId, ControlValue, Family, OverlayPolyline};
-use super::interp::InterpolationDetails;
-use super::modified::ModifiedDetails;
-use super::nubmp::{BSplineDetails, NubmpDetails};
-use super::{
-    Aabb, BSpline, Bezier, BezierSegment, CubicInterpolation, GeomError, Lower, ModifiedBezier,
-    Nubmp, ParamCurve,
-};
+use super::{Aabb, BezierSegment, GeomError, Lower, ParamCurve};
 
-/// Every curve family splinescope knows. Each one implements [`Family`] in its own file:
-/// it evaluates exactly in `f64` ([`ParamCurve`]), lowers exactly to Bézier segments
-/// ([`Lower`]) and describes its overlays, reports and panel controls. This enum and its
-/// dispatch macro are the only places that list the families.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Curve {
-    /// A Bézier curve of any degree (all papers).
-    Bezier(Bezier),
-    /// `R(t) = Q(t) + S(t) v` (paper 002, §4).
-    Modified(ModifiedBezier),
-    /// Cubic Bézier interpolation, plain or modified (paper 002, §5).
-    Interpolation(CubicInterpolation),
-    /// A non-uniform B-spline of any order (paper 001, §2).
-    BSpline(BSpline),
-    /// A B-spline with multiple shape parameters (paper 001, §3–5).
-    Nubmp(Nubmp),
+/// The one table of curve families: one row per family, `Variant(Type) = "name"`, with
+/// the variant's documentation (its formula's paper). Every list of families is generated
+/// from it: [`Curve`] and [`FamilyDetails`] here, the `From` conversions,
+/// [`Curve::FAMILY_NAMES`], [`Curve::templates`]; in the scene layer the written forms
+/// (`FamilyDoc`) and the codecs' reader table. Where a list cannot be generated it is an
+/// exhaustive `match` ([`each_family!`](crate::each_family)), so a new row does not compile
+/// until every place has the new family. `name` must equal the type's [`Family::NAME`]
+/// (checked at compile time).
+///
+/// Call it with the name of a macro taking the rows
+/// (`$( $(#[$doc:meta])* $variant:ident($ty:ty) = $name:literal ),*`).
+#[macro_export]
+macro_rules! family_table {
+    ($then:ident) => {
+        $then! {
+            /// A Bézier curve of any degree (all papers).
+            Bezier($crate::geom::Bezier) = "bezier",
+            /// `R(t) = Q(t) + S(t) v` (paper 002, §4).
+            Modified($crate::geom::ModifiedBezier) = "modified_bezier",
+            /// Cubic Bézier interpolation, plain or modified (paper 002, §5).
+            Interpolation($crate::geom::CubicInterpolation) = "interpolation",
+            /// A non-uniform B-spline of any order (paper 001, §2).
+            BSpline($crate::geom::BSpline) = "bspline",
+            /// A B-spline with multiple shape parameters (paper 001, §3–5).
+            Nubmp($crate::geom::Nubmp) = "nubmp",
+        }
+    };
 }
 
-/// The per-family part of an `inspect` report (flattened into the curve's object).
-#[derive(Debug, Clone, Serialize, JsonSchema)]
-#[serde(untagged)]
-pub enum FamilyDetails {
-    /// A Bézier curve.
-    Bezier(BezierDetails),
-    /// A modified Bézier curve.
-    Modified(ModifiedDetails),
-    /// An interpolating spline.
-    Interpolation(InterpolationDetails),
-    /// A B-spline (with the structure of the standard NUBMP curve on its knots).
-    BSpline(BSplineDetails),
-    /// A NUBMP curve.
-    Nubmp(NubmpDetails),
-}
-
-impl From<BezierDetails> for FamilyDetails {
-    fn from(d: BezierDetails) -> FamilyDetails {
-        FamilyDetails::Bezier(d)
+/// Whether two names are equal, at compile time.
+#[doc(hidden)]
+#[must_use]
+pub const fn same_name(a: &str, b: &str) -> bool {
+    let (a, b) = (a.as_bytes(), b.as_bytes());
+    if a.len() != b.len() {
+        return false;
     }
+    let mut i = 0;
+    while i < a.len() {
+        if a[i] != b[i] {
+            return false;
+        }
+        i += 1;
+    }
+    true
 }
 
-impl From<ModifiedDetails> for FamilyDetails {
-    fn from(d: ModifiedDetails) -> FamilyDetails {
-        FamilyDetails::Modified(d)
-    }
+macro_rules! define_families {
+    ($( $(#[$doc:meta])* $variant:ident($ty:ty) = $name:literal ),* $(,)?) => {
+        /// Every curve family splinescope knows, generated from
+        /// [`family_table!`](crate::family_table). Each one implements [`Family`] in its
+        /// own file: it evaluates exactly in `f64` ([`ParamCurve`]), lowers exactly to
+        /// Bézier segments ([`Lower`]) and describes its overlays, reports, panel
+        /// controls, structure edits and templates.
+        #[derive(Debug, Clone, PartialEq)]
+        pub enum Curve {
+            $( $(#[$doc])* $variant($ty), )*
+        }
+
+        /// The per-family part of an `inspect` report (flattened into the curve's
+        /// object): each family's [`Family::Details`].
+        #[derive(Debug, Clone, Serialize, JsonSchema)]
+        #[serde(untagged)]
+        pub enum FamilyDetails {
+            $( $(#[$doc])* $variant(<$ty as Family>::Details), )*
+        }
+
+        $(
+            impl From<$ty> for Curve {
+                fn from(c: $ty) -> Curve {
+                    Curve::$variant(c)
+                }
+            }
+
+            impl From<<$ty as Family>::Details> for FamilyDetails {
+                fn from(d: <$ty as Family>::Details) -> FamilyDetails {
+                    FamilyDetails::$variant(d)
+                }
+            }
+
+            const _: () = assert!(
+                same_name(<$ty as Family>::NAME, $name),
+                concat!("the family table's name ", $name, " differs from the type's Family::NAME")
+            );
+        )*
+
+        impl Curve {
+            /// Every family's name ([`Family::NAME`]), in the table's order: what scene
+            /// files write in `type`, and the order error messages list them in.
+            pub const FAMILY_NAMES: &'static [&'static str] = &[$($name),*];
+
+            /// A curve of family `family` (a name of [`Curve::FAMILY_NAMES`]) for generated
+            /// scenes: [`Family::generated`]; `None` for a name not in the table.
+            ///
+            /// # Errors
+            /// The family's error when the points break it.
+            pub fn generated(
+                family: &str,
+                degree: usize,
+                point: &mut dyn FnMut() -> DVec3,
+            ) -> Option<Result<Curve, GeomError>> {
+                match family {
+                    $( $name => Some(<$ty as Family>::generated(degree, point).map(Curve::from)), )*
+                    _ => None,
+                }
+            }
+
+            /// Every family's templates ([`Family::templates`]) centred on `center`, about
+            /// `size` wide, in the table's order: what the editor offers to add.
+            #[must_use]
+            pub fn templates(center: DVec3, size: f64) -> Vec<(&'static str, Curve)> {
+                let mut out = Vec::new();
+                $(
+                    out.extend(
+                        <$ty as Family>::templates(center, size)
+                            .into_iter()
+                            .map(|(label, c)| (label, Curve::from(c))),
+                    );
+                )*
+                out
+            }
+        }
+    };
 }
 
-impl From<InterpolationDetails> for FamilyDetails {
-    fn from(d: InterpolationDetails) -> FamilyDetails {
-        FamilyDetails::Interpolation(d)
-    }
-}
-
-impl From<BSplineDetails> for FamilyDetails {
-    fn from(d: BSplineDetails) -> FamilyDetails {
-        FamilyDetails::BSpline(d)
-    }
-}
-
-impl From<NubmpDetails> for FamilyDetails {
-    fn from(d: NubmpDetails) -> FamilyDetails {
-        FamilyDetails::Nubmp(d)
-    }
-}
+family_table!(define_families);
 
 /// Calls `$body` with `$c` bound to the family inside a [`Curve`] (for the layers above,
 /// which dispatch one generic call over every family the same way).
@@ -137,28 +193,14 @@ impl Curve {
         each_family!(self, c => name(c))
     }
 
-    /// Every family's name ([`Family::NAME`]), in the order of the variants: what the
-    /// layers above check their own lists against (the scene codecs, the schema, the
-    /// viewer's templates).
-    pub const FAMILY_NAMES: [&'static str; 5] = [
-        Bezier::NAME,
-        ModifiedBezier::NAME,
-        CubicInterpolation::NAME,
-        BSpline::NAME,
-        Nubmp::NAME,
-    ];
-
-    /// The variant's position in [`Curve::FAMILY_NAMES`] (an exhaustive match: a new
-    /// variant does not compile until it has a place there).
+    /// The variant's position in [`Curve::FAMILY_NAMES`].
     #[must_use]
     pub fn family_index(&self) -> usize {
-        match self {
-            Curve::Bezier(_) => 0,
-            Curve::Modified(_) => 1,
-            Curve::Interpolation(_) => 2,
-            Curve::BSpline(_) => 3,
-            Curve::Nubmp(_) => 4,
-        }
+        let name = self.family();
+        Curve::FAMILY_NAMES
+            .iter()
+            .position(|n| *n == name)
+            .unwrap_or_else(|| unreachable!("every family is in the table"))
     }
 
     /// The points the user places (drawn as dots): [`Family::control_points`].
@@ -253,26 +295,46 @@ impl Curve {
     pub fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Curve, GeomError> {
         each_family!(self, c => c.apply_control(id, value).map(Into::into))
     }
-}
 
-/// Each family converts into the enum.
-macro_rules! into_curve {
-    ($($family:ident => $variant:ident),* $(,)?) => {
-        $(impl From<$family> for Curve {
-            fn from(c: $family) -> Curve {
-                Curve::$variant(c)
-            }
-        })*
-    };
-}
+    /// Whether points are inserted by knot insertion: [`Family::inserts_by_knot`].
+    #[must_use]
+    pub fn inserts_by_knot(&self) -> bool {
+        each_family!(self, c => c.inserts_by_knot())
+    }
 
-into_curve!(
-    Bezier => Bezier,
-    ModifiedBezier => Modified,
-    CubicInterpolation => Interpolation,
-    BSpline => BSpline,
-    Nubmp => Nubmp,
-);
+    /// The curve with a new control point `at` on its control polygon, and the point's
+    /// index: [`Family::with_point_on_polygon`].
+    ///
+    /// # Errors
+    /// [`GeomError::StructureRefused`] for families that insert by knot,
+    /// [`GeomError::NonFinitePoint`] for a non-finite `at`, or the family's own error.
+    pub fn with_point_on_polygon(&self, at: DVec3) -> Result<(Curve, usize), GeomError> {
+        crate::geom::bezier::check_finite(&[at])?;
+        each_family!(self, c => c.with_point_on_polygon(at).map(|(c, i)| (c.into(), i)))
+    }
+
+    /// The curve with the knot `t` inserted: [`Family::with_knot_inserted`].
+    ///
+    /// # Errors
+    /// [`GeomError::StructureRefused`] for families that insert on the polygon, or the
+    /// knot vector's error.
+    pub fn with_knot_inserted(&self, t: f64) -> Result<Curve, GeomError> {
+        each_family!(self, c => c.with_knot_inserted(t).map(Into::into))
+    }
+
+    /// The curve without control point `index`: [`Family::with_point_removed`].
+    ///
+    /// # Errors
+    /// [`GeomError::NoSuchPoint`], [`GeomError::StructureRefused`] or the family's own
+    /// error.
+    pub fn with_point_removed(&self, index: usize) -> Result<Curve, GeomError> {
+        let count = self.control_points().len();
+        if index >= count {
+            return Err(GeomError::NoSuchPoint { index, count });
+        }
+        each_family!(self, c => c.with_point_removed(index).map(Into::into))
+    }
+}
 
 impl ParamCurve for Curve {
     fn domain(&self) -> (f64, f64) {

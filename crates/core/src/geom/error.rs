@@ -257,6 +257,15 @@ pub enum GeomError {
 }
 
 impl GeomError {
+    /// [`GeomError::StructureRefused`]: a structural edit `family` does not allow.
+    #[must_use]
+    pub fn refused(family: &'static str, reason: impl Into<String>) -> GeomError {
+        GeomError::StructureRefused {
+            family,
+            reason: reason.into(),
+        }
+    }
+
     /// The field this error concerns, relative to the curve (e.g. `points[2]`, `knots[5]`).
     #[must_use]
     pub fn field(&self) -> String {

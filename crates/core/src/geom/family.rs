@@ -123,6 +123,61 @@ pub trait Family: ParamCurve + Lower + Clone + std::fmt::Debug {
     fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Self, GeomError> {
         Err(unknown_control(Self::NAME, id, value))
     }
+
+    /// Whether points are inserted by knot insertion at a curve parameter
+    /// ([`Family::with_knot_inserted`]) rather than on the control polygon
+    /// ([`Family::with_point_on_polygon`]).
+    fn inserts_by_knot(&self) -> bool {
+        false
+    }
+
+    /// The curve with a new control point `at`, placed on the control polygon's leg
+    /// nearest to it; the curve and the new point's index ([`super::structure`]).
+    ///
+    /// # Errors
+    /// [`GeomError::StructureRefused`] for families that insert by knot (the default),
+    /// [`GeomError::NonFinitePoint`], or the family's own error.
+    fn with_point_on_polygon(&self, at: DVec3) -> Result<(Self, usize), GeomError> {
+        let _ = at;
+        Err(GeomError::refused(
+            Self::NAME,
+            "points are inserted by knot insertion at a curve parameter",
+        ))
+    }
+
+    /// The curve with the knot `t` inserted: one more control point and the same curve
+    /// (Boehm).
+    ///
+    /// # Errors
+    /// [`GeomError::StructureRefused`] for families that insert on the control polygon
+    /// (the default); the knot vector's error for a `t` it refuses.
+    fn with_knot_inserted(&self, t: f64) -> Result<Self, GeomError> {
+        let _ = t;
+        Err(GeomError::refused(
+            Self::NAME,
+            "points are inserted on the control polygon",
+        ))
+    }
+
+    /// The curve without control point `index` ([`super::structure`] says how each
+    /// family loses a point).
+    ///
+    /// # Errors
+    /// [`GeomError::NoSuchPoint`], [`GeomError::StructureRefused`] (too few points left,
+    /// shape parameters in the way) or the family's own error.
+    fn with_point_removed(&self, index: usize) -> Result<Self, GeomError>;
+
+    /// The starting curves the editor offers for this family (label and curve), centred
+    /// on `center`, about `size` wide, in the plane `z = center.z`.
+    fn templates(center: DVec3, size: f64) -> Vec<(&'static str, Self)>;
+
+    /// A curve of this family for generated scenes (the stress scenes and the throughput
+    /// benchmark) of `degree` (the family's own degree: a NUBMP curve lowers one higher),
+    /// its control points drawn one after another from `point`.
+    ///
+    /// # Errors
+    /// The family's error when the points break it (non-finite values).
+    fn generated(degree: usize, point: &mut dyn FnMut() -> DVec3) -> Result<Self, GeomError>;
 }
 
 /// The error for a control a family does not have (or a value of the wrong kind).

@@ -274,6 +274,42 @@ impl Family for CubicInterpolation {
     const NAME: &'static str = "interpolation";
     type Details = InterpolationDetails;
 
+    /// The new point's parameter lies between its neighbours' in proportion to where
+    /// `at` projects on the leg.
+    fn with_point_on_polygon(&self, at: DVec3) -> Result<(CubicInterpolation, usize), GeomError> {
+        let (points, leg, s) = super::structure::insert_on_polygon(self.points(), at);
+        let mut params = self.params().to_vec();
+        let t = params[leg] + s.clamp(0.05, 0.95) * (params[leg + 1] - params[leg]);
+        params.insert(leg + 1, t);
+        Ok((
+            CubicInterpolation::try_new(points, Some(params), self.modification())?,
+            leg + 1,
+        ))
+    }
+
+    fn with_point_removed(&self, index: usize) -> Result<CubicInterpolation, GeomError> {
+        let points = super::structure::without(self.points(), index, 2, Self::NAME)?;
+        let mut params = self.params().to_vec();
+        params.remove(index);
+        CubicInterpolation::try_new(points, Some(params), self.modification())
+    }
+
+    fn templates(center: DVec3, size: f64) -> Vec<(&'static str, CubicInterpolation)> {
+        CubicInterpolation::try_new(super::template::zigzag(center, size, 4), None, None)
+            .map(|c| vec![("interpolation", c)])
+            .unwrap_or_default()
+    }
+
+    /// `degree + 1` points (at least 2) interpolated by the plain cubic spline: always
+    /// cubic, `degree` pieces.
+    fn generated(
+        degree: usize,
+        point: &mut dyn FnMut() -> DVec3,
+    ) -> Result<CubicInterpolation, GeomError> {
+        let points = (0..=degree.max(1)).map(|_| point()).collect();
+        CubicInterpolation::try_new(points, None, None)
+    }
+
     fn control_points(&self) -> &[DVec3] {
         &self.points
     }

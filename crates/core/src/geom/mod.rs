@@ -22,6 +22,7 @@ pub mod lowering;
 pub mod modified;
 pub mod nubmp;
 pub mod structure;
+pub mod template;
 
 pub use aabb::Aabb;
 pub use bezier::Bezier;

@@ -202,6 +202,38 @@ impl Family for ModifiedBezier {
     const NAME: &'static str = "modified_bezier";
     type Details = ModifiedDetails;
 
+    fn with_point_on_polygon(&self, at: DVec3) -> Result<(ModifiedBezier, usize), GeomError> {
+        let (points, leg, _) = super::structure::insert_on_polygon(self.base().points(), at);
+        let base = Bezier::try_new(points)?;
+        Ok((
+            ModifiedBezier::try_new(base, self.t_star(), self.v())?,
+            leg + 1,
+        ))
+    }
+
+    fn with_point_removed(&self, index: usize) -> Result<ModifiedBezier, GeomError> {
+        let points = super::structure::without(self.base().points(), index, 2, Self::NAME)?;
+        ModifiedBezier::try_new(Bezier::try_new(points)?, self.t_star(), self.v())
+    }
+
+    fn templates(center: DVec3, size: f64) -> Vec<(&'static str, ModifiedBezier)> {
+        let base = Bezier::new(super::template::arch(center, size));
+        ModifiedBezier::try_new(base, 0.5, DVec3::new(0.0, 0.2 * size, 0.0))
+            .map(|m| vec![("modified Bézier", m)])
+            .unwrap_or_default()
+    }
+
+    /// The base `Q` of `degree` from `point`, `t* = 1/2`, and `v` a quarter of the
+    /// difference of two more points.
+    fn generated(
+        degree: usize,
+        point: &mut dyn FnMut() -> DVec3,
+    ) -> Result<ModifiedBezier, GeomError> {
+        let base = Bezier::generated(degree, point)?;
+        let v = 0.25 * (point() - point());
+        ModifiedBezier::try_new(base, 0.5, v)
+    }
+
     fn control_points(&self) -> &[DVec3] {
         self.base.points()
     }

@@ -723,6 +723,49 @@ impl Family for Nubmp {
     const NAME: &'static str = "nubmp";
     type Details = NubmpDetails;
 
+    fn inserts_by_knot(&self) -> bool {
+        true
+    }
+
+    /// Standard curves only: the groups of the new knot vector differ from the old ones.
+    fn with_knot_inserted(&self, t: f64) -> Result<Nubmp, GeomError> {
+        if !self.is_standard() {
+            return Err(GeomError::refused(
+                Self::NAME,
+                "reset the shape parameters to the standard curve before inserting a knot (the groups of the new knot vector differ)",
+            ));
+        }
+        let b = BSpline::from_parts(self.points().to_vec(), self.knots().clone())?;
+        let b = b.insert_knot(t)?;
+        Nubmp::standard(b.points().to_vec(), b.knots().clone())
+    }
+
+    fn with_point_removed(&self, index: usize) -> Result<Nubmp, GeomError> {
+        if !self.is_standard() {
+            return Err(GeomError::refused(
+                Self::NAME,
+                "reset the shape parameters to the standard curve before removing a point (the groups of the new knot vector differ)",
+            ));
+        }
+        let (points, knots) =
+            super::structure::spline_without(self.points(), self.knots(), index, Self::NAME)?;
+        Nubmp::try_new(points, knots, self.order())
+    }
+
+    fn templates(center: DVec3, size: f64) -> Vec<(&'static str, Nubmp)> {
+        let points = super::template::zigzag(center, size, 7);
+        Nubmp::try_new(points, super::template::clamped_knots(7, 4), 4)
+            .map(|n| vec![("NUBMP (order 4)", n)])
+            .unwrap_or_default()
+    }
+
+    /// The standard NUBMP curve of [`BSpline::generated`]'s spline (four segments, which
+    /// lower one degree higher).
+    fn generated(degree: usize, point: &mut dyn FnMut() -> DVec3) -> Result<Nubmp, GeomError> {
+        let b = BSpline::generated(degree, point)?;
+        Nubmp::standard(b.points().to_vec(), b.knots().clone())
+    }
+
     fn control_points(&self) -> &[DVec3] {
         &self.points
     }
@@ -1113,6 +1156,35 @@ impl Nubmp {
 impl Family for BSpline {
     const NAME: &'static str = "bspline";
     type Details = BSplineDetails;
+
+    fn inserts_by_knot(&self) -> bool {
+        true
+    }
+
+    fn with_knot_inserted(&self, t: f64) -> Result<BSpline, GeomError> {
+        self.insert_knot(t)
+    }
+
+    fn with_point_removed(&self, index: usize) -> Result<BSpline, GeomError> {
+        let (points, knots) =
+            super::structure::spline_without(self.points(), self.knots(), index, Self::NAME)?;
+        BSpline::try_new(points, knots, self.order())
+    }
+
+    fn templates(center: DVec3, size: f64) -> Vec<(&'static str, BSpline)> {
+        let points = super::template::zigzag(center, size, 6);
+        BSpline::try_new(points, super::template::clamped_knots(6, 4), 4)
+            .map(|b| vec![("B-spline (cubic)", b)])
+            .unwrap_or_default()
+    }
+
+    /// The clamped uniform B-spline of order `degree + 1` on `degree + 4` points: four
+    /// Bézier segments of `degree`.
+    fn generated(degree: usize, point: &mut dyn FnMut() -> DVec3) -> Result<BSpline, GeomError> {
+        let points: Vec<DVec3> = (0..degree + 4).map(|_| point()).collect();
+        let knots = KnotVector::clamped_uniform(degree + 1, points.len())?;
+        BSpline::from_parts(points, knots)
+    }
 
     fn control_points(&self) -> &[DVec3] {
         self.points()

@@ -9,7 +9,7 @@ use serde::Serialize;
 
 pub use super::point_doc::PointDoc;
 
-use super::codec::{BSplineDoc, BezierDoc, Codec, InterpolationDoc, ModifiedBezierDoc, NubmpDoc};
+use super::codec::Written;
 use crate::geom::Curve;
 
 /// A scene document (format version 1, `docs/scene-format.md`).
@@ -127,57 +127,31 @@ pub struct CurveDoc {
     pub style: Option<StyleDoc>,
 }
 
-/// A curve's family and its own fields; one variant per family, each defined with the
-/// family's codec (`src/scene/codec/`).
-#[derive(Debug, Clone, Serialize, JsonSchema)]
-#[serde(tag = "type")]
-pub enum FamilyDoc {
-    /// `"bezier"`.
-    #[serde(rename = "bezier")]
-    Bezier(BezierDoc),
-    /// `"modified_bezier"`.
-    #[serde(rename = "modified_bezier")]
-    ModifiedBezier(ModifiedBezierDoc),
-    /// `"interpolation"`.
-    #[serde(rename = "interpolation")]
-    Interpolation(InterpolationDoc),
-    /// `"bspline"`.
-    #[serde(rename = "bspline")]
-    BSpline(BSplineDoc),
-    /// `"nubmp"`.
-    #[serde(rename = "nubmp")]
-    Nubmp(NubmpDoc),
+macro_rules! family_docs {
+    ($( $(#[$doc:meta])* $variant:ident($ty:ty) = $name:literal ),* $(,)?) => {
+        /// A curve's family and its own fields; one variant per row of the core's family
+        /// table, each defined with the family's codec (`crates/scene/src/scene/codec/`).
+        #[derive(Debug, Clone, Serialize, JsonSchema)]
+        #[serde(tag = "type")]
+        pub enum FamilyDoc {
+            $(
+                #[doc = concat!("`\"", $name, "\"`.")]
+                #[serde(rename = $name)]
+                $variant(<$ty as Written>::Doc),
+            )*
+        }
+
+        $(
+            impl From<<$ty as Written>::Doc> for FamilyDoc {
+                fn from(d: <$ty as Written>::Doc) -> FamilyDoc {
+                    FamilyDoc::$variant(d)
+                }
+            }
+        )*
+    };
 }
 
-impl From<BezierDoc> for FamilyDoc {
-    fn from(d: BezierDoc) -> FamilyDoc {
-        FamilyDoc::Bezier(d)
-    }
-}
-
-impl From<ModifiedBezierDoc> for FamilyDoc {
-    fn from(d: ModifiedBezierDoc) -> FamilyDoc {
-        FamilyDoc::ModifiedBezier(d)
-    }
-}
-
-impl From<InterpolationDoc> for FamilyDoc {
-    fn from(d: InterpolationDoc) -> FamilyDoc {
-        FamilyDoc::Interpolation(d)
-    }
-}
-
-impl From<BSplineDoc> for FamilyDoc {
-    fn from(d: BSplineDoc) -> FamilyDoc {
-        FamilyDoc::BSpline(d)
-    }
-}
-
-impl From<NubmpDoc> for FamilyDoc {
-    fn from(d: NubmpDoc) -> FamilyDoc {
-        FamilyDoc::Nubmp(d)
-    }
-}
+splinescope_core::family_table!(family_docs);
 
 /// The written form of a curve's family fields.
 pub(crate) fn encode(curve: &Curve) -> FamilyDoc {

@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::{Color, DEFAULT_SAMPLES_PER_SEGMENT, Scene, SceneCurve, Style, ViewSpec};
-use crate::geom::{BSpline, Bezier, Curve, KnotVector, Nubmp};
+use crate::geom::Curve;
 
 /// A small, fast, seedable generator (SplitMix64): the same seed gives the same scene on
 /// every machine.
@@ -60,55 +60,86 @@ pub struct StressOptions {
     pub family: StressFamily,
 }
 
-/// The family of generated curves.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum StressFamily {
-    /// Bézier curves of the degree.
-    #[default]
-    Bezier,
-    /// Clamped uniform B-splines of the degree with four spans (four Bézier segments).
-    BSpline,
-    /// The standard NUBMP curves of those B-splines (four segments of one degree more).
-    Nubmp,
+/// The family of generated curves: a name of the core's family table
+/// ([`Curve::FAMILY_NAMES`]), each family's curves made by its
+/// [`crate::geom::Family::generated`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StressFamily(&'static str);
+
+impl Default for StressFamily {
+    /// Bézier curves.
+    fn default() -> Self {
+        StressFamily(Curve::FAMILY_NAMES[0])
+    }
+}
+
+/// A family name that is not in the family table.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown curve family {name:?} (expected one of {})", Curve::FAMILY_NAMES.join(", "))]
+pub struct UnknownFamily {
+    /// The name given.
+    pub name: String,
+}
+
+impl std::str::FromStr for StressFamily {
+    type Err = UnknownFamily;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Curve::FAMILY_NAMES
+            .iter()
+            .find(|n| **n == s)
+            .map(|n| StressFamily(n))
+            .ok_or_else(|| UnknownFamily { name: s.to_owned() })
+    }
 }
 
 impl StressFamily {
+    /// Every family, in the table's order.
+    pub fn all() -> impl Iterator<Item = StressFamily> {
+        Curve::FAMILY_NAMES.iter().map(|n| StressFamily(n))
+    }
+
     /// The family's name in scene files and on the command line.
     #[must_use]
     pub fn name(self) -> &'static str {
-        match self {
-            StressFamily::Bezier => "bezier",
-            StressFamily::BSpline => "bspline",
-            StressFamily::Nubmp => "nubmp",
+        self.0
+    }
+
+    /// One curve of `degree`, its points drawn from `point`.
+    fn curve(self, degree: usize, point: &mut dyn FnMut() -> DVec3) -> Curve {
+        match Curve::generated(self.0, degree, point) {
+            Some(Ok(c)) => c,
+            Some(Err(e)) => unreachable!("finite points in the unit cube make a valid curve: {e}"),
+            None => unreachable!("the name comes from the family table"),
         }
     }
 
-    /// Bézier segments one curve lowers to.
+    /// A curve of `degree` on fixed points, for its structure.
+    fn sample(self, degree: usize) -> Curve {
+        let mut rng = Rng::new(0);
+        self.curve(degree, &mut || DVec3::new(rng.unit(), rng.unit(), 0.0))
+    }
+
+    /// Bézier segments one curve of `degree` lowers to.
     #[must_use]
-    pub fn segments(self) -> usize {
-        match self {
-            StressFamily::Bezier => 1,
-            StressFamily::BSpline | StressFamily::Nubmp => 4,
-        }
+    pub fn segments(self, degree: usize) -> usize {
+        crate::geom::Lower::lower(&self.sample(degree)).len()
     }
 
-    /// The degree of those segments for curves of `degree` (a NUBMP curve lowers through
-    /// its dual, one degree higher).
+    /// The highest degree of those segments for curves of `degree` (a NUBMP curve lowers
+    /// through its dual, one degree higher).
     #[must_use]
     pub fn segment_degree(self, degree: usize) -> usize {
-        match self {
-            StressFamily::Nubmp => degree + 1,
-            _ => degree,
-        }
+        crate::geom::Lower::lower(&self.sample(degree))
+            .iter()
+            .map(|s| s.bezier.degree())
+            .max()
+            .unwrap_or(0)
     }
 
     /// Control points of one curve of `degree`.
     #[must_use]
     pub fn points(self, degree: usize) -> usize {
-        match self {
-            StressFamily::Bezier => degree + 1,
-            StressFamily::BSpline | StressFamily::Nubmp => degree + 4,
-        }
+        self.sample(degree).control_points().len()
     }
 }
 
@@ -120,7 +151,7 @@ impl Default for StressOptions {
             samples: DEFAULT_SAMPLES_PER_SEGMENT,
             three_d: false,
             seed: 1,
-            family: StressFamily::Bezier,
+            family: StressFamily::default(),
         }
     }
 }
@@ -134,20 +165,18 @@ pub fn random_bezier_scene(opts: StressOptions) -> Scene {
     let curves = (0..opts.curves)
         .map(|i| {
             let origin = DVec3::new((i % side) as f64, (i / side) as f64, 0.0);
-            let points: Vec<DVec3> = (0..opts.family.points(opts.degree))
-                .map(|_| {
-                    let z = if opts.three_d {
-                        rng.range(0.0, 1.0)
-                    } else {
-                        0.0
-                    };
-                    origin + DVec3::new(rng.range(0.0, 1.0), rng.range(0.0, 1.0), z)
-                })
-                .collect();
+            let curve = opts.family.curve(opts.degree, &mut || {
+                let z = if opts.three_d {
+                    rng.range(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                origin + DVec3::new(rng.range(0.0, 1.0), rng.range(0.0, 1.0), z)
+            });
             let hue = rng.unit() as f32;
             SceneCurve {
                 name: None,
-                curve: family_curve(opts.family, opts.degree, points),
+                curve,
                 style: Style {
                     color: Color([0.2 + 0.6 * hue, 0.3, 0.8 - 0.6 * hue, 1.0]),
                     width: 1.0,
@@ -168,30 +197,6 @@ pub fn random_bezier_scene(opts: StressOptions) -> Scene {
         view: ViewSpec::Auto,
         curves,
         annotations: Vec::new(),
-    }
-}
-
-fn family_curve(family: StressFamily, degree: usize, points: Vec<DVec3>) -> Curve {
-    let spline = || {
-        let knots = KnotVector::clamped_uniform(degree + 1, points.len())
-            .unwrap_or_else(|e| unreachable!("degree + 4 points fit order degree + 1: {e}"));
-        (points.clone(), knots)
-    };
-    match family {
-        StressFamily::Bezier => Curve::Bezier(Bezier::new(points)),
-        StressFamily::BSpline => {
-            let (p, k) = spline();
-            Curve::BSpline(
-                BSpline::from_parts(p, k).unwrap_or_else(|e| unreachable!("finite points: {e}")),
-            )
-        }
-        StressFamily::Nubmp => {
-            let (p, k) = spline();
-            Curve::Nubmp(
-                Nubmp::standard(p, k)
-                    .unwrap_or_else(|e| unreachable!("uniform knots elevate finitely: {e}")),
-            )
-        }
     }
 }
 

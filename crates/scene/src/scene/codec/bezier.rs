@@ -3,7 +3,7 @@
 use schemars::JsonSchema;
 use serde::Serialize;
 
-use super::{Codec, geom_error};
+use super::{Codec, Written, geom_error};
 use crate::geom::{Bezier, Family};
 use crate::jsonread::{Node, Obj};
 use crate::scene::SceneError;
@@ -19,12 +19,15 @@ pub struct BezierDoc {
 
 impl Codec for Bezier {
     const FIELDS: &'static [&'static str] = &["points"];
-    type Doc = BezierDoc;
 
     fn decode(node: &Node<'_>, obj: &Obj<'_>) -> Result<Bezier, SceneError> {
         let points = bezier_points(obj)?;
         Bezier::try_new(points).map_err(|e| geom_error(node, "", &e))
     }
+}
+
+impl Written for Bezier {
+    type Doc = BezierDoc;
 
     fn encode(&self) -> BezierDoc {
         BezierDoc {

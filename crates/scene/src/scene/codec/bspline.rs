@@ -4,7 +4,7 @@ use schemars::JsonSchema;
 use serde::Serialize;
 use serde_json::Value;
 
-use super::{Codec, geom_error};
+use super::{Codec, Written, geom_error};
 use crate::geom::exact::{Rational, parse_decimal};
 use crate::geom::{BSpline, Family, KnotVector};
 use crate::jsonread::{Node, Obj};
@@ -44,12 +44,15 @@ pub enum NamedKnots {
 
 impl Codec for BSpline {
     const FIELDS: &'static [&'static str] = &["points", "knots", "order"];
-    type Doc = BSplineDoc;
 
     fn decode(node: &Node<'_>, obj: &Obj<'_>) -> Result<BSpline, SceneError> {
         let (points, knots) = decode_spline_parts(node, obj)?;
         BSpline::from_parts(points, knots).map_err(|e| geom_error(node, "", &e))
     }
+}
+
+impl Written for BSpline {
+    type Doc = BSplineDoc;
 
     fn encode(&self) -> BSplineDoc {
         BSplineDoc {

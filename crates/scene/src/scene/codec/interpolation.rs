@@ -3,7 +3,7 @@
 use schemars::JsonSchema;
 use serde::Serialize;
 
-use super::{Codec, geom_error};
+use super::{Codec, Written, geom_error};
 use crate::geom::{CubicInterpolation, GeomError, Modification, Reading};
 use crate::jsonread::{Node, Obj};
 use crate::scene::SceneError;
@@ -49,7 +49,6 @@ pub enum ReadingDoc {
 
 impl Codec for CubicInterpolation {
     const FIELDS: &'static [&'static str] = &["points", "params", "modification"];
-    type Doc = InterpolationDoc;
 
     fn decode(node: &Node<'_>, obj: &Obj<'_>) -> Result<CubicInterpolation, SceneError> {
         let points = obj.req("points")?.points(2)?;
@@ -70,6 +69,10 @@ impl Codec for CubicInterpolation {
             geom_error(node, prefix, &e)
         })
     }
+}
+
+impl Written for CubicInterpolation {
+    type Doc = InterpolationDoc;
 
     fn encode(&self) -> InterpolationDoc {
         InterpolationDoc {

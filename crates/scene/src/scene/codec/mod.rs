@@ -1,6 +1,8 @@
 //! One codec per curve family: how its object in a scene file is read (with the path of
-//! the first offending value) and written. Each family's file implements [`Codec`]; the
-//! table [`CODECS`] is the only list of families the reader keeps.
+//! the first offending value) and written. Each family's file implements [`Written`] and
+//! [`Codec`]; the reader's table [`CODECS`] and the written forms' enum
+//! ([`super::doc::FamilyDoc`]) are generated from the core's family table
+//! (`splinescope_core::family_table!`), so a family without a codec does not compile.
 
 mod bezier;
 mod bspline;
@@ -14,26 +16,28 @@ pub use interpolation::{InterpolationDoc, ModificationDoc};
 pub use modified::ModifiedBezierDoc;
 pub use nubmp::{NubmpDoc, ShapeSettingDoc};
 
-use crate::geom::{
-    BSpline, Bezier, CubicInterpolation, Curve, Family, GeomError, ModifiedBezier, Nubmp,
-};
+use crate::geom::{Curve, Family, GeomError};
 use crate::jsonread::{Node, Obj};
 
 use super::SceneError;
 
-/// How one family reads and writes its curve object.
-pub(crate) trait Codec: Family + Into<Curve> {
-    /// The family's own fields (beyond `type`, `name` and `style`).
-    const FIELDS: &'static [&'static str];
-
+/// How one family's curve object is written: its fields' form in scene files and the
+/// schema.
+pub trait Written: Family {
     /// The written form of the family's fields.
-    type Doc;
-
-    /// Reads the family's fields of the curve object `obj` (at `node`).
-    fn decode(node: &Node<'_>, obj: &Obj<'_>) -> Result<Self, SceneError>;
+    type Doc: serde::Serialize + schemars::JsonSchema;
 
     /// The family's fields as they are written.
     fn encode(&self) -> Self::Doc;
+}
+
+/// How one family reads its curve object.
+pub(crate) trait Codec: Written + Into<Curve> {
+    /// The family's own fields (beyond `type`, `name` and `style`).
+    const FIELDS: &'static [&'static str];
+
+    /// Reads the family's fields of the curve object `obj` (at `node`).
+    fn decode(node: &Node<'_>, obj: &Obj<'_>) -> Result<Self, SceneError>;
 }
 
 /// The fields every curve object may have, whatever its family.
@@ -52,14 +56,15 @@ fn decode_as<'a, F: Codec>(node: &Node<'a>) -> Result<(Curve, Obj<'a>), SceneErr
     Ok((curve.into(), obj))
 }
 
-/// Every family's name and reader, in the order error messages list them.
-const CODECS: [(&str, Decoder); 5] = [
-    (Bezier::NAME, decode_as::<Bezier>),
-    (ModifiedBezier::NAME, decode_as::<ModifiedBezier>),
-    (CubicInterpolation::NAME, decode_as::<CubicInterpolation>),
-    (BSpline::NAME, decode_as::<BSpline>),
-    (Nubmp::NAME, decode_as::<Nubmp>),
-];
+macro_rules! codec_table {
+    ($( $(#[$doc:meta])* $variant:ident($ty:ty) = $name:literal ),* $(,)?) => {
+        /// Every family's name and reader, in the core's family table's order (the order
+        /// error messages list them in).
+        const CODECS: &[(&str, Decoder)] = &[$( ($name, decode_as::<$ty>), )*];
+    };
+}
+
+splinescope_core::family_table!(codec_table);
 
 /// Reads the curve object at `node` as family `family`; `None` for an unknown family.
 pub(crate) fn decode<'a>(

@@ -4,7 +4,7 @@ use schemars::JsonSchema;
 use serde::Serialize;
 
 use super::bezier::bezier_points;
-use super::{Codec, geom_error};
+use super::{Codec, Written, geom_error};
 use crate::geom::{Bezier, ModifiedBezier};
 use crate::jsonread::{Node, Obj};
 use crate::scene::SceneError;
@@ -25,7 +25,6 @@ pub struct ModifiedBezierDoc {
 
 impl Codec for ModifiedBezier {
     const FIELDS: &'static [&'static str] = &["points", "t_star", "v"];
-    type Doc = ModifiedBezierDoc;
 
     fn decode(node: &Node<'_>, obj: &Obj<'_>) -> Result<ModifiedBezier, SceneError> {
         let points = bezier_points(obj)?;
@@ -34,6 +33,10 @@ impl Codec for ModifiedBezier {
         let base = Bezier::try_new(points).map_err(|e| geom_error(node, "", &e))?;
         ModifiedBezier::try_new(base, t_star, v).map_err(|e| geom_error(node, "", &e))
     }
+}
+
+impl Written for ModifiedBezier {
+    type Doc = ModifiedBezierDoc;
 
     fn encode(&self) -> ModifiedBezierDoc {
         ModifiedBezierDoc {

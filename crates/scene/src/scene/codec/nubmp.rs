@@ -4,7 +4,7 @@ use schemars::JsonSchema;
 use serde::Serialize;
 
 use super::bspline::{KnotsDoc, decode_spline_parts};
-use super::{Codec, geom_error};
+use super::{Codec, Written, geom_error};
 use crate::geom::{Family, GeomError, Nubmp};
 use crate::jsonread::{Node, Obj};
 use crate::scene::point_doc::PointDoc;
@@ -52,7 +52,6 @@ pub enum ShapeSettingDoc {
 
 impl Codec for Nubmp {
     const FIELDS: &'static [&'static str] = &["points", "knots", "order", "shape"];
-    type Doc = NubmpDoc;
 
     fn decode(node: &Node<'_>, obj: &Obj<'_>) -> Result<Nubmp, SceneError> {
         let (points, knots) = decode_spline_parts(node, obj)?;
@@ -64,6 +63,10 @@ impl Codec for Nubmp {
         }
         Ok(curve)
     }
+}
+
+impl Written for Nubmp {
+    type Doc = NubmpDoc;
 
     fn encode(&self) -> NubmpDoc {
         NubmpDoc {
