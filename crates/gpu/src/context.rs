@@ -32,8 +32,13 @@ pub enum BackendChoice {
     Dx12,
 }
 
+/// A backend name that is not one of `auto, vulkan, gl, metal, dx12`.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown GPU backend {0:?} (expected auto, vulkan, gl, metal or dx12)")]
+pub struct UnknownBackend(pub String);
+
 impl FromStr for BackendChoice {
-    type Err = String;
+    type Err = UnknownBackend;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         match s.to_ascii_lowercase().as_str() {
             "auto" => Ok(BackendChoice::Auto),
@@ -41,9 +46,7 @@ impl FromStr for BackendChoice {
             "gl" | "gles" | "opengl" => Ok(BackendChoice::Gl),
             "metal" => Ok(BackendChoice::Metal),
             "dx12" | "d3d12" => Ok(BackendChoice::Dx12),
-            other => Err(format!(
-                "unknown GPU backend {other:?} (expected auto, vulkan, gl, metal or dx12)"
-            )),
+            other => Err(UnknownBackend(other.to_owned())),
         }
     }
 }

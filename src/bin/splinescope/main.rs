@@ -50,6 +50,7 @@ struct GpuArgs {
 
 fn parse_backend(s: &str) -> Result<BackendChoice, String> {
     s.parse()
+        .map_err(|e: splinescope::gpu::context::UnknownBackend| e.to_string())
 }
 
 /// Parses `--tolerance-px`.
