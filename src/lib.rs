@@ -13,9 +13,9 @@
 //! * [`splinescope_gpu`] ([`gpu`]) — the only layer that names `wgpu`: device setup, the
 //!   WGSL kernels and their CPU twin, the renderer, offscreen capture.
 //! * [`splinescope_viewer`] ([`app`]) — the interactive winit + egui viewer.
-//! * this package — the command line, and what only it prints or writes: [`inspect`]
-//!   reports, [`outputs`] of `eval`/`check`, [`regress`]ion runs, image comparison
-//!   ([`image`]), the JSON [`schemas`], and drawing a scene offscreen ([`offscreen`]:
+//! * this package — the command line, and what only it prints or writes: [`outputs`] of
+//!   `eval`/`check`, [`regress`]ion runs, the JSON [`schemas`], and drawing a scene
+//!   offscreen ([`offscreen`]:
 //!   its encoding and camera handed to the GPU layer). It re-exports the layers under their module
 //!   names, so `splinescope::geom`, `splinescope::gpu` and the rest name one thing each.
 //!
@@ -25,13 +25,17 @@
 
 #![forbid(unsafe_code)]
 
-pub use splinescope_core::{geom, num, solve};
+pub use splinescope_core::{geom, inspect, num, solve};
 pub use splinescope_gpu as gpu;
 pub use splinescope_scene::{camera, files, limits, request, scene};
 pub use splinescope_viewer as app;
 
-pub mod image;
-pub mod inspect;
+pub mod image {
+    //! Images and their comparison: [`splinescope_gpu::image`] (the image type, PNG
+    //! reading and writing) and [`splinescope_gpu::compare`] (per-channel and FLIP).
+    pub use splinescope_gpu::compare::*;
+    pub use splinescope_gpu::image::{ImageError, RgbaImage};
+}
 pub mod offscreen;
 pub mod outputs;
 pub mod regress;

@@ -1,9 +1,10 @@
 //! splinescope's GPU layer, the only one that names `wgpu` and `naga`: device setup, the
 //! data layout shared with the WGSL shaders, packing, the compute tessellator and its CPU
-//! twin, the renderer, offscreen capture (into an [`image::RgbaImage`]) and GPU
-//! evaluation.
+//! twin, the renderer, offscreen capture (into an [`image::RgbaImage`]), GPU
+//! evaluation, and comparing images ([`compare`]: per-channel and FLIP, no GPU needed).
 //!
-//! What it may use: [`splinescope_core`] and [`splinescope_scene`], wgpu, naga, png. No
+//! What it may use: [`splinescope_core`] and [`splinescope_scene`], wgpu, naga, png,
+//! nv-flip. No
 //! window or command-line crate: the viewer and the command line build on it.
 
 #![forbid(unsafe_code)]
@@ -11,6 +12,7 @@
 pub mod adaptive;
 pub mod bindings;
 pub mod chunks;
+pub mod compare;
 pub mod context;
 pub mod eval;
 pub mod image;

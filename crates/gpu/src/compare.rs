@@ -1,8 +1,8 @@
-//! Comparing images for image tests and `regress`/`diff`: per-channel and NVIDIA FLIP.
-//! The image type and its PNG reading and writing live with the renderer that makes them
-//! ([`splinescope_gpu::image`]), re-exported here.
+//! Comparing images for image tests, `regress`/`diff` and the Python module:
+//! per-channel and NVIDIA FLIP, on the [`RgbaImage`]s the renderer makes. No GPU is
+//! needed.
 
-pub use splinescope_gpu::image::{ImageError, RgbaImage};
+use super::image::RgbaImage;
 
 use thiserror::Error;
 
