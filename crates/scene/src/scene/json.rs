@@ -199,6 +199,38 @@ fn decode_view(node: &Node<'_>) -> Result<ViewSpec, SceneError> {
     }
 }
 
+/// Reads one curve object of the scene format (what `curves[index]` of a scene file
+/// holds: `type`, the family's fields, `name`, `style`), checked as a scene's curve is;
+/// errors name the path inside the object (`points[2][0]`). `index` picks the default
+/// style's palette colour.
+///
+/// # Errors
+/// The first problem found, as a [`SceneError`].
+pub fn curve_from_value(value: &Value, index: usize) -> Result<SceneCurve, SceneError> {
+    decode_curve(&Node::root(value), index)
+}
+
+/// The written form of one curve (as [`curve_from_value`] reads it), its style written
+/// where it differs from the default of palette position `index`.
+#[must_use]
+pub fn curve_to_value(curve: &SceneCurve, index: usize) -> Value {
+    let mut scene = Scene {
+        name: None,
+        background: Color::WHITE,
+        samples_per_segment: None,
+        view: ViewSpec::Auto,
+        curves: Vec::new(),
+        annotations: Vec::new(),
+    };
+    // Earlier palette positions, so that the curve's default style is the one of `index`.
+    scene.curves.resize(index + 1, curve.clone());
+    let doc = to_doc(&scene);
+    doc.curves
+        .get(index)
+        .and_then(|c| serde_json::to_value(c).ok())
+        .unwrap_or(Value::Null)
+}
+
 pub(super) fn decode_curve(node: &Node<'_>, index: usize) -> Result<SceneCurve, SceneError> {
     let Value::Object(map) = node.value else {
         return Err(node.wrong_type("a curve object"));

@@ -22,7 +22,9 @@ use thiserror::Error;
 use crate::camera::{Camera, Camera2d, Camera3d};
 use crate::geom::{Aabb, Curve};
 
-pub use json::{from_json_str, pretty_json, to_doc, to_json_string};
+pub use json::{
+    curve_from_value, curve_to_value, from_json_str, pretty_json, to_doc, to_json_string,
+};
 pub use preserve::to_json_string_keeping;
 
 /// The scene format version this build reads and writes.

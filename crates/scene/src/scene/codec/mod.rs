@@ -88,6 +88,8 @@ pub(crate) fn geom_error(curve: &Node<'_>, prefix: &str, e: &GeomError) -> Scene
     let field = e.field();
     let path = if field.is_empty() {
         curve.path.to_string()
+    } else if curve.path.is_empty() {
+        format!("{prefix}{field}")
     } else {
         format!("{}.{prefix}{field}", curve.path)
     };

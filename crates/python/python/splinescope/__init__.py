@@ -1,0 +1,662 @@
+"""splinescope for Python: curve families, least-squares shape modification and GPU
+rendering on numpy arrays.
+
+Curves take the scene format's fields (``docs/scene-format.md``) and are checked exactly
+as ``splinescope check`` checks a scene file, with the same messages. Points are
+``(N, 2)`` or ``(N, 3)`` float64 arrays; results keep the dimension of the input.
+
+Families (each class's docstring states its formula and paper):
+
+* :class:`Bezier` — Bézier curves of any degree (paper 002).
+* :class:`ModifiedBezier` — ``R(t) = Q(t) + S(t) v`` with a C¹ bump ``S`` (paper 002, §4).
+* :class:`Interpolation` — cubic Bézier interpolation, plain or modified (paper 002, §5).
+* :class:`BSpline` — non-uniform B-splines (paper 001, §2), to and from scipy.
+* :class:`Nubmp` — B-splines with multiple shape parameters (paper 001, §3–5).
+
+Papers: 000 — least-squares shape modification of Bézier curves; 001 — NUBMP curves;
+002 — the modified Bézier curve and cubic interpolation (texts and a clean statement of
+the mathematics in the repository's ``docs/math.md``).
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _splinescope as _native
+from ._splinescope import (
+    CurveError,
+    GpuError,
+    ImageError,
+    SceneError,
+    SolveError,
+    SplinescopeError,
+)
+
+__all__ = [
+    "Curve",
+    "Bezier",
+    "ModifiedBezier",
+    "Interpolation",
+    "BSpline",
+    "Nubmp",
+    "Scene",
+    "load",
+    "solve",
+    "eval_many",
+    "compare_images",
+    "FAMILY_NAMES",
+    "SOLVE_METHODS",
+    "SplinescopeError",
+    "SceneError",
+    "CurveError",
+    "SolveError",
+    "ImageError",
+    "GpuError",
+]
+
+__version__: str = _native.__version__
+#: The families' names in scene files, in the order of the family table.
+FAMILY_NAMES: List[str] = list(_native.FAMILY_NAMES)
+#: The solve methods of ``docs/solve-format.md``.
+SOLVE_METHODS: List[str] = list(_native.SOLVE_METHODS)
+
+ArrayLike = Any
+Report = Dict[str, Any]
+
+
+def _error(cls: type, message: str, path: str) -> Exception:
+    e = cls(message)
+    e.path = path  # type: ignore[attr-defined]
+    return e
+
+
+def _points(points: ArrayLike, what: str) -> Tuple[List[List[float]], int]:
+    """Points as JSON lists, checked: shape (N, 2) or (N, 3), finite numbers."""
+    try:
+        a = np.asarray(points, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise _error(SceneError, f"{what}: not an array of numbers ({e})", what) from None
+    if a.ndim != 2 or a.shape[1] not in (2, 3):
+        raise _error(
+            SceneError,
+            f"{what} must be an array of shape (N, 2) or (N, 3); got shape {a.shape}",
+            what,
+        )
+    _finite(a, what)
+    return a.tolist(), int(a.shape[1])
+
+
+def _point(p: ArrayLike, what: str) -> List[float]:
+    try:
+        a = np.asarray(p, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise _error(SceneError, f"{what}: not a point ({e})", what) from None
+    if a.ndim != 1 or a.shape[0] not in (2, 3):
+        raise _error(
+            SceneError,
+            f"{what} must be a point of 2 or 3 numbers; got shape {a.shape}",
+            what,
+        )
+    _finite(a, what)
+    return a.tolist()
+
+
+def _numbers(v: ArrayLike, what: str) -> List[float]:
+    try:
+        a = np.asarray(v, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise _error(SceneError, f"{what}: not numbers ({e})", what) from None
+    if a.ndim != 1:
+        raise _error(
+            SceneError, f"{what} must be a 1-D array of numbers; got shape {a.shape}", what
+        )
+    _finite(a, what)
+    return a.tolist()
+
+
+def _finite(a: np.ndarray, what: str) -> None:
+    bad = np.argwhere(~np.isfinite(a))
+    if len(bad):
+        index = "".join(f"[{int(i)}]" for i in bad[0])
+        value = a[tuple(bad[0])]
+        raise _error(
+            SceneError,
+            f"{what}{index}: {value} is not a finite number",
+            f"{what}{index}",
+        )
+
+
+def _number(x: Any, what: str) -> float:
+    try:
+        v = float(x)
+    except (TypeError, ValueError):
+        raise _error(SceneError, f"{what}: {x!r} is not a number", what) from None
+    if not np.isfinite(v):
+        raise _error(SceneError, f"{what}: {v} is not a finite number", what)
+    return v
+
+
+class Curve:
+    """A curve of one of the families; construct it through its family's class.
+
+    Every method takes parameters ``t`` as a number (results of shape ``(dim,)``) or a
+    1-D array (results ``(N, dim)``); contiguous float64 arrays are read without a copy.
+    A parameter outside the domain is refused (:class:`CurveError` naming it).
+    """
+
+    __slots__ = ("_c",)
+    _family = ""
+
+    def __init__(self) -> None:  # pragma: no cover - abstract
+        raise TypeError("construct a curve through its family: Bezier, BSpline, …")
+
+    # -- construction ---------------------------------------------------------------
+
+    def _set(self, obj: Dict[str, Any], dim: Optional[int]) -> None:
+        self._c = _native._Curve.from_json(json.dumps(obj), dim)
+
+    @staticmethod
+    def _wrap(native: Any, dim: Optional[int] = None) -> "Curve":
+        if dim is not None and native.dim != dim:
+            native = _native._Curve.from_json(native.to_json(), dim)
+        cls = _CLASSES.get(native.family, Curve)
+        c = cls.__new__(cls)
+        c._c = native
+        return c
+
+    @staticmethod
+    def from_dict(obj: Dict[str, Any], dim: Optional[int] = None) -> "Curve":
+        """A curve from a scene file's curve object (``{"type": "bezier", …}``)."""
+        return Curve._wrap(_native._Curve.from_json(json.dumps(obj), dim))
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The curve object of the scene format."""
+        return json.loads(self._c.to_json())
+
+    def _with(self, **fields: Any) -> "Curve":
+        obj = self.to_dict()
+        obj.update(fields)
+        return Curve.from_dict(obj, self.dim)
+
+    # -- what it is -----------------------------------------------------------------
+
+    @property
+    def family(self) -> str:
+        """The family's name in scene files."""
+        return self._c.family
+
+    @property
+    def dim(self) -> int:
+        """Coordinates per point in results: 2 or 3."""
+        return self._c.dim
+
+    @property
+    def name(self) -> Optional[str]:
+        return self._c.name
+
+    @property
+    def control_points(self) -> np.ndarray:
+        """The points the user places: control points, or the interpolated points."""
+        return self._c.control_points()
+
+    def domain(self) -> Tuple[float, float]:
+        """The parameter domain ``(a, b)``."""
+        return self._c.domain()
+
+    def summary(self) -> str:
+        return self._c.summary()
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}({self.summary()}, dim={self.dim})"
+
+    # -- evaluation -----------------------------------------------------------------
+
+    def eval(self, t: ArrayLike) -> np.ndarray:
+        """``P(t)``: shape ``(dim,)`` for a number, ``(N, dim)`` for an array."""
+        return self._c.eval(t)
+
+    __call__ = eval
+
+    def derivative(self, t: ArrayLike, order: int = 1) -> np.ndarray:
+        """The first or second derivative with respect to ``t``."""
+        return self._c.derivative(t, order)
+
+    def curvature(self, t: ArrayLike) -> Union[float, np.ndarray]:
+        """``κ = |P′ × P″| / |P′|³``; NaN where ``P′ = 0``."""
+        return self._c.curvature(t)
+
+    def sample(self, n: int) -> np.ndarray:
+        """``n`` points at uniform parameters over the domain, ends included."""
+        return self._c.sample(n)
+
+    def segments(self) -> List[Tuple[float, float, np.ndarray]]:
+        """The exact Bézier segments, ``(t0, t1, control points)`` each."""
+        return self._c.segments()
+
+    def inspect(self) -> Dict[str, Any]:
+        """The curve's derived data, as ``splinescope inspect`` reports it."""
+        return json.loads(self._c.inspect_json())
+
+    # -- structure ------------------------------------------------------------------
+
+    def insert_knot(self, t: float) -> "Curve":
+        """The same curve with the knot ``t`` inserted (B-splines, standard NUBMP)."""
+        return Curve._wrap(self._c.insert_knot(_number(t, "t")))
+
+    def insert_point(self, at: ArrayLike) -> Tuple["Curve", int]:
+        """A control point inserted on the control polygon's leg nearest ``at``."""
+        c, i = self._c.insert_point(np.asarray(at, dtype=np.float64))
+        return Curve._wrap(c), i
+
+    def remove_point(self, index: int) -> "Curve":
+        """The curve without control point ``index``."""
+        return Curve._wrap(self._c.remove_point(index))
+
+    def elevate(self, times: int = 1) -> "Curve":
+        """The same curve with its degree raised ``times`` (Bézier, B-spline)."""
+        return Curve._wrap(self._c.elevate(times))
+
+    # -- least-squares shape modification (paper 000) ------------------------------
+
+    def solve(self, method: str, **fields: Any) -> Tuple["Curve", Report]:
+        """Applies one solve method (``docs/solve-format.md``) to this curve alone: the
+        modified curve and the method's report. Points in ``fields`` may be numpy arrays.
+        """
+        request: Dict[str, Any] = {"curve": 0, "method": method}
+        for k, v in fields.items():
+            if v is None:
+                continue
+            request[k] = v.tolist() if isinstance(v, np.ndarray) else v
+        scene = _native._Scene.from_curves([self._c])
+        new, reports = scene.solve(json.dumps(request))
+        return Curve._wrap(new.curves[0], self.dim), json.loads(reports)[0]
+
+    def pass_through(
+        self,
+        target: ArrayLike,
+        t: Optional[float] = None,
+        first: Optional[int] = None,
+        count: Optional[int] = None,
+    ) -> Tuple["Curve", Report]:
+        """Moves control points minimally (least squares) so that the curve passes
+        through ``target`` at ``t`` (default: the parameter nearest the target), moving
+        ``count`` points from ``first`` (default all): paper 000, single target.
+        Bézier curves only."""
+        return self.solve(
+            "single_target", target=_point(target, "target"), t=t, first=first, count=count
+        )
+
+    def pass_through_keeping_tangents(
+        self, target: ArrayLike, t: Optional[float] = None
+    ) -> Tuple["Curve", Report]:
+        """As :meth:`pass_through`, keeping both end tangent directions (paper 000)."""
+        return self.solve("tangent_kept", target=_point(target, "target"), t=t)
+
+    def pass_through_all(
+        self, targets: ArrayLike, params: Optional[Sequence[float]] = None
+    ) -> Tuple["Curve", Report]:
+        """Moves control points minimally so that the curve passes through every
+        target (at ``params``, default the nearest parameters): paper 000, several
+        targets."""
+        pts, _ = _points(targets, "targets")
+        return self.solve(
+            "multi_target",
+            targets=pts,
+            params=None if params is None else _numbers(params, "params"),
+        )
+
+
+class Bezier(Curve):
+    """A Bézier curve of any degree ``n`` (paper 002):
+    ``P(t) = Σ_{i=0}^{n} B_{i,n}(t) P_i`` on ``[0, 1]``, ``B_{i,n}(t) = C(n,i) tᶦ (1−t)ⁿ⁻ᶦ``,
+    evaluated by de Casteljau in float64.
+
+    ``points``: ``(n + 1, 2)`` or ``(n + 1, 3)``, ``n + 1 ≥ 2``.
+    """
+
+    __slots__ = ()
+
+    def __init__(self, points: ArrayLike) -> None:
+        pts, dim = _points(points, "points")
+        self._set({"type": "bezier", "points": pts}, dim)
+
+    @property
+    def degree(self) -> int:
+        return len(self.control_points) - 1
+
+
+class ModifiedBezier(Curve):
+    """The modified Bézier curve of paper 002, §4: ``R(t) = Q(t) + S(t) v`` where ``Q``
+    is the Bézier curve of ``points`` and ``S`` the C¹ bump
+    ``S(t) = (2 t t* − t²)/t*²`` on ``[0, t*]``, ``(2 t t* − t² − 2t* + 1)/(t* − 1)²`` on
+    ``[t*, 1]`` (``S(0) = S(1) = 0``, ``S(t*) = 1``).
+
+    ``t_star`` in the open interval (0, 1); ``v`` a vector of 2 or 3 numbers.
+    """
+
+    __slots__ = ()
+
+    def __init__(self, points: ArrayLike, t_star: float, v: ArrayLike) -> None:
+        pts, dim = _points(points, "points")
+        self._set(
+            {
+                "type": "modified_bezier",
+                "points": pts,
+                "t_star": _number(t_star, "t_star"),
+                "v": _point(v, "v"),
+            },
+            dim,
+        )
+
+    @property
+    def t_star(self) -> float:
+        """Where the bump peaks; setting it is checked as in a scene file."""
+        return float(self.to_dict()["t_star"])
+
+    @t_star.setter
+    def t_star(self, value: float) -> None:
+        self._c = self._with(t_star=_number(value, "t_star"))._c
+
+    @property
+    def v(self) -> np.ndarray:
+        """The vector ``v``."""
+        return np.asarray(self.to_dict()["v"], dtype=np.float64)[: self.dim]
+
+    @v.setter
+    def v(self, value: ArrayLike) -> None:
+        self._c = self._with(v=_point(value, "v"))._c
+
+
+class Interpolation(Curve):
+    """Cubic Bézier interpolation of paper 002, §5: the curve passes through ``points``
+    at ``params`` (default ``0, 1, 2, …``); piece ``i`` is the cubic from ``P_{i−1}`` to
+    ``P_i`` with inner points ``P_{i−1} + (h/3) s_{i−1}`` and ``P_i − (h/3) s_i``, the
+    tangents ``s_i`` those of the parabola through three neighbours.
+
+    ``modification``: ``None`` or ``{"t_star": t, "v": [x, y], "reading": "paper" |
+    "bump_added"}`` (the modified interpolation of the paper's Example 2).
+    """
+
+    __slots__ = ()
+
+    def __init__(
+        self,
+        points: ArrayLike,
+        params: Optional[ArrayLike] = None,
+        modification: Optional[Dict[str, Any]] = None,
+    ) -> None:
+        pts, dim = _points(points, "points")
+        obj: Dict[str, Any] = {"type": "interpolation", "points": pts}
+        if params is not None:
+            obj["params"] = _numbers(params, "params")
+        if modification is not None:
+            obj["modification"] = _modification(modification)
+        self._set(obj, dim)
+
+    @property
+    def params(self) -> np.ndarray:
+        """The parameters of the points."""
+        d = self.to_dict()
+        if "params" in d:
+            return np.asarray(d["params"], dtype=np.float64)
+        return np.arange(len(d["points"]), dtype=np.float64)
+
+    @property
+    def modification(self) -> Optional[Dict[str, Any]]:
+        return self.to_dict().get("modification")
+
+    @modification.setter
+    def modification(self, value: Optional[Dict[str, Any]]) -> None:
+        obj = self.to_dict()
+        if value is None:
+            obj.pop("modification", None)
+        else:
+            obj["modification"] = _modification(value)
+        self._c = Curve.from_dict(obj, self.dim)._c
+
+
+def _modification(m: Dict[str, Any]) -> Dict[str, Any]:
+    out = dict(m)
+    if "v" in out:
+        out["v"] = _point(out["v"], "modification.v")
+    return out
+
+
+class BSpline(Curve):
+    """A non-uniform B-spline of order ``k`` (degree ``k − 1``), paper 001, §2:
+    ``P(t) = Σ_i N_{i,k}(t) P_i`` on ``[t_{k−1}, t_n]`` (Cox–de Boor basis).
+
+    ``knots``: ``n + k`` non-decreasing numbers, or ``"clamped_uniform"``; ``points``:
+    ``(n, 2)`` or ``(n, 3)``; ``order`` = ``k ≥ 2``. The argument order follows
+    ``scipy.interpolate.BSpline(t, c, k)`` (but with the order, not the degree).
+    """
+
+    __slots__ = ()
+
+    def __init__(self, knots: Union[ArrayLike, str], points: ArrayLike, order: int) -> None:
+        pts, dim = _points(points, "points")
+        self._set(
+            {
+                "type": "bspline",
+                "points": pts,
+                "knots": knots if isinstance(knots, str) else _numbers(knots, "knots"),
+                "order": order,
+            },
+            dim,
+        )
+
+    @property
+    def knots(self) -> np.ndarray:
+        return np.asarray(self.inspect()["knots"], dtype=np.float64)
+
+    @property
+    def order(self) -> int:
+        return int(self.to_dict()["order"])
+
+    @classmethod
+    def from_scipy(cls, spl: Any) -> "BSpline":
+        """From ``scipy.interpolate.BSpline`` (coefficients ``(n, 2)`` or ``(n, 3)``)."""
+        t = np.asarray(spl.t, dtype=np.float64)
+        k = int(spl.k)
+        n = len(t) - k - 1
+        c = np.asarray(spl.c, dtype=np.float64)
+        if c.ndim != 2:
+            raise _error(
+                SceneError,
+                f"the spline's coefficients must have shape (n, 2) or (n, 3); got {c.shape}",
+                "c",
+            )
+        return cls(t, c[:n], k + 1)
+
+    def to_scipy(self) -> Any:
+        """As ``scipy.interpolate.BSpline`` (same knots, coefficients and degree)."""
+        from scipy.interpolate import BSpline as ScipyBSpline
+
+        return ScipyBSpline(self.knots, self.control_points, self.order - 1)
+
+
+class Nubmp(Curve):
+    """A B-spline with multiple shape parameters (NUBMP), paper 001, §3–5:
+    ``P(t) = Σ_i Ñ_{i,k}(t) P_i`` with ``Ñ_{i,k} = Σ_j a^i_j N*_{j,k+1}`` over the refined
+    knots ``T*`` (each distinct knot once more). With every ``a^i_j`` at its standard
+    value ``c^i_j`` it is the ordinary B-spline.
+
+    ``shape``: the scene format's settings, applied in order —
+    ``{"group": j, "values": [...]}`` or
+    ``{"group": j, "member": i, "value": x, "absorber": l}``.
+    """
+
+    __slots__ = ()
+
+    def __init__(
+        self,
+        points: ArrayLike,
+        knots: Union[ArrayLike, str],
+        order: int,
+        shape: Optional[List[Dict[str, Any]]] = None,
+    ) -> None:
+        pts, dim = _points(points, "points")
+        obj: Dict[str, Any] = {
+            "type": "nubmp",
+            "points": pts,
+            "knots": knots if isinstance(knots, str) else _numbers(knots, "knots"),
+            "order": order,
+        }
+        if shape is not None:
+            obj["shape"] = shape
+        self._set(obj, dim)
+
+    @property
+    def shape(self) -> List[Dict[str, Any]]:
+        """Every group's parameters, as ``{"group": j, "values": [...]}`` settings."""
+        return self.to_dict().get("shape", [])
+
+    @shape.setter
+    def shape(self, settings: List[Dict[str, Any]]) -> None:
+        self._c = self._with(shape=settings)._c
+
+    def set_group(self, group: int, values: ArrayLike) -> None:
+        """Sets every parameter of group ``group`` (≥ 0, summing to 1)."""
+        self.shape = self.shape + [{"group": group, "values": _numbers(values, "values")}]
+
+    def constrained(
+        self, target: ArrayLike, tau: float, group: int, respect_vd: bool = False
+    ) -> Tuple["Curve", Report]:
+        """Paper 001's constrained modification: changes group ``group``'s shape
+        parameters so that ``P(tau)`` moves to ``target`` (within the
+        variation-diminishing ranges when ``respect_vd``)."""
+        return self.solve(
+            "nubmp_constrained",
+            target=_point(target, "target"),
+            tau=_number(tau, "tau"),
+            group=group,
+            respect_vd=respect_vd,
+        )
+
+
+_CLASSES = {
+    "bezier": Bezier,
+    "modified_bezier": ModifiedBezier,
+    "interpolation": Interpolation,
+    "bspline": BSpline,
+    "nubmp": Nubmp,
+}
+
+
+class Scene:
+    """A scene: curves, view, annotations (``docs/scene-format.md``)."""
+
+    __slots__ = ("_s",)
+
+    def __init__(self, curves: Sequence[Curve] = (), name: Optional[str] = None) -> None:
+        self._s = _native._Scene.from_curves([c._c for c in curves], name)
+
+    @staticmethod
+    def _wrap(native: Any) -> "Scene":
+        s = Scene.__new__(Scene)
+        s._s = native
+        return s
+
+    @staticmethod
+    def from_json(text: str) -> "Scene":
+        """Reads and checks a scene from JSON text (:class:`SceneError` naming the path)."""
+        return Scene._wrap(_native._Scene.from_json(text))
+
+    @staticmethod
+    def load(path: Any) -> "Scene":
+        """Reads and checks a scene file."""
+        return Scene._wrap(_native._Scene.load(str(path)))
+
+    @property
+    def name(self) -> Optional[str]:
+        return self._s.name
+
+    @property
+    def curves(self) -> List[Curve]:
+        """The curves, in order (2-D results for a planar scene, 3-D otherwise)."""
+        return [Curve._wrap(c) for c in self._s.curves]
+
+    def to_json(self) -> str:
+        """The scene as JSON text, in the form it was read in."""
+        return self._s.to_json()
+
+    def save(self, path: Any) -> None:
+        """Writes the scene atomically; an unedited scene keeps the file's bytes."""
+        self._s.save(str(path))
+
+    def solve(self, request: Union[Dict[str, Any], List[Dict[str, Any]], str]) -> Tuple["Scene", Any]:
+        """As :func:`solve`."""
+        return solve(self, request)
+
+    def render(
+        self,
+        width: int = 800,
+        height: int = 500,
+        tolerance_px: float = 0.25,
+        backend: str = "auto",
+    ) -> np.ndarray:
+        """The scene drawn on the GPU (a software adapter works), as an
+        ``(height, width, 4)`` uint8 RGBA array: the image ``splinescope render``
+        makes. ``backend``: ``auto``, ``vulkan``, ``gl``, ``metal`` or ``dx12``."""
+        return self._s.render(width, height, tolerance_px, backend)
+
+    def png(self, width: int = 800, height: int = 500, backend: str = "auto") -> bytes:
+        """The rendered scene as PNG file bytes."""
+        return bytes(self._s.png(width, height, 0.25, backend))
+
+    def _repr_png_(self) -> bytes:
+        return self.png()
+
+    def __repr__(self) -> str:
+        return repr(self._s)
+
+
+def load(path: Any) -> Scene:
+    """Reads and checks a scene file (:class:`SceneError` naming the offending value)."""
+    return Scene.load(path)
+
+
+def solve(
+    scene: Scene, request: Union[Dict[str, Any], List[Dict[str, Any]], str]
+) -> Tuple[Scene, Any]:
+    """Applies a solve request (a dict, a list of them, or JSON text) as ``splinescope
+    solve`` does: the new scene and the report (a list of reports for a list).
+    Nothing changes unless every request succeeds (:class:`SolveError` naming the
+    offending value)."""
+    text = request if isinstance(request, str) else json.dumps(_plain(request))
+    new, reports = scene._s.solve(text)
+    parsed = json.loads(reports)
+    single = not isinstance(request, list) and not (
+        isinstance(request, str) and request.lstrip().startswith("[")
+    )
+    return Scene._wrap(new), parsed[0] if single else parsed
+
+
+def _plain(v: Any) -> Any:
+    if isinstance(v, np.ndarray):
+        return v.tolist()
+    if isinstance(v, dict):
+        return {k: _plain(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_plain(x) for x in v]
+    if isinstance(v, np.generic):
+        return v.item()
+    return v
+
+
+def eval_many(curves: Sequence[Curve], n: int) -> np.ndarray:
+    """``n`` uniform samples of every curve over its domain, ``(C, n, dim)``, on every
+    core (all curves of one dimension)."""
+    return _native.eval_many([c._c for c in curves], n)
+
+
+def compare_images(
+    actual: np.ndarray, reference: np.ndarray, tolerance: str = "channel=24,pixels=0.1%"
+) -> Dict[str, Any]:
+    """Compares two ``(H, W, 4)`` or ``(H, W, 3)`` uint8 images as ``splinescope diff``
+    does: ``matches``, ``max_channel_diff``, ``differing_pixels``,
+    ``differing_fraction``, ``flip_mean``, ``flip_max``, ``width``, ``height``."""
+    return json.loads(_native.compare_images(actual, reference, tolerance))

@@ -1,0 +1,129 @@
+//! numpy arrays in and out: contiguous float64 input is read in place (no copy), any
+//! other dtype or memory order is converted once by numpy; a wrong shape is refused with
+//! a message naming the argument and the shape. Outputs are allocated once, as the
+//! vector the work filled, handed to numpy without copying.
+
+use glam::DVec3;
+use numpy::{
+    IntoPyArray, PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods,
+};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyFloat;
+
+/// Past this many values, work runs with the GIL released (other Python threads run).
+pub const DETACH_ABOVE: usize = 4096;
+
+/// Parameters: one number, or a 1-D array of them.
+pub enum Params<'py> {
+    /// A scalar: results have shape `(dim,)`.
+    Scalar(f64),
+    /// An array (read in place when it is contiguous float64): results `(N, dim)`.
+    Array(PyReadonlyArrayDyn<'py, f64>),
+}
+
+impl Params<'_> {
+    /// The parameters as a slice.
+    pub fn as_slice(&self) -> PyResult<&[f64]> {
+        match self {
+            Params::Scalar(t) => Ok(std::slice::from_ref(t)),
+            Params::Array(a) => a
+                .as_slice()
+                .map_err(|e| PyValueError::new_err(format!("parameters: {e}"))),
+        }
+    }
+}
+
+/// `obj` as a float64 array, converted once by `numpy.ascontiguousarray` when it is not
+/// already a contiguous float64 array.
+pub fn float_array<'py>(
+    obj: &Bound<'py, PyAny>,
+    what: &str,
+) -> PyResult<PyReadonlyArrayDyn<'py, f64>> {
+    if let Ok(a) = obj.cast::<PyArrayDyn<f64>>()
+        && a.is_contiguous()
+    {
+        return Ok(a.readonly());
+    }
+    let py = obj.py();
+    let numpy = py.import("numpy")?;
+    let float64 = numpy.getattr("float64")?;
+    let converted = numpy
+        .call_method1("ascontiguousarray", (obj, float64))
+        .map_err(|e| {
+            PyValueError::new_err(format!(
+                "{what} must be numbers (a float64 array or something numpy converts to one): {}",
+                e.value(py)
+            ))
+        })?;
+    let a = converted
+        .cast_into::<PyArrayDyn<f64>>()
+        .map_err(|_| PyValueError::new_err(format!("{what} must be an array of numbers")))?;
+    Ok(a.readonly())
+}
+
+/// Parameters from a Python number or array-like (`what` names the argument).
+pub fn params<'py>(obj: &Bound<'py, PyAny>, what: &str) -> PyResult<Params<'py>> {
+    if obj.is_instance_of::<PyFloat>() || obj.is_instance_of::<pyo3::types::PyInt>() {
+        return Ok(Params::Scalar(obj.extract::<f64>()?));
+    }
+    let a = float_array(obj, what)?;
+    match a.shape() {
+        [] => Ok(Params::Scalar(
+            a.as_slice()
+                .map_err(|e| PyValueError::new_err(e.to_string()))?[0],
+        )),
+        [_] => Ok(Params::Array(a)),
+        shape => Err(PyValueError::new_err(format!(
+            "{what} must be a number or a 1-D array of numbers; got an array of shape {}",
+            shape_text(shape)
+        ))),
+    }
+}
+
+/// `(3, 2)` as numpy writes a shape.
+pub fn shape_text(shape: &[usize]) -> String {
+    match shape {
+        [n] => format!("({n},)"),
+        _ => format!(
+            "({})",
+            shape
+                .iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    }
+}
+
+/// Points as an `(N, dim)` array (one copy out of the `DVec3`s, none into numpy).
+pub fn points_array<'py>(
+    py: Python<'py>,
+    pts: &[DVec3],
+    dim: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let flat = flatten(pts, dim);
+    shaped(py, flat, &[pts.len(), dim])
+}
+
+/// `pts` as `dim` coordinates each, in one vector.
+pub fn flatten(pts: &[DVec3], dim: usize) -> Vec<f64> {
+    if dim == 3 {
+        return bytemuck::cast_slice::<DVec3, f64>(pts).to_vec();
+    }
+    let mut out = Vec::with_capacity(pts.len() * dim);
+    for p in pts {
+        out.extend_from_slice(&p.to_array()[..dim]);
+    }
+    out
+}
+
+/// A vector handed to numpy without copying, with the given shape.
+pub fn shaped<'py>(
+    py: Python<'py>,
+    flat: Vec<f64>,
+    shape: &[usize],
+) -> PyResult<Bound<'py, PyAny>> {
+    let a: Bound<'py, PyArray1<f64>> = flat.into_pyarray(py);
+    Ok(a.reshape(shape.to_vec())?.into_any())
+}

@@ -1,0 +1,431 @@
+//! `_Curve`: one curve of any family, read from the scene format's curve object (so the
+//! checks and messages are the command line's), evaluated on numpy arrays.
+
+use glam::DVec3;
+use numpy::PyUntypedArrayMethods;
+use pyo3::prelude::*;
+use rayon::prelude::*;
+use serde_json::Value;
+
+use splinescope_core::geom::batch::{CurveSampler, sample_many};
+use splinescope_core::geom::{Curve, Lower, ParamCurve, curvature};
+use splinescope_scene::scene::{SceneCurve, curve_from_value, curve_to_value};
+
+use crate::arrays::{self, DETACH_ABOVE, Params};
+use crate::errors::{CurveError, SceneError, geom_error, raise, scene_error};
+
+/// Parameters evaluated per block (one stack buffer of points, then written out).
+const BLOCK: usize = 256;
+
+/// Past this many parameters, a single curve's evaluation is spread over every core.
+const PARALLEL_ABOVE: usize = 32_768;
+
+/// One curve: its family, fields, name and style, and its lowering (computed once).
+#[pyclass(name = "_Curve", module = "splinescope._splinescope", frozen)]
+pub struct PyCurve {
+    pub(crate) curve: SceneCurve,
+    sampler: CurveSampler,
+    /// Coordinates per point in results: 2 (planar input) or 3.
+    dim: usize,
+}
+
+impl PyCurve {
+    /// Wraps a checked curve.
+    pub fn new(curve: SceneCurve, dim: Option<usize>) -> PyCurve {
+        let dim = dim.unwrap_or(if curve.curve.is_planar() { 2 } else { 3 });
+        PyCurve {
+            sampler: CurveSampler::new(&curve.curve),
+            curve,
+            dim,
+        }
+    }
+
+    fn with_curve(&self, curve: Curve) -> PyCurve {
+        PyCurve::new(
+            SceneCurve {
+                name: self.curve.name.clone(),
+                curve,
+                style: self.curve.style.clone(),
+            },
+            Some(self.dim),
+        )
+    }
+
+    /// Refuses parameters outside the domain (or not numbers), naming the first.
+    fn check_domain(&self, ts: &[f64], what: &str, scalar: bool) -> PyResult<()> {
+        let (a, b) = self.curve.curve.domain();
+        let bad = if ts.len() > DETACH_ABOVE {
+            ts.par_iter().position_first(|t| !(*t >= a && *t <= b))
+        } else {
+            ts.iter().position(|t| !(*t >= a && *t <= b))
+        };
+        match bad {
+            None => Ok(()),
+            Some(k) => {
+                let name = if scalar {
+                    what.to_owned()
+                } else {
+                    format!("{what}[{k}]")
+                };
+                Err(raise::<CurveError>(
+                    format!(
+                        "{name} = {} is outside the domain [{}, {}] of this {} curve",
+                        ts[k],
+                        a,
+                        b,
+                        self.curve.curve.family()
+                    ),
+                    &name,
+                ))
+            }
+        }
+    }
+
+    /// `f(t)` for every parameter, as `(N, dim)` (or `(dim,)` for a scalar).
+    fn map_params<'py>(
+        &self,
+        py: Python<'py>,
+        t: &Bound<'py, PyAny>,
+        f: impl Fn(&[f64], &mut [DVec3]) + Sync,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let params = arrays::params(t, "t")?;
+        let ts = params.as_slice()?;
+        self.check_domain(ts, "t", matches!(params, Params::Scalar(_)))?;
+        let dim = self.dim;
+        let n = ts.len();
+        let run = || {
+            let mut out = vec![0.0; n * dim];
+            let block = |(ts, out): (&[f64], &mut [f64])| {
+                let mut buf = [DVec3::ZERO; BLOCK];
+                let buf = &mut buf[..ts.len()];
+                f(ts, buf);
+                for (o, p) in out.chunks_exact_mut(dim).zip(buf.iter()) {
+                    o.copy_from_slice(&p.to_array()[..dim]);
+                }
+            };
+            if n > PARALLEL_ABOVE {
+                ts.par_chunks(BLOCK)
+                    .zip(out.par_chunks_mut(BLOCK * dim))
+                    .for_each(block);
+            } else {
+                ts.chunks(BLOCK)
+                    .zip(out.chunks_mut(BLOCK * dim))
+                    .for_each(block);
+            }
+            out
+        };
+        let out = if n > DETACH_ABOVE {
+            py.detach(run)
+        } else {
+            run()
+        };
+        match params {
+            Params::Scalar(_) => arrays::shaped(py, out, &[dim]),
+            Params::Array(a) => {
+                let shape = [a.shape()[0], dim];
+                arrays::shaped(py, out, &shape)
+            }
+        }
+    }
+}
+
+#[pymethods]
+impl PyCurve {
+    /// Reads a curve object of the scene format (`{"type": "bezier", "points": …}`) from
+    /// JSON text; `dim` (2 or 3) fixes the coordinates of results (default: 2 for a
+    /// planar curve).
+    #[staticmethod]
+    #[pyo3(signature = (text, dim=None))]
+    fn from_json(text: &str, dim: Option<usize>) -> PyResult<PyCurve> {
+        if let Some(d) = dim
+            && d != 2
+            && d != 3
+        {
+            return Err(raise::<CurveError>(
+                format!("dim must be 2 or 3, not {d}"),
+                "dim",
+            ));
+        }
+        let value: Value = serde_json::from_str(text)
+            .map_err(|e| raise::<SceneError>(format!("not JSON: {e}"), ""))?;
+        let curve = curve_from_value(&value, 0).map_err(|e| scene_error(&e))?;
+        Ok(PyCurve::new(curve, dim))
+    }
+
+    /// The curve object of the scene format, as JSON text.
+    fn to_json(&self) -> String {
+        curve_to_value(&self.curve, 0).to_string()
+    }
+
+    /// The family's name in scene files (`"bezier"`, …).
+    #[getter]
+    fn family(&self) -> &'static str {
+        self.curve.curve.family()
+    }
+
+    /// Coordinates per point in results (2 or 3).
+    #[getter]
+    fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// The curve's name, if it has one.
+    #[getter]
+    fn name(&self) -> Option<String> {
+        self.curve.name.clone()
+    }
+
+    /// The parameter domain `(a, b)`.
+    fn domain(&self) -> (f64, f64) {
+        self.curve.curve.domain()
+    }
+
+    /// One line describing the curve's structure ("degree 3", …).
+    fn summary(&self) -> String {
+        self.curve.curve.summary()
+    }
+
+    /// The points the user places (control points, or the interpolated points), `(N, dim)`.
+    fn control_points<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        arrays::points_array(py, self.curve.curve.control_points(), self.dim)
+    }
+
+    /// `P(t)`: a number gives `(dim,)`, a 1-D array `(N, dim)`.
+    fn eval<'py>(&self, py: Python<'py>, t: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        let sampler = &self.sampler;
+        self.map_params(py, t, |ts, out| sampler.eval_into(ts, out))
+    }
+
+    /// The first or second derivative with respect to `t`.
+    #[pyo3(signature = (t, order=1))]
+    fn derivative<'py>(
+        &self,
+        py: Python<'py>,
+        t: &Bound<'py, PyAny>,
+        order: u32,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let curve = &self.curve.curve;
+        match order {
+            1 => self.map_params(py, t, |ts, out| {
+                for (o, &t) in out.iter_mut().zip(ts) {
+                    *o = curve.eval_deriv(t);
+                }
+            }),
+            2 => self.map_params(py, t, |ts, out| {
+                for (o, &t) in out.iter_mut().zip(ts) {
+                    *o = curve.eval_second_deriv(t);
+                }
+            }),
+            _ => Err(raise::<CurveError>(
+                format!("order must be 1 or 2, not {order}"),
+                "order",
+            )),
+        }
+    }
+
+    /// The curvature `κ = |P′ × P″| / |P′|³` (NaN where `P′ = 0`): a number for a number,
+    /// `(N,)` for an array.
+    fn curvature<'py>(
+        &self,
+        py: Python<'py>,
+        t: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let params = arrays::params(t, "t")?;
+        let ts = params.as_slice()?;
+        self.check_domain(ts, "t", matches!(params, Params::Scalar(_)))?;
+        let curve = &self.curve.curve;
+        let k =
+            |t: f64| curvature(curve.eval_deriv(t), curve.eval_second_deriv(t)).unwrap_or(f64::NAN);
+        let out: Vec<f64> = if ts.len() > DETACH_ABOVE {
+            py.detach(|| ts.par_iter().map(|&t| k(t)).collect())
+        } else {
+            ts.iter().map(|&t| k(t)).collect()
+        };
+        match params {
+            Params::Scalar(_) => Ok(pyo3::types::PyFloat::new(py, out[0]).into_any()),
+            Params::Array(_) => {
+                let n = out.len();
+                arrays::shaped(py, out, &[n])
+            }
+        }
+    }
+
+    /// `n ≥ 2` points at uniform parameters over the domain, ends included: `(n, dim)`.
+    fn sample<'py>(&self, py: Python<'py>, n: usize) -> PyResult<Bound<'py, PyAny>> {
+        if n < 2 {
+            return Err(raise::<CurveError>(
+                format!("n must be at least 2, not {n}"),
+                "n",
+            ));
+        }
+        let (a, b) = self.curve.curve.domain();
+        let ts: Vec<f64> = (0..n)
+            .map(|j| splinescope_core::geom::batch::uniform(a, b, j, n))
+            .collect();
+        let arr = numpy::IntoPyArray::into_pyarray(ts, py);
+        self.eval(py, arr.as_any())
+    }
+
+    /// The exact Bézier segments: a list of `(t0, t1, points (degree + 1, dim))`.
+    fn segments<'py>(&self, py: Python<'py>) -> PyResult<Vec<(f64, f64, Bound<'py, PyAny>)>> {
+        self.curve
+            .curve
+            .lower()
+            .iter()
+            .map(|s| {
+                Ok((
+                    s.t0,
+                    s.t1,
+                    arrays::points_array(py, s.bezier.points(), self.dim)?,
+                ))
+            })
+            .collect()
+    }
+
+    /// The same data as `splinescope inspect` for this curve, as JSON text.
+    fn inspect_json(&self) -> PyResult<String> {
+        let report = splinescope_core::inspect::curve_report(
+            0,
+            self.curve.name.as_deref(),
+            &self.curve.curve,
+        )
+        .map_err(|e| geom_error(&e))?;
+        serde_json::to_string(&report).map_err(|e| raise::<CurveError>(e.to_string(), ""))
+    }
+
+    /// The curve with the knot `t` inserted (B-splines, standard NUBMP curves): the same
+    /// curve with one more control point.
+    fn insert_knot(&self, t: f64) -> PyResult<PyCurve> {
+        let c = self
+            .curve
+            .curve
+            .with_knot_inserted(t)
+            .map_err(|e| geom_error(&e))?;
+        Ok(self.with_curve(c))
+    }
+
+    /// The curve with a control point `at` inserted on the control polygon's nearest leg
+    /// (Bézier families, interpolation), and the new point's index.
+    fn insert_point(&self, at: &Bound<'_, PyAny>) -> PyResult<(PyCurve, usize)> {
+        let p = point(at, "at", self.dim)?;
+        let (c, i) = self
+            .curve
+            .curve
+            .with_point_on_polygon(p)
+            .map_err(|e| geom_error(&e))?;
+        Ok((self.with_curve(c), i))
+    }
+
+    /// The curve without control point `index`.
+    fn remove_point(&self, index: usize) -> PyResult<PyCurve> {
+        let c = self
+            .curve
+            .curve
+            .with_point_removed(index)
+            .map_err(|e| geom_error(&e))?;
+        Ok(self.with_curve(c))
+    }
+
+    /// The same curve with its degree raised by `times` (Bézier curves and B-splines:
+    /// the curve does not move).
+    #[pyo3(signature = (times=1))]
+    fn elevate(&self, times: usize) -> PyResult<PyCurve> {
+        let mut c = self.curve.curve.clone();
+        for _ in 0..times {
+            c = match c {
+                Curve::Bezier(b) => Curve::Bezier(b.elevate()),
+                Curve::BSpline(b) => Curve::BSpline(b.elevate()),
+                other => {
+                    return Err(raise::<CurveError>(
+                        format!(
+                            "{} curves have no degree elevation here (Bézier curves and B-splines do)",
+                            other.family()
+                        ),
+                        "",
+                    ));
+                }
+            };
+        }
+        splinescope_scene::limits::DEGREE
+            .check(
+                c.lower()
+                    .iter()
+                    .map(|s| s.bezier.degree() as u64)
+                    .max()
+                    .unwrap_or(0),
+            )
+            .map_err(|e| raise::<CurveError>(e.to_string(), "times"))?;
+        Ok(self.with_curve(c))
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "<{} curve, {}>",
+            self.curve.curve.family(),
+            self.curve.curve.summary()
+        )
+    }
+}
+
+/// One point of `dim` coordinates.
+fn point(obj: &Bound<'_, PyAny>, what: &str, dim: usize) -> PyResult<DVec3> {
+    let a = arrays::float_array(obj, what)?;
+    let v = a
+        .as_slice()
+        .map_err(|e| raise::<CurveError>(format!("{what}: {e}"), what))?;
+    if a.shape() != [dim] {
+        return Err(raise::<CurveError>(
+            format!(
+                "{what} must be a point of {dim} coordinates; got shape {}",
+                arrays::shape_text(a.shape())
+            ),
+            what,
+        ));
+    }
+    Ok(DVec3::new(v[0], v[1], if dim == 3 { v[2] } else { 0.0 }))
+}
+
+/// `n ≥ 2` uniform samples of every curve, `(C, n, dim)`, spread over every core.
+#[pyfunction]
+pub fn eval_many<'py>(
+    py: Python<'py>,
+    curves: Vec<PyRef<'py, PyCurve>>,
+    n: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    if n < 2 {
+        return Err(raise::<CurveError>(
+            format!("n must be at least 2, not {n}"),
+            "n",
+        ));
+    }
+    let dim = curves.first().map_or(2, |c| c.dim);
+    if let Some(i) = curves.iter().position(|c| c.dim != dim) {
+        return Err(raise::<CurveError>(
+            format!(
+                "curves[{i}] has {} coordinates per point and curves[0] has {dim}: eval_many needs one dimension",
+                curves[i].dim
+            ),
+            &format!("curves[{i}]"),
+        ));
+    }
+    let samplers: Vec<CurveSampler> = curves.iter().map(|c| c.sampler.clone()).collect();
+    let count = curves.len();
+    let total = count
+        .checked_mul(n)
+        .filter(|t| splinescope_scene::limits::SAMPLES.check(*t as u64).is_ok())
+        .ok_or_else(|| {
+            raise::<CurveError>(
+                format!(
+                    "{count} curves × {n} samples is over the sample limit ({})",
+                    splinescope_scene::limits::SAMPLES.value().unwrap_or(0)
+                ),
+                "n",
+            )
+        })?;
+    let out = py.detach(|| {
+        let mut pts = vec![DVec3::ZERO; total];
+        sample_many(&samplers, n, &mut pts);
+        arrays::flatten(&pts, dim)
+    });
+    arrays::shaped(py, out, &[count, n, dim])
+}

@@ -1,0 +1,37 @@
+//! splinescope's Python module (`splinescope._splinescope`, wrapped by the pure-Python
+//! package `splinescope` in `crates/python/python/`): curves of every family read from
+//! the scene format's curve objects and evaluated on numpy arrays, scenes with their
+//! solve requests, the GPU picture of a scene, and image comparison.
+//!
+//! What it may use: the library crates ([`splinescope_core`], [`splinescope_scene`],
+//! [`splinescope_gpu`]), pyo3 and numpy — no window or command-line crate, so the wheel
+//! carries no winit, egui or clap. Every error becomes a Python exception (a subclass
+//! of `ValueError`, or `GpuError`) with the command line's message; nothing panics into
+//! Python.
+
+mod arrays;
+mod curve;
+mod errors;
+mod scene;
+
+use pyo3::prelude::*;
+
+/// The native part of the `splinescope` package.
+#[pymodule]
+fn _splinescope(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    errors::register(m)?;
+    m.add_class::<curve::PyCurve>()?;
+    m.add_class::<scene::PyScene>()?;
+    m.add_function(wrap_pyfunction!(curve::eval_many, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::compare_images, m)?)?;
+    m.add(
+        "FAMILY_NAMES",
+        splinescope_core::geom::Curve::FAMILY_NAMES.to_vec(),
+    )?;
+    m.add(
+        "SOLVE_METHODS",
+        splinescope_scene::request::METHODS.to_vec(),
+    )?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

@@ -1,0 +1,308 @@
+//! `_Scene`: a scene file's contents, its solve requests, and its picture from the GPU
+//! path; `compare_images` for image regression in pytest.
+
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex, PoisonError};
+
+use glam::DVec2;
+use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+
+use splinescope_gpu::compare::{Tolerance, compare_images as compare};
+use splinescope_gpu::image::RgbaImage;
+use splinescope_gpu::{BackendChoice, ContextOptions, GpuContext, Pipelines};
+use splinescope_scene::request::apply_text;
+use splinescope_scene::scene::encoding::Encoding;
+use splinescope_scene::scene::{Scene, from_json_str, to_json_string};
+
+use crate::arrays;
+use crate::curve::PyCurve;
+use crate::errors::{GpuError, ImageError, SceneError, SolveError, gpu_error, raise, scene_error};
+
+/// A scene: its curves, view and annotations, and the text it was read from (so that an
+/// unedited save keeps the file's bytes and an edited one its form).
+#[pyclass(name = "_Scene", module = "splinescope._splinescope", frozen)]
+pub struct PyScene {
+    scene: Scene,
+    /// The text the scene was read from, when it was.
+    original: Option<String>,
+}
+
+#[pymethods]
+impl PyScene {
+    /// Reads and checks a scene file.
+    #[staticmethod]
+    fn load(py: Python<'_>, path: PathBuf) -> PyResult<PyScene> {
+        let (scene, text) = py
+            .detach(|| Scene::read(&path))
+            .map_err(|e| raise::<SceneError>(format!("{}: {e}", path.display()), &e.path))?;
+        Ok(PyScene {
+            scene,
+            original: Some(text),
+        })
+    }
+
+    /// Reads and checks a scene from JSON text.
+    #[staticmethod]
+    fn from_json(text: &str) -> PyResult<PyScene> {
+        let scene = from_json_str(text).map_err(|e| scene_error(&e))?;
+        Ok(PyScene {
+            scene,
+            original: Some(text.to_owned()),
+        })
+    }
+
+    /// A scene of these curves (in order), with the default view and background.
+    #[staticmethod]
+    #[pyo3(signature = (curves, name=None))]
+    fn from_curves(curves: Vec<PyRef<'_, PyCurve>>, name: Option<String>) -> PyScene {
+        PyScene {
+            scene: Scene {
+                name,
+                background: splinescope_scene::scene::Color::WHITE,
+                samples_per_segment: None,
+                view: splinescope_scene::scene::ViewSpec::Auto,
+                curves: curves.iter().map(|c| c.curve.clone()).collect(),
+                annotations: Vec::new(),
+            },
+            original: None,
+        }
+    }
+
+    /// The scene as JSON text: the text it was read from when unedited, that text's form
+    /// (key order, number spelling) kept otherwise.
+    fn to_json(&self) -> String {
+        match &self.original {
+            Some(text) => splinescope_scene::scene::to_json_string_keeping(&self.scene, text),
+            None => to_json_string(&self.scene),
+        }
+    }
+
+    /// Writes the scene to `path` atomically (a temporary file renamed over it: a crash
+    /// never leaves half a file), keeping the form of the text it was read from.
+    fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        let text = self.to_json();
+        py.detach(|| splinescope_scene::files::write_atomic(&path, text.as_bytes()))
+            .map_err(|e| raise::<SceneError>(format!("cannot write {}: {e}", path.display()), ""))
+    }
+
+    /// The scene's name, if it has one.
+    #[getter]
+    fn name(&self) -> Option<String> {
+        self.scene.name.clone()
+    }
+
+    /// The curves, in order.
+    #[getter]
+    fn curves(&self) -> Vec<PyCurve> {
+        let planar = self.scene.curves.iter().all(|c| c.curve.is_planar());
+        let dim = if planar { 2 } else { 3 };
+        self.scene
+            .curves
+            .iter()
+            .map(|c| PyCurve::new(c.clone(), Some(dim)))
+            .collect()
+    }
+
+    /// Applies a solve request (JSON text: one request object or an array of them, as
+    /// `splinescope solve` reads, `docs/solve-format.md`): the new scene and the
+    /// reports as JSON text. Nothing changes unless every request succeeds.
+    fn solve(&self, py: Python<'_>, request: &str) -> PyResult<(PyScene, String)> {
+        let outcome = py
+            .detach(|| apply_text(&self.scene, request))
+            .map_err(|e| raise::<SolveError>(e.to_string(), &e.path))?;
+        let reports = serde_json::to_string(&outcome.reports)
+            .map_err(|e| raise::<SolveError>(e.to_string(), ""))?;
+        Ok((
+            PyScene {
+                scene: outcome.scene,
+                original: self.original.clone(),
+            },
+            reports,
+        ))
+    }
+
+    /// The scene drawn on the GPU (`width × height`, its own camera, the tolerance in
+    /// pixels) as an `(height, width, 4)` uint8 RGBA array; the same image as
+    /// `splinescope render` on the same adapter.
+    #[pyo3(signature = (width, height, tolerance_px=0.25, backend="auto"))]
+    fn render<'py>(
+        &self,
+        py: Python<'py>,
+        width: u32,
+        height: u32,
+        tolerance_px: f64,
+        backend: &str,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let image = self.image(py, width, height, tolerance_px, backend)?;
+        image_array(py, image)
+    }
+
+    /// The scene drawn as for `render`, encoded as a PNG file's bytes.
+    #[pyo3(signature = (width, height, tolerance_px=0.25, backend="auto"))]
+    fn png<'py>(
+        &self,
+        py: Python<'py>,
+        width: u32,
+        height: u32,
+        tolerance_px: f64,
+        backend: &str,
+    ) -> PyResult<Vec<u8>> {
+        let image = self.image(py, width, height, tolerance_px, backend)?;
+        image
+            .png_bytes(std::path::Path::new("(in memory)"))
+            .map_err(|e| raise::<ImageError>(e.to_string(), ""))
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "<scene {}with {} curve(s)>",
+            self.scene
+                .name
+                .as_ref()
+                .map(|n| format!("{n:?} "))
+                .unwrap_or_default(),
+            self.scene.curves.len()
+        )
+    }
+}
+
+impl PyScene {
+    fn image(
+        &self,
+        py: Python<'_>,
+        width: u32,
+        height: u32,
+        tolerance_px: f64,
+        backend: &str,
+    ) -> PyResult<RgbaImage> {
+        let choice: BackendChoice =
+            backend
+                .parse()
+                .map_err(|e: splinescope_gpu::context::UnknownBackend| {
+                    raise::<GpuError>(e.to_string(), "backend")
+                })?;
+        let tolerance_px = splinescope_gpu::adaptive::check_tolerance(tolerance_px)
+            .map_err(|e| raise::<GpuError>(e.to_string(), "tolerance_px"))?;
+        splinescope_scene::limits::IMAGE_PIXELS
+            .check(u64::from(width) * u64::from(height))
+            .map_err(|e| raise::<GpuError>(e.to_string(), "width"))?;
+        let gpu = device(py, choice)?;
+        let scene = &self.scene;
+        py.detach(|| {
+            let (ctx, pipelines) = &*gpu;
+            let camera = scene.camera(DVec2::new(f64::from(width), f64::from(height)));
+            splinescope_gpu::offscreen::render_with(
+                ctx,
+                pipelines,
+                &Encoding::of(scene),
+                &camera,
+                (width, height),
+                tolerance_px,
+            )
+        })
+        .map_err(|e| gpu_error(&e))
+    }
+}
+
+type Device = Arc<(GpuContext, Pipelines)>;
+
+/// The device of each backend, opened on first use and kept for the process.
+fn device(py: Python<'_>, choice: BackendChoice) -> PyResult<Device> {
+    static DEVICES: Mutex<Option<HashMap<String, Device>>> = Mutex::new(None);
+    let key = choice.to_string();
+    if let Some(d) = DEVICES
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .as_ref()
+        .and_then(|m| m.get(&key))
+        && d.0.check_health().is_ok()
+    {
+        return Ok(Arc::clone(d));
+    }
+    let opened = py
+        .detach(|| GpuContext::new(&ContextOptions::from_env(choice)))
+        .map_err(|e| gpu_error(&e))?;
+    let d = Arc::new(opened);
+    DEVICES
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .get_or_insert_with(HashMap::new)
+        .insert(key, Arc::clone(&d));
+    Ok(d)
+}
+
+/// An image as an `(height, width, 4)` uint8 array (handed to numpy without copying).
+fn image_array(py: Python<'_>, image: RgbaImage) -> PyResult<Bound<'_, PyAny>> {
+    let (w, h) = (image.width as usize, image.height as usize);
+    let a = numpy::IntoPyArray::into_pyarray(image.data, py);
+    Ok(a.reshape(vec![h, w, 4])?.into_any())
+}
+
+/// An `(H, W, 4)` (or `(H, W, 3)`) uint8 array as an image.
+fn array_image(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<RgbaImage> {
+    let a = obj.cast::<PyArrayDyn<u8>>().map_err(|_| {
+        raise::<ImageError>(
+            format!("{what} must be a uint8 numpy array of shape (H, W, 4) or (H, W, 3)"),
+            what,
+        )
+    })?;
+    let shape = a.shape().to_vec();
+    let ro = a.readonly();
+    let data = match ro.as_slice() {
+        Ok(s) => s.to_vec(),
+        Err(_) => ro.as_array().iter().copied().collect(),
+    };
+    let (h, w, c) = match shape.as_slice() {
+        [h, w, c @ (3 | 4)] if *h > 0 && *w > 0 => (*h, *w, *c),
+        _ => {
+            return Err(raise::<ImageError>(
+                format!(
+                    "{what} must have shape (H, W, 4) or (H, W, 3); got shape {}",
+                    arrays::shape_text(&shape)
+                ),
+                what,
+            ));
+        }
+    };
+    let rgba = if c == 4 {
+        data
+    } else {
+        data.chunks_exact(3)
+            .flat_map(|p| [p[0], p[1], p[2], 255])
+            .collect()
+    };
+    let too_big = || raise::<ImageError>(format!("{what} is too large"), what);
+    Ok(RgbaImage {
+        width: u32::try_from(w).map_err(|_| too_big())?,
+        height: u32::try_from(h).map_err(|_| too_big())?,
+        data: rgba,
+    })
+}
+
+/// Compares two images (`(H, W, 4)` or `(H, W, 3)` uint8 arrays, `actual` against
+/// `reference`) per channel and by NVIDIA FLIP, as `splinescope diff` does: the figures
+/// as JSON text (`matches`, `max_channel_diff`, `differing_pixels`, `differing_fraction`,
+/// `flip_mean`, `flip_max`, `width`, `height`).
+#[pyfunction]
+#[pyo3(signature = (actual, reference, tolerance="channel=24,pixels=0.1%"))]
+pub fn compare_images(
+    py: Python<'_>,
+    actual: &Bound<'_, PyAny>,
+    reference: &Bound<'_, PyAny>,
+    tolerance: &str,
+) -> PyResult<String> {
+    let tolerance: Tolerance =
+        tolerance
+            .parse()
+            .map_err(|e: splinescope_gpu::compare::ToleranceError| {
+                raise::<ImageError>(e.to_string(), "tolerance")
+            })?;
+    let a = array_image(actual, "actual")?;
+    let r = array_image(reference, "reference")?;
+    let (figures, _) = py
+        .detach(|| compare(&a, &r, &tolerance))
+        .map_err(|e| raise::<ImageError>(e.to_string(), ""))?;
+    serde_json::to_string(&figures).map_err(|e| raise::<ImageError>(e.to_string(), ""))
+}

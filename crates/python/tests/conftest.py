@@ -1,0 +1,40 @@
+"""Shared fixtures: the repository's paths and the command-line program the module is
+compared with."""
+
+import os
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[3]
+SCENES = ROOT / "scenes"
+
+
+def cli_path() -> Path:
+    """The release binary the test command builds first (``cargo test --release``)."""
+    return Path(os.environ.get("SPLINESCOPE_BIN", ROOT / "target" / "release" / "splinescope"))
+
+
+@pytest.fixture(scope="session")
+def cli():
+    path = cli_path()
+    if not path.exists():
+        pytest.fail(
+            f"the command-line program is not built at {path}: run `cargo build --release` "
+            "(scripts/test does) or set SPLINESCOPE_BIN"
+        )
+
+    def run(*args, check=True):
+        out = subprocess.run([str(path), *map(str, args)], capture_output=True, text=True)
+        if check and out.returncode != 0:
+            raise AssertionError(f"splinescope {' '.join(map(str, args))} failed: {out.stderr}")
+        return out
+
+    return run
+
+
+def gpu_or_fail(test: str) -> bool:
+    """Whether GPU tests run: without an adapter they fail with how to install one,
+    unless SPLINESCOPE_SKIP_GPU_TESTS=1 asks to skip (and then say so)."""
+    return os.environ.get("SPLINESCOPE_SKIP_GPU_TESTS") != "1"
