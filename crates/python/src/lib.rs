@@ -24,6 +24,7 @@ fn _splinescope(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<scene::PyScene>()?;
     m.add_function(wrap_pyfunction!(curve::eval_many, m)?)?;
     m.add_function(wrap_pyfunction!(scene::compare_images, m)?)?;
+    m.add_function(wrap_pyfunction!(curve::rust_eval_seconds, m)?)?;
     m.add(
         "FAMILY_NAMES",
         splinescope_core::geom::Curve::FAMILY_NAMES.to_vec(),

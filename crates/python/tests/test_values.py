@@ -183,14 +183,16 @@ def test_module_values_equal_the_command_lines(cli, tmp_path):
             got = c.eval(t)
             want = np.array(report["samples"])[:, : c.dim]
             np.testing.assert_array_equal(got, want, err_msg=f"{path.name} curve {report['index']}")
-            np.testing.assert_array_equal(
-                c.derivative(t, 1), np.array(report["d1"])[:, : c.dim]
-            )
-            np.testing.assert_array_equal(
-                c.derivative(t, 2), np.array(report["d2"])[:, : c.dim]
-            )
+            # Derivatives: the module differentiates each exact Bézier segment (its
+            # hodograph), the command line the family's own formula; equal up to rounding.
+            for key, order in (("d1", 1), ("d2", 2)):
+                want_d = np.array(report[key])[:, : c.dim]
+                scale = max(np.abs(want_d).max(), 1.0)
+                np.testing.assert_allclose(
+                    c.derivative(t, order), want_d, rtol=0, atol=1e-11 * scale
+                )
             want_k = np.array([np.nan if k is None else k for k in report["curvature"]])
-            np.testing.assert_array_equal(c.curvature(t), want_k)
+            np.testing.assert_allclose(c.curvature(t), want_k, rtol=1e-9, atol=1e-12)
             np.testing.assert_array_equal(c.sample(33), got)
 
 

@@ -105,6 +105,35 @@ impl CurveSampler {
         }
     }
 
+    /// The sampler of the `order`-th derivative with respect to the curve's parameter:
+    /// each segment's hodograph taken `order` times, its points divided by
+    /// `(t1 − t0)^order` (the chain rule from the segment's local parameter), on the same
+    /// parameter ranges. Evaluating it costs what evaluating the curve costs, whatever
+    /// the family.
+    #[must_use]
+    pub fn derivative(&self, order: u32) -> CurveSampler {
+        let segments = self
+            .segments
+            .iter()
+            .map(|s| {
+                let mut b = s.bezier.clone();
+                for _ in 0..order {
+                    b = b.deriv();
+                }
+                let scale = (s.t1 - s.t0).powi(order as i32);
+                BezierSegment {
+                    bezier: super::Bezier::new(b.points().iter().map(|p| *p / scale).collect()),
+                    t0: s.t0,
+                    t1: s.t1,
+                }
+            })
+            .collect();
+        CurveSampler {
+            segments,
+            single_cubic: None,
+        }
+    }
+
     /// The parameter domain `[t0 of the first segment, t1 of the last]`.
     #[must_use]
     pub fn domain(&self) -> (f64, f64) {

@@ -1,0 +1,152 @@
+"""splinescope's Python module against its peers, in one run (ratios, not absolute
+figures, are what survives a noisy machine). Run by scripts/bench-python, which
+installs the peers (scipy, bezier, geomdl) into the project's virtual environment.
+
+Cases (array conversion included in every timing):
+  1. cubic B-spline, 2-D, 1,000 control points, 1,000,000 sorted parameters:
+     scipy.interpolate.BSpline.__call__ vs BSpline.eval, one thread and two;
+  2. interpolating 1,000 points and evaluating at 1,000,000 parameters:
+     scipy's make_interp_spline (+ call) vs Interpolation (paper 002's cubic
+     interpolation: a different interpolant for the same task);
+  3. Bézier curves, cubic and degree 12, 1,000,000 parameters: bezier's
+     Curve.evaluate_multi vs Bezier.eval;
+  4. geomdl's evaluate_list (pure Python, on 20,000 parameters, per point) vs
+     BSpline.eval;
+  5. the binding's overhead: BSpline.eval against the same evaluation made in Rust
+     (splinescope._splinescope.rust_eval_seconds), 1,000,000 points.
+Prints one JSON object; `--threads N` pins the module to N threads (RAYON_NUM_THREADS).
+"""
+
+import json
+import os
+import platform
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+
+def best(f, repeats=7):
+    f()  # warm up
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        f()
+        times.append(time.perf_counter() - t0)
+    return min(times)
+
+
+def measure():
+    import splinescope as ss
+    from scipy.interpolate import BSpline as SciBSpline
+    from scipy.interpolate import make_interp_spline
+
+    rng = np.random.default_rng(1)
+    out = {}
+    n_pts, n_eval = 1000, 1_000_000
+
+    # 1. cubic B-spline.
+    knots = np.concatenate([[0.0] * 4, np.sort(rng.uniform(0, 1, n_pts - 4)), [1.0] * 4])
+    ctrl = rng.uniform(-1, 1, (n_pts, 2))
+    t = np.sort(rng.uniform(0, 1, n_eval))
+    sci = SciBSpline(knots, ctrl, 3)
+    ours = ss.BSpline(knots, ctrl, 4)
+    assert np.allclose(sci(t), ours.eval(t), atol=1e-12)
+    out["bspline_scipy_s"] = best(lambda: sci(t))
+    out["bspline_splinescope_s"] = best(lambda: ours.eval(t))
+
+    # 5. the binding's overhead on the same case.
+    native = ours._c
+    out["bspline_rust_s"] = min(
+        ss._splinescope.rust_eval_seconds(native, t, 1) for _ in range(7)
+    )
+
+    # 2. interpolation.
+    x = np.linspace(0, 100, n_pts)
+    y = np.column_stack([np.sin(x / 7), np.cos(x / 11)])
+    tt = np.linspace(0, 100, n_eval)
+    out["interp_scipy_s"] = best(lambda: make_interp_spline(x, y, k=3)(tt))
+    out["interp_splinescope_s"] = best(lambda: ss.Interpolation(y, x).eval(tt))
+
+    # 3. Bézier curves.
+    try:
+        import bezier
+
+        for degree in (3, 12):
+            nodes = rng.uniform(-1, 1, (degree + 1, 2))
+            s = np.linspace(0, 1, n_eval)
+            peer = bezier.Curve(np.asfortranarray(nodes.T), degree=degree)
+            mine = ss.Bezier(nodes)
+            assert np.allclose(peer.evaluate_multi(s).T, mine.eval(s), atol=1e-12)
+            out[f"bezier{degree}_peer_s"] = best(lambda: peer.evaluate_multi(s).T, 5)
+            out[f"bezier{degree}_splinescope_s"] = best(lambda: mine.eval(s), 5)
+    except ImportError:
+        out["bezier_missing"] = True
+
+    # 4. geomdl (pure Python): per point, on fewer points.
+    try:
+        from geomdl import BSpline as GeoBSpline
+
+        g = GeoBSpline.Curve()
+        g.degree = 3
+        g.ctrlpts = ctrl.tolist()
+        g.knotvector = knots.tolist()
+        few = t[:: n_eval // 20_000].tolist()
+        t0 = time.perf_counter()
+        res = g.evaluate_list(few)
+        out["geomdl_per_point_s"] = (time.perf_counter() - t0) / len(few)
+        assert np.allclose(np.asarray(res), ours.eval(np.asarray(few)), atol=1e-9)
+        out["splinescope_per_point_s"] = out["bspline_splinescope_s"] / n_eval
+    except ImportError:
+        out["geomdl_missing"] = True
+    return out
+
+
+def main():
+    if "--threads" in sys.argv:
+        print(json.dumps(measure()))
+        return
+    runs = {}
+    for threads in (1, 2):
+        env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
+        res = subprocess.run(
+            [sys.executable, __file__, "--threads", str(threads)],
+            env=env,
+            capture_output=True,
+            text=True,
+            check=True,
+        )
+        runs[threads] = json.loads(res.stdout.strip().splitlines()[-1])
+    one, two = runs[1], runs[2]
+    ratios = {
+        "bspline_vs_scipy_1_thread": one["bspline_scipy_s"] / one["bspline_splinescope_s"],
+        "bspline_vs_scipy_2_threads": two["bspline_scipy_s"] / two["bspline_splinescope_s"],
+        "bspline_2_threads_over_1": one["bspline_splinescope_s"] / two["bspline_splinescope_s"],
+        "interp_vs_scipy_1_thread": one["interp_scipy_s"] / one["interp_splinescope_s"],
+        "binding_overhead_1_thread": one["bspline_splinescope_s"] / one["bspline_rust_s"] - 1,
+        "binding_overhead_2_threads": two["bspline_splinescope_s"] / two["bspline_rust_s"] - 1,
+    }
+    for d in (3, 12):
+        if f"bezier{d}_peer_s" in one:
+            ratios[f"bezier{d}_vs_bezier_pkg_1_thread"] = (
+                one[f"bezier{d}_peer_s"] / one[f"bezier{d}_splinescope_s"]
+            )
+    if "geomdl_per_point_s" in one:
+        ratios["bspline_vs_geomdl_1_thread"] = (
+            one["geomdl_per_point_s"] / one["splinescope_per_point_s"]
+        )
+    print(
+        json.dumps(
+            {
+                "machine": f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}",
+                "runs": runs,
+                "ratios": ratios,
+            },
+            indent=1,
+        )
+    )
+
+
+if __name__ == "__main__":
+    main()
