@@ -12,7 +12,9 @@ Cases (array conversion included in every timing):
      Curve.evaluate_multi vs Bezier.eval;
   4. geomdl's evaluate_list (pure Python, on 20,000 parameters, per point) vs
      BSpline.eval;
-  5. the binding's overhead: BSpline.eval against the same evaluation made in Rust
+  5. the floor: writing a fresh (1,000,000, 2) array (numpy), which no method returning
+     one can beat;
+  6. the binding's overhead: BSpline.eval against the same evaluation made in Rust
      (splinescope._splinescope.rust_eval_seconds), 1,000,000 points.
 Prints one JSON object; `--threads N` pins the module to N threads (RAYON_NUM_THREADS).
 """
@@ -53,6 +55,8 @@ def measure():
     sci = SciBSpline(knots, ctrl, 3)
     ours = ss.BSpline(knots, ctrl, 4)
     assert np.allclose(sci(t), ours.eval(t), atol=1e-12)
+    # The floor of any method returning a fresh (N, 2) float64 array: writing one.
+    out["write_limit_s"] = best(lambda: np.multiply.outer(t, [1.0, 1.0]))
     out["bspline_scipy_s"] = best(lambda: sci(t))
     out["bspline_splinescope_s"] = best(lambda: ours.eval(t))
 
@@ -127,8 +131,10 @@ def main():
         "binding_overhead_1_thread": one["bspline_splinescope_s"] / one["bspline_rust_s"] - 1,
         "binding_overhead_2_threads": two["bspline_splinescope_s"] / two["bspline_rust_s"] - 1,
     }
+    ratios["write_limit_vs_scipy_bspline"] = one["bspline_scipy_s"] / one["write_limit_s"]
     for d in (3, 12):
         if f"bezier{d}_peer_s" in one:
+            ratios[f"write_limit_vs_bezier{d}_pkg"] = one[f"bezier{d}_peer_s"] / one["write_limit_s"]
             ratios[f"bezier{d}_vs_bezier_pkg_1_thread"] = (
                 one[f"bezier{d}_peer_s"] / one[f"bezier{d}_splinescope_s"]
             )

@@ -46,10 +46,19 @@ pub fn bezier_into(points: &[DVec3], us: &[f64], out: &mut [DVec3]) {
             }
         }
         _ if points.len() <= STACK => {
+            // Four parameters at a time, one lane each (the same operations in the same
+            // order as `de_casteljau_in_place`, so the same bits), z skipped for a planar
+            // segment (its z is then exactly 0 for every parameter).
+            let planar = points.iter().all(|p| p.z.to_bits() == 0);
+            let mut chunks = us.chunks_exact(LANES).zip(out.chunks_exact_mut(LANES));
+            for (u, o) in &mut chunks {
+                let u: &[f64; LANES] = u.try_into().unwrap_or(&[0.0; LANES]);
+                de_casteljau_lanes(points, u, planar, o);
+            }
+            let done = us.len() - us.len() % LANES;
             let n = points.len();
             let mut buf = [DVec3::ZERO; STACK];
-            // One scratch buffer for the whole run (not one zeroed per point).
-            for (o, &u) in out.iter_mut().zip(us) {
+            for (o, &u) in out[done..].iter_mut().zip(&us[done..]) {
                 buf[..n].copy_from_slice(points);
                 *o = super::bezier::de_casteljau_in_place(&mut buf[..n], u);
             }
@@ -59,6 +68,45 @@ pub fn bezier_into(points: &[DVec3], us: &[f64], out: &mut [DVec3]) {
                 *o = super::bezier::de_casteljau(points, u);
             }
         }
+    }
+}
+
+/// Parameters evaluated together by [`de_casteljau_lanes`].
+const LANES: usize = 4;
+
+/// De Casteljau at `LANES` parameters at once, coordinates in separate lane arrays (so
+/// the inner loop vectorises): `out[l] = P(u[l])`, each lane computing
+/// `P_i ← (1 − u) P_i + u P_{i+1}` exactly as [`super::bezier::de_casteljau_in_place`]
+/// does. `planar` skips `z` (all control points have `z = +0`, so every level's `z` is
+/// `+0`). At most [`STACK`] points.
+fn de_casteljau_lanes(points: &[DVec3], u: &[f64; LANES], planar: bool, out: &mut [DVec3]) {
+    let n = points.len();
+    let mut x = [[0.0_f64; LANES]; STACK];
+    let mut y = [[0.0_f64; LANES]; STACK];
+    let mut z = [[0.0_f64; LANES]; STACK];
+    for (j, p) in points.iter().enumerate() {
+        x[j] = [p.x; LANES];
+        y[j] = [p.y; LANES];
+        z[j] = [p.z; LANES];
+    }
+    let s = u.map(|u| 1.0 - u);
+    let level = |c: &mut [[f64; LANES]; STACK], len: usize| {
+        for i in 0..len {
+            let next = c[i + 1];
+            for l in 0..LANES {
+                c[i][l] = s[l] * c[i][l] + u[l] * next[l];
+            }
+        }
+    };
+    for r in 1..n {
+        level(&mut x, n - r);
+        level(&mut y, n - r);
+        if !planar {
+            level(&mut z, n - r);
+        }
+    }
+    for (l, o) in out.iter_mut().enumerate() {
+        *o = DVec3::new(x[0][l], y[0][l], if planar { 0.0 } else { z[0][l] });
     }
 }
 
@@ -321,4 +369,41 @@ where
             consume(i, buf);
         },
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The lane-parallel path computes the very bits of one de Casteljau run per
+    /// parameter (so its accuracy bound is de Casteljau's), planar or not, for parameters
+    /// inside and outside `[0, 1]` and run lengths that leave a remainder.
+    #[test]
+    fn lanes_equal_de_casteljau_bit_for_bit() {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for degree in 4..STACK {
+            for planar in [true, false] {
+                let points: Vec<DVec3> = (0..=degree)
+                    .map(|_| DVec3::new(next(), next(), if planar { 0.0 } else { next() }))
+                    .collect();
+                let us: Vec<f64> = (0..(degree % 7 + 9)).map(|_| 1.5 * next() + 0.5).collect();
+                let mut out = vec![DVec3::ZERO; us.len()];
+                bezier_into(&points, &us, &mut out);
+                for (o, &u) in out.iter().zip(&us) {
+                    let want = super::super::bezier::de_casteljau(&points, u);
+                    assert_eq!(
+                        o.to_array().map(f64::to_bits),
+                        want.to_array().map(f64::to_bits),
+                        "degree {degree}, planar {planar}, u = {u}"
+                    );
+                }
+            }
+        }
+    }
 }
