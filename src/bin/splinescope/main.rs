@@ -17,6 +17,7 @@ mod bench;
 mod check;
 mod diff;
 mod eval;
+mod export;
 mod inspect;
 mod regress;
 mod render;
@@ -79,6 +80,9 @@ enum Command {
     View(view::ViewArgs),
     /// Render a scene (default: the built-in gallery) offscreen to a PNG.
     Render(render::RenderArgs),
+    /// Export a scene (default: the built-in gallery) as a figure: SVG or PDF with exact
+    /// curves, or a PNG.
+    Export(export::ExportArgs),
     /// Evaluate every curve of a scene and print the points as JSON.
     Eval(eval::EvalArgs),
     /// Print each curve's derived data as JSON: Bézier segments, tangents and inner points,
@@ -132,6 +136,7 @@ fn run(cli: Cli) -> Result<()> {
         None => view::default_job(),
         Some(Command::View(a)) => view::run(&a),
         Some(Command::Render(a)) => render::run(&a),
+        Some(Command::Export(a)) => export::run(&a),
         Some(Command::Eval(a)) => eval::run(&a),
         Some(Command::Inspect(a)) => inspect::run(&a),
         Some(Command::Solve(a)) => solve::run(&a),

@@ -1,0 +1,225 @@
+//! Curves as path commands in output coordinates. The view maps world points to output
+//! points projectively (`(X, Y, W)`, homogeneous); a Bézier segment of degree `n` becomes
+//! the polynomials `X(u)`, `Y(u)`, `W(u)` of degree `n` whose Bernstein coefficients are
+//! the mapped control points.
+//!
+//! * Affine views (the 2D camera, `W ≡ 1`) and `n ≤ 3`: one command with the mapped
+//!   control points — exact.
+//! * Otherwise: cubic Hermite pieces (end points and end tangents of the exact curve),
+//!   each within the tolerance `T` of it by a computed bound, halving a piece until the
+//!   bound holds. The error of a piece is `(X − H_x W, Y − H_y W) / W`; its numerator is
+//!   a polynomial of degree `n + 3` whose Bernstein coefficients bound it (convex hull),
+//!   and `W ≥ min_j W_j > 0` on the piece. So `|error| ≤ ‖(max|N_x|, max|N_y|)‖ / min W`.
+
+use glam::{DVec2, DVec3};
+
+use splinescope_core::geom::Bezier;
+
+/// One path command after the current point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Seg {
+    /// A straight line to the point.
+    Line(DVec2),
+    /// A quadratic Bézier: control point, end point.
+    Quad(DVec2, DVec2),
+    /// A cubic Bézier: two control points, end point.
+    Cubic(DVec2, DVec2, DVec2),
+}
+
+impl Seg {
+    /// The end point.
+    #[must_use]
+    pub fn end(&self) -> DVec2 {
+        match *self {
+            Seg::Line(p) | Seg::Quad(_, p) | Seg::Cubic(_, _, p) => p,
+        }
+    }
+}
+
+/// A path command and whether it carries the exact control points of the curve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Piece {
+    /// The command.
+    pub seg: Seg,
+    /// `true`: the exact curve (degree ≤ 3 under an affine view); `false`: a cubic within
+    /// the tolerance of it.
+    pub exact: bool,
+}
+
+/// The projective map from world points to output points (y down), as the rows of
+/// `(X, Y, W)` over `(x, y, z, 1)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Projection {
+    /// Rows for `X`, `Y` and `W`.
+    pub rows: [[f64; 4]; 3],
+    /// Whether `W ≡ 1` (an orthographic view): curves keep their degree.
+    pub affine: bool,
+}
+
+impl Projection {
+    /// The homogeneous image `(X, Y, W)` of `p`.
+    #[must_use]
+    pub fn homogeneous(&self, p: DVec3) -> [f64; 3] {
+        let v = [p.x, p.y, p.z, 1.0];
+        self.rows
+            .map(|r| r[0] * v[0] + r[1] * v[1] + r[2] * v[2] + r[3] * v[3])
+    }
+
+    /// The output point of `p`, or `None` at or behind the eye.
+    #[must_use]
+    pub fn point(&self, p: DVec3) -> Option<DVec2> {
+        let [x, y, w] = self.homogeneous(p);
+        if self.affine {
+            return Some(DVec2::new(x, y));
+        }
+        (w > 0.0).then(|| DVec2::new(x / w, y / w))
+    }
+}
+
+/// Binomial coefficient as `f64` (exact for the degrees used here).
+fn binom(n: usize, k: usize) -> f64 {
+    let k = k.min(n - k);
+    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
+}
+
+/// The Bernstein coefficients of the product of two polynomials in Bernstein form.
+fn product(a: &[f64], b: &[f64]) -> Vec<f64> {
+    let (m, n) = (a.len() - 1, b.len() - 1);
+    let mut out = vec![0.0; m + n + 1];
+    for (i, ai) in a.iter().enumerate() {
+        for (j, bj) in b.iter().enumerate() {
+            out[i + j] += binom(m, i) * binom(n, j) * ai * bj;
+        }
+    }
+    for (k, o) in out.iter_mut().enumerate() {
+        *o /= binom(m + n, k);
+    }
+    out
+}
+
+/// The Bernstein coefficients of the same polynomial at degree `to`.
+fn elevate(a: &[f64], to: usize) -> Vec<f64> {
+    let mut c = a.to_vec();
+    while c.len() - 1 < to {
+        let n = c.len() - 1;
+        let mut next = Vec::with_capacity(n + 2);
+        next.push(c[0]);
+        for i in 1..=n {
+            let r = i as f64 / (n + 1) as f64;
+            next.push(r * c[i - 1] + (1.0 - r) * c[i]);
+        }
+        next.push(c[n]);
+        c = next;
+    }
+    c
+}
+
+/// How many times a piece may be halved (2²⁴ pieces per segment at most).
+const MAX_DEPTH: u32 = 24;
+
+/// The path commands of one Bézier segment (world control points) under `proj`, each
+/// within `tolerance` output points of the exact curve; `None` when part of the segment
+/// lies at or behind the eye (it is not drawn).
+#[must_use]
+pub fn segment_pieces(bezier: &Bezier, proj: &Projection, tolerance: f64) -> Option<Vec<Piece>> {
+    let pts = bezier.points();
+    if proj.affine && pts.len() <= 4 {
+        let p: Vec<DVec2> = pts.iter().filter_map(|&p| proj.point(p)).collect();
+        let seg = match p.as_slice() {
+            [_, b] => Seg::Line(*b),
+            [_, b, c] => Seg::Quad(*b, *c),
+            [_, b, c, d] => Seg::Cubic(*b, *c, *d),
+            _ => return Some(Vec::new()),
+        };
+        return Some(vec![Piece { seg, exact: true }]);
+    }
+    let mut out = Vec::new();
+    fit(bezier, proj, tolerance, 0.0, 1.0, 0, &mut out).then_some(out)
+}
+
+/// The Hermite cubic of `bezier` on `[a, b]` if within `tolerance`, else its halves.
+fn fit(
+    bezier: &Bezier,
+    proj: &Projection,
+    tolerance: f64,
+    a: f64,
+    b: f64,
+    depth: u32,
+    out: &mut Vec<Piece>,
+) -> bool {
+    let piece = bezier.subsegment(a, b);
+    let h: Vec<[f64; 3]> = piece
+        .points()
+        .iter()
+        .map(|&p| proj.homogeneous(p))
+        .collect();
+    let w: Vec<f64> = h.iter().map(|v| v[2]).collect();
+    let min_w = w.iter().copied().fold(f64::INFINITY, f64::min);
+    if min_w.is_nan() || min_w <= 0.0 {
+        return false;
+    }
+    let n = h.len() - 1;
+    let at = |i: usize| DVec2::new(h[i][0] / h[i][2], h[i][1] / h[i][2]);
+    // d/du (X/W) at the ends: n (X₁W₀ − X₀W₁) / W₀², and the same at u = 1.
+    let d0 = DVec2::new(
+        h[1][0] * h[0][2] - h[0][0] * h[1][2],
+        h[1][1] * h[0][2] - h[0][1] * h[1][2],
+    ) * (n as f64 / (h[0][2] * h[0][2]));
+    let d1 = DVec2::new(
+        h[n][0] * h[n - 1][2] - h[n - 1][0] * h[n][2],
+        h[n][1] * h[n - 1][2] - h[n - 1][1] * h[n][2],
+    ) * (n as f64 / (h[n][2] * h[n][2]));
+    let (p0, p3) = (at(0), at(n));
+    let (c1, c2) = (p0 + d0 / 3.0, p3 - d1 / 3.0);
+    let hermite = [p0, c1, c2, p3];
+    let bound = {
+        let mut m = DVec2::ZERO;
+        for axis in 0..2 {
+            let num = elevate(&h.iter().map(|v| v[axis]).collect::<Vec<_>>(), n + 3);
+            let hw = product(&hermite.map(|p| p[axis]), &w);
+            let worst = num
+                .iter()
+                .zip(&hw)
+                .map(|(x, y)| (x - y).abs())
+                .fold(0.0, f64::max);
+            m[axis] = worst;
+        }
+        m.length() / min_w
+    };
+    if bound <= tolerance || depth >= MAX_DEPTH {
+        out.push(Piece {
+            seg: Seg::Cubic(c1, c2, p3),
+            exact: false,
+        });
+        return true;
+    }
+    let mid = 0.5 * (a + b);
+    fit(bezier, proj, tolerance, a, mid, depth + 1, out)
+        && fit(bezier, proj, tolerance, mid, b, depth + 1, out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn product_and_elevation_keep_the_polynomial() {
+        // (1 − u + 2u)·(3(1 − u)² + …) evaluated against the product's coefficients.
+        let a = [1.0, 2.0];
+        let b = [3.0, -1.0, 4.0];
+        let eval = |c: &[f64], u: f64| {
+            let n = c.len() - 1;
+            c.iter()
+                .enumerate()
+                .map(|(i, ci)| binom(n, i) * u.powi(i as i32) * (1.0 - u).powi((n - i) as i32) * ci)
+                .sum::<f64>()
+        };
+        let p = product(&a, &b);
+        let e = elevate(&b, 6);
+        for k in 0..=10 {
+            let u = f64::from(k) / 10.0;
+            assert!((eval(&p, u) - eval(&a, u) * eval(&b, u)).abs() < 1e-13);
+            assert!((eval(&e, u) - eval(&b, u)).abs() < 1e-13);
+        }
+    }
+}

@@ -1,0 +1,178 @@
+//! PDF output: one page of the figure's size in points, drawn as the SVG is (paths with
+//! round caps and joins, dashes, discs as four cubic arcs; opacity through graphics
+//! states). The content stream is written here with plain decimals (PDF has no exponent
+//! notation): exact commands with up to six decimals more than the rounding step of
+//! approximated pieces, which keep the tolerance. A quadratic is raised to its cubic
+//! exactly (`c₁ = p₀ + ⅔(q − p₀)`, `c₂ = p₂ + ⅔(q − p₂)`).
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+
+use glam::DVec2;
+use pdf_writer::{Name, Pdf, Rect, Ref};
+
+use super::fit::{Piece, Seg};
+use super::svg::step;
+use super::{Figure, Item, SubPath};
+
+/// The magic of the four-arc circle: a cubic arc of a quarter circle has its control
+/// points at this fraction of the radius along the tangents.
+const KAPPA: f64 = 0.552_284_749_830_793_4;
+
+/// `x` as a PDF number with at most `decimals` decimals, trailing zeros removed.
+fn num(x: f64, decimals: usize) -> String {
+    let s = format!("{x:.decimals$}");
+    let s = if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        s
+    };
+    if s == "-0" { "0".into() } else { s }
+}
+
+/// The figure as a PDF file.
+#[must_use]
+pub fn write(fig: &Figure) -> Vec<u8> {
+    let step = step(fig.tolerance);
+    let approx = (-step.log10()).round().max(0.0) as usize;
+    let exact = approx + 6;
+    let mut content = String::new();
+    let mut alphas: BTreeMap<u16, String> = BTreeMap::new();
+    let gs = |a: f64, alphas: &mut BTreeMap<u16, String>| -> Option<String> {
+        if a >= 1.0 {
+            return None;
+        }
+        let key = (a * 1000.0).round() as u16;
+        let n = alphas.len();
+        Some(alphas.entry(key).or_insert_with(|| format!("G{n}")).clone())
+    };
+    // y down, as the figure's coordinates.
+    let _ = writeln!(content, "1 0 0 -1 0 {} cm", num(fig.height, exact));
+    let rgb = |c: super::Color| c.0.map(|v| num(f64::from(v).clamp(0.0, 1.0), 4));
+    let [r, g, b, _] = rgb(fig.background);
+    let _ = writeln!(
+        content,
+        "{r} {g} {b} rg 0 0 {} {} re f",
+        num(fig.width, exact),
+        num(fig.height, exact)
+    );
+    content.push_str("1 J 1 j\n");
+    for item in &fig.items {
+        match item {
+            Item::Path { runs, stroke, .. } => {
+                if runs.is_empty() {
+                    continue;
+                }
+                content.push_str("q\n");
+                if let Some(name) = gs(f64::from(stroke.color.0[3]), &mut alphas) {
+                    let _ = writeln!(content, "/{name} gs");
+                }
+                let [r, g, b, _] = rgb(stroke.color);
+                let _ = writeln!(
+                    content,
+                    "{r} {g} {b} RG {} w",
+                    num(f64::from(stroke.width_px), exact)
+                );
+                if stroke.dash_px > 0.0 {
+                    let half = num(f64::from(stroke.dash_px) / 2.0, exact);
+                    let _ = writeln!(content, "[{half} {half}] 0 d");
+                }
+                path(&mut content, runs, approx, exact);
+                content.push_str("S\nQ\n");
+            }
+            Item::Disc {
+                center,
+                radius,
+                color,
+            } => {
+                content.push_str("q\n");
+                if let Some(name) = gs(f64::from(color.0[3]), &mut alphas) {
+                    let _ = writeln!(content, "/{name} gs");
+                }
+                let [r, g, b, _] = rgb(*color);
+                let _ = writeln!(content, "{r} {g} {b} rg");
+                disc(&mut content, *center, *radius, exact);
+                content.push_str("f\nQ\n");
+            }
+        }
+    }
+    let mut pdf = Pdf::new();
+    let (catalog, pages, page, stream) = (Ref::new(1), Ref::new(2), Ref::new(3), Ref::new(4));
+    pdf.catalog(catalog).pages(pages);
+    pdf.pages(pages).kids([page]).count(1);
+    let mut next = 5;
+    let states: Vec<(String, Ref, f32)> = alphas
+        .iter()
+        .map(|(key, name)| {
+            let id = Ref::new(next);
+            next += 1;
+            (name.clone(), id, f32::from(*key) / 1000.0)
+        })
+        .collect();
+    {
+        let mut p = pdf.page(page);
+        p.media_box(Rect::new(0.0, 0.0, fig.width as f32, fig.height as f32));
+        p.parent(pages);
+        p.contents(stream);
+        let mut res = p.resources();
+        let mut dict = res.ext_g_states();
+        for (name, id, _) in &states {
+            dict.pair(Name(name.as_bytes()), *id);
+        }
+    }
+    for (_, id, a) in &states {
+        pdf.ext_graphics(*id)
+            .stroking_alpha(*a)
+            .non_stroking_alpha(*a);
+    }
+    pdf.stream(stream, content.as_bytes());
+    pdf.finish()
+}
+
+fn path(out: &mut String, runs: &[SubPath], approx: usize, exact: usize) {
+    let p = |q: DVec2, exact_piece: bool| {
+        let d = if exact_piece { exact } else { approx };
+        format!("{} {}", num(q.x, d), num(q.y, d))
+    };
+    for run in runs {
+        let first_exact = run.pieces.first().is_none_or(|p| p.exact);
+        let _ = writeln!(out, "{} m", p(run.start, first_exact));
+        let mut current = run.start;
+        for &Piece { seg, exact: e } in &run.pieces {
+            match seg {
+                Seg::Line(q) => {
+                    let _ = writeln!(out, "{} l", p(q, e));
+                }
+                Seg::Quad(c, q) => {
+                    let c1 = current + (c - current) * (2.0 / 3.0);
+                    let c2 = q + (c - q) * (2.0 / 3.0);
+                    let _ = writeln!(out, "{} {} {} c", p(c1, e), p(c2, e), p(q, e));
+                }
+                Seg::Cubic(a, b, q) => {
+                    let _ = writeln!(out, "{} {} {} c", p(a, e), p(b, e), p(q, e));
+                }
+            }
+            current = seg.end();
+        }
+    }
+}
+
+fn disc(out: &mut String, c: DVec2, r: f64, d: usize) {
+    let k = KAPPA * r;
+    let pt = |x: f64, y: f64| format!("{} {}", num(x, d), num(y, d));
+    let _ = writeln!(out, "{} m", pt(c.x + r, c.y));
+    for (a, b, e) in [
+        ((r, k), (k, r), (0.0, r)),
+        ((-k, r), (-r, k), (-r, 0.0)),
+        ((-r, -k), (-k, -r), (0.0, -r)),
+        ((k, -r), (r, -k), (r, 0.0)),
+    ] {
+        let _ = writeln!(
+            out,
+            "{} {} {} c",
+            pt(c.x + a.0, c.y + a.1),
+            pt(c.x + b.0, c.y + b.1),
+            pt(c.x + e.0, c.y + e.1)
+        );
+    }
+}

@@ -1,0 +1,154 @@
+//! SVG output: one `<path>` per curve (its runs joined, `M` starting each), overlay
+//! polylines as paths, points as circles, styled as the renderer draws them (round caps
+//! and joins, dashes of half the period on). Exact commands carry their control points
+//! as the shortest decimals that read back as the same `f64`; approximated pieces are
+//! rounded to the coarsest decimal step that keeps them within the tolerance.
+
+use std::fmt::Write as _;
+
+use super::fit::{Piece, Seg};
+use super::{Figure, Item, SubPath, hex};
+
+/// The decimal step approximated pieces are rounded to: the largest power of ten at most
+/// a quarter of the tolerance (a point moves at most `step/√2` by it).
+#[must_use]
+pub fn step(tolerance: f64) -> f64 {
+    10f64.powf((tolerance / 4.0).log10().floor())
+}
+
+/// `x` in its shortest form: the round-trip decimal (`exact`), or rounded to `step`.
+#[must_use]
+pub fn number(x: f64, exact: bool, step: f64) -> String {
+    if exact {
+        return trim(format!("{x}"));
+    }
+    let decimals = (-step.log10()).round().max(0.0) as usize;
+    trim(format!("{:.*}", decimals, (x / step).round() * step))
+}
+
+fn trim(s: String) -> String {
+    let s = if s.contains('.') && !s.contains('e') {
+        s.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        s
+    };
+    if s == "-0" { "0".into() } else { s }
+}
+
+/// The path data of `runs`.
+#[must_use]
+pub fn path_data(runs: &[SubPath], step: f64) -> String {
+    let mut d = String::new();
+    let pt = |d: &mut String, p: glam::DVec2, exact: bool| {
+        let _ = write!(
+            d,
+            "{} {}",
+            number(p.x, exact, step),
+            number(p.y, exact, step)
+        );
+    };
+    for run in runs {
+        let first_exact = run.pieces.first().is_none_or(|p| p.exact);
+        d.push('M');
+        pt(&mut d, run.start, first_exact);
+        for &Piece { seg, exact } in &run.pieces {
+            match seg {
+                Seg::Line(p) => {
+                    d.push('L');
+                    pt(&mut d, p, exact);
+                }
+                Seg::Quad(a, p) => {
+                    d.push('Q');
+                    pt(&mut d, a, exact);
+                    d.push(' ');
+                    pt(&mut d, p, exact);
+                }
+                Seg::Cubic(a, b, p) => {
+                    d.push('C');
+                    pt(&mut d, a, exact);
+                    d.push(' ');
+                    pt(&mut d, b, exact);
+                    d.push(' ');
+                    pt(&mut d, p, exact);
+                }
+            }
+        }
+    }
+    d
+}
+
+/// The figure as an SVG document.
+#[must_use]
+pub fn write(fig: &Figure) -> String {
+    let step = step(fig.tolerance);
+    let mut s = String::new();
+    let (w, h) = (
+        number(fig.width, true, step),
+        number(fig.height, true, step),
+    );
+    let _ = writeln!(
+        s,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}">"#
+    );
+    let (bg, bg_a) = hex(fig.background);
+    let _ = writeln!(
+        s,
+        r#"<rect width="{w}" height="{h}" fill="{bg}"{}/>"#,
+        opacity("fill-opacity", bg_a)
+    );
+    for item in &fig.items {
+        match item {
+            Item::Path {
+                runs,
+                stroke,
+                curve,
+            } => {
+                if runs.is_empty() {
+                    continue;
+                }
+                let (c, a) = hex(stroke.color);
+                let dash = if stroke.dash_px > 0.0 {
+                    let half = number(f64::from(stroke.dash_px) / 2.0, true, step);
+                    format!(r#" stroke-dasharray="{half} {half}""#)
+                } else {
+                    String::new()
+                };
+                let id = curve
+                    .map(|i| format!(r#" id="curve-{i}""#))
+                    .unwrap_or_default();
+                let _ = writeln!(
+                    s,
+                    r#"<path{id} d="{}" fill="none" stroke="{c}"{} stroke-width="{}" stroke-linecap="round" stroke-linejoin="round"{dash}/>"#,
+                    path_data(runs, step),
+                    opacity("stroke-opacity", a),
+                    number(f64::from(stroke.width_px), true, step),
+                );
+            }
+            Item::Disc {
+                center,
+                radius,
+                color,
+            } => {
+                let (c, a) = hex(*color);
+                let _ = writeln!(
+                    s,
+                    r#"<circle cx="{}" cy="{}" r="{}" fill="{c}"{}/>"#,
+                    number(center.x, true, step),
+                    number(center.y, true, step),
+                    number(*radius, true, step),
+                    opacity("fill-opacity", a),
+                );
+            }
+        }
+    }
+    s.push_str("</svg>\n");
+    s
+}
+
+fn opacity(attr: &str, a: f64) -> String {
+    if a >= 1.0 {
+        String::new()
+    } else {
+        format!(r#" {attr}="{}""#, trim(format!("{a:.3}")))
+    }
+}

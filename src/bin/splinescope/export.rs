@@ -1,0 +1,115 @@
+//! `splinescope export`: a scene (default: the built-in gallery) as a figure — SVG or PDF
+//! with exact curves (splinescope-figure), or the PNG `render` draws.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, bail};
+
+use splinescope::scene::{Scene, gallery};
+
+use crate::{GpuArgs, say};
+
+/// The arguments of `splinescope export`.
+#[derive(Debug, clap::Args)]
+pub struct ExportArgs {
+    /// Scene file (JSON); omit for the built-in gallery.
+    pub scene: Option<PathBuf>,
+    /// Output figure: `.svg`, `.pdf` or `.png`.
+    #[arg(short, long, value_name = "FIG")]
+    pub output: PathBuf,
+    /// Width in points (pixels for a PNG).
+    #[arg(long, default_value_t = 1200, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub width: u32,
+    /// Height in points (pixels for a PNG).
+    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub height: u32,
+    /// Largest distance, in output points, between a written piece and the exact curve
+    /// (segments of degree ≤ 3 in a 2D view are written exactly).
+    #[arg(long, default_value_t = splinescope_figure::DEFAULT_TOLERANCE, value_parser = parse_tolerance)]
+    pub tolerance: f64,
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+}
+
+/// A tolerance: a finite number greater than 0.
+fn parse_tolerance(s: &str) -> Result<f64, String> {
+    let v: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("{s:?} is not a number"))?;
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!(
+            "{s:?}: the tolerance must be a finite number greater than 0 (output points)"
+        ))
+    }
+}
+
+/// The figure formats, by the output's extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Format {
+    Svg,
+    Pdf,
+    Png,
+}
+
+fn format_of(path: &Path) -> Result<Format> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("svg") => Ok(Format::Svg),
+        Some("pdf") => Ok(Format::Pdf),
+        Some("png") => Ok(Format::Png),
+        other => bail!(
+            "{}: unknown figure format {} (expected .svg, .pdf or .png)",
+            path.display(),
+            other.map_or_else(|| "(no extension)".to_owned(), |e| format!(".{e}"))
+        ),
+    }
+}
+
+/// Runs `splinescope export`.
+///
+/// # Errors
+/// An unknown extension, a scene that does not load, a GPU failure (PNG), or a file that
+/// cannot be written (nothing partial is left).
+pub fn run(a: &ExportArgs) -> Result<()> {
+    let format = format_of(&a.output)?;
+    let scene = match &a.scene {
+        None => gallery::gallery(),
+        Some(p) => Scene::load(p).with_context(|| format!("{}", p.display()))?,
+    };
+    let bytes = match format {
+        Format::Png => {
+            let (ctx, pipelines) = a.gpu.context()?;
+            let image = splinescope::offscreen::render_scene(
+                &ctx, &pipelines, &scene, None, a.width, a.height,
+            )?;
+            image.png_bytes(&a.output)?
+        }
+        Format::Svg | Format::Pdf => {
+            let mut opts = splinescope_figure::FigureOptions::new(a.width, a.height);
+            opts.tolerance = a.tolerance;
+            let fig = splinescope_figure::build(&scene, &opts)?;
+            if format == Format::Svg {
+                splinescope_figure::svg::write(&fig).into_bytes()
+            } else {
+                splinescope_figure::pdf::write(&fig)
+            }
+        }
+    };
+    splinescope::files::write_atomic(&a.output, &bytes)
+        .with_context(|| format!("cannot write {}", a.output.display()))?;
+    say!(
+        "exported {} curve(s) to {} ({}×{})",
+        scene.curves.len(),
+        a.output.display(),
+        a.width,
+        a.height
+    );
+    Ok(())
+}

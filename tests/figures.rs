@@ -1,0 +1,387 @@
+//! Figures (`splinescope export`, splinescope-figure): the SVG rasterised with resvg and
+//! the PDF rasterised with pdftoppm look like `render`'s PNG of the same scene and camera
+//! (FLIP tolerance below) on every backend; the written path data, read back, lies within
+//! the tolerance of the exact curve at dense parameters, exact commands carry the very
+//! control points; bad arguments are refused with nothing written.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use glam::{DVec2, DVec3};
+
+use splinescope::geom::{Lower, ParamCurve};
+use splinescope::image::{RgbaImage, Tolerance, compare_images};
+use splinescope::scene::{Scene, gallery};
+use splinescope_figure::fit::Projection;
+use splinescope_figure::{FigureOptions, build, pdf, svg};
+
+/// Rasterisers differ from the GPU in edge coverage (and PDF viewers in stroke
+/// adjustment); a missing, moved or restyled curve changes far more than this.
+const FIGURE_TOLERANCE: &str = "channel=24,pixels=3%,flip=0.02";
+
+fn scenes() -> Vec<(String, Scene)> {
+    let mut out = vec![("gallery".to_owned(), gallery::gallery())];
+    let mut paths: Vec<PathBuf> =
+        std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes"))
+            .expect("scenes/")
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.extension().is_some_and(|e| e == "json"))
+            .collect();
+    paths.sort();
+    for p in paths {
+        let name = p
+            .file_stem()
+            .unwrap_or_default()
+            .to_string_lossy()
+            .into_owned();
+        out.push((name, Scene::load(&p).expect("a shipped scene loads")));
+    }
+    out
+}
+
+fn rasterise_svg(text: &str, w: u32, h: u32) -> RgbaImage {
+    let tree = resvg::usvg::Tree::from_str(text, &resvg::usvg::Options::default())
+        .expect("the SVG parses");
+    let mut pixmap = resvg::tiny_skia::Pixmap::new(w, h).expect("pixmap");
+    resvg::render(
+        &tree,
+        resvg::tiny_skia::Transform::default(),
+        &mut pixmap.as_mut(),
+    );
+    // The background is opaque: premultiplied equals straight alpha.
+    RgbaImage {
+        width: w,
+        height: h,
+        data: pixmap.data().to_vec(),
+    }
+}
+
+fn rasterise_pdf(bytes: &[u8], dir: &Path) -> RgbaImage {
+    let pdf_path = dir.join("figure.pdf");
+    std::fs::write(&pdf_path, bytes).expect("write the PDF");
+    let out = Command::new("pdftoppm")
+        .args(["-png", "-r", "72", "-singlefile"])
+        .arg(&pdf_path)
+        .arg(dir.join("figure"))
+        .output()
+        .unwrap_or_else(|e| {
+            panic!(
+                "pdftoppm is needed to check PDF figures ({e}): sudo apt-get install poppler-utils"
+            )
+        });
+    assert!(
+        out.status.success(),
+        "pdftoppm: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    RgbaImage::read_png(&dir.join("figure.png")).expect("pdftoppm's PNG")
+}
+
+fn check_like(name: &str, what: &str, actual: &RgbaImage, reference: &RgbaImage) {
+    let tol: Tolerance = FIGURE_TOLERANCE.parse().expect("tolerance");
+    let (c, images) = compare_images(actual, reference, &tol).expect("same size");
+    if !c.matches {
+        let dir = common::out_dir("figures");
+        actual
+            .write_png(&dir.join(format!("{name}.{what}.actual.png")))
+            .ok();
+        reference
+            .write_png(&dir.join(format!("{name}.{what}.render.png")))
+            .ok();
+        images
+            .diff
+            .write_png(&dir.join(format!("{name}.{what}.diff.png")))
+            .ok();
+        panic!(
+            "{name}: the {what} figure differs from render's PNG beyond {FIGURE_TOLERANCE}: {c:?} (images in {})",
+            dir.display()
+        );
+    }
+}
+
+#[test]
+fn svg_and_pdf_figures_look_like_the_rendered_png() {
+    let (w, h) = (480, 320);
+    common::on_each_gpu("figures look like render", |backend| {
+        let dir = tempdir();
+        for (name, scene) in scenes() {
+            let png = splinescope::offscreen::render_scene(
+                &backend.ctx,
+                &backend.pipelines,
+                &scene,
+                None,
+                w,
+                h,
+            )
+            .expect("render");
+            let fig = build(&scene, &FigureOptions::new(w, h)).expect("figure");
+            let name = format!("{name}.{}", backend.name);
+            check_like(&name, "svg", &rasterise_svg(&svg::write(&fig), w, h), &png);
+            check_like(&name, "pdf", &rasterise_pdf(&pdf::write(&fig), &dir), &png);
+        }
+    });
+}
+
+/// The numbers of one path's data, by command.
+fn parse_path(d: &str) -> Vec<(char, Vec<f64>)> {
+    let mut out: Vec<(char, Vec<f64>)> = Vec::new();
+    let mut number = String::new();
+    let flush = |number: &mut String, out: &mut Vec<(char, Vec<f64>)>| {
+        if !number.is_empty() {
+            let v: f64 = number.parse().expect("a number");
+            out.last_mut().expect("a command first").1.push(v);
+            number.clear();
+        }
+    };
+    for ch in d.chars() {
+        if "MLQC".contains(ch) {
+            flush(&mut number, &mut out);
+            out.push((ch, Vec::new()));
+        } else if ch == ' ' {
+            flush(&mut number, &mut out);
+        } else {
+            number.push(ch);
+        }
+    }
+    flush(&mut number, &mut out);
+    out
+}
+
+/// Each curve's path data, by curve index.
+fn curve_paths(text: &str) -> Vec<(usize, String)> {
+    text.lines()
+        .filter_map(|l| {
+            let rest = l.split_once("<path id=\"curve-")?.1;
+            let (index, rest) = rest.split_once('"')?;
+            let d = rest.split_once("d=\"")?.1.split_once('"')?.0;
+            Some((index.parse().ok()?, d.to_owned()))
+        })
+        .collect()
+}
+
+/// Points along a path's commands (each command sampled at `k` parameters).
+fn path_points(cmds: &[(char, Vec<f64>)], k: usize) -> Vec<DVec2> {
+    let mut out = Vec::new();
+    let mut cur = DVec2::ZERO;
+    for (c, v) in cmds {
+        let p: Vec<DVec2> = v.chunks(2).map(|c| DVec2::new(c[0], c[1])).collect();
+        let ctrl: Vec<DVec2> = std::iter::once(cur).chain(p.iter().copied()).collect();
+        if *c == 'M' {
+            cur = p[0];
+            out.push(cur);
+            continue;
+        }
+        for j in 1..=k {
+            let u = j as f64 / k as f64;
+            let mut b = ctrl.clone();
+            for r in 1..b.len() {
+                for i in 0..b.len() - r {
+                    b[i] = b[i] * (1.0 - u) + b[i + 1] * u;
+                }
+            }
+            out.push(b[0]);
+        }
+        cur = *p.last().expect("an end point");
+    }
+    out
+}
+
+/// The largest distance from a point of `points` (in order along a curve) to the
+/// polyline `line` (the same curve, in order): each point is matched within a window that
+/// follows the previous match, so the sweep is linear.
+fn sweep_distance(points: &[DVec2], line: &[DVec2]) -> f64 {
+    const WINDOW: usize = 4000;
+    let mut at = 0usize;
+    let mut worst = 0.0_f64;
+    for p in points {
+        let lo = at.saturating_sub(WINDOW);
+        let hi = (at + WINDOW).min(line.len().saturating_sub(1));
+        let (mut best, mut best_i) = (f64::INFINITY, at);
+        for i in lo..hi.max(lo + 1).min(line.len().saturating_sub(1)) {
+            let d = distance_to_polyline(*p, &line[i..i + 2]);
+            if d < best {
+                best = d;
+                best_i = i;
+            }
+        }
+        at = best_i;
+        worst = worst.max(best);
+    }
+    worst
+}
+
+fn distance_to_polyline(p: DVec2, line: &[DVec2]) -> f64 {
+    line.windows(2)
+        .map(|w| {
+            let d = w[1] - w[0];
+            let t = if d.length_squared() > 0.0 {
+                ((p - w[0]).dot(d) / d.length_squared()).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (w[0] + t * d - p).length()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Every written piece lies within the tolerance of the exact curve (dense parameters of
+/// the exact curve, projected), and the exact curve within the tolerance of the pieces;
+/// in 2D views every segment of degree ≤ 3 is written with its projected control points,
+/// bit for bit.
+#[test]
+fn written_paths_keep_the_tolerance_and_exact_control_points() {
+    let (w, h) = (640.0, 400.0);
+    for tolerance in [0.01, 0.5] {
+        for (name, scene) in scenes() {
+            let mut opts = FigureOptions::new(w as u32, h as u32);
+            opts.tolerance = tolerance;
+            let fig = build(&scene, &opts).expect("figure");
+            let proj: Projection = fig.projection;
+            let text = svg::write(&fig);
+            for (index, d) in curve_paths(&text) {
+                let curve = &scene.curves[index].curve;
+                let cmds = parse_path(&d);
+                // The exact curve, densely: its own evaluation, projected.
+                let (a, b) = curve.domain();
+                let exact: Vec<DVec2> = (0..=40_000)
+                    .filter_map(|j| proj.point(curve.eval(a + (b - a) * f64::from(j) / 40_000.0)))
+                    .collect();
+                let written = path_points(&cmds, 64);
+                // The dense polylines are within ~1e-4 pt of their curves here.
+                let slack = 2e-3;
+                let worst = sweep_distance(&written, &exact);
+                assert!(
+                    worst <= tolerance + slack,
+                    "{name} curve {index}, T = {tolerance}: a written point is {worst} pt from the curve"
+                );
+                let dense = path_points(&cmds, 2048);
+                let back = sweep_distance(
+                    &exact.iter().step_by(7).copied().collect::<Vec<_>>(),
+                    &dense,
+                );
+                assert!(
+                    back <= tolerance + slack,
+                    "{name} curve {index}, T = {tolerance}: the curve is {back} pt from the path"
+                );
+                if proj.affine {
+                    let segs = curve.lower();
+                    if segs.iter().all(|s| s.bezier.degree() <= 3) {
+                        let mut want: Vec<f64> = Vec::new();
+                        for (k, s) in segs.iter().enumerate() {
+                            let pts: Vec<DVec2> = s
+                                .bezier
+                                .points()
+                                .iter()
+                                .filter_map(|&p| proj.point(p))
+                                .collect();
+                            let skip = usize::from(k > 0 && Some(pts[0]) == want_end(&want));
+                            for p in &pts[skip..] {
+                                want.extend([p.x, p.y]);
+                            }
+                        }
+                        let got: Vec<f64> =
+                            cmds.iter().flat_map(|(_, v)| v.iter().copied()).collect();
+                        assert_eq!(
+                            got.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                            want.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                            "{name} curve {index}: exact control points"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+fn want_end(v: &[f64]) -> Option<DVec2> {
+    (v.len() >= 2).then(|| DVec2::new(v[v.len() - 2], v[v.len() - 1]))
+}
+
+/// A high-degree segment takes more pieces for a smaller tolerance, and a 3D view's
+/// perspective bends even straight lines' parameterisation but keeps lines straight.
+#[test]
+fn pieces_follow_the_tolerance() {
+    let bez = splinescope::geom::Bezier::new(
+        (0..=12)
+            .map(|i| DVec3::new(f64::from(i), if i % 2 == 0 { 0.0 } else { 4.0 }, 0.0))
+            .collect(),
+    );
+    let proj = Projection {
+        rows: [
+            [30.0, 0.0, 0.0, 10.0],
+            [0.0, -30.0, 0.0, 200.0],
+            [0.0, 0.0, 0.0, 1.0],
+        ],
+        affine: true,
+    };
+    let count = |t: f64| {
+        splinescope_figure::fit::segment_pieces(&bez, &proj, t)
+            .expect("in front")
+            .len()
+    };
+    let (coarse, fine) = (count(1.0), count(0.001));
+    assert!(coarse >= 1 && fine > coarse, "{coarse} vs {fine}");
+    // Halving pieces: 4⁴ = 256 times finer needs 2⁴/2 … more pieces than ~ (256)^(1/4).
+    assert!(fine <= coarse * 64, "{coarse} vs {fine}");
+}
+
+fn tempdir() -> PathBuf {
+    let dir = common::out_dir("figures-tmp").join(format!("{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+#[test]
+fn export_refuses_bad_arguments_and_writes_nothing() {
+    let bin = env!("CARGO_BIN_EXE_splinescope");
+    let dir = tempdir();
+    let run = |args: &[&str]| Command::new(bin).args(args).output().expect("run");
+    let txt = dir.join("figure.txt");
+    let out = run(&["export", "-o", txt.to_str().unwrap_or_default()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        String::from_utf8_lossy(&out.stderr)
+            .contains("unknown figure format .txt (expected .svg, .pdf or .png)")
+    );
+    assert!(!txt.exists());
+    for t in ["0", "-1", "nan", "inf"] {
+        let svg_path = dir.join("t.svg");
+        let arg = format!("--tolerance={t}");
+        let out = run(&["export", "-o", svg_path.to_str().unwrap_or_default(), &arg]);
+        assert_eq!(out.status.code(), Some(2), "{t}");
+        assert!(
+            String::from_utf8_lossy(&out.stderr).contains("--tolerance"),
+            "{t}"
+        );
+        assert!(!svg_path.exists());
+    }
+    let missing = dir.join("no").join("such").join("dir").join("f.svg");
+    let out = run(&["export", "-o", missing.to_str().unwrap_or_default()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot write"));
+    // An existing file stays as it was when the export fails.
+    let kept = dir.join("kept.svg");
+    std::fs::write(&kept, "old").expect("write");
+    let out = run(&[
+        "export",
+        "no-such-scene.json",
+        "-o",
+        kept.to_str().unwrap_or_default(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(std::fs::read_to_string(&kept).expect("read"), "old");
+    // A good export writes an SVG and a PDF.
+    for ext in ["svg", "pdf"] {
+        let f = dir.join(format!("ok.{ext}"));
+        let out = run(&["export", "-o", f.to_str().unwrap_or_default()]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let bytes = std::fs::read(&f).expect("written");
+        assert!(bytes.starts_with(if ext == "svg" { b"<svg" } else { b"%PDF" }));
+    }
+}
