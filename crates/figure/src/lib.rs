@@ -14,9 +14,11 @@
 
 #![forbid(unsafe_code)]
 
+pub mod annotate;
 pub mod fit;
 pub mod pdf;
 pub mod svg;
+pub mod text;
 
 use glam::{DVec2, DVec3};
 use thiserror::Error;
@@ -44,6 +46,14 @@ pub struct FigureOptions {
     pub tolerance: f64,
     /// The curves' overlays (control polygons, points) as the panel's toggles allow.
     pub switches: Switches,
+    /// Label each curve at its end (name and live shape parameters).
+    pub labels: bool,
+    /// A legend in the top right corner.
+    pub legend: bool,
+    /// Axes with ticks and tick labels in scene units (2D views).
+    pub axes: bool,
+    /// A grid at the ticks (2D views).
+    pub grid: bool,
 }
 
 impl FigureOptions {
@@ -56,6 +66,10 @@ impl FigureOptions {
             camera: None,
             tolerance: DEFAULT_TOLERANCE,
             switches: Switches::ALL,
+            labels: false,
+            legend: false,
+            axes: false,
+            grid: false,
         }
     }
 }
@@ -66,6 +80,11 @@ pub enum FigureError {
     /// The tolerance is not a positive finite number.
     #[error("tolerance {0}: must be a finite number greater than 0 (output points)")]
     Tolerance(f64),
+    /// Axes or a grid asked of a 3D view.
+    #[error(
+        "axes and grids are drawn in scene units for 2D views only; this scene has a 3D view (its axis triad shows the directions)"
+    )]
+    AxesIn3d,
     /// A side of the output is zero or too large.
     #[error("figure size {width}×{height}: each side must be 1..=100000 points")]
     Size {
@@ -97,6 +116,30 @@ pub enum Item {
         /// The scene curve it draws, if it is one.
         curve: Option<usize>,
     },
+    /// Text on a baseline.
+    Text {
+        /// Where the baseline starts, is centred or ends (by `anchor`).
+        at: DVec2,
+        /// Font size in points.
+        size: f64,
+        /// The text.
+        text: String,
+        /// Its colour.
+        color: Color,
+        /// Which end of the text `at` is.
+        anchor: Anchor,
+    },
+    /// A filled rectangle, optionally outlined (the legend's box).
+    Rect {
+        /// Top left corner.
+        min: DVec2,
+        /// Bottom right corner.
+        max: DVec2,
+        /// Fill colour.
+        fill: Color,
+        /// Outline.
+        stroke: Option<Stroke>,
+    },
     /// A filled disc (a control point, an annotation point).
     Disc {
         /// Its centre.
@@ -106,6 +149,17 @@ pub enum Item {
         /// Its colour.
         color: Color,
     },
+}
+
+/// Which part of a text its position names.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Anchor {
+    /// The start of the baseline.
+    Start,
+    /// Its middle.
+    Middle,
+    /// Its end.
+    End,
 }
 
 /// A scene as a vector figure (see the crate doc).
@@ -160,8 +214,11 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
     let size = DVec2::new(f64::from(opts.width), f64::from(opts.height));
     let camera = opts.camera.unwrap_or_else(|| scene.camera(size));
     let proj = projection(&camera, size);
+    if (opts.axes || opts.grid) && !proj.affine {
+        return Err(FigureError::AxesIn3d);
+    }
     let encoding = Encoding::with(scene, opts.switches);
-    let mut items = Vec::new();
+    let (mut items, guides) = annotate::axes(&proj, size, opts.axes, opts.grid);
     for (points, stroke) in &encoding.overlays.lines {
         let runs = polyline_runs(points, &proj);
         if !runs.is_empty() {
@@ -217,6 +274,13 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
                 }
             }
         }
+    }
+    items.extend(guides);
+    if opts.labels {
+        annotate::labels(scene, &proj, size, &mut items);
+    }
+    if opts.legend {
+        annotate::legend(scene, size, &mut items);
     }
     Ok(Figure {
         width: size.x,

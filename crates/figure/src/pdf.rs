@@ -13,7 +13,7 @@ use pdf_writer::{Name, Pdf, Rect, Ref};
 
 use super::fit::{Piece, Seg};
 use super::svg::step;
-use super::{Figure, Item, SubPath};
+use super::{Anchor, Figure, Item, SubPath};
 
 /// The magic of the four-arc circle: a cubic arc of a quarter circle has its control
 /// points at this fraction of the radius along the tangents.
@@ -36,6 +36,13 @@ pub fn write(fig: &Figure) -> Vec<u8> {
     let step = step(fig.tolerance);
     let approx = (-step.log10()).round().max(0.0) as usize;
     let exact = approx + 6;
+    let mut used = super::text::Used::default();
+    for item in &fig.items {
+        if let Item::Text { text, .. } = item {
+            used.collect(text);
+        }
+    }
+    let font = used.subset();
     let mut content = String::new();
     let mut alphas: BTreeMap<u16, String> = BTreeMap::new();
     let gs = |a: f64, alphas: &mut BTreeMap<u16, String>| -> Option<String> {
@@ -80,6 +87,63 @@ pub fn write(fig: &Figure) -> Vec<u8> {
                 path(&mut content, runs, approx, exact);
                 content.push_str("S\nQ\n");
             }
+            Item::Text {
+                at,
+                size,
+                text,
+                color,
+                anchor,
+            } => {
+                content.push_str("q\n");
+                if let Some(name) = gs(f64::from(color.0[3]), &mut alphas) {
+                    let _ = writeln!(content, "/{name} gs");
+                }
+                let [r, g, b, _] = rgb(*color);
+                let w = super::text::width(text, *size);
+                let x = match anchor {
+                    Anchor::Start => at.x,
+                    Anchor::Middle => at.x - 0.5 * w,
+                    Anchor::End => at.x - w,
+                };
+                // The text matrix flips y back (the page's y points down here).
+                let _ = writeln!(
+                    content,
+                    "{r} {g} {b} rg BT /F0 {} Tf 1 0 0 -1 {} {} Tm <{}> Tj ET\nQ",
+                    num(*size, exact),
+                    num(x, exact),
+                    num(at.y, exact),
+                    font.encode(text)
+                );
+            }
+            Item::Rect {
+                min,
+                max,
+                fill,
+                stroke,
+            } => {
+                content.push_str("q\n");
+                if let Some(name) = gs(f64::from(fill.0[3]), &mut alphas) {
+                    let _ = writeln!(content, "/{name} gs");
+                }
+                let [r, g, b, _] = rgb(*fill);
+                let rect = format!(
+                    "{} {} {} {} re",
+                    num(min.x, exact),
+                    num(min.y, exact),
+                    num(max.x - min.x, exact),
+                    num(max.y - min.y, exact)
+                );
+                let _ = writeln!(content, "{r} {g} {b} rg {rect} f");
+                if let Some(st) = stroke {
+                    let [r, g, b, _] = rgb(st.color);
+                    let _ = writeln!(
+                        content,
+                        "{r} {g} {b} RG {} w {rect} S",
+                        num(f64::from(st.width_px), exact)
+                    );
+                }
+                content.push_str("Q\n");
+            }
             Item::Disc {
                 center,
                 radius,
@@ -101,6 +165,13 @@ pub fn write(fig: &Figure) -> Vec<u8> {
     pdf.catalog(catalog).pages(pages);
     pdf.pages(pages).kids([page]).count(1);
     let mut next = 5;
+    let font_ref = if font.is_empty() {
+        None
+    } else {
+        let (r, n) = font.write(&mut pdf, next);
+        next = n;
+        Some(r)
+    };
     let states: Vec<(String, Ref, f32)> = alphas
         .iter()
         .map(|(key, name)| {
@@ -115,6 +186,9 @@ pub fn write(fig: &Figure) -> Vec<u8> {
         p.parent(pages);
         p.contents(stream);
         let mut res = p.resources();
+        if let Some(f) = font_ref {
+            res.fonts().pair(Name(b"F0"), f);
+        }
         let mut dict = res.ext_g_states();
         for (name, id, _) in &states {
             dict.pair(Name(name.as_bytes()), *id);

@@ -7,7 +7,7 @@
 use std::fmt::Write as _;
 
 use super::fit::{Piece, Seg};
-use super::{Figure, Item, SubPath, hex};
+use super::{Anchor, Figure, Item, SubPath, hex};
 
 /// The decimal step approximated pieces are rounded to: the largest power of ten at most
 /// a quarter of the tolerance (a point moves at most `step/√2` by it).
@@ -124,6 +124,55 @@ pub fn write(fig: &Figure) -> String {
                     number(f64::from(stroke.width_px), true, step),
                 );
             }
+            Item::Text {
+                at,
+                size,
+                text,
+                color,
+                anchor,
+            } => {
+                let (c, a) = hex(*color);
+                let anchor = match anchor {
+                    Anchor::Start => "",
+                    Anchor::Middle => r#" text-anchor="middle""#,
+                    Anchor::End => r#" text-anchor="end""#,
+                };
+                let _ = writeln!(
+                    s,
+                    r#"<text x="{}" y="{}" font-family="{}" font-weight="300" font-size="{}" fill="{c}"{}{anchor}>{}</text>"#,
+                    number(at.x, true, step),
+                    number(at.y, true, step),
+                    super::text::SVG_FAMILY,
+                    number(*size, true, step),
+                    opacity("fill-opacity", a),
+                    escape(text),
+                );
+            }
+            Item::Rect {
+                min,
+                max,
+                fill,
+                stroke,
+            } => {
+                let (c, a) = hex(*fill);
+                let outline = stroke.map_or_else(String::new, |st| {
+                    let (sc, sa) = hex(st.color);
+                    format!(
+                        r#" stroke="{sc}"{} stroke-width="{}""#,
+                        opacity("stroke-opacity", sa),
+                        number(f64::from(st.width_px), true, step)
+                    )
+                });
+                let _ = writeln!(
+                    s,
+                    r#"<rect x="{}" y="{}" width="{}" height="{}" fill="{c}"{}{outline}/>"#,
+                    number(min.x, true, step),
+                    number(min.y, true, step),
+                    number(max.x - min.x, true, step),
+                    number(max.y - min.y, true, step),
+                    opacity("fill-opacity", a),
+                );
+            }
             Item::Disc {
                 center,
                 radius,
@@ -151,4 +200,12 @@ fn opacity(attr: &str, a: f64) -> String {
     } else {
         format!(r#" {attr}="{}""#, trim(format!("{a:.3}")))
     }
+}
+
+/// `text` with XML's special characters escaped.
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
 }

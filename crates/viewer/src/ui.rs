@@ -80,11 +80,7 @@ fn summarize_lowered(i: usize, c: &SceneCurve, segments: &[BezierSegment]) -> Cu
 /// A curve's name (or family) with its shape parameters as they are now, so that the
 /// label never goes stale when they are edited.
 fn label(c: &SceneCurve) -> String {
-    let name = c.name.as_deref().unwrap_or(c.curve.family());
-    match c.curve.parameter_text() {
-        Some(p) => format!("{name} · {p}"),
-        None => name.to_owned(),
-    }
+    c.label()
 }
 
 /// What the panel and the canvas overlay need to know of the scene, derived when it

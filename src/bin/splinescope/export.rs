@@ -28,6 +28,18 @@ pub struct ExportArgs {
     /// (segments of degree ≤ 3 in a 2D view are written exactly).
     #[arg(long, default_value_t = splinescope_figure::DEFAULT_TOLERANCE, value_parser = parse_tolerance)]
     pub tolerance: f64,
+    /// Label each curve at its end (name and live shape parameters).
+    #[arg(long)]
+    pub labels: bool,
+    /// A legend in the top right corner.
+    #[arg(long)]
+    pub legend: bool,
+    /// Axes with ticks and tick labels in scene units (2D scenes).
+    #[arg(long)]
+    pub axes: bool,
+    /// A grid at the ticks (2D scenes).
+    #[arg(long)]
+    pub grid: bool,
     #[command(flatten)]
     pub gpu: GpuArgs,
 }
@@ -94,6 +106,10 @@ pub fn run(a: &ExportArgs) -> Result<()> {
         Format::Svg | Format::Pdf => {
             let mut opts = splinescope_figure::FigureOptions::new(a.width, a.height);
             opts.tolerance = a.tolerance;
+            opts.labels = a.labels;
+            opts.legend = a.legend;
+            opts.axes = a.axes;
+            opts.grid = a.grid;
             let fig = splinescope_figure::build(&scene, &opts)?;
             if format == Format::Svg {
                 splinescope_figure::svg::write(&fig).into_bytes()

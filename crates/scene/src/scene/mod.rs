@@ -156,6 +156,19 @@ pub struct SceneCurve {
     pub style: Style,
 }
 
+impl SceneCurve {
+    /// The curve's name (or its family) with its shape parameters as they are now
+    /// (`name · t* = 0.3, v = (1, 2)`): what the viewer and figures label it with.
+    #[must_use]
+    pub fn label(&self) -> String {
+        let name = self.name.as_deref().unwrap_or(self.curve.family());
+        match self.curve.parameter_text() {
+            Some(p) => format!("{name} · {p}"),
+            None => name.to_owned(),
+        }
+    }
+}
+
 /// The view a scene opens with.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ViewSpec {
