@@ -58,3 +58,47 @@ pub fn render_scene_with(
         tolerance_px,
     )
 }
+
+/// Draws `opts`' guides and text (labels, legend, axes, grid: splinescope-figure) over
+/// `image`, a render of `scene` with the scene's camera at the image's size; nothing
+/// when `opts` asks for none.
+///
+/// # Errors
+/// [`splinescope_figure::FigureError`] (axes or a grid asked of a 3D view).
+pub fn annotate(
+    image: &mut RgbaImage,
+    scene: &Scene,
+    opts: &TextOptions,
+) -> Result<(), splinescope_figure::FigureError> {
+    if !(opts.labels || opts.legend || opts.axes || opts.grid) {
+        return Ok(());
+    }
+    let mut f = splinescope_figure::FigureOptions::new(image.width, image.height);
+    f.labels = opts.labels;
+    f.legend = opts.legend;
+    f.axes = opts.axes;
+    f.grid = opts.grid;
+    let fig = splinescope_figure::build(scene, &f)?;
+    splinescope_figure::raster::draw_guides(
+        &fig,
+        &mut splinescope_figure::raster::Canvas {
+            data: &mut image.data,
+            width: image.width,
+            height: image.height,
+        },
+    );
+    Ok(())
+}
+
+/// The text a picture carries besides the curves.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct TextOptions {
+    /// Each curve's label at its end.
+    pub labels: bool,
+    /// A legend.
+    pub legend: bool,
+    /// Axes with ticks in scene units (2D).
+    pub axes: bool,
+    /// A grid at the ticks (2D).
+    pub grid: bool,
+}

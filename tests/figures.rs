@@ -79,8 +79,22 @@ fn rasterise_pdf(bytes: &[u8], dir: &Path) -> RgbaImage {
     RgbaImage::read_png(&dir.join("figure.png")).expect("pdftoppm's PNG")
 }
 
+/// Text rasterisers differ in hinting and gamma on every glyph edge; a label set in the
+/// wrong place or size moves whole glyphs, far beyond this.
+const TEXT_TOLERANCE: &str = "channel=24,pixels=10%,flip=0.05";
+
 fn check_like(name: &str, what: &str, actual: &RgbaImage, reference: &RgbaImage) {
-    let tol: Tolerance = FIGURE_TOLERANCE.parse().expect("tolerance");
+    check_within(name, what, actual, reference, FIGURE_TOLERANCE);
+}
+
+fn check_within(
+    name: &str,
+    what: &str,
+    actual: &RgbaImage,
+    reference: &RgbaImage,
+    tolerance: &str,
+) {
+    let tol: Tolerance = tolerance.parse().expect("tolerance");
     let (c, images) = compare_images(actual, reference, &tol).expect("same size");
     if !c.matches {
         let dir = common::out_dir("figures");
@@ -95,7 +109,7 @@ fn check_like(name: &str, what: &str, actual: &RgbaImage, reference: &RgbaImage)
             .write_png(&dir.join(format!("{name}.{what}.diff.png")))
             .ok();
         panic!(
-            "{name}: the {what} figure differs from render's PNG beyond {FIGURE_TOLERANCE}: {c:?} (images in {})",
+            "{name}: the {what} figure differs from its reference beyond {tolerance}: {c:?} (images in {})",
             dir.display()
         );
     }
@@ -328,7 +342,9 @@ fn pieces_follow_the_tolerance() {
 }
 
 fn tempdir() -> PathBuf {
-    let dir = common::out_dir("figures-tmp").join(format!("{}", std::process::id()));
+    static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = common::out_dir("figures-tmp").join(format!("{}-{n}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     dir
 }
@@ -384,4 +400,159 @@ fn export_refuses_bad_arguments_and_writes_nothing() {
         let bytes = std::fs::read(&f).expect("written");
         assert!(bytes.starts_with(if ext == "svg" { b"<svg" } else { b"%PDF" }));
     }
+}
+
+fn rasterise_svg_with_font(text: &str, w: u32, h: u32) -> RgbaImage {
+    let mut opts = resvg::usvg::Options::default();
+    opts.fontdb_mut()
+        .load_font_data(splinescope_figure::text::FONT.to_vec());
+    let tree = resvg::usvg::Tree::from_str(text, &opts).expect("the SVG parses");
+    let mut pixmap = resvg::tiny_skia::Pixmap::new(w, h).expect("pixmap");
+    resvg::render(
+        &tree,
+        resvg::tiny_skia::Transform::default(),
+        &mut pixmap.as_mut(),
+    );
+    RgbaImage {
+        width: w,
+        height: h,
+        data: pixmap.data().to_vec(),
+    }
+}
+
+/// Labels, legend, axes and grid: SVG keeps them as text (every label written), the PDF
+/// embeds a subset of the font and its text extracts as written, and the two writers put
+/// the text in the same places (their rasters agree within the figure tolerance).
+#[test]
+fn text_is_text_in_svg_and_embedded_in_pdf_and_both_agree() {
+    let dir = tempdir();
+    let (w, h) = (900, 600);
+    for (name, scene) in scenes() {
+        let mut opts = FigureOptions::new(w, h);
+        opts.labels = true;
+        opts.legend = true;
+        let planar = matches!(
+            scene.camera(DVec2::new(f64::from(w), f64::from(h))),
+            splinescope::camera::Camera::Ortho2d(_)
+        );
+        opts.axes = planar;
+        opts.grid = planar;
+        let fig = build(&scene, &opts).expect("figure");
+        let text = svg::write(&fig);
+        for sc in &scene.curves {
+            let label = sc.label().replace('&', "&amp;").replace('<', "&lt;");
+            assert!(
+                text.contains(&format!(">{label}</text>")),
+                "{name}: SVG text {label:?}"
+            );
+        }
+        let bytes = pdf::write(&fig);
+        let pdf_path = dir.join("text.pdf");
+        std::fs::write(&pdf_path, &bytes).expect("write");
+        let fonts = Command::new("pdffonts")
+            .arg(&pdf_path)
+            .output()
+            .expect("pdffonts (poppler-utils)");
+        let fonts = String::from_utf8_lossy(&fonts.stdout);
+        assert!(
+            fonts.contains("SPLSCP+Ubuntu-Light")
+                && fonts.contains("CID TrueType")
+                && fonts.contains(" yes yes yes "),
+            "{name}: the font is embedded as a subset with a ToUnicode map: {fonts}"
+        );
+        let out = Command::new("pdftotext")
+            .args(["-raw"])
+            .arg(&pdf_path)
+            .arg("-")
+            .output()
+            .expect("pdftotext (poppler-utils)");
+        let extracted = String::from_utf8_lossy(&out.stdout).replace(char::is_whitespace, "");
+        for sc in scene.curves.iter().take(10) {
+            let label = sc.label().replace(char::is_whitespace, "");
+            assert!(
+                extracted.contains(&label),
+                "{name}: PDF text {label:?} in {extracted:?}"
+            );
+        }
+        let a = rasterise_svg_with_font(&text, w, h);
+        let b = rasterise_pdf(&bytes, &dir);
+        check_within(
+            &format!("{name}.text"),
+            "svg-vs-pdf",
+            &a,
+            &b,
+            TEXT_TOLERANCE,
+        );
+    }
+    // Axes in a 3D view are refused, naming why.
+    let scene = Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/bezier3d.json"))
+        .expect("scene");
+    let mut opts = FigureOptions::new(w, h);
+    opts.axes = true;
+    let e = build(&scene, &opts).expect_err("3D axes");
+    assert!(e.to_string().contains("2D views only"), "{e}");
+}
+
+/// `render --labels` writes each label into the PNG: pixels change where the labels go
+/// and nowhere near the curves' other ends.
+#[test]
+fn rendered_png_carries_the_labels() {
+    let scene = gallery::gallery();
+    let (w, h) = (900, 600);
+    common::on_each_gpu("rendered labels", |backend| {
+        let plain = splinescope::offscreen::render_scene(
+            &backend.ctx,
+            &backend.pipelines,
+            &scene,
+            None,
+            w,
+            h,
+        )
+        .expect("render");
+        let mut labelled = plain.clone();
+        splinescope::offscreen::annotate(
+            &mut labelled,
+            &scene,
+            &splinescope::offscreen::TextOptions {
+                labels: true,
+                ..Default::default()
+            },
+        )
+        .expect("labels");
+        let mut opts = FigureOptions::new(w, h);
+        opts.labels = true;
+        let fig = build(&scene, &opts).expect("figure");
+        let mut texts = 0;
+        for item in &fig.items[fig.front..] {
+            if let splinescope_figure::Item::Text {
+                at,
+                size,
+                text,
+                anchor,
+                ..
+            } = item
+            {
+                texts += 1;
+                let tw = splinescope_figure::text::width(text, *size);
+                let x0 = match anchor {
+                    splinescope_figure::Anchor::Start => at.x,
+                    splinescope_figure::Anchor::Middle => at.x - tw / 2.0,
+                    splinescope_figure::Anchor::End => at.x - tw,
+                };
+                let changed = (0..(tw as u32))
+                    .flat_map(|dx| (0..(*size as u32)).map(move |dy| (dx, dy)))
+                    .filter(|(dx, dy)| {
+                        let (x, y) = (x0 as u32 + dx, (at.y - size) as u32 + dy);
+                        x < w && y < h && labelled.pixel(x, y) != plain.pixel(x, y)
+                    })
+                    .count();
+                assert!(
+                    changed > 20,
+                    "{}: label {text:?} drew {changed} pixels",
+                    backend.name
+                );
+            }
+        }
+        assert_eq!(texts, scene.curves.len());
+    });
 }

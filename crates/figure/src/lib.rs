@@ -17,6 +17,7 @@
 pub mod annotate;
 pub mod fit;
 pub mod pdf;
+pub mod raster;
 pub mod svg;
 pub mod text;
 
@@ -171,8 +172,13 @@ pub struct Figure {
     pub height: f64,
     /// The background colour.
     pub background: Color,
-    /// What is drawn, back to front: overlay polylines, curves, points.
+    /// What is drawn, back to front: the grid ([`Figure::behind`]), overlay polylines,
+    /// curves, points, then the axes, labels and legend ([`Figure::front`]).
     pub items: Vec<Item>,
+    /// How many of `items` are the grid (drawn behind the scene).
+    pub behind: usize,
+    /// Where the axes, labels and legend start in `items` (drawn over the scene).
+    pub front: usize,
     /// The map from world points to output points.
     pub projection: Projection,
     /// The tolerance the approximated pieces keep.
@@ -219,6 +225,7 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
     }
     let encoding = Encoding::with(scene, opts.switches);
     let (mut items, guides) = annotate::axes(&proj, size, opts.axes, opts.grid);
+    let behind = items.len();
     for (points, stroke) in &encoding.overlays.lines {
         let runs = polyline_runs(points, &proj);
         if !runs.is_empty() {
@@ -275,6 +282,7 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
             }
         }
     }
+    let front = items.len();
     items.extend(guides);
     if opts.labels {
         annotate::labels(scene, &proj, size, &mut items);
@@ -287,6 +295,8 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
         height: size.y,
         background: encoding.background,
         items,
+        behind,
+        front,
         projection: proj,
         tolerance: opts.tolerance,
     })

@@ -155,6 +155,73 @@ impl PyScene {
             .map_err(|e| raise::<ImageError>(e.to_string(), ""))
     }
 
+    /// Writes the scene as a figure, by `path`'s extension: `.svg` or `.pdf` (exact
+    /// curves, pieces within `tolerance` points elsewhere) or `.png` (the GPU picture),
+    /// with labels, legend, axes and grid as asked; atomically.
+    #[pyo3(signature = (path, width=800, height=500, tolerance=0.01, labels=false, legend=false, axes=false, grid=false, backend="auto"))]
+    #[allow(clippy::too_many_arguments)]
+    fn export(
+        &self,
+        py: Python<'_>,
+        path: PathBuf,
+        width: u32,
+        height: u32,
+        tolerance: f64,
+        labels: bool,
+        legend: bool,
+        axes: bool,
+        grid: bool,
+        backend: &str,
+    ) -> PyResult<()> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        let mut opts = splinescope_figure::FigureOptions::new(width, height);
+        opts.tolerance = tolerance;
+        opts.labels = labels;
+        opts.legend = legend;
+        opts.axes = axes;
+        opts.grid = grid;
+        let figure = |opts: &splinescope_figure::FigureOptions| {
+            splinescope_figure::build(&self.scene, opts)
+                .map_err(|e| raise::<ImageError>(e.to_string(), "tolerance"))
+        };
+        let bytes = match ext.as_deref() {
+            Some("svg") => splinescope_figure::svg::write(&figure(&opts)?).into_bytes(),
+            Some("pdf") => splinescope_figure::pdf::write(&figure(&opts)?),
+            Some("png") => {
+                let fig = figure(&opts)?;
+                let mut image = self.image(py, width, height, 0.25, backend)?;
+                splinescope_figure::raster::draw_guides(
+                    &fig,
+                    &mut splinescope_figure::raster::Canvas {
+                        data: &mut image.data,
+                        width: image.width,
+                        height: image.height,
+                    },
+                );
+                image
+                    .png_bytes(&path)
+                    .map_err(|e| raise::<ImageError>(e.to_string(), ""))?
+            }
+            other => {
+                return Err(raise::<ImageError>(
+                    format!(
+                        "{}: unknown figure format {} (expected .svg, .pdf or .png)",
+                        path.display(),
+                        other.map_or_else(|| "(no extension)".to_owned(), |e| format!(".{e}"))
+                    ),
+                    "path",
+                ));
+            }
+        };
+        py.detach(|| splinescope_scene::files::write_atomic(&path, &bytes))
+            .map_err(|e| {
+                raise::<ImageError>(format!("cannot write {}: {e}", path.display()), "path")
+            })
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "<scene {}with {} curve(s)>",

@@ -8,7 +8,7 @@ use anyhow::{Context, Result, bail};
 
 use splinescope::scene::{Scene, gallery};
 
-use crate::{GpuArgs, say};
+use crate::{GpuArgs, TextArgs, say};
 
 /// The arguments of `splinescope export`.
 #[derive(Debug, clap::Args)]
@@ -28,18 +28,8 @@ pub struct ExportArgs {
     /// (segments of degree ≤ 3 in a 2D view are written exactly).
     #[arg(long, default_value_t = splinescope_figure::DEFAULT_TOLERANCE, value_parser = parse_tolerance)]
     pub tolerance: f64,
-    /// Label each curve at its end (name and live shape parameters).
-    #[arg(long)]
-    pub labels: bool,
-    /// A legend in the top right corner.
-    #[arg(long)]
-    pub legend: bool,
-    /// Axes with ticks and tick labels in scene units (2D scenes).
-    #[arg(long)]
-    pub axes: bool,
-    /// A grid at the ticks (2D scenes).
-    #[arg(long)]
-    pub grid: bool,
+    #[command(flatten)]
+    pub text: TextArgs,
     #[command(flatten)]
     pub gpu: GpuArgs,
 }
@@ -98,18 +88,20 @@ pub fn run(a: &ExportArgs) -> Result<()> {
     let bytes = match format {
         Format::Png => {
             let (ctx, pipelines) = a.gpu.context()?;
-            let image = splinescope::offscreen::render_scene(
+            let mut image = splinescope::offscreen::render_scene(
                 &ctx, &pipelines, &scene, None, a.width, a.height,
             )?;
+            splinescope::offscreen::annotate(&mut image, &scene, &a.text.options())?;
             image.png_bytes(&a.output)?
         }
         Format::Svg | Format::Pdf => {
             let mut opts = splinescope_figure::FigureOptions::new(a.width, a.height);
             opts.tolerance = a.tolerance;
-            opts.labels = a.labels;
-            opts.legend = a.legend;
-            opts.axes = a.axes;
-            opts.grid = a.grid;
+            let t = a.text.options();
+            opts.labels = t.labels;
+            opts.legend = t.legend;
+            opts.axes = t.axes;
+            opts.grid = t.grid;
             let fig = splinescope_figure::build(&scene, &opts)?;
             if format == Format::Svg {
                 splinescope_figure::svg::write(&fig).into_bytes()

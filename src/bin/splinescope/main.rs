@@ -42,6 +42,34 @@ struct Cli {
     command: Option<Command>,
 }
 
+/// The text a picture carries besides the curves (`render`, `export`).
+#[derive(Debug, Clone, Copy, clap::Args)]
+struct TextArgs {
+    /// Label each curve at its end (name and live shape parameters).
+    #[arg(long)]
+    labels: bool,
+    /// A legend in the top right corner.
+    #[arg(long)]
+    legend: bool,
+    /// Axes with ticks and tick labels in scene units (2D scenes).
+    #[arg(long)]
+    axes: bool,
+    /// A grid at the ticks (2D scenes).
+    #[arg(long)]
+    grid: bool,
+}
+
+impl TextArgs {
+    fn options(self) -> splinescope::offscreen::TextOptions {
+        splinescope::offscreen::TextOptions {
+            labels: self.labels,
+            legend: self.legend,
+            axes: self.axes,
+            grid: self.grid,
+        }
+    }
+}
+
 #[derive(Debug, clap::Args)]
 struct GpuArgs {
     /// Graphics API: auto, vulkan, gl, metal or dx12 (default: WGPU_BACKEND, else auto).

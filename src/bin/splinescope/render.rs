@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 
 use splinescope::scene::{Scene, gallery};
 
-use crate::{GpuArgs, parse_tolerance_px, say};
+use crate::{GpuArgs, TextArgs, parse_tolerance_px, say};
 
 /// The arguments of `splinescope render`.
 #[derive(Debug, clap::Args)]
@@ -27,6 +27,8 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX, value_parser = parse_tolerance_px)]
     pub tolerance_px: f64,
     #[command(flatten)]
+    pub text: TextArgs,
+    #[command(flatten)]
     pub gpu: GpuArgs,
 }
 
@@ -40,6 +42,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         &a.output,
         (a.width, a.height),
         a.tolerance_px,
+        a.text,
         &a.gpu,
     )
 }
@@ -50,11 +53,12 @@ fn render(
     output: &Path,
     (width, height): (u32, u32),
     tolerance_px: f64,
+    text: TextArgs,
     gpu: &GpuArgs,
 ) -> Result<()> {
     let scene = load_scene_or_gallery(scene)?;
     let (ctx, pipelines) = gpu.context()?;
-    let image = splinescope::offscreen::render_scene_with(
+    let mut image = splinescope::offscreen::render_scene_with(
         &ctx,
         &pipelines,
         &scene,
@@ -62,6 +66,7 @@ fn render(
         (width, height),
         tolerance_px,
     )?;
+    splinescope::offscreen::annotate(&mut image, &scene, &text.options())?;
     image.write_png(output)?;
     say!(
         "rendered {} curve(s) to {} ({width}×{height}, {})",

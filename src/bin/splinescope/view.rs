@@ -159,7 +159,17 @@ fn render_to(
     width: u32,
     height: u32,
 ) -> Result<()> {
-    let image = splinescope::offscreen::render_scene(ctx, pipelines, scene, None, width, height)?;
+    let mut image =
+        splinescope::offscreen::render_scene(ctx, pipelines, scene, None, width, height)?;
+    // The headless gallery names its curves.
+    splinescope::offscreen::annotate(
+        &mut image,
+        scene,
+        &splinescope::offscreen::TextOptions {
+            labels: true,
+            ..Default::default()
+        },
+    )?;
     image.write_png(path)?;
     Ok(())
 }

@@ -607,6 +607,24 @@ class Scene:
         """The rendered scene as PNG file bytes."""
         return bytes(self._s.png(width, height, 0.25, backend))
 
+    def export(
+        self,
+        path: Any,
+        width: int = 800,
+        height: int = 500,
+        tolerance: float = 0.01,
+        labels: bool = False,
+        legend: bool = False,
+        axes: bool = False,
+        grid: bool = False,
+        backend: str = "auto",
+    ) -> None:
+        """Writes the scene as a figure, by the extension: ``.svg`` or ``.pdf`` (curves
+        of degree ≤ 3 in a 2D view exact, other pieces within ``tolerance`` points) or
+        ``.png`` (the GPU picture), with labels, legend, axes and grid as asked
+        (``splinescope export``'s options); atomically."""
+        self._s.export(str(path), width, height, tolerance, labels, legend, axes, grid, backend)
+
     def _repr_png_(self) -> bytes:
         return self.png()
 

@@ -65,6 +65,18 @@ class _Scene:
     def render(
         self, width: int, height: int, tolerance_px: float = 0.25, backend: str = "auto"
     ) -> npt.NDArray[np.uint8]: ...
+    def export(
+        self,
+        path: Union[str, PathLike[str]],
+        width: int = 800,
+        height: int = 500,
+        tolerance: float = 0.01,
+        labels: bool = False,
+        legend: bool = False,
+        axes: bool = False,
+        grid: bool = False,
+        backend: str = "auto",
+    ) -> None: ...
     def png(
         self, width: int, height: int, tolerance_px: float = 0.25, backend: str = "auto"
     ) -> bytes: ...
