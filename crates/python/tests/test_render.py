@@ -117,3 +117,24 @@ def test_compare_images_counts_what_changed():
     assert ss.compare_images(b, a, "channel=200,pixels=0%")["matches"]
     rgb = ss.compare_images(a[..., :3].copy(), a)
     assert rgb["matches"] and rgb["differing_pixels"] == 0
+
+
+def test_export_writes_svg_pdf_and_png_figures(tmp_path):
+    scene = ss.load(SCENES / "paper002_examples.json")
+    render_or_fail(scene, 8, 8)
+    scene.export(tmp_path / "f.svg", 600, 400, labels=True, legend=True, axes=True, grid=True)
+    text = (tmp_path / "f.svg").read_text()
+    assert text.startswith("<svg") and text.count('<path id="curve-') == len(scene.curves)
+    for c in scene.curves:
+        assert c.name in text
+    scene.export(tmp_path / "f.pdf", 600, 400, labels=True)
+    assert (tmp_path / "f.pdf").read_bytes().startswith(b"%PDF")
+    scene.export(tmp_path / "f.png", 60, 40)
+    assert decode_png((tmp_path / "f.png").read_bytes()).shape == (40, 60, 4)
+    with pytest.raises(ss.ImageError, match="unknown figure format .txt"):
+        scene.export(tmp_path / "f.txt")
+    with pytest.raises(ss.ImageError, match="tolerance"):
+        scene.export(tmp_path / "g.svg", tolerance=0.0)
+    assert not (tmp_path / "g.svg").exists()
+    with pytest.raises(ss.ImageError, match="2D views only"):
+        ss.load(SCENES / "bezier3d.json").export(tmp_path / "h.svg", axes=True)
