@@ -358,3 +358,50 @@ fn recent_files_keep_the_newest_ten_and_survive_a_missing_store() {
     assert_eq!(r.paths, [dir.join("x.json")]);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// file → export view…: the dialog proposes the scene's name as SVG, refuses other
+/// formats, asks before replacing, and writes what is on screen — the model's camera,
+/// viewport and toggles — as the figure layer draws it.
+#[test]
+fn export_view_writes_the_figure_of_the_screen() {
+    let dir = fresh_dir("export");
+    let a = dir.join("a.json");
+    Scene::of_curves([line(0.0), line(3.0)]).save(&a).unwrap();
+    let mut m = viewer(&a, &dir);
+    m.viewport = DVec2::new(640.0, 400.0);
+    m.camera.pan(DVec2::new(37.0, -12.0), m.viewport);
+    m.toggles.show_points = false;
+    m.export_dialog();
+    let d = m.dialog.as_mut().expect("the export dialog");
+    assert_eq!(d.mode, DialogMode::Export);
+    assert_eq!(d.name, "a.svg");
+    d.name = "figure.txt".into();
+    m.confirm_dialog();
+    let d = m.dialog.as_mut().expect("still open");
+    assert!(d.error.as_deref().unwrap_or("").contains(".svg or .pdf"), "{:?}", d.error);
+    d.name = "figure".into();
+    m.confirm_dialog();
+    assert_eq!(m.dialog, None);
+    let written = std::fs::read_to_string(dir.join("figure.svg")).expect("written as .svg");
+    let mut opts = splinescope_figure::FigureOptions::new(640, 400);
+    opts.camera = Some(m.camera);
+    opts.switches = splinescope::scene::draw::Switches {
+        polygons: m.toggles.show_polygons,
+        points: false,
+    };
+    opts.labels = true;
+    let want = splinescope_figure::svg::write(&splinescope_figure::build(m.scene(), &opts).unwrap());
+    assert_eq!(written, want, "the figure of the screen");
+    assert!(!written.contains("<circle"), "points hidden on screen stay hidden");
+    // A second export to the same name asks first; a PDF is a PDF.
+    m.export_dialog();
+    m.dialog.as_mut().unwrap().name = "figure.svg".into();
+    m.confirm_dialog();
+    assert!(m.dialog.as_ref().unwrap().error.as_deref().unwrap().contains("replace"));
+    m.cancel_dialog();
+    m.export_dialog();
+    m.dialog.as_mut().unwrap().name = "figure.pdf".into();
+    m.confirm_dialog();
+    assert!(std::fs::read(dir.join("figure.pdf")).unwrap().starts_with(b"%PDF"));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -12,6 +12,8 @@ pub enum DialogMode {
     Open,
     /// Choose where to save the scene.
     SaveAs,
+    /// Choose where to export the view as a figure (`.svg` or `.pdf`).
+    Export,
 }
 
 /// One listed entry of a directory.
@@ -153,9 +155,26 @@ impl FileDialog {
                     None
                 }
             }
-            DialogMode::SaveAs => {
+            DialogMode::SaveAs | DialogMode::Export => {
                 if path.extension().is_none() {
-                    path.set_extension("json");
+                    path.set_extension(if self.mode == DialogMode::Export {
+                        "svg"
+                    } else {
+                        "json"
+                    });
+                }
+                if self.mode == DialogMode::Export {
+                    let ext = path
+                        .extension()
+                        .and_then(|e| e.to_str())
+                        .map(str::to_ascii_lowercase);
+                    if !matches!(ext.as_deref(), Some("svg" | "pdf")) {
+                        self.error = Some(format!(
+                            "{}: a figure is written as .svg or .pdf",
+                            path.display()
+                        ));
+                        return None;
+                    }
                 }
                 match path.parent() {
                     Some(dir) if dir.as_os_str().is_empty() || dir.is_dir() => {}

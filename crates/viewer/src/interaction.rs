@@ -424,6 +424,50 @@ impl Interaction {
         ));
     }
 
+    /// Shows the export dialog (file → export view…), proposing the scene's name as SVG.
+    pub fn export_dialog(&mut self) {
+        self.cancel_gesture();
+        let stem = self
+            .editor
+            .path()
+            .and_then(Path::file_stem)
+            .map_or_else(|| "figure".into(), |n| n.to_string_lossy().into_owned());
+        self.dialog = Some(FileDialog::new(
+            DialogMode::Export,
+            &self.dialog_dir(),
+            &format!("{stem}.svg"),
+        ));
+    }
+
+    /// Writes what is on screen — the same camera, viewport and overlay toggles, curves
+    /// labelled as on the canvas — as an SVG or PDF figure at `path` (atomically).
+    ///
+    /// # Errors
+    /// The figure's or the write's error, as text for the dialog.
+    pub fn export_view(&self, path: &Path) -> Result<(), String> {
+        let mut opts = splinescope_figure::FigureOptions::new(
+            self.viewport.x.round().max(1.0) as u32,
+            self.viewport.y.round().max(1.0) as u32,
+        );
+        opts.camera = Some(self.camera);
+        opts.switches = crate::scene::draw::Switches {
+            polygons: self.toggles.show_polygons,
+            points: self.toggles.show_points,
+        };
+        opts.labels = true;
+        let fig = splinescope_figure::build(self.scene(), &opts).map_err(|e| e.to_string())?;
+        let pdf = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("pdf"));
+        let bytes = if pdf {
+            splinescope_figure::pdf::write(&fig)
+        } else {
+            splinescope_figure::svg::write(&fig).into_bytes()
+        };
+        splinescope_scene::files::write_atomic(path, &bytes)
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))
+    }
+
     /// Closes the file dialog without choosing (what was waiting for a save is dropped).
     pub fn cancel_dialog(&mut self) {
         self.dialog = None;
@@ -444,6 +488,21 @@ impl Interaction {
             DialogMode::Open => {
                 self.dialog = None;
                 self.open_path(&path)
+            }
+            DialogMode::Export => {
+                match self.export_view(&path) {
+                    Ok(()) => {
+                        self.dialog = None;
+                        self.editor.message =
+                            Some(format!("exported the view to {}", path.display()));
+                    }
+                    Err(e) => {
+                        if let Some(d) = self.dialog.as_mut() {
+                            d.error = Some(e);
+                        }
+                    }
+                }
+                Response::default()
             }
             DialogMode::SaveAs => match self.editor.save(Some(&path)) {
                 Ok(saved) => {

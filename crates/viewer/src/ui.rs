@@ -182,6 +182,7 @@ pub(crate) enum FileAction {
     New,
     Open,
     SaveAs,
+    Export,
     OpenRecent(std::path::PathBuf),
     ConfirmDialog,
     CancelDialog,
@@ -379,9 +380,18 @@ fn file_row(
             if item(ui, "save as…", "Ctrl+Shift+S") {
                 actions.file = Some(FileAction::SaveAs);
             }
+            if ui
+                .button("export view…")
+                .on_hover_text("what is on screen as an SVG or PDF figure: exact curves, labels")
+                .clicked()
+            {
+                actions.file = Some(FileAction::Export);
+            }
         })
         .response
-        .on_hover_text("new, open (also: drop a scene file on the window), recent, save, save as");
+        .on_hover_text(
+            "new, open (also: drop a scene file on the window), recent, save, save as, export view",
+        );
         let name = editor
             .path()
             .map_or_else(|| "untitled".to_owned(), |p| p.display().to_string());
@@ -409,6 +419,7 @@ pub(crate) fn apply(model: &mut Interaction, actions: Actions) {
         }
         Some(FileAction::Open) => model.open_dialog(),
         Some(FileAction::SaveAs) => model.save_as_dialog(),
+        Some(FileAction::Export) => model.export_dialog(),
         Some(FileAction::OpenRecent(path)) => {
             model.open_path(&path);
         }
@@ -1006,6 +1017,7 @@ pub(crate) fn file_dialog(ctx: &egui::Context, dialog: &mut FileDialog, actions:
     let (title, verb) = match dialog.mode {
         DialogMode::Open => ("open a scene", "open"),
         DialogMode::SaveAs => ("save the scene as", "save"),
+        DialogMode::Export => ("export the view as a figure (.svg or .pdf)", "export"),
     };
     egui::Modal::new(egui::Id::unique("splinescope-file-dialog")).show(ctx, |ui| {
         ui.set_width(460.0);
