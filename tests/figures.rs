@@ -556,3 +556,55 @@ fn rendered_png_carries_the_labels() {
         assert_eq!(texts, scene.curves.len());
     });
 }
+
+/// `--view` gives the camera (the scene format's view object, checked as in a scene
+/// file); the figure is the one of that view.
+#[test]
+fn export_takes_a_given_view() {
+    let bin = env!("CARGO_BIN_EXE_splinescope");
+    let dir = tempdir();
+    let scene_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper002_examples.json");
+    let out = dir.join("view.svg");
+    let view = r#"{"kind": "2d", "center": [3, 3], "height": 4}"#;
+    let run = Command::new(bin)
+        .args(["export", scene_path.to_str().unwrap_or_default(), "-o"])
+        .arg(&out)
+        .args(["--width", "600", "--height", "400", "--view", view])
+        .output()
+        .expect("run");
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let mut scene = Scene::load(&scene_path).expect("scene");
+    scene.view = splinescope::scene::ViewSpec::TwoD {
+        center: DVec2::new(3.0, 3.0),
+        height: 4.0,
+    };
+    let want = svg::write(&build(&scene, &FigureOptions::new(600, 400)).expect("figure"));
+    assert_eq!(std::fs::read_to_string(&out).expect("written"), want);
+    for (bad, says) in [
+        (
+            r#"{"kind": "2d", "center": [3, 3], "height": -4}"#,
+            "height: must be greater than 0",
+        ),
+        (r#"{"kind": "4d"}"#, "unknown view kind"),
+        ("x", "is not JSON"),
+    ] {
+        let o = dir.join("bad.svg");
+        let run = Command::new(bin)
+            .args(["export", "-o"])
+            .arg(&o)
+            .args(["--view", bad])
+            .output()
+            .expect("run");
+        assert_eq!(run.status.code(), Some(1), "{bad}");
+        assert!(
+            String::from_utf8_lossy(&run.stderr).contains(says),
+            "{bad}: {}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        assert!(!o.exists());
+    }
+}

@@ -378,7 +378,11 @@ fn export_view_writes_the_figure_of_the_screen() {
     d.name = "figure.txt".into();
     m.confirm_dialog();
     let d = m.dialog.as_mut().expect("still open");
-    assert!(d.error.as_deref().unwrap_or("").contains(".svg or .pdf"), "{:?}", d.error);
+    assert!(
+        d.error.as_deref().unwrap_or("").contains(".svg or .pdf"),
+        "{:?}",
+        d.error
+    );
     d.name = "figure".into();
     m.confirm_dialog();
     assert_eq!(m.dialog, None);
@@ -390,18 +394,34 @@ fn export_view_writes_the_figure_of_the_screen() {
         points: false,
     };
     opts.labels = true;
-    let want = splinescope_figure::svg::write(&splinescope_figure::build(m.scene(), &opts).unwrap());
+    let want =
+        splinescope_figure::svg::write(&splinescope_figure::build(m.scene(), &opts).unwrap());
     assert_eq!(written, want, "the figure of the screen");
-    assert!(!written.contains("<circle"), "points hidden on screen stay hidden");
+    assert!(
+        !written.contains("<circle"),
+        "points hidden on screen stay hidden"
+    );
     // A second export to the same name asks first; a PDF is a PDF.
     m.export_dialog();
     m.dialog.as_mut().unwrap().name = "figure.svg".into();
     m.confirm_dialog();
-    assert!(m.dialog.as_ref().unwrap().error.as_deref().unwrap().contains("replace"));
+    assert!(
+        m.dialog
+            .as_ref()
+            .unwrap()
+            .error
+            .as_deref()
+            .unwrap()
+            .contains("replace")
+    );
     m.cancel_dialog();
     m.export_dialog();
     m.dialog.as_mut().unwrap().name = "figure.pdf".into();
     m.confirm_dialog();
-    assert!(std::fs::read(dir.join("figure.pdf")).unwrap().starts_with(b"%PDF"));
+    assert!(
+        std::fs::read(dir.join("figure.pdf"))
+            .unwrap()
+            .starts_with(b"%PDF")
+    );
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -28,6 +28,11 @@ pub struct ExportArgs {
     /// (segments of degree ≤ 3 in a 2D view are written exactly).
     #[arg(long, default_value_t = splinescope_figure::DEFAULT_TOLERANCE, value_parser = parse_tolerance)]
     pub tolerance: f64,
+    /// The camera, instead of the scene's own view, as the scene format's `view` object
+    /// (JSON): `{"kind": "2d", "center": [x, y], "height": h}` or `{"kind": "3d",
+    /// "target": [x, y, z], "distance": d, "yaw_deg": …, "pitch_deg": …}`.
+    #[arg(long, value_name = "JSON")]
+    pub view: Option<String>,
     #[command(flatten)]
     pub text: TextArgs,
     #[command(flatten)]
@@ -47,6 +52,24 @@ fn parse_tolerance(s: &str) -> Result<f64, String> {
             "{s:?}: the tolerance must be a finite number greater than 0 (output points)"
         ))
     }
+}
+
+/// `scene` seen through `view` (the scene format's `view` object), checked as a scene
+/// file's view is.
+fn with_view(scene: &Scene, view: &str) -> Result<Scene> {
+    let value: serde_json::Value =
+        serde_json::from_str(view).with_context(|| format!("--view: {view:?} is not JSON"))?;
+    let mut doc: serde_json::Value =
+        serde_json::from_str(&splinescope::scene::to_json_string(scene))?;
+    doc["view"] = value;
+    splinescope::scene::from_json_str(&doc.to_string()).map_err(|e| {
+        anyhow::anyhow!(
+            "--view: {}",
+            e.to_string()
+                .replacen("view", "", 1)
+                .trim_start_matches(['.', ':', ' '])
+        )
+    })
 }
 
 /// The figure formats, by the output's extension.
@@ -81,10 +104,13 @@ fn format_of(path: &Path) -> Result<Format> {
 /// cannot be written (nothing partial is left).
 pub fn run(a: &ExportArgs) -> Result<()> {
     let format = format_of(&a.output)?;
-    let scene = match &a.scene {
+    let mut scene = match &a.scene {
         None => gallery::gallery(),
         Some(p) => Scene::load(p).with_context(|| format!("{}", p.display()))?,
     };
+    if let Some(view) = &a.view {
+        scene = with_view(&scene, view)?;
+    }
     let bytes = match format {
         Format::Png => {
             let (ctx, pipelines) = a.gpu.context()?;
