@@ -156,17 +156,26 @@ pub fn ticks(lo: f64, hi: f64) -> (Vec<f64>, usize) {
     if !(span.is_finite() && span > 0.0) {
         return (Vec::new(), 0);
     }
-    let raw = span / 6.0;
-    let mag = 10f64.powf(raw.log10().floor());
-    let step = [1.0, 2.0, 5.0, 10.0]
-        .iter()
-        .map(|m| m * mag)
-        .find(|s| span / s <= 8.0)
-        .unwrap_or(10.0 * mag);
+    let e = (span / 6.0).log10().floor() as i32;
+    let pow = |e: i32| 10f64.powi(e.abs());
+    // Tick k is k·m·10^e, computed as one rounding of an integer scaled by a power of ten
+    // (so 3 × 0.05 reads 0.15).
+    let value = |k: i64, m: i64, e: i32| {
+        if e < 0 {
+            (k * m) as f64 / pow(e)
+        } else {
+            (k * m) as f64 * pow(e)
+        }
+    };
+    let (m, e) = [(1, e), (2, e), (5, e), (1, e + 1)]
+        .into_iter()
+        .find(|&(m, e)| span / value(1, m, e) <= 8.0)
+        .unwrap_or((1, e + 1));
+    let step = value(1, m, e);
     let first = (lo / step).ceil() as i64;
     let last = (hi / step).floor() as i64;
     let decimals = (-step.log10().floor()).max(0.0) as usize;
-    ((first..=last).map(|k| k as f64 * step).collect(), decimals)
+    ((first..=last).map(|k| value(k, m, e)).collect(), decimals)
 }
 
 fn tick_text(v: f64, decimals: usize) -> String {

@@ -246,6 +246,22 @@ pub enum GeomError {
         /// Why, in words.
         reason: String,
     },
+    /// A rational curve with a weight count that differs from its point count.
+    #[error("{weights} weights for {points} control points: one weight per point")]
+    WeightCount {
+        /// Weights given.
+        weights: usize,
+        /// Control points.
+        points: usize,
+    },
+    /// A weight that is not a finite number greater than 0.
+    #[error("weight {value} of point {index}: a weight must be a finite number greater than 0")]
+    BadWeight {
+        /// The point's index.
+        index: usize,
+        /// The weight.
+        value: f64,
+    },
     /// A panel control the curve does not have, or a value of the wrong kind for it.
     #[error("{family} curves have no control {control}")]
     UnknownControl {
@@ -283,6 +299,8 @@ impl GeomError {
                 format!("params[{index}]")
             }
             GeomError::OrderTooLow { .. } => "order".to_owned(),
+            GeomError::WeightCount { .. } => "weights".to_owned(),
+            GeomError::BadWeight { index, .. } => format!("weights[{index}]"),
             GeomError::KnotCount { .. } | GeomError::EmptyDomain { .. } => "knots".to_owned(),
             GeomError::NonFiniteKnot { index, .. }
             | GeomError::KnotsDecreasing { index, .. }

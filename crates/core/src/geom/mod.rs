@@ -21,6 +21,7 @@ pub mod knots;
 pub mod lowering;
 pub mod modified;
 pub mod nubmp;
+pub mod rational;
 pub mod structure;
 pub mod template;
 
@@ -37,6 +38,7 @@ pub use knots::KnotVector;
 pub use lowering::{BezierSegment, Lower, locate};
 pub use modified::ModifiedBezier;
 pub use nubmp::Nubmp;
+pub use rational::{Nurbs, RationalBezier};
 
 use glam::DVec3;
 

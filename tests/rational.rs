@@ -1,0 +1,228 @@
+//! Rational curves against closed forms: the quarter circle as a quadratic rational
+//! Bézier curve and the nine-point NURBS circle stay on the circle within 4·ε·R, their
+//! tangents are perpendicular to the radius and equal finite differences; every weight 1
+//! is the polynomial curve bit for bit; knot insertion, elevation and Bézier extraction do
+//! not move the curve; a projective map of the homogeneous control points maps the curve.
+
+use glam::{DMat4, DVec3, DVec4};
+
+use splinescope::geom::{BSpline, Bezier, GeomError, Nurbs, ParamCurve, RationalBezier};
+
+const EPS: f64 = f64::EPSILON;
+
+fn quarter_circle() -> RationalBezier {
+    RationalBezier::try_new(
+        vec![DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y],
+        vec![1.0, std::f64::consts::FRAC_1_SQRT_2, 1.0],
+    )
+    .expect("a quarter circle")
+}
+
+/// The nine-point circle of radius `r` about `c` (knots 0,0,0,¼,¼,½,½,¾,¾,1,1,1).
+fn circle(c: DVec3, r: f64) -> Nurbs {
+    let s = std::f64::consts::FRAC_1_SQRT_2;
+    let corners = [
+        (1.0, 0.0),
+        (1.0, 1.0),
+        (0.0, 1.0),
+        (-1.0, 1.0),
+        (-1.0, 0.0),
+        (-1.0, -1.0),
+        (0.0, -1.0),
+        (1.0, -1.0),
+        (1.0, 0.0),
+    ];
+    Nurbs::try_new(
+        corners
+            .iter()
+            .map(|(x, y)| c + r * DVec3::new(*x, *y, 0.0))
+            .collect(),
+        (0..9).map(|i| if i % 2 == 0 { 1.0 } else { s }).collect(),
+        vec![
+            0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
+        ],
+        3,
+    )
+    .expect("the nine-point circle")
+}
+
+/// `breaks`: parameters where the parameterisation's derivatives may jump (knots); finite
+/// differences are not taken across them.
+fn check_circle(curve: &impl ParamCurve, c: DVec3, r: f64, breaks: &[f64], what: &str) {
+    let (a, b) = curve.domain();
+    for j in 0..=4000 {
+        let t = a + (b - a) * f64::from(j) / 4000.0;
+        let p = curve.eval(t);
+        let off = ((p - c).length() - r).abs();
+        assert!(
+            off <= 4.0 * EPS * r,
+            "{what}: t = {t}: |P − C| − R = {off:e}"
+        );
+        let d = curve.eval_deriv(t);
+        // Tangent ⟂ radius.
+        assert!(
+            d.dot(p - c).abs() <= 1e-13 * d.length() * r,
+            "{what}: t = {t}: tangent not perpendicular"
+        );
+        // Against central differences (away from the ends).
+        let h = 1e-6 * (b - a);
+        if j > 0 && j < 4000 && breaks.iter().all(|k| (t - k).abs() > 2.0 * h) {
+            let fd = (curve.eval(t + h) - curve.eval(t - h)) / (2.0 * h);
+            assert!(
+                (fd - d).length() <= 1e-6 * d.length().max(1.0),
+                "{what}: t = {t}: P′ = {d} vs finite differences {fd}"
+            );
+            let fd2 = (curve.eval_deriv(t + h) - curve.eval_deriv(t - h)) / (2.0 * h);
+            let d2 = curve.eval_second_deriv(t);
+            assert!(
+                (fd2 - d2).length() <= 1e-5 * d2.length().max(1.0),
+                "{what}: t = {t}: P″ = {d2} vs finite differences {fd2}"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_quarter_circle_is_exact() {
+    check_circle(&quarter_circle(), DVec3::ZERO, 1.0, &[], "quarter circle");
+    // The middle of the arc is at 45°.
+    let m = quarter_circle().eval(0.5);
+    assert!((m - DVec3::new(1.0, 1.0, 0.0) * std::f64::consts::FRAC_1_SQRT_2).length() < 4.0 * EPS);
+}
+
+#[test]
+fn the_nine_point_nurbs_circle_is_exact() {
+    for (c, r) in [
+        (DVec3::ZERO, 1.0),
+        (DVec3::new(3.0, -2.0, 0.0), 2.5),
+        (DVec3::ZERO, 1e-3),
+        (DVec3::ZERO, 1e6),
+    ] {
+        check_circle(
+            &circle(c, r),
+            c,
+            r,
+            &[0.25, 0.5, 0.75],
+            &format!("circle about {c} of radius {r}"),
+        );
+    }
+}
+
+#[test]
+fn weights_one_are_the_polynomial_curves_bit_for_bit() {
+    let pts: Vec<DVec3> = (0..7)
+        .map(|i| DVec3::new(f64::from(i), f64::from((i * 5) % 3), f64::from(i % 2)))
+        .collect();
+    let rb = RationalBezier::try_new(pts.clone(), vec![1.0; 7]).expect("rational");
+    let b = Bezier::new(pts.clone());
+    let knots = vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.5, 0.8, 1.0, 1.0, 1.0, 1.0];
+    let n = Nurbs::try_new(pts.clone(), vec![1.0; 7], knots.clone(), 4).expect("nurbs");
+    let s = BSpline::try_new(pts, knots, 4).expect("spline");
+    for j in 0..=100 {
+        let t = f64::from(j) / 100.0;
+        assert_eq!(rb.eval(t), b.eval(t));
+        assert_eq!(rb.eval_deriv(t), b.eval_deriv(t));
+        assert_eq!(n.eval(t), s.eval(t));
+        assert_eq!(n.eval_second_deriv(t), s.eval_second_deriv(t));
+    }
+}
+
+#[test]
+fn insertion_elevation_and_extraction_keep_the_curve() {
+    let c = circle(DVec3::new(1.0, 2.0, 0.0), 3.0);
+    let inserted = c.insert_knot(0.4).expect("insert");
+    let elevated = c.elevate();
+    assert_eq!(inserted.points().len(), 10);
+    assert_eq!(elevated.order(), 4);
+    let segments = c.bezier_segments();
+    assert_eq!(segments.len(), 4);
+    for j in 0..=1000 {
+        let t = f64::from(j) / 1000.0;
+        let p = c.eval(t);
+        assert!(
+            (inserted.eval(t) - p).length() <= 1e-14 * 3.0,
+            "insert, t = {t}"
+        );
+        assert!(
+            (elevated.eval(t) - p).length() <= 1e-14 * 3.0,
+            "elevate, t = {t}"
+        );
+        let (t0, t1, seg) = segments
+            .iter()
+            .find(|(t0, t1, _)| t >= *t0 && t <= *t1)
+            .expect("a segment");
+        let u = (t - t0) / (t1 - t0);
+        assert!(
+            (seg.eval(u) - p).length() <= 1e-14 * 3.0,
+            "extraction, t = {t}"
+        );
+    }
+    let q = quarter_circle();
+    let e = q.elevate().elevate();
+    assert_eq!(e.degree(), 4);
+    for j in 0..=100 {
+        let t = f64::from(j) / 100.0;
+        assert!((e.eval(t) - q.eval(t)).length() <= 4.0 * EPS);
+        let sub = q.subsegment(0.25, 0.75);
+        assert!((sub.eval(t) - q.eval(0.25 + 0.5 * t)).length() <= 4.0 * EPS);
+    }
+}
+
+/// A projective map applied to the homogeneous control points `(w P, w)` maps every
+/// point of the curve: `C′(t) = M·C(t)` (projective invariance).
+#[test]
+fn a_projective_map_of_the_control_points_maps_the_curve() {
+    let m = DMat4::from_cols(
+        DVec4::new(1.2, 0.1, 0.0, 0.05),
+        DVec4::new(-0.3, 0.9, 0.2, 0.02),
+        DVec4::new(0.0, 0.1, 1.0, 0.0),
+        DVec4::new(0.5, -1.0, 2.0, 1.0),
+    );
+    let apply = |p: DVec3, w: f64| {
+        let h = m * (p * w).extend(w);
+        (h.truncate() / h.w, h.w)
+    };
+    let c = circle(DVec3::new(0.5, 0.5, 0.0), 1.0);
+    let (points, weights): (Vec<DVec3>, Vec<f64>) = c
+        .points()
+        .iter()
+        .zip(c.weights())
+        .map(|(p, w)| apply(*p, *w))
+        .unzip();
+    let mapped = Nurbs::try_new(points, weights, c.knots().knots().to_vec(), 3).expect("mapped");
+    for j in 0..=500 {
+        let t = f64::from(j) / 500.0;
+        let (want, _) = apply(c.eval(t), 1.0);
+        assert!((mapped.eval(t) - want).length() <= 1e-13, "t = {t}");
+    }
+}
+
+#[test]
+fn bad_weights_are_refused_naming_the_weight() {
+    let pts = vec![DVec3::ZERO, DVec3::X, DVec3::Y];
+    let e = RationalBezier::try_new(pts.clone(), vec![1.0, 1.0]).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            GeomError::WeightCount {
+                weights: 2,
+                points: 3
+            }
+        ),
+        "{e:?}"
+    );
+    assert_eq!(e.field(), "weights");
+    for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        let e = RationalBezier::try_new(pts.clone(), vec![1.0, bad, 1.0]).unwrap_err();
+        assert_eq!(e.field(), "weights[1]", "{bad}");
+        assert!(e.to_string().contains("greater than 0"), "{e}");
+    }
+    let e = Nurbs::try_new(
+        pts,
+        vec![1.0, 1.0, -2.0],
+        vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+        3,
+    )
+    .unwrap_err();
+    assert_eq!(e.field(), "weights[2]");
+}
