@@ -608,3 +608,78 @@ fn export_takes_a_given_view() {
         assert!(!o.exists());
     }
 }
+
+/// The PDF's own path data, read back from its content stream: each curve's commands
+/// (between its stroke colour and `S`) lie within the tolerance of the exact curve too —
+/// the decimals PDF allows included.
+#[test]
+fn pdf_path_data_keeps_the_tolerance() {
+    let (w, h) = (640.0, 400.0);
+    for (name, scene) in scenes() {
+        let mut opts = FigureOptions::new(w as u32, h as u32);
+        opts.switches = splinescope::scene::draw::Switches {
+            polygons: false,
+            points: false,
+        };
+        let fig = build(&scene, &opts).expect("figure");
+        let bytes = pdf::write(&fig);
+        let text = String::from_utf8_lossy(&bytes);
+        // Every stroked path, in order.
+        let mut paths: Vec<Vec<(char, Vec<f64>)>> = Vec::new();
+        let mut current: Vec<(char, Vec<f64>)> = Vec::new();
+        let mut numbers: Vec<f64> = Vec::new();
+        for token in text.split_whitespace() {
+            match token {
+                "m" | "l" | "c" => {
+                    let cmd = match token {
+                        "m" => 'M',
+                        "l" => 'L',
+                        _ => 'C',
+                    };
+                    current.push((cmd, std::mem::take(&mut numbers)));
+                }
+                "S" => {
+                    paths.push(std::mem::take(&mut current));
+                    numbers.clear();
+                }
+                _ => match token.parse::<f64>() {
+                    Ok(v) => numbers.push(v),
+                    Err(_) => numbers.clear(),
+                },
+            }
+        }
+        let drawn: Vec<usize> = fig
+            .items
+            .iter()
+            .filter_map(|i| match i {
+                splinescope_figure::Item::Path {
+                    runs,
+                    curve: Some(c),
+                    ..
+                } if !runs.is_empty() => Some(*c),
+                _ => None,
+            })
+            .collect();
+        // Overlay polylines (the 3D axis triad) come first, the curves last.
+        assert!(
+            paths.len() >= drawn.len(),
+            "{name}: one stroked path per curve"
+        );
+        let curves = &paths[paths.len() - drawn.len()..];
+        for (cmds, index) in curves.iter().zip(drawn) {
+            let curve = &scene.curves[index].curve;
+            let (a, b) = curve.domain();
+            let exact: Vec<DVec2> = (0..=40_000)
+                .filter_map(|j| {
+                    fig.projection
+                        .point(curve.eval(a + (b - a) * f64::from(j) / 40_000.0))
+                })
+                .collect();
+            let worst = sweep_distance(&path_points(cmds, 64), &exact);
+            assert!(
+                worst <= fig.tolerance + 2e-3,
+                "{name} curve {index}: {worst} pt from the curve"
+            );
+        }
+    }
+}
