@@ -226,3 +226,54 @@ fn bad_weights_are_refused_naming_the_weight() {
     .unwrap_err();
     assert_eq!(e.field(), "weights[2]");
 }
+
+/// Paper 000's least-squares modification with the weights held fixed: the curve passes
+/// through its targets, the weights do not change, the change is the minimum-norm one
+/// (its moves lie along the rational basis values), and with weights 1 it is the
+/// polynomial solver's change.
+#[test]
+fn rational_solves_pass_through_keep_weights_and_are_minimal() {
+    use splinescope::solve::rational::{multi_target, rational_basis, single_target};
+    let arc = RationalBezier::try_new(
+        vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 2.0, 0.0),
+            DVec3::new(3.0, 2.5, 0.0),
+            DVec3::new(5.0, 1.0, 0.0),
+            DVec3::new(6.0, 0.0, 0.0),
+        ],
+        vec![1.0, 0.6, 2.0, 0.8, 1.0],
+    )
+    .expect("curve");
+    let target = DVec3::new(3.0, 3.5, 0.0);
+    let s = single_target(&arc, target, 0.45, None).expect("single");
+    assert!(s.residuals[0] < 1e-12, "{:?}", s.residuals);
+    assert_eq!(s.curve.weights(), arc.weights());
+    // Minimal: ε_i = R_i(t) d / Σ R_j² over the moved window.
+    let r = rational_basis(arc.weights(), 0.45);
+    let d = target - arc.eval(0.45);
+    let denom: f64 = s.moved.iter().map(|&i| r[i] * r[i]).sum();
+    for (&i, e) in s.moved.iter().zip(&s.deltas) {
+        assert!((*e - d * (r[i] / denom)).length() < 1e-12, "point {i}");
+    }
+    let targets = [DVec3::new(1.0, 1.8, 0.0), DVec3::new(4.5, 1.6, 0.0)];
+    let m = multi_target(&arc, &targets, &[0.2, 0.8]).expect("multi");
+    for (res, (t, want)) in m.residuals.iter().zip([0.2, 0.8].iter().zip(&targets)) {
+        assert!(*res < 1e-12 && (m.curve.eval(*t) - *want).length() < 1e-12);
+    }
+    assert_eq!(m.curve.points()[0], arc.points()[0]);
+    assert_eq!(m.curve.points()[4], arc.points()[4]);
+    // Weights 1: the polynomial solver's change.
+    let poly = Bezier::new(arc.points().to_vec());
+    let unit = RationalBezier::try_new(arc.points().to_vec(), vec![1.0; 5]).expect("unit");
+    let a = multi_target(&unit, &targets, &[0.2, 0.8]).expect("rational");
+    let b = splinescope::solve::shape::multi_target(&poly, &targets, Some(&[0.2, 0.8]), None)
+        .expect("polynomial");
+    for (p, q) in a.curve.points().iter().zip(b.curve.points()) {
+        assert!((*p - *q).length() < 1e-12);
+    }
+    // Refusals.
+    assert!(single_target(&arc, target, 1.0, None).is_err());
+    assert!(single_target(&arc, target, 0.5, Some((0, 2))).is_err());
+    assert!(multi_target(&arc, &targets, &[0.5]).is_err());
+}

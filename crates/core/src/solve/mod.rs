@@ -6,6 +6,7 @@ pub mod batch;
 pub mod linalg;
 pub mod nubmp;
 pub mod project;
+pub mod rational;
 pub mod roots;
 pub mod shape;
 
