@@ -72,9 +72,11 @@ impl Canvas<'_> {
         };
         // One output point per pixel: an em of `size` pixels (ab_glyph's scale is the
         // ascent-to-descent height; its pt_to_px_scale assumes 96 dpi).
-        let scale = font.units_per_em().map_or(PxScale::from(size as f32), |units| {
-            PxScale::from(size as f32 * font.height_unscaled() / units)
-        });
+        let scale = font
+            .units_per_em()
+            .map_or(PxScale::from(size as f32), |units| {
+                PxScale::from(size as f32 * font.height_unscaled() / units)
+            });
         let w = super::text::width(text, size);
         let mut x = match anchor {
             Anchor::Start => at.x,
