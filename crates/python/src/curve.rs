@@ -174,7 +174,7 @@ impl PyCurve {
 
     /// The curve object of the scene format, as JSON text.
     fn to_json(&self) -> String {
-        curve_to_value(&self.curve, 0).to_string()
+        curve_to_value(&self.curve).to_string()
     }
 
     /// The family's name in scene files (`"bezier"`, …).

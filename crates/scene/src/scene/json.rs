@@ -210,25 +210,12 @@ pub fn curve_from_value(value: &Value, index: usize) -> Result<SceneCurve, Scene
     decode_curve(&Node::root(value), index)
 }
 
-/// The written form of one curve (as [`curve_from_value`] reads it), its style written
-/// where it differs from the default of palette position `index`.
+/// The written form of one curve (as [`curve_from_value`] reads it): the scene
+/// writer's own curve object.
 #[must_use]
-pub fn curve_to_value(curve: &SceneCurve, index: usize) -> Value {
-    let mut scene = Scene {
-        name: None,
-        background: Color::WHITE,
-        samples_per_segment: None,
-        view: ViewSpec::Auto,
-        curves: Vec::new(),
-        annotations: Vec::new(),
-    };
-    // Earlier palette positions, so that the curve's default style is the one of `index`.
-    scene.curves.resize(index + 1, curve.clone());
-    let doc = to_doc(&scene);
-    doc.curves
-        .get(index)
-        .and_then(|c| serde_json::to_value(c).ok())
-        .unwrap_or(Value::Null)
+pub fn curve_to_value(curve: &SceneCurve) -> Value {
+    serde_json::to_value(curve_doc(curve))
+        .unwrap_or_else(|e| unreachable!("a curve document always serialises: {e}"))
 }
 
 pub(super) fn decode_curve(node: &Node<'_>, index: usize) -> Result<SceneCurve, SceneError> {
