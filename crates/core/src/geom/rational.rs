@@ -55,12 +55,82 @@ fn project(weighted: &[DVec3], weights: &[DVec3]) -> (Vec<DVec3>, Vec<f64>) {
         .unzip()
 }
 
-/// `C`, `C′`, `C″` from `A`, `W` and their derivatives (the quotient rule).
-fn quotient(a: [DVec3; 3], w: [f64; 3]) -> [DVec3; 3] {
-    let c = a[0] / w[0];
-    let d1 = (a[1] - w[1] * c) / w[0];
-    let d2 = (a[2] - 2.0 * w[1] * d1 - w[2] * c) / w[0];
-    [c, d1, d2]
+/// A rational curve as its homogeneous parts: `A` (the weighted points) and `W` (the
+/// weights, as the x coordinate) over the same basis. With every weight 1, `A` is the
+/// polynomial curve itself (`1·P` is exact) and is evaluated directly.
+#[derive(Debug, Clone, PartialEq)]
+struct Homogeneous<C> {
+    a: C,
+    w: C,
+    unit: bool,
+}
+
+impl<C: ParamCurve> Homogeneous<C> {
+    fn new(a: C, w: C, weights: &[f64]) -> Homogeneous<C> {
+        Homogeneous {
+            a,
+            w,
+            unit: weights.iter().all(|w| *w == 1.0),
+        }
+    }
+
+    /// `C`, `C′`, `C″` up to derivative `k` by the quotient rule.
+    fn derivative(&self, t: f64, k: usize) -> DVec3 {
+        if self.unit {
+            return match k {
+                0 => self.a.eval(t),
+                1 => self.a.eval_deriv(t),
+                _ => self.a.eval_second_deriv(t),
+            };
+        }
+        // Only the derivatives asked for.
+        let w0 = self.w.eval(t).x;
+        let c = self.a.eval(t) / w0;
+        if k == 0 {
+            return c;
+        }
+        let w1 = self.w.eval_deriv(t).x;
+        let d1 = (self.a.eval_deriv(t) - w1 * c) / w0;
+        if k == 1 {
+            return d1;
+        }
+        (self.a.eval_second_deriv(t) - 2.0 * w1 * d1 - self.w.eval_second_deriv(t).x * c) / w0
+    }
+}
+
+impl<C: ParamCurve> ParamCurve for Homogeneous<C> {
+    fn domain(&self) -> (f64, f64) {
+        self.a.domain()
+    }
+    fn eval(&self, t: f64) -> DVec3 {
+        self.derivative(t, 0)
+    }
+    fn eval_deriv(&self, t: f64) -> DVec3 {
+        self.derivative(t, 1)
+    }
+    fn eval_second_deriv(&self, t: f64) -> DVec3 {
+        self.derivative(t, 2)
+    }
+}
+
+/// The rational curves' [`ParamCurve`]: their homogeneous parts'.
+macro_rules! param_curve_by_parts {
+    ($t:ty) => {
+        impl ParamCurve for $t {
+            fn domain(&self) -> (f64, f64) {
+                self.parts.domain()
+            }
+            fn eval(&self, t: f64) -> DVec3 {
+                self.parts.eval(t)
+            }
+            fn eval_deriv(&self, t: f64) -> DVec3 {
+                self.parts.eval_deriv(t)
+            }
+            fn eval_second_deriv(&self, t: f64) -> DVec3 {
+                self.parts.eval_second_deriv(t)
+            }
+        }
+    };
 }
 
 /// A rational Bézier curve of degree `n`:
@@ -69,10 +139,8 @@ fn quotient(a: [DVec3; 3], w: [f64; 3]) -> [DVec3; 3] {
 pub struct RationalBezier {
     points: Vec<DVec3>,
     weights: Vec<f64>,
-    /// `A`: the weighted points as a Bézier curve.
-    a: Bezier,
-    /// `W`: the weights as the x coordinate of a Bézier curve.
-    w: Bezier,
+    /// `A` and `W` as Bézier curves.
+    parts: Homogeneous<Bezier>,
 }
 
 impl RationalBezier {
@@ -86,8 +154,7 @@ impl RationalBezier {
         check_weights(&points, &weights)?;
         let (a, w) = homogeneous(&points, &weights);
         Ok(RationalBezier {
-            a: Bezier::try_new(a)?,
-            w: Bezier::try_new(w)?,
+            parts: Homogeneous::new(Bezier::try_new(a)?, Bezier::try_new(w)?, &weights),
             points,
             weights,
         })
@@ -111,32 +178,10 @@ impl RationalBezier {
         self.points.len() - 1
     }
 
-    fn polynomial(&self) -> Option<Bezier> {
-        self.weights
-            .iter()
-            .all(|w| *w == 1.0)
-            .then(|| Bezier::new(self.points.clone()))
-    }
-
-    fn all(&self, t: f64) -> [DVec3; 3] {
-        let a = [
-            self.a.eval(t),
-            self.a.eval_deriv(t),
-            self.a.eval_second_deriv(t),
-        ];
-        let w = [
-            self.w.eval(t),
-            self.w.eval_deriv(t),
-            self.w.eval_second_deriv(t),
-        ];
-        quotient(a, w.map(|v| v.x))
-    }
-
     fn from_parts(a: &Bezier, w: &Bezier) -> RationalBezier {
         let (points, weights) = project(a.points(), w.points());
         RationalBezier {
-            a: a.clone(),
-            w: w.clone(),
+            parts: Homogeneous::new(a.clone(), w.clone(), &weights),
             points,
             weights,
         }
@@ -145,39 +190,20 @@ impl RationalBezier {
     /// The same curve one degree higher (weights included).
     #[must_use]
     pub fn elevate(&self) -> RationalBezier {
-        RationalBezier::from_parts(&self.a.elevate(), &self.w.elevate())
+        RationalBezier::from_parts(&self.parts.a.elevate(), &self.parts.w.elevate())
     }
 
     /// The part on `[t0, t1]`, reparameterised to `[0, 1]`.
     #[must_use]
     pub fn subsegment(&self, t0: f64, t1: f64) -> RationalBezier {
-        RationalBezier::from_parts(&self.a.subsegment(t0, t1), &self.w.subsegment(t0, t1))
+        RationalBezier::from_parts(
+            &self.parts.a.subsegment(t0, t1),
+            &self.parts.w.subsegment(t0, t1),
+        )
     }
 }
 
-impl ParamCurve for RationalBezier {
-    fn domain(&self) -> (f64, f64) {
-        (0.0, 1.0)
-    }
-    fn eval(&self, t: f64) -> DVec3 {
-        match self.polynomial() {
-            Some(b) => b.eval(t),
-            None => self.all(t)[0],
-        }
-    }
-    fn eval_deriv(&self, t: f64) -> DVec3 {
-        match self.polynomial() {
-            Some(b) => b.eval_deriv(t),
-            None => self.all(t)[1],
-        }
-    }
-    fn eval_second_deriv(&self, t: f64) -> DVec3 {
-        match self.polynomial() {
-            Some(b) => b.eval_second_deriv(t),
-            None => self.all(t)[2],
-        }
-    }
-}
+param_curve_by_parts!(RationalBezier);
 
 /// A NURBS curve of order `k`: `C(t) = Σ w_i P_i N_{i,k}(t) / Σ w_i N_{i,k}(t)` on the
 /// B-spline's domain `[t_{k−1}, t_n]`, weights `w_i > 0`.
@@ -185,10 +211,8 @@ impl ParamCurve for RationalBezier {
 pub struct Nurbs {
     points: Vec<DVec3>,
     weights: Vec<f64>,
-    /// `A`: the weighted points as a B-spline.
-    a: BSpline,
-    /// `W`: the weights as the x coordinate of a B-spline on the same knots.
-    w: BSpline,
+    /// `A` and `W` as B-splines on the same knots.
+    parts: Homogeneous<BSpline>,
 }
 
 impl Nurbs {
@@ -207,8 +231,11 @@ impl Nurbs {
         check_weights(&points, &weights)?;
         let (a, w) = homogeneous(&points, &weights);
         Ok(Nurbs {
-            a: BSpline::from_parts(a, spline.knots().clone())?,
-            w: BSpline::from_parts(w, spline.knots().clone())?,
+            parts: Homogeneous::new(
+                BSpline::from_parts(a, spline.knots().clone())?,
+                BSpline::from_parts(w, spline.knots().clone())?,
+                &weights,
+            ),
             points,
             weights,
         })
@@ -217,8 +244,7 @@ impl Nurbs {
     fn from_parts(a: BSpline, w: BSpline) -> Nurbs {
         let (points, weights) = project(a.points(), w.points());
         Nurbs {
-            a,
-            w,
+            parts: Homogeneous::new(a, w, &weights),
             points,
             weights,
         }
@@ -239,31 +265,13 @@ impl Nurbs {
     /// The knot vector.
     #[must_use]
     pub fn knots(&self) -> &KnotVector {
-        self.a.knots()
+        self.parts.a.knots()
     }
 
     /// The order `k` (degree + 1).
     #[must_use]
     pub fn order(&self) -> usize {
-        self.a.order()
-    }
-
-    fn polynomial(&self) -> Option<&BSpline> {
-        self.weights.iter().all(|w| *w == 1.0).then_some(&self.a)
-    }
-
-    fn all(&self, t: f64) -> [DVec3; 3] {
-        let a = [
-            self.a.eval(t),
-            self.a.eval_deriv(t),
-            self.a.eval_second_deriv(t),
-        ];
-        let w = [
-            self.w.eval(t),
-            self.w.eval_deriv(t),
-            self.w.eval_second_deriv(t),
-        ];
-        quotient(a, w.map(|v| v.x))
+        self.parts.a.order()
     }
 
     /// The same curve with the knot `t` inserted (Boehm, in homogeneous coordinates).
@@ -272,50 +280,29 @@ impl Nurbs {
     /// The knot vector's error for a `t` outside the domain or repeated too often.
     pub fn insert_knot(&self, t: f64) -> Result<Nurbs, GeomError> {
         Ok(Nurbs::from_parts(
-            self.a.insert_knot(t)?,
-            self.w.insert_knot(t)?,
+            self.parts.a.insert_knot(t)?,
+            self.parts.w.insert_knot(t)?,
         ))
     }
 
     /// The same curve one degree higher (weights included).
     #[must_use]
     pub fn elevate(&self) -> Nurbs {
-        Nurbs::from_parts(self.a.elevate(), self.w.elevate())
+        Nurbs::from_parts(self.parts.a.elevate(), self.parts.w.elevate())
     }
 
     /// The rational Bézier segments of the curve with their parameter ranges (Bézier
     /// extraction in homogeneous coordinates).
     #[must_use]
     pub fn bezier_segments(&self) -> Vec<(f64, f64, RationalBezier)> {
-        self.a
+        self.parts
+            .a
             .bezier_segments()
             .iter()
-            .zip(self.w.bezier_segments())
+            .zip(self.parts.w.bezier_segments())
             .map(|(a, w)| (a.t0, a.t1, RationalBezier::from_parts(&a.bezier, &w.bezier)))
             .collect()
     }
 }
 
-impl ParamCurve for Nurbs {
-    fn domain(&self) -> (f64, f64) {
-        self.a.domain()
-    }
-    fn eval(&self, t: f64) -> DVec3 {
-        match self.polynomial() {
-            Some(b) => b.eval(t),
-            None => self.all(t)[0],
-        }
-    }
-    fn eval_deriv(&self, t: f64) -> DVec3 {
-        match self.polynomial() {
-            Some(b) => b.eval_deriv(t),
-            None => self.all(t)[1],
-        }
-    }
-    fn eval_second_deriv(&self, t: f64) -> DVec3 {
-        match self.polynomial() {
-            Some(b) => b.eval_second_deriv(t),
-            None => self.all(t)[2],
-        }
-    }
-}
+param_curve_by_parts!(Nurbs);
