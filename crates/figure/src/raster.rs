@@ -66,10 +66,15 @@ impl Canvas<'_> {
         }
     }
 
-    fn text(&mut self, at: DVec2, size: f64, text: &str, color: Color, anchor: Anchor) {
-        let Ok(font) = FontRef::try_from_slice(FONT) else {
-            return;
-        };
+    fn text(
+        &mut self,
+        font: &FontRef<'_>,
+        at: DVec2,
+        size: f64,
+        text: &str,
+        color: Color,
+        anchor: Anchor,
+    ) {
         // One output point per pixel: an em of `size` pixels (ab_glyph's scale is the
         // ascent-to-descent height; its pt_to_px_scale assumes 96 dpi).
         let scale = font
@@ -102,7 +107,7 @@ impl Canvas<'_> {
         }
     }
 
-    fn item(&mut self, item: &Item, only_on: Option<[u8; 4]>) {
+    fn item(&mut self, font: Option<&FontRef<'_>>, item: &Item, only_on: Option<[u8; 4]>) {
         match item {
             Item::Path { runs, stroke, .. } => {
                 for run in runs {
@@ -157,7 +162,11 @@ impl Canvas<'_> {
                 text,
                 color,
                 anchor,
-            } => self.text(*at, *size, text, *color, *anchor),
+            } => {
+                if let Some(font) = font {
+                    self.text(font, *at, *size, text, *color, *anchor);
+                }
+            }
             Item::Disc { .. } => {}
         }
     }
@@ -170,10 +179,12 @@ pub fn draw_guides(fig: &Figure, canvas: &mut Canvas<'_>) {
         .background
         .0
         .map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8);
+    // The font, parsed once for all the text.
+    let font = FontRef::try_from_slice(FONT).ok();
     for item in &fig.items[..fig.behind] {
-        canvas.item(item, Some(bg));
+        canvas.item(font.as_ref(), item, Some(bg));
     }
     for item in &fig.items[fig.front..] {
-        canvas.item(item, None);
+        canvas.item(font.as_ref(), item, None);
     }
 }

@@ -107,16 +107,33 @@ pub enum Answer {
 }
 
 /// A starting curve a new curve can be added from ([`Interaction::add_curve`]): one of
-/// the families' templates ([`crate::geom::Curve::templates`]), by position.
+/// the families' templates ([`crate::geom::Curve::templates`]), by position, with its
+/// menu label.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Template(usize);
+pub struct Template {
+    index: usize,
+    label: &'static str,
+}
+
+/// Every template's label, in menu order (made once: the menus ask every frame).
+fn template_labels() -> &'static [&'static str] {
+    static LABELS: std::sync::OnceLock<Vec<&'static str>> = std::sync::OnceLock::new();
+    LABELS.get_or_init(|| {
+        crate::geom::Curve::templates(DVec3::ZERO, 1.0)
+            .into_iter()
+            .map(|(label, _)| label)
+            .collect()
+    })
+}
 
 impl Template {
     /// Every template, in menu order (the family table's).
     #[must_use]
     pub fn all() -> Vec<Template> {
-        (0..crate::geom::Curve::templates(DVec3::ZERO, 1.0).len())
-            .map(Template)
+        template_labels()
+            .iter()
+            .enumerate()
+            .map(|(index, &label)| Template { index, label })
             .collect()
     }
 
@@ -126,15 +143,13 @@ impl Template {
         crate::geom::Curve::templates(DVec3::ZERO, 1.0)
             .iter()
             .position(|(_, c)| c.family() == name)
-            .map(Template)
+            .and_then(|index| Template::all().get(index).copied())
     }
 
     /// The label shown in menus.
     #[must_use]
     pub fn label(self) -> &'static str {
-        crate::geom::Curve::templates(DVec3::ZERO, 1.0)
-            .get(self.0)
-            .map_or("?", |(label, _)| label)
+        self.label
     }
 
     /// The template's curve centred on `center`, about `size` wide, in the plane z =
@@ -142,8 +157,7 @@ impl Template {
     #[must_use]
     pub fn curve(self, center: DVec3, size: f64) -> crate::geom::Curve {
         let mut all = crate::geom::Curve::templates(center, size);
-        let index = self.0.min(all.len().saturating_sub(1));
-        all.swap_remove(index).1
+        all.swap_remove(self.index).1
     }
 }
 
