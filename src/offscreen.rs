@@ -59,9 +59,8 @@ pub fn render_scene_with(
     )
 }
 
-/// Draws `opts`' guides and text (labels, legend, axes, grid: splinescope-figure) over
-/// `image`, a render of `scene` with the scene's camera at the image's size; nothing
-/// when `opts` asks for none.
+/// Draws `opts`' guides and text (labels, legend, axes, grid) over `image`, a render of
+/// `scene` with the scene's camera at the image's size ([`splinescope_figure::raster::annotate`]).
 ///
 /// # Errors
 /// [`splinescope_figure::FigureError`] (axes or a grid asked of a 3D view).
@@ -70,35 +69,15 @@ pub fn annotate(
     scene: &Scene,
     opts: &TextOptions,
 ) -> Result<(), splinescope_figure::FigureError> {
-    if !(opts.labels || opts.legend || opts.axes || opts.grid) {
-        return Ok(());
-    }
-    let mut f = splinescope_figure::FigureOptions::new(image.width, image.height);
-    f.labels = opts.labels;
-    f.legend = opts.legend;
-    f.axes = opts.axes;
-    f.grid = opts.grid;
-    let fig = splinescope_figure::build(scene, &f)?;
-    splinescope_figure::raster::draw_guides(
-        &fig,
+    splinescope_figure::raster::annotate(
         &mut splinescope_figure::raster::Canvas {
             data: &mut image.data,
             width: image.width,
             height: image.height,
         },
-    );
-    Ok(())
+        scene,
+        *opts,
+    )
 }
 
-/// The text a picture carries besides the curves.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct TextOptions {
-    /// Each curve's label at its end.
-    pub labels: bool,
-    /// A legend.
-    pub legend: bool,
-    /// Axes with ticks in scene units (2D).
-    pub axes: bool,
-    /// A grid at the ticks (2D).
-    pub grid: bool,
-}
+pub use splinescope_figure::TextOptions;

@@ -75,6 +75,40 @@ impl FigureOptions {
     }
 }
 
+/// The text a picture carries besides the curves (`render`, `export`, the viewer,
+/// Python): what [`FigureOptions`]'s switches of the same names set.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct TextOptions {
+    /// Each curve's label at its end.
+    pub labels: bool,
+    /// A legend.
+    pub legend: bool,
+    /// Axes with ticks in scene units (2D).
+    pub axes: bool,
+    /// A grid at the ticks (2D).
+    pub grid: bool,
+}
+
+impl TextOptions {
+    /// Whether any text or guide is asked for.
+    #[must_use]
+    pub fn any(self) -> bool {
+        self.labels || self.legend || self.axes || self.grid
+    }
+}
+
+impl FigureOptions {
+    /// These options with `text`'s labels, legend, axes and grid.
+    #[must_use]
+    pub fn with_text(mut self, text: TextOptions) -> FigureOptions {
+        self.labels = text.labels;
+        self.legend = text.legend;
+        self.axes = text.axes;
+        self.grid = text.grid;
+        self
+    }
+}
+
 /// Why a figure cannot be made.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum FigureError {

@@ -11,7 +11,8 @@ use splinescope_scene::scene::Color;
 
 use super::fit::Seg;
 use super::text::FONT;
-use super::{Anchor, Figure, Item};
+use super::{Anchor, Figure, FigureError, FigureOptions, Item, TextOptions};
+use splinescope_scene::scene::Scene;
 
 /// An image to draw on.
 pub struct Canvas<'a> {
@@ -187,4 +188,25 @@ pub fn draw_guides(fig: &Figure, canvas: &mut Canvas<'_>) {
     for item in &fig.items[fig.front..] {
         canvas.item(font.as_ref(), item, None);
     }
+}
+
+/// Draws `text`'s guides and text onto `canvas`, a render of `scene` with the scene's own
+/// camera at the canvas's size; nothing when `text` asks for none.
+///
+/// # Errors
+/// [`FigureError`] (axes or a grid asked of a 3D view).
+pub fn annotate(
+    canvas: &mut Canvas<'_>,
+    scene: &Scene,
+    text: TextOptions,
+) -> Result<(), FigureError> {
+    if !text.any() {
+        return Ok(());
+    }
+    let fig = super::build(
+        scene,
+        &FigureOptions::new(canvas.width, canvas.height).with_text(text),
+    )?;
+    draw_guides(&fig, canvas);
+    Ok(())
 }

@@ -177,12 +177,15 @@ impl PyScene {
             .extension()
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase);
-        let mut opts = splinescope_figure::FigureOptions::new(width, height);
+        let mut opts = splinescope_figure::FigureOptions::new(width, height).with_text(
+            splinescope_figure::TextOptions {
+                labels,
+                legend,
+                axes,
+                grid,
+            },
+        );
         opts.tolerance = tolerance;
-        opts.labels = labels;
-        opts.legend = legend;
-        opts.axes = axes;
-        opts.grid = grid;
         let figure = |opts: &splinescope_figure::FigureOptions| {
             splinescope_figure::build(&self.scene, opts)
                 .map_err(|e| raise::<ImageError>(e.to_string(), "tolerance"))

@@ -121,13 +121,9 @@ pub fn run(a: &ExportArgs) -> Result<()> {
             image.png_bytes(&a.output)?
         }
         Format::Svg | Format::Pdf => {
-            let mut opts = splinescope_figure::FigureOptions::new(a.width, a.height);
+            let mut opts = splinescope_figure::FigureOptions::new(a.width, a.height)
+                .with_text(a.text.options());
             opts.tolerance = a.tolerance;
-            let t = a.text.options();
-            opts.labels = t.labels;
-            opts.legend = t.legend;
-            opts.axes = t.axes;
-            opts.grid = t.grid;
             let fig = splinescope_figure::build(&scene, &opts)?;
             if format == Format::Svg {
                 splinescope_figure::svg::write(&fig).into_bytes()
