@@ -73,48 +73,38 @@ def _error(cls: type, message: str, path: str) -> Exception:
     return e
 
 
+def _array(value: ArrayLike, what: str, shape_ok: Any, expected: str) -> np.ndarray:
+    """``value`` as a float64 array of an accepted shape with finite numbers, or a
+    :class:`SceneError` naming ``what``."""
+    try:
+        a = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise _error(SceneError, f"{what}: not numbers ({e})", what) from None
+    if not shape_ok(a.shape):
+        raise _error(SceneError, f"{what} must be {expected}; got shape {a.shape}", what)
+    _finite(a, what)
+    return a
+
+
 def _points(points: ArrayLike, what: str) -> Tuple[List[List[float]], int]:
     """Points as JSON lists, checked: shape (N, 2) or (N, 3), finite numbers."""
-    try:
-        a = np.asarray(points, dtype=np.float64)
-    except (TypeError, ValueError) as e:
-        raise _error(SceneError, f"{what}: not an array of numbers ({e})", what) from None
-    if a.ndim != 2 or a.shape[1] not in (2, 3):
-        raise _error(
-            SceneError,
-            f"{what} must be an array of shape (N, 2) or (N, 3); got shape {a.shape}",
-            what,
-        )
-    _finite(a, what)
+    a = _array(
+        points,
+        what,
+        lambda s: len(s) == 2 and s[1] in (2, 3),
+        "an array of shape (N, 2) or (N, 3)",
+    )
     return a.tolist(), int(a.shape[1])
 
 
 def _point(p: ArrayLike, what: str) -> List[float]:
-    try:
-        a = np.asarray(p, dtype=np.float64)
-    except (TypeError, ValueError) as e:
-        raise _error(SceneError, f"{what}: not a point ({e})", what) from None
-    if a.ndim != 1 or a.shape[0] not in (2, 3):
-        raise _error(
-            SceneError,
-            f"{what} must be a point of 2 or 3 numbers; got shape {a.shape}",
-            what,
-        )
-    _finite(a, what)
-    return a.tolist()
+    return _array(
+        p, what, lambda s: len(s) == 1 and s[0] in (2, 3), "a point of 2 or 3 numbers"
+    ).tolist()
 
 
 def _numbers(v: ArrayLike, what: str) -> List[float]:
-    try:
-        a = np.asarray(v, dtype=np.float64)
-    except (TypeError, ValueError) as e:
-        raise _error(SceneError, f"{what}: not numbers ({e})", what) from None
-    if a.ndim != 1:
-        raise _error(
-            SceneError, f"{what} must be a 1-D array of numbers; got shape {a.shape}", what
-        )
-    _finite(a, what)
-    return a.tolist()
+    return _array(v, what, lambda s: len(s) == 1, "a 1-D array of numbers").tolist()
 
 
 def _finite(a: np.ndarray, what: str) -> None:
