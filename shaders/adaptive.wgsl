@@ -8,13 +8,13 @@
 //   finalize    each segment's offset in the sample buffer; when the counts exceed the
 //               buffer they are scaled down in proportion (never below 2 for a drawn
 //               segment, never past the buffer); the indirect draw's instance count
-//   tessellate_{cubic,quartic,any}
+//   tessellate_{cubic,quartic,any,rational}
 //               one workgroup per segment writes exactly its samples there
 //
 // The line pipeline then draws `instance_count` pieces with one indirect draw. The CPU
 // twins are `wang_count`, `scan_and_place` and `tessellate_adaptive` in src/gpu/twin.rs.
 // The bound (docs/math.md §5): with H_i = (x, y, w) the control points in homogeneous
-// pixel coordinates, M_xy and M_w their largest second differences, R the largest
+// pixel coordinates (a rational segment's weights multiply its points' w), M_xy and M_w their largest second differences, R the largest
 // distance of a projected control point from the viewport centre and W the smallest w,
 // N uniform intervals keep every screen chord within
 // n (n − 1) (M_xy + R M_w) / (8 N² W) pixels of the curve (orthographic: w = 1, M_w = 0,
@@ -22,7 +22,7 @@
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<uniform> range: TessParams;
-@group(0) @binding(2) var<storage, read> points: array<Vertex>;
+@group(0) @binding(2) var<storage, read> points: array<ControlPoint>;
 @group(0) @binding(3) var<storage, read> segments: array<Segment>;
 // Twin: the WORK_* constants in src/gpu/layout.rs. [0, 8): the indirect draw arguments and
 // the frame's statistics (FrameStats); then counts[S], scan pairs[2 S], block pairs[2 B].
@@ -61,7 +61,10 @@ fn wang_count(seg: Segment) -> u32 {
     var hi = vec2<f32>(-3.4e38);
     var r = 0.0;
     for (var i = 0u; i <= n; i++) {
-        let c = frame.clip_from_world * vec4<f32>(points[seg.first_point + i].position, 1.0);
+        // The homogeneous control point (w P, w) in clip space: w times the projection of
+        // P, so the bound below covers the weights and the perspective alike.
+        let q = points[seg.first_point + i];
+        let c = frame.clip_from_world * vec4<f32>(q.position, q.weight);
         h[i] = vec3<f32>(c.x * half.x, -c.y * half.y, c.w);
         w_min = min(w_min, c.w);
         w_max = max(w_max, abs(c.w));
@@ -312,5 +315,24 @@ fn tessellate_any(
     for (var j = lane; j < count; j += TESSELLATE_WORKGROUP_SIZE) {
         let u = adaptive_param(j, count);
         samples[first + j] = Vertex(bernstein_horner(seg.first_point, n, u, 1.0 - u), seg.curve);
+    }
+}
+
+@compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
+fn tessellate_rational(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let w = adaptive_work(group.x + group.y * range.groups_x);
+    if (!w.ok) {
+        return;
+    }
+    let seg = w.seg;
+    let count = w.count;
+    let first = w.first;
+    let n = min(seg.degree, MAX_DEGREE);
+    for (var j = lane; j < count; j += TESSELLATE_WORKGROUP_SIZE) {
+        let u = adaptive_param(j, count);
+        samples[first + j] = Vertex(rational_point(seg.first_point, n, u, 1.0 - u), seg.curve);
     }
 }

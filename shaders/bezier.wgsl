@@ -1,12 +1,20 @@
 // Bézier evaluation shared by both tessellators: composed after common.wgsl into
 // tessellate.wgsl and adaptive.wgsl, each of which declares its control points as
-// `points: array<Vertex>`. A segment's point at u by degree class — the cubic's Bernstein
-// form, the quartic's de Casteljau written out, Horner's rule for every other degree.
+// `points: array<ControlPoint>`. A segment's point at u by degree class — the cubic's
+// Bernstein form, the quartic's de Casteljau written out, Horner's rule for every other
+// degree, and for rational segments Horner's rule on the homogeneous points (w P, w)
+// divided by the weight.
 // CPU twin: fixed_kernel in crates/gpu/src/twin.rs, with the same operations in the same
 // order.
 
 fn control_point(first: u32, i: u32) -> vec3<f32> {
     return points[first + i].position;
+}
+
+// The homogeneous control point (w P, w).
+fn control_point4(first: u32, i: u32) -> vec4<f32> {
+    let c = points[first + i];
+    return vec4<f32>(c.position, c.weight);
 }
 
 // The cubic's Bernstein form, v³P₀ + 3v²uP₁ + 3vu²P₂ + u³P₃: half de Casteljau's
@@ -33,33 +41,46 @@ fn quartic(p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32>, p3: vec3<f32>, p4: vec3<
     return cubic(v * p0 + u * p1, v * p1 + u * p2, v * p2 + u * p3, v * p3 + u * p4, u, v);
 }
 
-// The Bernstein sum of degree n of the points from `first` on, by Horner's rule in
+// The Bernstein sum of degree n of the homogeneous points from `first` on, by Horner's rule in
 // x = u / v, scaled by v^n (u ≤ 1/2), or in x = v / u from the other end, scaled by u^n:
 // O(n) with the binomials built along the way and no scratch array (de Casteljau's
 // triangle is O(n²) through a dynamically indexed array, which a CPU adapter keeps in
 // memory and Mesa's GL compiler once got wrong). The ends are exact: x = 0 there.
-fn bernstein_horner(first: u32, n: u32, u: f32, v: f32) -> vec3<f32> {
-    var acc: vec3<f32>;
+fn bernstein_horner4(first: u32, n: u32, u: f32, v: f32) -> vec4<f32> {
+    var acc: vec4<f32>;
     var scale = 1.0;
     var binomial = 1.0;
     if (u <= 0.5) {
         let x = u / v;
-        acc = control_point(first, n);
+        acc = control_point4(first, n);
         for (var i = n; i > 0u; i--) {
             // C(n, i − 1) = C(n, i) · i / (n − i + 1)
             binomial = binomial * f32(i) / f32(n - i + 1u);
-            acc = acc * x + binomial * control_point(first, i - 1u);
+            acc = acc * x + binomial * control_point4(first, i - 1u);
             scale = scale * v;
         }
     } else {
         let x = v / u;
-        acc = control_point(first, 0u);
+        acc = control_point4(first, 0u);
         for (var i = 1u; i <= n; i++) {
             // C(n, i) = C(n, i − 1) · (n − i + 1) / i
             binomial = binomial * f32(n - i + 1u) / f32(i);
-            acc = acc * x + binomial * control_point(first, i);
+            acc = acc * x + binomial * control_point4(first, i);
             scale = scale * u;
         }
     }
     return acc * scale;
+}
+
+// A polynomial segment's point: the homogeneous sum's first three lanes (its weights are
+// all 1, and the lanes are computed independently).
+fn bernstein_horner(first: u32, n: u32, u: f32, v: f32) -> vec3<f32> {
+    return bernstein_horner4(first, n, u, v).xyz;
+}
+
+// A rational segment's point: the homogeneous sum divided by its weight lane. The ends
+// are exact up to the division (x = 0 there).
+fn rational_point(first: u32, n: u32, u: f32, v: f32) -> vec3<f32> {
+    let h = bernstein_horner4(first, n, u, v);
+    return h.xyz / h.w;
 }

@@ -14,6 +14,13 @@ struct Vertex {
     id: u32,
 }
 
+// Twin: GpuControlPoint. A control point in homogeneous coordinates: position = w P,
+// weight = w (1 for polynomial segments).
+struct ControlPoint {
+    position: vec3<f32>,
+    weight: f32,
+}
+
 // Twin: GpuRecord. One workgroup's run of samples (at most 64) of one Bézier segment, and
 // where they go.
 struct Record {
@@ -25,6 +32,8 @@ struct Record {
     u0: f32,
     u1: f32,
     sample_offset: u32,
+    // 1: rational (evaluated homogeneous, then divided by the weight).
+    rational: u32,
 }
 
 // Twin: GpuSegment. A Bézier segment drawn with a per-frame sample count (adaptive.wgsl):
@@ -35,6 +44,7 @@ struct Segment {
     degree: u32,
     curve: u32,
     fixed: u32,
+    rational: u32,
 }
 
 // Twin: GpuFrame. What adaptive tessellation needs each frame, per chunk.

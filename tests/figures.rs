@@ -331,7 +331,7 @@ fn pieces_follow_the_tolerance() {
         affine: true,
     };
     let count = |t: f64| {
-        splinescope_figure::fit::segment_pieces(&bez, &proj, t)
+        splinescope_figure::fit::segment_pieces(&bez, None, &proj, t)
             .expect("in front")
             .len()
     };

@@ -63,8 +63,13 @@ struct Case {
 fn pack(cases: &[Case], limits: ChunkLimits) -> Vec<TessChunk> {
     let mut b = ChunkBuilder::new(limits);
     for (i, c) in cases.iter().enumerate() {
-        b.begin_segment(i, GpuLineStyle::solid(Color::WHITE, 1.0), c.curve.points())
-            .expect("fits");
+        b.begin_segment(
+            i,
+            GpuLineStyle::solid(Color::WHITE, 1.0),
+            c.curve.points(),
+            None,
+        )
+        .expect("fits");
         b.add_samples(c.samples, 0.0, 1.0);
     }
     b.finish()

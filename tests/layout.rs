@@ -3,8 +3,8 @@
 
 use naga::{Module, TypeInner};
 use splinescope::gpu::layout::{
-    ADAPTIVE_SEGMENT_LANES, GpuCamera, GpuFrame, GpuLineStyle, GpuRecord, GpuSegment,
-    GpuTessParams, GpuVertex, MAX_GPU_DEGREE, SCAN_BLOCK, TESSELLATE_KERNELS,
+    ADAPTIVE_SEGMENT_LANES, GpuCamera, GpuControlPoint, GpuFrame, GpuLineStyle, GpuRecord,
+    GpuSegment, GpuTessParams, GpuVertex, MAX_GPU_DEGREE, SCAN_BLOCK, TESSELLATE_KERNELS,
     TESSELLATE_WORKGROUP_SIZE, WORK_HEADER,
 };
 use splinescope::gpu::shaders::{self, ALL};
@@ -79,6 +79,7 @@ fn gpu_structs_match_their_wgsl_twins() {
         let (module, _) = source.validate().expect("valid");
         let m = &module;
         assert_twin!(m, "Vertex", GpuVertex, [position, id]);
+        assert_twin!(m, "ControlPoint", GpuControlPoint, [position, weight]);
         assert_twin!(
             m,
             "Record",
@@ -91,14 +92,15 @@ fn gpu_structs_match_their_wgsl_twins() {
                 sample_count,
                 u0,
                 u1,
-                sample_offset
+                sample_offset,
+                rational
             ]
         );
         assert_twin!(
             m,
             "Segment",
             GpuSegment,
-            [first_point, degree, curve, fixed]
+            [first_point, degree, curve, fixed, rational]
         );
         assert_twin!(
             m,
@@ -164,6 +166,9 @@ fn kernel_workgroup_and_scratch_match_the_rust_constants() {
         "cubic_bernstein",
         "quartic",
         "bernstein_horner",
+        "bernstein_horner4",
+        "control_point4",
+        "rational_point",
     ];
     for source in [shaders::TESSELLATE, shaders::ADAPTIVE] {
         let (module, _) = source.validate().expect("valid");

@@ -246,7 +246,7 @@ fn rational_solves_pass_through_keep_weights_and_are_minimal() {
     )
     .expect("curve");
     let target = DVec3::new(3.0, 3.5, 0.0);
-    let s = single_target(&arc, target, 0.45, None).expect("single");
+    let s = single_target(&arc, target, Some(0.45), None, None).expect("single");
     assert!(s.residuals[0] < 1e-12, "{:?}", s.residuals);
     assert_eq!(s.curve.weights(), arc.weights());
     // Minimal: ε_i = R_i(t) d / Σ R_j² over the moved window.
@@ -257,7 +257,7 @@ fn rational_solves_pass_through_keep_weights_and_are_minimal() {
         assert!((*e - d * (r[i] / denom)).length() < 1e-12, "point {i}");
     }
     let targets = [DVec3::new(1.0, 1.8, 0.0), DVec3::new(4.5, 1.6, 0.0)];
-    let m = multi_target(&arc, &targets, &[0.2, 0.8]).expect("multi");
+    let m = multi_target(&arc, &targets, Some(&[0.2, 0.8]), None).expect("multi");
     for (res, (t, want)) in m.residuals.iter().zip([0.2, 0.8].iter().zip(&targets)) {
         assert!(*res < 1e-12 && (m.curve.eval(*t) - *want).length() < 1e-12);
     }
@@ -266,14 +266,14 @@ fn rational_solves_pass_through_keep_weights_and_are_minimal() {
     // Weights 1: the polynomial solver's change.
     let poly = Bezier::new(arc.points().to_vec());
     let unit = RationalBezier::try_new(arc.points().to_vec(), vec![1.0; 5]).expect("unit");
-    let a = multi_target(&unit, &targets, &[0.2, 0.8]).expect("rational");
+    let a = multi_target(&unit, &targets, Some(&[0.2, 0.8]), None).expect("rational");
     let b = splinescope::solve::shape::multi_target(&poly, &targets, Some(&[0.2, 0.8]), None)
         .expect("polynomial");
     for (p, q) in a.curve.points().iter().zip(b.curve.points()) {
         assert!((*p - *q).length() < 1e-12);
     }
     // Refusals.
-    assert!(single_target(&arc, target, 1.0, None).is_err());
-    assert!(single_target(&arc, target, 0.5, Some((0, 2))).is_err());
-    assert!(multi_target(&arc, &targets, &[0.5]).is_err());
+    assert!(single_target(&arc, target, Some(1.0), None, None).is_err());
+    assert!(single_target(&arc, target, Some(0.5), Some((0, 2)), None).is_err());
+    assert!(multi_target(&arc, &targets, Some(&[0.5]), None).is_err());
 }

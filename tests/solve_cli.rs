@@ -71,7 +71,7 @@ const EXPECTED: &[(&str, &str, &str)] = &[
     (
         "wrong-family",
         "curve",
-        "single_target modifies Bézier curves (paper 000); curves[3] is nubmp",
+        "single_target modifies Bézier curves (paper 000) and rational Bézier and NURBS curves (weights fixed); curves[3] is nubmp",
     ),
     (
         "nubmp-method-on-bezier",

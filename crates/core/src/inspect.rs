@@ -49,6 +49,9 @@ pub struct SegmentReport {
     pub degree: usize,
     /// Its control points.
     pub points: Vec<Xyz>,
+    /// A rational segment's weights (absent for a polynomial one).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub weights: Option<Vec<f64>>,
 }
 
 /// The report of one curve (without `at_tau`).
@@ -75,6 +78,7 @@ pub fn curve_report(
                 t1: s.t1,
                 degree: s.bezier.degree(),
                 points: xyz(s.bezier.points()),
+                weights: s.weights.clone(),
             })
             .collect(),
         details: curve.details()?,

@@ -117,13 +117,18 @@ fn elevate(a: &[f64], to: usize) -> Vec<f64> {
 /// How many times a piece may be halved (2²⁴ pieces per segment at most).
 const MAX_DEPTH: u32 = 24;
 
-/// The path commands of one Bézier segment (world control points) under `proj`, each
-/// within `tolerance` output points of the exact curve; `None` when part of the segment
-/// lies at or behind the eye (it is not drawn).
+/// The path commands of one Bézier segment (world control points, with their weights for
+/// a rational segment) under `proj`, each within `tolerance` output points of the exact
+/// curve; `None` when part of the segment lies at or behind the eye (it is not drawn).
 #[must_use]
-pub fn segment_pieces(bezier: &Bezier, proj: &Projection, tolerance: f64) -> Option<Vec<Piece>> {
+pub fn segment_pieces(
+    bezier: &Bezier,
+    weights: Option<&[f64]>,
+    proj: &Projection,
+    tolerance: f64,
+) -> Option<Vec<Piece>> {
     let pts = bezier.points();
-    if proj.affine && pts.len() <= 4 {
+    if proj.affine && pts.len() <= 4 && weights.is_none() {
         let p: Vec<DVec2> = pts.iter().filter_map(|&p| proj.point(p)).collect();
         let seg = match p.as_slice() {
             [_, b] => Seg::Line(*b),
@@ -133,26 +138,30 @@ pub fn segment_pieces(bezier: &Bezier, proj: &Projection, tolerance: f64) -> Opt
         };
         return Some(vec![Piece { seg, exact: true }]);
     }
+    // The segment in homogeneous output coordinates (X, Y, W) as one polynomial Bézier
+    // curve: the projection of (w·P, w) is w times the projection of P.
+    let homogeneous = Bezier::new(
+        pts.iter()
+            .enumerate()
+            .map(|(i, &p)| DVec3::from(proj.homogeneous(p)) * weights.map_or(1.0, |w| w[i]))
+            .collect(),
+    );
     let mut out = Vec::new();
-    fit(bezier, proj, tolerance, 0.0, 1.0, 0, &mut out).then_some(out)
+    fit(&homogeneous, tolerance, 0.0, 1.0, 0, &mut out).then_some(out)
 }
 
-/// The Hermite cubic of `bezier` on `[a, b]` if within `tolerance`, else its halves.
+/// The Hermite cubic of the homogeneous curve `(X, Y, W)` on `[a, b]` if within
+/// `tolerance`, else its halves.
 fn fit(
-    bezier: &Bezier,
-    proj: &Projection,
+    homogeneous: &Bezier,
     tolerance: f64,
     a: f64,
     b: f64,
     depth: u32,
     out: &mut Vec<Piece>,
 ) -> bool {
-    let piece = bezier.subsegment(a, b);
-    let h: Vec<[f64; 3]> = piece
-        .points()
-        .iter()
-        .map(|&p| proj.homogeneous(p))
-        .collect();
+    let piece = homogeneous.subsegment(a, b);
+    let h: Vec<[f64; 3]> = piece.points().iter().map(|p| p.to_array()).collect();
     let w: Vec<f64> = h.iter().map(|v| v[2]).collect();
     let min_w = w.iter().copied().fold(f64::INFINITY, f64::min);
     if min_w.is_nan() || min_w <= 0.0 {
@@ -194,8 +203,8 @@ fn fit(
         return true;
     }
     let mid = 0.5 * (a + b);
-    fit(bezier, proj, tolerance, a, mid, depth + 1, out)
-        && fit(bezier, proj, tolerance, mid, b, depth + 1, out)
+    fit(homogeneous, tolerance, a, mid, depth + 1, out)
+        && fit(homogeneous, tolerance, mid, b, depth + 1, out)
 }
 
 #[cfg(test)]

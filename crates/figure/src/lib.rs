@@ -277,7 +277,12 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
                 continue;
             };
             // Half the tolerance for the fit, the rest for rounding the written numbers.
-            let Some(pieces) = segment_pieces(&seg.bezier, &proj, 0.5 * opts.tolerance) else {
+            let Some(pieces) = segment_pieces(
+                &seg.bezier,
+                seg.weights.as_deref(),
+                &proj,
+                0.5 * opts.tolerance,
+            ) else {
                 continue;
             };
             match runs.last_mut() {

@@ -5,8 +5,8 @@
 use glam::DVec3;
 
 use super::layout::{
-    GpuLineStyle, GpuRecord, GpuSegment, GpuVertex, MAX_ADAPTIVE_SEGMENTS, TESSELLATE_KERNELS,
-    TESSELLATE_WORKGROUP_SIZE as WORKGROUP, kernel_class,
+    GpuControlPoint, GpuLineStyle, GpuRecord, GpuSegment, GpuVertex, MAX_ADAPTIVE_SEGMENTS,
+    TESSELLATE_KERNELS, TESSELLATE_WORKGROUP_SIZE as WORKGROUP, kernel_class,
 };
 use super::pack_error::PackError;
 
@@ -31,7 +31,7 @@ impl ChunkLimits {
         let per = |size: usize| (max_bytes / size as u64).min(u64::from(u32::MAX)) as usize;
         ChunkLimits {
             max_samples: per(size_of::<GpuVertex>()),
-            max_points: per(size_of::<GpuVertex>()),
+            max_points: per(size_of::<GpuControlPoint>()),
             max_records: per(size_of::<GpuRecord>()),
             max_styles: per(size_of::<GpuLineStyle>()),
         }
@@ -41,8 +41,8 @@ impl ChunkLimits {
 /// One self-contained unit of tessellation work.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct TessChunk {
-    /// Control points of this chunk's segments.
-    pub points: Vec<GpuVertex>,
+    /// Control points of this chunk's segments (homogeneous).
+    pub points: Vec<GpuControlPoint>,
     /// Records (indices local to this chunk), sorted by kernel class (see
     /// [`TESSELLATE_KERNELS`]).
     pub records: Vec<GpuRecord>,
@@ -62,6 +62,42 @@ pub struct TessChunk {
     pub segment_class_ends: [u32; TESSELLATE_KERNELS.len()],
 }
 
+/// A segment's control points in the GPU's homogeneous form ([`GpuControlPoint`]):
+/// `(P, 1)` for a polynomial segment; for a rational one `(w·P, w)` with the weights first
+/// scaled by the power of two that brings the largest into `[½, 1)` (exact, and the same
+/// curve), the product formed in `f64` and rounded once to `f32`.
+#[must_use]
+pub fn gpu_control_points(points: &[DVec3], weights: Option<&[f64]>) -> Vec<GpuControlPoint> {
+    match weights {
+        None => points
+            .iter()
+            .map(|p| GpuControlPoint {
+                position: p.as_vec3().to_array(),
+                weight: 1.0,
+            })
+            .collect(),
+        Some(w) => {
+            let largest = w.iter().copied().fold(0.0, f64::max);
+            let e = if largest > 0.0 && largest.is_finite() {
+                crate::num::split_exponent(largest).1 + 1
+            } else {
+                0
+            };
+            points
+                .iter()
+                .zip(w)
+                .map(|(p, &w)| {
+                    let w = crate::num::scale_by_power_of_two(w, -e);
+                    GpuControlPoint {
+                        position: (*p * w).as_vec3().to_array(),
+                        weight: w as f32,
+                    }
+                })
+                .collect()
+        }
+    }
+}
+
 /// Where a copy of one lowered segment's control points lives on the GPU: the chunk and
 /// the index of its first point there (a segment split across chunks has several).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -74,6 +110,8 @@ pub struct Placement {
     pub segment: usize,
     /// Its number of control points.
     pub len: u32,
+    /// Whether it was packed as a rational segment (evaluated by the rational kernel).
+    pub rational: bool,
 }
 
 /// Builds chunks segment by segment, opening a new chunk whenever the next record would
@@ -94,7 +132,8 @@ struct OpenSegment {
     curve: usize,
     segment: usize,
     style: GpuLineStyle,
-    points: Vec<GpuVertex>,
+    points: Vec<GpuControlPoint>,
+    rational: bool,
     first_point: u32,
     /// For a drawn segment, its fixed sample count (0: adaptive); registered in the chunk
     /// that gets its first record.
@@ -139,7 +178,8 @@ impl ChunkBuilder {
     }
 
     /// Starts a segment of scene curve `curve` (curves come in non-decreasing order) with
-    /// the given control points, rounded to `f32`.
+    /// the given control points and, for a rational segment, their weights, in the GPU's
+    /// homogeneous form ([`gpu_control_points`]).
     ///
     /// # Errors
     /// [`PackError::LimitsTooSmall`] when a segment does not fit an empty chunk.
@@ -148,6 +188,7 @@ impl ChunkBuilder {
         curve: usize,
         style: GpuLineStyle,
         points: &[DVec3],
+        weights: Option<&[f64]>,
     ) -> Result<(), PackError> {
         let segment = self
             .placements
@@ -171,32 +212,34 @@ impl ChunkBuilder {
                 ),
             });
         }
-        let points: Vec<GpuVertex> = points
-            .iter()
-            .map(|p| GpuVertex {
-                position: p.as_vec3().to_array(),
-                id: 0,
-            })
-            .collect();
+        let points = gpu_control_points(points, weights);
         self.open = None;
         if !self.has_room(curve, points.len(), 1) {
             self.chunks.push(TessChunk::default());
         }
         let first_point = self.current().points.len() as u32;
         self.current_mut().points.extend_from_slice(&points);
-        self.place(curve, segment, first_point, points.len());
+        self.place(curve, segment, first_point, points.len(), weights.is_some());
         self.open = Some(OpenSegment {
             curve,
             segment,
             style,
             points,
+            rational: weights.is_some(),
             first_point,
             drawn: None,
         });
         Ok(())
     }
 
-    fn place(&mut self, curve: usize, segment: usize, first_point: u32, len: usize) {
+    fn place(
+        &mut self,
+        curve: usize,
+        segment: usize,
+        first_point: u32,
+        len: usize,
+        rational: bool,
+    ) {
         if self.placements.len() <= curve {
             self.placements.resize(curve + 1, Vec::new());
         }
@@ -206,6 +249,7 @@ impl ChunkBuilder {
             first_point,
             segment,
             len: len as u32,
+            rational,
         });
     }
 
@@ -218,7 +262,13 @@ impl ChunkBuilder {
             .unwrap_or_else(|| unreachable!("spill needs an open segment"));
         let first_point = self.current().points.len() as u32;
         self.current_mut().points.extend_from_slice(&open.points);
-        self.place(open.curve, open.segment, first_point, open.points.len());
+        self.place(
+            open.curve,
+            open.segment,
+            first_point,
+            open.points.len(),
+            open.rational,
+        );
         self.open = Some(OpenSegment {
             first_point,
             ..open
@@ -289,6 +339,7 @@ impl ChunkBuilder {
                     degree: (open.points.len() - 1) as u32,
                     curve: tag as u32,
                     fixed,
+                    rational: u32::from(open.rational),
                 });
             }
             // One record per workgroup's worth of samples of this run.
@@ -302,6 +353,7 @@ impl ChunkBuilder {
                     u0: ua as f32,
                     u1: ub as f32,
                     sample_offset,
+                    rational: u32::from(open.rational),
                 });
             }
             c.sample_count += take;
@@ -332,19 +384,21 @@ impl ChunkBuilder {
             .map(|mut c| {
                 // Records are independent (each writes its own samples), so their order is
                 // free: group them by the kernel that evaluates them.
-                c.records.sort_by_key(|s| kernel_class(s.degree));
+                c.records
+                    .sort_by_key(|s| kernel_class(s.degree, s.rational != 0));
                 let mut ends = [0u32; TESSELLATE_KERNELS.len()];
                 for s in &c.records {
-                    ends[kernel_class(s.degree)] += 1;
+                    ends[kernel_class(s.degree, s.rational != 0)] += 1;
                 }
                 for k in 1..ends.len() {
                     ends[k] += ends[k - 1];
                 }
                 c.class_ends = ends;
-                c.segments.sort_by_key(|s| kernel_class(s.degree));
+                c.segments
+                    .sort_by_key(|s| kernel_class(s.degree, s.rational != 0));
                 let mut ends = [0u32; TESSELLATE_KERNELS.len()];
                 for s in &c.segments {
-                    ends[kernel_class(s.degree)] += 1;
+                    ends[kernel_class(s.degree, s.rational != 0)] += 1;
                 }
                 for k in 1..ends.len() {
                     ends[k] += ends[k - 1];

@@ -66,8 +66,9 @@ pub fn evaluate_with_limits(
             let scale = match open {
                 Some((o, scale)) if o == s => scale,
                 _ => {
-                    let (points, scale) = unit_scaled(segments[s].bezier.points());
-                    builder.begin_segment(slot, style, &points)?;
+                    let seg = &segments[s];
+                    let (points, scale) = unit_scaled(seg.points());
+                    builder.begin_segment(slot, style, &points, seg.weights.as_deref())?;
                     open = Some((s, scale));
                     scale
                 }
@@ -125,28 +126,41 @@ pub fn unit_scaled(points: &[DVec3]) -> (Vec<DVec3>, i32) {
 
 /// The `order`-th hodograph of each lowered segment (same `t0`, `t1`): the Bézier curve
 /// whose value at `u` is `dᵏP/duᵏ`. Degree `n − k`; a segment of degree below `k` has the
-/// zero curve of degree 0.
+/// zero curve of degree 0. A rational segment's hodograph is taken of its homogeneous
+/// part `A = Σ w_i P_i B_i` (polynomial; see [`evaluate_derivative`]).
 #[must_use]
 pub fn hodographs(segments: &[BezierSegment], order: u32) -> Vec<BezierSegment> {
     segments
         .iter()
         .map(|s| {
-            let mut b = s.bezier.clone();
+            let mut b = homogeneous_part(s, false);
             for _ in 0..order {
                 b = b.deriv();
             }
-            BezierSegment {
-                bezier: b,
-                t0: s.t0,
-                t1: s.t1,
-            }
+            BezierSegment::polynomial(b, s.t0, s.t1)
         })
         .collect()
 }
 
+/// A segment's homogeneous part as a polynomial Bézier curve: `A` (the points times their
+/// weights) or, with `weight`, `W` (the weights as `(w_i, 0, 0)`); a polynomial segment's
+/// `A` is itself and its `W` the constant 1.
+fn homogeneous_part(s: &BezierSegment, weight: bool) -> crate::geom::Bezier {
+    let w = |i: usize| s.weights.as_ref().map_or(1.0, |w| w[i]);
+    let points = s.points().iter().enumerate();
+    crate::geom::Bezier::new(if weight {
+        points.map(|(i, _)| DVec3::new(w(i), 0.0, 0.0)).collect()
+    } else {
+        points.map(|(i, p)| *p * w(i)).collect()
+    })
+}
+
 /// Evaluates the `order`-th derivative (1 or 2) of each curve at its parameters on the
 /// GPU: the hodographs go through the same kernel as the curves, and the chain rule
-/// divides by `(t1 − t0)ᵏ` of the segment holding each parameter.
+/// divides by `(t1 − t0)ᵏ` of the segment holding each parameter. A curve with rational
+/// segments has its homogeneous parts `A`, `W` and their hodographs evaluated by the
+/// kernel, with the curve itself (the rational kernel), and the quotient rule combines
+/// them on the CPU: `C′ = (A′ − W′C) / W`, `C″ = (A″ − 2W′C′ − W″C) / W`.
 ///
 /// # Errors
 /// As [`evaluate`].
@@ -157,21 +171,92 @@ pub fn evaluate_derivative(
     params: &[Vec<f64>],
     order: u32,
 ) -> Result<Vec<Vec<DVec3>>, GpuError> {
-    let hodo: Vec<(usize, Vec<BezierSegment>)> = curves
+    let rational = curves
         .iter()
-        .map(|(i, segs)| (*i, hodographs(segs, order)))
-        .collect();
-    let values = evaluate(ctx, pipelines, &hodo, params)?;
+        .any(|(_, segs)| segs.iter().any(BezierSegment::is_rational));
+    let by_u = if rational {
+        quotient_rule(ctx, pipelines, curves, params, order)?
+    } else {
+        let hodo: Vec<(usize, Vec<BezierSegment>)> = curves
+            .iter()
+            .map(|(i, segs)| (*i, hodographs(segs, order)))
+            .collect();
+        evaluate(ctx, pipelines, &hodo, params)?
+    };
     Ok(curves
         .iter()
         .zip(params)
-        .zip(values)
+        .zip(by_u)
         .map(|(((_, segs), ts), vs)| {
             ts.iter()
                 .zip(vs)
                 .map(|(&t, v)| match locate(segs, t) {
                     Some((s, _)) => v / (segs[s].t1 - segs[s].t0).powi(order as i32),
                     None => v,
+                })
+                .collect()
+        })
+        .collect())
+}
+
+/// The `order`-th derivative (1 or 2) with respect to each segment's own parameter, by
+/// the quotient rule over GPU evaluations of `C`, `A^(k)` and `W^(k)`.
+fn quotient_rule(
+    ctx: &GpuContext,
+    pipelines: &Pipelines,
+    curves: &[(usize, Vec<BezierSegment>)],
+    params: &[Vec<f64>],
+    order: u32,
+) -> Result<Vec<Vec<DVec3>>, GpuError> {
+    // Per derivative k = 0..=order, the parts A^(k) and W^(k) of every curve, then the
+    // curve itself: evaluated together in one call.
+    let part = |k: u32, weight: bool| -> Vec<(usize, Vec<BezierSegment>)> {
+        curves
+            .iter()
+            .map(|(i, segs)| {
+                let segs = segs
+                    .iter()
+                    .map(|s| {
+                        let mut b = homogeneous_part(s, weight);
+                        for _ in 0..k {
+                            b = b.deriv();
+                        }
+                        BezierSegment::polynomial(b, s.t0, s.t1)
+                    })
+                    .collect();
+                (*i, segs)
+            })
+            .collect()
+    };
+    let mut all: Vec<(usize, Vec<BezierSegment>)> = curves.to_vec();
+    let mut all_params: Vec<Vec<f64>> = params.to_vec();
+    for k in 0..=order {
+        for weight in [false, true] {
+            all.extend(part(k, weight));
+            all_params.extend(params.iter().cloned());
+        }
+    }
+    let values = evaluate(ctx, pipelines, &all, &all_params)?;
+    let n = curves.len();
+    // values[(1 + 2k + weight) · n + curve]
+    let at = |k: u32, weight: bool, c: usize| {
+        &values[(1 + 2 * k as usize + usize::from(weight)) * n + c]
+    };
+    Ok((0..n)
+        .map(|c| {
+            (0..values[c].len())
+                .map(|j| {
+                    let point = values[c][j];
+                    let w = at(0, true, c)[j].x;
+                    let d1 = (at(1, false, c)[j] - at(1, true, c)[j].x * point) / w;
+                    if order == 1 {
+                        d1
+                    } else {
+                        (at(2, false, c)[j]
+                            - 2.0 * at(1, true, c)[j].x * d1
+                            - at(2, true, c)[j].x * point)
+                            / w
+                    }
                 })
                 .collect()
         })

@@ -16,8 +16,8 @@ pub const MAX_GPU_DEGREE: usize = 31;
 /// `TESSELLATE_WORKGROUP_SIZE` in `shaders/common.wgsl`.
 pub const TESSELLATE_WORKGROUP_SIZE: u32 = 64;
 
-/// A point with a 32-bit tag: control points (tag unused), tessellated samples (tag = the
-/// chunk-local curve index), overlay vertices (tag = index into the batch's style table).
+/// A point with a 32-bit tag: tessellated samples (tag = the chunk-local curve index),
+/// overlay vertices (tag = index into the batch's style table).
 /// Consecutive vertices with different tags are not joined by a line.
 ///
 /// Twin: `Vertex` in `shaders/common.wgsl`.
@@ -30,8 +30,25 @@ pub struct GpuVertex {
     pub id: u32,
 }
 
+/// A control point in homogeneous coordinates: `position = w·P`, `weight = w`. Polynomial
+/// segments have `w = 1` (`position = P`); a rational segment's weights are scaled by a
+/// power of two so that the largest is in `[½, 1)` (the same curve: a rational curve does
+/// not change when every weight is scaled alike), which keeps `w·P` within the
+/// coordinate limit.
+///
+/// Twin: `ControlPoint` in `shaders/common.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuControlPoint {
+    /// `w·P`.
+    pub position: [f32; 3],
+    /// `w`.
+    pub weight: f32,
+}
+
 /// One record of tessellation work on a Bézier segment: its control points are
-/// `points[first_point ..= first_point + degree]`; of the run of `sample_count` samples
+/// `points[first_point ..= first_point + degree]` (homogeneous, divided after evaluation
+/// when `rational` is 1); of the run of `sample_count` samples
 /// at the segment parameters `u = u0 (1 − f) + u1 f`, `f = j / (sample_count − 1)`
 /// (`f = 0` for a single sample), this record evaluates
 /// `j = sample_offset .. min(sample_offset + TESSELLATE_WORKGROUP_SIZE, sample_count)`,
@@ -58,6 +75,9 @@ pub struct GpuRecord {
     pub u1: f32,
     /// The first `j` of the run this record evaluates (a multiple of the workgroup size).
     pub sample_offset: u32,
+    /// 1 for a rational segment (evaluated in homogeneous coordinates, then divided by
+    /// the weight), 0 for a polynomial one.
+    pub rational: u32,
 }
 
 /// The uniform of one tessellation dispatch. Twin: `TessParams` in
@@ -90,6 +110,8 @@ pub struct GpuSegment {
     pub curve: u32,
     /// The scene's or curve's fixed sample count; 0: chosen every frame for the tolerance.
     pub fixed: u32,
+    /// 1 for a rational segment, 0 for a polynomial one (see [`GpuRecord::rational`]).
+    pub rational: u32,
 }
 
 /// The per-frame uniform of adaptive tessellation, one per chunk. Twin: `Frame` in
@@ -163,22 +185,32 @@ pub struct FrameStats {
     pub capped: u32,
 }
 
-/// The kernels of `shaders/tessellate.wgsl`, one per degree class: `(entry point, the one
-/// degree it evaluates, or None for any degree)`. Each chunk's records are sorted in this
-/// order and each class is dispatched with its own pipeline.
-pub const TESSELLATE_KERNELS: [(&str, Option<u32>); 3] = [
+/// The kernels of `shaders/tessellate.wgsl` (and of `shaders/adaptive.wgsl`), one per
+/// class of segment: `(entry point, the one degree it evaluates, or None for any degree)`.
+/// The first three take polynomial segments; the last, [`RATIONAL_KERNEL`], rational
+/// segments of any degree. Each chunk's records are sorted in this order and each class
+/// is dispatched with its own pipeline.
+pub const TESSELLATE_KERNELS: [(&str, Option<u32>); 4] = [
     ("tessellate_cubic", Some(3)),
     ("tessellate_quartic", Some(4)),
     ("tessellate_any", None),
+    ("tessellate_rational", None),
 ];
 
-/// The index in [`TESSELLATE_KERNELS`] of the kernel that evaluates `degree`.
+/// The index in [`TESSELLATE_KERNELS`] of the rational kernel.
+pub const RATIONAL_KERNEL: usize = 3;
+
+/// The index in [`TESSELLATE_KERNELS`] of the kernel that evaluates a segment of `degree`
+/// (`rational`: with weights).
 #[must_use]
-pub fn kernel_class(degree: u32) -> usize {
-    TESSELLATE_KERNELS
+pub fn kernel_class(degree: u32, rational: bool) -> usize {
+    if rational {
+        return RATIONAL_KERNEL;
+    }
+    TESSELLATE_KERNELS[..RATIONAL_KERNEL]
         .iter()
         .position(|(_, d)| d.is_none_or(|d| d == degree))
-        .unwrap_or(TESSELLATE_KERNELS.len() - 1)
+        .unwrap_or(RATIONAL_KERNEL - 1)
 }
 
 /// The camera uniform. Twin: `Camera` in `shaders/common.wgsl`.

@@ -8,20 +8,22 @@
 
 use glam::DVec3;
 
+use super::chunks::gpu_control_points;
 pub use super::chunks::{BatchBuilder, ChunkBuilder, ChunkLimits, LineBatch, Placement, TessChunk};
-use super::layout::{GpuLineStyle, GpuVertex, MAX_GPU_DEGREE};
+use super::layout::{GpuControlPoint, GpuLineStyle, MAX_GPU_DEGREE};
 pub use super::overlays::{OverlayEdit, OverlayMap, prepare_overlays_mapped};
-pub use super::pack_error::{GPU_COORDINATE_LIMIT, PackError};
+pub use super::pack_error::{GPU_COORDINATE_LIMIT, GPU_WEIGHT_RATIO, PackError};
 use crate::geom::BezierSegment;
 use crate::scene::encoding::Encoding;
 use crate::scene::{Color, auto_samples};
 
 /// Checks that the kernel can evaluate every segment: its degree is at most
-/// [`MAX_GPU_DEGREE`] and every coordinate is within [`GPU_COORDINATE_LIMIT`].
+/// [`MAX_GPU_DEGREE`], every coordinate is within [`GPU_COORDINATE_LIMIT`] and every
+/// weight of a rational segment is at least [`GPU_WEIGHT_RATIO`] times its largest.
 ///
 /// # Errors
-/// [`PackError::DegreeTooHigh`] or [`PackError::CoordinateTooLarge`] naming the curve,
-/// the segment and the point.
+/// [`PackError::DegreeTooHigh`], [`PackError::WeightRange`] or
+/// [`PackError::CoordinateTooLarge`] naming the curve, the segment and the point.
 pub fn check_gpu_fit(curve: usize, segments: &[BezierSegment]) -> Result<(), PackError> {
     for (segment, s) in segments.iter().enumerate() {
         let degree = s.bezier.degree();
@@ -32,6 +34,22 @@ pub fn check_gpu_fit(curve: usize, segments: &[BezierSegment]) -> Result<(), Pac
                 degree,
                 max: MAX_GPU_DEGREE,
             });
+        }
+        if let Some(w) = &s.weights {
+            let largest = w.iter().copied().fold(0.0, f64::max);
+            if let Some((point, &value)) = w
+                .iter()
+                .enumerate()
+                .find(|(_, w)| **w < GPU_WEIGHT_RATIO * largest)
+            {
+                return Err(PackError::WeightRange {
+                    curve,
+                    segment,
+                    point,
+                    ratio: value / largest,
+                    limit: GPU_WEIGHT_RATIO,
+                });
+            }
         }
         if let Some((point, value)) = first_too_large(s.bezier.points()) {
             return Err(PackError::CoordinateTooLarge {
@@ -96,7 +114,8 @@ pub struct PreparedScene {
 }
 
 /// The new control points of a curve whose lowering kept its structure (the same number
-/// of segments of the same degrees and, for a fixed count `samples`, the same count; an
+/// of segments of the same degrees, each still polynomial or still rational, and, for a
+/// fixed count `samples`, the same count; an
 /// automatic count is chosen by the GPU every frame, so it may change freely), as
 /// `(chunk, first point, points)` writes; `None` when the structure changed and the scene
 /// must be packed again.
@@ -106,7 +125,7 @@ pub fn repack_points(
     packed_counts: &[u32],
     segments: &[BezierSegment],
     samples: Option<u32>,
-) -> Option<Vec<(usize, u32, Vec<GpuVertex>)>> {
+) -> Option<Vec<(usize, u32, Vec<GpuControlPoint>)>> {
     if segments.len() != packed_counts.len() {
         return None;
     }
@@ -119,18 +138,10 @@ pub fn repack_points(
         .iter()
         .map(|p| {
             let seg = segments.get(p.segment)?;
-            if seg.bezier.points().len() != p.len as usize {
+            if seg.bezier.points().len() != p.len as usize || seg.is_rational() != p.rational {
                 return None;
             }
-            let verts = seg
-                .bezier
-                .points()
-                .iter()
-                .map(|q| GpuVertex {
-                    position: q.as_vec3().to_array(),
-                    id: 0,
-                })
-                .collect();
+            let verts = gpu_control_points(seg.points(), seg.weights.as_deref());
             Some((p.chunk, p.first_point, verts))
         })
         .collect()
@@ -169,7 +180,7 @@ pub fn prepare(encoding: &Encoding, limits: ChunkLimits) -> Result<PreparedScene
         let style = GpuLineStyle::solid(curve.color, curve.width);
         let fixed = curve.samples.is_some();
         for (seg, &count) in curve.segments.iter().zip(counts) {
-            chunks.begin_segment(index, style, seg.bezier.points())?;
+            chunks.begin_segment(index, style, seg.points(), seg.weights.as_deref())?;
             chunks.add_drawn_samples(count, fixed);
         }
     }
@@ -208,7 +219,7 @@ mod tests {
         };
         let mut b = ChunkBuilder::new(limits);
         let cubic = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::ONE];
-        b.begin_segment(0, style(), &cubic).unwrap();
+        b.begin_segment(0, style(), &cubic, None).unwrap();
         b.add_samples(25, 0.0, 1.0);
         let chunks = b.finish();
         // 10 + 9 new + 6 new = 25 distinct samples over three chunks.
@@ -227,10 +238,10 @@ mod tests {
     #[test]
     fn long_runs_become_one_record_per_workgroup() {
         let mut b = ChunkBuilder::new(ChunkLimits::for_binding_size(1 << 20));
-        b.begin_segment(0, style(), &[DVec3::ZERO, DVec3::X])
+        b.begin_segment(0, style(), &[DVec3::ZERO, DVec3::X], None)
             .unwrap();
         b.add_samples(150, 0.0, 1.0);
-        b.begin_segment(1, style(), &[DVec3::ZERO, DVec3::Y])
+        b.begin_segment(1, style(), &[DVec3::ZERO, DVec3::Y], None)
             .unwrap();
         b.add_samples(64, 0.0, 1.0);
         let chunks = b.finish();
@@ -250,28 +261,49 @@ mod tests {
         );
         assert_eq!(chunks[0].sample_count, 214);
         // Both are degree 1: all records in the general class.
-        assert_eq!(chunks[0].class_ends, [0, 0, 4]);
+        assert_eq!(chunks[0].class_ends, [0, 0, 4, 4]);
     }
 
     #[test]
     fn records_are_grouped_by_kernel_class() {
         let mut b = ChunkBuilder::new(ChunkLimits::for_binding_size(1 << 20));
-        for (curve, degree) in [5usize, 3, 4, 3, 1].into_iter().enumerate() {
-            b.begin_segment(curve, style(), &vec![DVec3::ZERO; degree + 1])
+        let weights = [1.0, 2.0, 1.0, 0.5];
+        let curves = [
+            (5usize, false),
+            (3, true),
+            (3, false),
+            (4, false),
+            (3, false),
+            (1, false),
+        ];
+        for (curve, (degree, rational)) in curves.into_iter().enumerate() {
+            let w = rational.then(|| &weights[..=degree]);
+            b.begin_segment(curve, style(), &vec![DVec3::ZERO; degree + 1], w)
                 .unwrap();
             b.add_samples(8, 0.0, 1.0);
         }
         let chunks = b.finish();
-        let degrees: Vec<u32> = chunks[0].records.iter().map(|s| s.degree).collect();
-        assert_eq!(degrees, vec![3, 3, 4, 5, 1]);
-        assert_eq!(chunks[0].class_ends, [2, 3, 5]);
+        let degrees: Vec<(u32, u32)> = chunks[0]
+            .records
+            .iter()
+            .map(|s| (s.degree, s.rational))
+            .collect();
+        // A rational cubic goes to the rational kernel, not the cubic one.
+        assert_eq!(
+            degrees,
+            vec![(3, 0), (3, 0), (4, 0), (5, 0), (1, 0), (3, 1)]
+        );
+        assert_eq!(chunks[0].class_ends, [2, 3, 5, 6]);
         // Each record still writes its own curve's samples.
         let firsts: Vec<(u32, u32)> = chunks[0]
             .records
             .iter()
             .map(|s| (s.curve, s.first_sample))
             .collect();
-        assert_eq!(firsts, vec![(1, 8), (3, 24), (2, 16), (0, 0), (4, 32)]);
+        assert_eq!(
+            firsts,
+            vec![(2, 16), (4, 32), (3, 24), (0, 0), (5, 40), (1, 8)]
+        );
     }
 
     #[test]
@@ -373,7 +405,7 @@ mod tests {
         let mut edited = nub.clone();
         edited.set_group(5, &[0.5, 0.2, 0.3]).unwrap();
         let after = prepare(&Encoding::of(&scene(&edited)), limits).unwrap();
-        let mut chunks: Vec<Vec<GpuVertex>> =
+        let mut chunks: Vec<Vec<GpuControlPoint>> =
             before.chunks.iter().map(|c| c.points.clone()).collect();
         let writes = repack_points(
             &before.placements[1],
@@ -386,7 +418,8 @@ mod tests {
             let f = first as usize;
             chunks[chunk][f..f + verts.len()].copy_from_slice(&verts);
         }
-        let fresh: Vec<Vec<GpuVertex>> = after.chunks.iter().map(|c| c.points.clone()).collect();
+        let fresh: Vec<Vec<GpuControlPoint>> =
+            after.chunks.iter().map(|c| c.points.clone()).collect();
         assert_eq!(chunks, fresh);
         assert_ne!(
             chunks,

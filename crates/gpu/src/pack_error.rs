@@ -10,6 +10,11 @@ use thiserror::Error;
 /// below the other half).
 pub const GPU_COORDINATE_LIMIT: f64 = 1e38;
 
+/// The smallest ratio of a rational segment's weight to its largest weight the GPU path
+/// takes (`2⁻¹⁰⁰`): the weights are scaled so that the largest is in `[½, 1)`, and every
+/// other must stay a normal `f32` (down to `2⁻¹²⁶`) with room for the Bernstein factors.
+pub const GPU_WEIGHT_RATIO: f64 = 7.888_609_052_210_118e-31;
+
 /// Why a scene cannot be packed for the GPU.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum PackError {
@@ -42,6 +47,22 @@ pub enum PackError {
         /// The offending coordinate.
         value: f64,
         /// [`GPU_COORDINATE_LIMIT`].
+        limit: f64,
+    },
+    /// A rational segment's weight is too small beside its largest for `f32`.
+    #[error(
+        "curves[{curve}]: Bézier segment {segment}, weight {point} is {ratio:e} times the segment's largest weight, below the GPU's f32 range of {limit:e} (the CPU path, e.g. `eval --backend cpu`, takes it)"
+    )]
+    WeightRange {
+        /// The curve's index in the scene.
+        curve: usize,
+        /// The segment's index in the curve's lowering.
+        segment: usize,
+        /// The point's index in the segment.
+        point: usize,
+        /// The weight divided by the segment's largest.
+        ratio: f64,
+        /// [`GPU_WEIGHT_RATIO`].
         limit: f64,
     },
     /// An annotation point has a coordinate beyond [`GPU_COORDINATE_LIMIT`].

@@ -6,7 +6,7 @@ use glam::DVec2;
 
 use super::adaptive::{AdaptiveChunk, AdaptiveTessellator, FrameSettings, initial_capacity};
 use super::context::GpuContext;
-use super::layout::{FrameStats, GpuCamera, GpuLineStyle, GpuVertex};
+use super::layout::{FrameStats, GpuCamera, GpuControlPoint, GpuLineStyle, GpuVertex};
 use super::pack::{LineBatch, PreparedScene};
 use super::pipelines::Pipelines;
 use super::shaders;
@@ -95,9 +95,9 @@ impl GpuScene {
         queue: &wgpu::Queue,
         chunk: usize,
         first_point: u32,
-        points: &[GpuVertex],
+        points: &[GpuControlPoint],
     ) {
-        let offset = u64::from(first_point) * size_of::<GpuVertex>() as u64;
+        let offset = u64::from(first_point) * size_of::<GpuControlPoint>() as u64;
         let buffer = &self.chunks[chunk].adaptive.points;
         assert!(
             offset + size_of_val(points) as u64 <= buffer.size(),

@@ -1,10 +1,10 @@
 //! The kernel self-test run when a device is opened: every tessellation entry point
-//! evaluates a curve of every degree it serves, and the results are compared with the CPU
-//! twin. An adapter whose shader compiler gets a kernel wrong (Mesa's GL compiler once
+//! evaluates a curve of every degree it serves (the rational kernel with weights ≠ 1), and
+//! the results are compared with the CPU twin. An adapter whose shader compiler gets a kernel wrong (Mesa's GL compiler once
 //! returned `P_0` for every sample of the general kernel) is refused with a message that
 //! names the kernel, the degree and the values, instead of drawing wrong curves.
 //!
-//! It costs one small dispatch: 31 curves × 5 samples.
+//! It costs one small dispatch: 62 curves × 5 samples.
 
 use glam::{DVec3, Vec3};
 
@@ -31,6 +31,8 @@ pub struct KernelFault {
     pub kernel: &'static str,
     /// The degree of the test curve.
     pub degree: u32,
+    /// Whether the test curve was rational.
+    pub rational: bool,
     /// The sample's parameter.
     pub u: f32,
     /// What the GPU wrote.
@@ -43,8 +45,13 @@ impl std::fmt::Display for KernelFault {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "kernel {} evaluated a degree-{} Bézier curve at u = {} as {:?} instead of {:?}",
-            self.kernel, self.degree, self.u, self.got, self.want
+            "kernel {} evaluated a degree-{} {}Bézier curve at u = {} as {:?} instead of {:?}",
+            self.kernel,
+            self.degree,
+            if self.rational { "rational " } else { "" },
+            self.u,
+            self.got,
+            self.want
         )
     }
 }
@@ -61,8 +68,15 @@ fn test_points(degree: u32) -> Vec<DVec3> {
         .collect()
 }
 
-/// Runs every entry point of `tessellator` on a curve of each degree 1..=[`MAX_GPU_DEGREE`]
-/// and returns the first sample that disagrees with the twin, if any.
+/// The rational test curves' weights: a fixed sequence in `[¼, 4]`.
+fn test_weights(degree: u32) -> Vec<f64> {
+    (0..=degree)
+        .map(|i| [1.0, 4.0, 0.25, 2.0, 0.5][(i as usize + degree as usize) % 5])
+        .collect()
+}
+
+/// Runs every entry point of `tessellator` on a curve of each degree 1..=[`MAX_GPU_DEGREE`],
+/// polynomial and rational, and returns the first sample that disagrees with the twin, if any.
 ///
 /// # Errors
 /// [`GpuError`] when the dispatch or the readback itself fails.
@@ -76,8 +90,10 @@ pub fn run(
     let mut builder = ChunkBuilder::new(limits);
     let degrees: Vec<u32> = (1..=MAX_GPU_DEGREE as u32).collect();
     let curves: Vec<Vec<DVec3>> = degrees.iter().map(|&d| test_points(d)).collect();
-    for (slot, points) in curves.iter().enumerate() {
-        builder.begin_segment(slot, style, points)?;
+    let weights: Vec<Vec<f64>> = degrees.iter().map(|&d| test_weights(d)).collect();
+    let rational = curves.iter().zip(&weights).map(|(p, w)| (p, Some(&w[..])));
+    for (slot, (points, weights)) in curves.iter().map(|p| (p, None)).chain(rational).enumerate() {
+        builder.begin_segment(slot, style, points, weights)?;
         builder.add_samples(SAMPLES, 0.0, 1.0);
     }
     let chunks = builder.finish();
@@ -100,8 +116,9 @@ pub fn run(
                 let close = off <= SELF_TEST_TOLERANCE; // false for NaN
                 if !close || got[at].id != want[at].id {
                     fault.get_or_insert(KernelFault {
-                        kernel: TESSELLATE_KERNELS[kernel_class(seg.degree)].0,
+                        kernel: TESSELLATE_KERNELS[kernel_class(seg.degree, seg.rational != 0)].0,
                         degree: seg.degree,
+                        rational: seg.rational != 0,
                         u: twin::sample_param(seg, j),
                         got: g.to_array(),
                         want: w.to_array(),

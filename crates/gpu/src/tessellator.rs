@@ -287,9 +287,9 @@ impl Tessellator {
 /// storage bindings may not be empty).
 #[must_use]
 pub(crate) fn control_points_buffer(device: &wgpu::Device, chunk: &TessChunk) -> wgpu::Buffer {
-    let empty = [GpuVertex {
+    let empty = [super::layout::GpuControlPoint {
         position: [0.0; 3],
-        id: 0,
+        weight: 1.0,
     }];
     let points = if chunk.points.is_empty() {
         &empty[..]

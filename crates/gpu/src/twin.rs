@@ -2,11 +2,11 @@
 //! layout, the same loops, in `f32`.
 //! Tests compare the GPU's output with it (and both with the exact `f64` curves).
 
-use glam::{Mat4, Vec2, Vec3};
+use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use super::layout::{
-    FrameStats, GpuFrame, GpuRecord, GpuSegment, GpuTessParams, GpuVertex, MAX_GPU_DEGREE,
-    TESSELLATE_WORKGROUP_SIZE,
+    FrameStats, GpuControlPoint, GpuFrame, GpuRecord, GpuSegment, GpuTessParams, GpuVertex,
+    MAX_GPU_DEGREE, TESSELLATE_WORKGROUP_SIZE,
 };
 
 /// `sample_param` of the shader: `u0 (1 − f) + u1 f`, `f = j / (count − 1)`.
@@ -24,7 +24,7 @@ pub fn sample_param(seg: &GpuRecord, j: u32) -> f32 {
 /// quartic kernels (`quartic` of `shaders/bezier.wgsl`) write out, with exactly this loop's
 /// operations in this order.
 #[must_use]
-pub fn de_casteljau(points: &[GpuVertex], first: u32, n: u32, u: f32) -> Vec3 {
+pub fn de_casteljau(points: &[GpuControlPoint], first: u32, n: u32, u: f32) -> Vec3 {
     let v = 1.0 - u;
     let m = (n as usize).min(MAX_GPU_DEGREE);
     let mut p = [Vec3::ZERO; MAX_GPU_DEGREE + 1];
@@ -39,14 +39,18 @@ pub fn de_casteljau(points: &[GpuVertex], first: u32, n: u32, u: f32) -> Vec3 {
     p[0]
 }
 
-/// `bernstein_horner` of `shaders/bezier.wgsl` (the general kernel of both
-/// tessellators): the Bernstein sum of degree `n` by Horner's rule in `x = u / v` scaled by
-/// `vⁿ` (`u ≤ ½`), else in `x = v / u` scaled by `uⁿ`, the binomials built along the way.
+/// `bernstein_horner4` of `shaders/bezier.wgsl` (the general and rational kernels of both
+/// tessellators): the Bernstein sum of degree `n` of the homogeneous points `(w·P, w)` by
+/// Horner's rule in `x = u / v` scaled by `vⁿ` (`u ≤ ½`), else in `x = v / u` scaled by
+/// `uⁿ`, the binomials built along the way.
 #[must_use]
-pub fn bernstein_horner(points: &[GpuVertex], first: u32, n: u32, u: f32) -> Vec3 {
+pub fn bernstein_horner4(points: &[GpuControlPoint], first: u32, n: u32, u: f32) -> Vec4 {
     let v = 1.0 - u;
     let n = n.min(MAX_GPU_DEGREE as u32);
-    let p = |i: u32| Vec3::from(points[(first + i) as usize].position);
+    let p = |i: u32| {
+        let c = points[(first + i) as usize];
+        Vec3::from(c.position).extend(c.weight)
+    };
     let (mut scale, mut binomial) = (1.0_f32, 1.0_f32);
     let mut acc;
     if u <= 0.5 {
@@ -69,11 +73,35 @@ pub fn bernstein_horner(points: &[GpuVertex], first: u32, n: u32, u: f32) -> Vec
     acc * scale
 }
 
-/// What both tessellators' kernels compute for `degree` (`shaders/bezier.wgsl`): the
-/// cubic's Bernstein form `v³P₀ + 3v²uP₁ + 3vu²P₂ + u³P₃`, de Casteljau written out for
-/// quartics, [`bernstein_horner`] for every other degree.
+/// `bernstein_horner` of `shaders/bezier.wgsl`: [`bernstein_horner4`]'s first three lanes.
 #[must_use]
-pub fn fixed_kernel(points: &[GpuVertex], first: u32, degree: u32, u: f32) -> Vec3 {
+pub fn bernstein_horner(points: &[GpuControlPoint], first: u32, n: u32, u: f32) -> Vec3 {
+    bernstein_horner4(points, first, n, u).truncate()
+}
+
+/// `rational_point` of `shaders/bezier.wgsl`: [`bernstein_horner4`] divided by its weight
+/// lane.
+#[must_use]
+pub fn rational_point(points: &[GpuControlPoint], first: u32, n: u32, u: f32) -> Vec3 {
+    let h = bernstein_horner4(points, first, n, u);
+    h.truncate() / h.w
+}
+
+/// What both tessellators' kernels compute for a segment of `degree` (`shaders/bezier.wgsl`):
+/// for a rational one [`rational_point`]; otherwise the cubic's Bernstein form
+/// `v³P₀ + 3v²uP₁ + 3vu²P₂ + u³P₃`, de Casteljau written out for quartics,
+/// [`bernstein_horner`] for every other degree.
+#[must_use]
+pub fn fixed_kernel(
+    points: &[GpuControlPoint],
+    first: u32,
+    degree: u32,
+    rational: bool,
+    u: f32,
+) -> Vec3 {
+    if rational {
+        return rational_point(points, first, degree, u);
+    }
     match degree {
         3 => {
             let p = |i: u32| Vec3::from(points[(first + i) as usize].position);
@@ -88,7 +116,7 @@ pub fn fixed_kernel(points: &[GpuVertex], first: u32, degree: u32, u: f32) -> Ve
 
 /// One workgroup's body: every lane of `record` writes its sample (the kernel's `work()`
 /// and entry point).
-fn run_record(record: &GpuRecord, points: &[GpuVertex], samples: &mut [GpuVertex]) {
+fn run_record(record: &GpuRecord, points: &[GpuControlPoint], samples: &mut [GpuVertex]) {
     for lane in 0..TESSELLATE_WORKGROUP_SIZE {
         let j = record.sample_offset + lane;
         if j >= record.sample_count {
@@ -96,7 +124,14 @@ fn run_record(record: &GpuRecord, points: &[GpuVertex], samples: &mut [GpuVertex
         }
         let u = sample_param(record, j);
         samples[(record.first_sample + j) as usize] = GpuVertex {
-            position: fixed_kernel(points, record.first_point, record.degree, u).to_array(),
+            position: fixed_kernel(
+                points,
+                record.first_point,
+                record.degree,
+                record.rational != 0,
+                u,
+            )
+            .to_array(),
             id: record.curve,
         };
     }
@@ -106,7 +141,7 @@ fn run_record(record: &GpuRecord, points: &[GpuVertex], samples: &mut [GpuVertex
 ///
 /// # Panics
 /// When a record points outside `points` or `samples` (a packing bug).
-pub fn tessellate(points: &[GpuVertex], records: &[GpuRecord], samples: &mut [GpuVertex]) {
+pub fn tessellate(points: &[GpuControlPoint], records: &[GpuRecord], samples: &mut [GpuVertex]) {
     for record in records {
         run_record(record, points, samples);
     }
@@ -122,7 +157,7 @@ pub fn tessellate(points: &[GpuVertex], records: &[GpuRecord], samples: &mut [Gp
 pub fn dispatch(
     params: &GpuTessParams,
     groups: (u32, u32),
-    points: &[GpuVertex],
+    points: &[GpuControlPoint],
     records: &[GpuRecord],
     samples: &mut [GpuVertex],
 ) {
@@ -141,7 +176,7 @@ pub fn dispatch(
 /// is at or behind the eye; otherwise Wang's bound in homogeneous pixel coordinates,
 /// `docs/math.md` §5), in the shader's `f32` operations.
 #[must_use]
-pub fn wang_count(frame: &GpuFrame, points: &[GpuVertex], seg: &GpuSegment) -> u32 {
+pub fn wang_count(frame: &GpuFrame, points: &[GpuControlPoint], seg: &GpuSegment) -> u32 {
     if seg.fixed > 0 {
         return seg.fixed;
     }
@@ -151,8 +186,8 @@ pub fn wang_count(frame: &GpuFrame, points: &[GpuVertex], seg: &GpuSegment) -> u
     let mut h = [Vec3::ZERO; MAX_GPU_DEGREE + 1];
     let (mut w_min, mut w_max) = (f32::MAX, 0.0_f32);
     for (i, slot) in h.iter_mut().enumerate().take(n + 1) {
-        let p = Vec3::from(points[seg.first_point as usize + i].position);
-        let c = m * p.extend(1.0);
+        let q = points[seg.first_point as usize + i];
+        let c = m * Vec3::from(q.position).extend(q.weight);
         *slot = Vec3::new(c.x * half.x, -c.y * half.y, c.w);
         w_min = w_min.min(c.w);
         w_max = w_max.max(c.w.abs());
@@ -245,7 +280,7 @@ pub fn scan_and_place(counts: &[u32], capacity: u32) -> (Vec<u32>, Vec<u32>, Fra
 /// # Panics
 /// When a segment points outside `points` or `samples` (a packing bug).
 pub fn tessellate_adaptive(
-    points: &[GpuVertex],
+    points: &[GpuControlPoint],
     segments: &[GpuSegment],
     offsets: &[u32],
     counts: &[u32],
@@ -259,7 +294,8 @@ pub fn tessellate_adaptive(
                 j as f32 / (count - 1) as f32
             };
             samples[(first + j) as usize] = GpuVertex {
-                position: fixed_kernel(points, seg.first_point, seg.degree, u).to_array(),
+                position: fixed_kernel(points, seg.first_point, seg.degree, seg.rational != 0, u)
+                    .to_array(),
                 id: seg.curve,
             };
         }

@@ -297,18 +297,24 @@ impl PyCurve {
         self.eval(py, arr.as_any())
     }
 
-    /// The exact Bézier segments: a list of `(t0, t1, points (degree + 1, dim))`.
-    fn segments<'py>(&self, py: Python<'py>) -> PyResult<Vec<(f64, f64, Bound<'py, PyAny>)>> {
+    /// The exact Bézier segments: a list of `(t0, t1, points (degree + 1, dim))`, and for
+    /// a rational segment `(t0, t1, points, weights (degree + 1,))`.
+    fn segments<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyAny>>> {
         self.curve
             .curve
             .lower()
             .iter()
             .map(|s| {
-                Ok((
-                    s.t0,
-                    s.t1,
-                    arrays::points_array(py, s.bezier.points(), self.dim)?,
-                ))
+                let points = arrays::points_array(py, s.bezier.points(), self.dim)?;
+                match &s.weights {
+                    None => (s.t0, s.t1, points).into_pyobject(py).map(Bound::into_any),
+                    Some(w) => {
+                        let w = numpy::IntoPyArray::into_pyarray(w.clone(), py);
+                        (s.t0, s.t1, points, w)
+                            .into_pyobject(py)
+                            .map(Bound::into_any)
+                    }
+                }
             })
             .collect()
     }
@@ -366,10 +372,12 @@ impl PyCurve {
             c = match c {
                 Curve::Bezier(b) => Curve::Bezier(b.elevate()),
                 Curve::BSpline(b) => Curve::BSpline(b.elevate()),
+                Curve::RationalBezier(b) => Curve::RationalBezier(b.elevate()),
+                Curve::Nurbs(b) => Curve::Nurbs(b.elevate()),
                 other => {
                     return Err(raise::<CurveError>(
                         format!(
-                            "{} curves have no degree elevation here (Bézier curves and B-splines do)",
+                            "{} curves have no degree elevation here (Bézier, B-spline, rational Bézier and NURBS curves do)",
                             other.family()
                         ),
                         "",

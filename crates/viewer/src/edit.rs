@@ -9,9 +9,10 @@ use std::path::{Path, PathBuf};
 use glam::{DVec2, DVec3};
 
 use crate::camera::Camera;
-use crate::geom::{Bezier, Control, ControlValue, Curve};
+use crate::geom::{Control, ControlValue, Curve, ParamCurve};
 use crate::scene::{Scene, SceneCurve};
 use crate::solve::nearest;
+use crate::solve::rational;
 use crate::solve::shape::{SingleTargetOptions, single_target};
 
 /// Why an edit, a pull or a save was refused; the scene is unchanged.
@@ -41,9 +42,9 @@ pub enum EditError {
         /// What the family said.
         reason: crate::geom::GeomError,
     },
-    /// Pulling through a point modifies Bézier curves only.
+    /// Pulling through a point modifies Bézier and rational curves only.
     #[error(
-        "pulling a curve through a point modifies Bézier curves; curves[{index}] is {family} (drag its control points)"
+        "pulling a curve through a point modifies Bézier, rational Bézier and NURBS curves; curves[{index}] is {family} (drag its control points)"
     )]
     NotBezier {
         /// The curve.
@@ -149,7 +150,7 @@ enum Gesture {
     /// Dragging control point `index`.
     Point { index: usize },
     /// Pulling the curve's point at `t_s` through the pointer (from the original curve).
-    Pull { t_s: f64, original: Bezier },
+    Pull { t_s: f64, original: Curve },
     /// A panel control, identified by `key`.
     Control { key: String },
 }
@@ -340,11 +341,16 @@ impl Editor {
         });
     }
 
-    /// Whether curve `curve` can be pulled through the pointer (a Bézier curve of degree
-    /// ≥ 2); other curves are edited by their points.
+    /// Whether curve `curve` can be pulled through the pointer (a Bézier, rational Bézier
+    /// or NURBS curve of at least 3 control points); other curves are edited by their
+    /// points.
     #[must_use]
     pub fn can_pull(&self, curve: usize) -> bool {
-        matches!(self.scene.curves.get(curve).map(|c| &c.curve), Some(Curve::Bezier(b)) if b.degree() >= 2)
+        matches!(
+            self.scene.curves.get(curve).map(|c| &c.curve),
+            Some(c @ (Curve::Bezier(_) | Curve::RationalBezier(_) | Curve::Nurbs(_)))
+                if c.control_points().len() >= 3
+        )
     }
 
     /// Starts pulling a Bézier curve's point at `t` through the pointer: while dragging, the
@@ -357,13 +363,20 @@ impl Editor {
         self.finish();
         self.selected = Some(curve);
         self.selected_point = None;
-        let Curve::Bezier(b) = &self.scene.curves[curve].curve else {
+        if !self.can_pull(curve)
+            && !matches!(
+                self.scene.curves[curve].curve,
+                Curve::Bezier(_) | Curve::RationalBezier(_) | Curve::Nurbs(_)
+            )
+        {
             return Err(EditError::NotBezier {
                 index: curve,
                 family: self.scene.curves[curve].curve.family(),
             });
-        };
-        if b.degree() < 2 || t <= 0.0 || t >= 1.0 {
+        }
+        let b = &self.scene.curves[curve].curve;
+        let (start, end) = b.domain();
+        if !self.can_pull(curve) || t <= start || t >= end {
             return Err(EditError::PullAtEnd);
         }
         self.open = Some(Open {
@@ -389,16 +402,7 @@ impl Editor {
                 .curve
                 .with_control_point(*index, world)
                 .map_err(|e| e.to_string()),
-            Gesture::Pull { t_s, original } => single_target(
-                original,
-                world,
-                &SingleTargetOptions {
-                    t_s: Some(*t_s),
-                    ..SingleTargetOptions::default()
-                },
-            )
-            .map(|s| Curve::Bezier(s.curve))
-            .map_err(|e| e.to_string()),
+            Gesture::Pull { t_s, original } => pull(original, *t_s, world),
             Gesture::Control { .. } => return,
         };
         match result {
@@ -802,11 +806,40 @@ impl Editor {
     }
 }
 
+/// The curve `original` pulled so that its point at `t_s` passes through `world`: paper
+/// 000's single-target modification (the weights fixed for rational curves).
+fn pull(original: &Curve, t_s: f64, world: DVec3) -> Result<Curve, String> {
+    let result = match original {
+        Curve::Bezier(b) => single_target(
+            b,
+            world,
+            &SingleTargetOptions {
+                t_s: Some(t_s),
+                ..SingleTargetOptions::default()
+            },
+        )
+        .map(|s| Curve::Bezier(s.curve)),
+        Curve::RationalBezier(c) => rational::single_target(c, world, Some(t_s), None, None)
+            .map(|s| Curve::RationalBezier(s.curve)),
+        Curve::Nurbs(c) => {
+            rational::single_target(c, world, Some(t_s), None, None).map(|s| Curve::Nurbs(s.curve))
+        }
+        other => {
+            return Err(EditError::NotBezier {
+                index: 0,
+                family: other.family(),
+            }
+            .to_string());
+        }
+    };
+    result.map_err(|e| e.to_string())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::camera::Camera2d;
-    use crate::geom::{Nubmp, ParamCurve};
+    use crate::geom::{Bezier, Nubmp};
     use crate::scene::{Color, Style, ViewSpec};
 
     fn scene() -> Scene {

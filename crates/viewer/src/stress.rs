@@ -8,7 +8,7 @@ use std::time::Instant;
 use glam::DVec3;
 
 use crate::geom::Curve;
-use crate::gpu::layout::GpuVertex;
+use crate::gpu::layout::GpuControlPoint;
 use crate::gpu::pack::Placement;
 use crate::gpu::renderer::GpuScene;
 use crate::scene::Scene;
@@ -25,7 +25,7 @@ pub(crate) struct StressSolver {
     ts: Vec<f64>,
     out: Vec<DVec3>,
     results: Vec<BatchResult>,
-    staging: Vec<Vec<GpuVertex>>,
+    staging: Vec<Vec<GpuControlPoint>>,
     placements: Vec<Placement>,
     radius: f64,
     /// Milliseconds the last batch took.
@@ -81,9 +81,9 @@ impl StressSolver {
                 .iter()
                 .map(|&len| {
                     vec![
-                        GpuVertex {
+                        GpuControlPoint {
                             position: [0.0; 3],
-                            id: 0
+                            weight: 1.0
                         };
                         len
                     ]

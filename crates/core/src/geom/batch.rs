@@ -133,6 +133,12 @@ pub struct CurveSampler {
     /// A curve of one cubic segment keeps its control points inline too, so that
     /// sampling many such curves reads one contiguous array.
     single_cubic: Option<[DVec3; 4]>,
+    /// Per segment, the rational piece (`None` for a polynomial one), evaluated in
+    /// homogeneous coordinates with its derivatives by the quotient rule.
+    rational: Vec<Option<super::RationalBezier>>,
+    /// The derivative this sampler evaluates on rational pieces (0, 1 or 2; polynomial
+    /// pieces hold their hodographs instead).
+    order: u32,
 }
 
 impl CurveSampler {
@@ -141,15 +147,18 @@ impl CurveSampler {
     pub fn new(curve: &Curve) -> CurveSampler {
         let segments = curve.lower();
         let single_cubic = match segments.as_slice() {
-            [seg] => match *seg.bezier.points() {
+            [seg] if !seg.is_rational() => match *seg.bezier.points() {
                 [a, b, c, d] => Some([a, b, c, d]),
                 _ => None,
             },
             _ => None,
         };
+        let rational = segments.iter().map(BezierSegment::rational).collect();
         CurveSampler {
             segments,
             single_cubic,
+            rational,
+            order: 0,
         }
     }
 
@@ -157,28 +166,53 @@ impl CurveSampler {
     /// each segment's hodograph taken `order` times, its points divided by
     /// `(t1 − t0)^order` (the chain rule from the segment's local parameter), on the same
     /// parameter ranges. Evaluating it costs what evaluating the curve costs, whatever
-    /// the family.
+    /// the family. A rational piece has no polynomial hodograph: it keeps its curve and
+    /// evaluates the derivative by the quotient rule (`order` 1 or 2; higher orders
+    /// give the second derivative's `order` too — only 1 and 2 are asked for).
+    ///
+    /// # Panics
+    /// If `order` is above 2 and the curve has a rational piece.
     #[must_use]
     pub fn derivative(&self, order: u32) -> CurveSampler {
+        assert!(
+            order <= 2 || self.rational.iter().all(Option::is_none),
+            "rational pieces give derivatives up to the second"
+        );
         let segments = self
             .segments
             .iter()
             .map(|s| {
+                if s.is_rational() {
+                    return s.clone();
+                }
                 let mut b = s.bezier.clone();
                 for _ in 0..order {
                     b = b.deriv();
                 }
                 let scale = (s.t1 - s.t0).powi(order as i32);
-                BezierSegment {
-                    bezier: super::Bezier::new(b.points().iter().map(|p| *p / scale).collect()),
-                    t0: s.t0,
-                    t1: s.t1,
-                }
+                BezierSegment::polynomial(
+                    super::Bezier::new(b.points().iter().map(|p| *p / scale).collect()),
+                    s.t0,
+                    s.t1,
+                )
             })
             .collect();
         CurveSampler {
             segments,
             single_cubic: None,
+            rational: self.rational.clone(),
+            order: self.order + order,
+        }
+    }
+
+    /// A rational piece's point (or derivative, by the sampler's order) at `u`.
+    fn rational_at(&self, piece: &super::RationalBezier, seg: &BezierSegment, u: f64) -> DVec3 {
+        use super::ParamCurve;
+        let h = seg.t1 - seg.t0;
+        match self.order {
+            0 => piece.eval(u),
+            1 => piece.eval_deriv(u) / h,
+            _ => piece.eval_second_deriv(u) / (h * h),
         }
     }
 
@@ -226,7 +260,14 @@ impl CurveSampler {
                 us[end - k] = seg.local_u(ts[end]);
                 end += 1;
             }
-            bezier_into(seg.bezier.points(), &us[..end - k], &mut out[k..end]);
+            match &self.rational[index] {
+                None => bezier_into(seg.bezier.points(), &us[..end - k], &mut out[k..end]),
+                Some(piece) => {
+                    for (o, &u) in out[k..end].iter_mut().zip(&us[..end - k]) {
+                        *o = self.rational_at(piece, seg, u);
+                    }
+                }
+            }
             k = end;
         }
     }

@@ -251,20 +251,7 @@ impl Bezier {
     /// so 0 means the curve is straight.
     #[must_use]
     pub fn flatness(&self) -> f64 {
-        let a = self.points[0];
-        let chord = self.points[self.points.len() - 1] - a;
-        let len2 = chord.length_squared();
-        self.points
-            .iter()
-            .map(|&q| {
-                let w = q - a;
-                if len2 > 0.0 {
-                    (w - chord * (w.dot(chord) / len2)).length()
-                } else {
-                    w.length()
-                }
-            })
-            .fold(0.0, f64::max)
+        polygon_flatness(&self.points)
     }
 
     /// The box of the control points: it holds the curve (convex hull property).
@@ -561,6 +548,25 @@ fn power_basis(pts: &[DVec3]) -> PowerBasis {
         values: beyond.is_none().then_some(values),
         values_unavailable: beyond,
     }
+}
+
+/// How far the points `P_0 … P_n` stray from the chord `P_0P_n`: the largest distance of
+/// a point from the line through the end points (from `P_0` when the ends coincide).
+pub(crate) fn polygon_flatness(points: &[DVec3]) -> f64 {
+    let a = points[0];
+    let chord = points[points.len() - 1] - a;
+    let len2 = chord.length_squared();
+    points
+        .iter()
+        .map(|&q| {
+            let w = q - a;
+            if len2 > 0.0 {
+                (w - chord * (w.dot(chord) / len2)).length()
+            } else {
+                w.length()
+            }
+        })
+        .fold(0.0, f64::max)
 }
 
 #[cfg(test)]

@@ -190,11 +190,7 @@ impl BSpline {
                         blossom_points(tk, &self.points, p, mu, &args, &mut w)
                     })
                     .collect();
-                BezierSegment {
-                    bezier: Bezier::new(bezier),
-                    t0: tk[mu],
-                    t1: tk[mu + 1],
-                }
+                BezierSegment::polynomial(Bezier::new(bezier), tk[mu], tk[mu + 1])
             })
             .collect()
     }

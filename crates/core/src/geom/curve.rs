@@ -33,6 +33,10 @@ macro_rules! family_table {
             BSpline($crate::geom::BSpline) = "bspline",
             /// A B-spline with multiple shape parameters (paper 001, §3–5).
             Nubmp($crate::geom::Nubmp) = "nubmp",
+            /// A rational Bézier curve, `Σ w_i P_i B_i / Σ w_i B_i` (conics exact).
+            RationalBezier($crate::geom::RationalBezier) = "rational_bezier",
+            /// A NURBS curve, `Σ w_i P_i N_{i,k} / Σ w_i N_{i,k}`.
+            Nurbs($crate::geom::Nurbs) = "nurbs",
         }
     };
 }
@@ -147,6 +151,8 @@ macro_rules! each_family {
             $crate::geom::Curve::Interpolation($c) => $body,
             $crate::geom::Curve::BSpline($c) => $body,
             $crate::geom::Curve::Nubmp($c) => $body,
+            $crate::geom::Curve::RationalBezier($c) => $body,
+            $crate::geom::Curve::Nurbs($c) => $body,
         }
     };
 }

@@ -248,20 +248,16 @@ impl Lower for CubicInterpolation {
             let (t0, t1) = (self.params[i], self.params[i + 1]);
             let h = t1 - t0;
             match self.bump() {
-                None => out.push(BezierSegment {
-                    bezier: piece.clone(),
-                    t0,
-                    t1,
-                }),
+                None => out.push(BezierSegment::polynomial(piece.clone(), t0, t1)),
                 Some((ts, v)) => {
                     let m = ModifiedBezier::try_new(piece.clone(), ts, h * v)
                         .unwrap_or_else(|e| unreachable!("t* was checked: {e}"));
                     for s in m.lower() {
-                        out.push(BezierSegment {
-                            bezier: s.bezier,
-                            t0: t0 + h * s.t0,
-                            t1: if s.t1 == 1.0 { t1 } else { t0 + h * s.t1 },
-                        });
+                        out.push(BezierSegment::polynomial(
+                            s.bezier,
+                            t0 + h * s.t0,
+                            if s.t1 == 1.0 { t1 } else { t0 + h * s.t1 },
+                        ));
                     }
                 }
             }

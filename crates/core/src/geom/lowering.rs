@@ -1,17 +1,24 @@
-//! Lowering: every curve family becomes a list of Bézier segments, each with the
-//! parameter range it covers in the curve's own parameter. This list is the single
-//! representation the GPU tessellates.
+//! Lowering: every curve family becomes a list of Bézier segments — polynomial, or
+//! rational with one weight per control point — each with the parameter range it covers
+//! in the curve's own parameter. This list is the single representation the GPU
+//! tessellates.
 
-use super::{Bezier, ParamCurve};
+use glam::DVec3;
+
+use super::{Bezier, ParamCurve, RationalBezier};
 
 /// One Bézier piece of a lowered curve.
 ///
 /// Curve parameter `t ∈ [t0, t1]` maps to the segment's own `u = (t − t0) / (t1 − t0)`;
-/// the curve there equals `bezier.eval(u)`.
+/// the curve there equals `bezier.eval(u)` for a polynomial piece (`weights` is `None`)
+/// and `Σ w_i P_i B_i(u) / Σ w_i B_i(u)` for a rational one ([`BezierSegment::eval`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BezierSegment {
-    /// The piece, parametrised over `[0, 1]`.
+    /// The piece's control points `P_i`, parametrised over `[0, 1]`.
     pub bezier: Bezier,
+    /// The weights `w_i > 0` of a rational piece (one per control point); `None` for a
+    /// polynomial piece.
+    pub weights: Option<Vec<f64>>,
     /// The curve parameter where the piece starts.
     pub t0: f64,
     /// The curve parameter where the piece ends (`t1 > t0`).
@@ -19,10 +26,61 @@ pub struct BezierSegment {
 }
 
 impl BezierSegment {
+    /// A polynomial piece.
+    #[must_use]
+    pub fn polynomial(bezier: Bezier, t0: f64, t1: f64) -> BezierSegment {
+        BezierSegment {
+            bezier,
+            weights: None,
+            t0,
+            t1,
+        }
+    }
+
     /// The segment's own parameter `u` for curve parameter `t`.
     #[must_use]
     pub fn local_u(&self, t: f64) -> f64 {
         (t - self.t0) / (self.t1 - self.t0)
+    }
+
+    /// The control points.
+    #[must_use]
+    pub fn points(&self) -> &[DVec3] {
+        self.bezier.points()
+    }
+
+    /// The degree.
+    #[must_use]
+    pub fn degree(&self) -> usize {
+        self.bezier.degree()
+    }
+
+    /// Whether the piece is rational (has weights).
+    #[must_use]
+    pub fn is_rational(&self) -> bool {
+        self.weights.is_some()
+    }
+
+    /// The piece as a rational Bézier curve, `None` for a polynomial piece (or weights
+    /// the rational curve refuses, which lowering never makes).
+    #[must_use]
+    pub fn rational(&self) -> Option<RationalBezier> {
+        let w = self.weights.as_ref()?;
+        RationalBezier::try_new(self.bezier.points().to_vec(), w.clone()).ok()
+    }
+
+    /// The point at the segment's own parameter `u`: de Casteljau on the control points,
+    /// or on the weighted points and the weights (then divided) for a rational piece.
+    #[must_use]
+    pub fn eval(&self, u: f64) -> DVec3 {
+        match &self.weights {
+            None => self.bezier.eval(u),
+            Some(w) => {
+                let a: Vec<DVec3> = self.points().iter().zip(w).map(|(p, w)| *p * *w).collect();
+                let ws: Vec<DVec3> = w.iter().map(|w| DVec3::new(*w, 0.0, 0.0)).collect();
+                super::bezier::de_casteljau(&a, u) / super::bezier::de_casteljau(&ws, u).x
+            }
+        }
     }
 }
 
@@ -52,25 +110,16 @@ pub fn locate(segments: &[BezierSegment], t: f64) -> Option<(usize, f64)> {
 
 impl Lower for Bezier {
     fn lower(&self) -> Vec<BezierSegment> {
-        vec![BezierSegment {
-            bezier: self.clone(),
-            t0: 0.0,
-            t1: 1.0,
-        }]
+        vec![BezierSegment::polynomial(self.clone(), 0.0, 1.0)]
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::DVec3;
 
     fn seg(t0: f64, t1: f64) -> BezierSegment {
-        BezierSegment {
-            bezier: Bezier::new(vec![DVec3::ZERO, DVec3::X]),
-            t0,
-            t1,
-        }
+        BezierSegment::polynomial(Bezier::new(vec![DVec3::ZERO, DVec3::X]), t0, t1)
     }
 
     #[test]

@@ -38,7 +38,7 @@ pub use knots::KnotVector;
 pub use lowering::{BezierSegment, Lower, locate};
 pub use modified::ModifiedBezier;
 pub use nubmp::Nubmp;
-pub use rational::{Nurbs, RationalBezier};
+pub use rational::{Conic, Nurbs, NurbsDetails, RationalBezier, RationalBezierDetails};
 
 use glam::DVec3;
 

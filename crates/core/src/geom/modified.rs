@@ -176,16 +176,8 @@ impl Lower for ModifiedBezier {
     fn lower(&self) -> Vec<BezierSegment> {
         let [left, right] = self.pieces();
         vec![
-            BezierSegment {
-                bezier: left,
-                t0: 0.0,
-                t1: self.t_star,
-            },
-            BezierSegment {
-                bezier: right,
-                t0: self.t_star,
-                t1: 1.0,
-            },
+            BezierSegment::polynomial(left, 0.0, self.t_star),
+            BezierSegment::polynomial(right, self.t_star, 1.0),
         ]
     }
 }

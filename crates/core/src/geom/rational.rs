@@ -13,12 +13,17 @@
 //! quadratic NURBS curve on the knots `0,0,0,¼,¼,½,½,¾,¾,1,1,1`. With every weight 1 each
 //! curve is its polynomial family exactly (evaluated by it).
 //!
-//! Not yet a [`super::Family`]: drawing needs the GPU's homogeneous layout (the lowering
-//! to polynomial segments the renderer takes has no weights).
+//! Both are families ([`Family`]): they lower to rational Bézier segments
+//! ([`BezierSegment::weights`]), which the GPU evaluates in homogeneous coordinates and
+//! divides; with every weight 1 they lower to the polynomial segments themselves.
 
 use glam::DVec3;
+use schemars::JsonSchema;
+use serde::Serialize;
 
-use super::{BSpline, Bezier, GeomError, KnotVector, ParamCurve};
+use super::family::{Control, ControlId, ControlKind, ControlValue, Family, unknown_control};
+use super::nubmp::SplineDetails;
+use super::{BSpline, Bezier, BezierSegment, GeomError, KnotVector, Lower, ParamCurve};
 
 /// Checks weights: as many as points, each finite and greater than 0.
 fn check_weights(points: &[DVec3], weights: &[f64]) -> Result<(), GeomError> {
@@ -241,6 +246,29 @@ impl Nurbs {
         })
     }
 
+    /// A NURBS curve on a validated knot vector (its exact decimal values kept).
+    ///
+    /// # Errors
+    /// As [`Nurbs::try_new`].
+    pub fn from_knot_vector(
+        points: Vec<DVec3>,
+        weights: Vec<f64>,
+        knots: KnotVector,
+    ) -> Result<Nurbs, GeomError> {
+        BSpline::from_parts(points.clone(), knots.clone())?;
+        check_weights(&points, &weights)?;
+        let (a, w) = homogeneous(&points, &weights);
+        Ok(Nurbs {
+            parts: Homogeneous::new(
+                BSpline::from_parts(a, knots.clone())?,
+                BSpline::from_parts(w, knots)?,
+                &weights,
+            ),
+            points,
+            weights,
+        })
+    }
+
     fn from_parts(a: BSpline, w: BSpline) -> Nurbs {
         let (points, weights) = project(a.points(), w.points());
         Nurbs {
@@ -306,3 +334,384 @@ impl Nurbs {
 }
 
 param_curve_by_parts!(Nurbs);
+
+/// The segment of a rational piece: polynomial (no weights) when every weight is 1, so a
+/// rational curve with unit weights draws exactly as its polynomial family.
+fn segment(points: &[DVec3], weights: &[f64], t0: f64, t1: f64) -> BezierSegment {
+    BezierSegment {
+        bezier: Bezier::new(points.to_vec()),
+        weights: (!weights.iter().all(|w| *w == 1.0)).then(|| weights.to_vec()),
+        t0,
+        t1,
+    }
+}
+
+impl Lower for RationalBezier {
+    fn lower(&self) -> Vec<BezierSegment> {
+        vec![segment(&self.points, &self.weights, 0.0, 1.0)]
+    }
+}
+
+impl Lower for Nurbs {
+    fn lower(&self) -> Vec<BezierSegment> {
+        self.bezier_segments()
+            .into_iter()
+            .map(|(t0, t1, r)| segment(&r.points, &r.weights, t0, t1))
+            .collect()
+    }
+}
+
+/// The weights as the panel shows them: one number control per point, refusing `w ≤ 0`.
+fn weight_controls(weights: &[f64]) -> Vec<Control> {
+    weights
+        .iter()
+        .enumerate()
+        .map(|(i, &w)| Control {
+            id: ControlId {
+                key: "w",
+                index: [i, 0],
+            },
+            label: format!("w{i}"),
+            hint: Some(format!("the weight of point {i}: a number greater than 0")),
+            kind: ControlKind::Number {
+                value: w,
+                range: (0.05, 5.0_f64.max(w)),
+                bands: Vec::new(),
+            },
+        })
+        .collect()
+}
+
+/// The weights with weight `index` set to `value` (checked by the curve's constructor).
+fn with_weight(weights: &[f64], index: usize, value: f64) -> Result<Vec<f64>, GeomError> {
+    if index >= weights.len() {
+        return Err(GeomError::NoSuchPoint {
+            index,
+            count: weights.len(),
+        });
+    }
+    let mut out = weights.to_vec();
+    out[index] = value;
+    Ok(out)
+}
+
+/// The weights written for labels: `w = (1, 0.7071, 1)`.
+fn weight_text(weights: &[f64]) -> String {
+    let items: Vec<String> = weights.iter().map(|w| format!("{}", round4(*w))).collect();
+    format!("w = ({})", items.join(", "))
+}
+
+/// `x` to four significant decimals after the point, for display.
+fn round4(x: f64) -> f64 {
+    (x * 1e4).round() / 1e4
+}
+
+/// The elevate button of both families.
+fn elevate_control() -> Control {
+    Control {
+        id: ControlId::new("elevate"),
+        label: "elevate degree".into(),
+        hint: Some("the same curve with one more control point".into()),
+        kind: ControlKind::Action,
+    }
+}
+
+/// The weight of a point inserted on leg `leg` at fraction `s`: the legs' weights
+/// interpolated.
+fn weight_on_leg(weights: &[f64], leg: usize, s: f64) -> f64 {
+    let (a, b) = (weights[leg], weights[(leg + 1).min(weights.len() - 1)]);
+    a + (b - a) * s
+}
+
+/// A conic's type from a quadratic rational Bézier curve's weights: the shape factor
+/// `k = w₀w₂ / w₁²` is above 1 for an ellipse, 1 for a parabola, below 1 for a hyperbola.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Conic {
+    /// `w₁² < w₀w₂`.
+    Ellipse,
+    /// `w₁² = w₀w₂`.
+    Parabola,
+    /// `w₁² > w₀w₂`.
+    Hyperbola,
+}
+
+/// What `inspect` reports for a rational Bézier curve.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct RationalBezierDetails {
+    /// `n`.
+    pub degree: usize,
+    /// The weights `w_i`.
+    pub weights: Vec<f64>,
+    /// The homogeneous control points `(w_i x_i, w_i y_i, w_i z_i, w_i)`.
+    pub homogeneous: Vec<[f64; 4]>,
+    /// For a quadratic: the conic it is an arc of.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub conic: Option<Conic>,
+}
+
+/// What `inspect` reports for a NURBS curve.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct NurbsDetails {
+    /// The knots.
+    #[serde(flatten)]
+    pub spline: SplineDetails,
+    /// The weights `w_i`.
+    pub weights: Vec<f64>,
+    /// The homogeneous control points `(w_i x_i, w_i y_i, w_i z_i, w_i)`.
+    pub homogeneous: Vec<[f64; 4]>,
+}
+
+fn homogeneous_report(points: &[DVec3], weights: &[f64]) -> Vec<[f64; 4]> {
+    points
+        .iter()
+        .zip(weights)
+        .map(|(p, w)| [p.x * w, p.y * w, p.z * w, *w])
+        .collect()
+}
+
+/// Weights for generated curves: a fixed cycle in `[0.5, 2]`, so that every generated
+/// rational curve exercises the division.
+fn generated_weights(n: usize) -> Vec<f64> {
+    const CYCLE: [f64; 4] = [1.0, 2.0, 0.5, 1.5];
+    (0..n).map(|i| CYCLE[i % CYCLE.len()]).collect()
+}
+
+/// `√2 / 2`, the weight of a quarter circle's middle point.
+const HALF_SQRT2: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
+impl RationalBezier {
+    /// The quarter ellipse arc centred on `center` with semi-axes `a` (along x) and `b`
+    /// (along y), from `(a, 0)` to `(0, b)`: the quadratic with weights `1, √2/2, 1`.
+    #[must_use]
+    pub fn quarter_ellipse(center: DVec3, a: f64, b: f64) -> RationalBezier {
+        let points = vec![
+            center + DVec3::new(a, 0.0, 0.0),
+            center + DVec3::new(a, b, 0.0),
+            center + DVec3::new(0.0, b, 0.0),
+        ];
+        RationalBezier::try_new(points, vec![1.0, HALF_SQRT2, 1.0])
+            .unwrap_or_else(|e| unreachable!("a quarter ellipse's weights are valid: {e}"))
+    }
+}
+
+impl Nurbs {
+    /// The circle of radius `r` about `center` in the plane `z = center.z`: the nine-point
+    /// quadratic NURBS curve on the knots `0,0,0,¼,¼,½,½,¾,¾,1,1,1`, corner weights `√2/2`.
+    ///
+    /// # Errors
+    /// A non-finite centre or radius.
+    pub fn circle(center: DVec3, r: f64) -> Result<Nurbs, GeomError> {
+        let corners = [
+            (1.0, 0.0),
+            (1.0, 1.0),
+            (0.0, 1.0),
+            (-1.0, 1.0),
+            (-1.0, 0.0),
+            (-1.0, -1.0),
+            (0.0, -1.0),
+            (1.0, -1.0),
+            (1.0, 0.0),
+        ];
+        let points = corners
+            .iter()
+            .map(|&(x, y)| center + DVec3::new(x * r, y * r, 0.0))
+            .collect();
+        let weights = (0..9)
+            .map(|i| if i % 2 == 1 { HALF_SQRT2 } else { 1.0 })
+            .collect();
+        let knots = vec![
+            0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
+        ];
+        Nurbs::try_new(points, weights, knots, 3)
+    }
+}
+
+impl Family for RationalBezier {
+    const NAME: &'static str = "rational_bezier";
+    type Details = RationalBezierDetails;
+
+    fn control_points(&self) -> &[DVec3] {
+        &self.points
+    }
+
+    fn with_control_points(&self, points: Vec<DVec3>) -> Result<RationalBezier, GeomError> {
+        RationalBezier::try_new(points, self.weights.clone())
+    }
+
+    fn summary(&self) -> String {
+        format!("degree {}, rational", self.degree())
+    }
+
+    fn parameter_text(&self) -> Option<String> {
+        Some(weight_text(&self.weights))
+    }
+
+    fn details(&self) -> Result<RationalBezierDetails, GeomError> {
+        let conic = match *self.weights.as_slice() {
+            [w0, w1, w2] => {
+                let k = w0 * w2 / (w1 * w1);
+                Some(if k > 1.0 {
+                    Conic::Ellipse
+                } else if k < 1.0 {
+                    Conic::Hyperbola
+                } else {
+                    Conic::Parabola
+                })
+            }
+            _ => None,
+        };
+        Ok(RationalBezierDetails {
+            degree: self.degree(),
+            weights: self.weights.clone(),
+            homogeneous: homogeneous_report(&self.points, &self.weights),
+            conic,
+        })
+    }
+
+    fn controls(&self) -> Vec<Control> {
+        let mut c = weight_controls(&self.weights);
+        c.push(elevate_control());
+        c
+    }
+
+    fn apply_control(
+        &self,
+        id: ControlId,
+        value: ControlValue,
+    ) -> Result<RationalBezier, GeomError> {
+        match (id.key, value) {
+            ("w", ControlValue::Number(w)) => RationalBezier::try_new(
+                self.points.clone(),
+                with_weight(&self.weights, id.index[0], w)?,
+            ),
+            ("elevate", ControlValue::Press) => Ok(self.elevate()),
+            _ => Err(unknown_control(Self::NAME, id, value)),
+        }
+    }
+
+    fn with_point_on_polygon(&self, at: DVec3) -> Result<(RationalBezier, usize), GeomError> {
+        let (points, leg, s) = super::structure::insert_on_polygon(&self.points, at);
+        let mut weights = self.weights.clone();
+        weights.insert(leg + 1, weight_on_leg(&self.weights, leg, s));
+        Ok((RationalBezier::try_new(points, weights)?, leg + 1))
+    }
+
+    fn with_point_removed(&self, index: usize) -> Result<RationalBezier, GeomError> {
+        let points = super::structure::without(&self.points, index, 2, Self::NAME)?;
+        let mut weights = self.weights.clone();
+        weights.remove(index);
+        RationalBezier::try_new(points, weights)
+    }
+
+    fn templates(center: DVec3, size: f64) -> Vec<(&'static str, RationalBezier)> {
+        let corner = center - DVec3::new(0.25 * size, 0.2 * size, 0.0);
+        vec![(
+            "ellipse arc",
+            RationalBezier::quarter_ellipse(corner, 0.6 * size, 0.4 * size),
+        )]
+    }
+
+    /// Degree `degree`, its weights cycling through `1, 2, 0.5, 1.5`.
+    fn generated(
+        degree: usize,
+        point: &mut dyn FnMut() -> DVec3,
+    ) -> Result<RationalBezier, GeomError> {
+        let points: Vec<DVec3> = (0..=degree).map(|_| point()).collect();
+        let weights = generated_weights(points.len());
+        RationalBezier::try_new(points, weights)
+    }
+}
+
+impl Family for Nurbs {
+    const NAME: &'static str = "nurbs";
+    type Details = NurbsDetails;
+
+    fn control_points(&self) -> &[DVec3] {
+        &self.points
+    }
+
+    fn with_control_points(&self, points: Vec<DVec3>) -> Result<Nurbs, GeomError> {
+        Nurbs::from_knot_vector(points, self.weights.clone(), self.knots().clone())
+    }
+
+    fn derived_field(&self) -> &'static str {
+        "knots"
+    }
+
+    fn summary(&self) -> String {
+        format!(
+            "order {}, rational, knots {:?}",
+            self.order(),
+            self.knots().knots()
+        )
+    }
+
+    fn parameter_text(&self) -> Option<String> {
+        Some(weight_text(&self.weights))
+    }
+
+    fn details(&self) -> Result<NurbsDetails, GeomError> {
+        Ok(NurbsDetails {
+            spline: SplineDetails::of(self.knots()),
+            weights: self.weights.clone(),
+            homogeneous: homogeneous_report(&self.points, &self.weights),
+        })
+    }
+
+    fn controls(&self) -> Vec<Control> {
+        let mut c = weight_controls(&self.weights);
+        c.push(elevate_control());
+        c
+    }
+
+    fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Nurbs, GeomError> {
+        match (id.key, value) {
+            ("w", ControlValue::Number(w)) => Nurbs::from_knot_vector(
+                self.points.clone(),
+                with_weight(&self.weights, id.index[0], w)?,
+                self.knots().clone(),
+            ),
+            ("elevate", ControlValue::Press) => Ok(self.elevate()),
+            _ => Err(unknown_control(Self::NAME, id, value)),
+        }
+    }
+
+    fn inserts_by_knot(&self) -> bool {
+        true
+    }
+
+    fn with_knot_inserted(&self, t: f64) -> Result<Nurbs, GeomError> {
+        self.insert_knot(t)
+    }
+
+    fn with_point_removed(&self, index: usize) -> Result<Nurbs, GeomError> {
+        let (points, knots) =
+            super::structure::spline_without(&self.points, self.knots(), index, Self::NAME)?;
+        let mut weights = self.weights.clone();
+        weights.remove(index);
+        Nurbs::try_new(points, weights, knots, self.order())
+    }
+
+    fn templates(center: DVec3, size: f64) -> Vec<(&'static str, Nurbs)> {
+        let mut out = Vec::new();
+        if let Ok(circle) = Nurbs::circle(center, 0.35 * size) {
+            out.push(("circle", circle));
+        }
+        let points = super::template::zigzag(center, size, 6);
+        let weights = vec![1.0, 3.0, 0.5, 3.0, 0.5, 1.0];
+        if let Ok(c) = Nurbs::try_new(points, weights, super::template::clamped_knots(6, 4), 4) {
+            out.push(("NURBS curve", c));
+        }
+        out
+    }
+
+    /// The clamped uniform NURBS curve of order `degree + 1` on `degree + 4` points (four
+    /// rational Bézier segments), its weights cycling through `1, 2, 0.5, 1.5`.
+    fn generated(degree: usize, point: &mut dyn FnMut() -> DVec3) -> Result<Nurbs, GeomError> {
+        let points: Vec<DVec3> = (0..degree + 4).map(|_| point()).collect();
+        let knots = KnotVector::clamped_uniform(degree + 1, points.len())?;
+        let weights = generated_weights(points.len());
+        Nurbs::from_knot_vector(points, weights, knots)
+    }
+}

@@ -4,7 +4,35 @@
 
 use glam::DVec3;
 
-use crate::geom::{Aabb, Bezier, Lower, ParamCurve};
+use crate::geom::{Aabb, Bezier, Lower, ParamCurve, RationalBezier};
+
+/// A piece [`nearest_on_bezier`] searches: a curve on `[0, 1]` inside the box of its
+/// control points (a polynomial Bézier curve, or a rational one with positive weights),
+/// split in two by de Casteljau.
+pub trait Piece: ParamCurve + Clone {
+    /// The control points (the curve lies in their convex hull).
+    fn control_points(&self) -> &[DVec3];
+    /// The halves at `u`, each reparameterised to `[0, 1]`.
+    fn halves(&self, u: f64) -> (Self, Self);
+}
+
+impl Piece for Bezier {
+    fn control_points(&self) -> &[DVec3] {
+        self.points()
+    }
+    fn halves(&self, u: f64) -> (Bezier, Bezier) {
+        self.split(u)
+    }
+}
+
+impl Piece for RationalBezier {
+    fn control_points(&self) -> &[DVec3] {
+        self.points()
+    }
+    fn halves(&self, u: f64) -> (RationalBezier, RationalBezier) {
+        (self.subsegment(0.0, u), self.subsegment(u, 1.0))
+    }
+}
 
 /// The default accuracy of [`nearest`], relative to the curve's size: the returned distance
 /// is within `DEFAULT_RELATIVE_ACCURACY · size` of the true one.
@@ -24,7 +52,7 @@ pub struct Nearest {
 /// Safeguarded Newton on `g(u) = |B(u) − p|²` inside `[lo, hi]`, from `u`: a Newton step
 /// on `g′ = 0` when it stays in the bracket and decreases `g`, else a bisection of the
 /// bracket on the sign of `g′`. Stops when a step moves the point by less than `accuracy`.
-fn refine(b: &Bezier, p: DVec3, mut lo: f64, mut hi: f64, mut u: f64, accuracy: f64) -> f64 {
+fn refine<B: Piece>(b: &B, p: DVec3, mut lo: f64, mut hi: f64, mut u: f64, accuracy: f64) -> f64 {
     let g = |u: f64| (b.eval(u) - p).length_squared();
     for _ in 0..100 {
         let d = b.eval(u) - p;
@@ -60,26 +88,26 @@ fn refine(b: &Bezier, p: DVec3, mut lo: f64, mut hi: f64, mut u: f64, accuracy: 
 /// finished with safeguarded Newton from their chord's projection. `accuracy` is an
 /// absolute distance.
 #[must_use]
-pub fn nearest_on_bezier(b: &Bezier, p: DVec3, accuracy: f64) -> (f64, f64) {
+pub fn nearest_on_bezier<B: Piece>(b: &B, p: DVec3, accuracy: f64) -> (f64, f64) {
     let mut best = (0.0, (b.eval(0.0) - p).length());
     let end = (b.eval(1.0) - p).length();
     if end < best.1 {
         best = (1.0, end);
     }
-    if b.degree() == 0 {
+    if b.control_points().len() < 2 {
         return best;
     }
-    let mut stack: Vec<(Bezier, f64, f64, u32)> = vec![(b.clone(), 0.0, 1.0, 0)];
+    let mut stack: Vec<(B, f64, f64, u32)> = vec![(b.clone(), 0.0, 1.0, 0)];
     while let Some((piece, u0, u1, depth)) = stack.pop() {
-        let bbox = piece.control_box();
+        let bbox = Aabb::from_points(piece.control_points());
         if bbox.distance_to(p) >= best.1 {
             continue;
         }
-        let pts = piece.points();
+        let pts = piece.control_points();
         let (a, z) = (pts[0], pts[pts.len() - 1]);
         let chord = z - a;
         let size = bbox.diagonal();
-        if piece.flatness() <= 0.01 * size.max(accuracy) || depth >= 40 {
+        if crate::geom::bezier::polygon_flatness(pts) <= 0.01 * size.max(accuracy) || depth >= 40 {
             let s = if chord.length_squared() > 0.0 {
                 ((p - a).dot(chord) / chord.length_squared()).clamp(0.0, 1.0)
             } else {
@@ -92,12 +120,12 @@ pub fn nearest_on_bezier(b: &Bezier, p: DVec3, accuracy: f64) -> (f64, f64) {
             }
             continue;
         }
-        let (left, right) = piece.split(0.5);
+        let (left, right) = piece.halves(0.5);
         let mid = 0.5 * (u0 + u1);
         // Visit the nearer half first (pushed last) so the bound tightens sooner.
         let (dl, dr) = (
-            left.control_box().distance_to(p),
-            right.control_box().distance_to(p),
+            Aabb::from_points(left.control_points()).distance_to(p),
+            Aabb::from_points(right.control_points()).distance_to(p),
         );
         if dl <= dr {
             stack.push((right, mid, u1, depth + 1));
@@ -128,7 +156,10 @@ pub fn nearest<C: Lower + ParamCurve + ?Sized>(
     let accuracy = accuracy.unwrap_or(DEFAULT_RELATIVE_ACCURACY * size);
     let mut best: Option<Nearest> = None;
     for s in &segments {
-        let (u, d) = nearest_on_bezier(&s.bezier, p, accuracy);
+        let (u, d) = match s.rational() {
+            Some(r) => nearest_on_bezier(&r, p, accuracy),
+            None => nearest_on_bezier(&s.bezier, p, accuracy),
+        };
         if best.is_none_or(|b| d < b.distance) {
             let t = if u >= 1.0 {
                 s.t1
@@ -137,7 +168,7 @@ pub fn nearest<C: Lower + ParamCurve + ?Sized>(
             };
             best = Some(Nearest {
                 t,
-                point: s.bezier.eval(u),
+                point: s.eval(u),
                 distance: d,
             });
         }

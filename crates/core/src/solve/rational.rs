@@ -1,10 +1,11 @@
-//! Paper 000's least-squares shape modification for rational Bézier curves, the weights
-//! held fixed. With fixed weights the curve `C(t) = Σ R_i(t) P_i`,
-//! `R_i(t) = w_i B_{i,n}(t) / Σ_j w_j B_{j,n}(t)`, is linear in the control points, so
-//! the constraints `C̃(t_l) = T_l` stay linear in the moves `ε_i` and the minimal change
-//! is the minimum-norm solution of `Σ_i R_i(t_l) ε_i = T_l − C(t_l)` — the polynomial
-//! solver's system ([`super::shape`]) with the rational basis in place of the Bernstein
-//! one. The end points stay fixed; the weights do not change.
+//! Paper 000's least-squares shape modification for rational curves (rational Bézier and
+//! NURBS), the weights held fixed. With fixed weights the curve `C(t) = Σ R_i(t) P_i`,
+//! `R_i(t) = w_i N_i(t) / Σ_j w_j N_j(t)` (`N_i` the Bernstein or B-spline basis), is
+//! linear in the control points, so the constraints `C̃(t_l) = T_l` stay linear in the
+//! moves `ε_i` and the minimal change is the minimum-norm solution of
+//! `Σ_i R_i(t_l) ε_i = T_l − C(t_l)` — the polynomial solvers' systems
+//! ([`super::shape`]) with the rational basis in place of the Bernstein one. The end
+//! points stay fixed; the weights do not change.
 
 use glam::DVec3;
 use nalgebra::DMatrix;
@@ -12,131 +13,315 @@ use nalgebra::DMatrix;
 use super::SolveError;
 use super::linalg::min_norm_solve;
 use crate::geom::bernstein::bernstein_all;
-use crate::geom::{ParamCurve, RationalBezier};
+use crate::geom::{GeomError, Lower, Nurbs, ParamCurve, RationalBezier};
+
+/// A rational curve the solvers modify: its control points, its rational basis, and the
+/// same curve on new points (same weights, same knots).
+pub trait RationalCurve: ParamCurve + Lower + Clone {
+    /// The control points.
+    fn points(&self) -> &[DVec3];
+    /// Every rational basis function `R_i(t)` (one per control point).
+    fn basis(&self, t: f64) -> Vec<f64>;
+    /// The same weights (and knots) on new points.
+    ///
+    /// # Errors
+    /// The family's error for points it refuses.
+    fn with_points(&self, points: Vec<DVec3>) -> Result<Self, GeomError>;
+}
 
 /// The rational basis `R_i(t)` of `weights` (degree `weights.len() − 1`).
 #[must_use]
 pub fn rational_basis(weights: &[f64], t: f64) -> Vec<f64> {
-    let b = bernstein_all(weights.len() - 1, t);
-    let weighted: Vec<f64> = b.iter().zip(weights).map(|(b, w)| b * w).collect();
+    normalised(
+        bernstein_all(weights.len() - 1, t)
+            .iter()
+            .zip(weights)
+            .map(|(b, w)| b * w)
+            .collect(),
+    )
+}
+
+fn normalised(weighted: Vec<f64>) -> Vec<f64> {
     let sum: f64 = weighted.iter().sum();
     weighted.iter().map(|v| v / sum).collect()
 }
 
-/// The result of [`multi_target`] (and [`single_target`]).
+impl RationalCurve for RationalBezier {
+    fn points(&self) -> &[DVec3] {
+        RationalBezier::points(self)
+    }
+    fn basis(&self, t: f64) -> Vec<f64> {
+        rational_basis(self.weights(), t)
+    }
+    fn with_points(&self, points: Vec<DVec3>) -> Result<RationalBezier, GeomError> {
+        RationalBezier::try_new(points, self.weights().to_vec())
+    }
+}
+
+impl RationalCurve for Nurbs {
+    fn points(&self) -> &[DVec3] {
+        Nurbs::points(self)
+    }
+    fn basis(&self, t: f64) -> Vec<f64> {
+        let (mu, n) = self.knots().basis(t);
+        let k = self.order();
+        let mut weighted = vec![0.0; self.points().len()];
+        for (j, v) in n.iter().enumerate() {
+            let i = mu + 1 + j - k;
+            weighted[i] = v * self.weights()[i];
+        }
+        normalised(weighted)
+    }
+    fn with_points(&self, points: Vec<DVec3>) -> Result<Nurbs, GeomError> {
+        Nurbs::from_knot_vector(points, self.weights().to_vec(), self.knots().clone())
+    }
+}
+
+/// The result of the rational solvers.
 #[derive(Debug, Clone, PartialEq)]
-pub struct RationalSolution {
+pub struct RationalSolution<C> {
     /// The modified curve (same weights).
-    pub curve: RationalBezier,
+    pub curve: C,
+    /// The parameter of each target.
+    pub params: Vec<f64>,
     /// The moved control points' indices, in order.
     pub moved: Vec<usize>,
     /// Their moves `ε_i`.
     pub deltas: Vec<DVec3>,
     /// `|C̃(t_l) − T_l|` per target (0 up to rounding unless solved in least squares).
     pub residuals: Vec<f64>,
+    /// The rank of the system.
+    pub rank: usize,
     /// Whether the system had fewer free parameters than conditions (least squares).
     pub least_squares: bool,
 }
 
-fn check(curve: &RationalBezier, targets: &[DVec3], params: &[f64]) -> Result<(), SolveError> {
+/// The result of [`tangent_kept`]: as [`RationalSolution`], with the slides along the end
+/// tangents.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TangentKeptSolution<C> {
+    /// The solution (`moved` and `deltas` for the free inner points `P_2..P_{n−2}`).
+    pub solution: RationalSolution<C>,
+    /// `μ_1`, `μ_2`: how far `P_1` and `P_{n−1}` slid along `e_1`, `e_2`.
+    pub mu: [f64; 2],
+    /// The unit end-tangent directions `e_1 = unit(P_1 − P_0)`, `e_2 = unit(P_{n−1} − P_n)`.
+    pub directions: [DVec3; 2],
+}
+
+/// The parameter of target `index`: given (strictly inside the domain), or found by
+/// projecting the target onto the curve (an error when it projects onto a fixed end).
+fn parameter<C: RationalCurve>(
+    curve: &C,
+    index: usize,
+    target: DVec3,
+    given: Option<f64>,
+    accuracy: Option<f64>,
+) -> Result<f64, SolveError> {
+    if let Some(value) = target.to_array().into_iter().find(|c| !c.is_finite()) {
+        return Err(SolveError::NonFiniteTarget { index, value });
+    }
+    let (a, b) = curve.domain();
+    match given {
+        Some(t) if !t.is_finite() || t < a || t > b => Err(SolveError::ParameterOutsideDomain {
+            value: t,
+            start: a,
+            end: b,
+        }),
+        Some(t) if t == a || t == b => Err(SolveError::ParameterAtEnd { index, value: t }),
+        Some(t) => Ok(t),
+        None => {
+            let n = super::nearest(curve, target, accuracy);
+            if n.t <= a || n.t >= b {
+                Err(SolveError::TargetAtEnd { index, t: n.t })
+            } else {
+                Ok(n.t)
+            }
+        }
+    }
+}
+
+/// The targets' parameters, checked.
+fn parameters<C: RationalCurve>(
+    curve: &C,
+    targets: &[DVec3],
+    params: Option<&[f64]>,
+    accuracy: Option<f64>,
+) -> Result<Vec<f64>, SolveError> {
     if targets.is_empty() {
         return Err(SolveError::NoTargets);
     }
-    if params.len() != targets.len() {
+    if let Some(p) = params
+        && p.len() != targets.len()
+    {
         return Err(SolveError::ParamCount {
             targets: targets.len(),
-            params: params.len(),
+            params: p.len(),
         });
     }
-    let n = curve.degree();
-    if n < 2 {
-        return Err(SolveError::DegreeTooLow {
-            method: "rational multi_target",
-            degree: n,
-            min: 2,
-        });
-    }
-    for (index, (target, &t)) in targets.iter().zip(params).enumerate() {
-        if let Some(value) = target.to_array().into_iter().find(|c| !c.is_finite()) {
-            return Err(SolveError::NonFiniteTarget { index, value });
-        }
-        if !(0.0..=1.0).contains(&t) {
-            return Err(SolveError::ParameterOutsideDomain {
-                value: t,
-                start: 0.0,
-                end: 1.0,
-            });
-        }
-        if t == 0.0 || t == 1.0 {
-            return Err(SolveError::ParameterAtEnd { index, value: t });
-        }
-    }
-    Ok(())
+    targets
+        .iter()
+        .enumerate()
+        .map(|(l, &target)| parameter(curve, l, target, params.map(|p| p[l]), accuracy))
+        .collect()
 }
 
-/// Moves the interior control points `P_1..P_{n−1}` by the least `Σ‖ε_i‖²` so that the
-/// curve passes through `targets[l]` at `params[l]`, the weights fixed.
+fn degree_at_least<C: RationalCurve>(
+    curve: &C,
+    method: &'static str,
+    min: usize,
+) -> Result<usize, SolveError> {
+    let last = curve.points().len() - 1;
+    if last < min {
+        return Err(SolveError::DegreeTooLow {
+            method,
+            degree: last,
+            min,
+        });
+    }
+    Ok(last)
+}
+
+/// Paper 000 §3 with the weights fixed: moves every interior point `P_1..P_{n−1}` by the
+/// least `Σ‖ε_i‖²` so that the curve passes through `targets[l]` at `params[l]` (given, or
+/// found by projecting each target onto the curve).
 ///
 /// # Errors
-/// [`SolveError`] for no targets, a count mismatch, degree < 2, a non-finite target, a
-/// parameter outside `[0, 1]` or at a (fixed) end.
-pub fn multi_target(
-    curve: &RationalBezier,
+/// [`SolveError`] for no targets, a count mismatch, fewer than 3 points, a non-finite
+/// target, a parameter outside the domain or at a (fixed) end.
+pub fn multi_target<C: RationalCurve>(
+    curve: &C,
     targets: &[DVec3],
-    params: &[f64],
-) -> Result<RationalSolution, SolveError> {
-    check(curve, targets, params)?;
-    let n = curve.degree();
-    solve(curve, targets, params, (1..n).collect())
+    params: Option<&[f64]>,
+    accuracy: Option<f64>,
+) -> Result<RationalSolution<C>, SolveError> {
+    let last = degree_at_least(curve, "multi_target", 2)?;
+    let params = parameters(curve, targets, params, accuracy)?;
+    solve(curve, targets, params, (1..last).collect())
 }
 
-/// One target at `t`, moving `count` consecutive interior points from `first` (the
-/// window of largest `Σ R_i(t)²` of `min(3, n − 1)` points when `None`), the weights
-/// fixed: `ε_i = R_i(t) (T − C(t)) / Σ_{j∈window} R_j(t)²`.
+/// Paper 000 §2.1 with the weights fixed: one target at `t` (given, or the target's
+/// projection), moving `count` consecutive interior points from `first` (the window of
+/// largest `Σ R_i(t)²` of `min(3, n − 1)` points when `None`):
+/// `ε_i = R_i(t) (T − C(t)) / Σ_{j∈window} R_j(t)²`.
 ///
 /// # Errors
 /// As [`multi_target`], and [`SolveError::WindowOutOfRange`] for a window that is not
 /// interior.
-pub fn single_target(
-    curve: &RationalBezier,
+pub fn single_target<C: RationalCurve>(
+    curve: &C,
     target: DVec3,
-    t: f64,
+    t: Option<f64>,
     window: Option<(usize, usize)>,
-) -> Result<RationalSolution, SolveError> {
-    check(curve, &[target], &[t])?;
-    let n = curve.degree();
-    let r = rational_basis(curve.weights(), t);
+    accuracy: Option<f64>,
+) -> Result<RationalSolution<C>, SolveError> {
+    let last = degree_at_least(curve, "single_target", 2)?;
+    let t = parameter(curve, 0, target, t, accuracy)?;
+    let r = curve.basis(t);
     let (first, count) = match window {
-        Some((l, m)) if l >= 1 && m >= 1 && l + m - 1 < n => (l, m),
+        Some((l, m)) if l >= 1 && m >= 1 && l + m - 1 < last => (l, m),
         Some((l, m)) => {
             return Err(SolveError::WindowOutOfRange {
                 first: l,
                 count: m,
-                max: n - 1,
+                max: last - 1,
             });
         }
         None => {
-            let m = 3.min(n - 1);
+            let m = 3.min(last - 1);
             let weight = |l: usize| r[l..l + m].iter().map(|v| v * v).sum::<f64>();
-            let l = (1..=n - m)
+            let l = (1..=last - m)
                 .max_by(|&x, &y| weight(x).total_cmp(&weight(y)))
                 .unwrap_or(1);
             (l, m)
         }
     };
-    solve(curve, &[target], &[t], (first..first + count).collect())
+    solve(curve, &[target], vec![t], (first..first + count).collect())
 }
 
-fn solve(
-    curve: &RationalBezier,
+/// Paper 000 §2.2 with the weights fixed: keeps `P_0`, `P_n` and the end tangents (`P_1`
+/// slides on the line `P_0P_1`, `P_{n−1}` on `P_nP_{n−1}`), moves `P_2..P_{n−2}` freely and
+/// passes through `T` at `t` — the minimum-norm solution of
+/// `μ_1 R_1(t) e_1 + μ_2 R_{n−1}(t) e_2 + Σ_{i=2}^{n−2} ε_i R_i(t) = T − C(t)`.
+/// With four points only `μ_1, μ_2` are free (least squares off the plane they span).
+///
+/// # Errors
+/// As [`single_target`]; fewer than 4 points; [`SolveError::NoTangent`] when an end point
+/// coincides with its neighbour.
+pub fn tangent_kept<C: RationalCurve>(
+    curve: &C,
+    target: DVec3,
+    t: Option<f64>,
+    accuracy: Option<f64>,
+) -> Result<TangentKeptSolution<C>, SolveError> {
+    let n = degree_at_least(curve, "tangent_kept", 3)?;
+    let p = curve.points();
+    let e1 = (p[1] - p[0]).try_normalize().ok_or(SolveError::NoTangent {
+        end: "start (P_0 = P_1)",
+    })?;
+    let e2 = (p[n - 1] - p[n])
+        .try_normalize()
+        .ok_or(SolveError::NoTangent {
+            end: "end (P_n = P_(n-1))",
+        })?;
+    let t = parameter(curve, 0, target, t, accuracy)?;
+    let r = curve.basis(t);
+    let diff = target - curve.eval(t);
+    let planar = p.iter().all(|q| q.z == 0.0) && target.z == 0.0;
+    let d = if planar { 2 } else { 3 };
+    let free = n - 3;
+    let mut a = DMatrix::zeros(d, 2 + d * free);
+    for row in 0..d {
+        a[(row, 0)] = r[1] * e1[row];
+        a[(row, 1)] = r[n - 1] * e2[row];
+        for k in 0..free {
+            a[(row, 2 + d * k + row)] = r[2 + k];
+        }
+    }
+    let rhs = DMatrix::from_iterator(d, 1, (0..d).map(|row| diff[row]));
+    let sol = min_norm_solve(&a, &rhs);
+    let mu = [sol.x[(0, 0)], sol.x[(1, 0)]];
+    let deltas: Vec<DVec3> = (0..free)
+        .map(|k| {
+            let mut v = DVec3::ZERO;
+            for row in 0..d {
+                v[row] = sol.x[(2 + d * k + row, 0)];
+            }
+            v
+        })
+        .collect();
+    let mut points = p.to_vec();
+    points[1] += mu[0] * e1;
+    points[n - 1] += mu[1] * e2;
+    for (k, dv) in deltas.iter().enumerate() {
+        points[2 + k] += *dv;
+    }
+    let modified = curve.with_points(points)?;
+    let residual = (modified.eval(t) - target).length();
+    Ok(TangentKeptSolution {
+        solution: RationalSolution {
+            curve: modified,
+            params: vec![t],
+            moved: (2..2 + free).collect(),
+            deltas,
+            residuals: vec![residual],
+            rank: sol.rank,
+            least_squares: sol.rank < d,
+        },
+        mu,
+        directions: [e1, e2],
+    })
+}
+
+fn solve<C: RationalCurve>(
+    curve: &C,
     targets: &[DVec3],
-    params: &[f64],
+    params: Vec<f64>,
     moved: Vec<usize>,
-) -> Result<RationalSolution, SolveError> {
+) -> Result<RationalSolution<C>, SolveError> {
     let mut a = DMatrix::zeros(targets.len(), moved.len());
     let mut d = DMatrix::zeros(targets.len(), 3);
     for (l, (&t, &target)) in params.iter().zip(targets).enumerate() {
-        let r = rational_basis(curve.weights(), t);
+        let r = curve.basis(t);
         for (k, &i) in moved.iter().enumerate() {
             a[(l, k)] = r[i];
         }
@@ -153,7 +338,7 @@ fn solve(
     for (&i, delta) in moved.iter().zip(&deltas) {
         points[i] += *delta;
     }
-    let modified = RationalBezier::try_new(points, curve.weights().to_vec())?;
+    let modified = curve.with_points(points)?;
     let residuals = params
         .iter()
         .zip(targets)
@@ -161,9 +346,11 @@ fn solve(
         .collect();
     Ok(RationalSolution {
         curve: modified,
+        params,
         moved,
         deltas,
         residuals,
+        rank: sol.rank,
         least_squares: sol.rank < targets.len(),
     })
 }

@@ -12,6 +12,8 @@ Families (each class's docstring states its formula and paper):
 * :class:`Interpolation` — cubic Bézier interpolation, plain or modified (paper 002, §5).
 * :class:`BSpline` — non-uniform B-splines (paper 001, §2), to and from scipy.
 * :class:`Nubmp` — B-splines with multiple shape parameters (paper 001, §3–5).
+* :class:`RationalBezier` — rational Bézier curves (conics exactly).
+* :class:`Nurbs` — NURBS curves (the exact circle: :meth:`Nurbs.circle`).
 
 Papers: 000 — least-squares shape modification of Bézier curves; 001 — NUBMP curves;
 002 — the modified Bézier curve and cubic interpolation (texts and a clean statement of
@@ -42,6 +44,8 @@ __all__ = [
     "Interpolation",
     "BSpline",
     "Nubmp",
+    "RationalBezier",
+    "Nurbs",
     "Scene",
     "load",
     "solve",
@@ -222,8 +226,9 @@ class Curve:
         """``n`` points at uniform parameters over the domain, ends included."""
         return self._c.sample(n)
 
-    def segments(self) -> List[Tuple[float, float, np.ndarray]]:
-        """The exact Bézier segments, ``(t0, t1, control points)`` each."""
+    def segments(self) -> List[Tuple[Any, ...]]:
+        """The exact Bézier segments, ``(t0, t1, control points)`` each; a rational
+        segment is ``(t0, t1, control points, weights)``."""
         return self._c.segments()
 
     def inspect(self) -> Dict[str, Any]:
@@ -246,7 +251,8 @@ class Curve:
         return Curve._wrap(self._c.remove_point(index))
 
     def elevate(self, times: int = 1) -> "Curve":
-        """The same curve with its degree raised ``times`` (Bézier, B-spline)."""
+        """The same curve with its degree raised ``times`` (Bézier, B-spline, rational
+        Bézier, NURBS)."""
         return Curve._wrap(self._c.elevate(times))
 
     # -- least-squares shape modification (paper 000) ------------------------------
@@ -274,7 +280,7 @@ class Curve:
         """Moves control points minimally (least squares) so that the curve passes
         through ``target`` at ``t`` (default: the parameter nearest the target), moving
         ``count`` points from ``first`` (default all): paper 000, single target.
-        Bézier curves only."""
+        Bézier, rational Bézier and NURBS curves (weights held fixed)."""
         return self.solve(
             "single_target", target=_point(target, "target"), t=t, first=first, count=count
         )
@@ -527,12 +533,110 @@ class Nubmp(Curve):
         )
 
 
+class _Weighted(Curve):
+    """The weights of a rational curve, read and set as in a scene file."""
+
+    __slots__ = ()
+
+    @property
+    def weights(self) -> np.ndarray:
+        """The weights ``w_i > 0``, one per control point; setting them is checked (a
+        weight ≤ 0 is refused naming ``weights[i]``)."""
+        return np.asarray(self.to_dict()["weights"], dtype=np.float64)
+
+    @weights.setter
+    def weights(self, value: ArrayLike) -> None:
+        self._c = self._with(weights=_numbers(value, "weights"))._c
+
+
+class RationalBezier(_Weighted):
+    """A rational Bézier curve of degree ``n``:
+    ``C(t) = Σ w_i P_i B_{i,n}(t) / Σ w_i B_{i,n}(t)`` on ``[0, 1]``, evaluated in
+    homogeneous coordinates (de Casteljau on ``(w_i P_i, w_i)``, then divided); with every
+    weight 1 it is the :class:`Bezier` curve. Conics are exact: the quarter circle is
+    ``(1, 0), (1, 1), (0, 1)`` with weights ``1, √2/2, 1``. The least-squares
+    modification of paper 000 applies with the weights held fixed.
+
+    ``points``: ``(n + 1, 2)`` or ``(n + 1, 3)``; ``weights``: ``n + 1`` numbers > 0.
+    """
+
+    __slots__ = ()
+
+    def __init__(self, points: ArrayLike, weights: ArrayLike) -> None:
+        pts, dim = _points(points, "points")
+        self._set(
+            {"type": "rational_bezier", "points": pts, "weights": _numbers(weights, "weights")},
+            dim,
+        )
+
+    @property
+    def degree(self) -> int:
+        return len(self.control_points) - 1
+
+
+class Nurbs(_Weighted):
+    """A NURBS curve of order ``k``:
+    ``C(t) = Σ w_i P_i N_{i,k}(t) / Σ w_i N_{i,k}(t)`` on ``[t_{k−1}, t_n]``; with every
+    weight 1 it is the :class:`BSpline`. Knot insertion, degree elevation and Bézier
+    extraction work in homogeneous coordinates (the curve does not move).
+
+    Arguments in :class:`BSpline`'s order, then the weights: ``knots`` (``n + k``
+    numbers or ``"clamped_uniform"``), ``points`` ``(n, 2)`` or ``(n, 3)``, ``order``,
+    ``weights`` (``n`` numbers > 0).
+    """
+
+    __slots__ = ()
+
+    def __init__(
+        self,
+        knots: Union[ArrayLike, str],
+        points: ArrayLike,
+        order: int,
+        weights: ArrayLike,
+    ) -> None:
+        pts, dim = _points(points, "points")
+        self._set(
+            {
+                "type": "nurbs",
+                "points": pts,
+                "weights": _numbers(weights, "weights"),
+                "knots": knots if isinstance(knots, str) else _numbers(knots, "knots"),
+                "order": order,
+            },
+            dim,
+        )
+
+    @classmethod
+    def circle(cls, center: ArrayLike = (0.0, 0.0), radius: float = 1.0) -> "Nurbs":
+        """The exact circle: the nine-point quadratic NURBS curve on the knots
+        ``0,0,0,¼,¼,½,½,¾,¾,1,1,1``, corner weights ``√2/2`` (2-D when ``center`` has two
+        coordinates)."""
+        c = np.asarray(center, dtype=np.float64)
+        r = _number(radius, "radius")
+        corners = [(1, 0), (1, 1), (0, 1), (-1, 1), (-1, 0), (-1, -1), (0, -1), (1, -1), (1, 0)]
+        pts = np.array([[c[0] + x * r, c[1] + y * r] + list(c[2:]) for x, y in corners])
+        h = float(np.sqrt(0.5))
+        weights = [1.0, h, 1.0, h, 1.0, h, 1.0, h, 1.0]
+        knots = [0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1]
+        return cls(knots, pts, 3, weights)
+
+    @property
+    def knots(self) -> np.ndarray:
+        return np.asarray(self.inspect()["knots"], dtype=np.float64)
+
+    @property
+    def order(self) -> int:
+        return int(self.to_dict()["order"])
+
+
 _CLASSES = {
     "bezier": Bezier,
     "modified_bezier": ModifiedBezier,
     "interpolation": Interpolation,
     "bspline": BSpline,
     "nubmp": Nubmp,
+    "rational_bezier": RationalBezier,
+    "nurbs": Nurbs,
 }
 
 

@@ -11,9 +11,10 @@ use super::types::{
 };
 use super::{RequestError, at, field_path};
 use crate::geom::family::xyz;
-use crate::geom::{Bezier, Curve, Nubmp, ParamCurve};
+use crate::geom::{Bezier, Curve, Nubmp, Nurbs, ParamCurve, RationalBezier};
 use crate::jsonread::{Node, Obj};
 use crate::scene::{Annotation, AnnotationShape, Color, Scene, SceneError, SceneErrorKind};
+use crate::solve::rational::{self, RationalCurve};
 use crate::solve::shape::{
     PolygonType, SingleTargetOptions, cubic_region, multi_target, single_target, tangent_kept,
 };
@@ -47,21 +48,129 @@ impl Fields<'_, '_> {
     }
 }
 
-fn bezier_of<'s>(
+/// The curve paper 000's methods modify: a Bézier curve, or a rational curve (its weights
+/// held fixed).
+enum Modifiable<'s> {
+    Polynomial(&'s Bezier),
+    Rational(&'s RationalBezier),
+    Nurbs(&'s Nurbs),
+}
+
+fn modifiable<'s>(
     scene: &'s Scene,
     index: usize,
     node: &Node<'_>,
     method: &str,
-) -> Result<&'s Bezier, RequestError> {
+) -> Result<Modifiable<'s>, RequestError> {
     match &scene.curves[index].curve {
-        Curve::Bezier(b) => Ok(b),
+        Curve::Bezier(b) => Ok(Modifiable::Polynomial(b)),
+        Curve::RationalBezier(b) => Ok(Modifiable::Rational(b)),
+        Curve::Nurbs(b) => Ok(Modifiable::Nurbs(b)),
         other => Err(RequestError {
             path: field_path(node, "curve"),
             message: format!(
-                "{method} modifies Bézier curves (paper 000); curves[{index}] is {}",
+                "{method} modifies Bézier curves (paper 000) and rational Bézier and NURBS curves (weights fixed); curves[{index}] is {}",
                 other.family()
             ),
         }),
+    }
+}
+
+/// The field of a request a solver error concerns.
+fn single_field(e: &SolveError) -> &'static str {
+    match e {
+        SolveError::WindowOutOfRange { .. } => "first",
+        SolveError::ParameterAtEnd { .. } | SolveError::ParameterOutsideDomain { .. } => "t",
+        SolveError::NonFiniteTarget { .. } | SolveError::TargetAtEnd { .. } => "target",
+        _ => "",
+    }
+}
+
+fn multi_field(e: &SolveError) -> String {
+    match e {
+        SolveError::ParamCount { .. } | SolveError::ParameterOutsideDomain { .. } => {
+            "params".to_owned()
+        }
+        SolveError::ParameterAtEnd { index, .. } => format!("params[{index}]"),
+        SolveError::NonFiniteTarget { index, .. } | SolveError::TargetAtEnd { index, .. } => {
+            format!("targets[{index}]")
+        }
+        _ => String::new(),
+    }
+}
+
+/// A rational single-target solve and its report; the scene's curve replaced.
+fn rational_single<C: RationalCurve + Into<Curve>>(
+    scene: &mut Scene,
+    node: &Node<'_>,
+    r: &SingleTargetRequest,
+    c: &C,
+) -> Result<SingleTargetReport, RequestError> {
+    let s = rational::single_target(c, r.target, r.t, r.first.zip(r.count), r.accuracy)
+        .map_err(|e| at(node, single_field(&e), &e))?;
+    let t = s.params[0];
+    let report = SingleTargetReport {
+        target: r.target.to_array(),
+        t,
+        start: c.eval(t).to_array(),
+        moved: s.moved.clone(),
+        deltas: xyz(&s.deltas),
+        control_points: xyz(s.curve.points()),
+        residual: s.residuals[0],
+    };
+    scene.curves[r.curve].curve = s.curve.into();
+    Ok(report)
+}
+
+fn rational_tangent<C: RationalCurve + Into<Curve>>(
+    scene: &mut Scene,
+    node: &Node<'_>,
+    r: &TangentKeptRequest,
+    c: &C,
+) -> Result<TangentKeptReport, RequestError> {
+    let s = rational::tangent_kept(c, r.target, r.t, r.accuracy)
+        .map_err(|e| at(node, tangent_field(&e), &e))?;
+    let report = TangentKeptReport {
+        target: r.target.to_array(),
+        t: s.solution.params[0],
+        mu: s.mu,
+        directions: s.directions.map(|d| d.to_array()),
+        deltas: xyz(&s.solution.deltas),
+        control_points: xyz(s.solution.curve.points()),
+        residual: s.solution.residuals[0],
+        least_squares: s.solution.least_squares,
+    };
+    scene.curves[r.curve].curve = s.solution.curve.into();
+    Ok(report)
+}
+
+fn rational_multi<C: RationalCurve + Into<Curve>>(
+    scene: &mut Scene,
+    node: &Node<'_>,
+    r: &MultiTargetRequest,
+    c: &C,
+) -> Result<MultiTargetReport, RequestError> {
+    let s = rational::multi_target(c, &r.targets, r.params.as_deref(), r.accuracy)
+        .map_err(|e| at(node, &multi_field(&e), &e))?;
+    let report = MultiTargetReport {
+        targets: xyz(&r.targets),
+        params: s.params.clone(),
+        deltas: xyz(&s.deltas),
+        residuals: s.residuals.clone(),
+        max_residual: s.residuals.iter().copied().fold(0.0, f64::max),
+        rank: s.rank,
+        least_squares: s.least_squares,
+        control_points: xyz(s.curve.points()),
+    };
+    scene.curves[r.curve].curve = s.curve.into();
+    Ok(report)
+}
+
+fn tangent_field(e: &SolveError) -> &'static str {
+    match e {
+        SolveError::ParameterAtEnd { .. } | SolveError::ParameterOutsideDomain { .. } => "t",
+        SolveError::NonFiniteTarget { .. } | SolveError::TargetAtEnd { .. } => "target",
+        _ => "curve",
     }
 }
 
@@ -109,21 +218,17 @@ pub(super) fn run_single_target(
     node: &Node<'_>,
     r: &SingleTargetRequest,
 ) -> Result<SingleTargetReport, RequestError> {
-    let b = bezier_of(scene, r.curve, node, "single_target")?;
+    let b = match modifiable(scene, r.curve, node, "single_target")? {
+        Modifiable::Polynomial(b) => b,
+        Modifiable::Rational(c) => return rational_single(scene, node, r, &c.clone()),
+        Modifiable::Nurbs(c) => return rational_single(scene, node, r, &c.clone()),
+    };
     let opts = SingleTargetOptions {
         t_s: r.t,
         window: r.first.zip(r.count),
         accuracy: r.accuracy,
     };
-    let s = single_target(b, r.target, &opts).map_err(|e| {
-        let field = match e {
-            SolveError::WindowOutOfRange { .. } => "first",
-            SolveError::ParameterAtEnd { .. } | SolveError::ParameterOutsideDomain { .. } => "t",
-            SolveError::NonFiniteTarget { .. } | SolveError::TargetAtEnd { .. } => "target",
-            _ => "",
-        };
-        at(node, field, &e)
-    })?;
+    let s = single_target(b, r.target, &opts).map_err(|e| at(node, single_field(&e), &e))?;
     let report = SingleTargetReport {
         target: r.target.to_array(),
         t: s.t_s,
@@ -152,15 +257,13 @@ pub(super) fn run_tangent_kept(
     node: &Node<'_>,
     r: &TangentKeptRequest,
 ) -> Result<TangentKeptReport, RequestError> {
-    let b = bezier_of(scene, r.curve, node, "tangent_kept")?;
-    let s = tangent_kept(b, r.target, r.t, r.accuracy).map_err(|e| {
-        let field = match e {
-            SolveError::ParameterAtEnd { .. } | SolveError::ParameterOutsideDomain { .. } => "t",
-            SolveError::NonFiniteTarget { .. } | SolveError::TargetAtEnd { .. } => "target",
-            _ => "curve",
-        };
-        at(node, field, &e)
-    })?;
+    let b = match modifiable(scene, r.curve, node, "tangent_kept")? {
+        Modifiable::Polynomial(b) => b,
+        Modifiable::Rational(c) => return rational_tangent(scene, node, r, &c.clone()),
+        Modifiable::Nurbs(c) => return rational_tangent(scene, node, r, &c.clone()),
+    };
+    let s =
+        tangent_kept(b, r.target, r.t, r.accuracy).map_err(|e| at(node, tangent_field(&e), &e))?;
     let report = TangentKeptReport {
         target: r.target.to_array(),
         t: s.t_s,
@@ -190,20 +293,13 @@ pub(super) fn run_multi_target(
     node: &Node<'_>,
     r: &MultiTargetRequest,
 ) -> Result<MultiTargetReport, RequestError> {
-    let b = bezier_of(scene, r.curve, node, "multi_target")?;
-    let s = multi_target(b, &r.targets, r.params.as_deref(), r.accuracy).map_err(|e| {
-        let field = match e {
-            SolveError::ParamCount { .. } | SolveError::ParameterOutsideDomain { .. } => {
-                "params".to_owned()
-            }
-            SolveError::ParameterAtEnd { index, .. } => format!("params[{index}]"),
-            SolveError::NonFiniteTarget { index, .. } | SolveError::TargetAtEnd { index, .. } => {
-                format!("targets[{index}]")
-            }
-            _ => String::new(),
-        };
-        at(node, &field, &e)
-    })?;
+    let b = match modifiable(scene, r.curve, node, "multi_target")? {
+        Modifiable::Polynomial(b) => b,
+        Modifiable::Rational(c) => return rational_multi(scene, node, r, &c.clone()),
+        Modifiable::Nurbs(c) => return rational_multi(scene, node, r, &c.clone()),
+    };
+    let s = multi_target(b, &r.targets, r.params.as_deref(), r.accuracy)
+        .map_err(|e| at(node, &multi_field(&e), &e))?;
     let report = MultiTargetReport {
         targets: xyz(&r.targets),
         params: s.params.clone(),
@@ -233,7 +329,19 @@ pub(super) fn run_cubic_region(
     node: &Node<'_>,
     r: &CubicRegionRequest,
 ) -> Result<CubicRegionReport, RequestError> {
-    let b = bezier_of(scene, r.curve, node, "cubic_region")?.clone();
+    let b = match &scene.curves[r.curve].curve {
+        Curve::Bezier(b) => b.clone(),
+        other => {
+            return Err(RequestError {
+                path: field_path(node, "curve"),
+                message: format!(
+                    "cubic_region classifies Bézier cubics (paper 000); curves[{}] is {}",
+                    r.curve,
+                    other.family()
+                ),
+            });
+        }
+    };
     let region = cubic_region(&b).map_err(|e| at(node, "curve", &e))?;
     let limited = r.limited.unwrap_or(false);
     let reach = r

@@ -9,12 +9,14 @@ mod bspline;
 mod interpolation;
 mod modified;
 mod nubmp;
+mod rational;
 
 pub use bezier::BezierDoc;
 pub use bspline::BSplineDoc;
 pub use interpolation::{InterpolationDoc, ModificationDoc};
 pub use modified::ModifiedBezierDoc;
 pub use nubmp::{NubmpDoc, ShapeSettingDoc};
+pub use rational::{NurbsDoc, RationalBezierDoc};
 
 use crate::geom::{Curve, Family, GeomError};
 use crate::jsonread::{Node, Obj};
