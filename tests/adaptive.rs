@@ -11,7 +11,7 @@ mod common;
 
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use splinescope::camera::Camera;
-use splinescope::geom::{Bezier, Curve, Lower};
+use splinescope::geom::{Bezier, BezierSegment, Curve, Lower};
 use splinescope::gpu::adaptive::{FrameSettings, Stage, read_work};
 use splinescope::gpu::layout::{GpuVertex, MAX_SAMPLES_PER_SEGMENT, WORK_HEADER};
 use splinescope::gpu::pack::{ChunkLimits, PreparedScene, prepare};
@@ -123,12 +123,12 @@ fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
 
 /// The exact lowered segment behind each adaptive segment of chunk `c` (by its first
 /// control point).
-fn exact_segments(scene: &Scene, prepared: &PreparedScene, c: usize) -> Vec<(u32, Bezier)> {
+fn exact_segments(scene: &Scene, prepared: &PreparedScene, c: usize) -> Vec<(u32, BezierSegment)> {
     let mut out = Vec::new();
     for (curve, places) in prepared.placements.iter().enumerate() {
         let lowered = scene.curves[curve].curve.lower();
         for p in places.iter().filter(|p| p.chunk == c) {
-            out.push((p.first_point, lowered[p.segment].bezier.clone()));
+            out.push((p.first_point, lowered[p.segment].clone()));
         }
     }
     out

@@ -45,7 +45,7 @@ const EXPECTED: &[(&str, &str, &str)] = &[
     (
         "unknown-curve-type",
         "curves[0].type",
-        "unknown curve type \"nurbs\"",
+        "unknown curve type \"hermite\"",
     ),
     (
         "too-few-points",

@@ -199,7 +199,7 @@ fn bad_eval_arguments_name_the_offending_value() {
         (&["eval", &path], "give --samples N or --params"),
         (
             &["eval", &path, "--samples", "3", "--curve", "99"],
-            "--curve 99: the scene has 19 curve(s) (indices 0..18)",
+            "--curve 99: the scene has 25 curve(s) (indices 0..24)",
         ),
         (
             &["eval", "/nonexistent/scene.json", "--samples", "3"],

@@ -263,8 +263,9 @@ fn curves_are_added_from_every_template_duplicated_and_deleted_each_undoably() {
         assert!(b.distance_to(center) == 0.0, "{t:?}: {b:?}");
         assert!(c.eval(c.domain().0).is_finite());
     }
-    assert_eq!(m.scene().curves.len(), 6);
-    assert_eq!(m.editor.history_len(), (5, 0));
+    let templates = Template::all().len();
+    assert_eq!(m.scene().curves.len(), templates + 1);
+    assert_eq!(m.editor.history_len(), (templates, 0));
 
     // Duplicate: the copy is the curve moved by the offset, on top.
     m.editor.selected = Some(0);
@@ -283,17 +284,17 @@ fn curves_are_added_from_every_template_duplicated_and_deleted_each_undoably() {
     m.editor.selected_point = None;
     let before = m.scene().clone();
     m.delete_selection();
-    assert_eq!(m.scene().curves.len(), 6);
+    assert_eq!(m.scene().curves.len(), templates + 1);
     assert_eq!(m.scene().curves[0], before.curves[1]);
     assert!(m.editor.undo());
     assert_eq!(m.scene(), &before);
-    for _ in 0..6 {
+    for _ in 0..templates + 1 {
         assert!(m.editor.undo());
     }
     assert_eq!(m.scene(), &original);
     assert!(!m.editor.undo());
     while m.editor.redo() {}
-    assert_eq!(m.scene().curves.len(), 6);
+    assert_eq!(m.scene().curves.len(), templates + 1);
     let changes = m.editor.take_changed();
     assert!(
         changes.list,

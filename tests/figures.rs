@@ -281,7 +281,12 @@ fn written_paths_keep_the_tolerance_and_exact_control_points() {
                 );
                 if proj.affine {
                     let segs = curve.lower();
-                    if segs.iter().all(|s| s.bezier.degree() <= 3) {
+                    // Polynomial pieces of degree ≤ 3 are written exactly (rational
+                    // ones are fitted, checked against the tolerance above).
+                    if segs
+                        .iter()
+                        .all(|s| s.bezier.degree() <= 3 && !s.is_rational())
+                    {
                         let mut want: Vec<f64> = Vec::new();
                         for (k, s) in segs.iter().enumerate() {
                             let pts: Vec<DVec2> = s

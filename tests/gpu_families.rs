@@ -1,7 +1,10 @@
 //! Every curve family through the one GPU kernel: the lowered Bézier segments evaluated by
 //! `shaders/tessellate.wgsl` agree with each family's exact `f64` evaluation within the
 //! bound of `tests/gpu_tessellation.rs` (1e-6 · S · max(n, 12)/12, with S the larger of the
-//! segments' control extent and largest coordinate, n their largest degree).
+//! segments' control extent and largest coordinate, n their largest degree). Rational
+//! curves are evaluated in homogeneous `f32` and divided: the bound of their weighted
+//! points and weights, each relative, is amplified by at most `κ = max w / min w` per
+//! segment in the division; their bound is that bound times `2κ`.
 
 mod common;
 
@@ -10,7 +13,7 @@ use std::path::Path;
 use glam::DVec3;
 use splinescope::geom::{
     Aabb, BSpline, Bezier, CubicInterpolation, Curve, Lower, Modification, ModifiedBezier, Nubmp,
-    ParamCurve, Reading,
+    Nurbs, ParamCurve, RationalBezier, Reading,
 };
 use splinescope::gpu::GpuContext;
 use splinescope::gpu::eval::evaluate;
@@ -26,7 +29,16 @@ fn bound(curve: &Curve) -> f64 {
     let degree = segs.iter().map(|s| s.bezier.degree()).max().unwrap_or(0);
     let extent = Aabb::from_points(&pts).diagonal();
     let radius = pts.iter().map(|p| p.length()).fold(0.0, f64::max);
-    1e-6 * extent.max(radius) * (degree.max(12) as f64 / 12.0)
+    let kappa = segs
+        .iter()
+        .filter_map(|s| s.weights.as_ref())
+        .map(|w| {
+            let hi = w.iter().copied().fold(0.0, f64::max);
+            let lo = w.iter().copied().fold(f64::INFINITY, f64::min);
+            2.0 * hi / lo
+        })
+        .fold(1.0, f64::max);
+    1e-6 * extent.max(radius) * (degree.max(12) as f64 / 12.0) * kappa
 }
 
 /// Evaluates `curves` on the GPU at 301 parameters over each domain (ends and interior
@@ -87,7 +99,7 @@ fn every_scene_curve_matches_on_the_gpu() {
         curves.iter().map(|(_, c)| c.family()).collect();
     assert_eq!(
         families.len(),
-        5,
+        Curve::FAMILY_NAMES.len(),
         "the scenes cover every family: {families:?}"
     );
     common::on_each_gpu("every_scene_curve_matches_on_the_gpu", |backend| {
@@ -180,6 +192,27 @@ fn random_curves_of_every_family_match_up_to_the_maximum_degree() {
                     .expect("valid parameters");
             }
             curves.push((format!("nubmp order {order}"), Curve::Nubmp(nub)));
+        }
+    }
+    // Rational Bézier curves up to the GPU maximum and NURBS curves, weights in [1/8, 8].
+    for three_d in [false, true] {
+        for n in [1usize, 2, 3, 4, 7, 15, 31] {
+            let pts = random_points(&mut rng, n + 1, three_d);
+            let w: Vec<f64> = (0..=n).map(|_| 2f64.powf(rng.range(-3.0, 3.0))).collect();
+            curves.push((
+                format!("rational Bézier degree {n}"),
+                Curve::RationalBezier(RationalBezier::try_new(pts, w).expect("valid")),
+            ));
+        }
+        for order in [2usize, 3, 4, 6, 12] {
+            let n = order + rng.int(0, 6);
+            let knots = random_knots(&mut rng, order, n);
+            let pts = random_points(&mut rng, n, three_d);
+            let w: Vec<f64> = (0..n).map(|_| 2f64.powf(rng.range(-3.0, 3.0))).collect();
+            curves.push((
+                format!("nurbs order {order}"),
+                Curve::Nurbs(Nurbs::try_new(pts, w, knots, order).expect("valid")),
+            ));
         }
     }
     common::on_each_gpu(

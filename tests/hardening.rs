@@ -405,7 +405,7 @@ fn limits_are_named_with_the_variable_that_raises_them() {
     fails_saying(
         &["eval", &gallery, "--samples", "10000000"],
         &[
-            "190000000 is over the limit of 134217728 samples per command",
+            "250000000 is over the limit of 134217728 samples per command",
             "SPLINESCOPE_MAX_SAMPLES",
         ],
     );

@@ -143,7 +143,7 @@ fn documents_the_reader_refuses_for_their_shape_the_schema_refuses() {
     let request = schema("request");
     let bad_scenes = [
         r##"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1, 1]], "colour": "#fff"}]}"##,
-        r#"{"version": 1, "curves": [{"type": "nurbs", "points": [[0, 0], [1, 1]]}]}"#,
+        r#"{"version": 1, "curves": [{"type": "hermite", "points": [[0, 0], [1, 1]]}]}"#,
         r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1, 1, 2, 3]]}]}"#,
         r#"{"version": 2, "curves": []}"#,
         r#"{"version": 1, "curves": [], "samples": 1}"#,

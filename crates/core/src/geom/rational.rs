@@ -395,8 +395,14 @@ fn with_weight(weights: &[f64], index: usize, value: f64) -> Result<Vec<f64>, Ge
     Ok(out)
 }
 
-/// The weights written for labels: `w = (1, 0.7071, 1)`.
+/// The weights written for labels: `w = (1, 0.7071, 1)` up to four weights, their range
+/// `w ∈ [0.7071, 1]` beyond.
 fn weight_text(weights: &[f64]) -> String {
+    if weights.len() > 4 {
+        let lo = weights.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = weights.iter().copied().fold(0.0, f64::max);
+        return format!("w ∈ [{}, {}]", round4(lo), round4(hi));
+    }
     let items: Vec<String> = weights.iter().map(|w| format!("{}", round4(*w))).collect();
     format!("w = ({})", items.join(", "))
 }
