@@ -272,6 +272,42 @@ const EXPECTED: &[(&str, &str, &str)] = &[
         "annotations[0]",
         "an annotation needs \"polyline\" or \"points\"",
     ),
+    (
+        "rational-zero-weight",
+        "curves[0].weights[1]",
+        "weight 0 of point 1: a weight must be a finite number greater than 0",
+    ),
+    (
+        "rational-negative-weight",
+        "curves[0].weights[1]",
+        "weight -0.5 of point 1",
+    ),
+    (
+        "rational-weight-count",
+        "curves[0].weights",
+        "2 weights for 3 control points",
+    ),
+    ("rational-missing-weights", "curves[0].weights", "missing"),
+    (
+        "rational-weight-string",
+        "curves[0].weights[1]",
+        "expected a number, found the string \"heavy\"",
+    ),
+    (
+        "nurbs-weight-overflow",
+        "curves[0].weights[3]",
+        "not a finite number",
+    ),
+    (
+        "nurbs-knots-decreasing",
+        "curves[0].knots[4]",
+        "knots must not decrease: 0.4 follows 0.5",
+    ),
+    (
+        "nurbs-weight-count",
+        "curves[0].weights",
+        "3 weights for 4 control points",
+    ),
 ];
 
 fn corpus() -> PathBuf {

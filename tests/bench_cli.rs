@@ -280,3 +280,39 @@ fn compare_fails_on_a_regression_beyond_the_threshold() {
         text(&out)
     );
 }
+
+#[test]
+fn rational_families_are_benchmarked_through_the_rational_kernel() {
+    if common::gpus("bench of rational families").is_empty() {
+        return;
+    }
+    let (rows, _) = bench_json(&[
+        "--curves",
+        "200",
+        "--degrees",
+        "2,5",
+        "--families",
+        "rational_bezier,nurbs",
+        "--samples",
+        "8",
+    ]);
+    assert_eq!(rows.len(), 4, "2 families × 2 degrees");
+    for row in &rows {
+        let family = row["family"].as_str().expect("family");
+        assert!(family == "rational_bezier" || family == "nurbs", "{row}");
+        // A rational Bézier curve is one segment, the NURBS curve four spans.
+        let segments = if family == "rational_bezier" { 1 } else { 4 };
+        assert_eq!(
+            row["samples_per_curve"].as_u64(),
+            Some(8 * segments),
+            "{row}"
+        );
+        for key in [
+            "cpu_f64_one_thread_samples_per_s",
+            "gpu_compute_wall_samples_per_s",
+            "gpu_write_limit_samples_per_s",
+        ] {
+            assert!(row[key].as_f64().is_some_and(|v| v > 0.0), "{key}: {row}");
+        }
+    }
+}

@@ -277,3 +277,230 @@ fn rational_solves_pass_through_keep_weights_and_are_minimal() {
     assert!(single_target(&arc, target, Some(0.5), Some((0, 2)), None).is_err());
     assert!(multi_target(&arc, &targets, Some(&[0.5]), None).is_err());
 }
+
+/// The minimum-norm solution of `A x = d` for a full-row-rank `A` (rows × cols), written
+/// out independently of the solver: `x = Aᵀ (A Aᵀ)⁻¹ d` by Gaussian elimination on the
+/// small Gram matrix.
+fn min_norm(a: &[Vec<f64>], d: &[f64]) -> Vec<f64> {
+    let m = a.len();
+    let mut g: Vec<Vec<f64>> = (0..m)
+        .map(|i| {
+            let mut row: Vec<f64> = (0..m)
+                .map(|j| a[i].iter().zip(&a[j]).map(|(x, y)| x * y).sum())
+                .collect();
+            row.push(d[i]);
+            row
+        })
+        .collect();
+    for c in 0..m {
+        let p = (c..m)
+            .max_by(|&x, &y| g[x][c].abs().total_cmp(&g[y][c].abs()))
+            .unwrap();
+        g.swap(c, p);
+        for r in 0..m {
+            if r != c {
+                let f = g[r][c] / g[c][c];
+                for k in c..=m {
+                    g[r][k] -= f * g[c][k];
+                }
+            }
+        }
+    }
+    let lambda: Vec<f64> = (0..m).map(|i| g[i][m] / g[i][i]).collect();
+    (0..a[0].len())
+        .map(|k| (0..m).map(|i| a[i][k] * lambda[i]).sum())
+        .collect()
+}
+
+/// NURBS solves: through the targets, weights and knots kept, the end points fixed, and
+/// the moves the minimum-norm ones (against `Aᵀ(AAᵀ)⁻¹d` computed here per coordinate).
+#[test]
+fn nurbs_multi_target_passes_through_and_is_the_minimum_norm_change() {
+    use splinescope::solve::rational::{RationalCurve, multi_target, single_target};
+    let pts: Vec<DVec3> = (0..7)
+        .map(|i| DVec3::new(f64::from(i), f64::from((i * 5) % 3), 0.0))
+        .collect();
+    let knots = vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.5, 0.8, 1.0, 1.0, 1.0, 1.0];
+    let n = Nurbs::try_new(pts, vec![1.0, 2.0, 0.5, 1.5, 3.0, 0.7, 1.0], knots, 4).expect("n");
+    let targets = [DVec3::new(1.5, 2.5, 0.0), DVec3::new(4.2, -0.5, 0.0)];
+    let params = [0.25, 0.7];
+    let s = multi_target(&n, &targets, Some(&params), None).expect("solve");
+    for (t, want) in params.iter().zip(&targets) {
+        assert!((s.curve.eval(*t) - *want).length() < 1e-12);
+    }
+    assert_eq!(s.curve.weights(), n.weights());
+    assert_eq!(s.curve.knots(), n.knots());
+    assert_eq!(s.curve.points()[0], n.points()[0]);
+    assert_eq!(s.curve.points()[6], n.points()[6]);
+    let a: Vec<Vec<f64>> = params
+        .iter()
+        .map(|&t| s.moved.iter().map(|&i| n.basis(t)[i]).collect())
+        .collect();
+    for c in 0..3 {
+        let d: Vec<f64> = params
+            .iter()
+            .zip(&targets)
+            .map(|(&t, want)| (*want - n.eval(t))[c])
+            .collect();
+        let x = min_norm(&a, &d);
+        for (k, delta) in s.deltas.iter().enumerate() {
+            assert!((delta[c] - x[k]).abs() < 1e-12, "coordinate {c}, move {k}");
+        }
+    }
+    // The rational basis sums to 1 and is the curve's own: Σ R_i P_i = C.
+    for t in [0.0, 0.1, 0.45, 0.8, 1.0] {
+        let r = n.basis(t);
+        assert!((r.iter().sum::<f64>() - 1.0).abs() < 1e-14);
+        let c: DVec3 = r.iter().zip(n.points()).map(|(r, p)| *r * *p).sum();
+        assert!((c - n.eval(t)).length() < 1e-13);
+    }
+    // One target, projected: the curve passes through it.
+    let target = DVec3::new(3.1, 2.2, 0.0);
+    let one = single_target(&n, target, None, None, None).expect("single");
+    assert!(one.residuals[0] < 1e-12);
+    assert!((one.curve.eval(one.params[0]) - target).length() < 1e-12);
+}
+
+/// Paper 000 §2.2 on a rational curve: ends and end tangent directions kept, the target
+/// met, and the change (μ₁, μ₂, ε_i) the minimum-norm one.
+#[test]
+fn tangent_kept_on_rational_curves_keeps_the_end_tangents() {
+    use splinescope::solve::rational::{RationalCurve, tangent_kept};
+    let arc = RationalBezier::try_new(
+        vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 2.0, 0.0),
+            DVec3::new(3.0, 2.5, 0.0),
+            DVec3::new(5.0, 1.0, 0.0),
+            DVec3::new(6.0, 0.0, 0.0),
+        ],
+        vec![1.0, 0.6, 2.0, 0.8, 1.0],
+    )
+    .expect("curve");
+    let target = DVec3::new(3.0, 3.2, 0.0);
+    let s = tangent_kept(&arc, target, Some(0.5), None).expect("solve");
+    let q = s.solution.curve.points();
+    let p = arc.points();
+    assert!((s.solution.curve.eval(0.5) - target).length() < 1e-12);
+    assert_eq!(s.solution.curve.weights(), arc.weights());
+    assert_eq!((q[0], q[4]), (p[0], p[4]));
+    // P₁ stays on the line P₀P₁, P₃ on P₄P₃, in the same direction.
+    let (e1, e2) = ((p[1] - p[0]).normalize(), (p[3] - p[4]).normalize());
+    assert!((q[1] - p[0]).normalize().dot(e1) > 1.0 - 1e-12);
+    assert!((q[3] - p[4]).normalize().dot(e2) > 1.0 - 1e-12);
+    // Minimum norm: unknowns (μ₁, μ₂, ε₂ₓ, ε₂ᵧ), two equations (x, y).
+    let r = arc.basis(0.5);
+    let d = target - arc.eval(0.5);
+    let a = vec![
+        vec![r[1] * e1.x, r[3] * e2.x, r[2], 0.0],
+        vec![r[1] * e1.y, r[3] * e2.y, 0.0, r[2]],
+    ];
+    let x = min_norm(&a, &[d.x, d.y]);
+    assert!((s.mu[0] - x[0]).abs() < 1e-12 && (s.mu[1] - x[1]).abs() < 1e-12);
+    assert!((s.solution.deltas[0] - DVec3::new(x[2], x[3], 0.0)).length() < 1e-12);
+    // Too few points, coincident ends: typed refusals.
+    let short = RationalBezier::try_new(p[..3].to_vec(), vec![1.0, 2.0, 1.0]).expect("short");
+    assert!(tangent_kept(&short, target, Some(0.5), None).is_err());
+}
+
+/// The panel's weight controls: a typed weight is applied, `w ≤ 0` and non-finite values
+/// are refused naming the weight (nothing clamped), elevation keeps the curve.
+#[test]
+fn weight_controls_apply_refuse_and_elevation_keeps_the_curve() {
+    use splinescope::geom::{ControlId, ControlKind, ControlValue, Family};
+    let c = Nurbs::circle(DVec3::ZERO, 2.0).expect("circle");
+    let controls = c.controls();
+    let weights: Vec<_> = controls.iter().filter(|k| k.id.key == "w").collect();
+    assert_eq!(weights.len(), 9);
+    assert!(
+        matches!(weights[1].kind, ControlKind::Number { value, .. } if value == std::f64::consts::FRAC_1_SQRT_2)
+    );
+    let id = ControlId {
+        key: "w",
+        index: [1, 0],
+    };
+    let heavier = c
+        .apply_control(id, ControlValue::Number(2.0))
+        .expect("w = 2");
+    assert_eq!(heavier.weights()[1], 2.0);
+    assert_eq!(heavier.points(), c.points());
+    for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        let e = c.apply_control(id, ControlValue::Number(bad)).unwrap_err();
+        assert!(
+            matches!(e, GeomError::BadWeight { index: 1, .. }),
+            "{bad}: {e}"
+        );
+        assert_eq!(e.field(), "weights[1]");
+    }
+    let none = ControlId {
+        key: "w",
+        index: [9, 0],
+    };
+    assert!(c.apply_control(none, ControlValue::Number(1.0)).is_err());
+    let up = c
+        .apply_control(ControlId::new("elevate"), ControlValue::Press)
+        .expect("elevate");
+    assert_eq!(up.order(), 4);
+    for j in 0..=400 {
+        let t = f64::from(j) / 400.0;
+        assert!((up.eval(t) - c.eval(t)).length() < 1e-14 * 2.0 * 8.0);
+    }
+    // Structure edits keep one weight per point.
+    let fewer = c.with_point_removed(3).expect("remove");
+    assert_eq!(fewer.weights().len(), fewer.points().len());
+    let rb = RationalBezier::quarter_ellipse(DVec3::ZERO, 2.0, 1.0);
+    let (more, at) = rb
+        .with_point_on_polygon(DVec3::new(2.0, 0.5, 0.0))
+        .expect("insert");
+    assert_eq!((at, more.weights().len()), (1, 4));
+    assert!(more.weights()[1] > 0.0);
+}
+
+/// The templates the editor offers, the conic type `inspect` reports, and scene files:
+/// written and read back to the same curves.
+#[test]
+fn templates_conic_types_and_scene_round_trip() {
+    use splinescope::geom::{Conic, Curve, Family};
+    let labels: Vec<&str> = Curve::templates(DVec3::ZERO, 1.0)
+        .iter()
+        .map(|(l, _)| *l)
+        .collect();
+    for want in ["circle", "ellipse arc", "NURBS curve"] {
+        assert!(labels.contains(&want), "{want} in {labels:?}");
+    }
+    for (w1, want) in [
+        (0.4, Conic::Ellipse),
+        (1.0, Conic::Parabola),
+        (3.0, Conic::Hyperbola),
+    ] {
+        let c = RationalBezier::try_new(
+            vec![
+                DVec3::ZERO,
+                DVec3::new(1.0, 2.0, 0.0),
+                DVec3::new(2.0, 0.0, 0.0),
+            ],
+            vec![1.0, w1, 1.0],
+        )
+        .expect("conic");
+        assert_eq!(c.details().expect("details").conic, Some(want));
+        // Independent check of the type: a parabola's arc has its tangents' crossing at
+        // P₁ and its midpoint halfway to the chord's midpoint; an ellipse's midpoint is
+        // nearer P₁, a hyperbola's nearer the chord (the shoulder point
+        // (M + w₁P₁)/(1 + w₁)).
+        let mid = c.eval(0.5);
+        let shoulder = (DVec3::new(1.0, 0.0, 0.0) + w1 * DVec3::new(1.0, 2.0, 0.0)) / (1.0 + w1);
+        assert!((mid - shoulder).length() < 1e-14);
+    }
+    let scene = splinescope::scene::gallery::gallery();
+    let text = splinescope::scene::to_json_string(&scene);
+    let back = splinescope::scene::from_json_str(&text).expect("read back");
+    for (a, b) in scene.curves.iter().zip(&back.curves) {
+        assert_eq!(a.curve, b.curve, "{:?}", a.name);
+    }
+    assert!(back.curves.iter().any(|c| c.curve.family() == "nurbs"));
+    assert!(
+        back.curves
+            .iter()
+            .any(|c| c.curve.family() == "rational_bezier")
+    );
+}

@@ -36,7 +36,8 @@ pub struct BenchArgs {
     degrees: Vec<u64>,
     /// Families, any of the scene format's: `bezier`, `modified_bezier` (`t* = 1/2`),
     /// `interpolation` (degree + 1 points, cubic pieces), `bspline` (clamped uniform, four
-    /// spans), `nubmp` (their standard NUBMP curves).
+    /// spans), `nubmp` (their standard NUBMP curves), `rational_bezier` and `nurbs`
+    /// (weights cycling through 1, 2, ½, 1.5; the NURBS curves clamped uniform, four spans).
     #[arg(long, value_delimiter = ',', default_value = "bezier", value_parser = parse_family)]
     families: Vec<StressFamily>,
     /// Samples per Bézier segment (per curve for Bézier curves), e.g. `16,64,256`.
