@@ -246,3 +246,67 @@ fn the_documented_requests_pass_through_their_targets() {
         .sum();
     assert_eq!(marks, 1 + 1 + 3 + 1 + 1);
 }
+
+/// Paper 000's three methods on the gallery's rational curves (weights held fixed): the
+/// written scene reloads, each solved curve passes through its targets at the reported
+/// parameters, and its weights are unchanged.
+#[test]
+fn solve_modifies_rational_curves_keeping_their_weights() {
+    let gallery = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/gallery.json");
+    let before = Scene::load(&gallery).expect("gallery");
+    let dir = common::out_dir("solve_cli_rational");
+    let request = dir.join("rational.json");
+    // 19: the NURBS circle; 23: the NURBS ellipse; 24: the cubic NURBS curve.
+    std::fs::write(
+        &request,
+        r#"[
+  {"curve": 19, "method": "single_target", "target": [8.5, -24.5]},
+  {"curve": 23, "method": "tangent_kept", "target": [27.0, -22.5], "t": 0.3},
+  {"curve": 24, "method": "multi_target", "targets": [[38, -24], [43.5, -25]], "params": [0.3, 0.75]}
+]"#,
+    )
+    .expect("write request");
+    let out = dir.join("solved.json");
+    let (code, stdout, stderr) = solve(&gallery, &request, Some(&out));
+    assert_eq!(code, Some(0), "{stderr}");
+    let reports: Value = serde_json::from_str(&stdout).expect("report JSON");
+    let after = Scene::load(&out).expect("solved scene reloads");
+    let weights = |s: &Scene, i: usize| -> Vec<f64> {
+        match &s.curves[i].curve {
+            splinescope::geom::Curve::Nurbs(n) => n.weights().to_vec(),
+            splinescope::geom::Curve::RationalBezier(r) => r.weights().to_vec(),
+            other => panic!("curves[{i}] is {}", other.family()),
+        }
+    };
+    let checks: [(usize, Vec<DVec3>, Vec<f64>); 3] = [
+        (
+            19,
+            vec![DVec3::new(8.5, -24.5, 0.0)],
+            vec![reports["reports"][0]["t"].as_f64().expect("t")],
+        ),
+        (23, vec![DVec3::new(27.0, -22.5, 0.0)], vec![0.3]),
+        (
+            24,
+            vec![DVec3::new(38.0, -24.0, 0.0), DVec3::new(43.5, -25.0, 0.0)],
+            vec![0.3, 0.75],
+        ),
+    ];
+    for (i, targets, ts) in checks {
+        assert_eq!(
+            weights(&after, i),
+            weights(&before, i),
+            "curves[{i}] weights"
+        );
+        assert_ne!(
+            after.curves[i].curve, before.curves[i].curve,
+            "curves[{i}] moved"
+        );
+        for (target, t) in targets.iter().zip(&ts) {
+            let p = after.curves[i].curve.eval(*t);
+            assert!(
+                (p - *target).length() < 1e-9,
+                "curves[{i}] at {t}: {p} vs {target}"
+            );
+        }
+    }
+}
