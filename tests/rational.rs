@@ -297,11 +297,12 @@ fn min_norm(a: &[Vec<f64>], d: &[f64]) -> Vec<f64> {
             .max_by(|&x, &y| g[x][c].abs().total_cmp(&g[y][c].abs()))
             .unwrap();
         g.swap(c, p);
-        for r in 0..m {
+        let pivot = g[c].clone();
+        for (r, row) in g.iter_mut().enumerate() {
             if r != c {
-                let f = g[r][c] / g[c][c];
-                for k in c..=m {
-                    g[r][k] -= f * g[c][k];
+                let f = row[c] / pivot[c];
+                for (x, p) in row.iter_mut().zip(&pivot).skip(c) {
+                    *x -= f * p;
                 }
             }
         }

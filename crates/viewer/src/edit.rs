@@ -150,7 +150,7 @@ enum Gesture {
     /// Dragging control point `index`.
     Point { index: usize },
     /// Pulling the curve's point at `t_s` through the pointer (from the original curve).
-    Pull { t_s: f64, original: Curve },
+    Pull { t_s: f64, original: Box<Curve> },
     /// A panel control, identified by `key`.
     Control { key: String },
 }
@@ -384,7 +384,7 @@ impl Editor {
             before: self.scene.curves[curve].clone(),
             gesture: Gesture::Pull {
                 t_s: t,
-                original: b.clone(),
+                original: Box::new(b.clone()),
             },
         });
         Ok(())
@@ -968,6 +968,27 @@ mod tests {
             "NUBMP curves are edited by their points"
         );
         assert!(e.begin_pull(0, 0.0).is_err(), "the ends are fixed");
+    }
+
+    #[test]
+    fn pulling_a_rational_curve_keeps_its_weights_and_undoes() {
+        let mut sc = scene();
+        let circle = crate::geom::Nurbs::circle(DVec3::ZERO, 2.0).unwrap();
+        sc.curves[1].curve = Curve::Nurbs(circle.clone());
+        let mut e = Editor::new(sc, None);
+        assert!(e.can_pull(1));
+        e.begin_pull(1, 0.3).unwrap();
+        let target = DVec3::new(-0.5, 2.8, 0.0);
+        e.drag_to(DVec3::new(-0.4, 2.4, 0.0));
+        e.drag_to(target);
+        e.finish();
+        let Curve::Nurbs(pulled) = &e.scene().curves[1].curve else {
+            panic!("still a NURBS curve");
+        };
+        assert!((pulled.eval(0.3) - target).length() < 1e-12);
+        assert_eq!(pulled.weights(), circle.weights());
+        assert!(e.undo());
+        assert_eq!(e.scene().curves[1].curve, Curve::Nurbs(circle));
     }
 
     #[test]

@@ -515,7 +515,7 @@ fn edit_section(ui: &mut egui::Ui, editor: &mut Editor, actions: &mut Actions, p
     ui.small(editor.message.clone().unwrap_or_default());
     let Some(index) = editor.selected else {
         ui.small(
-            "Click a curve to select it; drag a control point to move it, or a Bézier curve to pull it through the pointer.",
+            "Click a curve to select it; drag a control point to move it, or a Bézier, rational Bézier or NURBS curve to pull it through the pointer.",
         );
         return;
     };

@@ -361,24 +361,24 @@ impl Lower for Nurbs {
     }
 }
 
-/// The weights as the panel shows them: one number control per point, refusing `w ≤ 0`.
+/// The weights as the panel shows them: a note, then one number control per point
+/// (the family refuses `w ≤ 0`).
 fn weight_controls(weights: &[f64]) -> Vec<Control> {
-    weights
-        .iter()
-        .enumerate()
-        .map(|(i, &w)| Control {
+    let note = Control::note("weights w_i of the points, each greater than 0", false);
+    std::iter::once(note)
+        .chain(weights.iter().enumerate().map(|(i, &w)| Control {
             id: ControlId {
                 key: "w",
                 index: [i, 0],
             },
             label: format!("w{i}"),
-            hint: Some(format!("the weight of point {i}: a number greater than 0")),
+            hint: None,
             kind: ControlKind::Number {
                 value: w,
                 range: (0.05, 5.0_f64.max(w)),
                 bands: Vec::new(),
             },
-        })
+        }))
         .collect()
 }
 
@@ -396,12 +396,12 @@ fn with_weight(weights: &[f64], index: usize, value: f64) -> Result<Vec<f64>, Ge
 }
 
 /// The weights written for labels: `w = (1, 0.7071, 1)` up to four weights, their range
-/// `w ∈ [0.7071, 1]` beyond.
+/// `w from 0.7071 to 1` beyond.
 fn weight_text(weights: &[f64]) -> String {
     if weights.len() > 4 {
         let lo = weights.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = weights.iter().copied().fold(0.0, f64::max);
-        return format!("w ∈ [{}, {}]", round4(lo), round4(hi));
+        return format!("w from {} to {}", round4(lo), round4(hi));
     }
     let items: Vec<String> = weights.iter().map(|w| format!("{}", round4(*w))).collect();
     format!("w = ({})", items.join(", "))
