@@ -187,3 +187,115 @@ fn a_read_only_model_never_edits_and_3d_drags_orbit() {
     assert_ne!(a.yaw, b.yaw, "a primary drag orbits");
     assert_eq!(a.target, b.target, "orbiting keeps the target");
 }
+
+/// Input over the panel is the panel's: a drag that starts there (a slider thumb, a row, a
+/// checkbox) leaves the camera and the scene alone, the wheel there does not zoom, and
+/// nothing on the canvas is picked; the same over a floating menu. A drag that starts on
+/// the canvas still pans when it crosses the panel.
+#[test]
+fn presses_and_the_wheel_over_the_panel_or_a_menu_do_not_reach_the_canvas() {
+    let mut m = model(0.0, None);
+    m.auto_fit = false;
+    let camera = m.camera;
+    let before = m.scene().clone();
+    // A slider thumb in the panel (x < 260): press, drag 30 px left, release.
+    m.handle(Input::PointerMoved(DVec2::new(120.0, 400.0)));
+    assert!(m.pointer_over_ui());
+    m.handle(Input::Pressed(Button::Primary));
+    m.handle(Input::PointerMoved(DVec2::new(90.0, 400.0)));
+    m.handle(Input::Released);
+    assert_eq!(m.camera, camera, "a drag on the panel does not pan");
+    // The wheel over the panel (the curve list) does not zoom.
+    m.handle(Input::Wheel(3.0));
+    assert_eq!(m.camera, camera, "the wheel over the panel does not zoom");
+    // A menu floating over the canvas: the same, and nothing under it is picked.
+    let on_curve = pixel_of(&m, DVec3::new(1.0, 2.0, 0.0));
+    m.ui_rects = vec![(on_curve - DVec2::splat(40.0), on_curve + DVec2::splat(40.0))];
+    m.handle(Input::PointerMoved(on_curve));
+    assert_eq!(m.hovered, None, "nothing is picked under a menu");
+    m.handle(Input::Pressed(Button::Primary));
+    m.handle(Input::PointerMoved(on_curve + DVec2::new(25.0, 10.0)));
+    m.handle(Input::Released);
+    m.handle(Input::Wheel(-2.0));
+    assert_eq!(m.camera, camera);
+    assert_eq!(m.scene(), &before, "the point under the menu did not move");
+    assert_eq!(m.editor.history_len(), (0, 0));
+    // On the canvas the same gestures act; a pan continues over the panel.
+    m.ui_rects.clear();
+    m.handle(Input::PointerMoved(DVec2::new(600.0, 650.0)));
+    m.handle(Input::Wheel(1.0));
+    assert_ne!(m.camera, camera, "the wheel on the canvas zooms");
+    let zoomed = m.camera;
+    m.handle(Input::Pressed(Button::Secondary));
+    m.handle(Input::PointerMoved(DVec2::new(100.0, 650.0)));
+    m.handle(Input::Released);
+    assert_ne!(
+        m.camera, zoomed,
+        "a pan begun on the canvas crosses the panel"
+    );
+}
+
+/// Ctrl+S on a scene that is no file's (the gallery, `--stress`) writes nothing: it opens
+/// the save-as dialog proposing `splinescope-scene.json`, and an existing file of that
+/// name (someone else's scene) is replaced only when the user confirms a second time.
+#[test]
+fn saving_the_gallery_asks_where_and_never_replaces_a_file_unasked() {
+    use splinescope::app::files::DialogMode;
+    use splinescope::app::{DEFAULT_SAVE_NAME, ViewOptions, editor_for};
+    let gallery = splinescope::scene::gallery::gallery();
+    let opts = ViewOptions {
+        scene: gallery.clone(),
+        frames: None,
+        backend: splinescope::gpu::BackendChoice::Auto,
+        solve: false,
+        tolerance_px: 0.25,
+        overlays_hidden: false,
+        path: None,
+        source: None,
+    };
+    let editor = editor_for(&opts, gallery.clone());
+    assert_eq!(editor.path(), None, "the gallery is no file's");
+    let mut m = Interaction::new(editor, VIEWPORT, 1.0, 260.0);
+    // Someone else's scene under the proposed name, in the working directory the dialog
+    // starts in — and the same in a directory of our own.
+    let in_cwd = std::path::Path::new(DEFAULT_SAVE_NAME);
+    let cwd_before = std::fs::read(in_cwd).ok();
+    let dir = std::env::temp_dir().join(format!("splinescope-gallery-save-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let theirs = dir.join(DEFAULT_SAVE_NAME);
+    std::fs::write(&theirs, b"someone else's scene").unwrap();
+    m.editor.set_point(0, 1, DVec3::new(5.0, 5.0, 0.0)).unwrap();
+    m.handle(key('s', true));
+    let dialog = m.dialog.as_ref().expect("Ctrl+S asks where");
+    assert_eq!(dialog.mode, DialogMode::SaveAs);
+    assert_eq!(dialog.name, DEFAULT_SAVE_NAME);
+    assert_eq!(
+        std::fs::read(in_cwd).ok(),
+        cwd_before,
+        "nothing written in the working directory"
+    );
+    // In our directory: the first confirmation only warns, the second replaces.
+    m.dialog.as_mut().unwrap().enter(&dir.to_string_lossy());
+    m.dialog.as_mut().unwrap().name = DEFAULT_SAVE_NAME.into();
+    m.confirm_dialog();
+    assert_eq!(std::fs::read(&theirs).unwrap(), b"someone else's scene");
+    let warning = m
+        .dialog
+        .as_ref()
+        .and_then(|d| d.error.clone())
+        .unwrap_or_default();
+    assert!(
+        warning.contains("exists: save again to replace it"),
+        "{warning}"
+    );
+    m.confirm_dialog();
+    assert!(m.dialog.is_none());
+    let saved = splinescope::scene::Scene::load(&theirs).expect("our scene, replaced on request");
+    assert_eq!(saved.curves.len(), m.scene().curves.len());
+    assert_eq!(
+        saved.curves[0].curve.control_points()[1],
+        DVec3::new(5.0, 5.0, 0.0)
+    );
+    assert_eq!(m.editor.path(), Some(theirs.as_path()));
+    std::fs::remove_dir_all(&dir).ok();
+}

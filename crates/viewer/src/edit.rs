@@ -183,6 +183,21 @@ pub struct Editor {
     pub selected_point: Option<usize>,
     /// The last message for the user (an error, or where a save went).
     pub message: Option<String>,
+    /// The last value refused (typed or dragged), shown in the warning colour next to the
+    /// field it was given in; cleared by the next accepted edit.
+    pub refusal: Option<Refusal>,
+}
+
+/// A value the editor refused: where it was given and why.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Refusal {
+    /// The curve.
+    pub curve: usize,
+    /// The field it was given in: a control's label (`t*`, `w1`), `point N` for a control
+    /// point's coordinates, empty for a drag on the canvas.
+    pub field: String,
+    /// Why (the message also shown at the top of the panel).
+    pub text: String,
 }
 
 impl Editor {
@@ -203,6 +218,7 @@ impl Editor {
             selected: None,
             selected_point: None,
             message: None,
+            refusal: None,
         }
     }
 
@@ -410,8 +426,9 @@ impl Editor {
                 sc.curve = curve;
                 self.set(open.curve, sc);
                 self.message = None;
+                self.refusal = None;
             }
-            Err(e) => self.message = Some(e),
+            Err(e) => self.refuse(open.curve, "", e),
         }
     }
 
@@ -433,6 +450,18 @@ impl Editor {
         sc.curve = value;
         self.set(curve, sc);
         self.message = None;
+        self.refusal = None;
+    }
+
+    /// Records a refused value of curve `curve` given in `field`: the message, and the
+    /// refusal shown next to the field.
+    pub fn refuse(&mut self, curve: usize, field: &str, text: String) {
+        self.message = Some(text.clone());
+        self.refusal = Some(Refusal {
+            curve,
+            field: field.to_owned(),
+            text,
+        });
     }
 
     /// Applies one of a family's panel controls ([`crate::geom::Family::controls`]) to
@@ -451,7 +480,11 @@ impl Editor {
                     self.finish();
                 }
             }
-            Err(e) => self.message = Some(format!("curves[{index}]: {}: {e}", control.label)),
+            Err(e) => self.refuse(
+                index,
+                &control.label,
+                format!("curves[{index}]: {}: {e}", control.label),
+            ),
         }
     }
 
@@ -802,6 +835,7 @@ impl Editor {
             self.edit_curve(index, curve);
         }
         self.message = None;
+        self.refusal = None;
         Ok(())
     }
 }

@@ -47,6 +47,19 @@ impl EguiLayer {
         self.state.on_window_event(window, event).consumed
     }
 
+    /// The rectangles of egui's floating layers shown this frame (menus, popups, windows;
+    /// not the background, where the panel and the canvas are), in points.
+    pub fn floating_rects(&self) -> Vec<egui::Rect> {
+        self.ctx.memory(|m| {
+            m.areas()
+                .visible_layer_ids()
+                .into_iter()
+                .filter(|layer| layer.order != egui::Order::Background)
+                .filter_map(|layer| m.area_rect(layer.id))
+                .collect()
+        })
+    }
+
     /// Whether the pointer was released this frame (a slider drag ends an edit).
     pub fn pointer_released(&self) -> bool {
         self.ctx.input(|i| i.pointer.any_released())

@@ -5,6 +5,9 @@
 
 use std::path::{Path, PathBuf};
 
+/// The name the save-as dialog proposes for a scene that is no file's (the gallery).
+pub const DEFAULT_SAVE_NAME: &str = "splinescope-scene.json";
+
 /// What a [`FileDialog`] is for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DialogMode {

@@ -20,6 +20,8 @@ pub struct Toggles {
     pub show_points: bool,
     /// Show the side panel.
     pub show_panel: bool,
+    /// Label each curve on the canvas with its name (`L`).
+    pub show_labels: bool,
 }
 
 impl Default for Toggles {
@@ -28,6 +30,7 @@ impl Default for Toggles {
             show_polygons: true,
             show_points: true,
             show_panel: true,
+            show_labels: true,
         }
     }
 }
@@ -202,8 +205,12 @@ pub struct Interaction {
     pub viewport: DVec2,
     /// Physical pixels per logical pixel (pick radius scales with it).
     pub scale_factor: f64,
-    /// The panel's width in physical pixels (fitting leaves it free).
+    /// The panel's width in physical pixels (fitting leaves it free; presses and the
+    /// wheel over it are the panel's, not the canvas's).
     pub panel_width_px: f64,
+    /// The rectangles (min, max, physical pixels) of the panel's floating parts this frame
+    /// — open menus, popups, windows, dialogs: presses and the wheel over them are theirs.
+    pub ui_rects: Vec<(DVec2, DVec2)>,
     /// Keep fitting the scene until the user moves the camera; `F` turns it back on.
     pub auto_fit: bool,
     /// Whether the scene may be edited (not in stress-solve mode).
@@ -254,6 +261,7 @@ impl Interaction {
             viewport,
             scale_factor,
             panel_width_px,
+            ui_rects: Vec::new(),
             auto_fit,
             editable: true,
             tolerance_px: crate::gpu::adaptive::DEFAULT_TOLERANCE_PX,
@@ -426,11 +434,10 @@ impl Interaction {
     /// Shows the save-as dialog (Ctrl+Shift+S), proposing the file's name.
     pub fn save_as_dialog(&mut self) {
         self.cancel_gesture();
-        let name = self
-            .editor
-            .path()
-            .and_then(Path::file_name)
-            .map_or_else(|| "scene.json".into(), |n| n.to_string_lossy().into_owned());
+        let name = self.editor.path().and_then(Path::file_name).map_or_else(
+            || super::files::DEFAULT_SAVE_NAME.into(),
+            |n| n.to_string_lossy().into_owned(),
+        );
         self.dialog = Some(FileDialog::new(
             DialogMode::SaveAs,
             &self.dialog_dir(),
@@ -704,6 +711,9 @@ impl Interaction {
         }
         match input {
             Input::PointerMoved(p) => self.pointer_moved(p),
+            // The panel's: a slider, a checkbox, a list row, a menu (the window layer also
+            // drops what egui says it took, but egui's knowledge is a frame old).
+            Input::Pressed(_) | Input::Wheel(_) if self.pointer_over_ui() => {}
             Input::Pressed(button) => {
                 self.context_menu = None;
                 if button == Button::Secondary {
@@ -805,6 +815,7 @@ impl Interaction {
             'p' => self.toggles.show_polygons ^= true,
             'c' => self.toggles.show_points ^= true,
             'h' => self.toggles.show_panel ^= true,
+            'l' => self.toggles.show_labels ^= true,
             _ => {}
         }
         Response::default()
@@ -856,9 +867,22 @@ impl Interaction {
         }
     }
 
-    /// What is under the pointer (nothing when editing is off).
+    /// Whether the pointer is over the panel or one of its floating parts: input there is
+    /// the panel's, and nothing on the canvas is picked or read out.
+    #[must_use]
+    pub fn pointer_over_ui(&self) -> bool {
+        let p = self.cursor;
+        p.x < self.panel_width_px
+            || self
+                .ui_rects
+                .iter()
+                .any(|(lo, hi)| p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y)
+    }
+
+    /// What is under the pointer (nothing when editing is off or the pointer is over the
+    /// panel).
     fn pick(&self) -> Option<Hit> {
-        if !self.editable {
+        if !self.editable || self.pointer_over_ui() {
             return None;
         }
         self.editor.pick(

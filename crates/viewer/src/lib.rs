@@ -81,16 +81,27 @@ pub struct ViewOptions {
     /// Start with control polygons and points hidden (`P`, `C` show them): the stress
     /// scenes, whose overlays would cover the curves.
     pub overlays_hidden: bool,
-    /// Where `Ctrl+S` saves the edited scene (`None`: `splinescope-scene.json` in the
-    /// current directory).
+    /// The scene's file, where `Ctrl+S` saves it. `None` (the gallery, the stress
+    /// scenes): the scene is no file's, and `Ctrl+S` asks where in the save-as dialog
+    /// (proposing [`DEFAULT_SAVE_NAME`], which is replaced only when confirmed).
     pub path: Option<PathBuf>,
     /// The text `scene` was read from at `path` ([`Scene::read`]), so that saving keeps
     /// the file's form; `None` for a scene that is not a file's (the gallery, stress).
     pub source: Option<String>,
 }
 
-/// Where an unnamed scene is saved.
-pub const DEFAULT_SAVE_NAME: &str = "splinescope-scene.json";
+pub use files::DEFAULT_SAVE_NAME;
+
+/// The editor of the scene `opts` shows: saving to its file when it has one (keeping the
+/// file's form), to no file otherwise — a scene that did not come from a file never
+/// overwrites one without asking.
+#[must_use]
+pub fn editor_for(opts: &ViewOptions, scene: Scene) -> edit::Editor {
+    match (&opts.path, &opts.source) {
+        (Some(path), Some(text)) => edit::Editor::of_file(scene, path.clone(), text.clone()),
+        (path, _) => edit::Editor::new(scene, path.clone()),
+    }
+}
 
 /// Why the viewer stopped with an error.
 #[derive(Debug, Error)]
@@ -364,14 +375,7 @@ impl Running {
             None
         };
         let egui = EguiLayer::new(&surface.window, &ctx, surface.format());
-        let path = opts
-            .path
-            .clone()
-            .unwrap_or_else(|| PathBuf::from(DEFAULT_SAVE_NAME));
-        let editor = match opts.source.clone() {
-            Some(text) => edit::Editor::of_file(scene, path, text),
-            None => edit::Editor::new(scene, Some(path)),
-        };
+        let editor = editor_for(opts, scene);
         let mut model = Interaction::new(
             editor,
             surface.viewport(),
@@ -584,6 +588,18 @@ impl Running {
                     panel_width = ui::draw(ui, &info, model, &mut actions);
                 });
         self.model.panel_width_px = f64::from(panel_width) * f64::from(pixels_per_point);
+        let ppp = f64::from(pixels_per_point);
+        self.model.ui_rects = self
+            .egui
+            .floating_rects()
+            .into_iter()
+            .map(|r| {
+                (
+                    DVec2::new(f64::from(r.min.x), f64::from(r.min.y)) * ppp,
+                    DVec2::new(f64::from(r.max.x), f64::from(r.max.y)) * ppp,
+                )
+            })
+            .collect();
         let t = self.model.tolerance_px;
         if !(t.is_finite() && t >= crate::gpu::adaptive::MIN_TOLERANCE_PX) {
             self.model.editor.message = Some(format!(

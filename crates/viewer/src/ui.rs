@@ -77,6 +77,34 @@ fn summarize_lowered(i: usize, c: &SceneCurve, segments: &[BezierSegment]) -> Cu
     }
 }
 
+/// How many curves of each family `scene` holds, with their control point counts:
+/// `bezier × 10000 (4 points each)`.
+fn family_counts(scene: &Scene) -> String {
+    let mut counts: Vec<(&'static str, usize, usize, usize)> = Vec::new();
+    for c in &scene.curves {
+        let points = c.curve.control_points().len();
+        match counts.iter_mut().find(|(f, ..)| *f == c.curve.family()) {
+            Some((_, n, lo, hi)) => {
+                *n += 1;
+                *lo = (*lo).min(points);
+                *hi = (*hi).max(points);
+            }
+            None => counts.push((c.curve.family(), 1, points, points)),
+        }
+    }
+    counts
+        .iter()
+        .map(|(f, n, lo, hi)| {
+            if lo == hi {
+                format!("{f} × {n} ({lo} points each)")
+            } else {
+                format!("{f} × {n} ({lo} to {hi} points)")
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// A curve's name (or family) with its shape parameters as they are now, so that the
 /// label never goes stale when they are edited.
 fn label(c: &SceneCurve) -> String {
@@ -278,13 +306,18 @@ pub(crate) fn panel(
                 ));
             }
             ui.separator();
-            ui.add(
-                egui::Slider::new(tolerance_px, 0.05..=8.0)
-                    .logarithmic(true)
-                    .update_while_editing(false)
-                    .text("tolerance (px)"),
-            )
-            .on_hover_text("the largest distance between a drawn polyline and its curve");
+            let mut tolerance = *tolerance_px;
+            let response = ui
+                .add(
+                    egui::Slider::new(&mut tolerance, 0.05..=8.0)
+                        .logarithmic(true)
+                        .update_while_editing(false)
+                        .text("tolerance (px)"),
+                )
+                .on_hover_text("the largest distance between a drawn polyline and its curve");
+            if !(response.changed() && !response.dragged() && escaped(ui.ctx())) {
+                *tolerance_px = tolerance;
+            }
             match info.overlays_locked {
                 None => {
                     ui.checkbox(&mut toggles.show_polygons, "control polygons (P)");
@@ -318,8 +351,22 @@ pub(crate) fn panel(
                 edit_section(ui, editor, actions, info.digest.facts.planar);
                 ui.separator();
             }
+            let total = editor.scene().curves.len();
+            if total > LISTED_CURVES {
+                // Thousands of rows say nothing: what the scene is made of, and the
+                // selected curve.
+                ui.label(format!("{total} curves: {}", family_counts(editor.scene())));
+                ui.small("] / [ select the next / previous curve; click one on the canvas");
+            }
+            let chosen = editor.selected;
             egui::ScrollArea::vertical().show(ui, |ui| {
-                for (i, c) in info.digest.summaries.iter().enumerate() {
+                let rows = info
+                    .digest
+                    .summaries
+                    .iter()
+                    .enumerate()
+                    .filter(|(i, _)| total <= LISTED_CURVES || chosen == Some(*i));
+                for (i, c) in rows {
                     let selected = editor.selected == Some(i);
                     let row = ui
                         .horizontal(|ui| {
@@ -329,16 +376,13 @@ pub(crate) fn panel(
                             ui.add(egui::Button::selectable(selected, &c.label).truncate())
                         })
                         .inner
-                        .on_hover_text(&c.details);
+                        .on_hover_text(format!("{}\n{}", c.label, c.details));
                     if row.clicked() && editable {
                         editor.finish();
                         editor.selected = Some(i);
                     }
                 }
-                let total = editor.scene().curves.len();
-                if total > LISTED_CURVES {
-                    ui.small(format!("… and {} more", total - LISTED_CURVES));
-                }
+
             });
         });
     response.response.rect.width()
@@ -469,6 +513,7 @@ pub(crate) fn draw(
     model: &mut Interaction,
     actions: &mut Actions,
 ) -> f32 {
+    note_escape(ui.ctx());
     let width = panel(ui, info, model, actions);
     canvas(ui, model, &info.digest.facts, actions);
     if model.prompt.is_none()
@@ -511,8 +556,16 @@ fn edit_section(ui: &mut egui::Ui, editor: &mut Editor, actions: &mut Actions, p
             "add a curve of any family at the centre of the view (right-click the canvas: at the pointer)",
         );
     });
-    // The message keeps its line even when empty, so the layout does not jump.
-    ui.small(editor.message.clone().unwrap_or_default());
+    // The message keeps its line even when empty, so the layout does not jump; a refusal
+    // is shown in the warning colour (and again next to its field below).
+    match (&editor.message, &editor.refusal) {
+        (Some(m), Some(r)) if *m == r.text => {
+            ui.colored_label(WARNING, m);
+        }
+        (m, _) => {
+            ui.small(m.clone().unwrap_or_default());
+        }
+    }
     let Some(index) = editor.selected else {
         ui.small(
             "Click a curve to select it; drag a control point to move it, or a Bézier, rational Bézier or NURBS curve to pull it through the pointer.",
@@ -544,15 +597,17 @@ fn edit_section(ui: &mut egui::Ui, editor: &mut Editor, actions: &mut Actions, p
     if let Some(point) = editor.selected_point
         && let Some(&p) = sc.curve.control_points().get(point)
     {
+        let field = format!("point {point}");
         ui.horizontal(|ui| {
-            ui.label(format!("point {point}"));
+            ui.label(&field);
             let mut v = p;
             if vector_row(ui, "", &mut v, planar)
                 && let Err(e) = editor.set_point(index, point, v)
             {
-                editor.message = Some(e.to_string());
+                editor.refuse(index, &field, e.to_string());
             }
         });
+        refusal_note(ui, editor, index, &field);
         if ui
             .button("delete point")
             .on_hover_text(if sc.curve.inserts_by_knot() {
@@ -586,8 +641,20 @@ fn edit_section(ui: &mut egui::Ui, editor: &mut Editor, actions: &mut Actions, p
                         editor.finish();
                     }
                 }
+                refusal_note(ui, editor, index, &control.label);
             }
         });
+}
+
+/// The refusal of a value given in `field` of curve `index`, in the warning colour,
+/// right under the field (nothing when the last refusal was elsewhere).
+fn refusal_note(ui: &mut egui::Ui, editor: &Editor, index: usize, field: &str) {
+    if let Some(r) = &editor.refusal
+        && r.curve == index
+        && r.field == field
+    {
+        ui.colored_label(WARNING, format!("refused: {}", r.text));
+    }
 }
 
 /// Draws one of a family's controls; the value the user gave, if any, and whether it
@@ -637,9 +704,9 @@ fn control_widget(
             for band in bands {
                 paint_band(ui, &response, *range, *band);
             }
-            response
-                .changed()
-                .then_some((ControlValue::Number(v), !response.dragged()))
+            let typed = !response.dragged();
+            (response.changed() && !(typed && escaped(ui.ctx())))
+                .then_some((ControlValue::Number(v), typed))
         }
         ControlKind::Vector { value } => {
             let mut v = *value;
@@ -670,6 +737,32 @@ fn control_widget(
             .then_some((ControlValue::Press, true)),
     }
 }
+
+/// Whether Esc was pressed this frame or the one before. egui gives a number field's
+/// typed text to the value one frame after the field loses the keyboard, and Esc makes it
+/// lose the keyboard: a change that arrives then is the text Esc was meant to cancel.
+/// [`note_escape`] records the frame; every typed change checks this first.
+fn escaped(ctx: &egui::Context) -> bool {
+    let frame = ctx.cumulative_pass_nr();
+    ctx.data(|d| d.get_temp::<u64>(escape_id()))
+        .is_some_and(|at| frame <= at + 1)
+}
+
+/// Records the frame in which Esc was pressed (called once per frame, before any field).
+pub(crate) fn note_escape(ctx: &egui::Context) {
+    if ctx.input(|i| i.key_pressed(egui::Key::Escape)) {
+        let frame = ctx.cumulative_pass_nr();
+        ctx.data_mut(|d| d.insert_temp(escape_id(), frame));
+    }
+}
+
+fn escape_id() -> egui::Id {
+    egui::Id::unique("splinescope-escape-frame")
+}
+
+/// The colour of the selection and hover highlights: a magenta no palette colour is
+/// near, so a selected curve is never mistaken for an orange one.
+pub(crate) const SELECTION: egui::Color32 = egui::Color32::from_rgb(230, 0, 200);
 
 /// The colour of warnings (a group outside its variation-diminishing range).
 const WARNING: egui::Color32 = egui::Color32::from_rgb(200, 40, 40);
@@ -708,14 +801,21 @@ fn vector_row(ui: &mut egui::Ui, label: &str, v: &mut DVec3, planar: bool) -> bo
             ui.label(label);
         }
         let field = |ui: &mut egui::Ui, x: &mut f64, prefix: &str| {
-            ui.add(
-                egui::DragValue::new(x)
-                    .speed(0.01)
-                    .update_while_editing(false)
-                    .prefix(prefix),
-            )
-            .on_hover_text("drag, or click to type")
-            .changed()
+            let before = *x;
+            let response = ui
+                .add(
+                    egui::DragValue::new(x)
+                        .speed(0.01)
+                        .update_while_editing(false)
+                        .prefix(prefix),
+                )
+                .on_hover_text("drag, or click to type");
+            if response.changed() && !response.dragged() && escaped(ui.ctx()) {
+                // Esc: the typed text is dropped, the field shows the value again.
+                *x = before;
+                return false;
+            }
+            response.changed()
         };
         let mut changed = field(ui, &mut v.x, "x ");
         changed |= field(ui, &mut v.y, "y ");
@@ -746,6 +846,7 @@ pub(crate) const SHORTCUTS: &[(&str, &str)] = &[
     ("F", "fit the scene"),
     ("P / C", "control polygons / control points"),
     ("H", "hide or show the panel"),
+    ("L", "hide or show the curves' labels on the canvas"),
     ("I", "insert a point into the selected curve at the pointer"),
     (
         "Delete, Backspace",
@@ -784,7 +885,7 @@ pub(crate) fn canvas(
     let pixel = |w: DVec3| model.camera.pixel_from_world(w, model.viewport).map(to_pos);
     let painter = ctx.layer_painter(egui::LayerId::background());
     let scene = model.scene();
-    let accent = egui::Color32::from_rgb(255, 140, 0);
+    let accent = SELECTION;
     let curve_line = |index: usize, stroke: egui::Stroke| {
         let Some(sc) = scene.curves.get(index) else {
             return;
@@ -821,8 +922,13 @@ pub(crate) fn canvas(
         Some(Hit::Point { curve, index, at }) if !model.is_editing() => {
             ring(at, 9.0, accent.gamma_multiply(0.8), false);
             ctx.set_cursor_icon(egui::CursorIcon::Grab);
+            let name = scene
+                .curves
+                .get(curve)
+                .map(SceneCurve::label)
+                .unwrap_or_default();
             status = format!(
-                "curves[{curve}].points[{index}] = {}",
+                "curves[{curve}] {name:?} point {index} = {}",
                 coords(at, facts.planar)
             );
         }
@@ -835,8 +941,13 @@ pub(crate) fn canvas(
             } else {
                 ctx.set_cursor_icon(egui::CursorIcon::PointingHand);
             }
+            let name = scene
+                .curves
+                .get(curve)
+                .map(SceneCurve::label)
+                .unwrap_or_default();
             status = format!(
-                "curves[{curve}] at t = {t:.4}: {}",
+                "curves[{curve}] {name:?} at t = {t:.4}: {}",
                 coords(at, facts.planar)
             );
         }
@@ -845,7 +956,8 @@ pub(crate) fn canvas(
     if model.is_editing() {
         ctx.set_cursor_icon(egui::CursorIcon::Grabbing);
     }
-    if status.is_empty() {
+    // Over the panel or a menu the pointer is not on the canvas: no readout.
+    if status.is_empty() && !model.pointer_over_ui() {
         status = match model.camera {
             Camera::Ortho2d(_) => format!("pointer {}", coords(model.cursor_world(), true)),
             Camera::Orbit3d(_) => String::new(),
@@ -860,6 +972,10 @@ pub(crate) fn canvas(
             egui::FontId::monospace(12.0),
             ui.visuals().text_color(),
         );
+    }
+    if model.toggles.show_labels && scene.curves.len() <= LISTED_CURVES {
+        let [r, g, b, _] = scene.background.0.map(|v| (v * 255.0).round() as u8);
+        curve_labels(&painter, scene, &pixel, egui::Color32::from_rgb(r, g, b));
     }
     // Labels just past the ends of the 3D axis triad.
     for axis in &facts.axes {
@@ -883,6 +999,53 @@ pub(crate) fn canvas(
     }
     if let Some(prompt) = &model.prompt {
         prompt_modal(&ctx, model, prompt, actions);
+    }
+}
+
+/// Each curve's name (and live parameters) beside its middle point, in its colour on a
+/// translucent plate of the scene's background, moved to another side of the point when it
+/// would cover a label already placed or leave the window (and left out when no side
+/// will do).
+fn curve_labels(
+    painter: &egui::Painter,
+    scene: &Scene,
+    pixel: &dyn Fn(DVec3) -> Option<egui::Pos2>,
+    plate: egui::Color32,
+) {
+    let mut placed: Vec<egui::Rect> = Vec::new();
+    for sc in &scene.curves {
+        let (a, b) = sc.curve.domain();
+        let Some(at) = pixel(sc.curve.eval(0.5 * (a + b))) else {
+            continue;
+        };
+        let [r, g, bl, _] = sc.style.color.0.map(|v| (v * 255.0).round() as u8);
+        let galley = painter.layout_no_wrap(
+            sc.label(),
+            egui::FontId::proportional(12.0),
+            egui::Color32::from_rgb(r, g, bl),
+        );
+        let size = galley.size();
+        let sides = [
+            egui::vec2(8.0, -8.0 - size.y),
+            egui::vec2(8.0, 8.0),
+            egui::vec2(-8.0 - size.x, -8.0 - size.y),
+            egui::vec2(-8.0 - size.x, 8.0),
+        ];
+        let screen = painter.clip_rect();
+        let Some(rect) = sides
+            .iter()
+            .map(|d| egui::Rect::from_min_size(at + *d, size).expand(2.0))
+            .find(|r| screen.contains_rect(*r) && placed.iter().all(|p| !p.intersects(*r)))
+        else {
+            continue;
+        };
+        painter.rect_filled(rect, 3.0, plate.gamma_multiply(0.75));
+        painter.galley(
+            rect.min + egui::vec2(2.0, 2.0),
+            galley,
+            egui::Color32::WHITE,
+        );
+        placed.push(rect);
     }
 }
 

@@ -154,6 +154,24 @@ fn a_typed_parameter_is_one_edit_and_an_out_of_range_one_is_refused_whole() {
     let message = h.state().model.editor.message.clone().unwrap_or_default();
     assert!(message.contains("1.5"), "{message}");
     h.get_by_label(&message);
+    // And next to the field it was typed in.
+    h.get_by_label(&format!("refused: {message}"));
+    // The next accepted value clears it.
+    type_into(&mut h, "0.45", "0.5");
+    assert!(h.query_by_label(&format!("refused: {message}")).is_none());
+}
+
+/// Thousands of curves (the stress scenes) are summarised, not listed row by row.
+#[test]
+fn a_large_scene_is_summarised_instead_of_listed() {
+    let curves: Vec<Curve> = (0..300).map(|i| cubic(f64::from(i))).collect();
+    let mut h = harness(Scene::of_curves(curves), None);
+    h.get_by_label("300 curves: bezier × 300 (4 points each)");
+    assert!(h.query_by_label("0: bezier").is_none());
+    assert!(h.query_by_label("150: bezier").is_none());
+    h.state_mut().model.editor.selected = Some(7);
+    h.run();
+    h.get_by_label("7: bezier");
 }
 
 #[test]
@@ -236,4 +254,47 @@ fn the_file_dialog_opens_a_clicked_file_and_the_file_menu_saves_as() {
     assert_eq!(Scene::load(&copy).unwrap(), want);
     assert_eq!(h.state().model.editor.path(), Some(copy.as_path()));
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Esc in a number field restores the field and changes nothing: no edit, no undo step,
+/// no unsaved mark (a point's coordinate and a family's typed parameter alike).
+#[test]
+fn escape_in_a_number_field_changes_nothing() {
+    let mut h = harness(Scene::of_curves([cubic(0.0), modified()]), None);
+    h.state_mut().model.editor.selected = Some(0);
+    h.state_mut().model.editor.selected_point = Some(1);
+    h.run();
+    let before = h.state().model.scene().clone();
+    // The x field of point 1 reads "x 1.00".
+    h.get_by_value("x 1.00").click();
+    h.run();
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.get_by_label("file").type_text("99");
+    h.run();
+    h.key_press(egui::Key::Escape);
+    for _ in 0..4 {
+        h.run();
+    }
+    assert_eq!(h.state().model.scene(), &before);
+    assert_eq!(h.state().model.editor.history_len(), (0, 0));
+    assert!(!h.state().model.editor.is_dirty());
+    // The field shows the old value again.
+    h.get_by_value("x 1.00");
+
+    // A family's number (t*): the same.
+    h.state_mut().model.editor.selected = Some(1);
+    h.state_mut().model.editor.selected_point = None;
+    h.run();
+    h.get_by_value("0.30").click();
+    h.run();
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.get_by_label("file").type_text("0.7");
+    h.run();
+    h.key_press(egui::Key::Escape);
+    for _ in 0..4 {
+        h.run();
+    }
+    assert_eq!(h.state().model.scene(), &before);
+    assert_eq!(h.state().model.editor.history_len(), (0, 0));
+    h.get_by_value("0.30");
 }

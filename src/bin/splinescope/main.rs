@@ -104,7 +104,7 @@ impl GpuArgs {
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Open a scene (default: the built-in gallery) in a window, to view and edit (Ctrl+S
-    /// saves to the scene's file, or splinescope-scene.json for the gallery).
+    /// saves to the scene's file; the gallery asks where).
     View(view::ViewArgs),
     /// Render a scene (default: the built-in gallery) offscreen to a PNG.
     Render(render::RenderArgs),

@@ -288,9 +288,37 @@ impl KnotVector {
     }
 }
 
+/// Knots written for people (panels, summaries): each to six decimals at most, trailing
+/// zeros dropped (`[0, 0, 0.333333, 1, 1]`); the exact values stay in the curve, the scene
+/// file and `inspect`.
+#[must_use]
+pub fn knots_text(knots: &[f64]) -> String {
+    let items: Vec<String> = knots
+        .iter()
+        .map(|k| {
+            let t = format!("{k:.6}");
+            let t = t.trim_end_matches('0').trim_end_matches('.');
+            if t == "-0" {
+                "0".to_owned()
+            } else {
+                t.to_owned()
+            }
+        })
+        .collect();
+    format!("[{}]", items.join(", "))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn knots_are_written_to_six_decimals_without_trailing_zeros() {
+        assert_eq!(
+            knots_text(&[0.0, 1.0 / 3.0, 0.5, 2.0, 12.25, -0.0, 1e-9]),
+            "[0, 0.333333, 0.5, 2, 12.25, 0, 0]"
+        );
+    }
 
     #[test]
     fn validation_names_the_problem() {

@@ -1199,7 +1199,11 @@ impl Family for BSpline {
     }
 
     fn summary(&self) -> String {
-        format!("order {}, knots {:?}", self.order(), self.knots().knots())
+        format!(
+            "order {}, knots {}",
+            self.order(),
+            super::knots::knots_text(self.knots().knots())
+        )
     }
 
     /// A B-spline is the standard NUBMP curve on its knots: that structure is reported.

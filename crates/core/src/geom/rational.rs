@@ -647,9 +647,9 @@ impl Family for Nurbs {
 
     fn summary(&self) -> String {
         format!(
-            "order {}, rational, knots {:?}",
+            "order {}, rational, knots {}",
             self.order(),
-            self.knots().knots()
+            super::knots::knots_text(self.knots().knots())
         )
     }
 
