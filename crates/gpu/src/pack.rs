@@ -325,6 +325,34 @@ mod tests {
     }
 
     #[test]
+    fn rational_weights_are_scaled_exactly_and_a_vanishing_one_is_refused() {
+        use crate::geom::RationalBezier;
+        let pts = vec![DVec3::ZERO, DVec3::new(1.0, 2.0, 0.0), DVec3::X * 2.0];
+        // Weights scaled by a power of two into [1/2, 1): the products exact in f32 here.
+        let gpu = super::gpu_control_points(&pts, Some(&[1.0, 3.0, 0.5]));
+        let w: Vec<f32> = gpu.iter().map(|c| c.weight).collect();
+        assert_eq!(w, vec![0.25, 0.75, 0.125]);
+        assert_eq!(gpu[1].position, [0.75, 1.5, 0.0]);
+        let tiny = RationalBezier::try_new(pts.clone(), vec![1.0, 1e-40, 1.0]).unwrap();
+        let err = check_gpu_fit(2, &tiny.lower()).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                PackError::WeightRange {
+                    curve: 2,
+                    segment: 0,
+                    point: 1,
+                    ..
+                }
+            ),
+            "{err}"
+        );
+        assert!(err.to_string().contains("weight 1"), "{err}");
+        let fine = RationalBezier::try_new(pts, vec![1.0, 1e-20, 1.0]).unwrap();
+        assert!(check_gpu_fit(0, &fine.lower()).is_ok());
+    }
+
+    #[test]
     fn coordinates_beyond_the_f32_range_are_refused_with_the_point_named() {
         let at = |x: f64| {
             Bezier::new(vec![
