@@ -505,3 +505,56 @@ fn templates_conic_types_and_scene_round_trip() {
             .any(|c| c.curve.family() == "rational_bezier")
     );
 }
+
+/// The batch sampler (what `eval`, Python and the benchmarks use) evaluates rational
+/// pieces through their homogeneous parts: points, first and second derivatives agree
+/// with each family's own evaluation.
+#[test]
+fn the_batch_sampler_agrees_with_the_rational_curves() {
+    use splinescope::geom::Curve;
+    use splinescope::geom::batch::CurveSampler;
+    let curves = [
+        Curve::Nurbs(circle(DVec3::new(3.0, -2.0, 0.0), 2.5)),
+        Curve::RationalBezier(
+            RationalBezier::try_new(
+                vec![
+                    DVec3::ZERO,
+                    DVec3::new(1.0, 2.0, 1.0),
+                    DVec3::new(3.0, 2.5, -1.0),
+                    DVec3::new(5.0, 1.0, 0.5),
+                ],
+                vec![1.0, 4.0, 0.25, 2.0],
+            )
+            .expect("cubic"),
+        ),
+    ];
+    for c in &curves {
+        let sampler = CurveSampler::new(c);
+        let (a, b) = c.domain();
+        let ts: Vec<f64> = (0..=997)
+            .map(|j| a + (b - a) * f64::from(j) / 997.0)
+            .collect();
+        for (order, want) in [
+            (0u32, &(|t: f64| c.eval(t)) as &dyn Fn(f64) -> DVec3),
+            (1, &|t: f64| c.eval_deriv(t)),
+            (2, &|t: f64| c.eval_second_deriv(t)),
+        ] {
+            let s = if order == 0 {
+                sampler.clone()
+            } else {
+                sampler.derivative(order)
+            };
+            let mut out = vec![DVec3::ZERO; ts.len()];
+            s.eval_into(&ts, &mut out);
+            let scale = ts.iter().map(|&t| want(t).length()).fold(1.0, f64::max);
+            for (t, got) in ts.iter().zip(&out) {
+                assert!(
+                    (*got - want(*t)).length() <= 1e-12 * scale,
+                    "{} order {order} at {t}: {got} vs {}",
+                    c.family(),
+                    want(*t)
+                );
+            }
+        }
+    }
+}

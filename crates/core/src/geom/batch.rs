@@ -126,6 +126,37 @@ fn cubic(p0: DVec3, p1: DVec3, p2: DVec3, p3: DVec3, u: f64) -> DVec3 {
     a * p0 + b * p1 + c * p2 + d * p3
 }
 
+/// A rational segment's homogeneous parts as polynomial Bézier control points: `A` (the
+/// weighted points) and `W` (the weights as `(w, 0, 0)`), each with its first and second
+/// hodographs (in the segment's own parameter).
+#[derive(Debug, Clone, PartialEq)]
+struct Homogeneous {
+    a: [Vec<DVec3>; 3],
+    w: [Vec<DVec3>; 3],
+}
+
+impl Homogeneous {
+    fn of(seg: &BezierSegment) -> Option<Homogeneous> {
+        let weights = seg.weights.as_ref()?;
+        let hodographs = |points: Vec<DVec3>| {
+            let b0 = super::Bezier::new(points);
+            let b1 = b0.deriv();
+            let b2 = b1.deriv();
+            [b0, b1, b2].map(|b| b.points().to_vec())
+        };
+        Some(Homogeneous {
+            a: hodographs(
+                seg.points()
+                    .iter()
+                    .zip(weights)
+                    .map(|(p, w)| *p * *w)
+                    .collect(),
+            ),
+            w: hodographs(weights.iter().map(|w| DVec3::new(*w, 0.0, 0.0)).collect()),
+        })
+    }
+}
+
 /// A curve lowered once, ready to be evaluated at many parameters without allocating.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CurveSampler {
@@ -133,9 +164,9 @@ pub struct CurveSampler {
     /// A curve of one cubic segment keeps its control points inline too, so that
     /// sampling many such curves reads one contiguous array.
     single_cubic: Option<[DVec3; 4]>,
-    /// Per segment, the rational piece (`None` for a polynomial one), evaluated in
-    /// homogeneous coordinates with its derivatives by the quotient rule.
-    rational: Vec<Option<super::RationalBezier>>,
+    /// Per segment, the rational piece's homogeneous parts (`None` for a polynomial one),
+    /// evaluated like polynomial pieces and combined by the quotient rule.
+    rational: Vec<Option<Homogeneous>>,
     /// The derivative this sampler evaluates on rational pieces (0, 1 or 2; polynomial
     /// pieces hold their hodographs instead).
     order: u32,
@@ -153,7 +184,7 @@ impl CurveSampler {
             },
             _ => None,
         };
-        let rational = segments.iter().map(BezierSegment::rational).collect();
+        let rational = segments.iter().map(Homogeneous::of).collect();
         CurveSampler {
             segments,
             single_cubic,
@@ -205,14 +236,37 @@ impl CurveSampler {
         }
     }
 
-    /// A rational piece's point (or derivative, by the sampler's order) at `u`.
-    fn rational_at(&self, piece: &super::RationalBezier, seg: &BezierSegment, u: f64) -> DVec3 {
-        use super::ParamCurve;
+    /// A rational piece's points (or derivatives, by the sampler's order) at the local
+    /// parameters `us` into `out`: its parts `A`, `W` (and their hodographs) by the
+    /// polynomial path, then `C = A/W`, `C′ = (A′ − W′C)/W`, `C″ = (A″ − 2W′C′ − W″C)/W`,
+    /// divided by `(t1 − t0)ᵏ` for the curve's parameter.
+    fn rational_into(
+        &self,
+        parts: &Homogeneous,
+        seg: &BezierSegment,
+        us: &[f64],
+        out: &mut [DVec3],
+    ) {
+        let n = us.len();
+        let mut a = [[DVec3::ZERO; 64]; 3];
+        let mut w = [[DVec3::ZERO; 64]; 3];
+        let order = (self.order as usize).min(2);
+        for k in 0..=order {
+            bezier_into(&parts.a[k], us, &mut a[k][..n]);
+            bezier_into(&parts.w[k], us, &mut w[k][..n]);
+        }
         let h = seg.t1 - seg.t0;
-        match self.order {
-            0 => piece.eval(u),
-            1 => piece.eval_deriv(u) / h,
-            _ => piece.eval_second_deriv(u) / (h * h),
+        for (j, o) in out.iter_mut().enumerate() {
+            let w0 = w[0][j].x;
+            let c = a[0][j] / w0;
+            *o = match order {
+                0 => c,
+                1 => (a[1][j] - w[1][j].x * c) / w0 / h,
+                _ => {
+                    let d1 = (a[1][j] - w[1][j].x * c) / w0;
+                    (a[2][j] - 2.0 * w[1][j].x * d1 - w[2][j].x * c) / w0 / (h * h)
+                }
+            };
         }
     }
 
@@ -262,11 +316,7 @@ impl CurveSampler {
             }
             match &self.rational[index] {
                 None => bezier_into(seg.bezier.points(), &us[..end - k], &mut out[k..end]),
-                Some(piece) => {
-                    for (o, &u) in out[k..end].iter_mut().zip(&us[..end - k]) {
-                        *o = self.rational_at(piece, seg, u);
-                    }
-                }
+                Some(parts) => self.rational_into(parts, seg, &us[..end - k], &mut out[k..end]),
             }
             k = end;
         }
