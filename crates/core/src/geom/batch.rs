@@ -248,6 +248,16 @@ impl CurveSampler {
         out: &mut [DVec3],
     ) {
         let n = us.len();
+        if self.order == 0 {
+            // A into `out`, W beside it, then the division: one scratch run.
+            let mut w = [DVec3::ZERO; 64];
+            bezier_into(&parts.a[0], us, out);
+            bezier_into(&parts.w[0], us, &mut w[..n]);
+            for (o, w) in out.iter_mut().zip(&w) {
+                *o /= w.x;
+            }
+            return;
+        }
         let mut a = [[DVec3::ZERO; 64]; 3];
         let mut w = [[DVec3::ZERO; 64]; 3];
         let order = (self.order as usize).min(2);
