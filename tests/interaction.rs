@@ -299,3 +299,14 @@ fn saving_the_gallery_asks_where_and_never_replaces_a_file_unasked() {
     assert_eq!(m.editor.path(), Some(theirs.as_path()));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `L` hides and shows the curves' labels on the canvas (shown by default).
+#[test]
+fn l_toggles_the_curve_labels() {
+    let mut m = model(0.0, None);
+    assert!(m.toggles.show_labels);
+    m.handle(key('l', false));
+    assert!(!m.toggles.show_labels);
+    m.handle(key('l', false));
+    assert!(m.toggles.show_labels);
+}
