@@ -387,8 +387,30 @@ fn export_view_writes_the_figure_of_the_screen() {
     m.confirm_dialog();
     assert_eq!(m.dialog, None);
     let written = std::fs::read_to_string(dir.join("figure.svg")).expect("written as .svg");
-    let mut opts = splinescope_figure::FigureOptions::new(640, 400);
-    opts.camera = Some(m.camera);
+    // The canvas right of the 260 px panel: 380 × 400, every world point where the screen
+    // shows it, less the panel's strip.
+    let (w, h, camera) = m.export_frame();
+    assert_eq!((w, h), (380, 400));
+    for p in [
+        DVec3::new(0.3, 0.7, 0.0),
+        DVec3::new(-2.0, 5.0, 0.0),
+        DVec3::new(4.0, 1.0, 0.0),
+    ] {
+        let screen = m.camera.pixel_from_world(p, m.viewport).unwrap();
+        let figure = camera
+            .pixel_from_world(p, DVec2::new(380.0, 400.0))
+            .unwrap();
+        assert!(
+            (screen - DVec2::new(260.0, 0.0) - figure).length() < 1e-9,
+            "{p}: screen {screen}, figure {figure}"
+        );
+    }
+    assert!(
+        written.contains(r#"width="380""#),
+        "the figure is the canvas's size"
+    );
+    let mut opts = splinescope_figure::FigureOptions::new(380, 400);
+    opts.camera = Some(camera);
     opts.switches = splinescope::scene::draw::Switches {
         polygons: m.toggles.show_polygons,
         points: false,
@@ -424,4 +446,24 @@ fn export_view_writes_the_figure_of_the_screen() {
             .starts_with(b"%PDF")
     );
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The open and save-as dialogs list scene files; the export dialog lists figures.
+#[test]
+fn each_dialog_lists_the_files_it_is_for() {
+    let dir = fresh_dir("listing-by-mode");
+    for name in ["a.json", "b.svg", "c.PDF", "d.txt"] {
+        std::fs::write(dir.join(name), b"x").unwrap();
+    }
+    std::fs::create_dir_all(dir.join("sub")).unwrap();
+    let names = |mode| -> Vec<String> {
+        FileDialog::new(mode, &dir, "")
+            .entries
+            .iter()
+            .map(|e| e.name.clone())
+            .collect()
+    };
+    assert_eq!(names(DialogMode::Open), ["sub", "a.json"]);
+    assert_eq!(names(DialogMode::SaveAs), ["sub", "a.json"]);
+    assert_eq!(names(DialogMode::Export), ["sub", "b.svg", "c.PDF"]);
 }

@@ -83,10 +83,17 @@ impl FileDialog {
             }
             // Links are followed: a link to a directory is entered.
             let is_dir = std::fs::metadata(entry.path()).is_ok_and(|m| m.is_dir());
-            let is_scene = Path::new(&name)
-                .extension()
-                .is_some_and(|e| e.eq_ignore_ascii_case("json"));
-            if is_dir || is_scene {
+            // Scene files to open or save over; figures where the view is exported.
+            let wanted: &[&str] = match self.mode {
+                DialogMode::Open | DialogMode::SaveAs => &["json"],
+                DialogMode::Export => &["svg", "pdf"],
+            };
+            let listed = Path::new(&name).extension().is_some_and(|e| {
+                wanted
+                    .iter()
+                    .any(|w| e.eq_ignore_ascii_case(std::ffi::OsStr::new(w)))
+            });
+            if is_dir || listed {
                 self.entries.push(Entry { name, is_dir });
             }
         }

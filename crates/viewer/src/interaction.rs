@@ -460,17 +460,38 @@ impl Interaction {
         ));
     }
 
-    /// Writes what is on screen — the same camera, viewport and overlay toggles, curves
-    /// labelled as on the canvas — as an SVG or PDF figure at `path` (atomically).
+    /// The part of the window the canvas shows (right of the panel) as a figure's size
+    /// and camera: in 2D the panel's strip is left out (the camera's centre moves to the
+    /// strip that remains, so everything stays where it is on screen); a 3D view is
+    /// exported whole (its projection is centred on the window).
+    #[must_use]
+    pub fn export_frame(&self) -> (u32, u32, Camera) {
+        let panel = if self.toggles.show_panel {
+            self.panel_width_px.clamp(0.0, self.viewport.x - 1.0)
+        } else {
+            0.0
+        };
+        let height = self.viewport.y.round().max(1.0) as u32;
+        match self.camera {
+            Camera::Ortho2d(mut c) if panel > 0.0 => {
+                c.center.x += 0.5 * panel / c.pixels_per_unit;
+                let width = (self.viewport.x - panel).round().max(1.0) as u32;
+                (width, height, Camera::Ortho2d(c))
+            }
+            camera => (self.viewport.x.round().max(1.0) as u32, height, camera),
+        }
+    }
+
+    /// Writes what is on screen — the canvas right of the panel, with the same camera and
+    /// overlay toggles, curves labelled as on the canvas — as an SVG or PDF figure at
+    /// `path` (atomically).
     ///
     /// # Errors
     /// The figure's or the write's error, as text for the dialog.
     pub fn export_view(&self, path: &Path) -> Result<(), String> {
-        let mut opts = splinescope_figure::FigureOptions::new(
-            self.viewport.x.round().max(1.0) as u32,
-            self.viewport.y.round().max(1.0) as u32,
-        );
-        opts.camera = Some(self.camera);
+        let (width, height, camera) = self.export_frame();
+        let mut opts = splinescope_figure::FigureOptions::new(width, height);
+        opts.camera = Some(camera);
         opts.switches = crate::scene::draw::Switches {
             polygons: self.toggles.show_polygons,
             points: self.toggles.show_points,
