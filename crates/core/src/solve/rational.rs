@@ -8,10 +8,8 @@
 //! points stay fixed; the weights do not change.
 
 use glam::DVec3;
-use nalgebra::DMatrix;
 
 use super::SolveError;
-use super::linalg::min_norm_solve;
 use crate::geom::bernstein::bernstein_all;
 use crate::geom::{GeomError, Lower, Nurbs, ParamCurve, RationalBezier};
 
@@ -120,24 +118,7 @@ fn parameter<C: RationalCurve>(
     if let Some(value) = target.to_array().into_iter().find(|c| !c.is_finite()) {
         return Err(SolveError::NonFiniteTarget { index, value });
     }
-    let (a, b) = curve.domain();
-    match given {
-        Some(t) if !t.is_finite() || t < a || t > b => Err(SolveError::ParameterOutsideDomain {
-            value: t,
-            start: a,
-            end: b,
-        }),
-        Some(t) if t == a || t == b => Err(SolveError::ParameterAtEnd { index, value: t }),
-        Some(t) => Ok(t),
-        None => {
-            let n = super::nearest(curve, target, accuracy);
-            if n.t <= a || n.t >= b {
-                Err(SolveError::TargetAtEnd { index, t: n.t })
-            } else {
-                Ok(n.t)
-            }
-        }
-    }
+    super::shape::start_parameter(curve, target, index, given, accuracy)
 }
 
 /// The targets' parameters, checked.
@@ -214,27 +195,9 @@ pub fn single_target<C: RationalCurve>(
     window: Option<(usize, usize)>,
     accuracy: Option<f64>,
 ) -> Result<RationalSolution<C>, SolveError> {
-    let last = degree_at_least(curve, "single_target", 2)?;
+    degree_at_least(curve, "single_target", 2)?;
     let t = parameter(curve, 0, target, t, accuracy)?;
-    let r = curve.basis(t);
-    let (first, count) = match window {
-        Some((l, m)) if l >= 1 && m >= 1 && l + m - 1 < last => (l, m),
-        Some((l, m)) => {
-            return Err(SolveError::WindowOutOfRange {
-                first: l,
-                count: m,
-                max: last - 1,
-            });
-        }
-        None => {
-            let m = 3.min(last - 1);
-            let weight = |l: usize| r[l..l + m].iter().map(|v| v * v).sum::<f64>();
-            let l = (1..=last - m)
-                .max_by(|&x, &y| weight(x).total_cmp(&weight(y)))
-                .unwrap_or(1);
-            (l, m)
-        }
-    };
+    let (first, count) = super::shape::window(&curve.basis(t), window)?;
     solve(curve, &[target], vec![t], (first..first + count).collect())
 }
 
@@ -254,61 +217,29 @@ pub fn tangent_kept<C: RationalCurve>(
     accuracy: Option<f64>,
 ) -> Result<TangentKeptSolution<C>, SolveError> {
     let n = degree_at_least(curve, "tangent_kept", 3)?;
-    let p = curve.points();
-    let e1 = (p[1] - p[0]).try_normalize().ok_or(SolveError::NoTangent {
-        end: "start (P_0 = P_1)",
-    })?;
-    let e2 = (p[n - 1] - p[n])
-        .try_normalize()
-        .ok_or(SolveError::NoTangent {
-            end: "end (P_n = P_(n-1))",
-        })?;
+    let directions = super::shape::polygon_end_directions(curve.points())?;
     let t = parameter(curve, 0, target, t, accuracy)?;
-    let r = curve.basis(t);
-    let diff = target - curve.eval(t);
-    let planar = p.iter().all(|q| q.z == 0.0) && target.z == 0.0;
-    let d = if planar { 2 } else { 3 };
-    let free = n - 3;
-    let mut a = DMatrix::zeros(d, 2 + d * free);
-    for row in 0..d {
-        a[(row, 0)] = r[1] * e1[row];
-        a[(row, 1)] = r[n - 1] * e2[row];
-        for k in 0..free {
-            a[(row, 2 + d * k + row)] = r[2 + k];
-        }
-    }
-    let rhs = DMatrix::from_iterator(d, 1, (0..d).map(|row| diff[row]));
-    let sol = min_norm_solve(&a, &rhs);
-    let mu = [sol.x[(0, 0)], sol.x[(1, 0)]];
-    let deltas: Vec<DVec3> = (0..free)
-        .map(|k| {
-            let mut v = DVec3::ZERO;
-            for row in 0..d {
-                v[row] = sol.x[(2 + d * k + row, 0)];
-            }
-            v
-        })
-        .collect();
-    let mut points = p.to_vec();
-    points[1] += mu[0] * e1;
-    points[n - 1] += mu[1] * e2;
-    for (k, dv) in deltas.iter().enumerate() {
-        points[2 + k] += *dv;
-    }
-    let modified = curve.with_points(points)?;
+    let moves = super::shape::tangent_moves(
+        curve.points(),
+        &curve.basis(t),
+        directions,
+        target,
+        target - curve.eval(t),
+    );
+    let modified = curve.with_points(moves.points)?;
     let residual = (modified.eval(t) - target).length();
     Ok(TangentKeptSolution {
         solution: RationalSolution {
             curve: modified,
             params: vec![t],
-            moved: (2..2 + free).collect(),
-            deltas,
+            moved: (2..n - 1).collect(),
+            deltas: moves.deltas,
             residuals: vec![residual],
-            rank: sol.rank,
-            least_squares: sol.rank < d,
+            rank: moves.rank,
+            least_squares: moves.least_squares,
         },
-        mu,
-        directions: [e1, e2],
+        mu: moves.mu,
+        directions,
     })
 }
 
@@ -318,27 +249,13 @@ fn solve<C: RationalCurve>(
     params: Vec<f64>,
     moved: Vec<usize>,
 ) -> Result<RationalSolution<C>, SolveError> {
-    let mut a = DMatrix::zeros(targets.len(), moved.len());
-    let mut d = DMatrix::zeros(targets.len(), 3);
-    for (l, (&t, &target)) in params.iter().zip(targets).enumerate() {
-        let r = curve.basis(t);
-        for (k, &i) in moved.iter().enumerate() {
-            a[(l, k)] = r[i];
-        }
-        let diff = target - curve.eval(t);
-        for c in 0..3 {
-            d[(l, c)] = diff[c];
-        }
-    }
-    let sol = min_norm_solve(&a, &d);
-    let deltas: Vec<DVec3> = (0..moved.len())
-        .map(|k| DVec3::new(sol.x[(k, 0)], sol.x[(k, 1)], sol.x[(k, 2)]))
+    let conditions: Vec<(Vec<f64>, DVec3)> = params
+        .iter()
+        .zip(targets)
+        .map(|(&t, &target)| (curve.basis(t), target - curve.eval(t)))
         .collect();
-    let mut points = curve.points().to_vec();
-    for (&i, delta) in moved.iter().zip(&deltas) {
-        points[i] += *delta;
-    }
-    let modified = curve.with_points(points)?;
+    let moves = super::shape::point_moves(curve.points(), &moved, &conditions);
+    let modified = curve.with_points(moves.points)?;
     let residuals = params
         .iter()
         .zip(targets)
@@ -348,9 +265,9 @@ fn solve<C: RationalCurve>(
         curve: modified,
         params,
         moved,
-        deltas,
+        deltas: moves.deltas,
         residuals,
-        rank: sol.rank,
-        least_squares: sol.rank < targets.len(),
+        rank: moves.rank,
+        least_squares: moves.rank < targets.len(),
     })
 }

@@ -14,7 +14,7 @@ use super::project::nearest;
 use crate::geom::bernstein::bernstein_all;
 use crate::geom::cubic_region::REGION_TOLERANCE;
 pub use crate::geom::cubic_region::{CubicRegion, PolygonType};
-use crate::geom::{Aabb, Bezier};
+use crate::geom::{Aabb, Bezier, Lower, ParamCurve};
 
 /// How [`single_target`] chooses its start point and moved control points.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -59,26 +59,27 @@ fn check_target(index: usize, t: DVec3) -> Result<(), SolveError> {
 
 /// `t_s`: given (checked to be strictly inside `(0, 1)`), or found by projecting the
 /// target (an error when it projects onto a fixed end).
-fn start_parameter(
-    curve: &Bezier,
+pub(crate) fn start_parameter<C: Lower + ParamCurve + ?Sized>(
+    curve: &C,
     target: DVec3,
     index: usize,
     given: Option<f64>,
     accuracy: Option<f64>,
 ) -> Result<f64, SolveError> {
+    let (start, end) = curve.domain();
     match given {
-        Some(t) if !(0.0..=1.0).contains(&t) || !t.is_finite() => {
+        Some(t) if !(start..=end).contains(&t) || !t.is_finite() => {
             Err(SolveError::ParameterOutsideDomain {
                 value: t,
-                start: 0.0,
-                end: 1.0,
+                start,
+                end,
             })
         }
-        Some(t) if t == 0.0 || t == 1.0 => Err(SolveError::ParameterAtEnd { index, value: t }),
+        Some(t) if t == start || t == end => Err(SolveError::ParameterAtEnd { index, value: t }),
         Some(t) => Ok(t),
         None => {
             let n = nearest(curve, target, accuracy);
-            if n.t <= 0.0 || n.t >= 1.0 {
+            if n.t <= start || n.t >= end {
                 Err(SolveError::TargetAtEnd { index, t: n.t })
             } else {
                 Ok(n.t)
@@ -113,28 +114,7 @@ pub fn single_target(
     }
     let t_s = start_parameter(curve, target, 0, opts.t_s, opts.accuracy)?;
     let b = bernstein_all(n, t_s);
-    let (first, count) = match opts.window {
-        Some((l, m)) => {
-            if l < 1 || m < 1 || l + m - 1 > n - 1 {
-                return Err(SolveError::WindowOutOfRange {
-                    first: l,
-                    count: m,
-                    max: n - 1,
-                });
-            }
-            (l, m)
-        }
-        None => {
-            let m = DEFAULT_WINDOW.min(n - 1);
-            let l = (1..=n - m)
-                .max_by(|&x, &y| {
-                    let w = |l: usize| b[l..l + m].iter().map(|v| v * v).sum::<f64>();
-                    w(x).total_cmp(&w(y))
-                })
-                .unwrap_or(1);
-            (l, m)
-        }
-    };
+    let (first, count) = window(&b, opts.window)?;
     let denom: f64 = b[first..first + count].iter().map(|v| v * v).sum();
     if denom <= 0.0 {
         return Err(SolveError::ParameterAtEnd {
@@ -189,7 +169,14 @@ pub struct TangentKeptSolution {
 /// # Errors
 /// [`SolveError::NoTangent`] when an end point coincides with its neighbour.
 pub fn end_directions(curve: &Bezier) -> Result<[DVec3; 2], SolveError> {
-    let p = curve.points();
+    polygon_end_directions(curve.points())
+}
+
+/// [`end_directions`] of any control polygon `P_0 … P_n` (`n ≥ 1`).
+///
+/// # Errors
+/// [`SolveError::NoTangent`] when an end point coincides with its neighbour.
+pub(crate) fn polygon_end_directions(p: &[DVec3]) -> Result<[DVec3; 2], SolveError> {
     let n = p.len() - 1;
     let e1 = (p[1] - p[0]).try_normalize().ok_or(SolveError::NoTangent {
         end: "start (P_0 = P_1)",
@@ -233,18 +220,86 @@ pub fn tangent_kept(
     let t_s = start_parameter(curve, target, 0, t_s, accuracy)?;
     let b = bernstein_all(n, t_s);
     let start = curve.eval(t_s);
-    let diff = target - start;
-    // Planar curve and target: two equations (x, y); otherwise three.
-    let planar = curve.points().iter().all(|p| p.z == 0.0) && target.z == 0.0;
+    let moves = tangent_moves(curve.points(), &b, [e1, e2], target, target - start);
+    let modified = Bezier::new(moves.points);
+    let residual = (modified.eval(t_s) - target).length();
+    Ok(TangentKeptSolution {
+        curve: modified,
+        t_s,
+        mu: moves.mu,
+        directions: [e1, e2],
+        deltas: moves.deltas,
+        residual,
+        least_squares: moves.least_squares,
+    })
+}
+
+/// The points Eq. 8 moves, `(first, count)`, for the basis values `basis` (`n + 1` of
+/// them) at `t_s`: `given` when it is interior, else the `min(DEFAULT_WINDOW, n − 1)`
+/// consecutive interior points of largest `Σ basis_i²` (the one needing the least
+/// movement).
+///
+/// # Errors
+/// [`SolveError::WindowOutOfRange`] for a given window that is not interior.
+pub(crate) fn window(
+    basis: &[f64],
+    given: Option<(usize, usize)>,
+) -> Result<(usize, usize), SolveError> {
+    let n = basis.len() - 1;
+    match given {
+        Some((l, m)) if l < 1 || m < 1 || l + m - 1 > n - 1 => Err(SolveError::WindowOutOfRange {
+            first: l,
+            count: m,
+            max: n - 1,
+        }),
+        Some(w) => Ok(w),
+        None => {
+            let m = DEFAULT_WINDOW.min(n - 1);
+            let weight = |l: usize| basis[l..l + m].iter().map(|v| v * v).sum::<f64>();
+            let l = (1..=n - m)
+                .max_by(|&x, &y| weight(x).total_cmp(&weight(y)))
+                .unwrap_or(1);
+            Ok((l, m))
+        }
+    }
+}
+
+/// The moves of §2.2 for any basis with fixed values `basis[i]` at the target's parameter
+/// (Bernstein, or a rational basis with fixed weights).
+pub(crate) struct TangentMoves {
+    /// The moved control points.
+    pub points: Vec<DVec3>,
+    /// `μ_1`, `μ_2`.
+    pub mu: [f64; 2],
+    /// `ε_2..ε_{n−2}`.
+    pub deltas: Vec<DVec3>,
+    /// The system's rank.
+    pub rank: usize,
+    /// Whether it had fewer free parameters than equations.
+    pub least_squares: bool,
+}
+
+/// The minimum-norm solution of
+/// `μ_1 N_1 e_1 + μ_2 N_{n−1} e_2 + Σ_{i=2}^{n−2} ε_i N_i = diff` for the control polygon
+/// `points` (`n ≥ 3`) and the basis values `basis`: two equations (x, y) for a planar
+/// polygon and target, three otherwise.
+pub(crate) fn tangent_moves(
+    points: &[DVec3],
+    basis: &[f64],
+    [e1, e2]: [DVec3; 2],
+    target: DVec3,
+    diff: DVec3,
+) -> TangentMoves {
+    let n = points.len() - 1;
+    let planar = points.iter().all(|p| p.z == 0.0) && target.z == 0.0;
     let d = if planar { 2 } else { 3 };
     let free = n - 3; // ε_2..ε_{n−2}
-    let cols = 2 + d * free;
-    let mut a = DMatrix::zeros(d, cols);
+    let mut a = DMatrix::zeros(d, 2 + d * free);
     for row in 0..d {
-        a[(row, 0)] = b[1] * e1[row];
-        a[(row, 1)] = b[n - 1] * e2[row];
+        a[(row, 0)] = basis[1] * e1[row];
+        a[(row, 1)] = basis[n - 1] * e2[row];
         for k in 0..free {
-            a[(row, 2 + d * k + row)] = b[2 + k];
+            a[(row, 2 + d * k + row)] = basis[2 + k];
         }
     }
     let rhs = DMatrix::from_iterator(d, 1, (0..d).map(|row| diff[row]));
@@ -259,23 +314,19 @@ pub fn tangent_kept(
             v
         })
         .collect();
-    let mut pts = curve.points().to_vec();
-    pts[1] += mu[0] * e1;
-    pts[n - 1] += mu[1] * e2;
+    let mut moved = points.to_vec();
+    moved[1] += mu[0] * e1;
+    moved[n - 1] += mu[1] * e2;
     for (k, dv) in deltas.iter().enumerate() {
-        pts[2 + k] += *dv;
+        moved[2 + k] += *dv;
     }
-    let modified = Bezier::new(pts);
-    let residual = (modified.eval(t_s) - target).length();
-    Ok(TangentKeptSolution {
-        curve: modified,
-        t_s,
+    TangentMoves {
+        points: moved,
         mu,
-        directions: [e1, e2],
         deltas,
-        residual,
+        rank: sol.rank,
         least_squares: sol.rank < d,
-    })
+    }
 }
 
 /// The result of [`multi_target`].
@@ -338,28 +389,14 @@ pub fn multi_target(
         .enumerate()
         .map(|(i, &t)| start_parameter(curve, t, i, params.map(|p| p[i]), accuracy))
         .collect::<Result<_, _>>()?;
-    let rows = targets.len();
-    let mut m = DMatrix::zeros(rows, n - 1);
-    let mut r = DMatrix::zeros(rows, 3);
-    for (l, (&t, &target)) in params.iter().zip(targets).enumerate() {
-        let b = bernstein_all(n, t);
-        for i in 1..n {
-            m[(l, i - 1)] = b[i];
-        }
-        let d = target - curve.eval(t);
-        for c in 0..3 {
-            r[(l, c)] = d[c];
-        }
-    }
-    let sol = min_norm_solve(&m, &r);
-    let deltas: Vec<DVec3> = (0..n - 1)
-        .map(|i| DVec3::new(sol.x[(i, 0)], sol.x[(i, 1)], sol.x[(i, 2)]))
+    let conditions: Vec<(Vec<f64>, DVec3)> = params
+        .iter()
+        .zip(targets)
+        .map(|(&t, &target)| (bernstein_all(n, t), target - curve.eval(t)))
         .collect();
-    let mut pts = curve.points().to_vec();
-    for (i, d) in deltas.iter().enumerate() {
-        pts[i + 1] += *d;
-    }
-    let modified = Bezier::new(pts);
+    let moved: Vec<usize> = (1..n).collect();
+    let moves = point_moves(curve.points(), &moved, &conditions);
+    let modified = Bezier::new(moves.points);
     let residuals: Vec<f64> = params
         .iter()
         .zip(targets)
@@ -368,11 +405,54 @@ pub fn multi_target(
     Ok(MultiTargetSolution {
         curve: modified,
         params,
-        deltas,
+        deltas: moves.deltas,
         residuals,
-        rank: sol.rank,
-        least_squares: sol.rank < rows,
+        rank: moves.rank,
+        least_squares: moves.rank < targets.len(),
     })
+}
+
+/// Moves of the control points `moved` of `points`.
+pub(crate) struct PointMoves {
+    /// The moved control points.
+    pub points: Vec<DVec3>,
+    /// `ε_i` for each index of `moved`, in order.
+    pub deltas: Vec<DVec3>,
+    /// The system's rank.
+    pub rank: usize,
+}
+
+/// The least `Σ‖ε_i‖²` over the points `moved` such that `Σ_i basis_l[i] ε_i = diff_l`
+/// for every condition `(basis_l, diff_l)` (in least squares when they cannot all
+/// hold): §3's system, for any basis with fixed values at the conditions' parameters.
+pub(crate) fn point_moves(
+    points: &[DVec3],
+    moved: &[usize],
+    conditions: &[(Vec<f64>, DVec3)],
+) -> PointMoves {
+    let mut m = DMatrix::zeros(conditions.len(), moved.len());
+    let mut r = DMatrix::zeros(conditions.len(), 3);
+    for (l, (basis, diff)) in conditions.iter().enumerate() {
+        for (k, &i) in moved.iter().enumerate() {
+            m[(l, k)] = basis[i];
+        }
+        for c in 0..3 {
+            r[(l, c)] = diff[c];
+        }
+    }
+    let sol = min_norm_solve(&m, &r);
+    let deltas: Vec<DVec3> = (0..moved.len())
+        .map(|k| DVec3::new(sol.x[(k, 0)], sol.x[(k, 1)], sol.x[(k, 2)]))
+        .collect();
+    let mut out = points.to_vec();
+    for (&i, d) in moved.iter().zip(&deltas) {
+        out[i] += *d;
+    }
+    PointMoves {
+        points: out,
+        deltas,
+        rank: sol.rank,
+    }
 }
 
 /// Classifies a cubic's control polygon and returns its reachable region
