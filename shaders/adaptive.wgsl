@@ -8,14 +8,15 @@
 //   finalize    each segment's offset in the sample buffer; when the counts exceed the
 //               buffer they are scaled down in proportion (never below 2 for a drawn
 //               segment, never past the buffer); the indirect draw's instance count
-//   tessellate_{cubic,quartic,any,rational}
+//   tessellate_{cubic,quartic,any}
 //               one workgroup per segment writes exactly its samples there
 //
 // The line pipeline then draws `instance_count` pieces with one indirect draw. The CPU
 // twins are `wang_count`, `scan_and_place` and `tessellate_adaptive` in src/gpu/twin.rs.
 // The bound (docs/math.md §5): with H_i = (x, y, w) the control points in homogeneous
-// pixel coordinates (a rational segment's weights multiply its points' w), M_xy and M_w their largest second differences, R the largest
-// distance of a projected control point from the viewport centre and W the smallest w,
+// pixel coordinates (a rational segment's weights multiply its points' w), M_xy and M_w
+// their largest second differences, R the largest distance of a projected control point
+// from the viewport centre and W the smallest w,
 // N uniform intervals keep every screen chord within
 // n (n − 1) (M_xy + R M_w) / (8 N² W) pixels of the curve (orthographic: w = 1, M_w = 0,
 // Wang's own bound).
@@ -314,25 +315,9 @@ fn tessellate_any(
     let n = min(seg.degree, MAX_DEGREE);
     for (var j = lane; j < count; j += TESSELLATE_WORKGROUP_SIZE) {
         let u = adaptive_param(j, count);
-        samples[first + j] = Vertex(bernstein_horner(seg.first_point, n, u, 1.0 - u), seg.curve);
-    }
-}
-
-@compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
-fn tessellate_rational(
-    @builtin(workgroup_id) group: vec3<u32>,
-    @builtin(local_invocation_index) lane: u32,
-) {
-    let w = adaptive_work(group.x + group.y * range.groups_x);
-    if (!w.ok) {
-        return;
-    }
-    let seg = w.seg;
-    let count = w.count;
-    let first = w.first;
-    let n = min(seg.degree, MAX_DEGREE);
-    for (var j = lane; j < count; j += TESSELLATE_WORKGROUP_SIZE) {
-        let u = adaptive_param(j, count);
-        samples[first + j] = Vertex(rational_point(seg.first_point, n, u, 1.0 - u), seg.curve);
+        samples[first + j] = Vertex(
+            general_point(seg.first_point, n, seg.rational != 0u, u, 1.0 - u),
+            seg.curve,
+        );
     }
 }

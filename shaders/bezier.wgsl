@@ -84,3 +84,12 @@ fn rational_point(first: u32, n: u32, u: f32, v: f32) -> vec3<f32> {
     let h = bernstein_horner4(first, n, u, v);
     return h.xyz / h.w;
 }
+
+// What the general kernels compute for a segment of any degree: the rational point when
+// it has weights, else the polynomial sum.
+fn general_point(first: u32, n: u32, rational: bool, u: f32, v: f32) -> vec3<f32> {
+    if (rational) {
+        return rational_point(first, n, u, v);
+    }
+    return bernstein_horner(first, n, u, v);
+}

@@ -5,7 +5,8 @@
 // TESSELLATE_WORKGROUP_SIZE samples (packing splits longer runs), so no lane loops over
 // samples.
 //
-// There is one entry point per class (cubic, quartic, any other degree, rational). Packing sorts each chunk's records by class
+// There is one entry point per degree class (cubic, quartic, any other degree — rational
+// segments of every degree included). Packing sorts each chunk's records by class
 // and the tessellator dispatches each class's range with its own pipeline; the evaluation
 // itself (the cubic's Bernstein form, the quartic's de Casteljau, Horner's rule for every
 // other degree) is bezier.wgsl's, shared with the adaptive kernels. CPU twin:
@@ -105,23 +106,7 @@ fn tessellate_any(
     let v = 1.0 - u;
     // Packing rejects degrees over MAX_DEGREE; the min keeps the loop bounded.
     let n = min(seg.degree, MAX_DEGREE);
-    let p = bernstein_horner(seg.first_point, n, u, v);
-    samples[seg.first_sample + w.j] = Vertex(p, seg.curve);
-}
-
-@compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
-fn tessellate_rational(
-    @builtin(workgroup_id) group: vec3<u32>,
-    @builtin(local_invocation_index) lane: u32,
-) {
-    let w = work(group, lane);
-    if (!w.ok) {
-        return;
-    }
-    let seg = w.seg;
-    let u = w.u;
-    let n = min(seg.degree, MAX_DEGREE);
-    let p = rational_point(seg.first_point, n, u, 1.0 - u);
+    let p = general_point(seg.first_point, n, seg.rational != 0u, u, v);
     samples[seg.first_sample + w.j] = Vertex(p, seg.curve);
 }
 

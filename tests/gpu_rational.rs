@@ -1,5 +1,5 @@
 //! Rational curves on the GPU, against closed forms, on every backend: the quarter circle
-//! and the nine-point NURBS circle evaluated by the rational kernel stay on the circle
+//! and the nine-point NURBS circle evaluated in homogeneous coordinates stay on the circle
 //! within the documented `f32` bound (README, "Rational curves": `2κ · 10⁻⁶ · S` with
 //! `κ = max w / min w` of a segment and `S` the larger of its control extent and largest
 //! coordinate), and the derivatives the GPU path gives by the quotient rule match the
@@ -76,7 +76,7 @@ fn circles_stay_on_the_circle_within_the_f32_bound() {
         .enumerate()
         .map(|(i, (_, c, _, _))| (i, c.lower()))
         .collect();
-    // Every segment goes to the rational kernel.
+    // Every segment is rational (evaluated in homogeneous coordinates).
     assert!(
         lowered
             .iter()

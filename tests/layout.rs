@@ -169,6 +169,7 @@ fn kernel_workgroup_and_scratch_match_the_rust_constants() {
         "bernstein_horner4",
         "control_point4",
         "rational_point",
+        "general_point",
     ];
     for source in [shaders::TESSELLATE, shaders::ADAPTIVE] {
         let (module, _) = source.validate().expect("valid");

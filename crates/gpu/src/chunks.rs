@@ -110,7 +110,7 @@ pub struct Placement {
     pub segment: usize,
     /// Its number of control points.
     pub len: u32,
-    /// Whether it was packed as a rational segment (evaluated by the rational kernel).
+    /// Whether it was packed as a rational segment (evaluated in homogeneous coordinates).
     pub rational: bool,
 }
 

@@ -159,7 +159,7 @@ fn homogeneous_part(s: &BezierSegment, weight: bool) -> crate::geom::Bezier {
 /// GPU: the hodographs go through the same kernel as the curves, and the chain rule
 /// divides by `(t1 − t0)ᵏ` of the segment holding each parameter. A curve with rational
 /// segments has its homogeneous parts `A`, `W` and their hodographs evaluated by the
-/// kernel, with the curve itself (the rational kernel), and the quotient rule combines
+/// kernel, with the curve itself, and the quotient rule combines
 /// them on the CPU: `C′ = (A′ − W′C) / W`, `C″ = (A″ − 2W′C′ − W″C) / W`.
 ///
 /// # Errors

@@ -186,31 +186,29 @@ pub struct FrameStats {
 }
 
 /// The kernels of `shaders/tessellate.wgsl` (and of `shaders/adaptive.wgsl`), one per
-/// class of segment: `(entry point, the one degree it evaluates, or None for any degree)`.
-/// The first three take polynomial segments; the last, [`RATIONAL_KERNEL`], rational
-/// segments of any degree. Each chunk's records are sorted in this order and each class
-/// is dispatched with its own pipeline.
-pub const TESSELLATE_KERNELS: [(&str, Option<u32>); 4] = [
+/// degree class: `(entry point, the one degree it evaluates, or None for any degree)`.
+/// Rational segments of every degree go to the general kernel, which evaluates them in
+/// homogeneous coordinates (a branch on the record's `rational`, the same for a whole
+/// workgroup). Each chunk's records are sorted in this order and each class is dispatched
+/// with its own pipeline.
+pub const TESSELLATE_KERNELS: [(&str, Option<u32>); 3] = [
     ("tessellate_cubic", Some(3)),
     ("tessellate_quartic", Some(4)),
     ("tessellate_any", None),
-    ("tessellate_rational", None),
 ];
 
-/// The index in [`TESSELLATE_KERNELS`] of the rational kernel.
-pub const RATIONAL_KERNEL: usize = 3;
-
 /// The index in [`TESSELLATE_KERNELS`] of the kernel that evaluates a segment of `degree`
-/// (`rational`: with weights).
+/// (`rational`: with weights, always the general kernel).
 #[must_use]
 pub fn kernel_class(degree: u32, rational: bool) -> usize {
+    let general = TESSELLATE_KERNELS.len() - 1;
     if rational {
-        return RATIONAL_KERNEL;
+        return general;
     }
-    TESSELLATE_KERNELS[..RATIONAL_KERNEL]
+    TESSELLATE_KERNELS
         .iter()
         .position(|(_, d)| d.is_none_or(|d| d == degree))
-        .unwrap_or(RATIONAL_KERNEL - 1)
+        .unwrap_or(general)
 }
 
 /// The camera uniform. Twin: `Camera` in `shaders/common.wgsl`.

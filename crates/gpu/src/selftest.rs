@@ -1,5 +1,6 @@
 //! The kernel self-test run when a device is opened: every tessellation entry point
-//! evaluates a curve of every degree it serves (the rational kernel with weights ≠ 1), and
+//! evaluates a curve of every degree it serves (the general kernel also rational curves
+//! with weights ≠ 1), and
 //! the results are compared with the CPU twin. An adapter whose shader compiler gets a kernel wrong (Mesa's GL compiler once
 //! returned `P_0` for every sample of the general kernel) is refused with a message that
 //! names the kernel, the degree and the values, instead of drawing wrong curves.

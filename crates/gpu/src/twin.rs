@@ -39,7 +39,7 @@ pub fn de_casteljau(points: &[GpuControlPoint], first: u32, n: u32, u: f32) -> V
     p[0]
 }
 
-/// `bernstein_horner4` of `shaders/bezier.wgsl` (the general and rational kernels of both
+/// `bernstein_horner4` of `shaders/bezier.wgsl` (the general kernels of both
 /// tessellators): the Bernstein sum of degree `n` of the homogeneous points `(w·P, w)` by
 /// Horner's rule in `x = u / v` scaled by `vⁿ` (`u ≤ ½`), else in `x = v / u` scaled by
 /// `uⁿ`, the binomials built along the way.
