@@ -130,29 +130,23 @@ pub fn unit_scaled(points: &[DVec3]) -> (Vec<DVec3>, i32) {
 /// part `A = Σ w_i P_i B_i` (polynomial; see [`evaluate_derivative`]).
 #[must_use]
 pub fn hodographs(segments: &[BezierSegment], order: u32) -> Vec<BezierSegment> {
+    part_hodographs(segments, order, false)
+}
+
+/// The `order`-th hodograph of each segment's homogeneous part `A` or, with `weight`,
+/// `W` ([`BezierSegment::homogeneous`]), on the same parameter ranges.
+fn part_hodographs(segments: &[BezierSegment], order: u32, weight: bool) -> Vec<BezierSegment> {
     segments
         .iter()
         .map(|s| {
-            let mut b = homogeneous_part(s, false);
+            let (a, w) = s.homogeneous();
+            let mut b = if weight { w } else { a };
             for _ in 0..order {
                 b = b.deriv();
             }
             BezierSegment::polynomial(b, s.t0, s.t1)
         })
         .collect()
-}
-
-/// A segment's homogeneous part as a polynomial Bézier curve: `A` (the points times their
-/// weights) or, with `weight`, `W` (the weights as `(w_i, 0, 0)`); a polynomial segment's
-/// `A` is itself and its `W` the constant 1.
-fn homogeneous_part(s: &BezierSegment, weight: bool) -> crate::geom::Bezier {
-    let w = |i: usize| s.weights.as_ref().map_or(1.0, |w| w[i]);
-    let points = s.points().iter().enumerate();
-    crate::geom::Bezier::new(if weight {
-        points.map(|(i, _)| DVec3::new(w(i), 0.0, 0.0)).collect()
-    } else {
-        points.map(|(i, p)| *p * w(i)).collect()
-    })
 }
 
 /// Evaluates the `order`-th derivative (1 or 2) of each curve at its parameters on the
@@ -213,19 +207,7 @@ fn quotient_rule(
     let part = |k: u32, weight: bool| -> Vec<(usize, Vec<BezierSegment>)> {
         curves
             .iter()
-            .map(|(i, segs)| {
-                let segs = segs
-                    .iter()
-                    .map(|s| {
-                        let mut b = homogeneous_part(s, weight);
-                        for _ in 0..k {
-                            b = b.deriv();
-                        }
-                        BezierSegment::polynomial(b, s.t0, s.t1)
-                    })
-                    .collect();
-                (*i, segs)
-            })
+            .map(|(i, segs)| (*i, part_hodographs(segs, k, weight)))
             .collect()
     };
     let mut all: Vec<(usize, Vec<BezierSegment>)> = curves.to_vec();

@@ -362,11 +362,10 @@ impl Editor {
     /// points.
     #[must_use]
     pub fn can_pull(&self, curve: usize) -> bool {
-        matches!(
-            self.scene.curves.get(curve).map(|c| &c.curve),
-            Some(c @ (Curve::Bezier(_) | Curve::RationalBezier(_) | Curve::Nurbs(_)))
-                if c.control_points().len() >= 3
-        )
+        self.scene
+            .curves
+            .get(curve)
+            .is_some_and(|c| pullable(&c.curve) && c.curve.control_points().len() >= 3)
     }
 
     /// Starts pulling a Bézier curve's point at `t` through the pointer: while dragging, the
@@ -379,18 +378,13 @@ impl Editor {
         self.finish();
         self.selected = Some(curve);
         self.selected_point = None;
-        if !self.can_pull(curve)
-            && !matches!(
-                self.scene.curves[curve].curve,
-                Curve::Bezier(_) | Curve::RationalBezier(_) | Curve::Nurbs(_)
-            )
-        {
+        let b = &self.scene.curves[curve].curve;
+        if !pullable(b) {
             return Err(EditError::NotBezier {
                 index: curve,
-                family: self.scene.curves[curve].curve.family(),
+                family: b.family(),
             });
         }
-        let b = &self.scene.curves[curve].curve;
         let (start, end) = b.domain();
         if !self.can_pull(curve) || t <= start || t >= end {
             return Err(EditError::PullAtEnd);
@@ -418,7 +412,7 @@ impl Editor {
                 .curve
                 .with_control_point(*index, world)
                 .map_err(|e| e.to_string()),
-            Gesture::Pull { t_s, original } => pull(original, *t_s, world),
+            Gesture::Pull { t_s, original } => pull(open.curve, original, *t_s, world),
             Gesture::Control { .. } => return,
         };
         match result {
@@ -840,9 +834,17 @@ impl Editor {
     }
 }
 
-/// The curve `original` pulled so that its point at `t_s` passes through `world`: paper
+/// Whether paper 000's pull applies to the family (its weights fixed for rational curves).
+fn pullable(curve: &Curve) -> bool {
+    matches!(
+        curve,
+        Curve::Bezier(_) | Curve::RationalBezier(_) | Curve::Nurbs(_)
+    )
+}
+
+/// The curve `original` (curve `index`) pulled so that its point at `t_s` passes through `world`: paper
 /// 000's single-target modification (the weights fixed for rational curves).
-fn pull(original: &Curve, t_s: f64, world: DVec3) -> Result<Curve, String> {
+fn pull(index: usize, original: &Curve, t_s: f64, world: DVec3) -> Result<Curve, String> {
     let result = match original {
         Curve::Bezier(b) => single_target(
             b,
@@ -860,7 +862,7 @@ fn pull(original: &Curve, t_s: f64, world: DVec3) -> Result<Curve, String> {
         }
         other => {
             return Err(EditError::NotBezier {
-                index: 0,
+                index,
                 family: other.family(),
             }
             .to_string());

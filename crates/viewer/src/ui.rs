@@ -20,6 +20,9 @@ const LISTED_CURVES: usize = 200;
 
 /// One listed curve's label and hover text, computed once per scene (not per frame).
 pub(crate) struct CurveSummary {
+    /// The curve's name with its live parameters (the canvas label).
+    pub name: String,
+    /// `index: name` (the list row).
     pub label: String,
     pub details: String,
     pub color: egui::Color32,
@@ -66,8 +69,10 @@ fn summarize_lowered(i: usize, c: &SceneCurve, segments: &[BezierSegment]) -> Cu
         .unwrap_or(0);
     let (a, b) = c.curve.domain();
     let [r, g, bl, _] = c.style.color.0.map(|v| (v * 255.0).round() as u8);
+    let name = label(c);
     CurveSummary {
-        label: format!("{i}: {}", label(c)),
+        label: format!("{i}: {name}"),
+        name,
         details: format!(
             "{} · domain [{a}, {b}] · {} segment(s), degree ≤ {degree}",
             c.curve.family(),
@@ -118,12 +123,20 @@ pub(crate) struct SceneFacts {
     pub planar: bool,
     /// The 3D axis triad to label (empty in planar scenes).
     pub axes: Vec<crate::scene::draw::Axis>,
+    /// What the scene is made of, when it has more curves than the panel lists
+    /// ([`family_counts`]); empty otherwise.
+    pub families: String,
 }
 
 impl SceneFacts {
     pub fn of(scene: &Scene) -> SceneFacts {
         let planar = scene.is_planar();
         SceneFacts {
+            families: if scene.curves.len() > LISTED_CURVES {
+                family_counts(scene)
+            } else {
+                String::new()
+            },
             planar,
             axes: if planar {
                 Vec::new()
@@ -315,7 +328,7 @@ pub(crate) fn panel(
                         .text("tolerance (px)"),
                 )
                 .on_hover_text("the largest distance between a drawn polyline and its curve");
-            if !(response.changed() && !response.dragged() && escaped(ui.ctx())) {
+            if accepted(ui.ctx(), &response) {
                 *tolerance_px = tolerance;
             }
             match info.overlays_locked {
@@ -355,7 +368,7 @@ pub(crate) fn panel(
             if total > LISTED_CURVES {
                 // Thousands of rows say nothing: what the scene is made of, and the
                 // selected curve.
-                ui.label(format!("{total} curves: {}", family_counts(editor.scene())));
+                ui.label(format!("{total} curves: {}", info.digest.facts.families));
                 ui.small("] / [ select the next / previous curve; click one on the canvas");
             }
             let chosen = editor.selected;
@@ -515,7 +528,7 @@ pub(crate) fn draw(
 ) -> f32 {
     note_escape(ui.ctx());
     let width = panel(ui, info, model, actions);
-    canvas(ui, model, &info.digest.facts, actions);
+    canvas(ui, model, info.digest, actions);
     if model.prompt.is_none()
         && let Some(dialog) = model.dialog.as_mut()
     {
@@ -704,9 +717,7 @@ fn control_widget(
             for band in bands {
                 paint_band(ui, &response, *range, *band);
             }
-            let typed = !response.dragged();
-            (response.changed() && !(typed && escaped(ui.ctx())))
-                .then_some((ControlValue::Number(v), typed))
+            accepted(ui.ctx(), &response).then_some((ControlValue::Number(v), !response.dragged()))
         }
         ControlKind::Vector { value } => {
             let mut v = *value;
@@ -738,14 +749,20 @@ fn control_widget(
     }
 }
 
-/// Whether Esc was pressed this frame or the one before. egui gives a number field's
-/// typed text to the value one frame after the field loses the keyboard, and Esc makes it
-/// lose the keyboard: a change that arrives then is the text Esc was meant to cancel.
-/// [`note_escape`] records the frame; every typed change checks this first.
-fn escaped(ctx: &egui::Context) -> bool {
+/// Whether a number widget's change stands: a drag always, a typed value unless Esc was
+/// pressed this frame or the one before. egui gives a number field's typed text to the
+/// value one frame after the field loses the keyboard, and Esc makes it lose the
+/// keyboard: a typed change that arrives then is the text Esc was meant to cancel.
+/// [`note_escape`] records the frame.
+fn accepted(ctx: &egui::Context, response: &egui::Response) -> bool {
+    if !response.changed() {
+        return false;
+    }
     let frame = ctx.cumulative_pass_nr();
-    ctx.data(|d| d.get_temp::<u64>(escape_id()))
-        .is_some_and(|at| frame <= at + 1)
+    let escaped = ctx
+        .data(|d| d.get_temp::<u64>(escape_id()))
+        .is_some_and(|at| frame <= at + 1);
+    response.dragged() || !escaped
 }
 
 /// Records the frame in which Esc was pressed (called once per frame, before any field).
@@ -810,12 +827,12 @@ fn vector_row(ui: &mut egui::Ui, label: &str, v: &mut DVec3, planar: bool) -> bo
                         .prefix(prefix),
                 )
                 .on_hover_text("drag, or click to type");
-            if response.changed() && !response.dragged() && escaped(ui.ctx()) {
-                // Esc: the typed text is dropped, the field shows the value again.
+            if !accepted(ui.ctx(), &response) {
+                // Unchanged, or typed text Esc dropped: the field shows the value again.
                 *x = before;
                 return false;
             }
-            response.changed()
+            true
         };
         let mut changed = field(ui, &mut v.x, "x ");
         changed |= field(ui, &mut v.y, "y ");
@@ -876,9 +893,10 @@ pub(crate) const SHORTCUTS: &[(&str, &str)] = &[
 pub(crate) fn canvas(
     ui: &mut egui::Ui,
     model: &Interaction,
-    facts: &SceneFacts,
+    digest: &SceneDigest,
     actions: &mut Actions,
 ) {
+    let facts = &digest.facts;
     let ctx = ui.ctx().clone();
     let ppp = f64::from(ctx.pixels_per_point());
     let to_pos = |p: glam::DVec2| egui::pos2((p.x / ppp) as f32, (p.y / ppp) as f32);
@@ -975,7 +993,13 @@ pub(crate) fn canvas(
     }
     if model.toggles.show_labels && scene.curves.len() <= LISTED_CURVES {
         let [r, g, b, _] = scene.background.0.map(|v| (v * 255.0).round() as u8);
-        curve_labels(&painter, scene, &pixel, egui::Color32::from_rgb(r, g, b));
+        curve_labels(
+            &painter,
+            scene,
+            &digest.summaries,
+            &pixel,
+            egui::Color32::from_rgb(r, g, b),
+        );
     }
     // Labels just past the ends of the 3D axis triad.
     for axis in &facts.axes {
@@ -1009,18 +1033,19 @@ pub(crate) fn canvas(
 fn curve_labels(
     painter: &egui::Painter,
     scene: &Scene,
+    summaries: &[CurveSummary],
     pixel: &dyn Fn(DVec3) -> Option<egui::Pos2>,
     plate: egui::Color32,
 ) {
     let mut placed: Vec<egui::Rect> = Vec::new();
-    for sc in &scene.curves {
+    for (sc, summary) in scene.curves.iter().zip(summaries) {
         let (a, b) = sc.curve.domain();
         let Some(at) = pixel(sc.curve.eval(0.5 * (a + b))) else {
             continue;
         };
         let [r, g, bl, _] = sc.style.color.0.map(|v| (v * 255.0).round() as u8);
         let galley = painter.layout_no_wrap(
-            sc.label(),
+            summary.name.clone(),
             egui::FontId::proportional(12.0),
             egui::Color32::from_rgb(r, g, bl),
         );

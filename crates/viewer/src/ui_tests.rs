@@ -122,14 +122,23 @@ fn clicking_a_listed_curve_selects_it_and_duplicate_undo_redo_work_from_the_pane
 
 /// Types `text` into the number field whose current value reads `value`, then Enter.
 fn type_into(h: &mut Harness<'static, Viewer>, value: &str, text: &str) {
+    type_then(h, value, text, egui::Key::Enter);
+}
+
+/// Types `text` into the number field whose current value reads `value`, then presses
+/// `key`, and lets a few frames pass (egui applies a field's text a frame after it loses
+/// the keyboard).
+fn type_then(h: &mut Harness<'static, Viewer>, value: &str, text: &str, key: egui::Key) {
     h.get_by_value(value).click();
     h.run();
     // The field being edited has the keyboard: select its text and type over it.
     h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
     h.get_by_label("file").type_text(text);
     h.run();
-    h.key_press(egui::Key::Enter);
-    h.run();
+    h.key_press(key);
+    for _ in 0..4 {
+        h.run();
+    }
 }
 
 #[test]
@@ -266,15 +275,7 @@ fn escape_in_a_number_field_changes_nothing() {
     h.run();
     let before = h.state().model.scene().clone();
     // The x field of point 1 reads "x 1.00".
-    h.get_by_value("x 1.00").click();
-    h.run();
-    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
-    h.get_by_label("file").type_text("99");
-    h.run();
-    h.key_press(egui::Key::Escape);
-    for _ in 0..4 {
-        h.run();
-    }
+    type_then(&mut h, "x 1.00", "99", egui::Key::Escape);
     assert_eq!(h.state().model.scene(), &before);
     assert_eq!(h.state().model.editor.history_len(), (0, 0));
     assert!(!h.state().model.editor.is_dirty());
@@ -285,15 +286,7 @@ fn escape_in_a_number_field_changes_nothing() {
     h.state_mut().model.editor.selected = Some(1);
     h.state_mut().model.editor.selected_point = None;
     h.run();
-    h.get_by_value("0.30").click();
-    h.run();
-    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
-    h.get_by_label("file").type_text("0.7");
-    h.run();
-    h.key_press(egui::Key::Escape);
-    for _ in 0..4 {
-        h.run();
-    }
+    type_then(&mut h, "0.30", "0.7", egui::Key::Escape);
     assert_eq!(h.state().model.scene(), &before);
     assert_eq!(h.state().model.editor.history_len(), (0, 0));
     h.get_by_value("0.30");

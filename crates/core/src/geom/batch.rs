@@ -137,22 +137,16 @@ struct Homogeneous {
 
 impl Homogeneous {
     fn of(seg: &BezierSegment) -> Option<Homogeneous> {
-        let weights = seg.weights.as_ref()?;
-        let hodographs = |points: Vec<DVec3>| {
-            let b0 = super::Bezier::new(points);
+        seg.weights.as_ref()?;
+        let hodographs = |b0: super::Bezier| {
             let b1 = b0.deriv();
             let b2 = b1.deriv();
             [b0, b1, b2].map(|b| b.points().to_vec())
         };
+        let (a, w) = seg.homogeneous();
         Some(Homogeneous {
-            a: hodographs(
-                seg.points()
-                    .iter()
-                    .zip(weights)
-                    .map(|(p, w)| *p * *w)
-                    .collect(),
-            ),
-            w: hodographs(weights.iter().map(|w| DVec3::new(*w, 0.0, 0.0)).collect()),
+            a: hodographs(a),
+            w: hodographs(w),
         })
     }
 }

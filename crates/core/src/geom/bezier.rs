@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use super::aabb::Aabb;
 use super::cubic_region::CubicRegion;
-use super::family::{Control, ControlId, ControlKind, ControlValue, Family, Xyz, unknown_control};
+use super::family::{Control, ControlId, ControlValue, Family, Xyz, unknown_control};
 use super::{GeomError, ParamCurve};
 
 /// Curves of up to this many control points evaluate on the stack (no allocation); more
@@ -425,12 +425,7 @@ impl Family for Bezier {
     }
 
     fn controls(&self) -> Vec<Control> {
-        vec![Control {
-            id: ControlId::new("elevate"),
-            label: "elevate degree".into(),
-            hint: Some("the same curve with one more control point".into()),
-            kind: ControlKind::Action,
-        }]
+        vec![Control::elevate()]
     }
 
     fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Bezier, GeomError> {

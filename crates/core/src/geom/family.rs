@@ -297,6 +297,17 @@ pub struct Control {
 }
 
 impl Control {
+    /// The "elevate degree" button: the same curve with one more control point.
+    #[must_use]
+    pub fn elevate() -> Control {
+        Control {
+            id: ControlId::new("elevate"),
+            label: "elevate degree".into(),
+            hint: Some("the same curve with one more control point".into()),
+            kind: ControlKind::Action,
+        }
+    }
+
     /// A text line.
     #[must_use]
     pub fn note(text: impl Into<String>, warning: bool) -> Control {

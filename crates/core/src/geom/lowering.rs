@@ -69,18 +69,28 @@ impl BezierSegment {
         RationalBezier::try_new(self.bezier.points().to_vec(), w.clone()).ok()
     }
 
+    /// The piece's homogeneous parts as polynomial Bézier curves: `A` (the points times
+    /// their weights) and `W` (the weights as `(w_i, 0, 0)`); for a polynomial piece `A`
+    /// is the piece and `W` the constant 1.
+    #[must_use]
+    pub fn homogeneous(&self) -> (Bezier, Bezier) {
+        let w = |i: usize| self.weights.as_ref().map_or(1.0, |w| w[i]);
+        let points = self.points().iter().enumerate();
+        (
+            Bezier::new(points.clone().map(|(i, p)| *p * w(i)).collect()),
+            Bezier::new(points.map(|(i, _)| DVec3::new(w(i), 0.0, 0.0)).collect()),
+        )
+    }
+
     /// The point at the segment's own parameter `u`: de Casteljau on the control points,
-    /// or on the weighted points and the weights (then divided) for a rational piece.
+    /// or on the homogeneous parts (then divided) for a rational piece.
     #[must_use]
     pub fn eval(&self, u: f64) -> DVec3 {
-        match &self.weights {
-            None => self.bezier.eval(u),
-            Some(w) => {
-                let a: Vec<DVec3> = self.points().iter().zip(w).map(|(p, w)| *p * *w).collect();
-                let ws: Vec<DVec3> = w.iter().map(|w| DVec3::new(*w, 0.0, 0.0)).collect();
-                super::bezier::de_casteljau(&a, u) / super::bezier::de_casteljau(&ws, u).x
-            }
+        if self.weights.is_none() {
+            return self.bezier.eval(u);
         }
+        let (a, w) = self.homogeneous();
+        a.eval(u) / w.eval(u).x
     }
 }
 

@@ -361,8 +361,8 @@ impl Lower for Nurbs {
     }
 }
 
-/// The weights as the panel shows them: a note, then one number control per point
-/// (the family refuses `w ≤ 0`).
+/// Both families' panel controls: a note, one number control per weight (the family
+/// refuses `w ≤ 0`), and the elevate button.
 fn weight_controls(weights: &[f64]) -> Vec<Control> {
     let note = Control::note("weights w_i of the points, each greater than 0", false);
     std::iter::once(note)
@@ -379,6 +379,7 @@ fn weight_controls(weights: &[f64]) -> Vec<Control> {
                 bands: Vec::new(),
             },
         }))
+        .chain(std::iter::once(Control::elevate()))
         .collect()
 }
 
@@ -410,16 +411,6 @@ fn weight_text(weights: &[f64]) -> String {
 /// `x` to four significant decimals after the point, for display.
 fn round4(x: f64) -> f64 {
     (x * 1e4).round() / 1e4
-}
-
-/// The elevate button of both families.
-fn elevate_control() -> Control {
-    Control {
-        id: ControlId::new("elevate"),
-        label: "elevate degree".into(),
-        hint: Some("the same curve with one more control point".into()),
-        kind: ControlKind::Action,
-    }
 }
 
 /// The weight of a point inserted on leg `leg` at fraction `s`: the legs' weights
@@ -576,9 +567,7 @@ impl Family for RationalBezier {
     }
 
     fn controls(&self) -> Vec<Control> {
-        let mut c = weight_controls(&self.weights);
-        c.push(elevate_control());
-        c
+        weight_controls(&self.weights)
     }
 
     fn apply_control(
@@ -666,9 +655,7 @@ impl Family for Nurbs {
     }
 
     fn controls(&self) -> Vec<Control> {
-        let mut c = weight_controls(&self.weights);
-        c.push(elevate_control());
-        c
+        weight_controls(&self.weights)
     }
 
     fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Nurbs, GeomError> {
