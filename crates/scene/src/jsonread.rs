@@ -336,6 +336,20 @@ impl<'a> Node<'a> {
         }
     }
 
+    /// A string shown to people (a name, a label): no control character (`U+0000`–`U+001F`,
+    /// `U+007F`–`U+009F`) and no Unicode noncharacter (`U+FFFE`, `U+FDD0`, …), which no text
+    /// format of the figures can carry (XML 1.0 forbids them even escaped).
+    pub(crate) fn text(&self) -> Result<&'a str, SceneError> {
+        let s = self.string()?;
+        match s.char_indices().find(|(_, c)| !crate::text::displayable(*c)) {
+            None => Ok(s),
+            Some((at, c)) => Err(self.invalid(format!(
+                "the character U+{:04X} at byte {at} is a control character or a noncharacter; names and labels are text to display",
+                u32::from(c)
+            ))),
+        }
+    }
+
     /// A point: an array of 2 (`z = 0`) or 3 finite numbers.
     pub(crate) fn point(&self) -> Result<DVec3, SceneError> {
         let items = self.array()?;

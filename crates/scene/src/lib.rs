@@ -14,6 +14,7 @@ mod jsonread;
 pub mod limits;
 pub mod request;
 pub mod scene;
+pub mod text;
 
 // The core's modules under the names the code of this layer uses (`crate::geom`).
 use splinescope_core::{geom, solve};

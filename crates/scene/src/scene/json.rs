@@ -47,7 +47,7 @@ fn decode_scene(root: &Node<'_>) -> Result<Scene, SceneError> {
     }
     let name = obj
         .get("name")
-        .map(|n| n.string().map(str::to_owned))
+        .map(|n| n.text().map(str::to_owned))
         .transpose()?;
     let background = obj.get("background").map(|n| n.color()).transpose()?;
     let samples = match obj.get("samples") {
@@ -121,7 +121,7 @@ fn decode_annotation(node: &Node<'_>) -> Result<Annotation, SceneError> {
     };
     let label = obj
         .get("label")
-        .map(|n| n.string().map(str::to_owned))
+        .map(|n| n.text().map(str::to_owned))
         .transpose()?;
     Ok(Annotation {
         shape,
@@ -240,7 +240,7 @@ pub(super) fn decode_curve(node: &Node<'_>, index: usize) -> Result<SceneCurve, 
         .map_err(|e| geom_error(node, "", &e))?;
     let name = obj
         .get("name")
-        .map(|n| n.string().map(str::to_owned))
+        .map(|n| n.text().map(str::to_owned))
         .transpose()?;
     let style = match obj.get("style") {
         None => Style::default_for(index),
