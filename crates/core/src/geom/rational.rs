@@ -43,21 +43,63 @@ fn check_weights(points: &[DVec3], weights: &[f64]) -> Result<(), GeomError> {
     }
 }
 
-/// The weighted points `w_i P_i` and the weights as points `(w_i, 0, 0)`.
-fn homogeneous(points: &[DVec3], weights: &[f64]) -> (Vec<DVec3>, Vec<DVec3>) {
+/// The binary exponent `e` midway between those of the largest and the smallest weight:
+/// the homogeneous parts hold the weights scaled by `2^−e`, exactly, so that they lie
+/// around 1 (`w_i P_i` and the products of the quotient rule stay inside `f64` for weights
+/// as large as `1e300` or as small as `1e−300`; a rational curve does not change when every
+/// weight is scaled alike), and the largest and the smallest are as far from overflow as
+/// from underflow.
+///
+/// Weights between `2^−100` and `2^100` — every weight a person types — are kept as they
+/// are (`e = 0`).
+fn weight_exponent(weights: &[f64]) -> i32 {
+    let max = weights.iter().copied().fold(0.0, f64::max);
+    let min = weights.iter().copied().fold(f64::INFINITY, f64::min);
+    if !(min > 0.0 && max.is_finite()) {
+        return 0;
+    }
+    let (_, hi) = crate::num::split_exponent(max);
+    let (_, lo) = crate::num::split_exponent(min);
+    if lo >= -100 && hi < 100 {
+        0
+    } else {
+        (hi + lo).div_euclid(2)
+    }
+}
+
+/// The weighted points `w_i P_i` and the weights as points `(w_i, 0, 0)`, the weights
+/// scaled by `2^−e` for the exponent `e` returned ([`weight_exponent`]).
+fn homogeneous(points: &[DVec3], weights: &[f64]) -> (Vec<DVec3>, Vec<DVec3>, i32) {
+    let e = weight_exponent(weights);
+    let scaled: Vec<f64> = weights
+        .iter()
+        .map(|w| crate::num::scale_by_power_of_two(*w, -e))
+        .collect();
     (
-        points.iter().zip(weights).map(|(p, w)| *p * *w).collect(),
-        weights.iter().map(|w| DVec3::new(*w, 0.0, 0.0)).collect(),
+        points.iter().zip(&scaled).map(|(p, w)| *p * *w).collect(),
+        scaled.iter().map(|w| DVec3::new(*w, 0.0, 0.0)).collect(),
+        e,
     )
 }
 
-/// Points and weights back from the weighted points and the weights.
-fn project(weighted: &[DVec3], weights: &[DVec3]) -> (Vec<DVec3>, Vec<f64>) {
+/// Points and weights back from the weighted points and the weights scaled by `2^−e`.
+fn project(weighted: &[DVec3], weights: &[DVec3], e: i32) -> (Vec<DVec3>, Vec<f64>) {
     weighted
         .iter()
         .zip(weights)
-        .map(|(a, w)| (*a / w.x, w.x))
+        .map(|(a, w)| (*a / w.x, crate::num::scale_by_power_of_two(w.x, e)))
         .unzip()
+}
+
+/// `weights` scaled alike by a power of two (exactly) so that they lie around 1
+/// ([`weight_exponent`]): what a lowered rational segment carries.
+#[must_use]
+pub fn normalised_weights(weights: &[f64]) -> Vec<f64> {
+    let e = weight_exponent(weights);
+    weights
+        .iter()
+        .map(|w| crate::num::scale_by_power_of_two(*w, -e))
+        .collect()
 }
 
 /// A rational curve as its homogeneous parts: `A` (the weighted points) and `W` (the
@@ -68,14 +110,17 @@ struct Homogeneous<C> {
     a: C,
     w: C,
     unit: bool,
+    /// The weights' binary exponent: `w` holds the weights times `2^−exp`.
+    exp: i32,
 }
 
 impl<C: ParamCurve> Homogeneous<C> {
-    fn new(a: C, w: C, weights: &[f64]) -> Homogeneous<C> {
+    fn new(a: C, w: C, weights: &[f64], exp: i32) -> Homogeneous<C> {
         Homogeneous {
             a,
             w,
             unit: weights.iter().all(|w| *w == 1.0),
+            exp,
         }
     }
 
@@ -157,9 +202,9 @@ impl RationalBezier {
     pub fn try_new(points: Vec<DVec3>, weights: Vec<f64>) -> Result<RationalBezier, GeomError> {
         Bezier::try_new(points.clone())?;
         check_weights(&points, &weights)?;
-        let (a, w) = homogeneous(&points, &weights);
+        let (a, w, e) = homogeneous(&points, &weights);
         Ok(RationalBezier {
-            parts: Homogeneous::new(Bezier::try_new(a)?, Bezier::try_new(w)?, &weights),
+            parts: Homogeneous::new(Bezier::try_new(a)?, Bezier::try_new(w)?, &weights, e),
             points,
             weights,
         })
@@ -183,10 +228,10 @@ impl RationalBezier {
         self.points.len() - 1
     }
 
-    fn from_parts(a: &Bezier, w: &Bezier) -> RationalBezier {
-        let (points, weights) = project(a.points(), w.points());
+    fn from_parts(a: &Bezier, w: &Bezier, e: i32) -> RationalBezier {
+        let (points, weights) = project(a.points(), w.points(), e);
         RationalBezier {
-            parts: Homogeneous::new(a.clone(), w.clone(), &weights),
+            parts: Homogeneous::new(a.clone(), w.clone(), &weights, e),
             points,
             weights,
         }
@@ -195,7 +240,11 @@ impl RationalBezier {
     /// The same curve one degree higher (weights included).
     #[must_use]
     pub fn elevate(&self) -> RationalBezier {
-        RationalBezier::from_parts(&self.parts.a.elevate(), &self.parts.w.elevate())
+        RationalBezier::from_parts(
+            &self.parts.a.elevate(),
+            &self.parts.w.elevate(),
+            self.parts.exp,
+        )
     }
 
     /// The part on `[t0, t1]`, reparameterised to `[0, 1]`.
@@ -204,6 +253,7 @@ impl RationalBezier {
         RationalBezier::from_parts(
             &self.parts.a.subsegment(t0, t1),
             &self.parts.w.subsegment(t0, t1),
+            self.parts.exp,
         )
     }
 }
@@ -234,12 +284,13 @@ impl Nurbs {
     ) -> Result<Nurbs, GeomError> {
         let spline = BSpline::try_new(points.clone(), knots, order)?;
         check_weights(&points, &weights)?;
-        let (a, w) = homogeneous(&points, &weights);
+        let (a, w, e) = homogeneous(&points, &weights);
         Ok(Nurbs {
             parts: Homogeneous::new(
                 BSpline::from_parts(a, spline.knots().clone())?,
                 BSpline::from_parts(w, spline.knots().clone())?,
                 &weights,
+                e,
             ),
             points,
             weights,
@@ -257,22 +308,23 @@ impl Nurbs {
     ) -> Result<Nurbs, GeomError> {
         BSpline::from_parts(points.clone(), knots.clone())?;
         check_weights(&points, &weights)?;
-        let (a, w) = homogeneous(&points, &weights);
+        let (a, w, e) = homogeneous(&points, &weights);
         Ok(Nurbs {
             parts: Homogeneous::new(
                 BSpline::from_parts(a, knots.clone())?,
                 BSpline::from_parts(w, knots)?,
                 &weights,
+                e,
             ),
             points,
             weights,
         })
     }
 
-    fn from_parts(a: BSpline, w: BSpline) -> Nurbs {
-        let (points, weights) = project(a.points(), w.points());
+    fn from_parts(a: BSpline, w: BSpline, e: i32) -> Nurbs {
+        let (points, weights) = project(a.points(), w.points(), e);
         Nurbs {
-            parts: Homogeneous::new(a, w, &weights),
+            parts: Homogeneous::new(a, w, &weights, e),
             points,
             weights,
         }
@@ -310,13 +362,18 @@ impl Nurbs {
         Ok(Nurbs::from_parts(
             self.parts.a.insert_knot(t)?,
             self.parts.w.insert_knot(t)?,
+            self.parts.exp,
         ))
     }
 
     /// The same curve one degree higher (weights included).
     #[must_use]
     pub fn elevate(&self) -> Nurbs {
-        Nurbs::from_parts(self.parts.a.elevate(), self.parts.w.elevate())
+        Nurbs::from_parts(
+            self.parts.a.elevate(),
+            self.parts.w.elevate(),
+            self.parts.exp,
+        )
     }
 
     /// The rational Bézier segments of the curve with their parameter ranges (Bézier
@@ -328,19 +385,28 @@ impl Nurbs {
             .bezier_segments()
             .iter()
             .zip(self.parts.w.bezier_segments())
-            .map(|(a, w)| (a.t0, a.t1, RationalBezier::from_parts(&a.bezier, &w.bezier)))
+            .map(|(a, w)| {
+                (
+                    a.t0,
+                    a.t1,
+                    RationalBezier::from_parts(&a.bezier, &w.bezier, self.parts.exp),
+                )
+            })
             .collect()
     }
 }
 
 param_curve_by_parts!(Nurbs);
 
-/// The segment of a rational piece: polynomial (no weights) when every weight is 1, so a
-/// rational curve with unit weights draws exactly as its polynomial family.
+/// The segment of a rational piece: polynomial (no weights) when its weights are all
+/// equal (the rational curve is then its polynomial curve exactly), so a rational curve
+/// with unit weights draws exactly as its polynomial family; otherwise the weights scaled
+/// alike by a power of two so that they lie around 1 ([`normalised_weights`]).
 fn segment(points: &[DVec3], weights: &[f64], t0: f64, t1: f64) -> BezierSegment {
+    let equal = weights.iter().all(|w| *w == weights[0]);
     BezierSegment {
         bezier: Bezier::new(points.to_vec()),
-        weights: (!weights.iter().all(|w| *w == 1.0)).then(|| weights.to_vec()),
+        weights: (!equal).then(|| normalised_weights(weights)),
         t0,
         t1,
     }
