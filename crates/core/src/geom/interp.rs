@@ -112,6 +112,21 @@ impl CubicInterpolation {
             check_t_star(m.t_star)?;
             check_vector(m.v)?;
         }
+        // In the bump-added reading each piece is a modified Bézier curve with the vector
+        // `h v`: one that leaves f64 is an error here rather than in the lowering (which
+        // builds those curves and can then not fail).
+        if let Some(m) = modification.filter(|m| m.reading == Reading::BumpAdded) {
+            for (i, pair) in params.windows(2).enumerate() {
+                let hv = (pair[1] - pair[0]) * m.v;
+                if let Some(value) = hv.to_array().into_iter().find(|c| !c.is_finite()) {
+                    return Err(GeomError::DerivedNotFinite {
+                        field: "v",
+                        what: format!("the bump vector h·v of piece {i}"),
+                        value,
+                    });
+                }
+            }
+        }
         let tangents = tangents(&points, &params);
         let pieces = (1..points.len())
             .map(|i| {

@@ -62,7 +62,8 @@ impl Codec for CubicInterpolation {
                 GeomError::TStarOutside { .. }
                 | GeomError::NonFiniteVector { .. }
                 | GeomError::DerivedNotFinite {
-                    field: "t_star", ..
+                    field: "t_star" | "v",
+                    ..
                 } => "modification.",
                 _ => "",
             };
