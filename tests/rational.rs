@@ -558,3 +558,102 @@ fn the_batch_sampler_agrees_with_the_rational_curves() {
         }
     }
 }
+
+/// A solve passes through its targets or is refused (never a curve that misses silently):
+/// a window whose basis is 0 at the target's parameter (the circle's knot t = 0.5 lies in
+/// no span of P_1) is refused naming the points that could move it; next to an end, the
+/// target is met however far the points move, or the solve is refused naming `t`; a
+/// several-target system whose rank rounding lost is refused, not solved in least squares.
+#[test]
+fn rational_solves_meet_their_targets_or_are_refused() {
+    use splinescope::solve::SolveError;
+    use splinescope::solve::rational::{multi_target, single_target, tangent_kept};
+    let c = circle(DVec3::ZERO, 1.0);
+    let target = DVec3::new(-1.5, 0.2, 0.0);
+    match single_target(&c, target, Some(0.5), Some((1, 1)), None) {
+        Err(e @ SolveError::NoInfluence { .. }) => {
+            let m = e.to_string();
+            assert!(
+                m.contains("(P_1)") && m.contains("P_4") && m.contains("t = 0.5"),
+                "{m}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+    let s = single_target(&c, target, Some(0.5), None, None).expect("default window");
+    assert!((s.curve.eval(0.5) - target).length() < 1e-12);
+    let target = DVec3::new(1.5, 0.5, 0.0);
+    let mut refused = 0;
+    for t in [
+        5e-324,
+        1e-300,
+        1e-200,
+        1e-100,
+        1e-20,
+        1.0 - f64::EPSILON / 2.0,
+    ] {
+        match single_target(&c, target, Some(t), None, None) {
+            Ok(s) => {
+                assert!(s.curve.points().iter().all(|p| p.is_finite()));
+                let gap = (s.curve.eval(t) - target).length();
+                assert!(gap <= 1e-9, "t = {t:e}: misses by {gap}");
+                assert!(s.residuals[0] <= 1e-9);
+            }
+            Err(
+                SolveError::NoInfluence { value, .. }
+                | SolveError::MovesOverflow { value, .. }
+                | SolveError::Missed { value, .. },
+            ) => {
+                assert_eq!(value, t);
+                refused += 1;
+            }
+            Err(e) => panic!("t = {t:e}: {e}"),
+        }
+    }
+    assert!(refused >= 1, "t = 5e-324 cannot be met in f64");
+    // Two targets, three free points: not over-determined; the second target's basis is
+    // tiny, so rounding drops the rank. Refused rather than returned in least squares.
+    let arc = RationalBezier::try_new(
+        vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 2.0, 0.0),
+            DVec3::new(3.0, 0.0, 0.0),
+            DVec3::new(4.0, 3.0, 0.0),
+            DVec3::new(5.0, -1.0, 0.0),
+        ],
+        vec![1.0, 0.5, 2.0, 1.0, 1.0],
+    )
+    .expect("arc");
+    let targets = [DVec3::new(1.0, 1.0, 0.0), DVec3::new(3.0, 2.0, 0.0)];
+    match multi_target(&arc, &targets, Some(&[0.3, 1e-300]), None) {
+        Err(SolveError::Missed { index: 1, .. } | SolveError::MovesOverflow { .. }) => {}
+        Ok(m) => {
+            for (l, t) in [0.3, 1e-300].iter().enumerate() {
+                assert!(
+                    (m.curve.eval(*t) - targets[l]).length() <= 1e-9,
+                    "target {l}"
+                );
+            }
+        }
+        Err(e) => panic!("{e}"),
+    }
+    // Over-determined by structure (four targets, three free points): least squares, said.
+    // (Parameters symmetric about ½ would make this shift reachable exactly.)
+    let params = [0.1, 0.3, 0.6, 0.7];
+    let four = params.map(|t| arc.eval(t) + DVec3::new(0.0, 0.3, 0.0));
+    let m = multi_target(&arc, &four, Some(&params), None).expect("least squares");
+    assert!(
+        m.least_squares && m.residuals.iter().any(|r| *r > 1e-6),
+        "{} {:?}",
+        m.least_squares,
+        m.residuals
+    );
+    // The tangent-kept solve at a parameter where nothing moves the curve: refused.
+    assert!(tangent_kept(&arc, DVec3::new(2.0, 2.0, 0.0), Some(5e-324), None).is_err());
+    // The polynomial solvers: the same rules.
+    let poly = Bezier::new(arc.points().to_vec());
+    assert!(
+        splinescope::solve::shape::multi_target(&poly, &targets, Some(&[0.3, 1e-300]), None)
+            .is_err()
+    );
+}

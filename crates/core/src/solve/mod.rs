@@ -68,6 +68,49 @@ pub enum SolveError {
         /// The projected parameter.
         t: f64,
     },
+    /// None of the points the solve may move has any influence at the target's parameter
+    /// (their basis functions are 0 there, in `f64`): no move of them can reach it.
+    #[error(
+        "target {index}: the control points it may move ({moved}) do not move the curve at t = {} (their basis functions are 0 there); {influence}",
+        crate::num::Num(*value)
+    )]
+    NoInfluence {
+        /// Which target.
+        index: usize,
+        /// Its parameter.
+        value: f64,
+        /// The points that may move, listed (`P_1..P_3`).
+        moved: String,
+        /// Which interior points do move the curve there, or why none does.
+        influence: String,
+    },
+    /// Reaching a target needs moves beyond `f64` (its moved points' basis values are
+    /// tiny there).
+    #[error(
+        "target {index}: reaching it at t = {} needs moves beyond f64 (the moved points barely move the curve there); choose a parameter further inside",
+        crate::num::Num(*value)
+    )]
+    MovesOverflow {
+        /// Which target.
+        index: usize,
+        /// Its parameter.
+        value: f64,
+    },
+    /// The solution misses a target it should meet by more than `1e−9` of the target's and
+    /// the curve's size there (rounding on an ill-conditioned system): refused rather than
+    /// returned.
+    #[error(
+        "target {index}: the solution misses it by {residual:e} at t = {}: the moves the targets need are too large for f64 to keep this one (an ill-conditioned system: targets far apart in size, or a parameter next to an end)",
+        crate::num::Num(*value)
+    )]
+    Missed {
+        /// Which target.
+        index: usize,
+        /// Its parameter.
+        value: f64,
+        /// `|C̃(t) − T|`.
+        residual: f64,
+    },
     /// The window of moved points leaves the interior.
     #[error(
         "moving P_l..P_(l+m-1) with l = {first}, m = {count}: they must lie in 1..={max} (the ends stay fixed)"

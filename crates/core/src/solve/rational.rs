@@ -197,8 +197,11 @@ pub fn single_target<C: RationalCurve>(
 ) -> Result<RationalSolution<C>, SolveError> {
     degree_at_least(curve, "single_target", 2)?;
     let t = parameter(curve, 0, target, t, accuracy)?;
-    let (first, count) = super::shape::window(&curve.basis(t), window)?;
-    solve(curve, &[target], vec![t], (first..first + count).collect())
+    let basis = curve.basis(t);
+    let (first, count) = super::shape::window(&basis, window)?;
+    let moved: Vec<usize> = (first..first + count).collect();
+    super::shape::check_influence(&basis, &moved, 0, t)?;
+    solve(curve, &[target], vec![t], moved)
 }
 
 /// Paper 000 §2.2 with the weights fixed: keeps `P_0`, `P_n` and the end tangents (`P_1`
@@ -219,15 +222,22 @@ pub fn tangent_kept<C: RationalCurve>(
     let n = degree_at_least(curve, "tangent_kept", 3)?;
     let directions = super::shape::polygon_end_directions(curve.points())?;
     let t = parameter(curve, 0, target, t, accuracy)?;
-    let moves = super::shape::tangent_moves(
-        curve.points(),
-        &curve.basis(t),
-        directions,
-        target,
-        target - curve.eval(t),
-    );
+    let basis = curve.basis(t);
+    super::shape::check_influence(&basis, &(1..n).collect::<Vec<_>>(), 0, t)?;
+    let diff = target - curve.eval(t);
+    let moves = super::shape::tangent_moves(curve.points(), &basis, directions, target, diff);
+    super::shape::check_moves_finite(&moves.points, &[t])?;
     let modified = curve.with_points(moves.points)?;
     let residual = (modified.eval(t) - target).length();
+    if !moves.over_determined {
+        super::shape::check_met(
+            curve.points(),
+            &[(basis, diff)],
+            &[target],
+            &[t],
+            &[residual],
+        )?;
+    }
     Ok(TangentKeptSolution {
         solution: RationalSolution {
             curve: modified,
@@ -254,13 +264,21 @@ fn solve<C: RationalCurve>(
         .zip(targets)
         .map(|(&t, &target)| (curve.basis(t), target - curve.eval(t)))
         .collect();
+    for (l, (basis, _)) in conditions.iter().enumerate() {
+        super::shape::check_influence(basis, &moved, l, params[l])?;
+    }
     let moves = super::shape::point_moves(curve.points(), &moved, &conditions);
+    super::shape::check_moves_finite(&moves.points, &params)?;
     let modified = curve.with_points(moves.points)?;
-    let residuals = params
+    let residuals: Vec<f64> = params
         .iter()
         .zip(targets)
         .map(|(&t, &target)| (modified.eval(t) - target).length())
         .collect();
+    let least_squares = moves.rank < targets.len();
+    if !super::shape::over_determined(targets.len(), moved.len(), &params) {
+        super::shape::check_met(curve.points(), &conditions, targets, &params, &residuals)?;
+    }
     Ok(RationalSolution {
         curve: modified,
         params,
@@ -268,6 +286,6 @@ fn solve<C: RationalCurve>(
         deltas: moves.deltas,
         residuals,
         rank: moves.rank,
-        least_squares: moves.rank < targets.len(),
+        least_squares,
     })
 }

@@ -115,6 +115,7 @@ pub fn single_target(
     let t_s = start_parameter(curve, target, 0, opts.t_s, opts.accuracy)?;
     let b = bernstein_all(n, t_s);
     let (first, count) = window(&b, opts.window)?;
+    check_influence(&b, &(first..first + count).collect::<Vec<_>>(), 0, t_s)?;
     let denom: f64 = b[first..first + count].iter().map(|v| v * v).sum();
     if denom <= 0.0 {
         return Err(SolveError::ParameterAtEnd {
@@ -131,8 +132,10 @@ pub fn single_target(
     for (k, d) in deltas.iter().enumerate() {
         pts[first + k] += *d;
     }
+    check_moves_finite(&pts, &[t_s])?;
     let modified = Bezier::new(pts);
     let residual = (modified.eval(t_s) - target).length();
+    check_met(curve.points(), &[(b, diff)], &[target], &[t_s], &[residual])?;
     Ok(SingleTargetSolution {
         curve: modified,
         t_s,
@@ -219,10 +222,21 @@ pub fn tangent_kept(
     let [e1, e2] = end_directions(curve)?;
     let t_s = start_parameter(curve, target, 0, t_s, accuracy)?;
     let b = bernstein_all(n, t_s);
+    check_influence(&b, &(1..n).collect::<Vec<_>>(), 0, t_s)?;
     let start = curve.eval(t_s);
     let moves = tangent_moves(curve.points(), &b, [e1, e2], target, target - start);
+    check_moves_finite(&moves.points, &[t_s])?;
     let modified = Bezier::new(moves.points);
     let residual = (modified.eval(t_s) - target).length();
+    if !moves.over_determined {
+        check_met(
+            curve.points(),
+            &[(b, target - start)],
+            &[target],
+            &[t_s],
+            &[residual],
+        )?;
+    }
     Ok(TangentKeptSolution {
         curve: modified,
         t_s,
@@ -232,6 +246,105 @@ pub fn tangent_kept(
         residual,
         least_squares: moves.least_squares,
     })
+}
+
+/// `P_a..P_b` for a sorted, consecutive list of indices (or the list).
+fn points_text(indices: &[usize]) -> String {
+    match indices {
+        [] => "none".to_owned(),
+        [i] => format!("P_{i}"),
+        [first, .., last] if last - first + 1 == indices.len() => format!("P_{first}..P_{last}"),
+        _ => indices
+            .iter()
+            .map(|i| format!("P_{i}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+    }
+}
+
+/// Refuses a target at `t` (its basis values `basis`) that none of the points `moved` can
+/// move: their basis functions are all 0 there (a parameter so close to an end that they
+/// underflow, or a window the parameter's knot span does not reach).
+pub(crate) fn check_influence(
+    basis: &[f64],
+    moved: &[usize],
+    index: usize,
+    t: f64,
+) -> Result<(), SolveError> {
+    if moved
+        .iter()
+        .any(|&i| basis.get(i).is_some_and(|b| *b != 0.0))
+    {
+        return Ok(());
+    }
+    let n = basis.len().saturating_sub(1);
+    let active: Vec<usize> = (1..n).filter(|&i| basis[i] != 0.0).collect();
+    let influence = if active.is_empty() {
+        "no interior control point does (the parameter is too close to a fixed end); choose a parameter further inside".to_owned()
+    } else {
+        format!("the interior points that do: {}", points_text(&active))
+    };
+    Err(SolveError::NoInfluence {
+        index,
+        value: t,
+        moved: points_text(moved),
+        influence,
+    })
+}
+
+/// Whether a several-target system is over-determined by its structure — more targets
+/// than moved points, or two targets sharing a parameter — so that least squares is the
+/// method. Any other rank deficiency is rounding (basis values that underflow) and the
+/// targets must then be met, or the solve is refused.
+pub(crate) fn over_determined(targets: usize, moved: usize, params: &[f64]) -> bool {
+    let mut sorted = params.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    targets > moved || sorted.windows(2).any(|w| w[0] == w[1])
+}
+
+/// Refuses moves that leave `f64` (`new_points` not all finite), naming the first target.
+pub(crate) fn check_moves_finite(new_points: &[DVec3], params: &[f64]) -> Result<(), SolveError> {
+    if new_points.iter().all(|p| p.is_finite()) {
+        Ok(())
+    } else {
+        Err(SolveError::MovesOverflow {
+            index: 0,
+            value: params.first().copied().unwrap_or(f64::NAN),
+        })
+    }
+}
+
+/// Refuses a solution that misses a target it should meet: `residuals[l]` above `1e−9` of
+/// `|T_l| + Σ_i |basis_i(t_l)| ‖P_i‖` — the target's size and the size of the terms the
+/// unmodified curve sums at `t_l`. A solution whose moves are so large that rounding
+/// them spoils the target (another target at 1e15, say) is refused rather than returned
+/// with a residual. Least-squares solutions (more conditions than the rank) report their
+/// residuals instead.
+pub(crate) fn check_met(
+    points: &[DVec3],
+    conditions: &[(Vec<f64>, DVec3)],
+    targets: &[DVec3],
+    params: &[f64],
+    residuals: &[f64],
+) -> Result<(), SolveError> {
+    for (l, ((basis, _), target)) in conditions.iter().zip(targets).enumerate() {
+        let terms: f64 = basis
+            .iter()
+            .zip(points)
+            .map(|(b, p)| b.abs() * p.abs().max_element())
+            .sum();
+        let scale = target.abs().max_element() + terms;
+        let residual = residuals[l];
+        // NaN fails too.
+        if residual.is_nan() || residual > 1e-9 * scale + f64::MIN_POSITIVE {
+            return Err(SolveError::Missed {
+                index: l,
+                value: params[l],
+                residual,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The points Eq. 8 moves, `(first, count)`, for the basis values `basis` (`n + 1` of
@@ -255,7 +368,12 @@ pub(crate) fn window(
         Some(w) => Ok(w),
         None => {
             let m = DEFAULT_WINDOW.min(n - 1);
-            let weight = |l: usize| basis[l..l + m].iter().map(|v| v * v).sum::<f64>();
+            // Σ basis² underflows to 0 for basis values below 1e-162 (a parameter next to
+            // an end): then the window of largest Σ |basis| is the one that moves the curve.
+            let squares = |l: usize| basis[l..l + m].iter().map(|v| v * v).sum::<f64>();
+            let sums = |l: usize| basis[l..l + m].iter().map(|v| v.abs()).sum::<f64>();
+            let any_square = (1..=n - m).any(|l| squares(l) > 0.0);
+            let weight = |l: usize| if any_square { squares(l) } else { sums(l) };
             let l = (1..=n - m)
                 .max_by(|&x, &y| weight(x).total_cmp(&weight(y)))
                 .unwrap_or(1);
@@ -275,8 +393,11 @@ pub(crate) struct TangentMoves {
     pub deltas: Vec<DVec3>,
     /// The system's rank.
     pub rank: usize,
-    /// Whether it had fewer free parameters than equations.
+    /// Whether it was solved in least squares (rank below the equations).
     pub least_squares: bool,
+    /// Whether it has fewer unknowns than equations (a 3D cubic: only `μ_1, μ_2` for
+    /// three coordinates), so that least squares is the method and not a failure.
+    pub over_determined: bool,
 }
 
 /// The minimum-norm solution of
@@ -326,6 +447,7 @@ pub(crate) fn tangent_moves(
         deltas,
         rank: sol.rank,
         least_squares: sol.rank < d,
+        over_determined: 2 + d * free < d,
     }
 }
 
@@ -395,20 +517,28 @@ pub fn multi_target(
         .map(|(&t, &target)| (bernstein_all(n, t), target - curve.eval(t)))
         .collect();
     let moved: Vec<usize> = (1..n).collect();
+    for (l, (basis, _)) in conditions.iter().enumerate() {
+        check_influence(basis, &moved, l, params[l])?;
+    }
     let moves = point_moves(curve.points(), &moved, &conditions);
+    check_moves_finite(&moves.points, &params)?;
     let modified = Bezier::new(moves.points);
     let residuals: Vec<f64> = params
         .iter()
         .zip(targets)
         .map(|(&t, &target)| (modified.eval(t) - target).length())
         .collect();
+    let least_squares = moves.rank < targets.len();
+    if !over_determined(targets.len(), moved.len(), &params) {
+        check_met(curve.points(), &conditions, targets, &params, &residuals)?;
+    }
     Ok(MultiTargetSolution {
         curve: modified,
         params,
         deltas: moves.deltas,
         residuals,
         rank: moves.rank,
-        least_squares: moves.rank < targets.len(),
+        least_squares,
     })
 }
 

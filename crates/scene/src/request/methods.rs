@@ -80,7 +80,11 @@ fn modifiable<'s>(
 fn single_field(e: &SolveError) -> &'static str {
     match e {
         SolveError::WindowOutOfRange { .. } => "first",
-        SolveError::ParameterAtEnd { .. } | SolveError::ParameterOutsideDomain { .. } => "t",
+        SolveError::ParameterAtEnd { .. }
+        | SolveError::ParameterOutsideDomain { .. }
+        | SolveError::NoInfluence { .. }
+        | SolveError::MovesOverflow { .. }
+        | SolveError::Missed { .. } => "t",
         SolveError::NonFiniteTarget { .. } | SolveError::TargetAtEnd { .. } => "target",
         _ => "",
     }
@@ -91,7 +95,10 @@ fn multi_field(e: &SolveError) -> String {
         SolveError::ParamCount { .. } | SolveError::ParameterOutsideDomain { .. } => {
             "params".to_owned()
         }
-        SolveError::ParameterAtEnd { index, .. } => format!("params[{index}]"),
+        SolveError::ParameterAtEnd { index, .. }
+        | SolveError::NoInfluence { index, .. }
+        | SolveError::MovesOverflow { index, .. }
+        | SolveError::Missed { index, .. } => format!("params[{index}]"),
         SolveError::NonFiniteTarget { index, .. } | SolveError::TargetAtEnd { index, .. } => {
             format!("targets[{index}]")
         }
@@ -168,7 +175,11 @@ fn rational_multi<C: RationalCurve + Into<Curve>>(
 
 fn tangent_field(e: &SolveError) -> &'static str {
     match e {
-        SolveError::ParameterAtEnd { .. } | SolveError::ParameterOutsideDomain { .. } => "t",
+        SolveError::ParameterAtEnd { .. }
+        | SolveError::ParameterOutsideDomain { .. }
+        | SolveError::NoInfluence { .. }
+        | SolveError::MovesOverflow { .. }
+        | SolveError::Missed { .. } => "t",
         SolveError::NonFiniteTarget { .. } | SolveError::TargetAtEnd { .. } => "target",
         _ => "curve",
     }
