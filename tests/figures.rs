@@ -336,7 +336,9 @@ fn pieces_follow_the_tolerance() {
         affine: true,
     };
     let count = |t: f64| {
-        splinescope_figure::fit::segment_pieces(&bez, None, &proj, t)
+        let mut budget = splinescope_figure::fit::Budget::new(1 << 20);
+        splinescope_figure::fit::segment_pieces(&bez, None, &proj, t, None, &mut budget)
+            .expect("within the budget")
             .expect("in front")
             .len()
     };

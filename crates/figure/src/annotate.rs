@@ -62,7 +62,11 @@ pub fn labels(scene: &Scene, proj: &Projection, size: DVec2, out: &mut Vec<Item>
         };
         let line_h = LABEL_SIZE * 1.25;
         let base = end.y - 6.0;
-        let mut y = base.clamp(LABEL_SIZE + 2.0, size.y - 4.0);
+        // Baselines from the first line's to the bottom margin's; a figure lower than one
+        // line keeps its labels on the first line (cut at the bottom edge).
+        let (top, bottom) = (LABEL_SIZE + 2.0, size.y - 4.0);
+        let inside = |y: f64| y.max(top).min(bottom.max(top));
+        let mut y = inside(base);
         for k in 1..=40 {
             let (lo, hi) = (
                 DVec2::new(left, y - LABEL_SIZE),
@@ -74,7 +78,7 @@ pub fn labels(scene: &Scene, proj: &Projection, size: DVec2, out: &mut Vec<Item>
             // Alternate below and above, one line further each time.
             let step = f64::from((k + 1) / 2) * line_h;
             let candidate = if k % 2 == 1 { base + step } else { base - step };
-            y = candidate.clamp(LABEL_SIZE + 2.0, size.y - 4.0);
+            y = inside(candidate);
         }
         placed.push((
             DVec2::new(left, y - LABEL_SIZE),

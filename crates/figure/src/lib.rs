@@ -29,10 +29,27 @@ use splinescope_scene::scene::draw::{Stroke, Switches};
 use splinescope_scene::scene::encoding::Encoding;
 use splinescope_scene::scene::{Color, Scene};
 
-use fit::{Piece, Projection, segment_pieces};
+use fit::{Budget, FitError, Page, Piece, Projection, segment_pieces};
 
 /// The default tolerance: a hundredth of an output point.
 pub const DEFAULT_TOLERANCE: f64 = 0.01;
+
+/// The finest tolerance: a millionth of an output point. Output coordinates reach 10⁵
+/// points, where `f64` keeps about 10⁻¹¹, and the written decimals need room below the
+/// tolerance; finer than this, rounding rather than shape would decide the pieces.
+pub const MIN_TOLERANCE: f64 = 1e-6;
+
+/// Checks a tolerance: a finite number of at least [`MIN_TOLERANCE`] output points.
+///
+/// # Errors
+/// [`FigureError::Tolerance`] naming the value.
+pub fn check_tolerance(tolerance: f64) -> Result<f64, FigureError> {
+    if tolerance.is_finite() && tolerance >= MIN_TOLERANCE {
+        Ok(tolerance)
+    } else {
+        Err(FigureError::Tolerance(tolerance))
+    }
+}
 
 /// What to draw and how.
 #[derive(Debug, Clone, PartialEq)]
@@ -55,6 +72,9 @@ pub struct FigureOptions {
     pub axes: bool,
     /// A grid at the ticks (2D views).
     pub grid: bool,
+    /// The curves and overlays themselves; `false` makes only the guides and text (what
+    /// [`raster::annotate`] draws over a picture the GPU made).
+    pub curves: bool,
 }
 
 impl FigureOptions {
@@ -71,6 +91,7 @@ impl FigureOptions {
             legend: false,
             axes: false,
             grid: false,
+            curves: true,
         }
     }
 }
@@ -112,9 +133,63 @@ impl FigureOptions {
 /// Why a figure cannot be made.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum FigureError {
-    /// The tolerance is not a positive finite number.
-    #[error("tolerance {0}: must be a finite number greater than 0 (output points)")]
+    /// The tolerance is not a finite number of at least [`MIN_TOLERANCE`].
+    #[error(
+        "tolerance {}: must be a finite number of at least 1e-6 (output points; finer, f64 output coordinates cannot keep it)",
+        splinescope_core::num::Num(*.0)
+    )]
     Tolerance(f64),
+    /// The view maps the scene to output coordinates `f64` cannot hold.
+    #[error("the view {view} cannot be drawn at {width}×{height}: {why}")]
+    View {
+        /// The view, described.
+        view: String,
+        /// Width asked for.
+        width: u32,
+        /// Height asked for.
+        height: u32,
+        /// What overflows.
+        why: String,
+    },
+    /// The fit needs more pieces than the limit allows.
+    #[error(
+        "keeping the tolerance {} needs more than {limit} path pieces (the figure's budget; a larger tolerance needs fewer, or raise it with the environment variable {var}=N)",
+        splinescope_core::num::Num(*tolerance)
+    )]
+    Budget {
+        /// The tolerance asked for.
+        tolerance: f64,
+        /// The budget in force.
+        limit: u64,
+        /// The variable that raises it.
+        var: &'static str,
+    },
+    /// Halving stops helping: the tolerance is as fine as the rounding of the curve's
+    /// output coordinates.
+    #[error(
+        "curves[{curve}]: the tolerance {} is finer than f64 keeps the curve's output coordinates in this view (they reach {magnitude:e} points); choose a larger tolerance or a wider view",
+        splinescope_core::num::Num(*tolerance)
+    )]
+    Precision {
+        /// The curve.
+        curve: usize,
+        /// The tolerance asked for.
+        tolerance: f64,
+        /// The largest output coordinate of the piece.
+        magnitude: f64,
+    },
+    /// A number of the figure is not finite (the scene's coordinates or weights under
+    /// this view leave `f64`).
+    #[error(
+        "{what}: its output coordinates are not finite numbers in this view (the scene's coordinates or weights are too large for it)"
+    )]
+    NotFinite {
+        /// What holds it: `curves[3]`, `the control polygons`, `the labels`.
+        what: String,
+    },
+    /// A limit's environment variable is malformed.
+    #[error("{0}")]
+    Limit(String),
     /// Axes or a grid asked of a 3D view.
     #[error(
         "axes and grids are drawn in scene units for 2D views only; this scene has a 3D view (its axis triad shows the directions)"
@@ -237,14 +312,67 @@ pub fn projection(camera: &Camera, size: DVec2) -> Projection {
     }
 }
 
+/// `camera`, described for messages.
+fn describe_view(camera: &Camera) -> String {
+    use splinescope_core::num::Num;
+    match camera {
+        Camera::Ortho2d(c) => format!(
+            "(centre [{}, {}], {} output points per scene unit at this size)",
+            Num(c.center.x),
+            Num(c.center.y),
+            Num(c.pixels_per_unit)
+        ),
+        Camera::Orbit3d(c) => format!(
+            "(target [{}, {}, {}], distance {})",
+            Num(c.target.x),
+            Num(c.target.y),
+            Num(c.target.z),
+            Num(c.distance)
+        ),
+    }
+}
+
+/// Checks that `proj` is a map `f64` can apply: finite rows, and in 2D a scale that is
+/// neither 0 nor infinite.
+fn check_projection(
+    proj: &Projection,
+    camera: &Camera,
+    opts: &FigureOptions,
+) -> Result<(), FigureError> {
+    let why = if !proj.rows.iter().flatten().all(|v| v.is_finite()) {
+        Some("its map to output points overflows f64 (a centre too far out, or a scale too large)")
+    } else if proj.affine && (proj.rows[0][0] == 0.0 || proj.rows[1][1] == 0.0) {
+        Some("its scale underflows f64 (one scene unit is 0 output points)")
+    } else {
+        None
+    };
+    match why {
+        None => Ok(()),
+        Some(why) => Err(FigureError::View {
+            view: describe_view(camera),
+            width: opts.width,
+            height: opts.height,
+            why: why.to_owned(),
+        }),
+    }
+}
+
+/// The budget of path pieces per figure, from the limit in force.
+fn budget() -> Result<Budget, FigureError> {
+    let limit = splinescope_scene::limits::FIGURE_PIECES
+        .value()
+        .map_err(|e| FigureError::Limit(e.to_string()))?;
+    Ok(Budget::new(usize::try_from(limit).unwrap_or(usize::MAX)))
+}
+
 /// `scene` as a figure.
 ///
 /// # Errors
-/// [`FigureError`] for a tolerance that is not positive or a size out of range.
+/// [`FigureError`] for a tolerance out of range, a size out of range, axes in 3D, a view
+/// `f64` cannot apply, a fit over the budget or below the coordinates' rounding, and any
+/// output number that is not finite.
 pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError> {
-    if !(opts.tolerance.is_finite() && opts.tolerance > 0.0) {
-        return Err(FigureError::Tolerance(opts.tolerance));
-    }
+    check_tolerance(opts.tolerance)?;
     if !(1..=100_000).contains(&opts.width) || !(1..=100_000).contains(&opts.height) {
         return Err(FigureError::Size {
             width: opts.width,
@@ -254,14 +382,55 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
     let size = DVec2::new(f64::from(opts.width), f64::from(opts.height));
     let camera = opts.camera.unwrap_or_else(|| scene.camera(size));
     let proj = projection(&camera, size);
+    check_projection(&proj, &camera, opts)?;
     if (opts.axes || opts.grid) && !proj.affine {
         return Err(FigureError::AxesIn3d);
     }
     let encoding = Encoding::with(scene, opts.switches);
     let (mut items, guides) = annotate::axes(&proj, size, opts.axes, opts.grid);
     let behind = items.len();
+    if opts.curves {
+        curve_items(&encoding, &proj, size, opts.tolerance, &mut items)?;
+    }
+    let front = items.len();
+    items.extend(guides);
+    if opts.labels {
+        annotate::labels(scene, &proj, size, &mut items);
+    }
+    if opts.legend {
+        annotate::legend(scene, size, &mut items);
+    }
+    let fig = Figure {
+        width: size.x,
+        height: size.y,
+        background: encoding.background,
+        items,
+        behind,
+        front,
+        projection: proj,
+        tolerance: opts.tolerance,
+    };
+    fig.check_finite()?;
+    Ok(fig)
+}
+
+/// The overlay polylines, the curves and the points of `encoding`, in drawing order.
+fn curve_items(
+    encoding: &Encoding,
+    proj: &Projection,
+    size: DVec2,
+    tolerance: f64,
+    items: &mut Vec<Item>,
+) -> Result<(), FigureError> {
+    let mut budget = budget()?;
     for (points, stroke) in &encoding.overlays.lines {
-        let runs = polyline_runs(points, &proj);
+        // Legs beyond the page by more than the stroke cannot be seen.
+        let margin = DVec2::splat(f64::from(stroke.width_px) + 2.0);
+        let page = Page {
+            min: -margin,
+            max: size + margin,
+        };
+        let runs = polyline_runs(points, proj, &page);
         if !runs.is_empty() {
             items.push(Item::Path {
                 runs,
@@ -271,18 +440,42 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
         }
     }
     for (index, curve) in encoding.curves.iter().enumerate() {
+        // Pieces beyond the page by more than the stroke cannot be seen.
+        let margin = DVec2::splat(f64::from(curve.width) + 2.0);
+        let page = Page {
+            min: -margin,
+            max: size + margin,
+        };
         let mut runs: Vec<SubPath> = Vec::new();
         for seg in &curve.segments {
             let Some(start) = seg.bezier.points().first().and_then(|&p| proj.point(p)) else {
                 continue;
             };
             // Half the tolerance for the fit, the rest for rounding the written numbers.
-            let Some(pieces) = segment_pieces(
+            let pieces = segment_pieces(
                 &seg.bezier,
                 seg.weights.as_deref(),
-                &proj,
-                0.5 * opts.tolerance,
-            ) else {
+                proj,
+                0.5 * tolerance,
+                Some(&page),
+                &mut budget,
+            )
+            .map_err(|e| match e {
+                FitError::Budget { limit } => FigureError::Budget {
+                    tolerance,
+                    limit: limit as u64,
+                    var: splinescope_scene::limits::FIGURE_PIECES.var,
+                },
+                FitError::Precision { magnitude } => FigureError::Precision {
+                    curve: index,
+                    tolerance,
+                    magnitude,
+                },
+                FitError::NotFinite => FigureError::NotFinite {
+                    what: format!("curves[{index}]"),
+                },
+            })?;
+            let Some(pieces) = pieces else {
                 continue;
             };
             match runs.last_mut() {
@@ -321,51 +514,132 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
             }
         }
     }
-    let front = items.len();
-    items.extend(guides);
-    if opts.labels {
-        annotate::labels(scene, &proj, size, &mut items);
-    }
-    if opts.legend {
-        annotate::legend(scene, size, &mut items);
-    }
-    Ok(Figure {
-        width: size.x,
-        height: size.y,
-        background: encoding.background,
-        items,
-        behind,
-        front,
-        projection: proj,
-        tolerance: opts.tolerance,
-    })
+    Ok(())
 }
 
-/// A polyline's visible runs (points behind the eye break it).
-fn polyline_runs(points: &[DVec3], proj: &Projection) -> Vec<SubPath> {
-    let mut runs: Vec<SubPath> = Vec::new();
-    let mut open = false;
-    for &p in points {
-        match proj.point(p) {
-            Some(q) if open => {
-                if let Some(run) = runs.last_mut() {
-                    run.pieces.push(Piece {
-                        seg: fit::Seg::Line(q),
-                        exact: true,
-                    });
-                }
-            }
-            Some(q) => {
-                runs.push(SubPath {
-                    start: q,
-                    pieces: Vec::new(),
-                });
-                open = true;
-            }
-            None => open = false,
+impl Item {
+    /// Whether every number of the item is finite.
+    fn is_finite(&self) -> bool {
+        match self {
+            Item::Path { runs, .. } => runs.iter().all(|r| {
+                r.start.is_finite()
+                    && r.pieces.iter().all(|p| match p.seg {
+                        fit::Seg::Line(a) => a.is_finite(),
+                        fit::Seg::Quad(a, b) => a.is_finite() && b.is_finite(),
+                        fit::Seg::Cubic(a, b, c) => a.is_finite() && b.is_finite() && c.is_finite(),
+                    })
+            }),
+            Item::Text { at, size, .. } => at.is_finite() && size.is_finite(),
+            Item::Rect { min, max, .. } => min.is_finite() && max.is_finite(),
+            Item::Disc { center, radius, .. } => center.is_finite() && radius.is_finite(),
         }
     }
+}
+
+impl Figure {
+    /// Every number the figure would write is finite, or an error naming what holds one.
+    ///
+    /// # Errors
+    /// [`FigureError::NotFinite`].
+    pub fn check_finite(&self) -> Result<(), FigureError> {
+        let Some(k) = self.items.iter().position(|i| !i.is_finite()) else {
+            return Ok(());
+        };
+        let what = match &self.items[k] {
+            Item::Path { curve: Some(c), .. } => format!("curves[{c}]"),
+            Item::Path { .. } if k < self.behind => "the grid".to_owned(),
+            Item::Path { .. } if k < self.front => "the control polygons".to_owned(),
+            Item::Disc { .. } => "the control points".to_owned(),
+            Item::Text { text, .. } => format!("the text {text:?}"),
+            _ => "the axes and legend".to_owned(),
+        };
+        Err(FigureError::NotFinite { what })
+    }
+}
+
+/// A polyline's visible runs: points behind the eye break it, and so does the page —
+/// each leg is clipped to `page` (Liang–Barsky), so that a polyline far off the page
+/// writes nothing there (a dashed leg 10¹⁵ points long would otherwise be 10¹⁴ dashes to
+/// a reader). Legs inside the page keep their exact end points.
+fn polyline_runs(points: &[DVec3], proj: &Projection, page: &Page) -> Vec<SubPath> {
+    let mut runs: Vec<SubPath> = Vec::new();
+    let mut previous: Option<DVec2> = None;
+    // Where the last run ends, when the next leg may continue it.
+    let mut open_end: Option<DVec2> = None;
+    for &p in points {
+        let Some(q) = proj.point(p) else {
+            previous = None;
+            open_end = None;
+            continue;
+        };
+        if let Some(a) = previous {
+            match clip_leg(a, q, page) {
+                Some((from, to)) => {
+                    let continues = open_end == Some(from);
+                    match runs.last_mut() {
+                        Some(run) if continues => run.pieces.push(Piece {
+                            seg: fit::Seg::Line(to),
+                            exact: true,
+                        }),
+                        _ => runs.push(SubPath {
+                            start: from,
+                            pieces: vec![Piece {
+                                seg: fit::Seg::Line(to),
+                                exact: true,
+                            }],
+                        }),
+                    }
+                    open_end = (to == q).then_some(to);
+                }
+                None => open_end = None,
+            }
+        } else if page.contains(q) {
+            // A lone first point starts a run even before its first leg.
+            runs.push(SubPath {
+                start: q,
+                pieces: Vec::new(),
+            });
+            open_end = Some(q);
+        }
+        previous = Some(q);
+    }
+    runs.retain(|r| !r.pieces.is_empty());
     runs
+}
+
+/// The part of the leg `a → b` inside `page` (Liang–Barsky), its ends unchanged where
+/// they lie inside.
+fn clip_leg(a: DVec2, b: DVec2, page: &Page) -> Option<(DVec2, DVec2)> {
+    if page.contains(a) && page.contains(b) {
+        return Some((a, b));
+    }
+    let d = b - a;
+    let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
+    for (p, q) in [
+        (-d.x, a.x - page.min.x),
+        (d.x, page.max.x - a.x),
+        (-d.y, a.y - page.min.y),
+        (d.y, page.max.y - a.y),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return None;
+            }
+        } else {
+            let r = q / p;
+            if p < 0.0 {
+                lo = lo.max(r);
+            } else {
+                hi = hi.min(r);
+            }
+        }
+    }
+    if lo.is_nan() || hi.is_nan() || lo > hi {
+        return None;
+    }
+    let from = if lo > 0.0 { a + d * lo } else { a };
+    let to = if hi < 1.0 { a + d * hi } else { b };
+    Some((from, to))
 }
 
 /// The colour as `#rrggbb` and its opacity.

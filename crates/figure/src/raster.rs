@@ -203,10 +203,10 @@ pub fn annotate(
     if !text.any() {
         return Ok(());
     }
-    let fig = super::build(
-        scene,
-        &FigureOptions::new(canvas.width, canvas.height).with_text(text),
-    )?;
+    // Only the guides and text: the curves are the GPU's picture already.
+    let mut opts = FigureOptions::new(canvas.width, canvas.height).with_text(text);
+    opts.curves = false;
+    let fig = super::build(scene, &opts)?;
     draw_guides(&fig, canvas);
     Ok(())
 }

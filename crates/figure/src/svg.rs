@@ -16,14 +16,19 @@ pub fn step(tolerance: f64) -> f64 {
     10f64.powf((tolerance / 4.0).log10().floor())
 }
 
-/// `x` in its shortest form: the round-trip decimal (`exact`), or rounded to `step`.
+/// `x` in its shortest form: the round-trip decimal (`exact`), or rounded to `step`. A
+/// number so large that rounding to `step` changes nothing (`|x / step| ≥ 2⁵²`, where
+/// every `f64` is a whole number of steps) is written exactly; exact numbers take the
+/// shorter of the plain and the exponent form (`1e300`, not 301 digits), both of which
+/// SVG reads.
 #[must_use]
 pub fn number(x: f64, exact: bool, step: f64) -> String {
-    if exact {
-        return trim(format!("{x}"));
+    let scaled = x / step;
+    if exact || !scaled.is_finite() || scaled.abs() >= 4_503_599_627_370_496.0 {
+        return trim(splinescope_core::num::Num(x).to_string());
     }
     let decimals = (-step.log10()).round().max(0.0) as usize;
-    trim(format!("{:.*}", decimals, (x / step).round() * step))
+    trim(format!("{:.*}", decimals, scaled.round() * step))
 }
 
 fn trim(s: String) -> String {
@@ -202,10 +207,20 @@ fn opacity(attr: &str, a: f64) -> String {
     }
 }
 
-/// `text` with XML's special characters escaped.
+/// `text` with XML's special characters escaped, and any character XML 1.0 cannot carry
+/// (scene files refuse them in names; text made elsewhere could hold one) written as
+/// U+FFFD, so that the document is always well-formed.
 fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            c if splinescope_scene::text::displayable(c) => out.push(c),
+            _ => out.push('\u{fffd}'),
+        }
+    }
+    out
 }

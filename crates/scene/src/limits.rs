@@ -72,8 +72,17 @@ pub const IMAGE_PIXELS: Limit = Limit {
     default: 1 << 26,
 };
 
+/// Path pieces one figure (`export` to SVG or PDF) writes in all: the adaptive fit halves
+/// a piece until it keeps the tolerance, and this bounds its time, memory and file size
+/// (a piece is about 60 bytes of SVG).
+pub const FIGURE_PIECES: Limit = Limit {
+    what: "path pieces per figure",
+    var: "SPLINESCOPE_MAX_FIGURE_PIECES",
+    default: 1 << 18,
+};
+
 /// Every limit, for the documentation and `--help`.
-pub const ALL: [Limit; 7] = [
+pub const ALL: [Limit; 8] = [
     SCENE_BYTES,
     CURVES,
     POINTS,
@@ -81,6 +90,7 @@ pub const ALL: [Limit; 7] = [
     ORDER,
     SAMPLES,
     IMAGE_PIXELS,
+    FIGURE_PIECES,
 ];
 
 /// A value over its limit, or a limit's variable that does not hold a whole number.

@@ -21,7 +21,7 @@ pub struct DiffArgs {
     #[arg(long, value_name = "PNG")]
     pub flip_map: Option<PathBuf>,
     /// As for `regress`.
-    #[arg(long, default_value = "channel=24,pixels=0.1%", value_parser = parse_tolerance)]
+    #[arg(long, default_value = "channel=24,pixels=0.1%", value_parser = parse_tolerance, allow_hyphen_values = true)]
     pub tolerance: splinescope::image::Tolerance,
     /// Print the figures as JSON.
     #[arg(long)]

@@ -19,14 +19,14 @@ pub struct ExportArgs {
     #[arg(short, long, value_name = "FIG")]
     pub output: PathBuf,
     /// Width in points (pixels for a PNG).
-    #[arg(long, default_value_t = 1200, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    #[arg(long, default_value_t = 1200, value_parser = clap::value_parser!(u32).range(1..=16384), allow_hyphen_values = true)]
     pub width: u32,
     /// Height in points (pixels for a PNG).
-    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(1..=16384), allow_hyphen_values = true)]
     pub height: u32,
     /// Largest distance, in output points, between a written piece and the exact curve
     /// (segments of degree ≤ 3 in a 2D view are written exactly).
-    #[arg(long, default_value_t = splinescope_figure::DEFAULT_TOLERANCE, value_parser = parse_tolerance)]
+    #[arg(long, default_value_t = splinescope_figure::DEFAULT_TOLERANCE, value_parser = parse_tolerance, allow_hyphen_values = true)]
     pub tolerance: f64,
     /// The camera, instead of the scene's own view, as the scene format's `view` object
     /// (JSON): `{"kind": "2d", "center": [x, y], "height": h}` or `{"kind": "3d",
@@ -39,19 +39,13 @@ pub struct ExportArgs {
     pub gpu: GpuArgs,
 }
 
-/// A tolerance: a finite number greater than 0.
+/// A tolerance: a finite number of at least [`splinescope_figure::MIN_TOLERANCE`].
 fn parse_tolerance(s: &str) -> Result<f64, String> {
     let v: f64 = s
         .trim()
         .parse()
         .map_err(|_| format!("{s:?} is not a number"))?;
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
-    } else {
-        Err(format!(
-            "{s:?}: the tolerance must be a finite number greater than 0 (output points)"
-        ))
-    }
+    splinescope_figure::check_tolerance(v).map_err(|e| e.to_string())
 }
 
 /// `scene` seen through `view` (the scene format's `view` object), checked as a scene

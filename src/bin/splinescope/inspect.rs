@@ -17,7 +17,7 @@ pub struct InspectArgs {
     /// Scene file (JSON).
     pub scene: PathBuf,
     /// Only this curve (index in the scene).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub curve: Option<usize>,
     /// For B-splines and NUBMP curves, also report P(τ), the groups that act there and
     /// the region each lets P(τ) reach.

@@ -18,15 +18,15 @@ pub struct RegressArgs {
     #[arg(long)]
     pub bless: bool,
     /// Render width in pixels.
-    #[arg(long, default_value_t = 640, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    #[arg(long, default_value_t = 640, value_parser = clap::value_parser!(u32).range(1..=16384), allow_hyphen_values = true)]
     pub width: u32,
     /// Render height in pixels.
-    #[arg(long, default_value_t = 480, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    #[arg(long, default_value_t = 480, value_parser = clap::value_parser!(u32).range(1..=16384), allow_hyphen_values = true)]
     pub height: u32,
     /// When images match: channel=N (largest per-channel difference that does not
     /// count), pixels=P% (largest share of differing pixels), flip=F (largest FLIP mean;
     /// unset: reported, not gated).
-    #[arg(long, default_value = "channel=24,pixels=0.1%", value_parser = parse_tolerance)]
+    #[arg(long, default_value = "channel=24,pixels=0.1%", value_parser = parse_tolerance, allow_hyphen_values = true)]
     pub tolerance: splinescope::image::Tolerance,
     /// Write an HTML report with the actual, reference, diff and FLIP images here.
     #[arg(long, value_name = "OUT_DIR")]

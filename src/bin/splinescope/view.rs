@@ -16,13 +16,13 @@ pub struct ViewArgs {
     /// Scene file (JSON); omit for the built-in gallery.
     pub scene: Option<PathBuf>,
     /// Exit after this many presented frames (smoke tests).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..), allow_hyphen_values = true)]
     pub frames: Option<u64>,
     /// Instead of a scene, show this many random Bézier curves (stress mode).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=10_000_000), conflicts_with = "scene")]
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=10_000_000), conflicts_with = "scene", allow_hyphen_values = true)]
     pub stress: Option<u64>,
     /// Degree of the stress curves.
-    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=31), requires = "stress")]
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=31), requires = "stress", allow_hyphen_values = true)]
     pub degree: u64,
     /// With --stress: re-solve every curve each frame (paper 000, one moving target
     /// per curve) and draw the result.
@@ -30,7 +30,7 @@ pub struct ViewArgs {
     pub solve: bool,
     /// How far, in pixels, a drawn polyline may stray from its curve (sample counts
     /// are chosen every frame for it; a scene's fixed `samples` still win).
-    #[arg(long, default_value_t = splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX, value_parser = parse_tolerance_px)]
+    #[arg(long, default_value_t = splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX, value_parser = parse_tolerance_px, allow_hyphen_values = true)]
     pub tolerance_px: f64,
     /// At exit, print one JSON object: frames, fps, samples and line pieces per frame,
     /// milliseconds per stage, adapter (for benchmarking the viewer by script).
