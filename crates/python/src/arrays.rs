@@ -65,7 +65,15 @@ pub fn float_array<'py>(
 /// Parameters from a Python number or array-like (`what` names the argument).
 pub fn params<'py>(obj: &Bound<'py, PyAny>, what: &str) -> PyResult<Params<'py>> {
     if obj.is_instance_of::<PyFloat>() || obj.is_instance_of::<pyo3::types::PyInt>() {
-        return Ok(Params::Scalar(obj.extract::<f64>()?));
+        // An int past f64's range raises OverflowError in the conversion: refused here
+        // naming the argument instead.
+        return obj.extract::<f64>().map(Params::Scalar).map_err(|_| {
+            PyValueError::new_err(format!(
+                "{what} = {}: not a number f64 can hold",
+                obj.repr()
+                    .map_or_else(|_| "?".to_owned(), |r| r.to_string())
+            ))
+        });
     }
     let a = float_array(obj, what)?;
     match a.shape() {

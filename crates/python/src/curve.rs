@@ -121,16 +121,48 @@ impl PyCurve {
         }
     }
 
+    /// Refuses a result that is not finite for parameters inside the domain (a rational
+    /// curve whose weights or coordinates leave `f64` there), naming the first, as
+    /// `splinescope eval` does.
+    fn check_finite(
+        &self,
+        ts: &[f64],
+        out: &[f64],
+        per: usize,
+        what: &str,
+        scalar: bool,
+    ) -> PyResult<()> {
+        if out.iter().all(|v| v.is_finite()) {
+            return Ok(());
+        }
+        let k = out.iter().position(|v| !v.is_finite()).unwrap_or(0) / per.max(1);
+        let name = if scalar {
+            "t".to_owned()
+        } else {
+            format!("t[{k}]")
+        };
+        Err(raise::<CurveError>(
+            format!(
+                "{name} = {}: the {what} of this {} curve is not a finite number there (its coordinates or weights are too large for this computation in f64)",
+                ts.get(k).copied().unwrap_or(f64::NAN),
+                self.curve.curve.family()
+            ),
+            &name,
+        ))
+    }
+
     /// `f(t)` for every parameter, as `(N, dim)` (or `(dim,)` for a scalar).
     fn map_params<'py>(
         &self,
         py: Python<'py>,
         t: &Bound<'py, PyAny>,
+        what: &str,
         f: impl Fn(&[f64], &mut [DVec3]) + Sync,
     ) -> PyResult<Bound<'py, PyAny>> {
         let params = arrays::params(t, "t")?;
         let ts = params.as_slice()?;
-        self.check_domain(ts, "t", matches!(params, Params::Scalar(_)))?;
+        let scalar = matches!(params, Params::Scalar(_));
+        self.check_domain(ts, "t", scalar)?;
         let dim = self.dim;
         let n = ts.len();
         let run = || fill(ts, dim, &f);
@@ -139,6 +171,7 @@ impl PyCurve {
         } else {
             run()
         };
+        self.check_finite(ts, &out, dim, what, scalar)?;
         match params {
             Params::Scalar(_) => arrays::shaped(py, out, &[dim]),
             Params::Array(a) => {
@@ -213,7 +246,7 @@ impl PyCurve {
     /// `P(t)`: a number gives `(dim,)`, a 1-D array `(N, dim)`.
     fn eval<'py>(&self, py: Python<'py>, t: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
         let sampler = &self.sampler;
-        self.map_params(py, t, |ts, out| sampler.eval_into(ts, out))
+        self.map_params(py, t, "point", |ts, out| sampler.eval_into(ts, out))
     }
 
     /// The first or second derivative with respect to `t`.
@@ -227,7 +260,12 @@ impl PyCurve {
         match order {
             1 | 2 => {
                 let d = self.derivative_sampler(order);
-                self.map_params(py, t, |ts, out| d.eval_into(ts, out))
+                let what = if order == 1 {
+                    "first derivative"
+                } else {
+                    "second derivative"
+                };
+                self.map_params(py, t, what, |ts, out| d.eval_into(ts, out))
             }
             _ => Err(raise::<CurveError>(
                 format!("order must be 1 or 2, not {order}"),
@@ -245,7 +283,8 @@ impl PyCurve {
     ) -> PyResult<Bound<'py, PyAny>> {
         let params = arrays::params(t, "t")?;
         let ts = params.as_slice()?;
-        self.check_domain(ts, "t", matches!(params, Params::Scalar(_)))?;
+        let scalar = matches!(params, Params::Scalar(_));
+        self.check_domain(ts, "t", scalar)?;
         let (d1, d2) = (self.derivative_sampler(1), self.derivative_sampler(2));
         let run = || {
             let mut out = vec![0.0; ts.len()];
@@ -255,7 +294,13 @@ impl PyCurve {
                 d1.eval_into(ts, &mut p1[..ts.len()]);
                 d2.eval_into(ts, &mut p2[..ts.len()]);
                 for ((o, a), b) in out.iter_mut().zip(&p1).zip(&p2) {
-                    *o = curvature(*a, *b).unwrap_or(f64::NAN);
+                    // Derivatives that leave f64 give an infinite value, refused below;
+                    // NaN only where P′ = 0 (the curvature is not defined there).
+                    *o = if a.is_finite() && b.is_finite() {
+                        curvature(*a, *b).unwrap_or(f64::NAN)
+                    } else {
+                        f64::INFINITY
+                    };
                 }
             };
             if ts.len() > PARALLEL_ABOVE {
@@ -272,6 +317,21 @@ impl PyCurve {
         } else {
             run()
         };
+        if let Some(k) = out.iter().position(|k| k.is_infinite()) {
+            let name = if scalar {
+                "t".to_owned()
+            } else {
+                format!("t[{k}]")
+            };
+            return Err(raise::<CurveError>(
+                format!(
+                    "{name} = {}: the curvature of this {} curve is not a finite number there (its derivatives or their ratio leave f64)",
+                    ts[k],
+                    self.curve.curve.family()
+                ),
+                &name,
+            ));
+        }
         match params {
             Params::Scalar(_) => Ok(pyo3::types::PyFloat::new(py, out[0]).into_any()),
             Params::Array(_) => {
@@ -283,12 +343,7 @@ impl PyCurve {
 
     /// `n ≥ 2` points at uniform parameters over the domain, ends included: `(n, dim)`.
     fn sample<'py>(&self, py: Python<'py>, n: usize) -> PyResult<Bound<'py, PyAny>> {
-        if n < 2 {
-            return Err(raise::<CurveError>(
-                format!("n must be at least 2, not {n}"),
-                "n",
-            ));
-        }
+        check_sample_count(n, 1)?;
         let (a, b) = self.curve.curve.domain();
         let ts: Vec<f64> = (0..n)
             .map(|j| splinescope_core::geom::batch::uniform(a, b, j, n))
@@ -367,6 +422,22 @@ impl PyCurve {
     /// the curve does not move).
     #[pyo3(signature = (times=1))]
     fn elevate(&self, times: usize) -> PyResult<PyCurve> {
+        // The limit is checked on the degree asked for, before any work.
+        let (limit, now) = match &self.curve.curve {
+            Curve::Bezier(b) => (splinescope_scene::limits::DEGREE, b.degree()),
+            Curve::RationalBezier(b) => (splinescope_scene::limits::DEGREE, b.degree()),
+            Curve::BSpline(b) => (splinescope_scene::limits::ORDER, b.order()),
+            Curve::Nurbs(b) => (splinescope_scene::limits::ORDER, b.order()),
+            _ => (splinescope_scene::limits::DEGREE, 0),
+        };
+        limit
+            .check((now as u64).saturating_add(times as u64))
+            .map_err(|e| {
+                raise::<CurveError>(
+                    format!("elevate(times={times}): the result would have {e}"),
+                    "times",
+                )
+            })?;
         let mut c = self.curve.curve.clone();
         for _ in 0..times {
             c = match c {
@@ -424,6 +495,28 @@ fn point(obj: &Bound<'_, PyAny>, what: &str, dim: usize) -> PyResult<DVec3> {
     Ok(DVec3::new(v[0], v[1], if dim == 3 { v[2] } else { 0.0 }))
 }
 
+/// Checks a sample count `n` (at least 2) for `curves` curves against the command line's
+/// sample limit, before anything is allocated.
+fn check_sample_count(n: usize, curves: usize) -> PyResult<()> {
+    if n < 2 {
+        return Err(raise::<CurveError>(
+            format!("n must be at least 2, not {n}"),
+            "n",
+        ));
+    }
+    let total = (n as u64).saturating_mul(curves.max(1) as u64);
+    splinescope_scene::limits::SAMPLES
+        .check(total)
+        .map_err(|e| {
+            let what = if curves > 1 {
+                format!("{curves} curves × {n} samples")
+            } else {
+                format!("n = {n}")
+            };
+            raise::<CurveError>(format!("{what}: {e}"), "n")
+        })
+}
+
 /// `n ≥ 2` uniform samples of every curve, `(C, n, dim)`, spread over every core.
 #[pyfunction]
 pub fn eval_many<'py>(
@@ -431,12 +524,7 @@ pub fn eval_many<'py>(
     curves: Vec<PyRef<'py, PyCurve>>,
     n: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
-    if n < 2 {
-        return Err(raise::<CurveError>(
-            format!("n must be at least 2, not {n}"),
-            "n",
-        ));
-    }
+    check_sample_count(n, curves.len())?;
     let dim = curves.first().map_or(2, |c| c.dim);
     if let Some(i) = curves.iter().position(|c| c.dim != dim) {
         return Err(raise::<CurveError>(
@@ -449,23 +537,21 @@ pub fn eval_many<'py>(
     }
     let samplers: Vec<CurveSampler> = curves.iter().map(|c| c.sampler.clone()).collect();
     let count = curves.len();
-    let total = count
-        .checked_mul(n)
-        .filter(|t| splinescope_scene::limits::SAMPLES.check(*t as u64).is_ok())
-        .ok_or_else(|| {
-            raise::<CurveError>(
-                format!(
-                    "{count} curves × {n} samples is over the sample limit ({})",
-                    splinescope_scene::limits::SAMPLES.value().unwrap_or(0)
-                ),
-                "n",
-            )
-        })?;
+    let total = count * n;
     let out = py.detach(|| {
         let mut pts = vec![DVec3::ZERO; total];
         sample_many(&samplers, n, &mut pts);
         arrays::flatten(&pts, dim)
     });
+    if let Some(k) = out.iter().position(|v| !v.is_finite()) {
+        let (i, j) = (k / dim / n, k / dim % n);
+        return Err(raise::<CurveError>(
+            format!(
+                "curves[{i}]: sample {j} of {n} is not a finite number (its coordinates or weights are too large for this computation in f64)"
+            ),
+            &format!("curves[{i}]"),
+        ));
+    }
     arrays::shaped(py, out, &[count, n, dim])
 }
 

@@ -56,8 +56,20 @@ impl PyScene {
     /// A scene of these curves (in order), with the default view and background.
     #[staticmethod]
     #[pyo3(signature = (curves, name=None))]
-    fn from_curves(curves: Vec<PyRef<'_, PyCurve>>, name: Option<String>) -> PyScene {
-        PyScene {
+    fn from_curves(curves: Vec<PyRef<'_, PyCurve>>, name: Option<String>) -> PyResult<PyScene> {
+        if let Some(c) = name.as_deref().and_then(|n| {
+            n.chars()
+                .find(|c| !splinescope_scene::text::displayable(*c))
+        }) {
+            return Err(raise::<SceneError>(
+                format!(
+                    "name: the character U+{:04X} is a control character or a noncharacter; names are text to display",
+                    u32::from(c)
+                ),
+                "name",
+            ));
+        }
+        Ok(PyScene {
             scene: Scene {
                 name,
                 background: splinescope_scene::scene::Color::WHITE,
@@ -67,7 +79,7 @@ impl PyScene {
                 annotations: Vec::new(),
             },
             original: None,
-        }
+        })
     }
 
     /// The scene as JSON text: the text it was read from when unedited, that text's form
@@ -187,13 +199,23 @@ impl PyScene {
         );
         opts.tolerance = tolerance;
         let figure = |opts: &splinescope_figure::FigureOptions| {
-            splinescope_figure::build(&self.scene, opts)
-                .map_err(|e| raise::<ImageError>(e.to_string(), "tolerance"))
+            splinescope_figure::build(&self.scene, opts).map_err(|e| {
+                use splinescope_figure::FigureError as F;
+                let path = match &e {
+                    F::Tolerance(_) | F::Budget { .. } | F::Precision { .. } => "tolerance",
+                    F::Size { .. } => "width",
+                    F::AxesIn3d => "axes",
+                    _ => "",
+                };
+                raise::<ImageError>(e.to_string(), path)
+            })
         };
         let bytes = match ext.as_deref() {
             Some("svg") => splinescope_figure::svg::write(&figure(&opts)?).into_bytes(),
             Some("pdf") => splinescope_figure::pdf::write(&figure(&opts)?),
             Some("png") => {
+                // The guides and text only: the curves are the GPU's picture.
+                opts.curves = false;
                 let fig = figure(&opts)?;
                 let mut image = self.image(py, width, height, 0.25, backend)?;
                 splinescope_figure::raster::draw_guides(

@@ -467,7 +467,7 @@ impl Interaction {
     #[must_use]
     pub fn export_frame(&self) -> (u32, u32, Camera) {
         let panel = if self.toggles.show_panel {
-            self.panel_width_px.clamp(0.0, self.viewport.x - 1.0)
+            self.panel_width_px.min(self.viewport.x - 1.0).max(0.0)
         } else {
             0.0
         };

@@ -82,7 +82,7 @@ def _array(value: ArrayLike, what: str, shape_ok: Any, expected: str) -> np.ndar
     :class:`SceneError` naming ``what``."""
     try:
         a = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError) as e:
+    except (TypeError, ValueError, OverflowError) as e:
         raise _error(SceneError, f"{what}: not numbers ({e})", what) from None
     if not shape_ok(a.shape):
         raise _error(SceneError, f"{what} must be {expected}; got shape {a.shape}", what)
@@ -123,10 +123,84 @@ def _finite(a: np.ndarray, what: str) -> None:
         )
 
 
+def _int(x: Any, what: str, lo: int = 0, hi: int = 2**63 - 1, method: str = "") -> int:
+    """``x`` as a whole number in ``lo..=hi``: a :class:`TypeError` for anything that is
+    not an integer (a float, a bool, a string), a :class:`CurveError` (a ``ValueError``)
+    for one out of range, each naming the argument and the method."""
+    where = f"{method}: " if method else ""
+    if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, np.integer)):
+        raise TypeError(
+            f"{where}{what} must be a whole number (int), not {type(x).__name__} {x!r}"
+        )
+    v = int(x)
+    if v < lo or v > hi:
+        raise _error(CurveError, f"{where}{what} = {v} is outside {lo}..={hi}", what)
+    return v
+
+
+def _bool(x: Any, what: str, method: str = "") -> bool:
+    """``x`` as ``True``/``False``; a :class:`TypeError` naming the argument otherwise."""
+    if isinstance(x, (bool, np.bool_)):
+        return bool(x)
+    where = f"{method}: " if method else ""
+    raise TypeError(f"{where}{what} must be True or False, not {type(x).__name__} {x!r}")
+
+
+def _str(x: Any, what: str, method: str = "") -> str:
+    """``x`` if it is a string; a :class:`TypeError` naming the argument otherwise."""
+    if isinstance(x, str):
+        return x
+    where = f"{method}: " if method else ""
+    raise TypeError(f"{where}{what} must be a string, not {type(x).__name__} {x!r}")
+
+
+def _curve(c: Any, what: str) -> Any:
+    """The native curve of ``c``; a :class:`TypeError` naming ``what`` when ``c`` is not
+    a :class:`Curve`."""
+    if not isinstance(c, Curve):
+        raise TypeError(
+            f"{what} must be a Curve (Bezier, BSpline, Nurbs, …), not {type(c).__name__} {c!r}"
+        )
+    return c._c
+
+
+def _json(v: Any, path: str) -> Any:
+    """``v`` as plain JSON data (numpy arrays and scalars converted), every number finite:
+    a :class:`SceneError` naming the path of a NaN or infinity (``points[2][1]``,
+    ``shape[0].values[1]``), a :class:`TypeError` naming the path of a value JSON cannot
+    hold."""
+    if isinstance(v, np.ndarray):
+        v = v.tolist()
+    elif isinstance(v, np.generic):
+        v = v.item()
+    if v is None or isinstance(v, (bool, str)):
+        return v
+    if isinstance(v, int):
+        return v
+    if isinstance(v, float):
+        if not np.isfinite(v):
+            raise _error(SceneError, f"{path or 'value'}: {v} is not a finite number", path)
+        return v
+    if isinstance(v, dict):
+        out = {}
+        for k, x in v.items():
+            if not isinstance(k, str):
+                raise TypeError(f"{path or 'the object'}: key {k!r} is not a string")
+            out[k] = _json(x, f"{path}.{k}" if path else k)
+        return out
+    if isinstance(v, (list, tuple)):
+        return [_json(x, f"{path}[{i}]") for i, x in enumerate(v)]
+    raise TypeError(f"{path or 'value'}: {type(v).__name__} {v!r} is not JSON data")
+
+
+def _dumps(obj: Any, path: str = "") -> str:
+    return json.dumps(_json(obj, path), allow_nan=False)
+
+
 def _number(x: Any, what: str) -> float:
     try:
         v = float(x)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise _error(SceneError, f"{what}: {x!r} is not a number", what) from None
     if not np.isfinite(v):
         raise _error(SceneError, f"{what}: {v} is not a finite number", what)
@@ -150,7 +224,7 @@ class Curve:
     # -- construction ---------------------------------------------------------------
 
     def _set(self, obj: Dict[str, Any], dim: Optional[int]) -> None:
-        self._c = _native._Curve.from_json(json.dumps(obj), dim)
+        self._c = _native._Curve.from_json(_dumps(obj), dim)
 
     @staticmethod
     def _wrap(native: Any, dim: Optional[int] = None) -> "Curve":
@@ -164,7 +238,11 @@ class Curve:
     @staticmethod
     def from_dict(obj: Dict[str, Any], dim: Optional[int] = None) -> "Curve":
         """A curve from a scene file's curve object (``{"type": "bezier", …}``)."""
-        return Curve._wrap(_native._Curve.from_json(json.dumps(obj), dim))
+        if not isinstance(obj, dict):
+            raise TypeError(f"from_dict: obj must be a dict (a curve object), not {type(obj).__name__}")
+        if dim is not None:
+            dim = _int(dim, "dim", 2, 3, "from_dict")
+        return Curve._wrap(_native._Curve.from_json(_dumps(obj), dim))
 
     def to_dict(self) -> Dict[str, Any]:
         """The curve object of the scene format."""
@@ -216,15 +294,16 @@ class Curve:
 
     def derivative(self, t: ArrayLike, order: int = 1) -> np.ndarray:
         """The first or second derivative with respect to ``t``."""
-        return self._c.derivative(t, order)
+        return self._c.derivative(t, _int(order, "order", 1, 2, "derivative"))
 
     def curvature(self, t: ArrayLike) -> Union[float, np.ndarray]:
         """``κ = |P′ × P″| / |P′|³``; NaN where ``P′ = 0``."""
         return self._c.curvature(t)
 
     def sample(self, n: int) -> np.ndarray:
-        """``n`` points at uniform parameters over the domain, ends included."""
-        return self._c.sample(n)
+        """``n`` points at uniform parameters over the domain, ends included (``n`` at
+        least 2 and within the sample limit, ``SPLINESCOPE_MAX_SAMPLES``)."""
+        return self._c.sample(_int(n, "n", 2, 2**64 - 1, "sample"))
 
     def segments(self) -> List[Tuple[Any, ...]]:
         """The exact Bézier segments, ``(t0, t1, control points)`` each; a rational
@@ -243,17 +322,18 @@ class Curve:
 
     def insert_point(self, at: ArrayLike) -> Tuple["Curve", int]:
         """A control point inserted on the control polygon's leg nearest ``at``."""
-        c, i = self._c.insert_point(np.asarray(at, dtype=np.float64))
+        c, i = self._c.insert_point(np.asarray(_point(at, "at"), dtype=np.float64))
         return Curve._wrap(c), i
 
     def remove_point(self, index: int) -> "Curve":
         """The curve without control point ``index``."""
-        return Curve._wrap(self._c.remove_point(index))
+        return Curve._wrap(self._c.remove_point(_int(index, "index", 0, 2**63 - 1, "remove_point")))
 
     def elevate(self, times: int = 1) -> "Curve":
         """The same curve with its degree raised ``times`` (Bézier, B-spline, rational
-        Bézier, NURBS)."""
-        return Curve._wrap(self._c.elevate(times))
+        Bézier, NURBS), refused before any work when the result would pass the degree
+        or order limit."""
+        return Curve._wrap(self._c.elevate(_int(times, "times", 0, 2**63 - 1, "elevate")))
 
     # -- least-squares shape modification (paper 000) ------------------------------
 
@@ -261,13 +341,13 @@ class Curve:
         """Applies one solve method (``docs/solve-format.md``) to this curve alone: the
         modified curve and the method's report. Points in ``fields`` may be numpy arrays.
         """
-        request: Dict[str, Any] = {"curve": 0, "method": method}
+        request: Dict[str, Any] = {"curve": 0, "method": _str(method, "method", "solve")}
         for k, v in fields.items():
             if v is None:
                 continue
-            request[k] = v.tolist() if isinstance(v, np.ndarray) else v
+            request[k] = v
         scene = _native._Scene.from_curves([self._c])
-        new, reports = scene.solve(json.dumps(request))
+        new, reports = scene.solve(_dumps(request))
         return Curve._wrap(new.curves[0], self.dim), json.loads(reports)[0]
 
     def pass_through(
@@ -282,14 +362,22 @@ class Curve:
         ``count`` points from ``first`` (default all): paper 000, single target.
         Bézier, rational Bézier and NURBS curves (weights held fixed)."""
         return self.solve(
-            "single_target", target=_point(target, "target"), t=t, first=first, count=count
+            "single_target",
+            target=_point(target, "target"),
+            t=None if t is None else _number(t, "t"),
+            first=None if first is None else _int(first, "first", 0, 2**63 - 1, "pass_through"),
+            count=None if count is None else _int(count, "count", 0, 2**63 - 1, "pass_through"),
         )
 
     def pass_through_keeping_tangents(
         self, target: ArrayLike, t: Optional[float] = None
     ) -> Tuple["Curve", Report]:
         """As :meth:`pass_through`, keeping both end tangent directions (paper 000)."""
-        return self.solve("tangent_kept", target=_point(target, "target"), t=t)
+        return self.solve(
+            "tangent_kept",
+            target=_point(target, "target"),
+            t=None if t is None else _number(t, "t"),
+        )
 
     def pass_through_all(
         self, targets: ArrayLike, params: Optional[Sequence[float]] = None
@@ -415,6 +503,10 @@ class Interpolation(Curve):
 
 
 def _modification(m: Dict[str, Any]) -> Dict[str, Any]:
+    if not isinstance(m, dict):
+        raise TypeError(
+            f"modification must be a dict ({{'t_star': …, 'v': …}}) or None, not {type(m).__name__}"
+        )
     out = dict(m)
     if "v" in out:
         out["v"] = _point(out["v"], "modification.v")
@@ -516,6 +608,7 @@ class Nubmp(Curve):
 
     def set_group(self, group: int, values: ArrayLike) -> None:
         """Sets every parameter of group ``group`` (≥ 0, summing to 1)."""
+        group = _int(group, "group", 0, 2**63 - 1, "set_group")
         self.shape = self.shape + [{"group": group, "values": _numbers(values, "values")}]
 
     def constrained(
@@ -528,8 +621,8 @@ class Nubmp(Curve):
             "nubmp_constrained",
             target=_point(target, "target"),
             tau=_number(tau, "tau"),
-            group=group,
-            respect_vd=respect_vd,
+            group=_int(group, "group", 0, 2**63 - 1, "constrained"),
+            respect_vd=_bool(respect_vd, "respect_vd", "constrained"),
         )
 
 
@@ -611,7 +704,7 @@ class Nurbs(_Weighted):
         """The exact circle: the nine-point quadratic NURBS curve on the knots
         ``0,0,0,¼,¼,½,½,¾,¾,1,1,1``, corner weights ``√2/2`` (2-D when ``center`` has two
         coordinates)."""
-        c = np.asarray(center, dtype=np.float64)
+        c = np.asarray(_point(center, "center"), dtype=np.float64)
         r = _number(radius, "radius")
         corners = [(1, 0), (1, 1), (0, 1), (-1, 1), (-1, 0), (-1, -1), (0, -1), (1, -1), (1, 0)]
         pts = np.array([[c[0] + x * r, c[1] + y * r] + list(c[2:]) for x, y in corners])
@@ -646,7 +739,17 @@ class Scene:
     __slots__ = ("_s",)
 
     def __init__(self, curves: Sequence[Curve] = (), name: Optional[str] = None) -> None:
-        self._s = _native._Scene.from_curves([c._c for c in curves], name)
+        if name is not None:
+            name = _str(name, "name", "Scene")
+        try:
+            items = list(curves)
+        except TypeError:
+            raise TypeError(
+                f"Scene: curves must be a sequence of Curve, not {type(curves).__name__}"
+            ) from None
+        self._s = _native._Scene.from_curves(
+            [_curve(c, f"curves[{i}]") for i, c in enumerate(items)], name
+        )
 
     @staticmethod
     def _wrap(native: Any) -> "Scene":
@@ -695,11 +798,13 @@ class Scene:
         """The scene drawn on the GPU (a software adapter works), as an
         ``(height, width, 4)`` uint8 RGBA array: the image ``splinescope render``
         makes. ``backend``: ``auto``, ``vulkan``, ``gl``, ``metal`` or ``dx12``."""
-        return self._s.render(width, height, tolerance_px, backend)
+        w, h = _size(width, height, "render")
+        return self._s.render(w, h, _number(tolerance_px, "tolerance_px"), _str(backend, "backend", "render"))
 
     def png(self, width: int = 800, height: int = 500, backend: str = "auto") -> bytes:
         """The rendered scene as PNG file bytes."""
-        return bytes(self._s.png(width, height, 0.25, backend))
+        w, h = _size(width, height, "png")
+        return bytes(self._s.png(w, h, 0.25, _str(backend, "backend", "png")))
 
     def export(
         self,
@@ -717,7 +822,18 @@ class Scene:
         of degree ≤ 3 in a 2D view exact, other pieces within ``tolerance`` points) or
         ``.png`` (the GPU picture), with labels, legend, axes and grid as asked
         (``splinescope export``'s options); atomically."""
-        self._s.export(str(path), width, height, tolerance, labels, legend, axes, grid, backend)
+        w, h = _size(width, height, "export")
+        self._s.export(
+            str(path),
+            w,
+            h,
+            _number(tolerance, "tolerance"),
+            _bool(labels, "labels", "export"),
+            _bool(legend, "legend", "export"),
+            _bool(axes, "axes", "export"),
+            _bool(grid, "grid", "export"),
+            _str(backend, "backend", "export"),
+        )
 
     def _repr_png_(self) -> bytes:
         return self.png()
@@ -738,7 +854,9 @@ def solve(
     solve`` does: the new scene and the report (a list of reports for a list).
     Nothing changes unless every request succeeds (:class:`SolveError` naming the
     offending value)."""
-    text = request if isinstance(request, str) else json.dumps(_plain(request))
+    if not isinstance(scene, Scene):
+        raise TypeError(f"solve: scene must be a Scene, not {type(scene).__name__}")
+    text = request if isinstance(request, str) else _dumps(request)
     new, reports = scene._s.solve(text)
     parsed = json.loads(reports)
     single = not isinstance(request, list) and not (
@@ -747,22 +865,20 @@ def solve(
     return Scene._wrap(new), parsed[0] if single else parsed
 
 
-def _plain(v: Any) -> Any:
-    if isinstance(v, np.ndarray):
-        return v.tolist()
-    if isinstance(v, dict):
-        return {k: _plain(x) for k, x in v.items()}
-    if isinstance(v, (list, tuple)):
-        return [_plain(x) for x in v]
-    if isinstance(v, np.generic):
-        return v.item()
-    return v
+def _size(width: Any, height: Any, method: str) -> Tuple[int, int]:
+    """A picture's size: whole numbers in 1..=16384, as the command line takes."""
+    return (
+        _int(width, "width", 1, 16384, method),
+        _int(height, "height", 1, 16384, method),
+    )
 
 
 def eval_many(curves: Sequence[Curve], n: int) -> np.ndarray:
     """``n`` uniform samples of every curve over its domain, ``(C, n, dim)``, on every
-    core (all curves of one dimension)."""
-    return _native.eval_many([c._c for c in curves], n)
+    core (all curves of one dimension; ``n`` at least 2, ``len(curves) × n`` within the
+    sample limit)."""
+    natives = [_curve(c, f"curves[{i}]") for i, c in enumerate(curves)]
+    return _native.eval_many(natives, _int(n, "n", 2, 2**64 - 1, "eval_many"))
 
 
 def compare_images(
@@ -771,4 +887,5 @@ def compare_images(
     """Compares two ``(H, W, 4)`` or ``(H, W, 3)`` uint8 images as ``splinescope diff``
     does: ``matches``, ``max_channel_diff``, ``differing_pixels``,
     ``differing_fraction``, ``flip_mean``, ``flip_max``, ``width``, ``height``."""
+    tolerance = _str(tolerance, "tolerance", "compare_images")
     return json.loads(_native.compare_images(actual, reference, tolerance))
