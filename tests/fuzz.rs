@@ -4,8 +4,10 @@
 //! for the CPU commands, PNG images (bits flipped, cut short, headers rewritten to other
 //! sizes, depths and colour types) for `diff`, and the commands that write several files
 //! or read option values (`schema --write` among obstacles, `regress` tolerances and report
-//! directories, `bench --compare` files and thresholds). Invariants, for the library and
-//! the command line:
+//! directories, `bench --compare` files and thresholds), and figures: `export` to SVG and
+//! PDF and `render` with text options over mutated scenes (rational weights at `1e±300`,
+//! subnormals), views, tolerances and sizes — through the figure library in-process and
+//! the command line. Invariants, for the library and the command line:
 //!
 //! * nothing panics (the CLI never exits 101 or by a signal);
 //! * a command that exits 0 printed only finite numbers, and a loaded scene evaluates to
@@ -13,6 +15,9 @@
 //! * a command that fails writes no output file; `schema --write` writes all or none;
 //!   `regress` never touches the references when it fails;
 //! * a scene that `solve -o` wrote passes `check`;
+//! * a figure that is made is well-formed — its SVG parses as XML with every number
+//!   finite, its PDF holds no `NaN` and `pdftoppm` reads every operator — and takes no more
+//!   path pieces than the budget;
 //! * every run finishes within the time bound, under a memory cap (`ulimit -v`).
 //!
 //! A bounded run (a fixed number of cases from a fixed seed) is part of the test suite;
@@ -342,6 +347,8 @@ struct Fuzz {
     cases: usize,
     /// Runs that succeeded, failed cleanly (1) or were refused as arguments (2).
     exits: [usize; 3],
+    /// Figures the command line wrote and that were read back.
+    figures: usize,
 }
 
 impl Fuzz {
@@ -790,6 +797,280 @@ impl Fuzz {
     }
 }
 
+/// Seeds for the figure cases: rational curves with weights that leave the range of
+/// ordinary numbers, tiny and huge coordinates.
+fn figure_seeds() -> Vec<Value> {
+    vec![
+        json!({"version": 1, "curves": [
+            {"type": "rational_bezier", "points": [[0, 0], [1, 2], [3, 0]], "weights": [1e300, 1e300, 2e300]},
+            {"type": "rational_bezier", "points": [[0, 1], [2, 3], [4, 1], [5, 2]], "weights": [1e-300, 3e-300, 1e-300, 2e-300]},
+            {"type": "nurbs", "points": [[1, 0], [1, 1], [0, 1], [-1, 1], [-1, 0]], "weights": [1, 0.7, 1, 0.7, 1], "knots": [0, 0, 0, 0.5, 0.5, 1, 1, 1], "order": 3}
+        ]}),
+        json!({"version": 1, "curves": [
+            {"type": "bezier", "name": "tiny", "points": [[0, 0], [1e-310, 2e-310], [3e-310, 0]]},
+            {"type": "bezier", "name": "quintic", "points": [[0, 0], [1, 2], [3, 0], [4, 3], [5, -1]]}
+        ]}),
+        json!({"version": 1, "curves": [
+            {"type": "bezier", "points": [[0, 0, 0], [1, 2, 1], [3, 0, 2], [4, 3, 0]]},
+            {"type": "nurbs", "points": [[0, 0, 1], [1, 1, 0], [2, 0, 1]], "weights": [1, 1e300, 1], "knots": "clamped_uniform", "order": 3}
+        ]}),
+    ]
+}
+
+/// Well-formed SVG with every number finite, or what is wrong with it.
+fn svg_problem(text: &str) -> Option<String> {
+    let doc = match roxmltree::Document::parse(text) {
+        Ok(d) => d,
+        Err(e) => return Some(format!("not well-formed XML: {e}")),
+    };
+    for node in doc.descendants().filter(roxmltree::Node::is_element) {
+        for attr in node.attributes() {
+            if !matches!(
+                attr.name(),
+                "d" | "x" | "y" | "cx" | "cy" | "r" | "width" | "height" | "stroke-width"
+            ) {
+                continue;
+            }
+            for word in attr
+                .value()
+                .split(|c: char| (c.is_ascii_alphabetic() && c != 'e') || c == ' ')
+                .filter(|w| !w.is_empty())
+            {
+                match word.parse::<f64>() {
+                    Ok(v) if v.is_finite() => {}
+                    _ => return Some(format!("{}={:?} holds {word:?}", attr.name(), attr.value())),
+                }
+            }
+        }
+    }
+    None
+}
+
+/// Whether `pdftoppm` reads a PDF file without complaint (`None`), or what it said.
+fn pdf_problem(path: &Path) -> Option<String> {
+    // Bounded: a reader that hangs on a figure is a failure too.
+    let out = Command::new("timeout")
+        .args(["60", "pdftoppm", "-r", "4", "-png"])
+        .arg(path)
+        .arg(path.with_extension("page"))
+        .output();
+    match out {
+        Err(e) => Some(format!(
+            "pdftoppm did not run ({e}); install poppler-utils (scripts/test does)"
+        )),
+        Ok(o) if o.status.success() && o.stderr.is_empty() => None,
+        Ok(o) => Some(format!(
+            "pdftoppm: exit {:?}: {}",
+            o.status.code(),
+            String::from_utf8_lossy(&o.stderr)
+        )),
+    }
+}
+
+impl Fuzz {
+    /// One figure case: a mutated scene with a random view, size, tolerance and text
+    /// options, through the figure library (SVG, PDF, and the text `render` draws over its
+    /// picture) and, for some, through `export` and `render`.
+    fn figure_case(&mut self, seeds: &[Value]) {
+        let mut doc = seeds[self.rng.int(0, seeds.len() - 1)].clone();
+        if self.rng.unit() < 0.6 {
+            let v = |rng: &mut Rng| {
+                if rng.unit() < 0.5 {
+                    extreme(rng)
+                } else {
+                    rng.range(-10.0, 10.0)
+                }
+            };
+            let r = &mut self.rng;
+            let view = if r.unit() < 0.7 {
+                json!({"kind": "2d", "center": [v(r), v(r)], "height": v(r).abs()})
+            } else {
+                json!({"kind": "3d", "target": [v(r), v(r), v(r)], "distance": v(r).abs(),
+                       "yaw_deg": v(r), "pitch_deg": v(r)})
+            };
+            doc["view"] = view;
+        }
+        let text = if self.rng.unit() < 0.8 {
+            mutate(&doc, &mut self.rng)
+        } else {
+            doc.to_string()
+        };
+        let sizes = [1_u32, 2, 10, 16, 17, 50, 100, 320, 640, 1200];
+        let (w, h) = (
+            sizes[self.rng.int(0, sizes.len() - 1)],
+            sizes[self.rng.int(0, sizes.len() - 1)],
+        );
+        let tolerances = [
+            1e-6,
+            1e-4,
+            0.01,
+            0.01,
+            0.5,
+            20.0,
+            1e300,
+            5e-324,
+            1e-14,
+            -1.0,
+            f64::NAN,
+        ];
+        let tolerance = tolerances[self.rng.int(0, tolerances.len() - 1)];
+        let flags = [
+            self.rng.unit() < 0.5,
+            self.rng.unit() < 0.5,
+            self.rng.unit() < 0.3,
+            self.rng.unit() < 0.3,
+        ];
+        let case = format!("figure case {}", self.cases);
+        let input = format!(
+            "{text}\nsize {w}×{h}, tolerance {tolerance:e}, labels/legend/axes/grid {flags:?}"
+        );
+        self.figure_library(&text, (w, h), tolerance, flags, &case, &input);
+        if self.rng.unit() < 0.12 {
+            self.figure_cli(&text, (w, h), tolerance, flags, &case, &input);
+        }
+    }
+
+    fn figure_library(
+        &mut self,
+        text: &str,
+        (w, h): (u32, u32),
+        tolerance: f64,
+        [labels, legend, axes, grid]: [bool; 4],
+        case: &str,
+        input: &str,
+    ) {
+        let started = Instant::now();
+        let result = std::panic::catch_unwind(|| -> Result<(), String> {
+            let Ok(scene) = splinescope::scene::from_json_str(text) else {
+                return Ok(());
+            };
+            let text_opts = splinescope_figure::TextOptions {
+                labels,
+                legend,
+                axes,
+                grid,
+            };
+            let mut opts = splinescope_figure::FigureOptions::new(w, h).with_text(text_opts);
+            opts.tolerance = tolerance;
+            if let Ok(fig) = splinescope_figure::build(&scene, &opts) {
+                let pieces: usize = fig
+                    .items
+                    .iter()
+                    .map(|i| match i {
+                        splinescope_figure::Item::Path { runs, .. } => {
+                            runs.iter().map(|r| r.pieces.len()).sum()
+                        }
+                        _ => 0,
+                    })
+                    .sum();
+                let budget = splinescope::limits::FIGURE_PIECES.default as usize;
+                let overlays = scene
+                    .curves
+                    .iter()
+                    .map(|c| 4 * c.curve.control_points().len())
+                    .sum::<usize>();
+                if pieces > budget + overlays {
+                    return Err(format!("{pieces} pieces, over the budget {budget}"));
+                }
+                let svg = splinescope_figure::svg::write(&fig);
+                if let Some(p) = svg_problem(&svg) {
+                    return Err(format!("SVG: {p}"));
+                }
+                let pdf = splinescope_figure::pdf::write(&fig);
+                let content = String::from_utf8_lossy(&pdf);
+                if content.contains("NaN") || content.contains("inf ") {
+                    return Err("PDF: a non-finite number".into());
+                }
+            }
+            // `render`'s text over its picture: the same guides on a blank canvas.
+            if u64::from(w) * u64::from(h) <= 1 << 22 {
+                let mut data = vec![255_u8; (w * h * 4) as usize];
+                let mut canvas = splinescope_figure::raster::Canvas {
+                    data: &mut data,
+                    width: w,
+                    height: h,
+                };
+                let _ = splinescope_figure::raster::annotate(&mut canvas, &scene, text_opts);
+            }
+            Ok(())
+        });
+        match result {
+            Ok(Ok(())) => {}
+            Ok(Err(e)) => self.fail(format!("{case}: {e}\ninput: {input}")),
+            Err(_) => self.fail(format!(
+                "{case}: the figure library panicked\ninput: {input}"
+            )),
+        }
+        if started.elapsed() > Duration::from_secs(10) {
+            self.fail(format!(
+                "{case}: the figure took {:?}\ninput: {input}",
+                started.elapsed()
+            ));
+        }
+    }
+
+    fn figure_cli(
+        &mut self,
+        text: &str,
+        (w, h): (u32, u32),
+        tolerance: f64,
+        [labels, legend, axes, grid]: [bool; 4],
+        case: &str,
+        input: &str,
+    ) {
+        let path = self.dir.join("figure-scene.json");
+        std::fs::write(&path, text).expect("write case");
+        let render = self.rng.unit() < 0.08;
+        let ext = if render {
+            "png"
+        } else if self.rng.unit() < 0.5 {
+            "svg"
+        } else {
+            "pdf"
+        };
+        let out = self.dir.join(format!("figure.{ext}"));
+        let mut args: Vec<String> = vec![
+            if render { "render" } else { "export" }.into(),
+            path.to_string_lossy().into_owned(),
+            "-o".into(),
+            out.to_string_lossy().into_owned(),
+            "--width".into(),
+            w.to_string(),
+            "--height".into(),
+            h.to_string(),
+        ];
+        if !render {
+            args.push("--tolerance".into());
+            args.push(format!("{tolerance:e}"));
+        }
+        for (on, flag) in [labels, legend, axes, grid]
+            .into_iter()
+            .zip(["--labels", "--legend", "--axes", "--grid"])
+        {
+            if on {
+                args.push(flag.into());
+            }
+        }
+        let result = self.cli(args.clone(), Some(&out), case, input);
+        if result.status.success() {
+            let problem = match ext {
+                "svg" => std::fs::read_to_string(&out)
+                    .map_err(|e| e.to_string())
+                    .map_or_else(Some, |t| svg_problem(&t)),
+                "pdf" => pdf_problem(&out),
+                _ => (!out.exists()).then(|| "no PNG written".to_owned()),
+            };
+            if let Some(p) = problem {
+                self.fail(format!(
+                    "{case}: splinescope {} wrote a bad figure: {p}\ninput: {input}",
+                    args.join(" ")
+                ));
+            }
+            self.figures += 1;
+        }
+    }
+}
+
 #[test]
 fn fuzz_every_input_path() {
     let seconds: u64 = std::env::var("SPLINESCOPE_FUZZ_SECONDS")
@@ -819,7 +1100,13 @@ fn fuzz_every_input_path() {
         failures: Vec::new(),
         cases: 0,
         exits: [0; 3],
+        figures: 0,
     };
+    // `SPLINESCOPE_FUZZ_ONLY=figures` runs the figure cases alone (scripts/fuzz --only).
+    let only_figures = std::env::var("SPLINESCOPE_FUZZ_ONLY").is_ok_and(|v| v == "figures");
+    let figure_seeds = figure_seeds();
+    let mut figure_scenes = scenes.clone();
+    figure_scenes.extend(figure_seeds);
     let start = Instant::now();
     loop {
         if seconds == 0 && f.cases >= bounded_cases {
@@ -829,7 +1116,9 @@ fn fuzz_every_input_path() {
             break;
         }
         let pick = f.rng.unit();
-        if pick < 0.7 {
+        if only_figures || pick < 0.3 {
+            f.figure_case(&figure_scenes);
+        } else if pick < 0.7 {
             f.scene_case(&scenes, &requests);
         } else if pick < 0.82 {
             f.argument_case();
@@ -844,17 +1133,18 @@ fn fuzz_every_input_path() {
         }
     }
     eprintln!(
-        "fuzz: {} cases from seed {seed} in {:.1} s ({} succeeded, {} failed cleanly, {} refused arguments), {} failure(s)",
+        "fuzz: {} cases from seed {seed} in {:.1} s ({} succeeded, {} failed cleanly, {} refused arguments; {} figures written and read back), {} failure(s)",
         f.cases,
         start.elapsed().as_secs_f64(),
         f.exits[0],
         f.exits[1],
         f.exits[2],
+        f.figures,
         f.failures.len()
     );
     // A fuzzer whose inputs all fail to parse tests nothing: both outcomes must occur.
     assert!(
-        f.cases < 50 || (f.exits[0] * 10 > f.cases && f.exits[1] * 10 > f.cases),
+        f.cases < 50 || only_figures || (f.exits[0] * 10 > f.cases && f.exits[1] * 10 > f.cases),
         "the mutations must produce both valid and invalid inputs: {:?}",
         f.exits
     );
