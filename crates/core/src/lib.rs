@@ -9,6 +9,7 @@
 
 #![forbid(unsafe_code)]
 
+pub mod analysis;
 pub mod geom;
 pub mod inspect;
 pub mod num;

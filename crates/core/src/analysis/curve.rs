@@ -1,0 +1,704 @@
+//! The questions asked of one curve, answered on its lowered segments ([`Piece`]) and put
+//! back in the curve's own parameter.
+
+use glam::DVec3;
+use thiserror::Error;
+
+use super::piece::Piece;
+use super::poly;
+use super::quadrature::{Quadrature, integrate};
+use super::roots::{bernstein_roots, bernstein_roots_with_noise};
+use crate::geom::{Aabb, Lower};
+use crate::num::Num;
+
+/// Why a question cannot be answered.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum AnalysisError {
+    /// The accuracy is not a finite number greater than 0.
+    #[error("accuracy {}: must be a finite number greater than 0", Num(*.0))]
+    Accuracy(f64),
+    /// A parameter outside the curve's domain (or not a number).
+    #[error("{what} = {}: outside the domain [{}, {}] of the curve", Num(*value), Num(*start), Num(*end))]
+    OutsideDomain {
+        /// Which argument.
+        what: &'static str,
+        /// Its value.
+        value: f64,
+        /// The domain's start.
+        start: f64,
+        /// The domain's end.
+        end: f64,
+    },
+    /// A question for planar curves asked of a curve with `z ≠ 0`.
+    #[error(
+        "{what} are defined for planar (2D) curves; this curve leaves the plane z = 0 (a 3D curve has no sign of curvature to change)"
+    )]
+    NotPlanar {
+        /// The question.
+        what: &'static str,
+    },
+    /// An arc length beyond the curve's.
+    #[error("arc length {}: outside [0, {}], the curve's length", Num(*s), Num(*length))]
+    BeyondLength {
+        /// The length asked for.
+        s: f64,
+        /// The curve's length.
+        length: f64,
+    },
+    /// A line given by two equal points.
+    #[error("the line's two points are equal ({point}): they give no direction")]
+    DegenerateLine {
+        /// The point.
+        point: DVec3,
+    },
+}
+
+/// An arc length and the bound on its error kept by the quadrature.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Length {
+    /// The length (negative when `t1 < t0`).
+    pub value: f64,
+    /// A bound on its error (the requested accuracy unless rounding forbade it).
+    pub error: f64,
+}
+
+/// A parameter where one coordinate's derivative vanishes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Extremum {
+    /// The curve parameter.
+    pub t: f64,
+    /// The coordinate: 0 (x), 1 (y) or 2 (z).
+    pub axis: usize,
+    /// The point there.
+    pub point: DVec3,
+}
+
+/// Whether a curvature extremum is a local maximum or minimum of the signed curvature.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ExtremumKind {
+    /// A local maximum of `κ`.
+    Maximum,
+    /// A local minimum of `κ`.
+    Minimum,
+}
+
+/// A local extremum of the signed curvature (a "vertex").
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurvatureExtremum {
+    /// The curve parameter.
+    pub t: f64,
+    /// The signed curvature there (2D: positive turning left).
+    pub curvature: f64,
+    /// Maximum or minimum of the signed curvature.
+    pub kind: ExtremumKind,
+    /// The point there.
+    pub point: DVec3,
+}
+
+/// How a curve meets a line or another curve at a point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum HitKind {
+    /// The curves cross (transversally, or with an odd order of contact).
+    Crossing,
+    /// The curves touch: tangent there (a double root, or parallel tangents).
+    Tangent,
+}
+
+/// A curve meeting a line.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LineHit {
+    /// The curve parameter.
+    pub t: f64,
+    /// The line's parameter: the point is `p + λ (q − p)`.
+    pub lambda: f64,
+    /// The point.
+    pub point: DVec3,
+    /// Crossing or tangent.
+    pub kind: HitKind,
+    /// A bound on the error of `t`.
+    pub error: f64,
+}
+
+/// Where a curve meets a line.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct LineIntersections {
+    /// The points, by the curve's parameter.
+    pub hits: Vec<LineHit>,
+    /// The curve's parameter ranges lying on the line.
+    pub overlaps: Vec<(f64, f64)>,
+}
+
+/// One curve, lowered, ready to be asked.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CurveAnalysis {
+    pieces: Vec<Piece>,
+    domain: (f64, f64),
+    planar: bool,
+}
+
+/// The default accuracy of lengths: absolute, in the curve's units.
+pub const DEFAULT_ACCURACY: f64 = 1e-12;
+
+fn check_accuracy(accuracy: f64) -> Result<f64, AnalysisError> {
+    if accuracy.is_finite() && accuracy > 0.0 {
+        Ok(accuracy)
+    } else {
+        Err(AnalysisError::Accuracy(accuracy))
+    }
+}
+
+impl CurveAnalysis {
+    /// The analysis of `curve` (its exact Bézier segments).
+    #[must_use]
+    pub fn new(curve: &impl Lower) -> CurveAnalysis {
+        let pieces: Vec<Piece> = curve.lower().iter().map(Piece::new).collect();
+        let planar = pieces.iter().all(Piece::is_planar);
+        CurveAnalysis {
+            pieces,
+            domain: curve.domain(),
+            planar,
+        }
+    }
+
+    /// The segments.
+    #[must_use]
+    pub fn pieces(&self) -> &[Piece] {
+        &self.pieces
+    }
+
+    /// The parameter domain.
+    #[must_use]
+    pub fn domain(&self) -> (f64, f64) {
+        self.domain
+    }
+
+    /// Whether every point has `z = 0`.
+    #[must_use]
+    pub fn is_planar(&self) -> bool {
+        self.planar
+    }
+
+    /// Refuses a parameter outside the domain (or NaN), naming it.
+    ///
+    /// # Errors
+    /// [`AnalysisError::OutsideDomain`].
+    pub fn check_t(&self, what: &'static str, t: f64) -> Result<f64, AnalysisError> {
+        let (a, b) = self.domain;
+        if t >= a && t <= b {
+            Ok(t)
+        } else {
+            Err(AnalysisError::OutsideDomain {
+                what,
+                value: t,
+                start: a,
+                end: b,
+            })
+        }
+    }
+
+    fn require_planar(&self, what: &'static str) -> Result<(), AnalysisError> {
+        if self.planar {
+            Ok(())
+        } else {
+            Err(AnalysisError::NotPlanar { what })
+        }
+    }
+
+    /// The piece holding `t` and the local parameter (a joint belongs to the later piece,
+    /// the domain's end to the last).
+    fn locate(&self, t: f64) -> (usize, f64) {
+        let k = self
+            .pieces
+            .partition_point(|p| p.t0 <= t)
+            .saturating_sub(1)
+            .min(self.pieces.len().saturating_sub(1));
+        (k, self.pieces[k].u_of(t))
+    }
+
+    /// The point at `t`.
+    #[must_use]
+    pub fn point(&self, t: f64) -> DVec3 {
+        if self.pieces.is_empty() {
+            return DVec3::ZERO;
+        }
+        let (k, u) = self.locate(t);
+        self.pieces[k].point(u)
+    }
+
+    /// The first derivative with respect to the curve parameter at `t`.
+    #[must_use]
+    pub fn deriv(&self, t: f64) -> DVec3 {
+        if self.pieces.is_empty() {
+            return DVec3::ZERO;
+        }
+        let (k, u) = self.locate(t);
+        let p = &self.pieces[k];
+        p.deriv(u) / (p.t1 - p.t0)
+    }
+
+    /// The second derivative with respect to the curve parameter at `t`.
+    #[must_use]
+    pub fn second_deriv(&self, t: f64) -> DVec3 {
+        if self.pieces.is_empty() {
+            return DVec3::ZERO;
+        }
+        let (k, u) = self.locate(t);
+        let p = &self.pieces[k];
+        let h = p.t1 - p.t0;
+        p.second_deriv(u) / (h * h)
+    }
+
+    /// The arc length of piece `k` between its own parameters `u0 ≤ u1`.
+    fn piece_length(&self, k: usize, u0: f64, u1: f64, tolerance: f64) -> Quadrature {
+        let p = &self.pieces[k];
+        integrate(|u| p.deriv(u).length(), u0, u1, tolerance)
+    }
+
+    /// The arc length from `t0` to `t1` (negative when `t1 < t0`), within `accuracy`
+    /// (absolute): per segment an adaptive Gauss–Kronrod quadrature of `|C′|` whose error
+    /// bound is kept ([`Length::error`]; rounding can make it larger than asked for on a
+    /// length near `1/ε` times the accuracy).
+    ///
+    /// # Errors
+    /// [`AnalysisError`] for an accuracy that is not a positive number or a parameter
+    /// outside the domain.
+    pub fn length(&self, t0: f64, t1: f64, accuracy: f64) -> Result<Length, AnalysisError> {
+        check_accuracy(accuracy)?;
+        self.check_t("t0", t0)?;
+        self.check_t("t1", t1)?;
+        let (lo, hi, sign) = if t0 <= t1 {
+            (t0, t1, 1.0)
+        } else {
+            (t1, t0, -1.0)
+        };
+        let share = accuracy / self.pieces.len().max(1) as f64;
+        let mut total = Quadrature::default();
+        for (k, p) in self.pieces.iter().enumerate() {
+            if p.t1 <= lo || p.t0 >= hi {
+                continue;
+            }
+            let u0 = if lo > p.t0 { p.u_of(lo) } else { 0.0 };
+            let u1 = if hi < p.t1 { p.u_of(hi) } else { 1.0 };
+            let q = self.piece_length(k, u0, u1, share);
+            total.value += q.value;
+            total.error += q.error;
+        }
+        Ok(Length {
+            value: sign * total.value,
+            error: total.error,
+        })
+    }
+
+    /// The parameter `t` at which the arc length from the domain's start is `s`, within
+    /// `accuracy` of `s` (Newton's method on the length, kept inside a bracket).
+    ///
+    /// # Errors
+    /// [`AnalysisError`] for an accuracy that is not a positive number, or `s` outside
+    /// `[0, length]`.
+    pub fn parameter_at_length(&self, s: f64, accuracy: f64) -> Result<f64, AnalysisError> {
+        check_accuracy(accuracy)?;
+        let n = self.pieces.len().max(1) as f64;
+        let lengths: Vec<f64> = (0..self.pieces.len())
+            .map(|k| self.piece_length(k, 0.0, 1.0, 0.25 * accuracy / n).value)
+            .collect();
+        let total: f64 = lengths.iter().sum();
+        if !(s >= 0.0 && s <= total + accuracy) {
+            return Err(AnalysisError::BeyondLength { s, length: total });
+        }
+        let (a, b) = self.domain;
+        if s == 0.0 {
+            return Ok(a);
+        }
+        let mut before = 0.0;
+        for (k, &len) in lengths.iter().enumerate() {
+            if before + len < s && k + 1 < lengths.len() {
+                before += len;
+                continue;
+            }
+            let p = &self.pieces[k];
+            let target = (s - before).min(len);
+            if target >= len {
+                return Ok(p.t1.min(b));
+            }
+            let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
+            let mut u = if len > 0.0 { target / len } else { 0.0 };
+            for _ in 0..100 {
+                let f = self.piece_length(k, 0.0, u, 0.25 * accuracy).value - target;
+                if f.abs() <= 0.5 * accuracy {
+                    break;
+                }
+                if f < 0.0 {
+                    lo = u;
+                } else {
+                    hi = u;
+                }
+                let speed = p.deriv(u).length();
+                let newton = u - f / speed;
+                let mid = 0.5 * (lo + hi);
+                u = if speed > 0.0 && newton > lo && newton < hi {
+                    newton
+                } else {
+                    mid
+                };
+                if hi - lo <= f64::EPSILON {
+                    break;
+                }
+            }
+            return Ok(p.t_of(u));
+        }
+        Ok(b)
+    }
+
+    /// The parameters strictly inside the domain where one coordinate's derivative
+    /// vanishes (for a rational segment, the numerator of the quotient rule), by axis
+    /// then parameter; 2 axes for a planar curve, 3 otherwise.
+    #[must_use]
+    pub fn extrema(&self) -> Vec<Extremum> {
+        let dims = if self.planar { 2 } else { 3 };
+        let (a, b) = self.domain;
+        let mut out: Vec<Extremum> = Vec::new();
+        for axis in 0..dims {
+            let mut ts: Vec<f64> = Vec::new();
+            for p in &self.pieces {
+                let roots = bernstein_roots(&p.deriv_numerator(axis));
+                for r in roots.roots {
+                    let t = p.t_of(r.t);
+                    if t > a && t < b {
+                        ts.push(t);
+                    }
+                }
+            }
+            ts.sort_by(f64::total_cmp);
+            ts.dedup_by(|x, y| (*x - *y).abs() <= 4.0 * f64::EPSILON * x.abs().max(1.0));
+            out.extend(ts.into_iter().map(|t| Extremum {
+                t,
+                axis,
+                point: self.point(t),
+            }));
+        }
+        out
+    }
+
+    /// The tight axis-aligned box of the curve: its end points, the segments' joints and
+    /// the points where a coordinate's derivative vanishes (not the control points' box).
+    #[must_use]
+    pub fn bounding_box(&self) -> Aabb {
+        let mut bbox = Aabb::EMPTY;
+        for p in &self.pieces {
+            bbox = bbox.including(p.point(0.0)).including(p.point(1.0));
+        }
+        for e in self.extrema() {
+            bbox = bbox.including(e.point);
+        }
+        bbox
+    }
+
+    /// Whether the curve ends where it starts (within `1e−12` of its size).
+    #[must_use]
+    pub fn is_closed(&self) -> bool {
+        let (a, b) = self.domain;
+        let (p, q) = (self.point(a), self.point(b));
+        let size = self.control_box().diagonal().max(f64::MIN_POSITIVE);
+        (p - q).length() <= 1e-12 * size
+    }
+
+    /// The box of every segment's control points (holds the curve).
+    #[must_use]
+    pub fn control_box(&self) -> Aabb {
+        let mut bbox = Aabb::EMPTY;
+        for p in &self.pieces {
+            for i in 0..p.a[0].len() {
+                let w = p.w.as_ref().map_or(1.0, |w| w[i]);
+                bbox = bbox.including(DVec3::new(p.a[0][i], p.a[1][i], p.a[2][i]) / w);
+            }
+        }
+        bbox
+    }
+
+    /// The signed area enclosed by the curve and, if it is open, the straight chord from
+    /// its end back to its start: `½ ∮ (x dy − y dx)`, positive counter-clockwise. Exact
+    /// but for rounding on polynomial segments (Green's theorem on the Bernstein form:
+    /// `∫₀¹ (x y′ − y x′) du` is the mean of the product's coefficients); rational segments
+    /// by quadrature to `1e−15` of the curve's size squared.
+    ///
+    /// # Errors
+    /// [`AnalysisError::NotPlanar`] for a 3D curve.
+    pub fn signed_area(&self) -> Result<f64, AnalysisError> {
+        self.require_planar("signed areas")?;
+        let size = self.control_box().diagonal();
+        let mut twice = 0.0;
+        for p in &self.pieces {
+            match p.area_integrand() {
+                Some(c) => twice += poly::integral(&c),
+                None => {
+                    let q = integrate(
+                        |u| {
+                            let c = p.point(u);
+                            let d = p.deriv(u);
+                            c.x * d.y - c.y * d.x
+                        },
+                        0.0,
+                        1.0,
+                        1e-15 * size * size,
+                    );
+                    twice += q.value;
+                }
+            }
+        }
+        let (a, b) = self.domain;
+        let (start, end) = (self.point(a), self.point(b));
+        twice += end.x * start.y - end.y * start.x;
+        Ok(0.5 * twice)
+    }
+
+    /// The parameters where the velocity vanishes (`C′ = 0`): cusps and stationary points,
+    /// strictly inside the domain.
+    ///
+    /// # Errors
+    /// [`AnalysisError::NotPlanar`] for a 3D curve.
+    pub fn cusps(&self) -> Result<Vec<f64>, AnalysisError> {
+        self.require_planar("cusps")?;
+        Ok(self.cusp_parameters())
+    }
+
+    fn cusp_parameters(&self) -> Vec<f64> {
+        let (a, b) = self.domain;
+        let mut out: Vec<f64> = Vec::new();
+        for p in &self.pieces {
+            let roots = bernstein_roots(&p.speed_squared_numerator(2));
+            for r in roots.roots {
+                let t = p.t_of(r.t);
+                if t > a && t < b {
+                    out.push(t);
+                }
+            }
+        }
+        out.sort_by(f64::total_cmp);
+        out.dedup_by(|x, y| (*x - *y).abs() <= 1e-12 * (b - a));
+        out
+    }
+
+    /// The inflections: parameters where `C′ × C″` changes sign (an odd-order root inside a
+    /// segment, or a sign that differs across a joint), cusps excluded.
+    ///
+    /// # Errors
+    /// [`AnalysisError::NotPlanar`] for a 3D curve.
+    pub fn inflections(&self) -> Result<Vec<f64>, AnalysisError> {
+        self.require_planar("inflections")?;
+        let (a, b) = self.domain;
+        let cusps = self.cusp_parameters();
+        let near_cusp = |t: f64| cusps.iter().any(|c| (c - t).abs() <= 1e-9 * (b - a));
+        let mut out: Vec<f64> = Vec::new();
+        // The sign just inside each end of each segment's cross product.
+        let mut ends: Vec<(f64, f64)> = Vec::with_capacity(self.pieces.len());
+        for p in &self.pieces {
+            let (c, noise) = p.cross_numerator();
+            // Coefficients within the rounding have no sign (a straight stretch).
+            let c: Vec<f64> = c
+                .into_iter()
+                .map(|v| if v.abs() <= noise { 0.0 } else { v })
+                .collect();
+            let sign = |v: Option<&f64>| v.map_or(0.0, |v| v.signum());
+            ends.push((
+                sign(c.iter().find(|v| **v != 0.0)),
+                sign(c.iter().rev().find(|v| **v != 0.0)),
+            ));
+            for r in bernstein_roots_with_noise(&c, noise).roots {
+                if r.multiplicity % 2 == 1 && r.t > 0.0 && r.t < 1.0 {
+                    let t = p.t_of(r.t);
+                    if t > a && t < b && !near_cusp(t) {
+                        out.push(t);
+                    }
+                }
+            }
+        }
+        for k in 1..self.pieces.len() {
+            let (left, right) = (ends[k - 1].1, ends[k].0);
+            let t = self.pieces[k].t0;
+            if left != 0.0 && right != 0.0 && left != right && t > a && t < b && !near_cusp(t) {
+                out.push(t);
+            }
+        }
+        out.sort_by(f64::total_cmp);
+        out.dedup_by(|x, y| (*x - *y).abs() <= 1e-12 * (b - a));
+        Ok(out)
+    }
+
+    /// The signed curvature at `t` (2D): `(C′ × C″) / |C′|³`; `None` where `C′ = 0`.
+    #[must_use]
+    pub fn signed_curvature(&self, t: f64) -> Option<f64> {
+        let (d1, d2) = (self.deriv(t), self.second_deriv(t));
+        let k = crate::geom::curvature(d1, d2)?;
+        Some(if d1.x * d2.y - d1.y * d2.x < 0.0 {
+            -k
+        } else {
+            k
+        })
+    }
+
+    /// The local extrema of the signed curvature inside each segment (the stationary
+    /// points of `κ`, where `2F′G − 3FG′ = 0` with `κ = F/G^{3/2}`), cusps excluded, with
+    /// `κ` and whether it is a maximum or a minimum there. A segment of constant
+    /// curvature (a circular arc, a line) has none.
+    ///
+    /// # Errors
+    /// [`AnalysisError::NotPlanar`] for a 3D curve.
+    pub fn curvature_extrema(&self) -> Result<Vec<CurvatureExtremum>, AnalysisError> {
+        self.require_planar("curvature extrema")?;
+        let (a, b) = self.domain;
+        let cusps = self.cusp_parameters();
+        let mut out = Vec::new();
+        // The slope's sign just inside each end of each segment (0: none there).
+        let mut ends: Vec<(f64, f64)> = Vec::with_capacity(self.pieces.len());
+        for p in &self.pieces {
+            let (slope, noise) = p.curvature_slope_numerator();
+            // Coefficients within the rounding are no sign at all (a circular arc).
+            let slope: Vec<f64> = slope
+                .into_iter()
+                .map(|v| if v.abs() <= noise { 0.0 } else { v })
+                .collect();
+            let sign = |v: Option<&f64>| v.map_or(0.0, |v| v.signum());
+            ends.push((
+                sign(slope.iter().find(|v| **v != 0.0)),
+                sign(slope.iter().rev().find(|v| **v != 0.0)),
+            ));
+            let roots = bernstein_roots_with_noise(&slope, noise);
+            if roots.identically_zero {
+                continue;
+            }
+            let rs: Vec<f64> = roots
+                .roots
+                .iter()
+                .filter(|r| r.multiplicity % 2 == 1 && r.t > 0.0 && r.t < 1.0)
+                .map(|r| r.t)
+                .collect();
+            for (i, &u) in rs.iter().enumerate() {
+                let t = p.t_of(u);
+                if !(t > a && t < b) || cusps.iter().any(|c| (c - t).abs() <= 1e-9 * (b - a)) {
+                    continue;
+                }
+                // Which way κ goes: the sign of the slope numerator (G > 0) on each side,
+                // a step short of the neighbouring roots.
+                let left_room = if i == 0 { u } else { u - rs[i - 1] };
+                let right_room = if i + 1 == rs.len() {
+                    1.0 - u
+                } else {
+                    rs[i + 1] - u
+                };
+                let h = (0.25 * left_room.min(right_room)).min(1e-3);
+                let before = poly::eval(&slope, u - h);
+                let after = poly::eval(&slope, u + h);
+                let kind = match (before > 0.0, after > 0.0) {
+                    (true, false) => ExtremumKind::Maximum,
+                    (false, true) => ExtremumKind::Minimum,
+                    _ => continue,
+                };
+                let Some(curvature) = self.signed_curvature(t) else {
+                    continue;
+                };
+                out.push(CurvatureExtremum {
+                    t,
+                    curvature,
+                    kind,
+                    point: self.point(t),
+                });
+            }
+        }
+        // A joint where the slope changes sign and κ is continuous (a joint where κ
+        // jumps, as at the knots of a C¹ spline, is not a stationary point).
+        for k in 1..self.pieces.len() {
+            let t = self.pieces[k].t0;
+            let (left, right) = (ends[k - 1].1, ends[k].0);
+            let kind = match (left, right) {
+                (l, r) if l > 0.0 && r < 0.0 => ExtremumKind::Maximum,
+                (l, r) if l < 0.0 && r > 0.0 => ExtremumKind::Minimum,
+                _ => continue,
+            };
+            if !(t > a && t < b) || cusps.iter().any(|c| (c - t).abs() <= 1e-9 * (b - a)) {
+                continue;
+            }
+            let (prev, next) = (&self.pieces[k - 1], &self.pieces[k]);
+            let side = |p: &Piece, u: f64| {
+                let h = p.t1 - p.t0;
+                let (d1, d2) = (p.deriv(u) / h, p.second_deriv(u) / (h * h));
+                crate::geom::curvature(d1, d2).map(|k| {
+                    if d1.x * d2.y - d1.y * d2.x < 0.0 {
+                        -k
+                    } else {
+                        k
+                    }
+                })
+            };
+            let (Some(kl), Some(kr)) = (side(prev, 1.0), side(next, 0.0)) else {
+                continue;
+            };
+            if (kl - kr).abs() > 1e-9 * kl.abs().max(kr.abs()) {
+                continue;
+            }
+            out.push(CurvatureExtremum {
+                t,
+                curvature: kr,
+                kind,
+                point: self.point(t),
+            });
+        }
+        out.sort_by(|x, y| x.t.total_cmp(&y.t));
+        Ok(out)
+    }
+
+    /// Where the curve meets the line through `p` and `q` (2D): each segment's signed
+    /// distance `(A − pW) × (q − p)` in Bernstein form, its roots; a double root is a
+    /// tangency. Segments lying on the line are reported as overlaps (their parameter
+    /// ranges, joined).
+    ///
+    /// # Errors
+    /// [`AnalysisError`] for a 3D curve or `p = q`.
+    pub fn intersect_line(&self, p: DVec3, q: DVec3) -> Result<LineIntersections, AnalysisError> {
+        self.require_planar("intersections")?;
+        let d = q - p;
+        if d.x == 0.0 && d.y == 0.0 {
+            return Err(AnalysisError::DegenerateLine { point: p });
+        }
+        let mut hits: Vec<LineHit> = Vec::new();
+        let mut overlaps: Vec<(f64, f64)> = Vec::new();
+        for piece in &self.pieces {
+            let n = piece.a[0].len();
+            let c: Vec<f64> = (0..n)
+                .map(|i| {
+                    let w = piece.w.as_ref().map_or(1.0, |w| w[i]);
+                    let x = piece.a[0][i] - p.x * w;
+                    let y = piece.a[1][i] - p.y * w;
+                    x * d.y - y * d.x
+                })
+                .collect();
+            let roots = bernstein_roots(&c);
+            if roots.identically_zero {
+                match overlaps.last_mut() {
+                    Some(last) if last.1 == piece.t0 => last.1 = piece.t1,
+                    _ => overlaps.push((piece.t0, piece.t1)),
+                }
+                continue;
+            }
+            for r in roots.roots {
+                let t = piece.t_of(r.t);
+                let point = piece.point(r.t);
+                hits.push(LineHit {
+                    t,
+                    lambda: (point - p).dot(d) / d.length_squared(),
+                    point,
+                    kind: if r.multiplicity % 2 == 0 {
+                        HitKind::Tangent
+                    } else {
+                        HitKind::Crossing
+                    },
+                    error: r.error * (piece.t1 - piece.t0),
+                });
+            }
+        }
+        hits.sort_by(|x, y| x.t.total_cmp(&y.t));
+        // A hit at a joint is found by both segments.
+        hits.dedup_by(|x, y| (x.t - y.t).abs() <= x.error + y.error + 4.0 * f64::EPSILON);
+        hits.retain(|h| !overlaps.iter().any(|(s, e)| h.t >= *s && h.t <= *e));
+        Ok(LineIntersections { hits, overlaps })
+    }
+}

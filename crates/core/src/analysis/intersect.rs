@@ -1,0 +1,730 @@
+//! Intersections of planar curves: two curves, a curve with itself, and every pair among
+//! many — on their lowered segments, polynomial or rational.
+//!
+//! **Two segments.** First, coincidence: a segment's end point on the other segment (its
+//! closest point by the root finder, within `1e−9` of their size), two such points, and
+//! seven points between them on the other curve, make an *overlap* — reported as a pair
+//! of parameter intervals, not a cloud of points. Then subdivision: while the control
+//! boxes of two sub-segments overlap, the larger is halved (de Casteljau on the
+//! homogeneous points, so the convex hull holds for rational segments too), until both
+//! are flat to `1e−6` of their size; their chords' crossing starts Newton's method on
+//! `C₁(s) − C₂(t) = 0` (damped, Levenberg–Marquardt, where the Jacobian is singular),
+//! which converges to full precision for a transversal crossing and to about `√ε` in the
+//! parameters at a tangency. A point is kept when `|C₁(s) − C₂(t)| ≤ 64 ε` times the size;
+//! it is a *tangent* point where the tangents are parallel within `1e−6` rad (then the
+//! neighbouring candidates, which converge to the same point more slowly, are merged
+//! into it), a *crossing* otherwise.
+//!
+//! **A curve with itself.** Its segments are cut where `x′` or `y′` vanishes: the pieces
+//! are monotone in both coordinates and cannot cross themselves; every pair of pieces is
+//! intersected, leaving out the joint two neighbours share (and, for a closed curve, the
+//! start meeting the end).
+//!
+//! **Many curves.** A sweep over the segments' boxes sorted by `x` pairs the boxes that
+//! overlap; the pairs are intersected on every core (rayon).
+
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+
+use super::curve::{AnalysisError, CurveAnalysis, HitKind};
+use super::piece::Piece;
+use super::{bernstein_roots, poly};
+
+/// One point where two curves meet.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hit {
+    /// The first curve's parameter.
+    pub s: f64,
+    /// The second curve's parameter.
+    pub t: f64,
+    /// The point (the first curve's, at `s`).
+    pub point: DVec3,
+    /// Crossing or tangent.
+    pub kind: HitKind,
+    /// A bound on the error of `s` and `t`: a few ulps for a crossing, about `√ε` of the
+    /// parameter range at a tangency.
+    pub error: f64,
+}
+
+/// A stretch where two curves coincide.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Overlap {
+    /// The first curve's parameter interval.
+    pub s: (f64, f64),
+    /// The second curve's parameter interval (in the order matching `s`: `t.0` meets
+    /// `s.0`).
+    pub t: (f64, f64),
+}
+
+/// Everything two curves (or a curve and itself) have in common.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Intersections {
+    /// The points, by `s`.
+    pub hits: Vec<Hit>,
+    /// The coincident stretches, by `s`.
+    pub overlaps: Vec<Overlap>,
+}
+
+/// The intersections of one pair among many curves.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PairIntersections {
+    /// The first curve's index.
+    pub i: usize,
+    /// The second curve's index (`i < j`).
+    pub j: usize,
+    /// What they have in common.
+    pub found: Intersections,
+}
+
+/// A sub-segment: homogeneous control points `(w x, w y, w)` and its range of the
+/// segment's own parameter.
+#[derive(Debug, Clone)]
+struct Sub {
+    h: Vec<[f64; 3]>,
+    u0: f64,
+    u1: f64,
+}
+
+impl Sub {
+    fn of(p: &Piece, u0: f64, u1: f64) -> Sub {
+        let n = p.a[0].len();
+        let mut h: Vec<[f64; 3]> = (0..n)
+            .map(|i| {
+                let w = p.w.as_ref().map_or(1.0, |w| w[i]);
+                [p.a[0][i], p.a[1][i], w]
+            })
+            .collect();
+        if u0 > 0.0 || u1 < 1.0 {
+            let axis = |k: usize| -> Vec<f64> {
+                poly::restrict(&h.iter().map(|v| v[k]).collect::<Vec<_>>(), u0, u1)
+            };
+            let (x, y, w) = (axis(0), axis(1), axis(2));
+            h = (0..n).map(|i| [x[i], y[i], w[i]]).collect();
+        }
+        Sub { h, u0, u1 }
+    }
+
+    fn point(&self, i: usize) -> DVec2 {
+        let v = self.h[i];
+        DVec2::new(v[0] / v[2], v[1] / v[2])
+    }
+
+    fn bounds(&self) -> (DVec2, DVec2) {
+        let mut lo = DVec2::INFINITY;
+        let mut hi = DVec2::NEG_INFINITY;
+        for i in 0..self.h.len() {
+            let p = self.point(i);
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+        (lo, hi)
+    }
+
+    /// The largest distance of a control point from the chord.
+    fn flatness(&self) -> f64 {
+        let n = self.h.len() - 1;
+        let (a, b) = (self.point(0), self.point(n));
+        let d = b - a;
+        let len = d.length();
+        (1..n)
+            .map(|i| {
+                let p = self.point(i) - a;
+                if len > 0.0 {
+                    (p.perp_dot(d) / len).abs()
+                } else {
+                    p.length()
+                }
+            })
+            .fold(0.0, f64::max)
+    }
+
+    fn halves(&self) -> (Sub, Sub) {
+        let n = self.h.len() - 1;
+        let mut work = self.h.clone();
+        let mut left = Vec::with_capacity(n + 1);
+        let mut right = vec![[0.0; 3]; n + 1];
+        left.push(work[0]);
+        right[n] = work[n];
+        for r in 1..=n {
+            for i in 0..=(n - r) {
+                let (p, q) = (work[i], work[i + 1]);
+                work[i] = [
+                    0.5 * (p[0] + q[0]),
+                    0.5 * (p[1] + q[1]),
+                    0.5 * (p[2] + q[2]),
+                ];
+            }
+            left.push(work[0]);
+            right[n - r] = work[n - r];
+        }
+        let mid = 0.5 * (self.u0 + self.u1);
+        (
+            Sub {
+                h: left,
+                u0: self.u0,
+                u1: mid,
+            },
+            Sub {
+                h: right,
+                u0: mid,
+                u1: self.u1,
+            },
+        )
+    }
+}
+
+fn boxes_meet(a: (DVec2, DVec2), b: (DVec2, DVec2), margin: f64) -> bool {
+    a.0.x <= b.1.x + margin
+        && b.0.x <= a.1.x + margin
+        && a.0.y <= b.1.y + margin
+        && b.0.y <= a.1.y + margin
+}
+
+/// Candidate `(u, v)` pairs of two segments from subdivision.
+struct Subdivider {
+    flat: f64,
+    margin: f64,
+    candidates: Vec<(f64, f64)>,
+}
+
+impl Subdivider {
+    fn run(&mut self, a: &Sub, b: &Sub, depth: u32) {
+        let (ba, bb) = (a.bounds(), b.bounds());
+        if !boxes_meet(ba, bb, self.margin) {
+            return;
+        }
+        // Too many candidates means coincident stretches the overlap test did not catch:
+        // stop rather than multiply them.
+        if self.candidates.len() > 4096 {
+            return;
+        }
+        let (fa, fb) = (a.flatness(), b.flatness());
+        if (fa <= self.flat && fb <= self.flat) || depth >= 64 {
+            self.candidates.push(chord_crossing(a, b));
+            return;
+        }
+        let size_a = (ba.1 - ba.0).length();
+        let size_b = (bb.1 - bb.0).length();
+        if (fa > self.flat && size_a >= size_b) || fb <= self.flat {
+            let (l, r) = a.halves();
+            self.run(&l, b, depth + 1);
+            self.run(&r, b, depth + 1);
+        } else {
+            let (l, r) = b.halves();
+            self.run(a, &l, depth + 1);
+            self.run(a, &r, depth + 1);
+        }
+    }
+}
+
+/// Where the chords of two flat sub-segments cross, as segment parameters (clamped to the
+/// sub-segments; the midpoints for parallel chords).
+fn chord_crossing(a: &Sub, b: &Sub) -> (f64, f64) {
+    let (p0, p1) = (a.point(0), a.point(a.h.len() - 1));
+    let (q0, q1) = (b.point(0), b.point(b.h.len() - 1));
+    let (d, e) = (p1 - p0, q1 - q0);
+    let det = d.perp_dot(e);
+    let (alpha, beta) = if det.abs() > 1e-300 {
+        let r = q0 - p0;
+        (
+            (r.perp_dot(e) / det).clamp(0.0, 1.0),
+            (r.perp_dot(d) / det).clamp(0.0, 1.0),
+        )
+    } else {
+        (0.5, 0.5)
+    };
+    (a.u0 + alpha * (a.u1 - a.u0), b.u0 + beta * (b.u1 - b.u0))
+}
+
+/// Newton's method (Levenberg–Marquardt damped) on `C₁(u) − C₂(v) = 0` from a candidate,
+/// `u`, `v` kept in `[0, 1]`. Returns the parameters and the residual.
+fn refine(a: &Piece, b: &Piece, mut u: f64, mut v: f64) -> (f64, f64, f64) {
+    let f = |u: f64, v: f64| (a.point(u) - b.point(v)).truncate();
+    let mut r = f(u, v);
+    let mut lambda = 0.0_f64;
+    for _ in 0..100 {
+        let norm = r.length();
+        if norm == 0.0 {
+            break;
+        }
+        let (ja, jb) = (a.deriv(u).truncate(), -b.deriv(v).truncate());
+        // (JᵀJ + λ diag) Δ = −Jᵀ r.
+        let (m11, m12, m22) = (ja.dot(ja), ja.dot(jb), jb.dot(jb));
+        let (g1, g2) = (ja.dot(r), jb.dot(r));
+        let mut accepted = false;
+        for _ in 0..30 {
+            let (d11, d22) = (m11 * (1.0 + lambda), m22 * (1.0 + lambda));
+            let det = d11 * d22 - m12 * m12;
+            if det == 0.0 || !det.is_finite() {
+                lambda = if lambda == 0.0 { 1e-6 } else { lambda * 10.0 };
+                continue;
+            }
+            let du = -(d22 * g1 - m12 * g2) / det;
+            let dv = -(d11 * g2 - m12 * g1) / det;
+            let (nu, nv) = ((u + du).clamp(0.0, 1.0), (v + dv).clamp(0.0, 1.0));
+            let nr = f(nu, nv);
+            if nr.length() < norm {
+                let tiny = (nu - u).abs() <= f64::EPSILON && (nv - v).abs() <= f64::EPSILON;
+                u = nu;
+                v = nv;
+                r = nr;
+                lambda *= 0.1;
+                accepted = !tiny;
+                break;
+            }
+            lambda = if lambda == 0.0 { 1e-6 } else { lambda * 10.0 };
+        }
+        if !accepted {
+            break;
+        }
+    }
+    (u, v, r.length())
+}
+
+/// The closest point of piece `p` on its range `[u0, u1]` to `q` (2D): its parameter and
+/// distance, from the roots of `(C(u) − q) · C′(u)` (numerator) and the range's ends.
+fn closest(p: &Piece, (u0, u1): (f64, f64), q: DVec2) -> (f64, f64) {
+    let w = p.w.as_deref();
+    // (A − qW) per axis, and the velocity numerator per axis.
+    let shifted = |k: usize, qk: f64| -> Vec<f64> {
+        match w {
+            Some(w) => p.a[k].iter().zip(w).map(|(a, w)| a - qk * w).collect(),
+            None => p.a[k].iter().map(|a| a - qk).collect(),
+        }
+    };
+    let dot = poly::sum(
+        &poly::product(&shifted(0, q.x), &p.deriv_numerator(0)),
+        &poly::product(&shifted(1, q.y), &p.deriv_numerator(1)),
+    );
+    let mut best = (0.0, f64::INFINITY);
+    let mut consider = |u: f64| {
+        let d = (p.point(u).truncate() - q).length();
+        if d < best.1 {
+            best = (u, d);
+        }
+    };
+    consider(u0);
+    consider(u1);
+    for r in bernstein_roots(&dot).roots {
+        if r.t >= u0 && r.t <= u1 {
+            consider(r.t);
+        }
+    }
+    best
+}
+
+/// Coincident stretches of two segments on their ranges: each end of one range whose
+/// point lies on the other, confirmed by seven points between two of them. In segment
+/// parameters.
+fn segment_overlaps(
+    a: &Piece,
+    ra: (f64, f64),
+    b: &Piece,
+    rb: (f64, f64),
+    tol: f64,
+) -> Vec<((f64, f64), (f64, f64))> {
+    let on_b = |u: f64| -> Option<(f64, f64)> {
+        let q = a.point(u).truncate();
+        let (v, d) = closest(b, rb, q);
+        (d <= tol).then_some((u, v))
+    };
+    let on_a = |v: f64| -> Option<(f64, f64)> {
+        let q = b.point(v).truncate();
+        let (u, d) = closest(a, ra, q);
+        (d <= tol).then_some((u, v))
+    };
+    let mut ends: Vec<(f64, f64)> = [on_b(ra.0), on_b(ra.1), on_a(rb.0), on_a(rb.1)]
+        .into_iter()
+        .flatten()
+        .collect();
+    ends.sort_by(|x, y| x.0.total_cmp(&y.0));
+    ends.dedup_by(|x, y| (x.0 - y.0).abs() <= 1e-9 && (x.1 - y.1).abs() <= 1e-9);
+    if ends.len() < 2 {
+        return Vec::new();
+    }
+    let (first, last) = (ends[0], ends[ends.len() - 1]);
+    if (last.0 - first.0).abs() <= 1e-9 || (last.1 - first.1).abs() <= 1e-9 {
+        return Vec::new();
+    }
+    let coincide = (1..=7).all(|k| {
+        let u = first.0 + (last.0 - first.0) * f64::from(k) / 8.0;
+        closest(b, rb, a.point(u).truncate()).1 <= tol
+    });
+    if coincide {
+        vec![((first.0, last.0), (first.1, last.1))]
+    } else {
+        Vec::new()
+    }
+}
+
+/// The size two pieces are measured by: the diagonal of their control boxes' union.
+fn size_of(a: &Piece, b: &Piece) -> f64 {
+    let (ba, bb) = (Sub::of(a, 0.0, 1.0).bounds(), Sub::of(b, 0.0, 1.0).bounds());
+    let lo = ba.0.min(bb.0);
+    let hi = ba.1.max(bb.1);
+    (hi - lo).length().max(f64::MIN_POSITIVE)
+}
+
+/// The points and overlaps of two segments, in segment parameters (`u` of `a`, `v` of
+/// `b`), on the sub-ranges given.
+fn piece_pair(a: &Piece, (a0, a1): (f64, f64), b: &Piece, (b0, b1): (f64, f64)) -> PieceHits {
+    let size = size_of(a, b);
+    let tol = 64.0 * f64::EPSILON * size;
+    let mut out = PieceHits::default();
+    let overlaps = segment_overlaps(a, (a0, a1), b, (b0, b1), 1e-9 * size);
+    let inside_overlap = |u: f64| {
+        overlaps
+            .iter()
+            .any(|((u0, u1), _)| u >= u0.min(*u1) - 1e-9 && u <= u0.max(*u1) + 1e-9)
+    };
+    // The parts of `a` outside the overlaps are what the subdivision examines.
+    let mut ranges = vec![(a0, a1)];
+    for ((u0, u1), _) in &overlaps {
+        let (lo, hi) = (u0.min(*u1), u0.max(*u1));
+        ranges = ranges
+            .into_iter()
+            .flat_map(|(r0, r1)| {
+                let mut parts = Vec::new();
+                if lo > r0 {
+                    parts.push((r0, lo.min(r1)));
+                }
+                if hi < r1 {
+                    parts.push((hi.max(r0), r1));
+                }
+                parts
+            })
+            .filter(|(r0, r1)| r1 > r0)
+            .collect();
+    }
+    out.overlaps.clone_from(&overlaps);
+    let mut sub = Subdivider {
+        flat: 1e-6 * size,
+        margin: tol,
+        candidates: Vec::new(),
+    };
+    let sb = Sub::of(b, b0, b1);
+    for (r0, r1) in ranges {
+        sub.run(&Sub::of(a, r0, r1), &sb, 0);
+    }
+    let mut found: Vec<(f64, f64, HitKind)> = Vec::new();
+    for (u, v) in sub.candidates {
+        let (u, v, residual) = refine(a, b, u, v);
+        if residual > tol || u < a0 || u > a1 || v < b0 || v > b1 || inside_overlap(u) {
+            continue;
+        }
+        let (da, db) = (a.deriv(u).truncate(), b.deriv(v).truncate());
+        let sin = da.perp_dot(db).abs() / (da.length() * db.length());
+        let kind = if sin.is_finite() && sin > 1e-6 {
+            HitKind::Crossing
+        } else {
+            HitKind::Tangent
+        };
+        found.push((u, v, kind));
+    }
+    found.sort_by(|x, y| x.0.total_cmp(&y.0));
+    // One point from candidates that converged to the same place: within a few ulps for
+    // crossings, within √ε for tangencies (Newton converges slowly there).
+    let mut merged: Vec<(f64, f64, HitKind)> = Vec::new();
+    for h in found {
+        let same = merged.iter_mut().rev().find(|m| {
+            let radius = if m.2 == HitKind::Tangent || h.2 == HitKind::Tangent {
+                1e-7
+            } else {
+                1e-12
+            };
+            (m.0 - h.0).abs() <= radius && (m.1 - h.1).abs() <= radius
+        });
+        match same {
+            Some(m) => {
+                if h.2 == HitKind::Tangent {
+                    m.2 = HitKind::Tangent;
+                }
+            }
+            None => merged.push(h),
+        }
+    }
+    out.hits = merged;
+    out
+}
+
+/// Hits and overlaps of two segments in their own parameters.
+#[derive(Debug, Default)]
+struct PieceHits {
+    hits: Vec<(f64, f64, HitKind)>,
+    overlaps: Vec<((f64, f64), (f64, f64))>,
+}
+
+/// `u` of a piece as the curve parameter.
+fn to_t(p: &Piece, u: f64) -> f64 {
+    p.t_of(u)
+}
+
+fn hit(a: &Piece, b: &Piece, (u, v, kind): (f64, f64, HitKind)) -> Hit {
+    let error = match kind {
+        HitKind::Crossing => 8.0 * f64::EPSILON,
+        HitKind::Tangent => 1e-7,
+    };
+    Hit {
+        s: to_t(a, u),
+        t: to_t(b, v),
+        point: a.point(u),
+        kind,
+        error: error * (a.t1 - a.t0).abs().max(b.t1 - b.t0),
+    }
+}
+
+/// Sorts hits and overlaps, and merges the copies two neighbouring segments report of a
+/// point on their joint, and overlaps that continue across joints.
+fn tidy(mut found: Intersections) -> Intersections {
+    found
+        .hits
+        .sort_by(|x, y| x.s.total_cmp(&y.s).then(x.t.total_cmp(&y.t)));
+    found.hits.dedup_by(|x, y| {
+        (x.s - y.s).abs() <= x.error + y.error && (x.t - y.t).abs() <= x.error + y.error
+    });
+    found.overlaps.sort_by(|x, y| x.s.0.total_cmp(&y.s.0));
+    let mut overlaps: Vec<Overlap> = Vec::new();
+    for o in found.overlaps {
+        match overlaps.last_mut() {
+            Some(last) if (last.s.1 - o.s.0).abs() <= 1e-12 => {
+                last.s.1 = o.s.1;
+                last.t.1 = o.t.1;
+            }
+            _ => overlaps.push(o),
+        }
+    }
+    let within = |h: &Hit| {
+        overlaps.iter().any(|o| {
+            let (lo, hi) = (o.s.0.min(o.s.1), o.s.0.max(o.s.1));
+            h.s >= lo - h.error && h.s <= hi + h.error
+        })
+    };
+    found.hits.retain(|h| !within(h));
+    found.overlaps = overlaps;
+    found
+}
+
+/// The control box of a piece, in 2D.
+fn piece_box(p: &Piece) -> (DVec2, DVec2) {
+    Sub::of(p, 0.0, 1.0).bounds()
+}
+
+impl CurveAnalysis {
+    /// Where this curve and `other` meet (2D): points with both parameters and their kind,
+    /// and coincident stretches as parameter intervals.
+    ///
+    /// # Errors
+    /// [`AnalysisError::NotPlanar`] when either curve is 3D.
+    pub fn intersect(&self, other: &CurveAnalysis) -> Result<Intersections, AnalysisError> {
+        if !self.is_planar() || !other.is_planar() {
+            return Err(AnalysisError::NotPlanar {
+                what: "intersections",
+            });
+        }
+        let mut found = Intersections::default();
+        let boxes_b: Vec<(DVec2, DVec2)> = other.pieces().iter().map(piece_box).collect();
+        for a in self.pieces() {
+            let ba = piece_box(a);
+            for (b, bb) in other.pieces().iter().zip(&boxes_b) {
+                let margin = 1e-9 * size_of(a, b);
+                if !boxes_meet(ba, *bb, margin) {
+                    continue;
+                }
+                let ph = piece_pair(a, (0.0, 1.0), b, (0.0, 1.0));
+                found.hits.extend(ph.hits.into_iter().map(|h| hit(a, b, h)));
+                found
+                    .overlaps
+                    .extend(ph.overlaps.into_iter().map(|((u0, u1), (v0, v1))| Overlap {
+                        s: (to_t(a, u0), to_t(a, u1)),
+                        t: (to_t(b, v0), to_t(b, v1)),
+                    }));
+            }
+        }
+        let mut found = tidy(found);
+        // A closed curve passes its start point twice (at its start and its end): one
+        // point, reported at the start.
+        let close = |c: &CurveAnalysis| c.is_closed().then(|| c.domain());
+        if let Some((a, b)) = close(self) {
+            let starts: Vec<f64> = found
+                .hits
+                .iter()
+                .filter(|h| h.s == a)
+                .map(|h| h.t)
+                .collect();
+            found
+                .hits
+                .retain(|h| !(h.s == b && starts.iter().any(|t| (t - h.t).abs() <= 2.0 * h.error)));
+        }
+        if let Some((a, b)) = close(other) {
+            let starts: Vec<f64> = found
+                .hits
+                .iter()
+                .filter(|h| h.t == a)
+                .map(|h| h.s)
+                .collect();
+            found
+                .hits
+                .retain(|h| !(h.t == b && starts.iter().any(|s| (s - h.s).abs() <= 2.0 * h.error)));
+        }
+        Ok(found)
+    }
+
+    /// Where the curve crosses or touches itself (2D), `s < t`: its segments cut into
+    /// pieces monotone in `x` and `y`, every pair of pieces intersected, the joints that
+    /// neighbouring pieces share (and a closed curve's start meeting its end) left out.
+    ///
+    /// # Errors
+    /// [`AnalysisError::NotPlanar`] for a 3D curve.
+    pub fn self_intersections(&self) -> Result<Intersections, AnalysisError> {
+        if !self.is_planar() {
+            return Err(AnalysisError::NotPlanar {
+                what: "self-intersections",
+            });
+        }
+        // Monotone pieces: (segment index, u0, u1).
+        let mut parts: Vec<(usize, f64, f64)> = Vec::new();
+        for (k, p) in self.pieces().iter().enumerate() {
+            let mut cuts: Vec<f64> = (0..2)
+                .flat_map(|axis| {
+                    bernstein_roots(&p.deriv_numerator(axis))
+                        .roots
+                        .into_iter()
+                        .map(|r| r.t)
+                        .filter(|u| *u > 0.0 && *u < 1.0)
+                })
+                .collect();
+            cuts.sort_by(f64::total_cmp);
+            cuts.dedup_by(|x, y| (*x - *y).abs() <= 1e-12);
+            let mut prev = 0.0;
+            for c in cuts.into_iter().chain(std::iter::once(1.0)) {
+                if c > prev {
+                    parts.push((k, prev, c));
+                }
+                prev = c;
+            }
+        }
+        let (a, b) = self.domain();
+        let closed = self.is_closed();
+        let pieces = self.pieces();
+        let boxes: Vec<(DVec2, DVec2)> = parts
+            .iter()
+            .map(|&(k, u0, u1)| Sub::of(&pieces[k], u0, u1).bounds())
+            .collect();
+        let mut found = Intersections::default();
+        for i in 0..parts.len() {
+            for j in (i + 1)..parts.len() {
+                let (pi, pj) = (parts[i], parts[j]);
+                let (ka, kb) = (pi.0, pj.0);
+                let size = size_of(&pieces[ka], &pieces[kb]);
+                if !boxes_meet(boxes[i], boxes[j], 1e-9 * size) {
+                    continue;
+                }
+                let ph = piece_pair(&pieces[ka], (pi.1, pi.2), &pieces[kb], (pj.1, pj.2));
+                let ta = |u: f64| to_t(&pieces[ka], u);
+                let tb = |v: f64| to_t(&pieces[kb], v);
+                let shared = |s: f64, t: f64| {
+                    let eps = 1e-9 * (b - a);
+                    // Neighbouring pieces meet at their joint; a closed curve at its ends.
+                    (j == i + 1 && (s - ta(pi.2)).abs() <= eps && (t - tb(pj.1)).abs() <= eps)
+                        || (closed && (s - a).abs() <= eps && (t - b).abs() <= eps)
+                };
+                for h in ph.hits {
+                    let hh = hit(&pieces[ka], &pieces[kb], h);
+                    if !shared(hh.s, hh.t) {
+                        found.hits.push(hh);
+                    }
+                }
+                for ((u0, u1), (v0, v1)) in ph.overlaps {
+                    found.overlaps.push(Overlap {
+                        s: (ta(u0), ta(u1)),
+                        t: (tb(v0), tb(v1)),
+                    });
+                }
+            }
+        }
+        Ok(tidy(found))
+    }
+}
+
+/// Every intersecting pair among `curves` (2D; 3D curves are refused): a sweep over the
+/// segments' boxes finds the pairs of segments whose boxes overlap, and the pairs are
+/// intersected on every core. Pairs in `(i, j)` order with `i < j`; self-intersections
+/// are not included.
+///
+/// # Errors
+/// [`AnalysisError::NotPlanar`] naming the first 3D curve.
+pub fn all_intersections(
+    curves: &[CurveAnalysis],
+) -> Result<Vec<PairIntersections>, AnalysisError> {
+    if curves.iter().any(|c| !c.is_planar()) {
+        return Err(AnalysisError::NotPlanar {
+            what: "intersections",
+        });
+    }
+    // (min x, max x, min y, max y, curve, piece)
+    let mut items: Vec<(DVec2, DVec2, usize, usize)> = Vec::new();
+    for (ci, c) in curves.iter().enumerate() {
+        for (pi, p) in c.pieces().iter().enumerate() {
+            let (lo, hi) = piece_box(p);
+            items.push((lo, hi, ci, pi));
+        }
+    }
+    items.sort_by(|x, y| x.0.x.total_cmp(&y.0.x));
+    let mut pairs: Vec<(usize, usize, usize, usize)> = Vec::new();
+    for (k, a) in items.iter().enumerate() {
+        for b in &items[k + 1..] {
+            if b.0.x > a.1.x {
+                break;
+            }
+            if a.2 != b.2 && b.0.y <= a.1.y && a.0.y <= b.1.y {
+                let (first, second) = if a.2 < b.2 { (a, b) } else { (b, a) };
+                pairs.push((first.2, first.3, second.2, second.3));
+            }
+        }
+    }
+    pairs.sort_unstable();
+    let results: Vec<(usize, usize, PieceHits, usize, usize)> = pairs
+        .par_iter()
+        .map(|&(ci, pi, cj, pj)| {
+            let (a, b) = (&curves[ci].pieces()[pi], &curves[cj].pieces()[pj]);
+            (ci, cj, piece_pair(a, (0.0, 1.0), b, (0.0, 1.0)), pi, pj)
+        })
+        .collect();
+    let mut out: Vec<PairIntersections> = Vec::new();
+    for (ci, cj, ph, pi, pj) in results {
+        if ph.hits.is_empty() && ph.overlaps.is_empty() {
+            continue;
+        }
+        let (a, b) = (&curves[ci].pieces()[pi], &curves[cj].pieces()[pj]);
+        let entry = match out.last_mut() {
+            Some(e) if e.i == ci && e.j == cj => e,
+            _ => {
+                out.push(PairIntersections {
+                    i: ci,
+                    j: cj,
+                    found: Intersections::default(),
+                });
+                out.last_mut()
+                    .unwrap_or_else(|| unreachable!("just pushed"))
+            }
+        };
+        entry
+            .found
+            .hits
+            .extend(ph.hits.into_iter().map(|h| hit(a, b, h)));
+        entry
+            .found
+            .overlaps
+            .extend(ph.overlaps.into_iter().map(|((u0, u1), (v0, v1))| Overlap {
+                s: (to_t(a, u0), to_t(a, u1)),
+                t: (to_t(b, v0), to_t(b, v1)),
+            }));
+    }
+    Ok(out
+        .into_iter()
+        .map(|mut p| {
+            p.found = tidy(p.found);
+            p
+        })
+        .collect())
+}

@@ -1,0 +1,22 @@
+//! Questions a curve answers — arc length and its inverse, extrema and the tight
+//! bounding box, signed area, inflections, cusps and curvature extrema, intersections
+//! with lines, other curves and itself — written once, on the exact Bézier segments every
+//! family lowers to (polynomial or rational), so they hold for every family in 2D and 3D.
+//!
+//! The engine under them is one root finder for polynomials in Bernstein form
+//! ([`roots::bernstein_roots`]) on the Bernstein arithmetic of [`poly`]. The algorithms and
+//! their bounds are stated in `docs/math.md` §7.
+
+pub mod curve;
+pub mod intersect;
+pub mod piece;
+pub mod poly;
+pub mod quadrature;
+pub mod roots;
+
+pub use curve::{
+    AnalysisError, CurvatureExtremum, CurveAnalysis, DEFAULT_ACCURACY, Extremum, ExtremumKind,
+    HitKind, Length, LineHit, LineIntersections,
+};
+pub use intersect::{Hit, Intersections, Overlap, PairIntersections, all_intersections};
+pub use roots::{Root, Roots, bernstein_roots, bernstein_roots_with_noise};

@@ -1,0 +1,309 @@
+//! One lowered Bézier segment as the analyses see it: per coordinate, the Bernstein
+//! coefficients of the homogeneous numerator `A_k(u) = Σ w_i P_{i,k} B_i(u)` and, for a
+//! rational segment, of the weight `W(u) = Σ w_i B_i(u)`; the curve there is `A / W`
+//! (`W ≡ 1` for a polynomial segment). The polynomials every analysis needs are built
+//! from these by [`super::poly`]: the quotient rule's numerators, `C′ × C″`, `|C′|²`.
+
+use glam::DVec3;
+
+use super::poly;
+use crate::geom::BezierSegment;
+
+/// A segment in homogeneous Bernstein form, with the curve parameters it covers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Piece {
+    /// The curve parameter at `u = 0`.
+    pub t0: f64,
+    /// The curve parameter at `u = 1`.
+    pub t1: f64,
+    /// `A_x`, `A_y`, `A_z`.
+    pub a: [Vec<f64>; 3],
+    /// `W`, or `None` for a polynomial segment.
+    pub w: Option<Vec<f64>>,
+    /// `A′` per coordinate.
+    da: [Vec<f64>; 3],
+    /// `W′`.
+    dw: Option<Vec<f64>>,
+}
+
+impl Piece {
+    /// The segment's piece.
+    #[must_use]
+    pub fn new(seg: &BezierSegment) -> Piece {
+        let weight = |i: usize| seg.weights.as_ref().map_or(1.0, |w| w[i]);
+        let pts = seg.points();
+        let axis = |k: usize| -> Vec<f64> {
+            pts.iter()
+                .enumerate()
+                .map(|(i, p)| p[k] * weight(i))
+                .collect()
+        };
+        let a = [axis(0), axis(1), axis(2)];
+        let da = [
+            poly::derivative(&a[0]),
+            poly::derivative(&a[1]),
+            poly::derivative(&a[2]),
+        ];
+        let w = seg.weights.clone();
+        let dw = w.as_deref().map(poly::derivative);
+        Piece {
+            t0: seg.t0,
+            t1: seg.t1,
+            a,
+            w,
+            da,
+            dw,
+        }
+    }
+
+    /// The degree.
+    #[must_use]
+    pub fn degree(&self) -> usize {
+        self.a[0].len().saturating_sub(1)
+    }
+
+    /// The curve parameter of the segment's own `u`.
+    #[must_use]
+    pub fn t_of(&self, u: f64) -> f64 {
+        if u >= 1.0 {
+            self.t1
+        } else {
+            self.t0 + u * (self.t1 - self.t0)
+        }
+    }
+
+    /// The segment's own `u` of the curve parameter `t`.
+    #[must_use]
+    pub fn u_of(&self, t: f64) -> f64 {
+        ((t - self.t0) / (self.t1 - self.t0)).clamp(0.0, 1.0)
+    }
+
+    /// Whether every control point has `z = 0`.
+    #[must_use]
+    pub fn is_planar(&self) -> bool {
+        self.a[2].iter().all(|v| *v == 0.0)
+    }
+
+    fn weight(&self, u: f64) -> f64 {
+        self.w.as_deref().map_or(1.0, |w| poly::eval(w, u))
+    }
+
+    /// `C(u)`.
+    #[must_use]
+    pub fn point(&self, u: f64) -> DVec3 {
+        let p = DVec3::new(
+            poly::eval(&self.a[0], u),
+            poly::eval(&self.a[1], u),
+            poly::eval(&self.a[2], u),
+        );
+        p / self.weight(u)
+    }
+
+    /// `dC/du` (the quotient rule for a rational segment: `(A′W − AW′) / W²`).
+    #[must_use]
+    pub fn deriv(&self, u: f64) -> DVec3 {
+        let da = DVec3::new(
+            poly::eval(&self.da[0], u),
+            poly::eval(&self.da[1], u),
+            poly::eval(&self.da[2], u),
+        );
+        match (&self.w, &self.dw) {
+            (Some(w), Some(dw)) => {
+                let (w0, w1) = (poly::eval(w, u), poly::eval(dw, u));
+                let a = DVec3::new(
+                    poly::eval(&self.a[0], u),
+                    poly::eval(&self.a[1], u),
+                    poly::eval(&self.a[2], u),
+                );
+                (da * w0 - a * w1) / (w0 * w0)
+            }
+            _ => da,
+        }
+    }
+
+    /// `d²C/du²`.
+    #[must_use]
+    pub fn second_deriv(&self, u: f64) -> DVec3 {
+        let dd = |c: &[f64]| poly::eval(&poly::derivative(c), u);
+        let dda = DVec3::new(dd(&self.da[0]), dd(&self.da[1]), dd(&self.da[2]));
+        match (&self.w, &self.dw) {
+            (Some(w), Some(dw)) => {
+                let (w0, w1, w2) = (poly::eval(w, u), poly::eval(dw, u), dd(dw));
+                let c = self.point(u);
+                let d1 = self.deriv(u);
+                (dda - 2.0 * w1 * d1 - w2 * c) / w0
+            }
+            _ => dda,
+        }
+    }
+
+    /// The numerator of `dC_k/du` in Bernstein form: `A_k′` (polynomial) or
+    /// `A_k′ W − A_k W′` (rational; `W² > 0` does not change its roots or sign).
+    #[must_use]
+    pub fn deriv_numerator(&self, k: usize) -> Vec<f64> {
+        match (&self.w, &self.dw) {
+            (Some(w), Some(dw)) => poly::difference(
+                &poly::product(&self.da[k], w),
+                &poly::product(&self.a[k], dw),
+            ),
+            _ => self.da[k].clone(),
+        }
+    }
+
+    /// `C′ × C″` (2D) up to a positive factor: `x′y″ − y′x″` for a polynomial segment,
+    /// `det(H, H′, H″)` with `H = (A_x, A_y, W)` for a rational one (`C′ × C″ =
+    /// det(H, H′, H″) / W³`, `W > 0`). Its sign is the sign of the curvature. With it, the
+    /// rounding its coefficients may carry (the cancellation of its terms).
+    #[must_use]
+    pub fn cross_numerator(&self) -> (Vec<f64>, f64) {
+        let (x1, y1) = (&self.da[0], &self.da[1]);
+        let (x2, y2) = (poly::derivative(x1), poly::derivative(y1));
+        match (&self.w, &self.dw) {
+            (Some(w), Some(w1)) => {
+                let w2 = poly::derivative(w1);
+                let (x, y) = (&self.a[0], &self.a[1]);
+                // x (y′w″ − w′y″) − y (x′w″ − w′x″) + w (x′y″ − y′x″)
+                let t1 = poly::product(
+                    x,
+                    &poly::difference(&poly::product(y1, &w2), &poly::product(w1, &y2)),
+                );
+                let t2 = poly::product(
+                    y,
+                    &poly::difference(&poly::product(x1, &w2), &poly::product(w1, &x2)),
+                );
+                let t3 = poly::product(
+                    w,
+                    &poly::difference(&poly::product(x1, &y2), &poly::product(y1, &x2)),
+                );
+                let size = [
+                    (x, y1, &w2),
+                    (x, w1, &y2),
+                    (y, x1, &w2),
+                    (y, w1, &x2),
+                    (w, x1, &y2),
+                    (w, y1, &x2),
+                ]
+                .iter()
+                .map(|(a, b, c)| max_abs(a) * max_abs(b) * max_abs(c))
+                .sum::<f64>();
+                let c = poly::sum(&poly::difference(&t1, &t2), &t3);
+                let noise = rounding(c.len(), size);
+                (c, noise)
+            }
+            _ => {
+                let (p, q) = (poly::product(x1, &y2), poly::product(y1, &x2));
+                let size = max_abs(x1) * max_abs(&y2) + max_abs(y1) * max_abs(&x2);
+                let c = poly::difference(&p, &q);
+                let noise = rounding(c.len(), size);
+                (c, noise)
+            }
+        }
+    }
+
+    /// `|N|²` for the velocity numerator `N` (`A′` or `A′W − AW′`), in 2D (`x`, `y`) or 3D:
+    /// zero exactly where `C′ = 0` (cusps and stationary points).
+    #[must_use]
+    pub fn speed_squared_numerator(&self, dims: usize) -> Vec<f64> {
+        (0..dims)
+            .map(|k| {
+                let n = self.deriv_numerator(k);
+                poly::product(&n, &n)
+            })
+            .reduce(|a, b| poly::sum(&a, &b))
+            .unwrap_or_default()
+    }
+
+    /// The numerator of `dκ/du` (2D), whose roots are the curvature's stationary points:
+    /// with `κ = F / G^{3/2}`, `F = det(H, H′, H″) W³` (`C′ × C″` for a polynomial
+    /// segment) and `G = |N|²`, it is `2F′G − 3FG′`; with the rounding its coefficients
+    /// may carry (on a circular arc the two terms cancel exactly in exact arithmetic).
+    #[must_use]
+    pub fn curvature_slope_numerator(&self) -> (Vec<f64>, f64) {
+        let (cross, cross_noise) = self.cross_numerator();
+        let (f, f_noise) = match &self.w {
+            Some(w) => {
+                let w3 = poly::product(w, &poly::product(w, w));
+                let m = max_abs(&w3);
+                (poly::product(&cross, &w3), cross_noise * m)
+            }
+            None => (cross, cross_noise),
+        };
+        let g = self.speed_squared_numerator(2);
+        let (df, dg) = (poly::derivative(&f), poly::derivative(&g));
+        let t1 = poly::scaled(&poly::product(&df, &g), 2.0);
+        let t2 = poly::scaled(&poly::product(&f, &dg), 3.0);
+        let c = poly::difference(&t1, &t2);
+        let deg = f.len() as f64;
+        let size = 2.0 * max_abs(&df) * max_abs(&g) + 3.0 * max_abs(&f) * max_abs(&dg);
+        let propagated = f_noise * (2.0 * deg * max_abs(&g) + 3.0 * max_abs(&dg));
+        let noise = rounding(c.len(), size) + propagated;
+        (c, noise)
+    }
+
+    /// The integrand of the signed area (2D), `x y′ − y x′`: for a polynomial segment its
+    /// Bernstein coefficients (then `∫₀¹ = Σ c_i / (m + 1)` is exact but for rounding).
+    #[must_use]
+    pub fn area_integrand(&self) -> Option<Vec<f64>> {
+        if self.w.is_some() {
+            return None;
+        }
+        Some(poly::difference(
+            &poly::product(&self.a[0], &self.da[1]),
+            &poly::product(&self.a[1], &self.da[0]),
+        ))
+    }
+}
+
+/// The largest coefficient in absolute value.
+fn max_abs(c: &[f64]) -> f64 {
+    c.iter().fold(0.0, |m, v| m.max(v.abs()))
+}
+
+/// The rounding a polynomial of `len` coefficients computed from products of size `size`
+/// may carry: generously `16 len ε size` (each product coefficient sums at most `len`
+/// rounded terms, each elevation and difference adds one rounding).
+fn rounding(len: usize, size: f64) -> f64 {
+    16.0 * len as f64 * f64::EPSILON * size
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::{Bezier, RationalBezier};
+
+    #[test]
+    fn derivatives_agree_with_the_curves() {
+        let pts = vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 3.0, 1.0),
+            DVec3::new(3.0, -1.0, 2.0),
+            DVec3::new(4.0, 2.0, 0.5),
+        ];
+        let b = Bezier::new(pts.clone());
+        let r = RationalBezier::try_new(pts, vec![1.0, 0.5, 2.0, 1.5]).expect("curve");
+        let pb = Piece::new(&BezierSegment::polynomial(b.clone(), 0.0, 1.0));
+        let pr = Piece::new(&BezierSegment {
+            bezier: b.clone(),
+            weights: Some(vec![1.0, 0.5, 2.0, 1.5]),
+            t0: 0.0,
+            t1: 1.0,
+        });
+        use crate::geom::ParamCurve;
+        for k in 0..=10 {
+            let u = f64::from(k) / 10.0;
+            assert!((pb.point(u) - b.eval(u)).length() < 1e-14);
+            assert!((pb.deriv(u) - b.eval_deriv(u)).length() < 1e-13);
+            assert!((pb.second_deriv(u) - b.eval_second_deriv(u)).length() < 1e-12);
+            assert!((pr.point(u) - r.eval(u)).length() < 1e-14);
+            assert!((pr.deriv(u) - r.eval_deriv(u)).length() < 1e-12);
+            assert!((pr.second_deriv(u) - r.eval_second_deriv(u)).length() < 1e-11);
+            // The cross numerator's sign is the sign of C′ × C″ (W > 0).
+            let cross = poly::eval(&pr.cross_numerator().0, u);
+            let d1 = r.eval_deriv(u);
+            let d2 = r.eval_second_deriv(u);
+            let want = d1.x * d2.y - d1.y * d2.x;
+            let w = poly::eval(pr.w.as_deref().unwrap_or(&[1.0]), u);
+            assert!((cross / w.powi(3) - want).abs() < 1e-10 * (1.0 + want.abs()));
+        }
+    }
+}

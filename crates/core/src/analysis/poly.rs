@@ -1,0 +1,329 @@
+//! Polynomials in Bernstein form over `[0, 1]`: `p(t) = Σ_{i=0}^{n} c_i B_{i,n}(t)`, as
+//! slices of coefficients. Products, derivatives, elevation, subdivision and evaluation
+//! with a running error bound — what the root finder ([`super::roots`]) and the analyses
+//! built on it (extrema, inflections, curvature, areas, intersections with lines) need.
+//!
+//! Every operation forms convex combinations or products of binomial ratios that are at
+//! most 1, so coefficients never grow by more than the degree (docs/math.md §7).
+
+pub use crate::geom::bernstein::binomial;
+
+/// `ln k!` for `k = 0..=n`.
+fn ln_factorials(n: usize) -> Vec<f64> {
+    let mut out = Vec::with_capacity(n + 1);
+    let mut acc = 0.0_f64;
+    out.push(0.0);
+    for k in 1..=n {
+        acc += (k as f64).ln();
+        out.push(acc);
+    }
+    out
+}
+
+/// The weights `C(m, i) C(n, j) / C(m + n, i + j)` of the Bernstein product, for every
+/// `i ≤ m`, `j ≤ n`: exact binomials while they fit `f64` comfortably (`m + n ≤ 1000`),
+/// logarithms of factorials beyond (relative error about `1e−13` there).
+struct ProductWeights {
+    m: usize,
+    n: usize,
+    exact: Option<(Vec<f64>, Vec<f64>, Vec<f64>)>,
+    ln: Vec<f64>,
+}
+
+impl ProductWeights {
+    fn new(m: usize, n: usize) -> ProductWeights {
+        if m + n <= 1000 {
+            let row = |d: usize| (0..=d).map(|k| binomial(d, k)).collect::<Vec<_>>();
+            ProductWeights {
+                m,
+                n,
+                exact: Some((row(m), row(n), row(m + n))),
+                ln: Vec::new(),
+            }
+        } else {
+            ProductWeights {
+                m,
+                n,
+                exact: None,
+                ln: ln_factorials(m + n),
+            }
+        }
+    }
+
+    fn get(&self, i: usize, j: usize) -> f64 {
+        match &self.exact {
+            Some((a, b, c)) => a[i] * b[j] / c[i + j],
+            None => {
+                let (m, n, f) = (self.m, self.n, &self.ln);
+                let k = i + j;
+                let ln = (f[m] - f[i] - f[m - i]) + (f[n] - f[j] - f[n - j])
+                    - (f[m + n] - f[k] - f[m + n - k]);
+                ln.exp()
+            }
+        }
+    }
+}
+
+/// The coefficients of `a · b` (degrees `m`, `n`) at degree `m + n`:
+/// `c_k = Σ_{i+j=k} C(m,i) C(n,j) / C(m+n,k) · a_i b_j`.
+#[must_use]
+pub fn product(a: &[f64], b: &[f64]) -> Vec<f64> {
+    if a.is_empty() || b.is_empty() {
+        return Vec::new();
+    }
+    let (m, n) = (a.len() - 1, b.len() - 1);
+    let w = ProductWeights::new(m, n);
+    let mut out = vec![0.0; m + n + 1];
+    for (i, &ai) in a.iter().enumerate() {
+        if ai == 0.0 {
+            continue;
+        }
+        for (j, &bj) in b.iter().enumerate() {
+            out[i + j] += w.get(i, j) * ai * bj;
+        }
+    }
+    out
+}
+
+/// `a − b` at the higher of their degrees (the lower one elevated).
+#[must_use]
+pub fn difference(a: &[f64], b: &[f64]) -> Vec<f64> {
+    let d = a.len().max(b.len()).saturating_sub(1);
+    let (a, b) = (elevate_to(a, d), elevate_to(b, d));
+    a.iter().zip(&b).map(|(x, y)| x - y).collect()
+}
+
+/// `a + b` at the higher of their degrees.
+#[must_use]
+pub fn sum(a: &[f64], b: &[f64]) -> Vec<f64> {
+    let d = a.len().max(b.len()).saturating_sub(1);
+    let (a, b) = (elevate_to(a, d), elevate_to(b, d));
+    a.iter().zip(&b).map(|(x, y)| x + y).collect()
+}
+
+/// `k · a`.
+#[must_use]
+pub fn scaled(a: &[f64], k: f64) -> Vec<f64> {
+    a.iter().map(|x| x * k).collect()
+}
+
+/// The derivative `p′`, degree `n − 1`: `n (c_{i+1} − c_i)` (a constant's is `[0]`).
+#[must_use]
+pub fn derivative(c: &[f64]) -> Vec<f64> {
+    if c.len() <= 1 {
+        return vec![0.0];
+    }
+    let n = (c.len() - 1) as f64;
+    c.windows(2).map(|w| n * (w[1] - w[0])).collect()
+}
+
+/// The same polynomial at degree `to ≥ n`: `c'_i = (i/(d+1)) c_{i−1} + (1 − i/(d+1)) c_i`,
+/// one degree at a time.
+#[must_use]
+pub fn elevate_to(c: &[f64], to: usize) -> Vec<f64> {
+    let mut c = c.to_vec();
+    if c.is_empty() {
+        return vec![0.0; to + 1];
+    }
+    while c.len() - 1 < to {
+        let n = c.len() - 1;
+        let mut next = Vec::with_capacity(n + 2);
+        next.push(c[0]);
+        for i in 1..=n {
+            let r = i as f64 / (n + 1) as f64;
+            next.push(r * c[i - 1] + (1.0 - r) * c[i]);
+        }
+        next.push(c[n]);
+        c = next;
+    }
+    c
+}
+
+/// `∫₀¹ p(t) dt = Σ c_i / (n + 1)`.
+#[must_use]
+pub fn integral(c: &[f64]) -> f64 {
+    if c.is_empty() {
+        return 0.0;
+    }
+    c.iter().sum::<f64>() / c.len() as f64
+}
+
+/// `p(t)` by de Casteljau, and a bound on its rounding error: `γ_{2n} Σ |c_i| B_i(t)`
+/// (`γ_k = kε/(1 − kε)`, the running error of the convex combinations).
+#[must_use]
+pub fn eval_with_bound(c: &[f64], t: f64) -> (f64, f64) {
+    let n = c.len().saturating_sub(1);
+    if c.is_empty() {
+        return (0.0, 0.0);
+    }
+    let s = 1.0 - t;
+    let mut v: smallvec::Buf = smallvec::Buf::from(c);
+    let mut a: smallvec::Buf = smallvec::Buf::from_abs(c);
+    let (vs, as_) = (v.as_mut(), a.as_mut());
+    for r in 1..=n {
+        for i in 0..=(n - r) {
+            vs[i] = s * vs[i] + t * vs[i + 1];
+            as_[i] = s * as_[i] + t * as_[i + 1];
+        }
+    }
+    let gamma = {
+        let k = (2 * n + 2) as f64 * f64::EPSILON * 0.5;
+        k / (1.0 - k)
+    };
+    (vs[0], gamma * as_[0] + f64::MIN_POSITIVE)
+}
+
+/// `p(t)` by de Casteljau.
+#[must_use]
+pub fn eval(c: &[f64], t: f64) -> f64 {
+    eval_with_bound(c, t).0
+}
+
+/// The coefficients of `p` on `[0, t]` and on `[t, 1]`, each reparametrised to `[0, 1]`.
+#[must_use]
+pub fn split(c: &[f64], t: f64) -> (Vec<f64>, Vec<f64>) {
+    let n = c.len().saturating_sub(1);
+    let mut work = c.to_vec();
+    let mut left = Vec::with_capacity(n + 1);
+    let mut right = vec![0.0; n + 1];
+    if c.is_empty() {
+        return (Vec::new(), Vec::new());
+    }
+    let s = 1.0 - t;
+    left.push(work[0]);
+    right[n] = work[n];
+    for r in 1..=n {
+        for i in 0..=(n - r) {
+            work[i] = s * work[i] + t * work[i + 1];
+        }
+        left.push(work[0]);
+        right[n - r] = work[n - r];
+    }
+    (left, right)
+}
+
+/// The coefficients of `p` on `[a, b] ⊆ [0, 1]`, reparametrised to `[0, 1]`.
+#[must_use]
+pub fn restrict(c: &[f64], a: f64, b: f64) -> Vec<f64> {
+    if a <= 0.0 && b >= 1.0 {
+        return c.to_vec();
+    }
+    let right = if a > 0.0 { split(c, a).1 } else { c.to_vec() };
+    if b >= 1.0 {
+        return right;
+    }
+    let u = (b - a) / (1.0 - a);
+    split(&right, u.clamp(0.0, 1.0)).0
+}
+
+/// Small fixed buffers for evaluation without allocating below degree 64.
+mod smallvec {
+    const N: usize = 64;
+
+    /// Coefficients on the stack (or the heap beyond [`N`]); the stack variant is large
+    /// on purpose: it is what spares the evaluation an allocation.
+    #[allow(clippy::large_enum_variant)]
+    pub enum Buf {
+        Stack([f64; N], usize),
+        Heap(Vec<f64>),
+    }
+
+    impl Buf {
+        pub fn from(c: &[f64]) -> Buf {
+            if c.len() <= N {
+                let mut b = [0.0; N];
+                b[..c.len()].copy_from_slice(c);
+                Buf::Stack(b, c.len())
+            } else {
+                Buf::Heap(c.to_vec())
+            }
+        }
+
+        pub fn from_abs(c: &[f64]) -> Buf {
+            let mut b = Buf::from(c);
+            for v in b.as_mut() {
+                *v = v.abs();
+            }
+            b
+        }
+
+        pub fn as_mut(&mut self) -> &mut [f64] {
+            match self {
+                Buf::Stack(b, n) => &mut b[..*n],
+                Buf::Heap(v) => v,
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn power_eval(c: &[f64], t: f64) -> f64 {
+        let n = c.len() - 1;
+        c.iter()
+            .enumerate()
+            .map(|(i, ci)| binomial(n, i) * t.powi(i as i32) * (1.0 - t).powi((n - i) as i32) * ci)
+            .sum()
+    }
+
+    #[test]
+    fn arithmetic_keeps_the_polynomials() {
+        let a = [1.0, -2.0, 0.5, 3.0];
+        let b = [0.25, 4.0, -1.0];
+        let p = product(&a, &b);
+        let d = derivative(&a);
+        let e = elevate_to(&b, 7);
+        let (l, r) = split(&a, 0.3);
+        let sub = restrict(&a, 0.2, 0.7);
+        for k in 0..=20 {
+            let t = f64::from(k) / 20.0;
+            assert!((power_eval(&p, t) - power_eval(&a, t) * power_eval(&b, t)).abs() < 1e-13);
+            assert!((power_eval(&e, t) - power_eval(&b, t)).abs() < 1e-13);
+            let h = 1e-6;
+            let fd = (power_eval(&a, (t + h).min(1.0)) - power_eval(&a, (t - h).max(0.0)))
+                / ((t + h).min(1.0) - (t - h).max(0.0));
+            assert!((power_eval(&d, t) - fd).abs() < 1e-4, "{t}");
+            assert!((power_eval(&l, t) - power_eval(&a, 0.3 * t)).abs() < 1e-13);
+            assert!((power_eval(&r, t) - power_eval(&a, 0.3 + 0.7 * t)).abs() < 1e-13);
+            assert!((power_eval(&sub, t) - power_eval(&a, 0.2 + 0.5 * t)).abs() < 1e-13);
+            let (v, bound) = eval_with_bound(&a, t);
+            assert!((v - power_eval(&a, t)).abs() <= bound + 1e-15);
+        }
+        // ∫₀¹ (1 − 2t + 0.5·… ) against Simpson on the power form.
+        let exact: f64 = (0..=2000)
+            .map(|k| {
+                let t = f64::from(k) / 2000.0;
+                let w = if k == 0 || k == 2000 {
+                    1.0
+                } else if k % 2 == 1 {
+                    4.0
+                } else {
+                    2.0
+                };
+                w * power_eval(&a, t)
+            })
+            .sum::<f64>()
+            / 6000.0;
+        assert!((integral(&a) - exact).abs() < 1e-12);
+    }
+
+    #[test]
+    fn products_of_high_degree_use_logarithms_and_agree() {
+        // (1 − t)^600 · t^500 ·… against the exact weight: a product of two Bernstein
+        // basis functions is a single scaled basis function.
+        let (m, n) = (600, 500);
+        let mut a = vec![0.0; m + 1];
+        let mut b = vec![0.0; n + 1];
+        a[200] = 1.0;
+        b[300] = 1.0;
+        let p = product(&a, &b);
+        let want = (ln_factorials(m + n), 500);
+        let f = &want.0;
+        let ln = (f[m] - f[200] - f[m - 200]) + (f[n] - f[300] - f[n - 300])
+            - (f[m + n] - f[500] - f[m + n - 500]);
+        assert!((p[want.1] - ln.exp()).abs() <= 1e-12 * ln.exp());
+        assert_eq!(p.iter().filter(|v| **v != 0.0).count(), 1);
+    }
+}
