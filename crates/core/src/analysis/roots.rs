@@ -20,8 +20,9 @@
 //! touches zero is never lost (a double root has no sign change).
 //!
 //! **Error bound**: each root carries `error`, a bound on the distance to a root of the
-//! exact polynomial: for a simple root `max(bracket, ε_p / |p′(t)|)` with `ε_p` the running
-//! error bound of de Casteljau at `t`; for a cluster, the half-width of its interval.
+//! exact polynomial: for a simple root the bracket, or `2 (|p̃(t)| + ε_p) / |p′(t)|` with
+//! `ε_p` the running error bound of de Casteljau at `t` once `|p̃(t)| ≤ ε_p`; for a
+//! cluster, the half-width of its interval.
 //! Roots exactly at 0 or 1 (a zero end coefficient) are exact, with their multiplicity.
 
 use super::poly;
@@ -263,7 +264,11 @@ impl<'a> Finder<'a> {
             let (v, bound) = poly::eval_with_bound(self.c, t);
             let slope = poly::eval(&self.d, t);
             if v.abs() <= bound {
-                error = (bound / slope.abs()).min(b - a).max(ulp(t));
+                // |p(t)| is within its rounding: the exact root lies within
+                // (|p̃(t)| + bound) / |p′| of t (and inside the bracket).
+                error = (2.0 * (v.abs() + bound) / slope.abs())
+                    .min(b - a)
+                    .max(ulp(t));
                 break;
             }
             if (v < 0.0) == negative_at_a {
