@@ -25,7 +25,7 @@
 
 #![forbid(unsafe_code)]
 
-pub use splinescope_core::{geom, inspect, num, solve};
+pub use splinescope_core::{analysis, geom, inspect, num, solve};
 pub use splinescope_gpu as gpu;
 pub use splinescope_scene::{camera, files, limits, request, scene};
 pub use splinescope_viewer as app;

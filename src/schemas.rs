@@ -18,6 +18,10 @@ pub fn all() -> Vec<(&'static str, Value)> {
         ("request", input::<crate::request::types::RequestDocument>()),
         ("report", output::<crate::request::types::SolveOutput>()),
         ("inspect", output::<crate::inspect::InspectOutput>()),
+        (
+            "analyze",
+            output::<crate::analysis::report::AnalyzeOutput>(),
+        ),
         ("eval", output::<crate::outputs::EvalOutput>()),
         ("check", output::<crate::outputs::CheckOutput>()),
     ]

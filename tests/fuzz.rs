@@ -681,7 +681,9 @@ impl Fuzz {
                 let dir = self.dir.join("schemas");
                 let _ = std::fs::remove_dir_all(&dir);
                 std::fs::create_dir_all(&dir).expect("schema dir");
-                let names = ["scene", "request", "report", "inspect", "eval", "check"];
+                let names = [
+                    "scene", "request", "report", "inspect", "analyze", "eval", "check",
+                ];
                 let mut obstacles = Vec::new();
                 for name in names {
                     let target = dir.join(format!("{name}.schema.json"));

@@ -511,7 +511,9 @@ fn option_values_are_parsed_strictly_and_named() {
 #[test]
 fn schema_write_is_all_or_none() {
     use std::os::unix::fs::PermissionsExt;
-    let names = ["scene", "request", "report", "inspect", "eval", "check"];
+    let names = [
+        "scene", "request", "report", "inspect", "analyze", "eval", "check",
+    ];
     let listing = |d: &Path| {
         let mut n: Vec<String> = std::fs::read_dir(d)
             .unwrap()

@@ -190,8 +190,23 @@ fn command_outputs_validate_against_their_schemas() {
     let report = schema("report");
     let eval = schema("eval");
     let check = schema("check");
+    let analyze = schema("analyze");
     for path in json_files(&root().join("scenes")) {
         let p = path.to_str().unwrap();
+        let analysis = stdout_json(&["analyze", p, "--json"]);
+        assert!(!analysis["curves"].as_array().unwrap().is_empty());
+        assert_valid(&analyze, &analysis, &format!("analyze {p}"));
+        // With intersections for planar scenes (3D ones are refused, tested elsewhere).
+        if analysis["curves"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|c| c["dimension"] == 2)
+        {
+            let with = stdout_json(&["analyze", p, "--json", "--intersections"]);
+            assert!(with.get("intersections").is_some(), "{with}");
+            assert_valid(&analyze, &with, &format!("analyze --intersections {p}"));
+        }
         assert_valid(
             &inspect,
             &stdout_json(&["inspect", p]),

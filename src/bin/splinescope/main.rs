@@ -13,6 +13,7 @@ use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext, Pipelines};
 use splinescope::scene::Scene;
 
 mod adapters;
+mod analyze;
 mod bench;
 mod check;
 mod diff;
@@ -113,6 +114,9 @@ enum Command {
     Export(export::ExportArgs),
     /// Evaluate every curve of a scene and print the points as JSON.
     Eval(eval::EvalArgs),
+    /// The questions a curve answers: length, tight box, extrema, inflections, cusps,
+    /// curvature extrema, signed area; with --intersections every intersecting pair.
+    Analyze(analyze::AnalyzeArgs),
     /// Print each curve's derived data as JSON: Bézier segments, tangents and inner points,
     /// refined knots, elevation coefficients, groups, dual points, VD values, ranges.
     Inspect(inspect::InspectArgs),
@@ -121,7 +125,8 @@ enum Command {
     Solve(solve::SolveArgs),
     /// Validate a scene and summarise it (families, segments, GPU compatibility).
     Check(check::CheckArgs),
-    /// Print the JSON Schema of a format (scene, request, report, inspect, eval, check), or
+    /// Print the JSON Schema of a format (scene, request, report, inspect, analyze, eval,
+    /// check), or
     /// write them all with --write DIR.
     Schema(schema::SchemaArgs),
     /// Render every scene (*.json) of SCENES_DIR and compare it with REFS_DIR/<name>.png;
@@ -167,6 +172,7 @@ fn run(cli: Cli) -> Result<()> {
         Some(Command::Export(a)) => export::run(&a),
         Some(Command::Eval(a)) => eval::run(&a),
         Some(Command::Inspect(a)) => inspect::run(&a),
+        Some(Command::Analyze(a)) => analyze::run(&a),
         Some(Command::Solve(a)) => solve::run(&a),
         Some(Command::Check(a)) => check::run(&a),
         Some(Command::Schema(a)) => schema::run(&a),

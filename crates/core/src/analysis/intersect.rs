@@ -281,6 +281,40 @@ fn refine(a: &Piece, b: &Piece, mut u: f64, mut v: f64) -> (f64, f64, f64) {
     (u, v, r.length())
 }
 
+/// Newton's method on the tangency conditions — `(C₁(u) − C₂(v)) · C₂′(v) = 0` (the foot
+/// of the perpendicular) and `C₁′(u) × C₂′(v) = 0` (parallel tangents) — which is regular
+/// at a simple tangency where `C₁ = C₂` is not: from a point where the curves touch, it
+/// finds the touching point to full precision. `None` when it does not converge inside
+/// the ranges.
+fn refine_tangent(a: &Piece, b: &Piece, mut u: f64, mut v: f64) -> Option<(f64, f64)> {
+    for _ in 0..40 {
+        let (p, q) = (a.point(u).truncate(), b.point(v).truncate());
+        let (d1, e1) = (a.deriv(u).truncate(), b.deriv(v).truncate());
+        let (d2, e2) = (a.second_deriv(u).truncate(), b.second_deriv(v).truncate());
+        let r = p - q;
+        let f1 = r.dot(e1);
+        let f2 = d1.perp_dot(e1);
+        let j11 = d1.dot(e1);
+        let j12 = -e1.length_squared() + r.dot(e2);
+        let j21 = d2.perp_dot(e1);
+        let j22 = d1.perp_dot(e2);
+        let det = j11 * j22 - j12 * j21;
+        if det == 0.0 || !det.is_finite() {
+            return None;
+        }
+        let du = -(j22 * f1 - j12 * f2) / det;
+        let dv = -(j11 * f2 - j21 * f1) / det;
+        let (nu, nv) = ((u + du).clamp(0.0, 1.0), (v + dv).clamp(0.0, 1.0));
+        let done = (nu - u).abs() <= 2.0 * f64::EPSILON && (nv - v).abs() <= 2.0 * f64::EPSILON;
+        u = nu;
+        v = nv;
+        if done {
+            return Some((u, v));
+        }
+    }
+    None
+}
+
 /// The closest point of piece `p` on its range `[u0, u1]` to `q` (2D): its parameter and
 /// distance, from the roots of `(C(u) − q) · C′(u)` (numerator) and the range's ends.
 fn closest(p: &Piece, (u0, u1): (f64, f64), q: DVec2) -> (f64, f64) {
@@ -414,12 +448,25 @@ fn piece_pair(a: &Piece, (a0, a1): (f64, f64), b: &Piece, (b0, b1): (f64, f64)) 
         }
         let (da, db) = (a.deriv(u).truncate(), b.deriv(v).truncate());
         let sin = da.perp_dot(db).abs() / (da.length() * db.length());
-        let kind = if sin.is_finite() && sin > 1e-6 {
-            HitKind::Crossing
-        } else {
-            HitKind::Tangent
+        if sin.is_finite() && sin > 1e-6 {
+            found.push((u, v, HitKind::Crossing));
+            continue;
+        }
+        // A tangency: the touching point itself, where the tangency conditions converge
+        // and the curves still meet there.
+        let (u, v) = match refine_tangent(a, b, u, v) {
+            Some((tu, tv))
+                if tu >= a0
+                    && tu <= a1
+                    && tv >= b0
+                    && tv <= b1
+                    && (a.point(tu) - b.point(tv)).length() <= tol =>
+            {
+                (tu, tv)
+            }
+            _ => (u, v),
         };
-        found.push((u, v, kind));
+        found.push((u, v, HitKind::Tangent));
     }
     found.sort_by(|x, y| x.0.total_cmp(&y.0));
     // One point from candidates that converged to the same place: within a few ulps for
@@ -504,6 +551,94 @@ fn tidy(mut found: Intersections) -> Intersections {
     found
 }
 
+impl CurveAnalysis {
+    /// The distance from `q` to the curve (2D), by each segment's closest point (segments
+    /// whose boxes are farther than the best so far skipped).
+    fn distance_to(&self, q: DVec2) -> f64 {
+        let mut best = f64::INFINITY;
+        for p in self.pieces() {
+            let (lo, hi) = piece_box(p);
+            let outside = (lo - q).max(q - hi).max(DVec2::ZERO).length();
+            if outside < best {
+                best = best.min(closest(p, (0.0, 1.0), q).1);
+            }
+        }
+        best
+    }
+
+    /// The curve's size: the diagonal of its control box.
+    fn size(&self) -> f64 {
+        self.control_box().diagonal().max(f64::MIN_POSITIVE)
+    }
+}
+
+/// Whether `a` stays on `b` (within `tol`) at three points strictly between `s0` and `s1`.
+fn coincide_between(a: &CurveAnalysis, b: &CurveAnalysis, s0: f64, s1: f64, tol: f64) -> bool {
+    [0.25, 0.5, 0.75].iter().all(|f| {
+        let s = s0 + f * (s1 - s0);
+        b.distance_to(a.point(s).truncate()) <= tol
+    })
+}
+
+/// The last cleaning of what two curves have in common, with both curves at hand: a
+/// closed curve's start and end are one point; tangent points that the curves join by a
+/// stretch along which they stay within `1e−9` of their size (a contact of high order,
+/// where Newton's method stops anywhere in a tiny coincident stretch) are one point; and
+/// a point joined that way to an overlap's end belongs to the overlap.
+fn settle(mut found: Intersections, a: &CurveAnalysis, b: &CurveAnalysis) -> Intersections {
+    let close = |c: &CurveAnalysis| c.is_closed().then(|| c.domain());
+    if let Some((start, end)) = close(a) {
+        let starts: Vec<f64> = found
+            .hits
+            .iter()
+            .filter(|h| h.s == start)
+            .map(|h| h.t)
+            .collect();
+        found
+            .hits
+            .retain(|h| !(h.s == end && starts.iter().any(|t| (t - h.t).abs() <= 2.0 * h.error)));
+    }
+    if let Some((start, end)) = close(b) {
+        let starts: Vec<f64> = found
+            .hits
+            .iter()
+            .filter(|h| h.t == start)
+            .map(|h| h.s)
+            .collect();
+        found
+            .hits
+            .retain(|h| !(h.t == end && starts.iter().any(|s| (s - h.s).abs() <= 2.0 * h.error)));
+    }
+    let tol = 1e-9 * a.size().max(b.size());
+    let (da, _) = a.domain();
+    let reach = 1e-3 * (a.domain().1 - da).abs();
+    // Points joined to an overlap's end by a coincident stretch.
+    let overlaps = found.overlaps.clone();
+    found.hits.retain(|h| {
+        !overlaps.iter().any(|o| {
+            [o.s.0, o.s.1].iter().any(|&end| {
+                let gap = (h.s - end).abs();
+                gap <= reach && (gap == 0.0 || coincide_between(a, b, h.s, end, tol))
+            })
+        })
+    });
+    // Tangent points joined by a coincident stretch: one point (the first).
+    let mut hits: Vec<Hit> = Vec::with_capacity(found.hits.len());
+    for h in std::mem::take(&mut found.hits) {
+        if let Some(last) = hits.last()
+            && last.kind == HitKind::Tangent
+            && h.kind == HitKind::Tangent
+            && (h.s - last.s).abs() <= reach
+            && coincide_between(a, b, last.s, h.s, tol)
+        {
+            continue;
+        }
+        hits.push(h);
+    }
+    found.hits = hits;
+    found
+}
+
 /// The control box of a piece, in 2D.
 fn piece_box(p: &Piece) -> (DVec2, DVec2) {
     Sub::of(p, 0.0, 1.0).bounds()
@@ -540,33 +675,7 @@ impl CurveAnalysis {
                     }));
             }
         }
-        let mut found = tidy(found);
-        // A closed curve passes its start point twice (at its start and its end): one
-        // point, reported at the start.
-        let close = |c: &CurveAnalysis| c.is_closed().then(|| c.domain());
-        if let Some((a, b)) = close(self) {
-            let starts: Vec<f64> = found
-                .hits
-                .iter()
-                .filter(|h| h.s == a)
-                .map(|h| h.t)
-                .collect();
-            found
-                .hits
-                .retain(|h| !(h.s == b && starts.iter().any(|t| (t - h.t).abs() <= 2.0 * h.error)));
-        }
-        if let Some((a, b)) = close(other) {
-            let starts: Vec<f64> = found
-                .hits
-                .iter()
-                .filter(|h| h.t == a)
-                .map(|h| h.s)
-                .collect();
-            found
-                .hits
-                .retain(|h| !(h.t == b && starts.iter().any(|s| (s - h.s).abs() <= 2.0 * h.error)));
-        }
-        Ok(found)
+        Ok(settle(tidy(found), self, other))
     }
 
     /// Where the curve crosses or touches itself (2D), `s < t`: its segments cut into
@@ -642,7 +751,7 @@ impl CurveAnalysis {
                 }
             }
         }
-        Ok(tidy(found))
+        Ok(settle(tidy(found), self, self))
     }
 }
 
@@ -682,7 +791,8 @@ pub fn all_intersections(
             }
         }
     }
-    pairs.sort_unstable();
+    // Grouped by pair of curves, then by their segments.
+    pairs.sort_unstable_by_key(|&(ci, pi, cj, pj)| (ci, cj, pi, pj));
     let results: Vec<(usize, usize, PieceHits, usize, usize)> = pairs
         .par_iter()
         .map(|&(ci, pi, cj, pj)| {
@@ -723,7 +833,7 @@ pub fn all_intersections(
     Ok(out
         .into_iter()
         .map(|mut p| {
-            p.found = tidy(p.found);
+            p.found = settle(tidy(p.found), &curves[p.i], &curves[p.j]);
             p
         })
         .collect())

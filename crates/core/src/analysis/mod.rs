@@ -12,6 +12,7 @@ pub mod intersect;
 pub mod piece;
 pub mod poly;
 pub mod quadrature;
+pub mod report;
 pub mod roots;
 
 pub use curve::{

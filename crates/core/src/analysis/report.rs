@@ -1,0 +1,296 @@
+//! What `splinescope analyze` reports (and Python's `analyze`): per curve its length,
+//! tight box, extrema, and for planar curves its inflections, cusps, curvature extrema and
+//! (closed) signed area; with intersections, every intersecting pair and each curve's
+//! self-intersections. Its JSON Schema, generated from these types, is
+//! `docs/schemas/analyze.schema.json`.
+
+use schemars::JsonSchema;
+use serde::Serialize;
+
+use super::curve::{AnalysisError, CurveAnalysis, ExtremumKind, HitKind};
+use super::intersect::{Intersections, all_intersections};
+use crate::geom::family::Xyz;
+
+/// The whole output of `splinescope analyze`.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct AnalyzeOutput {
+    /// The accuracy lengths were computed to (absolute, scene units).
+    pub accuracy: f64,
+    /// One report per selected curve, in scene order.
+    pub curves: Vec<CurveAnalysisReport>,
+    /// With intersections asked for: every pair of selected curves that meet, `i < j`
+    /// (absent otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub intersections: Option<Vec<PairReport>>,
+}
+
+/// One curve's answers.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct CurveAnalysisReport {
+    /// The curve's index in the scene.
+    pub index: usize,
+    /// Its family.
+    pub family: &'static str,
+    /// Its name, when it has one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// 2 for a planar curve (`z = 0` everywhere), 3 otherwise.
+    pub dimension: usize,
+    /// The parameter domain `[a, b]`.
+    pub domain: [f64; 2],
+    /// The arc length over the domain.
+    pub length: f64,
+    /// A bound on the length's error.
+    pub length_error: f64,
+    /// The tight axis-aligned box of the curve.
+    pub bounding_box: BoxReport,
+    /// Whether the curve ends where it starts.
+    pub closed: bool,
+    /// The signed area a closed planar curve encloses (positive counter-clockwise);
+    /// absent for open or 3D curves.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub signed_area: Option<f64>,
+    /// Where a coordinate's derivative vanishes.
+    pub extrema: Vec<ExtremumReport>,
+    /// Planar curves: where `C′ × C″` changes sign (absent for 3D curves).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub inflections: Option<Vec<PointReport>>,
+    /// Planar curves: where `C′ = 0`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cusps: Option<Vec<PointReport>>,
+    /// Planar curves: the local extrema of the signed curvature.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub curvature_extrema: Option<Vec<CurvatureReport>>,
+    /// With intersections asked for, planar curves: where the curve meets itself.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub self_intersections: Option<IntersectionsReport>,
+}
+
+/// An axis-aligned box.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct BoxReport {
+    /// The smallest corner.
+    pub min: Xyz,
+    /// The largest corner.
+    pub max: Xyz,
+}
+
+/// A parameter and its point.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct PointReport {
+    /// The curve parameter.
+    pub t: f64,
+    /// The point.
+    pub point: Xyz,
+}
+
+/// A coordinate extremum.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct ExtremumReport {
+    /// The curve parameter.
+    pub t: f64,
+    /// The coordinate whose derivative vanishes: `x`, `y` or `z`.
+    pub axis: &'static str,
+    /// The point.
+    pub point: Xyz,
+}
+
+/// A curvature extremum.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct CurvatureReport {
+    /// The curve parameter.
+    pub t: f64,
+    /// The signed curvature there.
+    pub curvature: f64,
+    /// `maximum` or `minimum` (of the signed curvature).
+    pub kind: &'static str,
+    /// The point.
+    pub point: Xyz,
+}
+
+/// Points and overlaps two curves (or one curve and itself) have in common.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct IntersectionsReport {
+    /// The points.
+    pub points: Vec<HitReport>,
+    /// The coincident stretches.
+    pub overlaps: Vec<OverlapReport>,
+}
+
+/// One intersection point.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct HitReport {
+    /// The first curve's parameter.
+    pub s: f64,
+    /// The second curve's parameter.
+    pub t: f64,
+    /// The point.
+    pub point: Xyz,
+    /// `crossing` or `tangent`.
+    pub kind: &'static str,
+    /// A bound on the parameters' error.
+    pub error: f64,
+}
+
+/// A coincident stretch.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct OverlapReport {
+    /// The first curve's parameter interval.
+    pub s: [f64; 2],
+    /// The second curve's (`t[0]` meets `s[0]`).
+    pub t: [f64; 2],
+}
+
+/// One intersecting pair.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct PairReport {
+    /// The two curves' indices in the scene, `[i, j]` with `i < j`.
+    pub curves: [usize; 2],
+    /// What they have in common (`s` is curve `i`'s parameter).
+    #[serde(flatten)]
+    pub found: IntersectionsReport,
+}
+
+const AXES: [&str; 3] = ["x", "y", "z"];
+
+impl From<&Intersections> for IntersectionsReport {
+    fn from(found: &Intersections) -> IntersectionsReport {
+        IntersectionsReport {
+            points: found
+                .hits
+                .iter()
+                .map(|h| HitReport {
+                    s: h.s,
+                    t: h.t,
+                    point: h.point.to_array(),
+                    kind: kind_name(h.kind),
+                    error: h.error,
+                })
+                .collect(),
+            overlaps: found
+                .overlaps
+                .iter()
+                .map(|o| OverlapReport {
+                    s: [o.s.0, o.s.1],
+                    t: [o.t.0, o.t.1],
+                })
+                .collect(),
+        }
+    }
+}
+
+/// `crossing` or `tangent`.
+#[must_use]
+pub fn kind_name(kind: HitKind) -> &'static str {
+    match kind {
+        HitKind::Crossing => "crossing",
+        HitKind::Tangent => "tangent",
+    }
+}
+
+/// `maximum` or `minimum`.
+#[must_use]
+pub fn extremum_name(kind: ExtremumKind) -> &'static str {
+    match kind {
+        ExtremumKind::Maximum => "maximum",
+        ExtremumKind::Minimum => "minimum",
+    }
+}
+
+/// One curve's report: `index` and `name` as given, the answers from `c`; its
+/// self-intersections when `intersections` and the curve is planar.
+///
+/// # Errors
+/// [`AnalysisError::Accuracy`] for an accuracy that is not a positive number.
+pub fn curve_analysis_report(
+    index: usize,
+    family: &'static str,
+    name: Option<&str>,
+    c: &CurveAnalysis,
+    accuracy: f64,
+    intersections: bool,
+) -> Result<CurveAnalysisReport, AnalysisError> {
+    let (a, b) = c.domain();
+    let length = c.length(a, b, accuracy)?;
+    let bbox = c.bounding_box();
+    let planar = c.is_planar();
+    let closed = c.is_closed();
+    let points = |ts: Vec<f64>| -> Vec<PointReport> {
+        ts.into_iter()
+            .map(|t| PointReport {
+                t,
+                point: c.point(t).to_array(),
+            })
+            .collect()
+    };
+    let (inflections, cusps, curvature_extrema, signed_area, self_intersections) = if planar {
+        (
+            Some(points(c.inflections()?)),
+            Some(points(c.cusps()?)),
+            Some(
+                c.curvature_extrema()?
+                    .into_iter()
+                    .map(|e| CurvatureReport {
+                        t: e.t,
+                        curvature: e.curvature,
+                        kind: extremum_name(e.kind),
+                        point: e.point.to_array(),
+                    })
+                    .collect(),
+            ),
+            if closed { Some(c.signed_area()?) } else { None },
+            if intersections {
+                Some(IntersectionsReport::from(&c.self_intersections()?))
+            } else {
+                None
+            },
+        )
+    } else {
+        (None, None, None, None, None)
+    };
+    Ok(CurveAnalysisReport {
+        index,
+        family,
+        name: name.map(str::to_owned),
+        dimension: if planar { 2 } else { 3 },
+        domain: [a, b],
+        length: length.value,
+        length_error: length.error,
+        bounding_box: BoxReport {
+            min: bbox.min.to_array(),
+            max: bbox.max.to_array(),
+        },
+        closed,
+        signed_area,
+        extrema: c
+            .extrema()
+            .into_iter()
+            .map(|e| ExtremumReport {
+                t: e.t,
+                axis: AXES[e.axis],
+                point: e.point.to_array(),
+            })
+            .collect(),
+        inflections,
+        cusps,
+        curvature_extrema,
+        self_intersections,
+    })
+}
+
+/// Every intersecting pair among the curves (scene indices `indices`), as reported.
+///
+/// # Errors
+/// [`AnalysisError::NotPlanar`] when a curve is 3D.
+pub fn pair_reports(
+    indices: &[usize],
+    curves: &[CurveAnalysis],
+) -> Result<Vec<PairReport>, AnalysisError> {
+    Ok(all_intersections(curves)?
+        .iter()
+        .map(|p| PairReport {
+            curves: [indices[p.i], indices[p.j]],
+            found: IntersectionsReport::from(&p.found),
+        })
+        .collect())
+}

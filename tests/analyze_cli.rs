@@ -1,0 +1,138 @@
+//! `splinescope analyze` end to end: the numbers it prints are the closed forms (a NURBS
+//! circle's length and area, a parabola's vertex), the text and JSON forms agree, and bad
+//! arguments are refused naming the value.
+
+use std::f64::consts::PI;
+
+use serde_json::Value;
+
+mod common;
+
+fn scene(name: &str, text: &str) -> String {
+    let p = common::out_dir("analyze-cli").join(name);
+    std::fs::write(&p, text).expect("write scene");
+    p.to_string_lossy().into_owned()
+}
+
+const CIRCLE: &str = r#"{"version": 1, "curves": [
+  {"type": "nurbs", "name": "circle", "order": 3,
+   "knots": [0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1],
+   "points": [[2, 0], [2, 2], [0, 2], [-2, 2], [-2, 0], [-2, -2], [0, -2], [2, -2], [2, 0]],
+   "weights": [1, 0.7071067811865476, 1, 0.7071067811865476, 1, 0.7071067811865476, 1, 0.7071067811865476, 1]},
+  {"type": "bezier", "name": "parabola", "points": [[-1, 1], [0, -1], [1, 1]]},
+  {"type": "bezier", "name": "line", "points": [[-3, 0.5], [3, 0.5]]}
+]}"#;
+
+#[test]
+fn analyze_reports_the_closed_forms() {
+    let path = scene("circle.json", CIRCLE);
+    let out = common::run(&[
+        "analyze",
+        &path,
+        "--json",
+        "--intersections",
+        "--accuracy",
+        "1e-13",
+    ]);
+    assert!(out.status.success(), "{}", common::text(&out));
+    let v: Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let c = &v["curves"][0];
+    assert!(
+        (c["length"].as_f64().unwrap() - 4.0 * PI).abs() <= 1e-13,
+        "{c}"
+    );
+    assert!(c["length_error"].as_f64().unwrap() <= 1e-13);
+    assert_eq!(c["closed"], true);
+    assert!((c["signed_area"].as_f64().unwrap() - 4.0 * PI).abs() <= 1e-12);
+    let min: Vec<f64> = c["bounding_box"]["min"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert_eq!(min, vec![-2.0, -2.0, 0.0]);
+    assert_eq!(
+        c["curvature_extrema"].as_array().unwrap().len(),
+        0,
+        "a circle has none"
+    );
+    let p = &v["curves"][1];
+    assert!(p.get("signed_area").is_none(), "open: no area");
+    let vertex = &p["curvature_extrema"][0];
+    assert_eq!(vertex["kind"], "maximum");
+    assert!((vertex["t"].as_f64().unwrap() - 0.5).abs() < 1e-12);
+    assert!((vertex["curvature"].as_f64().unwrap() - 2.0).abs() < 1e-9);
+    // The line y = ½ meets the circle twice and the parabola y = x² twice.
+    let pairs = v["intersections"].as_array().unwrap();
+    let find = |i: u64, j: u64| {
+        pairs
+            .iter()
+            .find(|p| p["curves"][0].as_u64() == Some(i) && p["curves"][1].as_u64() == Some(j))
+            .unwrap_or_else(|| panic!("pair {i} {j}: {v}"))
+    };
+    let circle_line = find(0, 2)["points"].as_array().unwrap().clone();
+    assert_eq!(circle_line.len(), 2);
+    for h in &circle_line {
+        let x = h["point"][0].as_f64().unwrap();
+        assert!((x.abs() - (4.0f64 - 0.25).sqrt()).abs() < 1e-14, "{h}");
+        assert_eq!(h["kind"], "crossing");
+    }
+    let parabola_line = find(1, 2)["points"].as_array().unwrap().clone();
+    assert_eq!(parabola_line.len(), 2);
+    // The text form says the same.
+    let out = common::run(&["analyze", &path, "--curve", "0", "--accuracy", "1e-13"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", common::text(&out));
+    assert!(text.contains("curves[0] \"circle\" (nurbs, 2D)"), "{text}");
+    assert!(
+        text.contains(&format!("length          {}", c["length"])),
+        "{text}"
+    );
+    assert!(text.contains("closed, signed area"), "{text}");
+}
+
+#[test]
+fn analyze_refuses_bad_arguments() {
+    let path = scene("circle2.json", CIRCLE);
+    for (args, code, says) in [
+        (
+            vec!["--accuracy", "0"],
+            2,
+            "accuracy 0: must be a finite number greater than 0",
+        ),
+        (vec!["--accuracy", "-1"], 2, "accuracy -1: must be"),
+        (vec!["--accuracy", "nan"], 2, "accuracy NaN: must be"),
+        (
+            vec!["--curve", "7"],
+            1,
+            "--curve 7: the scene has 3 curve(s)",
+        ),
+    ] {
+        let mut all = vec!["analyze", path.as_str()];
+        all.extend(args);
+        let out = common::run(&all);
+        assert_eq!(
+            out.status.code(),
+            Some(code),
+            "{all:?}: {}",
+            common::text(&out)
+        );
+        assert!(
+            common::text(&out).contains(says),
+            "{all:?}: {}",
+            common::text(&out)
+        );
+    }
+    let spatial = scene(
+        "space.json",
+        r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0, 0], [1, 1, 1], [2, 0, 2]]}]}"#,
+    );
+    let out = common::run(&["analyze", &spatial, "--intersections"]);
+    assert_eq!(out.status.code(), Some(1), "{}", common::text(&out));
+    assert!(common::text(&out).contains("curves[0] is not planar"));
+    // Without --intersections a 3D curve is answered, without the planar questions.
+    let out = common::run(&["analyze", &spatial, "--json"]);
+    let v: Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert_eq!(v["curves"][0]["dimension"], 3);
+    assert!(v["curves"][0].get("inflections").is_none());
+}
