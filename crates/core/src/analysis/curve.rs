@@ -134,6 +134,9 @@ pub struct CurveAnalysis {
     pieces: Vec<Piece>,
     domain: (f64, f64),
     planar: bool,
+    /// Per piece, the local minima of its speed inside `(0, 1)` with the width `δ` of
+    /// the dip (where the arc length's integrand is cut).
+    speed_minima: Vec<Vec<(f64, f64)>>,
 }
 
 /// The default accuracy of lengths: absolute, in the curve's units.
@@ -153,10 +156,12 @@ impl CurveAnalysis {
     pub fn new(curve: &impl Lower) -> CurveAnalysis {
         let pieces: Vec<Piece> = curve.lower().iter().map(Piece::new).collect();
         let planar = pieces.iter().all(Piece::is_planar);
+        let speed_minima = pieces.iter().map(Piece::speed_minima).collect();
         CurveAnalysis {
             pieces,
             domain: curve.domain(),
             planar,
+            speed_minima,
         }
     }
 
@@ -248,10 +253,38 @@ impl CurveAnalysis {
         p.second_deriv(u) / (h * h)
     }
 
-    /// The arc length of piece `k` between its own parameters `u0 ≤ u1`.
+    /// The arc length of piece `k` between its own parameters `u0 ≤ u1`. The range is cut
+    /// at the speed's local minima, and around a sharp one (a near-cusp, where `|C′|` dips
+    /// to `m` and is analytic only within `δ` of the minimum) into intervals growing
+    /// geometrically from `δ`: a Gauss rule whose nodes all miss a dip narrower than its
+    /// interval would agree with its Kronrod extension on a wrong value.
     fn piece_length(&self, k: usize, u0: f64, u1: f64, tolerance: f64) -> Quadrature {
         let p = &self.pieces[k];
-        integrate(|u| p.deriv(u).length(), u0, u1, tolerance)
+        let mut cuts: Vec<f64> = Vec::new();
+        for &(m, delta) in &self.speed_minima[k] {
+            cuts.push(m);
+            // A wide dip is smooth enough for the adaptive rule alone.
+            let mut step = delta.max(1e-15);
+            while step < 0.05 {
+                cuts.push(m - step);
+                cuts.push(m + step);
+                step *= 4.0;
+            }
+        }
+        cuts.retain(|c| *c > u0 && *c < u1);
+        cuts.sort_by(f64::total_cmp);
+        cuts.dedup();
+        let parts = cuts.len() + 1;
+        let mut total = Quadrature::default();
+        let mut lo = u0;
+        for hi in cuts.into_iter().chain(std::iter::once(u1)) {
+            let q = integrate(|u| p.speed(u), lo, hi, tolerance / parts as f64);
+            total.value += q.value;
+            total.error += q.error;
+            total.evaluations += q.evaluations;
+            lo = hi;
+        }
+        total
     }
 
     /// The arc length from `t0` to `t1` (negative when `t1 < t0`), within `accuracy`

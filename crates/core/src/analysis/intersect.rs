@@ -76,11 +76,42 @@ pub struct PairIntersections {
     pub found: Intersections,
 }
 
+/// Homogeneous control points, on the stack up to degree 31.
+#[derive(Debug, Clone)]
+enum Points {
+    Stack([[f64; 3]; 32], usize),
+    Heap(Vec<[f64; 3]>),
+}
+
+impl Points {
+    fn with_len(n: usize) -> Points {
+        if n <= 32 {
+            Points::Stack([[0.0; 3]; 32], n)
+        } else {
+            Points::Heap(vec![[0.0; 3]; n])
+        }
+    }
+
+    fn as_slice(&self) -> &[[f64; 3]] {
+        match self {
+            Points::Stack(a, n) => &a[..*n],
+            Points::Heap(v) => v,
+        }
+    }
+
+    fn as_mut_slice(&mut self) -> &mut [[f64; 3]] {
+        match self {
+            Points::Stack(a, n) => &mut a[..*n],
+            Points::Heap(v) => v,
+        }
+    }
+}
+
 /// A sub-segment: homogeneous control points `(w x, w y, w)` and its range of the
 /// segment's own parameter.
 #[derive(Debug, Clone)]
 struct Sub {
-    h: Vec<[f64; 3]>,
+    h: Points,
     u0: f64,
     u1: f64,
 }
@@ -88,31 +119,44 @@ struct Sub {
 impl Sub {
     fn of(p: &Piece, u0: f64, u1: f64) -> Sub {
         let n = p.a[0].len();
-        let mut h: Vec<[f64; 3]> = (0..n)
-            .map(|i| {
-                let w = p.w.as_ref().map_or(1.0, |w| w[i]);
-                [p.a[0][i], p.a[1][i], w]
-            })
-            .collect();
+        let mut h = Points::with_len(n);
+        let slots = h.as_mut_slice();
         if u0 > 0.0 || u1 < 1.0 {
-            let axis = |k: usize| -> Vec<f64> {
-                poly::restrict(&h.iter().map(|v| v[k]).collect::<Vec<_>>(), u0, u1)
+            let axis = |c: &[f64]| poly::restrict(c, u0, u1);
+            let ones;
+            let w = match &p.w {
+                Some(w) => w.as_slice(),
+                None => {
+                    ones = vec![1.0; n];
+                    ones.as_slice()
+                }
             };
-            let (x, y, w) = (axis(0), axis(1), axis(2));
-            h = (0..n).map(|i| [x[i], y[i], w[i]]).collect();
+            let (x, y, w) = (axis(&p.a[0]), axis(&p.a[1]), axis(w));
+            for (i, slot) in slots.iter_mut().enumerate() {
+                *slot = [x[i], y[i], w[i]];
+            }
+        } else {
+            for (i, slot) in slots.iter_mut().enumerate() {
+                let w = p.w.as_ref().map_or(1.0, |w| w[i]);
+                *slot = [p.a[0][i], p.a[1][i], w];
+            }
         }
         Sub { h, u0, u1 }
     }
 
+    fn len(&self) -> usize {
+        self.h.as_slice().len()
+    }
+
     fn point(&self, i: usize) -> DVec2 {
-        let v = self.h[i];
+        let v = self.h.as_slice()[i];
         DVec2::new(v[0] / v[2], v[1] / v[2])
     }
 
     fn bounds(&self) -> (DVec2, DVec2) {
         let mut lo = DVec2::INFINITY;
         let mut hi = DVec2::NEG_INFINITY;
-        for i in 0..self.h.len() {
+        for i in 0..self.len() {
             let p = self.point(i);
             lo = lo.min(p);
             hi = hi.max(p);
@@ -122,7 +166,7 @@ impl Sub {
 
     /// The largest distance of a control point from the chord.
     fn flatness(&self) -> f64 {
-        let n = self.h.len() - 1;
+        let n = self.len() - 1;
         let (a, b) = (self.point(0), self.point(n));
         let d = b - a;
         let len = d.length();
@@ -139,23 +183,31 @@ impl Sub {
     }
 
     fn halves(&self) -> (Sub, Sub) {
-        let n = self.h.len() - 1;
+        let src = self.h.as_slice();
+        let n = src.len() - 1;
         let mut work = self.h.clone();
-        let mut left = Vec::with_capacity(n + 1);
-        let mut right = vec![[0.0; 3]; n + 1];
-        left.push(work[0]);
-        right[n] = work[n];
-        for r in 1..=n {
-            for i in 0..=(n - r) {
-                let (p, q) = (work[i], work[i + 1]);
-                work[i] = [
-                    0.5 * (p[0] + q[0]),
-                    0.5 * (p[1] + q[1]),
-                    0.5 * (p[2] + q[2]),
-                ];
+        let mut left = Points::with_len(n + 1);
+        let mut right = Points::with_len(n + 1);
+        {
+            let (w, l, r) = (
+                work.as_mut_slice(),
+                left.as_mut_slice(),
+                right.as_mut_slice(),
+            );
+            l[0] = w[0];
+            r[n] = w[n];
+            for k in 1..=n {
+                for i in 0..=(n - k) {
+                    let (p, q) = (w[i], w[i + 1]);
+                    w[i] = [
+                        0.5 * (p[0] + q[0]),
+                        0.5 * (p[1] + q[1]),
+                        0.5 * (p[2] + q[2]),
+                    ];
+                }
+                l[k] = w[0];
+                r[n - k] = w[n - k];
             }
-            left.push(work[0]);
-            right[n - r] = work[n - r];
         }
         let mid = 0.5 * (self.u0 + self.u1);
         (
@@ -220,8 +272,8 @@ impl Subdivider {
 /// Where the chords of two flat sub-segments cross, as segment parameters (clamped to the
 /// sub-segments; the midpoints for parallel chords).
 fn chord_crossing(a: &Sub, b: &Sub) -> (f64, f64) {
-    let (p0, p1) = (a.point(0), a.point(a.h.len() - 1));
-    let (q0, q1) = (b.point(0), b.point(b.h.len() - 1));
+    let (p0, p1) = (a.point(0), a.point(a.len() - 1));
+    let (q0, q1) = (b.point(0), b.point(b.len() - 1));
     let (d, e) = (p1 - p0, q1 - q0);
     let det = d.perp_dot(e);
     let (alpha, beta) = if det.abs() > 1e-300 {
@@ -393,7 +445,7 @@ fn segment_overlaps(
 
 /// The size two pieces are measured by: the diagonal of their control boxes' union.
 fn size_of(a: &Piece, b: &Piece) -> f64 {
-    let (ba, bb) = (Sub::of(a, 0.0, 1.0).bounds(), Sub::of(b, 0.0, 1.0).bounds());
+    let (ba, bb) = (a.bounds(), b.bounds());
     let lo = ba.0.min(bb.0);
     let hi = ba.1.max(bb.1);
     (hi - lo).length().max(f64::MIN_POSITIVE)
@@ -403,9 +455,39 @@ fn size_of(a: &Piece, b: &Piece) -> f64 {
 /// `b`), on the sub-ranges given.
 fn piece_pair(a: &Piece, (a0, a1): (f64, f64), b: &Piece, (b0, b1): (f64, f64)) -> PieceHits {
     let size = size_of(a, b);
-    let tol = 64.0 * f64::EPSILON * size;
-    let mut out = PieceHits::default();
+    let first = points_of(a, (a0, a1), b, (b0, b1), &[], size);
+    // Coincident stretches show as tangent points or as many candidates; only then is the
+    // (costlier) coincidence test run, and the points found again outside what coincides.
+    if first.iter().all(|h| h.2 == HitKind::Crossing) && first.len() <= 8 {
+        return PieceHits {
+            hits: first,
+            overlaps: Vec::new(),
+        };
+    }
     let overlaps = segment_overlaps(a, (a0, a1), b, (b0, b1), 1e-9 * size);
+    if overlaps.is_empty() {
+        return PieceHits {
+            hits: first,
+            overlaps,
+        };
+    }
+    PieceHits {
+        hits: points_of(a, (a0, a1), b, (b0, b1), &overlaps, size),
+        overlaps,
+    }
+}
+
+/// The points where two segments meet on their ranges, outside the given overlaps of `a`
+/// (segment parameters).
+fn points_of(
+    a: &Piece,
+    (a0, a1): (f64, f64),
+    b: &Piece,
+    (b0, b1): (f64, f64),
+    overlaps: &[((f64, f64), (f64, f64))],
+    size: f64,
+) -> Vec<(f64, f64, HitKind)> {
+    let tol = 64.0 * f64::EPSILON * size;
     let inside_overlap = |u: f64| {
         overlaps
             .iter()
@@ -413,7 +495,7 @@ fn piece_pair(a: &Piece, (a0, a1): (f64, f64), b: &Piece, (b0, b1): (f64, f64)) 
     };
     // The parts of `a` outside the overlaps are what the subdivision examines.
     let mut ranges = vec![(a0, a1)];
-    for ((u0, u1), _) in &overlaps {
+    for ((u0, u1), _) in overlaps {
         let (lo, hi) = (u0.min(*u1), u0.max(*u1));
         ranges = ranges
             .into_iter()
@@ -430,7 +512,6 @@ fn piece_pair(a: &Piece, (a0, a1): (f64, f64), b: &Piece, (b0, b1): (f64, f64)) 
             .filter(|(r0, r1)| r1 > r0)
             .collect();
     }
-    out.overlaps.clone_from(&overlaps);
     let mut sub = Subdivider {
         flat: 1e-6 * size,
         margin: tol,
@@ -490,8 +571,7 @@ fn piece_pair(a: &Piece, (a0, a1): (f64, f64), b: &Piece, (b0, b1): (f64, f64)) 
             None => merged.push(h),
         }
     }
-    out.hits = merged;
-    out
+    merged
 }
 
 /// Hits and overlaps of two segments in their own parameters.
@@ -641,7 +721,7 @@ fn settle(mut found: Intersections, a: &CurveAnalysis, b: &CurveAnalysis) -> Int
 
 /// The control box of a piece, in 2D.
 fn piece_box(p: &Piece) -> (DVec2, DVec2) {
-    Sub::of(p, 0.0, 1.0).bounds()
+    p.bounds()
 }
 
 impl CurveAnalysis {

@@ -4,7 +4,7 @@
 //! (`W ≡ 1` for a polynomial segment). The polynomials every analysis needs are built
 //! from these by [`super::poly`]: the quotient rule's numerators, `C′ × C″`, `|C′|²`.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use super::poly;
 use crate::geom::BezierSegment;
@@ -24,6 +24,32 @@ pub struct Piece {
     da: [Vec<f64>; 3],
     /// `W′`.
     dw: Option<Vec<f64>>,
+    /// The box of the control points in `x`, `y` (the segment lies in it).
+    bounds: (DVec2, DVec2),
+    /// Whether `z ≡ 0`.
+    planar: bool,
+    /// For a polynomial segment of degree ≤ 7: `A′` per coordinate in the power basis
+    /// (ascending), for the arc length's many evaluations of `|C′|` by Horner's rule.
+    power: Option<[Vec<f64>; 3]>,
+}
+
+/// The power-basis coefficients (ascending) of `Σ c_i B_{i,m}`: `a_k = C(m, k) Δᵏ c_0`.
+fn power_basis(c: &[f64]) -> Vec<f64> {
+    let m = c.len().saturating_sub(1);
+    let mut diff = c.to_vec();
+    let mut out = Vec::with_capacity(c.len());
+    for k in 0..=m {
+        out.push(poly::binomial(m, k) * diff[0]);
+        for i in 0..diff.len().saturating_sub(1) {
+            diff[i] = diff[i + 1] - diff[i];
+        }
+        diff.pop();
+    }
+    out
+}
+
+fn horner(a: &[f64], u: f64) -> f64 {
+    a.iter().rev().fold(0.0, |acc, c| acc * u + c)
 }
 
 impl Piece {
@@ -46,6 +72,19 @@ impl Piece {
         ];
         let w = seg.weights.clone();
         let dw = w.as_deref().map(poly::derivative);
+        let bounds = pts
+            .iter()
+            .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p.truncate()), hi.max(p.truncate()))
+            });
+        let planar = a[2].iter().all(|v| *v == 0.0);
+        let power = (w.is_none() && pts.len() <= 8).then(|| {
+            [
+                power_basis(&da[0]),
+                power_basis(&da[1]),
+                power_basis(&da[2]),
+            ]
+        });
         Piece {
             t0: seg.t0,
             t1: seg.t1,
@@ -53,7 +92,35 @@ impl Piece {
             w,
             da,
             dw,
+            bounds,
+            planar,
+            power,
         }
+    }
+
+    /// `|dC/du|`: Horner's rule on the power-basis hodograph for a polynomial segment of
+    /// degree ≤ 7, [`Piece::deriv`] otherwise.
+    #[must_use]
+    pub fn speed(&self, u: f64) -> f64 {
+        match &self.power {
+            Some([x, y, z]) => {
+                let (dx, dy) = (horner(x, u), horner(y, u));
+                let dz = if self.planar { 0.0 } else { horner(z, u) };
+                let s = (dx * dx + dy * dy + dz * dz).sqrt();
+                if s.is_finite() {
+                    s
+                } else {
+                    dx.hypot(dy).hypot(dz)
+                }
+            }
+            None => self.deriv(u).length(),
+        }
+    }
+
+    /// The box of the control points in `x` and `y` (the segment lies in it).
+    #[must_use]
+    pub fn bounds(&self) -> (DVec2, DVec2) {
+        self.bounds
     }
 
     /// The degree.
@@ -81,7 +148,16 @@ impl Piece {
     /// Whether every control point has `z = 0`.
     #[must_use]
     pub fn is_planar(&self) -> bool {
-        self.a[2].iter().all(|v| *v == 0.0)
+        self.planar
+    }
+
+    fn eval3(&self, c: &[Vec<f64>; 3], u: f64) -> DVec3 {
+        let z = if self.planar {
+            0.0
+        } else {
+            poly::eval(&c[2], u)
+        };
+        DVec3::new(poly::eval(&c[0], u), poly::eval(&c[1], u), z)
     }
 
     fn weight(&self, u: f64) -> f64 {
@@ -91,30 +167,21 @@ impl Piece {
     /// `C(u)`.
     #[must_use]
     pub fn point(&self, u: f64) -> DVec3 {
-        let p = DVec3::new(
-            poly::eval(&self.a[0], u),
-            poly::eval(&self.a[1], u),
-            poly::eval(&self.a[2], u),
-        );
-        p / self.weight(u)
+        let p = self.eval3(&self.a, u);
+        match &self.w {
+            Some(_) => p / self.weight(u),
+            None => p,
+        }
     }
 
     /// `dC/du` (the quotient rule for a rational segment: `(A′W − AW′) / W²`).
     #[must_use]
     pub fn deriv(&self, u: f64) -> DVec3 {
-        let da = DVec3::new(
-            poly::eval(&self.da[0], u),
-            poly::eval(&self.da[1], u),
-            poly::eval(&self.da[2], u),
-        );
+        let da = self.eval3(&self.da, u);
         match (&self.w, &self.dw) {
             (Some(w), Some(dw)) => {
                 let (w0, w1) = (poly::eval(w, u), poly::eval(dw, u));
-                let a = DVec3::new(
-                    poly::eval(&self.a[0], u),
-                    poly::eval(&self.a[1], u),
-                    poly::eval(&self.a[2], u),
-                );
+                let a = self.eval3(&self.a, u);
                 (da * w0 - a * w1) / (w0 * w0)
             }
             _ => da,
@@ -135,6 +202,34 @@ impl Piece {
             }
             _ => dda,
         }
+    }
+
+    /// The local minima of `|C′|` inside `(0, 1)` — where `d|N|²/du` (`N` the velocity's
+    /// numerator) changes sign from negative to positive — each with `δ`, the distance
+    /// from the real axis of the complex roots of `|N|²` near it (`|N|² ≈ m² + ½Q″(u − u₀)²`
+    /// gives `δ = m √(2/Q″)`): the speed is analytic only that close to the minimum, so a
+    /// quadrature must use intervals no longer than about `δ` there. For a rational
+    /// segment the minima of `|N|` stand in for those of `|C′| = |N| / W²`.
+    #[must_use]
+    pub fn speed_minima(&self) -> Vec<(f64, f64)> {
+        let g = self.speed_squared_numerator(if self.planar { 2 } else { 3 });
+        let slope = poly::derivative(&g);
+        let curve = poly::derivative(&slope);
+        super::roots::bernstein_roots(&slope)
+            .roots
+            .iter()
+            .filter(|r| r.t > 0.0 && r.t < 1.0 && r.multiplicity % 2 == 1)
+            .filter(|r| {
+                let h = 1e-6;
+                poly::eval(&slope, (r.t - h).max(0.0)) < 0.0
+                    && poly::eval(&slope, (r.t + h).min(1.0)) > 0.0
+            })
+            .map(|r| {
+                let (q, q2) = (poly::eval(&g, r.t).max(0.0), poly::eval(&curve, r.t));
+                let delta = if q2 > 0.0 { (2.0 * q / q2).sqrt() } else { 1.0 };
+                (r.t, delta)
+            })
+            .collect()
     }
 
     /// The numerator of `dC_k/du` in Bernstein form: `A_k′` (polynomial) or

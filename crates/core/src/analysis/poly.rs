@@ -152,31 +152,79 @@ pub fn integral(c: &[f64]) -> f64 {
 /// (`γ_k = kε/(1 − kε)`, the running error of the convex combinations).
 #[must_use]
 pub fn eval_with_bound(c: &[f64], t: f64) -> (f64, f64) {
-    let n = c.len().saturating_sub(1);
-    if c.is_empty() {
+    let len = c.len();
+    if len == 0 {
         return (0.0, 0.0);
     }
-    let s = 1.0 - t;
-    let mut v: smallvec::Buf = smallvec::Buf::from(c);
-    let mut a: smallvec::Buf = smallvec::Buf::from_abs(c);
-    let (vs, as_) = (v.as_mut(), a.as_mut());
-    for r in 1..=n {
-        for i in 0..=(n - r) {
-            vs[i] = s * vs[i] + t * vs[i + 1];
-            as_[i] = s * as_[i] + t * as_[i + 1];
-        }
-    }
+    let n = len - 1;
     let gamma = {
         let k = (2 * n + 2) as f64 * f64::EPSILON * 0.5;
         k / (1.0 - k)
     };
-    (vs[0], gamma * as_[0] + f64::MIN_POSITIVE)
+    let s = 1.0 - t;
+    let run = |v: &mut [f64], a: &mut [f64]| {
+        for r in 1..=n {
+            for i in 0..=(n - r) {
+                v[i] = s * v[i] + t * v[i + 1];
+                a[i] = s * a[i] + t * a[i + 1];
+            }
+        }
+        (v[0], gamma * a[0] + f64::MIN_POSITIVE)
+    };
+    if len <= STACK {
+        let (mut v, mut a) = ([0.0; STACK], [0.0; STACK]);
+        v[..len].copy_from_slice(c);
+        for (x, y) in a.iter_mut().zip(c) {
+            *x = y.abs();
+        }
+        run(&mut v[..len], &mut a[..len])
+    } else {
+        let mut v = c.to_vec();
+        let mut a: Vec<f64> = c.iter().map(|x| x.abs()).collect();
+        run(&mut v, &mut a)
+    }
 }
 
-/// `p(t)` by de Casteljau.
+/// Coefficients evaluated on the stack (more go to the heap).
+const STACK: usize = 32;
+
+/// `p(t)` by de Casteljau (written out for degrees up to 3).
 #[must_use]
 pub fn eval(c: &[f64], t: f64) -> f64 {
-    eval_with_bound(c, t).0
+    let s = 1.0 - t;
+    match *c {
+        [] => 0.0,
+        [a] => a,
+        [a, b] => s * a + t * b,
+        [a, b, d] => {
+            let (p, q) = (s * a + t * b, s * b + t * d);
+            s * p + t * q
+        }
+        [a, b, d, e] => {
+            let (p, q, r) = (s * a + t * b, s * b + t * d, s * d + t * e);
+            let (p, q) = (s * p + t * q, s * q + t * r);
+            s * p + t * q
+        }
+        _ => {
+            let len = c.len();
+            let n = len - 1;
+            let run = |v: &mut [f64]| {
+                for r in 1..=n {
+                    for i in 0..=(n - r) {
+                        v[i] = s * v[i] + t * v[i + 1];
+                    }
+                }
+                v[0]
+            };
+            if len <= STACK {
+                let mut v = [0.0; STACK];
+                v[..len].copy_from_slice(c);
+                run(&mut v[..len])
+            } else {
+                run(&mut c.to_vec())
+            }
+        }
+    }
 }
 
 /// The coefficients of `p` on `[0, t]` and on `[t, 1]`, each reparametrised to `[0, 1]`.
@@ -214,46 +262,6 @@ pub fn restrict(c: &[f64], a: f64, b: f64) -> Vec<f64> {
     }
     let u = (b - a) / (1.0 - a);
     split(&right, u.clamp(0.0, 1.0)).0
-}
-
-/// Small fixed buffers for evaluation without allocating below degree 64.
-mod smallvec {
-    const N: usize = 64;
-
-    /// Coefficients on the stack (or the heap beyond [`N`]); the stack variant is large
-    /// on purpose: it is what spares the evaluation an allocation.
-    #[allow(clippy::large_enum_variant)]
-    pub enum Buf {
-        Stack([f64; N], usize),
-        Heap(Vec<f64>),
-    }
-
-    impl Buf {
-        pub fn from(c: &[f64]) -> Buf {
-            if c.len() <= N {
-                let mut b = [0.0; N];
-                b[..c.len()].copy_from_slice(c);
-                Buf::Stack(b, c.len())
-            } else {
-                Buf::Heap(c.to_vec())
-            }
-        }
-
-        pub fn from_abs(c: &[f64]) -> Buf {
-            let mut b = Buf::from(c);
-            for v in b.as_mut() {
-                *v = v.abs();
-            }
-            b
-        }
-
-        pub fn as_mut(&mut self) -> &mut [f64] {
-            match self {
-                Buf::Stack(b, n) => &mut b[..*n],
-                Buf::Heap(v) => v,
-            }
-        }
-    }
 }
 
 #[cfg(test)]

@@ -1,0 +1,117 @@
+//! Analysis benchmarks (criterion): `cargo bench --bench analysis`. Arc length against
+//! kurbo's `arclen` at the same accuracy on the same cubics; curve–curve intersection per
+//! pair (cubics and degree 7, crossing and tangent); all pairs among the stress
+//! generator's 10,000 cubics and among 1,000 cubics crowded into one square.
+#![allow(missing_docs)]
+
+use std::hint::black_box;
+
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use glam::DVec3;
+use kurbo::{CubicBez, ParamCurveArclen, Point};
+use splinescope::analysis::{CurveAnalysis, all_intersections};
+use splinescope::geom::Bezier;
+use splinescope::scene::generate::{Rng, StressOptions, random_bezier_scene};
+
+fn cubic(rng: &mut Rng) -> [DVec3; 4] {
+    [(); 4].map(|()| DVec3::new(rng.range(0.0, 1.0), rng.range(0.0, 1.0), 0.0))
+}
+
+fn bench(c: &mut Criterion) {
+    let mut rng = Rng::new(3);
+    let cubics: Vec<[DVec3; 4]> = (0..64).map(|_| cubic(&mut rng)).collect();
+    let ours: Vec<CurveAnalysis> = cubics
+        .iter()
+        .map(|p| CurveAnalysis::new(&Bezier::new(p.to_vec())))
+        .collect();
+    let theirs: Vec<CubicBez> = cubics
+        .iter()
+        .map(|p| {
+            let q = p.map(|v| Point::new(v.x, v.y));
+            CubicBez::new(q[0], q[1], q[2], q[3])
+        })
+        .collect();
+    let mut g = c.benchmark_group("arc length of 64 cubics");
+    for acc in [1e-6, 1e-9, 1e-12] {
+        g.bench_with_input(BenchmarkId::new("splinescope", acc), &acc, |b, &acc| {
+            b.iter(|| {
+                ours.iter()
+                    .map(|c| c.length(0.0, 1.0, black_box(acc)).map_or(0.0, |l| l.value))
+                    .sum::<f64>()
+            });
+        });
+        g.bench_with_input(BenchmarkId::new("kurbo", acc), &acc, |b, &acc| {
+            b.iter(|| theirs.iter().map(|c| c.arclen(black_box(acc))).sum::<f64>());
+        });
+    }
+    g.finish();
+
+    let mut g = c.benchmark_group("intersect one pair");
+    let pair = |pa: &[(f64, f64)], pb: &[(f64, f64)]| {
+        let mk = |p: &[(f64, f64)]| {
+            CurveAnalysis::new(&Bezier::new(
+                p.iter().map(|&(x, y)| DVec3::new(x, y, 0.0)).collect(),
+            ))
+        };
+        (mk(pa), mk(pb))
+    };
+    let crossing3 = pair(
+        &[(0.0, 0.0), (1.0, 3.0), (2.0, -2.0), (3.0, 1.0)],
+        &[(0.0, 1.0), (1.5, -2.0), (2.0, 3.0), (3.0, -0.5)],
+    );
+    let tangent3 = pair(
+        &[(0.0, 0.0), (1.0, 2.0), (2.0, 2.0), (3.0, 0.0)],
+        &[(0.0, 1.5), (1.0, 1.5), (2.0, 1.5), (3.0, 1.5)],
+    );
+    let wave = |phase: f64| -> Vec<(f64, f64)> {
+        (0..8)
+            .map(|i| {
+                (
+                    f64::from(i),
+                    if (i % 2 == 0) ^ (phase > 0.0) {
+                        0.0
+                    } else {
+                        2.0
+                    },
+                )
+            })
+            .collect()
+    };
+    let crossing7 = pair(&wave(0.0), &wave(1.0));
+    for (name, (a, b)) in [
+        ("cubics crossing 3 times", &crossing3),
+        ("cubics tangent", &tangent3),
+        ("degree 7 crossing", &crossing7),
+    ] {
+        g.bench_function(name, |bch| {
+            bch.iter(|| black_box(a).intersect(black_box(b)))
+        });
+    }
+    g.finish();
+
+    let mut g = c.benchmark_group("all pairs");
+    g.sample_size(10);
+    let stress = random_bezier_scene(StressOptions {
+        curves: 10_000,
+        ..StressOptions::default()
+    });
+    let grid: Vec<CurveAnalysis> = stress
+        .curves
+        .iter()
+        .map(|c| CurveAnalysis::new(&c.curve))
+        .collect();
+    g.bench_function("10,000 stress cubics (one per cell)", |b| {
+        b.iter(|| all_intersections(black_box(&grid)).map(|v| v.len()))
+    });
+    let mut rng = Rng::new(9);
+    let crowd: Vec<CurveAnalysis> = (0..1000)
+        .map(|_| CurveAnalysis::new(&Bezier::new(cubic(&mut rng).to_vec())))
+        .collect();
+    g.bench_function("1,000 cubics in one square", |b| {
+        b.iter(|| all_intersections(black_box(&crowd)).map(|v| v.len()))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
