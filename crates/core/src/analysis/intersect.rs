@@ -76,8 +76,10 @@ pub struct PairIntersections {
     pub found: Intersections,
 }
 
-/// Homogeneous control points, on the stack up to degree 31.
+/// Homogeneous control points, on the stack up to degree 31 (large on purpose: the
+/// subdivision makes thousands of them and must not allocate each).
 #[derive(Debug, Clone)]
+#[allow(clippy::large_enum_variant)]
 enum Points {
     Stack([[f64; 3]; 32], usize),
     Heap(Vec<[f64; 3]>),
@@ -408,7 +410,7 @@ fn segment_overlaps(
     b: &Piece,
     rb: (f64, f64),
     tol: f64,
-) -> Vec<((f64, f64), (f64, f64))> {
+) -> Vec<SpanPair> {
     let on_b = |u: f64| -> Option<(f64, f64)> {
         let q = a.point(u).truncate();
         let (v, d) = closest(b, rb, q);
@@ -484,7 +486,7 @@ fn points_of(
     (a0, a1): (f64, f64),
     b: &Piece,
     (b0, b1): (f64, f64),
-    overlaps: &[((f64, f64), (f64, f64))],
+    overlaps: &[SpanPair],
     size: f64,
 ) -> Vec<(f64, f64, HitKind)> {
     let tol = 64.0 * f64::EPSILON * size;
@@ -574,11 +576,14 @@ fn points_of(
     merged
 }
 
+/// A coincident stretch in two segments' own parameters: `((u0, u1), (v0, v1))`.
+type SpanPair = ((f64, f64), (f64, f64));
+
 /// Hits and overlaps of two segments in their own parameters.
 #[derive(Debug, Default)]
 struct PieceHits {
     hits: Vec<(f64, f64, HitKind)>,
-    overlaps: Vec<((f64, f64), (f64, f64))>,
+    overlaps: Vec<SpanPair>,
 }
 
 /// `u` of a piece as the curve parameter.
