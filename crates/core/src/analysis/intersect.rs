@@ -76,19 +76,19 @@ pub struct PairIntersections {
     pub found: Intersections,
 }
 
-/// Homogeneous control points, on the stack up to degree 31 (large on purpose: the
+/// Homogeneous control points, on the stack up to degree 7 (large on purpose: the
 /// subdivision makes thousands of them and must not allocate each).
 #[derive(Debug, Clone)]
 #[allow(clippy::large_enum_variant)]
 enum Points {
-    Stack([[f64; 3]; 32], usize),
+    Stack([[f64; 3]; 8], usize),
     Heap(Vec<[f64; 3]>),
 }
 
 impl Points {
     fn with_len(n: usize) -> Points {
-        if n <= 32 {
-            Points::Stack([[0.0; 3]; 32], n)
+        if n <= 8 {
+            Points::Stack([[0.0; 3]; 8], n)
         } else {
             Points::Heap(vec![[0.0; 3]; n])
         }
@@ -166,6 +166,47 @@ impl Sub {
         (lo, hi)
     }
 
+    /// The directions of the control polygon's legs as an angular interval `[θ₀, θ₁]`
+    /// (narrower than π/2), or `None` when they spread wider. The curve's tangent — for
+    /// positive weights a rational one's too — is a positive combination of the legs, so
+    /// it stays inside.
+    fn cone(&self) -> Option<(f64, f64)> {
+        use std::f64::consts::{FRAC_PI_2, PI};
+        let n = self.len() - 1;
+        let mut first: Option<f64> = None;
+        let (mut lo, mut hi) = (0.0_f64, 0.0_f64);
+        for i in 0..n {
+            let e = self.point(i + 1) - self.point(i);
+            if e.x == 0.0 && e.y == 0.0 {
+                continue;
+            }
+            let angle = e.y.atan2(e.x);
+            match first {
+                None => first = Some(angle),
+                Some(f) => {
+                    // Relative to the first leg, in (−π, π].
+                    let mut d = angle - f;
+                    if d > PI {
+                        d -= 2.0 * PI;
+                    } else if d <= -PI {
+                        d += 2.0 * PI;
+                    }
+                    lo = lo.min(d);
+                    hi = hi.max(d);
+                    if hi - lo >= FRAC_PI_2 {
+                        return None;
+                    }
+                }
+            }
+        }
+        first.map(|f| (f + lo, f + hi))
+    }
+
+    /// The chord from the first control point to the last.
+    fn chord(&self) -> DVec2 {
+        self.point(self.len() - 1) - self.point(0)
+    }
+
     /// The largest distance of a control point from the chord.
     fn flatness(&self) -> f64 {
         let n = self.len() - 1;
@@ -185,30 +226,24 @@ impl Sub {
     }
 
     fn halves(&self) -> (Sub, Sub) {
-        let src = self.h.as_slice();
-        let n = src.len() - 1;
-        let mut work = self.h.clone();
+        let n = self.len() - 1;
         let mut left = Points::with_len(n + 1);
         let mut right = Points::with_len(n + 1);
         {
-            let (w, l, r) = (
-                work.as_mut_slice(),
-                left.as_mut_slice(),
-                right.as_mut_slice(),
-            );
-            l[0] = w[0];
-            r[n] = w[n];
+            // The right half's points are the triangle's last column: work in `right`.
+            let (l, r) = (left.as_mut_slice(), right.as_mut_slice());
+            r.copy_from_slice(self.h.as_slice());
+            l[0] = r[0];
             for k in 1..=n {
                 for i in 0..=(n - k) {
-                    let (p, q) = (w[i], w[i + 1]);
-                    w[i] = [
+                    let (p, q) = (r[i], r[i + 1]);
+                    r[i] = [
                         0.5 * (p[0] + q[0]),
                         0.5 * (p[1] + q[1]),
                         0.5 * (p[2] + q[2]),
                     ];
                 }
-                l[k] = w[0];
-                r[n - k] = w[n - k];
+                l[k] = r[0];
             }
         }
         let mid = 0.5 * (self.u0 + self.u1);
@@ -227,6 +262,20 @@ impl Sub {
     }
 }
 
+/// `x` held to `[0, 1]`; a NaN becomes ½ (never left to the optimiser's choice of
+/// `min`/`max`, which treat NaN differently).
+fn to_unit(x: f64) -> f64 {
+    if x.is_nan() {
+        0.5
+    } else if x < 0.0 {
+        0.0
+    } else if x > 1.0 {
+        1.0
+    } else {
+        x
+    }
+}
+
 fn boxes_meet(a: (DVec2, DVec2), b: (DVec2, DVec2), margin: f64) -> bool {
     a.0.x <= b.1.x + margin
         && b.0.x <= a.1.x + margin
@@ -234,7 +283,9 @@ fn boxes_meet(a: (DVec2, DVec2), b: (DVec2, DVec2), margin: f64) -> bool {
         && b.0.y <= a.1.y + margin
 }
 
-/// Candidate `(u, v)` pairs of two segments from subdivision.
+/// Candidate `(u, v)` pairs of two segments from subdivision: the crossing of the chords
+/// of two sub-segments flat to `flat`, or of two that meet at most once (flat to 5 % of
+/// their chords, their tangent cones disjoint).
 struct Subdivider {
     flat: f64,
     margin: f64,
@@ -257,6 +308,18 @@ impl Subdivider {
             self.candidates.push(chord_crossing(a, b));
             return;
         }
+        // Two pieces each within 5 % of its chord's length of the chord, whose tangent
+        // cones (as lines, directions modulo π) are disjoint, meet at most once; Newton's
+        // method from the chords' crossing finds that point.
+        let (ca, cb) = (a.chord(), b.chord());
+        if fa <= 0.05 * ca.length()
+            && fb <= 0.05 * cb.length()
+            && let (Some(ka), Some(kb)) = (a.cone(), b.cone())
+            && cones_disjoint(ka, kb)
+        {
+            self.candidates.push(chord_crossing(a, b));
+            return;
+        }
         let size_a = (ba.1 - ba.0).length();
         let size_b = (bb.1 - bb.0).length();
         if (fa > self.flat && size_a >= size_b) || fb <= self.flat {
@@ -271,6 +334,16 @@ impl Subdivider {
     }
 }
 
+/// Whether two angular intervals of line directions (`[θ₀, θ₁]` modulo π, each narrower
+/// than π/2) have no direction in common.
+fn cones_disjoint((a0, a1): (f64, f64), (b0, b1): (f64, f64)) -> bool {
+    use std::f64::consts::PI;
+    let shift = ((a0 - b0) / PI).floor() * PI;
+    [shift - PI, shift, shift + PI, shift + 2.0 * PI]
+        .iter()
+        .all(|k| b1 + k < a0 || b0 + k > a1)
+}
+
 /// Where the chords of two flat sub-segments cross, as segment parameters (clamped to the
 /// sub-segments; the midpoints for parallel chords).
 fn chord_crossing(a: &Sub, b: &Sub) -> (f64, f64) {
@@ -280,59 +353,95 @@ fn chord_crossing(a: &Sub, b: &Sub) -> (f64, f64) {
     let det = d.perp_dot(e);
     let (alpha, beta) = if det.abs() > 1e-300 {
         let r = q0 - p0;
-        (
-            (r.perp_dot(e) / det).clamp(0.0, 1.0),
-            (r.perp_dot(d) / det).clamp(0.0, 1.0),
-        )
+        (to_unit(r.perp_dot(e) / det), to_unit(r.perp_dot(d) / det))
     } else {
         (0.5, 0.5)
     };
     (a.u0 + alpha * (a.u1 - a.u0), b.u0 + beta * (b.u1 - b.u0))
 }
 
-/// Newton's method (Levenberg–Marquardt damped) on `C₁(u) − C₂(v) = 0` from a candidate,
-/// `u`, `v` kept in `[0, 1]`. Returns the parameters and the residual.
-fn refine(a: &Piece, b: &Piece, mut u: f64, mut v: f64) -> (f64, f64, f64) {
-    let f = |u: f64, v: f64| (a.point(u) - b.point(v)).truncate();
-    let mut r = f(u, v);
+/// Newton's method on `C₁(u) − C₂(v) = 0` from a candidate, `u`, `v` kept in `[0, 1]`;
+/// where a step does not reduce the residual (a singular Jacobian at a tangency, a
+/// candidate far off), damped steps (Levenberg–Marquardt) take over. Returns the
+/// parameters and the residual.
+fn refine(a: &Piece, b: &Piece, u: f64, v: f64) -> (f64, f64, f64) {
+    let mut state = Lm::at(a, b, u, v);
     let mut lambda = 0.0_f64;
     for _ in 0..100 {
-        let norm = r.length();
-        if norm == 0.0 {
+        if state.norm == 0.0 {
             break;
         }
-        let (ja, jb) = (a.deriv(u).truncate(), -b.deriv(v).truncate());
-        // (JᵀJ + λ diag) Δ = −Jᵀ r.
-        let (m11, m12, m22) = (ja.dot(ja), ja.dot(jb), jb.dot(jb));
-        let (g1, g2) = (ja.dot(r), jb.dot(r));
-        let mut accepted = false;
-        for _ in 0..30 {
-            let (d11, d22) = (m11 * (1.0 + lambda), m22 * (1.0 + lambda));
-            let det = d11 * d22 - m12 * m12;
-            if det == 0.0 || !det.is_finite() {
-                lambda = if lambda == 0.0 { 1e-6 } else { lambda * 10.0 };
-                continue;
+        match state.step(a, b, &mut lambda) {
+            Some(next) => {
+                let tiny = (next.u - state.u).abs() <= f64::EPSILON
+                    && (next.v - state.v).abs() <= f64::EPSILON;
+                state = next;
+                if tiny {
+                    break;
+                }
             }
-            let du = -(d22 * g1 - m12 * g2) / det;
-            let dv = -(d11 * g2 - m12 * g1) / det;
-            let (nu, nv) = ((u + du).clamp(0.0, 1.0), (v + dv).clamp(0.0, 1.0));
-            let nr = f(nu, nv);
-            if nr.length() < norm {
-                let tiny = (nu - u).abs() <= f64::EPSILON && (nv - v).abs() <= f64::EPSILON;
-                u = nu;
-                v = nv;
-                r = nr;
-                lambda *= 0.1;
-                accepted = !tiny;
-                break;
-            }
-            lambda = if lambda == 0.0 { 1e-6 } else { lambda * 10.0 };
-        }
-        if !accepted {
-            break;
+            None => break,
         }
     }
-    (u, v, r.length())
+    (state.u, state.v, state.norm)
+}
+
+/// One point of the damped Newton iteration: the parameters, the residual
+/// `C₁(u) − C₂(v)`, its length and the Jacobian's columns.
+#[derive(Debug, Clone, Copy)]
+struct Lm {
+    u: f64,
+    v: f64,
+    r: DVec2,
+    norm: f64,
+    ja: DVec2,
+    jb: DVec2,
+}
+
+impl Lm {
+    fn at(a: &Piece, b: &Piece, u: f64, v: f64) -> Lm {
+        let ((p, dp), (q, dq)) = (a.point_and_deriv(u), b.point_and_deriv(v));
+        let r = (p - q).truncate();
+        Lm {
+            u,
+            v,
+            r,
+            norm: r.length(),
+            ja: dp.truncate(),
+            jb: -dq.truncate(),
+        }
+    }
+
+    /// The next point: `(JᵀJ + λ diag) Δ = −Jᵀ r` (λ = 0: Newton's step), λ raised until
+    /// the residual falls (`None` when it never does), then lowered for the next step.
+    fn step(&self, a: &Piece, b: &Piece, lambda: &mut f64) -> Option<Lm> {
+        let (m11, m12, m22) = (
+            self.ja.dot(self.ja),
+            self.ja.dot(self.jb),
+            self.jb.dot(self.jb),
+        );
+        let (g1, g2) = (self.ja.dot(self.r), self.jb.dot(self.r));
+        for _ in 0..30 {
+            let (d11, d22) = (m11 * (1.0 + *lambda), m22 * (1.0 + *lambda));
+            let det = d11 * d22 - m12 * m12;
+            if det != 0.0 && det.is_finite() {
+                let du = -(d22 * g1 - m12 * g2) / det;
+                let dv = -(d11 * g2 - m12 * g1) / det;
+                let (nu, nv) = (self.u + du, self.v + dv);
+                if !(nu.is_finite() && nv.is_finite()) {
+                    *lambda = if *lambda == 0.0 { 1e-6 } else { *lambda * 10.0 };
+                    continue;
+                }
+                let next = Lm::at(a, b, to_unit(nu), to_unit(nv));
+                if next.norm < self.norm {
+                    *lambda *= 0.1;
+                    return Some(next);
+                }
+            }
+            *lambda = if *lambda == 0.0 { 1e-6 } else { *lambda * 10.0 };
+        }
+        None
+    }
 }
 
 /// Newton's method on the tangency conditions — `(C₁(u) − C₂(v)) · C₂′(v) = 0` (the foot
@@ -358,7 +467,11 @@ fn refine_tangent(a: &Piece, b: &Piece, mut u: f64, mut v: f64) -> Option<(f64, 
         }
         let du = -(j22 * f1 - j12 * f2) / det;
         let dv = -(j11 * f2 - j21 * f1) / det;
-        let (nu, nv) = ((u + du).clamp(0.0, 1.0), (v + dv).clamp(0.0, 1.0));
+        let (nu, nv) = (u + du, v + dv);
+        if !(nu.is_finite() && nv.is_finite()) {
+            return None;
+        }
+        let (nu, nv) = (to_unit(nu), to_unit(nv));
         let done = (nu - u).abs() <= 2.0 * f64::EPSILON && (nv - v).abs() <= 2.0 * f64::EPSILON;
         u = nu;
         v = nv;
@@ -524,7 +637,7 @@ fn points_of(
         sub.run(&Sub::of(a, r0, r1), &sb, 0);
     }
     let mut found: Vec<(f64, f64, HitKind)> = Vec::new();
-    for (u, v) in sub.candidates {
+    for &(u, v) in &sub.candidates {
         let (u, v, residual) = refine(a, b, u, v);
         if residual > tol || u < a0 || u > a1 || v < b0 || v > b1 || inside_overlap(u) {
             continue;

@@ -174,6 +174,27 @@ impl Piece {
         }
     }
 
+    /// `C(u)` and `dC/du` from one de Casteljau triangle per coordinate (and for `W`).
+    #[must_use]
+    pub fn point_and_deriv(&self, u: f64) -> (DVec3, DVec3) {
+        let (x, dx) = poly::eval_with_derivative(&self.a[0], u);
+        let (y, dy) = poly::eval_with_derivative(&self.a[1], u);
+        let (z, dz) = if self.planar {
+            (0.0, 0.0)
+        } else {
+            poly::eval_with_derivative(&self.a[2], u)
+        };
+        let (a, da) = (DVec3::new(x, y, z), DVec3::new(dx, dy, dz));
+        match &self.w {
+            Some(w) => {
+                let (w0, w1) = poly::eval_with_derivative(w, u);
+                let c = a / w0;
+                (c, (da - w1 * c) / w0)
+            }
+            None => (a, da),
+        }
+    }
+
     /// `dC/du` (the quotient rule for a rational segment: `(A′W − AW′) / W²`).
     #[must_use]
     pub fn deriv(&self, u: f64) -> DVec3 {

@@ -227,6 +227,46 @@ pub fn eval(c: &[f64], t: f64) -> f64 {
     }
 }
 
+/// `p(t)` and `p′(t)` from one de Casteljau triangle: its last two values `a`, `b` give
+/// `p = (1 − t) a + t b` and `p′ = n (b − a)`.
+#[must_use]
+pub fn eval_with_derivative(c: &[f64], t: f64) -> (f64, f64) {
+    let len = c.len();
+    let s = 1.0 - t;
+    match *c {
+        [] => return (0.0, 0.0),
+        [a] => return (a, 0.0),
+        [a, b] => return (s * a + t * b, b - a),
+        [a, b, d] => {
+            let (p, q) = (s * a + t * b, s * b + t * d);
+            return (s * p + t * q, 2.0 * (q - p));
+        }
+        [a, b, d, e] => {
+            let (p, q, r) = (s * a + t * b, s * b + t * d, s * d + t * e);
+            let (p, q) = (s * p + t * q, s * q + t * r);
+            return (s * p + t * q, 3.0 * (q - p));
+        }
+        _ => {}
+    }
+    let n = len - 1;
+    let run = |v: &mut [f64]| {
+        for r in 1..n {
+            for i in 0..=(n - r) {
+                v[i] = s * v[i] + t * v[i + 1];
+            }
+        }
+        let (a, b) = (v[0], v[1]);
+        (s * a + t * b, n as f64 * (b - a))
+    };
+    if len <= STACK {
+        let mut v = [0.0; STACK];
+        v[..len].copy_from_slice(c);
+        run(&mut v[..len])
+    } else {
+        run(&mut c.to_vec())
+    }
+}
+
 /// The coefficients of `p` on `[0, t]` and on `[t, 1]`, each reparametrised to `[0, 1]`.
 #[must_use]
 pub fn split(c: &[f64], t: f64) -> (Vec<f64>, Vec<f64>) {
