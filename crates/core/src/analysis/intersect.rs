@@ -234,7 +234,7 @@ impl Sub {
             let (l, r) = (left.as_mut_slice(), right.as_mut_slice());
             r.copy_from_slice(self.h.as_slice());
             l[0] = r[0];
-            for k in 1..=n {
+            for (k, slot) in l.iter_mut().enumerate().skip(1) {
                 for i in 0..=(n - k) {
                     let (p, q) = (r[i], r[i + 1]);
                     r[i] = [
@@ -243,7 +243,7 @@ impl Sub {
                         0.5 * (p[2] + q[2]),
                     ];
                 }
-                l[k] = r[0];
+                *slot = r[0];
             }
         }
         let mid = 0.5 * (self.u0 + self.u1);
@@ -264,6 +264,7 @@ impl Sub {
 
 /// `x` held to `[0, 1]`; a NaN becomes ½ (never left to the optimiser's choice of
 /// `min`/`max`, which treat NaN differently).
+#[allow(clippy::manual_clamp)]
 fn to_unit(x: f64) -> f64 {
     if x.is_nan() {
         0.5
