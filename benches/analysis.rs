@@ -59,29 +59,38 @@ fn bench(c: &mut Criterion) {
         &[(0.0, 0.0), (1.0, 3.0), (2.0, -2.0), (3.0, 1.0)],
         &[(0.0, 1.0), (1.5, -2.0), (2.0, 3.0), (3.0, -0.5)],
     );
+    // A cubic touching the line y = −0.75 at its lowest point.
     let tangent3 = pair(
-        &[(0.0, 0.0), (1.0, 2.0), (2.0, 2.0), (3.0, 0.0)],
-        &[(0.0, 1.5), (1.0, 1.5), (2.0, 1.5), (3.0, 1.5)],
+        &[(-1.0, 0.0), (-0.5, -1.0), (0.5, -1.0), (1.0, 0.0)],
+        &[(-1.0, -0.75), (-0.3, -0.75), (0.3, -0.75), (1.0, -0.75)],
     );
-    let wave = |phase: f64| -> Vec<(f64, f64)> {
-        (0..8)
-            .map(|i| {
-                (
-                    f64::from(i),
-                    if (i % 2 == 0) ^ (phase > 0.0) {
-                        0.0
-                    } else {
-                        2.0
-                    },
-                )
-            })
-            .collect()
-    };
-    let crossing7 = pair(&wave(0.0), &wave(1.0));
+    // Two degree-7 curves crossing three times (fixed points, found by a random draw).
+    let crossing7 = pair(
+        &[
+            (0.131, 0.514),
+            (0.25, 0.343),
+            (0.817, 0.398),
+            (0.784, 0.013),
+            (0.999, 0.955),
+            (0.679, 0.197),
+            (0.657, 0.19),
+            (0.373, 0.035),
+        ],
+        &[
+            (0.07, 0.158),
+            (0.182, 0.838),
+            (0.244, 0.825),
+            (0.006, 0.058),
+            (0.061, 0.932),
+            (0.817, 0.016),
+            (0.932, 0.227),
+            (0.265, 0.584),
+        ],
+    );
     for (name, (a, b)) in [
         ("cubics crossing 3 times", &crossing3),
         ("cubics tangent", &tangent3),
-        ("degree 7 crossing", &crossing7),
+        ("degree 7 crossing 3 times", &crossing7),
     ] {
         g.bench_function(name, |bch| {
             bch.iter(|| black_box(a).intersect(black_box(b)))

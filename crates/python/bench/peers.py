@@ -15,7 +15,10 @@ Cases (array conversion included in every timing):
   5. the floor: writing a fresh (1,000,000, 2) array (numpy), which no method returning
      one can beat;
   6. the binding's overhead: BSpline.eval against the same evaluation made in Rust
-     (splinescope._splinescope.rust_eval_seconds), 1,000,000 points.
+     (splinescope._splinescope.rust_eval_seconds), 1,000,000 points;
+  7. curve–curve intersection per pair, bezier's Curve.intersect vs Curve.intersect
+     (cubics crossing three times, a tangency, degree 7 crossing), and arc length
+     (bezier's Curve.length vs Curve.length at 1e-12) on 200 random cubics.
 Prints one JSON object; `--threads N` pins the module to N threads (RAYON_NUM_THREADS).
 """
 
@@ -88,6 +91,54 @@ def measure():
     except ImportError:
         out["bezier_missing"] = True
 
+    # 7. intersections and lengths against the bezier package.
+    try:
+        import bezier
+
+        def pkg(p):
+            p = np.asarray(p, dtype=np.float64)
+            return bezier.Curve(np.asfortranarray(p.T), degree=len(p) - 1)
+
+        # Two degree-7 curves crossing three times (fixed points, found by a random draw).
+        seven_a = [[0.131, 0.514], [0.25, 0.343], [0.817, 0.398], [0.784, 0.013],
+                   [0.999, 0.955], [0.679, 0.197], [0.657, 0.19], [0.373, 0.035]]
+        seven_b = [[0.07, 0.158], [0.182, 0.838], [0.244, 0.825], [0.006, 0.058],
+                   [0.061, 0.932], [0.817, 0.016], [0.932, 0.227], [0.265, 0.584]]
+        cases = {
+            "cubic_crossing": (
+                [[0, 0], [1, 3], [2, -2], [3, 1]],
+                [[0, 1], [1.5, -2], [2, 3], [3, -0.5]],
+            ),
+            "cubic_tangent": (
+                [[-1, 0], [-0.5, -1.0], [0.5, -1.0], [1, 0]],
+                [[-1, -0.75], [-0.3, -0.75], [0.3, -0.75], [1, -0.75]],
+            ),
+            "degree7_crossing": (seven_a, seven_b),
+        }
+        for name, (pa, pb) in cases.items():
+            ca, cb = pkg(pa), pkg(pb)
+            ma, mb = ss.Bezier(pa), ss.Bezier(pb)
+            try:
+                want = np.asarray(ca.intersect(cb)).T
+                got = ma.intersect(mb)
+                order = np.argsort(want[:, 0])
+                assert np.allclose(got, want[order], atol=1e-8), (name, got, want)
+                out[f"intersect_{name}_peer_s"] = best(lambda: ca.intersect(cb), 5)
+            except (NotImplementedError, ValueError) as e:
+                out[f"intersect_{name}_peer_error"] = str(e)[:80]
+            out[f"intersect_{name}_splinescope_s"] = best(lambda: ma.intersect(mb), 5)
+        cubics = [rng.uniform(0, 1, (4, 2)) for _ in range(200)]
+        peers = [pkg(c) for c in cubics]
+        mine = [ss.Bezier(c) for c in cubics]
+        for p_, m_ in zip(peers, mine):
+            assert abs(p_.length - m_.length()) < 1e-9
+        out["length_200_cubics_peer_s"] = best(lambda: [p_.length for p_ in peers], 5)
+        out["length_200_cubics_splinescope_s"] = best(
+            lambda: [m_.length(accuracy=1e-12) for m_ in mine], 5
+        )
+    except ImportError:
+        out["bezier_missing"] = True
+
     # 4. geomdl (pure Python): per point, on fewer points.
     try:
         from geomdl import BSpline as GeoBSpline
@@ -138,6 +189,15 @@ def main():
             ratios[f"bezier{d}_vs_bezier_pkg_1_thread"] = (
                 one[f"bezier{d}_peer_s"] / one[f"bezier{d}_splinescope_s"]
             )
+    for name in ("cubic_crossing", "cubic_tangent", "degree7_crossing"):
+        if f"intersect_{name}_peer_s" in one:
+            ratios[f"intersect_{name}_vs_bezier_pkg"] = (
+                one[f"intersect_{name}_peer_s"] / one[f"intersect_{name}_splinescope_s"]
+            )
+    if "length_200_cubics_peer_s" in one:
+        ratios["length_vs_bezier_pkg"] = (
+            one["length_200_cubics_peer_s"] / one["length_200_cubics_splinescope_s"]
+        )
     if "geomdl_per_point_s" in one:
         ratios["bspline_vs_geomdl_1_thread"] = (
             one["geomdl_per_point_s"] / one["splinescope_per_point_s"]

@@ -7,6 +7,7 @@ use pyo3::prelude::*;
 use rayon::prelude::*;
 use serde_json::Value;
 
+use splinescope_core::analysis::{AnalysisError, CurveAnalysis, Intersections};
 use splinescope_core::geom::batch::{CurveSampler, sample_many};
 use splinescope_core::geom::{Curve, Lower, ParamCurve, curvature};
 use splinescope_scene::scene::{SceneCurve, curve_from_value, curve_to_value};
@@ -51,6 +52,8 @@ pub struct PyCurve {
     sampler: CurveSampler,
     /// The first and second derivatives' samplers, made on first use.
     derivatives: std::sync::OnceLock<[CurveSampler; 2]>,
+    /// The analysis (lowered segments in Bernstein form), made on first use.
+    analysis: std::sync::OnceLock<CurveAnalysis>,
     /// Coordinates per point in results: 2 (planar input) or 3.
     dim: usize,
 }
@@ -62,9 +65,22 @@ impl PyCurve {
         PyCurve {
             sampler: CurveSampler::new(&curve.curve),
             derivatives: std::sync::OnceLock::new(),
+            analysis: std::sync::OnceLock::new(),
             curve,
             dim,
         }
+    }
+
+    /// The curve's analysis.
+    fn analysis(&self) -> &CurveAnalysis {
+        self.analysis
+            .get_or_init(|| CurveAnalysis::new(&self.curve.curve))
+    }
+
+    /// A parameter pair list `(s, t)` as a `(K, 2)` array.
+    fn pairs<'py>(py: Python<'py>, found: &Intersections) -> PyResult<Bound<'py, PyAny>> {
+        let flat: Vec<f64> = found.hits.iter().flat_map(|h| [h.s, h.t]).collect();
+        arrays::shaped(py, flat, &[found.hits.len(), 2])
     }
 
     /// The sampler of the `order`-th derivative (1 or 2).
@@ -468,6 +484,194 @@ impl PyCurve {
         Ok(self.with_curve(c))
     }
 
+    /// The arc length from `t0` to `t1` (default: the domain's ends), within `accuracy`
+    /// (absolute).
+    #[pyo3(signature = (t0=None, t1=None, accuracy=splinescope_core::analysis::DEFAULT_ACCURACY))]
+    fn length(
+        &self,
+        py: Python<'_>,
+        t0: Option<f64>,
+        t1: Option<f64>,
+        accuracy: f64,
+    ) -> PyResult<f64> {
+        let c = self.analysis();
+        let (a, b) = c.domain();
+        py.detach(|| c.length(t0.unwrap_or(a), t1.unwrap_or(b), accuracy))
+            .map(|l| l.value)
+            .map_err(|e| analysis_error(&e))
+    }
+
+    /// The parameter at arc length `s` from the domain's start.
+    #[pyo3(signature = (s, accuracy=splinescope_core::analysis::DEFAULT_ACCURACY))]
+    fn parameter_at_length(&self, py: Python<'_>, s: f64, accuracy: f64) -> PyResult<f64> {
+        let c = self.analysis();
+        py.detach(|| c.parameter_at_length(s, accuracy))
+            .map_err(|e| analysis_error(&e))
+    }
+
+    /// The tight bounding box as `(2, dim)`: the smallest corner, then the largest.
+    fn bbox<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let b = self.analysis().bounding_box();
+        arrays::points_array(py, &[b.min, b.max], self.dim)
+    }
+
+    /// Where a coordinate's derivative vanishes, sorted: every axis, or `axis` alone.
+    #[pyo3(signature = (axis=None))]
+    fn extrema<'py>(&self, py: Python<'py>, axis: Option<usize>) -> PyResult<Bound<'py, PyAny>> {
+        if let Some(k) = axis
+            && k >= self.dim
+        {
+            return Err(raise::<CurveError>(
+                format!("extrema: axis = {k} is outside 0..={}", self.dim - 1),
+                "axis",
+            ));
+        }
+        let mut ts: Vec<f64> = self
+            .analysis()
+            .extrema()
+            .into_iter()
+            .filter(|e| axis.is_none_or(|k| e.axis == k))
+            .map(|e| e.t)
+            .collect();
+        ts.sort_by(f64::total_cmp);
+        ts.dedup();
+        let n = ts.len();
+        arrays::shaped(py, ts, &[n])
+    }
+
+    /// The inflections (2D).
+    fn inflections<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let ts = self
+            .analysis()
+            .inflections()
+            .map_err(|e| analysis_error(&e))?;
+        let n = ts.len();
+        arrays::shaped(py, ts, &[n])
+    }
+
+    /// The cusps (2D): where the velocity vanishes.
+    fn cusps<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let ts = self.analysis().cusps().map_err(|e| analysis_error(&e))?;
+        let n = ts.len();
+        arrays::shaped(py, ts, &[n])
+    }
+
+    /// The local extrema of the signed curvature (2D) as `(K, 3)`: `t`, `κ`, and `+1` for a
+    /// maximum or `−1` for a minimum.
+    fn curvature_extrema<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let ex = self
+            .analysis()
+            .curvature_extrema()
+            .map_err(|e| analysis_error(&e))?;
+        let n = ex.len();
+        let flat: Vec<f64> = ex
+            .iter()
+            .flat_map(|e| {
+                let kind = match e.kind {
+                    splinescope_core::analysis::ExtremumKind::Maximum => 1.0,
+                    splinescope_core::analysis::ExtremumKind::Minimum => -1.0,
+                };
+                [e.t, e.curvature, kind]
+            })
+            .collect();
+        arrays::shaped(py, flat, &[n, 3])
+    }
+
+    /// The signed area enclosed (2D; an open curve closed by its chord).
+    fn signed_area(&self) -> PyResult<f64> {
+        self.analysis()
+            .signed_area()
+            .map_err(|e| analysis_error(&e))
+    }
+
+    /// Whether the curve ends where it starts.
+    fn is_closed(&self) -> bool {
+        self.analysis().is_closed()
+    }
+
+    /// Where this curve and `other` meet (2D): the points' `(s, t)` as `(K, 2)`, sorted by
+    /// `s`, their kinds (`"crossing"`/`"tangent"`), and the overlaps
+    /// `((s0, s1), (t0, t1))`.
+    #[allow(clippy::type_complexity)]
+    fn intersect<'py>(
+        &self,
+        py: Python<'py>,
+        other: PyRef<'py, PyCurve>,
+    ) -> PyResult<(
+        Bound<'py, PyAny>,
+        Vec<&'static str>,
+        Vec<((f64, f64), (f64, f64))>,
+    )> {
+        let (a, b) = (self.analysis(), other.analysis());
+        let found = py
+            .detach(|| a.intersect(b))
+            .map_err(|e| analysis_error(&e))?;
+        Ok(hits_out(py, &found)?)
+    }
+
+    /// Where the curve meets itself (2D), as [`PyCurve::intersect`], `s < t`.
+    #[allow(clippy::type_complexity)]
+    fn self_intersections<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(
+        Bound<'py, PyAny>,
+        Vec<&'static str>,
+        Vec<((f64, f64), (f64, f64))>,
+    )> {
+        let a = self.analysis();
+        let found = py
+            .detach(|| a.self_intersections())
+            .map_err(|e| analysis_error(&e))?;
+        Ok(hits_out(py, &found)?)
+    }
+
+    /// Where the curve meets the line through `p` and `q` (2D): `(t, λ)` as `(K, 2)` (the
+    /// point is `p + λ (q − p)`), the kinds, and the parameter ranges lying on the line.
+    #[allow(clippy::type_complexity)]
+    fn intersect_line<'py>(
+        &self,
+        py: Python<'py>,
+        p: &Bound<'py, PyAny>,
+        q: &Bound<'py, PyAny>,
+    ) -> PyResult<(Bound<'py, PyAny>, Vec<&'static str>, Vec<(f64, f64)>)> {
+        let (p, q) = (point(p, "p", self.dim)?, point(q, "q", self.dim)?);
+        let found = self
+            .analysis()
+            .intersect_line(p, q)
+            .map_err(|e| analysis_error(&e))?;
+        let flat: Vec<f64> = found.hits.iter().flat_map(|h| [h.t, h.lambda]).collect();
+        let kinds = found
+            .hits
+            .iter()
+            .map(|h| splinescope_core::analysis::report::kind_name(h.kind))
+            .collect();
+        Ok((
+            arrays::shaped(py, flat, &[found.hits.len(), 2])?,
+            kinds,
+            found.overlaps,
+        ))
+    }
+
+    /// `splinescope analyze`'s report of this curve, as JSON text.
+    #[pyo3(signature = (accuracy=splinescope_core::analysis::DEFAULT_ACCURACY, intersections=false))]
+    fn analyze_json(&self, py: Python<'_>, accuracy: f64, intersections: bool) -> PyResult<String> {
+        let c = self.analysis();
+        let report = py
+            .detach(|| {
+                splinescope_core::analysis::report::curve_analysis_report(
+                    0,
+                    self.curve.curve.family(),
+                    self.curve.name.as_deref(),
+                    c,
+                    accuracy,
+                    intersections && c.is_planar(),
+                )
+            })
+            .map_err(|e| analysis_error(&e))?;
+        serde_json::to_string(&report).map_err(|e| raise::<CurveError>(e.to_string(), ""))
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "<{} curve, {}>",
@@ -475,6 +679,74 @@ impl PyCurve {
             self.curve.curve.summary()
         )
     }
+}
+
+/// An analysis error as the module's `CurveError`, naming the argument.
+fn analysis_error(e: &AnalysisError) -> PyErr {
+    let path = match e {
+        AnalysisError::Accuracy(_) => "accuracy",
+        AnalysisError::OutsideDomain { what, .. } => what,
+        AnalysisError::BeyondLength { .. } => "s",
+        AnalysisError::DegenerateLine { .. } => "q",
+        AnalysisError::NotPlanar { .. } => "",
+    };
+    raise::<CurveError>(e.to_string(), path)
+}
+
+/// Intersections as Python values: `(s, t)` pairs, kinds, overlaps.
+#[allow(clippy::type_complexity)]
+fn hits_out<'py>(
+    py: Python<'py>,
+    found: &Intersections,
+) -> PyResult<(
+    Bound<'py, PyAny>,
+    Vec<&'static str>,
+    Vec<((f64, f64), (f64, f64))>,
+)> {
+    let kinds = found
+        .hits
+        .iter()
+        .map(|h| splinescope_core::analysis::report::kind_name(h.kind))
+        .collect();
+    let overlaps = found.overlaps.iter().map(|o| (o.s, o.t)).collect();
+    Ok((PyCurve::pairs(py, found)?, kinds, overlaps))
+}
+
+/// Every intersecting pair among `curves` (2D): a list of `(i, j, (s, t) pairs (K, 2),
+/// kinds, overlaps)`, `i < j`, on every core.
+#[pyfunction]
+#[allow(clippy::type_complexity)]
+pub fn intersections<'py>(
+    py: Python<'py>,
+    curves: Vec<PyRef<'py, PyCurve>>,
+) -> PyResult<
+    Vec<(
+        usize,
+        usize,
+        Bound<'py, PyAny>,
+        Vec<&'static str>,
+        Vec<((f64, f64), (f64, f64))>,
+    )>,
+> {
+    let analyses: Vec<CurveAnalysis> = curves.iter().map(|c| c.analysis().clone()).collect();
+    if let Some(k) = analyses.iter().position(|c| !c.is_planar()) {
+        return Err(raise::<CurveError>(
+            format!(
+                "curves[{k}] is not planar (it leaves z = 0); intersections are computed for planar curves"
+            ),
+            &format!("curves[{k}]"),
+        ));
+    }
+    let pairs = py
+        .detach(|| splinescope_core::analysis::all_intersections(&analyses))
+        .map_err(|e| analysis_error(&e))?;
+    pairs
+        .iter()
+        .map(|p| {
+            let (st, kinds, overlaps) = hits_out(py, &p.found)?;
+            Ok((p.i, p.j, st, kinds, overlaps))
+        })
+        .collect()
 }
 
 /// One point of `dim` coordinates.

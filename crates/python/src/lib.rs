@@ -23,6 +23,7 @@ fn _splinescope(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<curve::PyCurve>()?;
     m.add_class::<scene::PyScene>()?;
     m.add_function(wrap_pyfunction!(curve::eval_many, m)?)?;
+    m.add_function(wrap_pyfunction!(curve::intersections, m)?)?;
     m.add_function(wrap_pyfunction!(scene::compare_images, m)?)?;
     m.add_function(wrap_pyfunction!(curve::rust_eval_seconds, m)?)?;
     m.add(

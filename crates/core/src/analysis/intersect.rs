@@ -116,6 +116,8 @@ struct Sub {
     h: Points,
     u0: f64,
     u1: f64,
+    /// Whether the weights differ from 1 (else the points are Cartesian already).
+    rational: bool,
 }
 
 impl Sub {
@@ -143,7 +145,12 @@ impl Sub {
                 *slot = [p.a[0][i], p.a[1][i], w];
             }
         }
-        Sub { h, u0, u1 }
+        Sub {
+            h,
+            u0,
+            u1,
+            rational: p.w.is_some(),
+        }
     }
 
     fn len(&self) -> usize {
@@ -152,7 +159,11 @@ impl Sub {
 
     fn point(&self, i: usize) -> DVec2 {
         let v = self.h.as_slice()[i];
-        DVec2::new(v[0] / v[2], v[1] / v[2])
+        if self.rational {
+            DVec2::new(v[0] / v[2], v[1] / v[2])
+        } else {
+            DVec2::new(v[0], v[1])
+        }
     }
 
     fn bounds(&self) -> (DVec2, DVec2) {
@@ -252,11 +263,13 @@ impl Sub {
                 h: left,
                 u0: self.u0,
                 u1: mid,
+                rational: self.rational,
             },
             Sub {
                 h: right,
                 u0: mid,
                 u1: self.u1,
+                rational: self.rational,
             },
         )
     }
@@ -290,7 +303,9 @@ fn boxes_meet(a: (DVec2, DVec2), b: (DVec2, DVec2), margin: f64) -> bool {
 struct Subdivider {
     flat: f64,
     margin: f64,
-    candidates: Vec<(f64, f64)>,
+    /// `(u, v)` to start from, and — for a pair that meets at most once — the sub-ranges
+    /// `(u0, u1, v0, v1)` that hold its one point.
+    candidates: Vec<((f64, f64), Option<[f64; 4]>)>,
 }
 
 impl Subdivider {
@@ -306,7 +321,7 @@ impl Subdivider {
         }
         let (fa, fb) = (a.flatness(), b.flatness());
         if (fa <= self.flat && fb <= self.flat) || depth >= 64 {
-            self.candidates.push(chord_crossing(a, b));
+            self.candidates.push((chord_crossing(a, b), None));
             return;
         }
         // Two pieces each within 5 % of its chord's length of the chord, whose tangent
@@ -318,7 +333,8 @@ impl Subdivider {
             && let (Some(ka), Some(kb)) = (a.cone(), b.cone())
             && cones_disjoint(ka, kb)
         {
-            self.candidates.push(chord_crossing(a, b));
+            self.candidates
+                .push((chord_crossing(a, b), Some([a.u0, a.u1, b.u0, b.u1])));
             return;
         }
         let size_a = (ba.1 - ba.0).length();
@@ -443,6 +459,20 @@ impl Lm {
         }
         None
     }
+}
+
+/// Whether `a` passes from one side of `b`'s tangent line at `b(v)` to the other around
+/// `a(u)` (a crossing at a small angle, or an odd order of contact) rather than staying on
+/// one side (touching): the signed distances a step `δ` before and after, where they are
+/// far above rounding.
+fn crosses(a: &Piece, b: &Piece, u: f64, v: f64, (a0, a1): (f64, f64)) -> bool {
+    let (q, dq) = b.point_and_deriv(v);
+    let (q, dq) = (q.truncate(), dq.truncate());
+    let side = |w: f64| (a.point(w).truncate() - q).perp_dot(dq);
+    let delta = 1e-4 * (a1 - a0);
+    let (before, after) = (side((u - delta).max(a0)), side((u + delta).min(a1)));
+    let noise = 1e-12 * (q.length() + 1.0) * dq.length();
+    before.abs() > noise && after.abs() > noise && (before < 0.0) != (after < 0.0)
 }
 
 /// Newton's method on the tangency conditions — `(C₁(u) − C₂(v)) · C₂′(v) = 0` (the foot
@@ -638,14 +668,27 @@ fn points_of(
         sub.run(&Sub::of(a, r0, r1), &sb, 0);
     }
     let mut found: Vec<(f64, f64, HitKind)> = Vec::new();
-    for &(u, v) in &sub.candidates {
+    // Converged points, to skip candidates of pairs that meet at most once and already
+    // hold one (neighbouring leaves share the point on their common edge).
+    let mut seen: Vec<(f64, f64)> = Vec::new();
+    for &((u, v), single) in &sub.candidates {
+        if let Some([u0, u1, v0, v1]) = single
+            && seen
+                .iter()
+                .any(|&(su, sv)| su >= u0 && su <= u1 && sv >= v0 && sv <= v1)
+        {
+            continue;
+        }
         let (u, v, residual) = refine(a, b, u, v);
+        if residual <= tol {
+            seen.push((u, v));
+        }
         if residual > tol || u < a0 || u > a1 || v < b0 || v > b1 || inside_overlap(u) {
             continue;
         }
         let (da, db) = (a.deriv(u).truncate(), b.deriv(v).truncate());
         let sin = da.perp_dot(db).abs() / (da.length() * db.length());
-        if sin.is_finite() && sin > 1e-6 {
+        if (sin.is_finite() && sin > 1e-6) || crosses(a, b, u, v, (a0, a1)) {
             found.push((u, v, HitKind::Crossing));
             continue;
         }

@@ -50,6 +50,7 @@ __all__ = [
     "load",
     "solve",
     "eval_many",
+    "intersections",
     "compare_images",
     "FAMILY_NAMES",
     "SOLVE_METHODS",
@@ -152,6 +153,18 @@ def _str(x: Any, what: str, method: str = "") -> str:
         return x
     where = f"{method}: " if method else ""
     raise TypeError(f"{where}{what} must be a string, not {type(x).__name__} {x!r}")
+
+
+def _float(x: Any, what: str, method: str = "") -> float:
+    """``x`` as a float (a number of any kind); a :class:`TypeError` naming the argument
+    for anything else. Its range is the method's to check."""
+    if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, float, np.integer, np.floating)):
+        where = f"{method}: " if method else ""
+        raise TypeError(f"{where}{what} must be a number, not {type(x).__name__} {x!r}")
+    try:
+        return float(x)
+    except OverflowError:
+        raise _error(CurveError, f"{method}: {what} = {x} is beyond float64", what) from None
 
 
 def _curve(c: Any, what: str) -> Any:
@@ -313,6 +326,94 @@ class Curve:
     def inspect(self) -> Dict[str, Any]:
         """The curve's derived data, as ``splinescope inspect`` reports it."""
         return json.loads(self._c.inspect_json())
+
+    # -- analysis (docs/math.md §7) ------------------------------------------------
+
+    def length(
+        self, t0: Optional[float] = None, t1: Optional[float] = None, accuracy: float = 1e-12
+    ) -> float:
+        """The arc length from ``t0`` to ``t1`` (default: the whole domain; negative when
+        ``t1 < t0``), within ``accuracy`` (absolute): adaptive Gauss–Kronrod quadrature of
+        ``|C′|`` on the exact segments, its error bound kept."""
+        return self._c.length(
+            None if t0 is None else _float(t0, "t0", "length"),
+            None if t1 is None else _float(t1, "t1", "length"),
+            _float(accuracy, "accuracy", "length"),
+        )
+
+    def parameter_at_length(self, s: float, accuracy: float = 1e-12) -> float:
+        """The parameter where the arc length from the domain's start is ``s``."""
+        return self._c.parameter_at_length(
+            _float(s, "s", "parameter_at_length"),
+            _float(accuracy, "accuracy", "parameter_at_length"),
+        )
+
+    def bbox(self) -> np.ndarray:
+        """The tight axis-aligned box of the curve (not of its control points):
+        ``(2, dim)``, the smallest corner then the largest."""
+        return self._c.bbox()
+
+    def extrema(self, axis: Optional[int] = None) -> np.ndarray:
+        """The parameters where a coordinate's derivative vanishes (every axis, or
+        ``axis``: 0, 1 or 2), sorted."""
+        return self._c.extrema(None if axis is None else _int(axis, "axis", 0, 2, "extrema"))
+
+    def inflections(self) -> np.ndarray:
+        """The parameters where ``C′ × C″`` changes sign (2D), cusps excluded."""
+        return self._c.inflections()
+
+    def cusps(self) -> np.ndarray:
+        """The parameters where the velocity vanishes (2D)."""
+        return self._c.cusps()
+
+    def curvature_extrema(self) -> np.ndarray:
+        """The local extrema of the signed curvature (2D), ``(K, 3)``: the parameter,
+        ``κ`` there, and ``+1`` for a maximum or ``−1`` for a minimum."""
+        return self._c.curvature_extrema()
+
+    def signed_area(self) -> float:
+        """The signed area the curve encloses (2D, positive counter-clockwise); an open
+        curve is closed by the chord from its end to its start."""
+        return self._c.signed_area()
+
+    def is_closed(self) -> bool:
+        """Whether the curve ends where it starts."""
+        return self._c.is_closed()
+
+    def intersect(self, other: "Curve", kinds: bool = False) -> Any:
+        """Where this curve meets ``other`` (2D): a ``(K, 2)`` array of parameter pairs
+        ``(s, t)`` sorted by ``s`` (``s`` this curve's). With ``kinds=True``, also the list
+        of ``"crossing"`` / ``"tangent"``. Coincident stretches: :meth:`overlaps`."""
+        st, k, _ = self._c.intersect(_curve(other, "other"))
+        return (st, k) if _bool(kinds, "kinds", "intersect") else st
+
+    def overlaps(self, other: "Curve") -> List[Tuple[Tuple[float, float], Tuple[float, float]]]:
+        """The stretches where this curve and ``other`` coincide:
+        ``((s0, s1), (t0, t1))`` each."""
+        return self._c.intersect(_curve(other, "other"))[2]
+
+    def self_intersections(self, kinds: bool = False) -> Any:
+        """Where the curve crosses or touches itself (2D): ``(K, 2)`` pairs ``s < t``."""
+        st, k, _ = self._c.self_intersections()
+        return (st, k) if _bool(kinds, "kinds", "self_intersections") else st
+
+    def intersect_line(self, p: ArrayLike, q: ArrayLike) -> Tuple[np.ndarray, List[str]]:
+        """Where the curve meets the line through ``p`` and ``q`` (2D): ``(K, 2)`` pairs
+        ``(t, λ)`` (the point is ``p + λ (q − p)``) and their kinds."""
+        st, k, _ = self._c.intersect_line(
+            np.asarray(_point(p, "p"), dtype=np.float64),
+            np.asarray(_point(q, "q"), dtype=np.float64),
+        )
+        return st, k
+
+    def analyze(self, accuracy: float = 1e-12, intersections: bool = False) -> Dict[str, Any]:
+        """``splinescope analyze``'s report of this curve (a dict)."""
+        return json.loads(
+            self._c.analyze_json(
+                _float(accuracy, "accuracy", "analyze"),
+                _bool(intersections, "intersections", "analyze"),
+            )
+        )
 
     # -- structure ------------------------------------------------------------------
 
@@ -879,6 +980,17 @@ def eval_many(curves: Sequence[Curve], n: int) -> np.ndarray:
     sample limit)."""
     natives = [_curve(c, f"curves[{i}]") for i, c in enumerate(curves)]
     return _native.eval_many(natives, _int(n, "n", 2, 2**64 - 1, "eval_many"))
+
+
+def intersections(curves: Sequence[Curve]) -> List[Dict[str, Any]]:
+    """Every intersecting pair among ``curves`` (2D), on every core: a list of dicts
+    ``{"i", "j", "params": (K, 2) array of (s, t), "kinds", "overlaps"}`` with ``i < j``
+    (a sweep over the segments' boxes finds the candidate pairs)."""
+    natives = [_curve(c, f"curves[{i}]") for i, c in enumerate(curves)]
+    return [
+        {"i": i, "j": j, "params": st, "kinds": kinds, "overlaps": overlaps}
+        for i, j, st, kinds, overlaps in _native.intersections(natives)
+    ]
 
 
 def compare_images(
