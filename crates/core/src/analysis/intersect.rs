@@ -305,8 +305,12 @@ struct Subdivider {
     margin: f64,
     /// `(u, v)` to start from, and — for a pair that meets at most once — the sub-ranges
     /// `(u0, u1, v0, v1)` that hold its one point.
-    candidates: Vec<((f64, f64), Option<[f64; 4]>)>,
+    candidates: Vec<Candidate>,
 }
+
+/// A start `(u, v)` for Newton's method, and for a pair meeting at most once the
+/// sub-ranges `[u0, u1, v0, v1]` holding its point.
+type Candidate = ((f64, f64), Option<[f64; 4]>);
 
 impl Subdivider {
     fn run(&mut self, a: &Sub, b: &Sub, depth: u32) {
