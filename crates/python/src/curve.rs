@@ -606,7 +606,7 @@ impl PyCurve {
         let found = py
             .detach(|| a.intersect(b))
             .map_err(|e| analysis_error(&e))?;
-        Ok(hits_out(py, &found)?)
+        hits_out(py, &found)
     }
 
     /// Where the curve meets itself (2D), as [`PyCurve::intersect`], `s < t`.
@@ -623,7 +623,7 @@ impl PyCurve {
         let found = py
             .detach(|| a.self_intersections())
             .map_err(|e| analysis_error(&e))?;
-        Ok(hits_out(py, &found)?)
+        hits_out(py, &found)
     }
 
     /// Where the curve meets the line through `p` and `q` (2D): `(t, λ)` as `(K, 2)` (the
