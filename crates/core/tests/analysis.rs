@@ -727,13 +727,32 @@ fn self_intersections_and_lines() {
         "{h:?}"
     );
     assert!((loop_.eval(h.s) - loop_.eval(h.t)).length() < 1e-14);
-    // A closed circle does not meet itself at its start.
+    // A closed circle does not meet itself at its start; nor does an ellipse whose
+    // extrema fall (to the last bit) on its segments' joints.
     assert!(
         CurveAnalysis::new(&circle(1.0))
             .self_intersections()
             .expect("planar")
             .hits
             .is_empty()
+    );
+    let c = circle(1.0);
+    let ellipse = Nurbs::try_new(
+        c.points()
+            .iter()
+            .map(|q| p2(24.0 + 4.5 * q.x, -25.5 + 2.5 * q.y))
+            .collect(),
+        c.weights().to_vec(),
+        c.knots().knots().to_vec(),
+        3,
+    )
+    .expect("ellipse");
+    let found = CurveAnalysis::new(&ellipse)
+        .self_intersections()
+        .expect("planar");
+    assert!(
+        found.hits.is_empty() && found.overlaps.is_empty(),
+        "{found:?}"
     );
     // The circle and the line y = ½: crossings at x = ±√¾; the line y = 1: one tangent.
     let c = CurveAnalysis::new(&circle(1.0));

@@ -945,7 +945,8 @@ impl CurveAnalysis {
                         .roots
                         .into_iter()
                         .map(|r| r.t)
-                        .filter(|u| *u > 0.0 && *u < 1.0)
+                        // An extremum at a joint needs no cut (it would leave a sliver).
+                        .filter(|u| *u > 1e-9 && *u < 1.0 - 1e-9)
                 })
                 .collect();
             cuts.sort_by(f64::total_cmp);
@@ -979,6 +980,10 @@ impl CurveAnalysis {
                 let tb = |v: f64| to_t(&pieces[kb], v);
                 let shared = |s: f64, t: f64| {
                     let eps = 1e-9 * (b - a);
+                    // One parameter is one point of the curve, not a crossing with itself.
+                    if (t - s).abs() <= eps {
+                        return true;
+                    }
                     // Neighbouring pieces meet at their joint; a closed curve at its ends.
                     (j == i + 1 && (s - ta(pi.2)).abs() <= eps && (t - tb(pj.1)).abs() <= eps)
                         || (closed && (s - a).abs() <= eps && (t - b).abs() <= eps)
