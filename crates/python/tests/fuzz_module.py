@@ -228,6 +228,22 @@ class Fuzz:
         out = self.call(f"pass_through_all({targets}, {params}) of {label}", c.pass_through_all, targets, params)
         if out is not None:
             self.solved(f"pass_through_all of {label}", out, targets, c)
+        # The analysis: hostile arguments refused, answers finite.
+        length = self.call("length", c.length, number(rng, a, b), number(rng, a, b), rng.choice([1e-12, 1e-6, 0.0, -1.0, math.nan, "x"]))
+        if length is not None:
+            self.finite(f"length of {label}", length)
+        self.call("parameter_at_length", c.parameter_at_length, number(rng, 0.0, 2.0))
+        box = self.call("bbox", c.bbox)
+        if box is not None:
+            self.finite(f"bbox of {label}", box)
+        for name in ("extrema", "inflections", "cusps", "curvature_extrema", "signed_area", "self_intersections"):
+            out = self.call(f"{name} of {label}", getattr(c, name))
+            if out is not None:
+                self.finite(f"{name} of {label}", out)
+        other = (self.call("other", ss.Curve.from_dict, rng.choice(docs)) if rng.random() < 0.5 else c) or c
+        st = self.call(f"intersect of {label}", c.intersect, rng.choice([other, None, 3]))
+        if st is not None:
+            self.finite(f"intersect of {label}", st)
         self.call("to_dict round trip", lambda: ss.Curve.from_dict(c.to_dict()))
         many = self.call("eval_many", ss.eval_many, [c, c] if rng.random() < 0.8 else [c, None], whole(rng))
         if many is not None:

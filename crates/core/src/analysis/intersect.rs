@@ -213,6 +213,98 @@ impl Sub {
         first.map(|f| (f + lo, f + hi))
     }
 
+    /// This piece cut to the part that can lie in the fat line of `other`: the strip
+    /// parallel to `other`'s chord between the extreme signed distances of `other`'s control
+    /// points (so it holds `other`). For a rational piece the distances are weighed:
+    /// `Σ w_i (d_i − d_min) B_i ≥ 0` and `Σ w_i (d_max − d_i) B_i ≥ 0`, with `W > 0`.
+    /// `None` when no part can.
+    fn clipped_by(&self, other: &Sub) -> Option<Sub> {
+        let m = other.len() - 1;
+        let origin = other.point(0);
+        let mut dir = other.point(m) - origin;
+        if dir.length_squared() == 0.0 {
+            // A closed chord: the direction to the farthest control point.
+            dir = (1..m)
+                .map(|i| other.point(i) - origin)
+                .max_by(|p, q| p.length_squared().total_cmp(&q.length_squared()))?;
+            if dir.length_squared() == 0.0 {
+                return None;
+            }
+        }
+        let normal = dir.perp().normalize();
+        let (mut dmin, mut dmax) = (0.0_f64, 0.0_f64);
+        for i in 0..=m {
+            let d = (other.point(i) - origin).dot(normal);
+            dmin = dmin.min(d);
+            dmax = dmax.max(d);
+        }
+        let slack = 1e-12 * (dmax - dmin).max(dir.length());
+        let (dmin, dmax) = (dmin - slack, dmax + slack);
+        let h = self.h.as_slice();
+        let mut below = [0.0; 16];
+        let mut above = [0.0; 16];
+        let n = h.len();
+        if n > 16 {
+            return Some(self.clone());
+        }
+        for (i, v) in h.iter().enumerate() {
+            let w = v[2];
+            let d = (DVec2::new(v[0], v[1]) - origin * w).dot(normal);
+            below[i] = d - dmin * w;
+            above[i] = dmax * w - d;
+        }
+        let (l1, h1) = nonnegative_range(&below[..n])?;
+        let (l2, h2) = nonnegative_range(&above[..n])?;
+        let (lo, hi) = (l1.max(l2), h1.min(h2));
+        if lo > hi {
+            return None;
+        }
+        Some(self.restricted(lo, hi))
+    }
+
+    /// The piece on its own parameter range `[lo, hi] ⊆ [0, 1]`.
+    fn restricted(&self, lo: f64, hi: f64) -> Sub {
+        if lo <= 0.0 && hi >= 1.0 {
+            return self.clone();
+        }
+        let mut h = self.h.clone();
+        let pts = h.as_mut_slice();
+        let n = pts.len() - 1;
+        // Right part at `lo`, then the left part of that at the rescaled `hi`.
+        let split_right = |pts: &mut [[f64; 3]], t: f64| {
+            let s = 1.0 - t;
+            for k in 1..=n {
+                for i in 0..=(n - k) {
+                    let (p, q) = (pts[i], pts[i + 1]);
+                    pts[i] = [
+                        s * p[0] + t * q[0],
+                        s * p[1] + t * q[1],
+                        s * p[2] + t * q[2],
+                    ];
+                }
+            }
+        };
+        // After the triangle, `pts[j]` holds the point of level n − j at index j: the right
+        // part's control points.
+        if lo > 0.0 {
+            split_right(pts, lo);
+        }
+        if hi < 1.0 {
+            let t = if lo > 0.0 { (hi - lo) / (1.0 - lo) } else { hi };
+            // The left part at `t`: the same triangle on the reversed points.
+            pts.reverse();
+            split_right(pts, 1.0 - t);
+            pts.reverse();
+        }
+        let span = self.u1 - self.u0;
+        Sub {
+            h,
+            u0: self.u0 + lo * span,
+            u1: self.u0 + hi * span,
+            rational: self.rational,
+        }
+    }
+
     /// The chord from the first control point to the last.
     fn chord(&self) -> DVec2 {
         self.point(self.len() - 1) - self.point(0)
@@ -341,6 +433,32 @@ impl Subdivider {
                 .push((chord_crossing(a, b), Some([a.u0, a.u1, b.u0, b.u1])));
             return;
         }
+        // Fat-line clipping (Sederberg–Nishita): the part of `b` inside the strip around
+        // `a`'s chord that holds `a`, then the part of `a` inside the strip around the
+        // clipped `b`'s chord. Each clip keeps every point the two have in common.
+        if fa > 0.0 && fb > 0.0 {
+            let Some(b2) = b.clipped_by(a) else {
+                return;
+            };
+            let Some(a2) = a.clipped_by(&b2) else {
+                return;
+            };
+            let shrink = ((a2.u1 - a2.u0) * (b2.u1 - b2.u0)) / ((a.u1 - a.u0) * (b.u1 - b.u0));
+            if shrink <= 0.5 {
+                self.run(&a2, &b2, depth + 1);
+                return;
+            }
+            self.split(&a2, &b2, depth);
+            return;
+        }
+        self.split(a, b, depth);
+    }
+
+    /// Halves the larger of two pieces that clipping did not shrink enough (several points
+    /// in common, or a tangency) and examines both halves.
+    fn split(&mut self, a: &Sub, b: &Sub, depth: u32) {
+        let (ba, bb) = (a.bounds(), b.bounds());
+        let (fa, fb) = (a.flatness(), b.flatness());
         let size_a = (ba.1 - ba.0).length();
         let size_b = (bb.1 - bb.0).length();
         if (fa > self.flat && size_a >= size_b) || fb <= self.flat {
@@ -353,6 +471,30 @@ impl Subdivider {
             self.run(a, &r, depth + 1);
         }
     }
+}
+
+/// The parameter interval `[lo, hi] ⊆ [0, 1]` where a polynomial with Bernstein
+/// coefficients `y` can be ≥ 0: where the convex hull of the points `(i/n, y_i)` reaches
+/// `y ≥ 0`. `None` when it cannot anywhere.
+fn nonnegative_range(y: &[f64]) -> Option<(f64, f64)> {
+    let n = (y.len() - 1) as f64;
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for (i, &yi) in y.iter().enumerate() {
+        let xi = i as f64 / n;
+        if yi >= 0.0 {
+            lo = lo.min(xi);
+            hi = hi.max(xi);
+        }
+        for (j, &yj) in y.iter().enumerate().skip(i + 1) {
+            if (yi < 0.0) != (yj < 0.0) {
+                let xj = j as f64 / n;
+                let x = xi + (xj - xi) * yi / (yi - yj);
+                lo = lo.min(x);
+                hi = hi.max(x);
+            }
+        }
+    }
+    (lo <= hi).then_some((lo.max(0.0), hi.min(1.0)))
 }
 
 /// Whether two angular intervals of line directions (`[θ₀, θ₁]` modulo π, each narrower
