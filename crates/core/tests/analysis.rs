@@ -297,6 +297,39 @@ fn random_cubic_lengths_within_the_accuracy() {
     }
 }
 
+/// Rational curves whose weights are far apart change on a tiny scale in the parameter.
+/// With weights 10⁻³⁰¹ … 10³⁰¹ the curve runs along its control polygon's legs to within
+/// far less than an ulp, skipping the control points whose weight terms never dominate:
+/// its length is the polygon's through the dominant points (here √5 + √10, P₂ never
+/// pulls). Moderate spreads against the composite Gauss reference.
+#[test]
+fn lengths_of_rational_curves_with_weights_far_apart() {
+    let pts = vec![p2(0.0, 0.0), p2(1.0, 2.0), p2(3.0, 0.5), p2(4.0, 3.0)];
+    let c =
+        RationalBezier::try_new(pts.clone(), vec![9.3e-302, 1.0, 1.0, 1.07e301]).expect("curve");
+    let a = CurveAnalysis::new(&c);
+    let l = a.length(0.0, 1.0, 1e-12).expect("length");
+    let truth = 5.0_f64.sqrt() + 10.0_f64.sqrt();
+    assert!((l.value - truth).abs() <= 1e-12, "{l:?} vs {truth}");
+    for s in [0.5, 1.0, 2.5, 4.0, 5.3] {
+        let t = a.parameter_at_length(s, 1e-12).expect("parameter");
+        let back = a.length(0.0, t, 1e-13).expect("length").value;
+        assert!((back - s).abs() <= 1e-11, "s {s}: t {t:e} gives {back}");
+    }
+    for w in [
+        vec![1.0, 100.0, 1.0, 1.0],
+        vec![1.0, 1e3, 1e-3, 1.0],
+        vec![1e-4, 1.0, 1.0, 1e4],
+    ] {
+        let c = RationalBezier::try_new(pts.clone(), w.clone()).expect("curve");
+        let l = CurveAnalysis::new(&c)
+            .length(0.0, 1.0, 1e-10)
+            .expect("length");
+        let truth = reference_length(&c, 0.0, 1.0, 200_000);
+        assert!((l.value - truth).abs() <= 1e-9, "{w:?}: {l:?} vs {truth}");
+    }
+}
+
 #[test]
 fn lengths_add_up_and_survive_knot_insertion_and_elevation() {
     let spline = BSpline::try_new(

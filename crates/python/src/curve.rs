@@ -687,6 +687,8 @@ fn analysis_error(e: &AnalysisError) -> PyErr {
         AnalysisError::Accuracy(_) => "accuracy",
         AnalysisError::OutsideDomain { what, .. } => what,
         AnalysisError::BeyondLength { .. } => "s",
+        AnalysisError::Unresolved { .. } => "accuracy",
+        AnalysisError::Overflow { .. } => "",
         AnalysisError::DegenerateLine { .. } => "q",
         AnalysisError::NotPlanar { .. } => "",
     };

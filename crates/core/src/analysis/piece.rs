@@ -31,6 +31,8 @@ pub struct Piece {
     /// For a polynomial segment of degree ≤ 7: `A′` per coordinate in the power basis
     /// (ascending), for the arc length's many evaluations of `|C′|` by Horner's rule.
     power: Option<[Vec<f64>; 3]>,
+    /// The length of the control polygon (at least the segment's).
+    polygon: f64,
 }
 
 /// The power-basis coefficients (ascending) of `Σ c_i B_{i,m}`: `a_k = C(m, k) Δᵏ c_0`.
@@ -85,7 +87,9 @@ impl Piece {
                 power_basis(&da[2]),
             ]
         });
+        let polygon = pts.windows(2).map(|w| (w[1] - w[0]).length()).sum();
         Piece {
+            polygon,
             t0: seg.t0,
             t1: seg.t1,
             a,
@@ -115,6 +119,84 @@ impl Piece {
             }
             None => self.deriv(u).length(),
         }
+    }
+
+    /// `|dC/du| · du/dσ` at `u = 1 / (1 + e^{−σ})` (the logistic parameter, in which a
+    /// rational segment with weights far apart changes on a scale of 1 wherever its
+    /// weights' terms trade dominance), with `u` and `1 − u` each computed to full relative
+    /// precision: `σ` covers `u` from the smallest positive double to within one of 1.
+    #[must_use]
+    pub fn speed_logistic(&self, sigma: f64) -> f64 {
+        let (u, v) = if sigma <= 0.0 {
+            let e = sigma.exp();
+            (e / (1.0 + e), 1.0 / (1.0 + e))
+        } else {
+            let e = (-sigma).exp();
+            (1.0 / (1.0 + e), e / (1.0 + e))
+        };
+        let ev = |c: &[f64]| poly::eval_split(c, u, v);
+        let da = DVec3::new(ev(&self.da[0]), ev(&self.da[1]), ev(&self.da[2]));
+        // u·v before the division by W: the speed alone can overflow where u·v is tiny.
+        let d = match (&self.w, &self.dw) {
+            (Some(w), Some(dw)) => {
+                let w0 = ev(w);
+                let c = DVec3::new(ev(&self.a[0]), ev(&self.a[1]), ev(&self.a[2])) / w0;
+                (da - c * ev(dw)) * (u * v / w0)
+            }
+            _ => da * (u * v),
+        };
+        let m = d.abs().max_element();
+        if m > 0.0 && m.is_finite() {
+            m * (d / m).length()
+        } else {
+            m
+        }
+    }
+
+    /// The length of the control polygon: at least the segment's arc length (corner
+    /// cutting shortens a polygon), and the scale of the rounding in its speed.
+    #[must_use]
+    pub fn polygon_length(&self) -> f64 {
+        self.polygon
+    }
+
+    /// For a rational segment, the ratio of its largest weight to its smallest (1 for a
+    /// polynomial one).
+    #[must_use]
+    pub fn weight_spread(&self) -> f64 {
+        self.w.as_deref().map_or(1.0, |w| {
+            let (lo, hi) = w.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), &x| {
+                (lo.min(x), hi.max(x))
+            });
+            hi / lo
+        })
+    }
+
+    /// The logistic parameters `σ` (see [`Piece::speed_logistic`]) where two terms
+    /// `w_i B_i` and `w_j B_j` of the weight are equal — where a segment with weights far
+    /// apart moves from one control point's pull to another's.
+    #[must_use]
+    pub fn weight_transitions(&self) -> Vec<f64> {
+        let Some(w) = self.w.as_deref() else {
+            return Vec::new();
+        };
+        let n = w.len() - 1;
+        let ln: Vec<f64> = w
+            .iter()
+            .enumerate()
+            .map(|(i, &x)| x.ln() + poly::binomial(n, i).ln())
+            .collect();
+        let mut out = Vec::new();
+        for i in 0..=n {
+            for j in i + 1..=n {
+                // w_i C(n,i) (1−u)^{n−i} u^i = w_j C(n,j) (1−u)^{n−j} u^j ⇔ σ (j−i) = ln_i − ln_j.
+                let sigma = (ln[i] - ln[j]) / (j - i) as f64;
+                if sigma.is_finite() {
+                    out.push(sigma);
+                }
+            }
+        }
+        out
     }
 
     /// The box of the control points in `x` and `y` (the segment lies in it).
@@ -195,15 +277,16 @@ impl Piece {
         }
     }
 
-    /// `dC/du` (the quotient rule for a rational segment: `(A′W − AW′) / W²`).
+    /// `dC/du` (the quotient rule for a rational segment, `(A′W − AW′) / W²`, evaluated as
+    /// `(A′ − C W′) / W` so that `W²` cannot overflow where `W` itself does not).
     #[must_use]
     pub fn deriv(&self, u: f64) -> DVec3 {
         let da = self.eval3(&self.da, u);
         match (&self.w, &self.dw) {
             (Some(w), Some(dw)) => {
                 let (w0, w1) = (poly::eval(w, u), poly::eval(dw, u));
-                let a = self.eval3(&self.a, u);
-                (da * w0 - a * w1) / (w0 * w0)
+                let c = self.eval3(&self.a, u) / w0;
+                (da - c * w1) / w0
             }
             _ => da,
         }

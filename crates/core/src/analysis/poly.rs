@@ -191,7 +191,13 @@ const STACK: usize = 32;
 /// `p(t)` by de Casteljau (written out for degrees up to 3).
 #[must_use]
 pub fn eval(c: &[f64], t: f64) -> f64 {
-    let s = 1.0 - t;
+    eval_split(c, t, 1.0 - t)
+}
+
+/// `p(t)` by de Casteljau with `s = 1 − t` given (for `t` within an ulp of 1, where
+/// `1 − t` computed in floating point would be 0 or lose its digits).
+#[must_use]
+pub fn eval_split(c: &[f64], t: f64, s: f64) -> f64 {
     match *c {
         [] => 0.0,
         [a] => a,

@@ -111,9 +111,15 @@ const RANGE: f64 = 2.0;
 /// The deepest halving: intervals `2⁻⁶⁰` of the whole are accepted as they are.
 const MAX_DEPTH: u32 = 60;
 
+/// The most intervals one quadrature evaluates (21 values each); past it, the intervals
+/// left are accepted with their estimates, which the returned error then holds.
+pub const MAX_INTERVALS: usize = 1 << 15;
+
 /// `∫_a^b f`, adaptively, to within `tolerance` (absolute) — or, where rounding makes
 /// that impossible, to within the rounding of the value (`50 ε ∫|f|`), which the returned
-/// error then says.
+/// error then says. A value of `f` that is not finite stops the halving there (the error
+/// returned is then infinite), and so does the budget of [`MAX_INTERVALS`]: the work is
+/// bounded whatever `f` does.
 #[must_use]
 pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, tolerance: f64) -> Quadrature {
     let mut out = Quadrature::default();
@@ -123,12 +129,21 @@ pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, tolerance: f64) -> Quad
     let width = b - a;
     // Intervals to do: (a, b, depth).
     let mut stack: Vec<(f64, f64, u32)> = vec![(a, b, 0)];
+    let mut intervals = 0_usize;
     while let Some((lo, hi, depth)) = stack.pop() {
         let (k, e) = rule(&f, lo, hi);
         out.evaluations += 21;
+        intervals += 1;
+        let (k, e) = if k.is_finite() && e.is_finite() {
+            (k, e)
+        } else {
+            (k, f64::INFINITY)
+        };
         let share = tolerance * (hi - lo) / width;
         let mid = 0.5 * (lo + hi);
         if e <= share
+            || e == f64::INFINITY
+            || intervals + stack.len() >= MAX_INTERVALS
             || depth >= MAX_DEPTH
             || mid <= lo
             || mid >= hi
@@ -161,6 +176,15 @@ mod tests {
         // A kink (|t − 0.3|) is found by halving.
         let q = integrate(|t| (t - 0.3).abs(), 0.0, 1.0, 1e-12);
         assert!((q.value - 0.29).abs() <= 1e-12, "{q:?}");
+        // An integrand that is not finite somewhere, or never resolved, ends the work
+        // and says so in the error.
+        let q = integrate(|t| if t > 0.5 { f64::NAN } else { 1.0 }, 0.0, 1.0, 1e-9);
+        assert!(q.error == f64::INFINITY, "{q:?}");
+        let q = integrate(|t| (1e6 * t).sin().signum(), 0.0, 1.0, 1e-300);
+        assert!(
+            q.evaluations <= 21 * (MAX_INTERVALS + 64) && q.error > 1e-300,
+            "{q:?}"
+        );
         // √t: an endpoint singularity of the derivative.
         let q = integrate(f64::sqrt, 0.0, 1.0, 1e-10);
         assert!((q.value - 2.0 / 3.0).abs() <= 1e-10, "{q:?}");
