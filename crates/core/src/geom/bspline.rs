@@ -20,8 +20,8 @@ use super::{Bezier, BezierSegment, GeomError, KnotVector, Lower, ParamCurve};
 /// (Cao et al., "Non-uniform B-spline curves with multiple shape parameters", 2011), §2.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BSpline {
-    knots: KnotVector,
-    points: Vec<DVec3>,
+    pub(crate) knots: KnotVector,
+    pub(crate) points: Vec<DVec3>,
 }
 
 /// De Boor's algorithm on raw data: the point of the order-`order` spline over `knots`

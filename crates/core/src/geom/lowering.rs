@@ -5,7 +5,7 @@
 
 use glam::DVec3;
 
-use super::{Bezier, ParamCurve, RationalBezier};
+use super::{Bezier, ParamCurve};
 
 /// One Bézier piece of a lowered curve.
 ///
@@ -59,14 +59,6 @@ impl BezierSegment {
     #[must_use]
     pub fn is_rational(&self) -> bool {
         self.weights.is_some()
-    }
-
-    /// The piece as a rational Bézier curve, `None` for a polynomial piece (or weights
-    /// the rational curve refuses, which lowering never makes).
-    #[must_use]
-    pub fn rational(&self) -> Option<RationalBezier> {
-        let w = self.weights.as_ref()?;
-        RationalBezier::try_new(self.bezier.points().to_vec(), w.clone()).ok()
     }
 
     /// The piece's homogeneous parts as polynomial Bézier curves: `A` (the points times

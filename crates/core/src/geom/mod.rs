@@ -30,6 +30,7 @@ pub use bezier::Bezier;
 pub use bspline::BSpline;
 pub use curve::{Curve, FamilyDetails};
 pub use error::GeomError;
+pub use family::rational::{NurbsDetails, RationalBezierDetails};
 pub use family::{
     Control, ControlId, ControlKind, ControlValue, Family, OverlayKind, OverlayPolyline,
 };
@@ -38,7 +39,7 @@ pub use knots::KnotVector;
 pub use lowering::{BezierSegment, Lower, locate};
 pub use modified::ModifiedBezier;
 pub use nubmp::Nubmp;
-pub use rational::{Conic, Nurbs, NurbsDetails, RationalBezier, RationalBezierDetails};
+pub use rational::{Conic, Nurbs, RationalBezier};
 
 use glam::DVec3;
 

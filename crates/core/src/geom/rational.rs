@@ -21,8 +21,6 @@ use glam::DVec3;
 use schemars::JsonSchema;
 use serde::Serialize;
 
-use super::family::{Control, ControlId, ControlKind, ControlValue, Family, unknown_control};
-use super::nubmp::SplineDetails;
 use super::{BSpline, Bezier, BezierSegment, GeomError, KnotVector, Lower, ParamCurve};
 
 /// Checks weights: as many as points, each finite and greater than 0.
@@ -187,8 +185,8 @@ macro_rules! param_curve_by_parts {
 /// `C(t) = Σ w_i P_i B_{i,n}(t) / Σ w_i B_{i,n}(t)`, `t ∈ [0, 1]`, weights `w_i > 0`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RationalBezier {
-    points: Vec<DVec3>,
-    weights: Vec<f64>,
+    pub(crate) points: Vec<DVec3>,
+    pub(crate) weights: Vec<f64>,
     /// `A` and `W` as Bézier curves.
     parts: Homogeneous<Bezier>,
 }
@@ -264,8 +262,8 @@ param_curve_by_parts!(RationalBezier);
 /// B-spline's domain `[t_{k−1}, t_n]`, weights `w_i > 0`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Nurbs {
-    points: Vec<DVec3>,
-    weights: Vec<f64>,
+    pub(crate) points: Vec<DVec3>,
+    pub(crate) weights: Vec<f64>,
     /// `A` and `W` as B-splines on the same knots.
     parts: Homogeneous<BSpline>,
 }
@@ -398,6 +396,17 @@ impl Nurbs {
 
 param_curve_by_parts!(Nurbs);
 
+// (Here rather than in `lowering.rs`, which the rational curves depend on.)
+impl BezierSegment {
+    /// The piece as a rational Bézier curve, `None` for a polynomial piece (or weights
+    /// the rational curve refuses, which lowering never makes).
+    #[must_use]
+    pub fn rational(&self) -> Option<RationalBezier> {
+        let w = self.weights.as_ref()?;
+        RationalBezier::try_new(self.bezier.points().to_vec(), w.clone()).ok()
+    }
+}
+
 /// The segment of a rational piece: polynomial (no weights) when its weights are all
 /// equal (the rational curve is then its polynomial curve exactly), so a rational curve
 /// with unit weights draws exactly as its polynomial family; otherwise the weights scaled
@@ -427,65 +436,6 @@ impl Lower for Nurbs {
     }
 }
 
-/// Both families' panel controls: a note, one number control per weight (the family
-/// refuses `w ≤ 0`), and the elevate button.
-fn weight_controls(weights: &[f64]) -> Vec<Control> {
-    let note = Control::note("weights w_i of the points, each greater than 0", false);
-    std::iter::once(note)
-        .chain(weights.iter().enumerate().map(|(i, &w)| Control {
-            id: ControlId {
-                key: "w",
-                index: [i, 0],
-            },
-            label: format!("w{i}"),
-            hint: None,
-            kind: ControlKind::Number {
-                value: w,
-                range: (0.05, 5.0_f64.max(w)),
-                bands: Vec::new(),
-            },
-        }))
-        .chain(std::iter::once(Control::elevate()))
-        .collect()
-}
-
-/// The weights with weight `index` set to `value` (checked by the curve's constructor).
-fn with_weight(weights: &[f64], index: usize, value: f64) -> Result<Vec<f64>, GeomError> {
-    if index >= weights.len() {
-        return Err(GeomError::NoSuchPoint {
-            index,
-            count: weights.len(),
-        });
-    }
-    let mut out = weights.to_vec();
-    out[index] = value;
-    Ok(out)
-}
-
-/// The weights written for labels: `w = (1, 0.7071, 1)` up to four weights, their range
-/// `w from 0.7071 to 1` beyond.
-fn weight_text(weights: &[f64]) -> String {
-    if weights.len() > 4 {
-        let lo = weights.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = weights.iter().copied().fold(0.0, f64::max);
-        return format!("w from {} to {}", round4(lo), round4(hi));
-    }
-    let items: Vec<String> = weights.iter().map(|w| format!("{}", round4(*w))).collect();
-    format!("w = ({})", items.join(", "))
-}
-
-/// `x` to four significant decimals after the point, for display.
-fn round4(x: f64) -> f64 {
-    (x * 1e4).round() / 1e4
-}
-
-/// The weight of a point inserted on leg `leg` at fraction `s`: the legs' weights
-/// interpolated.
-fn weight_on_leg(weights: &[f64], leg: usize, s: f64) -> f64 {
-    let (a, b) = (weights[leg], weights[(leg + 1).min(weights.len() - 1)]);
-    a + (b - a) * s
-}
-
 /// A conic's type from a quadratic rational Bézier curve's weights: the shape factor
 /// `k = w₀w₂ / w₁²` is above 1 for an ellipse, 1 for a parabola, below 1 for a hyperbola.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
@@ -497,47 +447,6 @@ pub enum Conic {
     Parabola,
     /// `w₁² > w₀w₂`.
     Hyperbola,
-}
-
-/// What `inspect` reports for a rational Bézier curve.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
-pub struct RationalBezierDetails {
-    /// `n`.
-    pub degree: usize,
-    /// The weights `w_i`.
-    pub weights: Vec<f64>,
-    /// The homogeneous control points `(w_i x_i, w_i y_i, w_i z_i, w_i)`.
-    pub homogeneous: Vec<[f64; 4]>,
-    /// For a quadratic: the conic it is an arc of.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub conic: Option<Conic>,
-}
-
-/// What `inspect` reports for a NURBS curve.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
-pub struct NurbsDetails {
-    /// The knots.
-    #[serde(flatten)]
-    pub spline: SplineDetails,
-    /// The weights `w_i`.
-    pub weights: Vec<f64>,
-    /// The homogeneous control points `(w_i x_i, w_i y_i, w_i z_i, w_i)`.
-    pub homogeneous: Vec<[f64; 4]>,
-}
-
-fn homogeneous_report(points: &[DVec3], weights: &[f64]) -> Vec<[f64; 4]> {
-    points
-        .iter()
-        .zip(weights)
-        .map(|(p, w)| [p.x * w, p.y * w, p.z * w, *w])
-        .collect()
-}
-
-/// Weights for generated curves: a fixed cycle in `[0.5, 2]`, so that every generated
-/// rational curve exercises the division.
-fn generated_weights(n: usize) -> Vec<f64> {
-    const CYCLE: [f64; 4] = [1.0, 2.0, 0.5, 1.5];
-    (0..n).map(|i| CYCLE[i % CYCLE.len()]).collect()
 }
 
 /// `√2 / 2`, the weight of a quarter circle's middle point.
@@ -587,190 +496,5 @@ impl Nurbs {
             0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
         ];
         Nurbs::try_new(points, weights, knots, 3)
-    }
-}
-
-impl Family for RationalBezier {
-    const NAME: &'static str = "rational_bezier";
-    type Details = RationalBezierDetails;
-
-    fn control_points(&self) -> &[DVec3] {
-        &self.points
-    }
-
-    fn with_control_points(&self, points: Vec<DVec3>) -> Result<RationalBezier, GeomError> {
-        RationalBezier::try_new(points, self.weights.clone())
-    }
-
-    fn summary(&self) -> String {
-        format!("degree {}, rational", self.degree())
-    }
-
-    fn parameter_text(&self) -> Option<String> {
-        Some(weight_text(&self.weights))
-    }
-
-    fn details(&self) -> Result<RationalBezierDetails, GeomError> {
-        let conic = match *self.weights.as_slice() {
-            [w0, w1, w2] => {
-                let k = w0 * w2 / (w1 * w1);
-                Some(if k > 1.0 {
-                    Conic::Ellipse
-                } else if k < 1.0 {
-                    Conic::Hyperbola
-                } else {
-                    Conic::Parabola
-                })
-            }
-            _ => None,
-        };
-        Ok(RationalBezierDetails {
-            degree: self.degree(),
-            weights: self.weights.clone(),
-            homogeneous: homogeneous_report(&self.points, &self.weights),
-            conic,
-        })
-    }
-
-    fn controls(&self) -> Vec<Control> {
-        weight_controls(&self.weights)
-    }
-
-    fn apply_control(
-        &self,
-        id: ControlId,
-        value: ControlValue,
-    ) -> Result<RationalBezier, GeomError> {
-        match (id.key, value) {
-            ("w", ControlValue::Number(w)) => RationalBezier::try_new(
-                self.points.clone(),
-                with_weight(&self.weights, id.index[0], w)?,
-            ),
-            ("elevate", ControlValue::Press) => Ok(self.elevate()),
-            _ => Err(unknown_control(Self::NAME, id, value)),
-        }
-    }
-
-    fn with_point_on_polygon(&self, at: DVec3) -> Result<(RationalBezier, usize), GeomError> {
-        let (points, leg, s) = super::structure::insert_on_polygon(&self.points, at);
-        let mut weights = self.weights.clone();
-        weights.insert(leg + 1, weight_on_leg(&self.weights, leg, s));
-        Ok((RationalBezier::try_new(points, weights)?, leg + 1))
-    }
-
-    fn with_point_removed(&self, index: usize) -> Result<RationalBezier, GeomError> {
-        let points = super::structure::without(&self.points, index, 2, Self::NAME)?;
-        let mut weights = self.weights.clone();
-        weights.remove(index);
-        RationalBezier::try_new(points, weights)
-    }
-
-    fn templates(center: DVec3, size: f64) -> Vec<(&'static str, RationalBezier)> {
-        let corner = center - DVec3::new(0.25 * size, 0.2 * size, 0.0);
-        vec![(
-            "ellipse arc",
-            RationalBezier::quarter_ellipse(corner, 0.6 * size, 0.4 * size),
-        )]
-    }
-
-    /// Degree `degree`, its weights cycling through `1, 2, 0.5, 1.5`.
-    fn generated(
-        degree: usize,
-        point: &mut dyn FnMut() -> DVec3,
-    ) -> Result<RationalBezier, GeomError> {
-        let points: Vec<DVec3> = (0..=degree).map(|_| point()).collect();
-        let weights = generated_weights(points.len());
-        RationalBezier::try_new(points, weights)
-    }
-}
-
-impl Family for Nurbs {
-    const NAME: &'static str = "nurbs";
-    type Details = NurbsDetails;
-
-    fn control_points(&self) -> &[DVec3] {
-        &self.points
-    }
-
-    fn with_control_points(&self, points: Vec<DVec3>) -> Result<Nurbs, GeomError> {
-        Nurbs::from_knot_vector(points, self.weights.clone(), self.knots().clone())
-    }
-
-    fn derived_field(&self) -> &'static str {
-        "knots"
-    }
-
-    fn summary(&self) -> String {
-        format!(
-            "order {}, rational, knots {}",
-            self.order(),
-            super::knots::knots_text(self.knots().knots())
-        )
-    }
-
-    fn parameter_text(&self) -> Option<String> {
-        Some(weight_text(&self.weights))
-    }
-
-    fn details(&self) -> Result<NurbsDetails, GeomError> {
-        Ok(NurbsDetails {
-            spline: SplineDetails::of(self.knots()),
-            weights: self.weights.clone(),
-            homogeneous: homogeneous_report(&self.points, &self.weights),
-        })
-    }
-
-    fn controls(&self) -> Vec<Control> {
-        weight_controls(&self.weights)
-    }
-
-    fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Nurbs, GeomError> {
-        match (id.key, value) {
-            ("w", ControlValue::Number(w)) => Nurbs::from_knot_vector(
-                self.points.clone(),
-                with_weight(&self.weights, id.index[0], w)?,
-                self.knots().clone(),
-            ),
-            ("elevate", ControlValue::Press) => Ok(self.elevate()),
-            _ => Err(unknown_control(Self::NAME, id, value)),
-        }
-    }
-
-    fn inserts_by_knot(&self) -> bool {
-        true
-    }
-
-    fn with_knot_inserted(&self, t: f64) -> Result<Nurbs, GeomError> {
-        self.insert_knot(t)
-    }
-
-    fn with_point_removed(&self, index: usize) -> Result<Nurbs, GeomError> {
-        let (points, knots) =
-            super::structure::spline_without(&self.points, self.knots(), index, Self::NAME)?;
-        let mut weights = self.weights.clone();
-        weights.remove(index);
-        Nurbs::try_new(points, weights, knots, self.order())
-    }
-
-    fn templates(center: DVec3, size: f64) -> Vec<(&'static str, Nurbs)> {
-        let mut out = Vec::new();
-        if let Ok(circle) = Nurbs::circle(center, 0.35 * size) {
-            out.push(("circle", circle));
-        }
-        let points = super::template::zigzag(center, size, 6);
-        let weights = vec![1.0, 3.0, 0.5, 3.0, 0.5, 1.0];
-        if let Ok(c) = Nurbs::try_new(points, weights, super::template::clamped_knots(6, 4), 4) {
-            out.push(("NURBS curve", c));
-        }
-        out
-    }
-
-    /// The clamped uniform NURBS curve of order `degree + 1` on `degree + 4` points (four
-    /// rational Bézier segments), its weights cycling through `1, 2, 0.5, 1.5`.
-    fn generated(degree: usize, point: &mut dyn FnMut() -> DVec3) -> Result<Nurbs, GeomError> {
-        let points: Vec<DVec3> = (0..degree + 4).map(|_| point()).collect();
-        let knots = KnotVector::clamped_uniform(degree + 1, points.len())?;
-        let weights = generated_weights(points.len());
-        Nurbs::from_knot_vector(points, weights, knots)
     }
 }

@@ -3,13 +3,13 @@
 
 use glam::DVec3;
 
+use super::error::{RequestError, at, field_path};
 use super::types::{
     CubicRegionReport, CubicRegionRequest, MultiTargetReport, MultiTargetRequest, NubmpChange,
     NubmpConstrainedReport, NubmpConstrainedRequest, NubmpFindTauReport, NubmpFindTauRequest,
     ProjectReport, ProjectRequest, SingleTargetReport, SingleTargetRequest, TangentKeptReport,
     TangentKeptRequest,
 };
-use super::{RequestError, at, field_path};
 use crate::geom::family::xyz;
 use crate::geom::{Bezier, Curve, Nubmp, Nurbs, ParamCurve, RationalBezier};
 use crate::jsonread::{Node, Obj};

@@ -3,16 +3,17 @@
 //! The format is documented in `docs/solve-format.md`; requests are read into the types of
 //! [`types`] and reports are written from them (their JSON Schemas are in `docs/schemas/`).
 
+mod error;
 mod methods;
 pub mod types;
 
 use glam::DVec3;
 use serde_json::Value;
-use thiserror::Error;
 
 use crate::jsonread::{Node, parse_document};
-use crate::scene::{Annotation, AnnotationShape, Color, Scene, SceneError};
-use crate::solve::SolveError;
+use crate::scene::{Annotation, AnnotationShape, Color, Scene};
+pub use error::RequestError;
+use error::field_path;
 use methods::Fields;
 use types::{MethodReport, Report, Request};
 
@@ -80,40 +81,6 @@ pub const METHODS: [&str; METHOD_TABLE.len()] = {
     }
     names
 };
-
-/// Why a request could not be applied: the path of the offending value in the request
-/// document (`[1].target`, `first`) and what is wrong.
-#[derive(Debug, Clone, PartialEq, Error)]
-#[error("{path}: {message}")]
-pub struct RequestError {
-    /// Where, as a JSON path in the request document, or `(root)`.
-    pub path: String,
-    /// What.
-    pub message: String,
-}
-
-impl From<SceneError> for RequestError {
-    fn from(e: SceneError) -> RequestError {
-        RequestError {
-            path: e.path,
-            message: e.kind.to_string(),
-        }
-    }
-}
-
-fn at(node: &Node<'_>, field: &str, e: &SolveError) -> RequestError {
-    let base = node.display_path();
-    RequestError {
-        path: if field.is_empty() {
-            base
-        } else if node.path.is_empty() {
-            field.to_owned()
-        } else {
-            format!("{base}.{field}")
-        },
-        message: e.to_string(),
-    }
-}
 
 /// The outcome of applying requests: the modified scene and one report per request.
 #[derive(Debug, Clone)]
@@ -227,14 +194,6 @@ fn check_outputs(scene: &Scene, node: &Node<'_>, report: &Report) -> Result<(), 
 /// The colour of target markers: each request's targets are marked in the scene (red
 /// discs), so the result can be checked by eye.
 pub const TARGET_COLOR: Color = Color([0.85, 0.1, 0.1, 1.0]);
-
-pub(crate) fn field_path(node: &Node<'_>, field: &str) -> String {
-    if node.path.is_empty() {
-        field.to_owned()
-    } else {
-        format!("{}.{field}", node.path)
-    }
-}
 
 /// Reads one request object into its typed request: the method, only the fields it
 /// reads, an existing curve, then the method's own fields.

@@ -1,15 +1,24 @@
 //! What every curve family provides, behind one trait: [`Family`]. Each family implements
-//! it in its own file (`bezier.rs`, `modified.rs`, `interp.rs`, `bspline.rs`, `nubmp.rs`);
+//! it in its own file here (`bezier.rs`, `modified.rs`, `interp.rs`, `bspline.rs`,
+//! `nubmp.rs`, `rational.rs`), apart from its math file in `geom` (evaluation, lowering,
+//! structure edits — no serde, no words for a person);
 //! [`crate::geom::Curve`] dispatches to it, and the scene codec, `inspect`, the viewer's
 //! panel and the solver requests go through [`crate::geom::Curve`] — nothing else matches
 //! on the family. The README's "Adding a family" section lists the files a new one needs.
+
+pub mod bezier;
+pub mod bspline;
+pub mod interp;
+pub mod modified;
+pub mod nubmp;
+pub mod rational;
 
 use glam::DVec3;
 use schemars::JsonSchema;
 use serde::Serialize;
 
-use super::aabb::Aabb;
-use super::{GeomError, Lower, ParamCurve};
+use crate::geom::aabb::Aabb;
+use crate::geom::{GeomError, Lower, ParamCurve};
 
 /// What an overlay polyline shows, so that the renderer can style it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -382,4 +391,11 @@ pub(crate) fn bump_text(t_star: f64, v: DVec3) -> String {
             n(v.z)
         )
     }
+}
+/// The control box of a curve bounded by its lowered pieces' control points.
+pub(crate) fn lowered_box(curve: &impl Lower) -> Aabb {
+    curve
+        .lower()
+        .iter()
+        .fold(Aabb::EMPTY, |b, s| b.union(s.bezier.control_box()))
 }
