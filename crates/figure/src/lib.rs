@@ -11,6 +11,21 @@
 //! What it may use: [`splinescope_core`], [`splinescope_scene`] and pdf-writer — no GPU,
 //! window or command-line crate: the command line, the viewer and the Python module
 //! build on it.
+//!
+//! ```
+//! use splinescope_figure::{FigureOptions, build, svg};
+//! use splinescope_scene::scene::from_json_str;
+//!
+//! let scene = from_json_str(
+//!     r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1, 2], [3, 2], [4, 0]]}]}"#,
+//! )
+//! .unwrap();
+//! let figure = build(&scene, &FigureOptions::new(400, 300)).unwrap();
+//! let text = svg::write(&figure);
+//! // The cubic under the 2D view is one exact cubic command: its control points mapped
+//! // into the 400×300 page (margins included), not a polyline.
+//! assert!(text.contains("C110 60 290 60 380 240"), "{text}");
+//! ```
 
 #![forbid(unsafe_code)]
 
