@@ -88,11 +88,7 @@ impl CheckOutput {
                     name: c.name.clone(),
                     domain: [a, b],
                     segments: segments.len(),
-                    max_degree: segments
-                        .iter()
-                        .map(|s| s.bezier.degree())
-                        .max()
-                        .unwrap_or(0),
+                    max_degree: crate::geom::max_degree(&segments),
                 }
             })
             .collect();

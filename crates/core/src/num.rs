@@ -22,6 +22,26 @@ impl fmt::Display for Num {
     }
 }
 
+/// `x` with at most `decimals` decimals, trailing zeros and a trailing point removed, and
+/// `-0` written `0`: the text of panel readouts, knot lists and figure coordinates
+/// (`fixed(0.25, 4)` is `0.25`, `fixed(-0.00001, 4)` is `0`, `fixed(100.0, 0)` is `100`).
+#[must_use]
+pub fn fixed(x: f64, decimals: usize) -> String {
+    trim_zeros(format!("{x:.decimals$}"))
+}
+
+/// A decimal's text without the zeros after its last significant decimal (nor a point
+/// left alone), `-0` as `0`; a text in exponent form or without a point is kept as it is.
+#[must_use]
+pub fn trim_zeros(text: String) -> String {
+    let text = if text.contains('.') && !text.contains(['e', 'E']) {
+        text.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        text
+    };
+    if text == "-0" { "0".into() } else { text }
+}
+
 /// `x = f · 2^e` with `f ∈ [1, 2)`, for a finite positive `x` (subnormals included).
 #[must_use]
 pub fn split_exponent(x: f64) -> (f64, i32) {
@@ -54,7 +74,19 @@ pub fn scale_by_power_of_two(mut x: f64, mut e: i32) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{Num, scale_by_power_of_two, split_exponent};
+    use super::{Num, fixed, scale_by_power_of_two, split_exponent, trim_zeros};
+
+    #[test]
+    fn fixed_decimals_trimmed() {
+        assert_eq!(fixed(0.25, 4), "0.25");
+        assert_eq!(fixed(2.0, 6), "2");
+        assert_eq!(fixed(100.0, 0), "100");
+        assert_eq!(fixed(-0.000_01, 4), "0");
+        assert_eq!(fixed(-1.5, 3), "-1.5");
+        assert_eq!(fixed(1.0 / 3.0, 4), "0.3333");
+        assert_eq!(trim_zeros("1e300".into()), "1e300");
+        assert_eq!(trim_zeros("1500".into()), "1500");
+    }
 
     #[test]
     fn shortest_form_that_reads_back() {

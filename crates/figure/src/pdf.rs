@@ -10,6 +10,8 @@ use std::fmt::Write as _;
 
 use glam::DVec2;
 use pdf_writer::{Name, Pdf, Rect, Ref};
+// `x` as a PDF number with at most `decimals` decimals, trailing zeros removed.
+use splinescope_core::num::fixed as num;
 
 use super::fit::{Piece, Seg};
 use super::svg::step;
@@ -18,17 +20,6 @@ use super::{Anchor, Figure, Item, SubPath};
 /// The magic of the four-arc circle: a cubic arc of a quarter circle has its control
 /// points at this fraction of the radius along the tangents.
 const KAPPA: f64 = 0.552_284_749_830_793_4;
-
-/// `x` as a PDF number with at most `decimals` decimals, trailing zeros removed.
-fn num(x: f64, decimals: usize) -> String {
-    let s = format!("{x:.decimals$}");
-    let s = if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_owned()
-    } else {
-        s
-    };
-    if s == "-0" { "0".into() } else { s }
-}
 
 /// The figure as a PDF file.
 #[must_use]

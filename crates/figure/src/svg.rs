@@ -6,6 +6,8 @@
 
 use std::fmt::Write as _;
 
+use splinescope_core::num::trim_zeros as trim;
+
 use super::fit::{Piece, Seg};
 use super::{Anchor, Figure, Item, SubPath, hex};
 
@@ -29,15 +31,6 @@ pub fn number(x: f64, exact: bool, step: f64) -> String {
     }
     let decimals = (-step.log10()).round().max(0.0) as usize;
     trim(format!("{:.*}", decimals, scaled.round() * step))
-}
-
-fn trim(s: String) -> String {
-    let s = if s.contains('.') && !s.contains('e') {
-        s.trim_end_matches('0').trim_end_matches('.').to_owned()
-    } else {
-        s
-    };
-    if s == "-0" { "0".into() } else { s }
 }
 
 /// The path data of `runs`.

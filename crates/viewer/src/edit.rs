@@ -52,6 +52,9 @@ pub enum EditError {
         /// Its family.
         family: &'static str,
     },
+    /// The pull's solve refused the target (its message says why).
+    #[error(transparent)]
+    Pull(#[from] crate::solve::SolveError),
     /// The grab was at an end point (fixed by the solve) or the curve is a line.
     #[error("grab the curve away from its fixed end points (and degree ≥ 2)")]
     PullAtEnd,
@@ -412,7 +415,9 @@ impl Editor {
                 .curve
                 .with_control_point(*index, world)
                 .map_err(|e| e.to_string()),
-            Gesture::Pull { t_s, original } => pull(open.curve, original, *t_s, world),
+            Gesture::Pull { t_s, original } => {
+                pull(open.curve, original, *t_s, world).map_err(|e| e.to_string())
+            }
             Gesture::Control { .. } => return,
         };
         match result {
@@ -844,7 +849,7 @@ fn pullable(curve: &Curve) -> bool {
 
 /// The curve `original` (curve `index`) pulled so that its point at `t_s` passes through `world`: paper
 /// 000's single-target modification (the weights fixed for rational curves).
-fn pull(index: usize, original: &Curve, t_s: f64, world: DVec3) -> Result<Curve, String> {
+fn pull(index: usize, original: &Curve, t_s: f64, world: DVec3) -> Result<Curve, EditError> {
     let result = match original {
         Curve::Bezier(b) => single_target(
             b,
@@ -864,11 +869,10 @@ fn pull(index: usize, original: &Curve, t_s: f64, world: DVec3) -> Result<Curve,
             return Err(EditError::NotBezier {
                 index,
                 family: other.family(),
-            }
-            .to_string());
+            });
         }
     };
-    result.map_err(|e| e.to_string())
+    Ok(result?)
 }
 
 #[cfg(test)]

@@ -11,6 +11,22 @@ use super::files::{DialogMode, FileDialog, RecentFiles};
 use crate::camera::Camera;
 use crate::scene::{Scene, SceneCurve, Style};
 
+/// Why the view could not be exported from the viewer's file dialog.
+#[derive(Debug, thiserror::Error)]
+pub enum ExportError {
+    /// The figure could not be built (its message names the value).
+    #[error(transparent)]
+    Figure(#[from] splinescope_figure::FigureError),
+    /// The file could not be written.
+    #[error("cannot write {}: {source}", path.display())]
+    Write {
+        /// Where.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+}
+
 /// What the side panel can change.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Toggles {
@@ -487,8 +503,8 @@ impl Interaction {
     /// `path` (atomically).
     ///
     /// # Errors
-    /// The figure's or the write's error, as text for the dialog.
-    pub fn export_view(&self, path: &Path) -> Result<(), String> {
+    /// [`ExportError`]: the figure's or the write's.
+    pub fn export_view(&self, path: &Path) -> Result<(), ExportError> {
         let (width, height, camera) = self.export_frame();
         let mut opts = splinescope_figure::FigureOptions::new(width, height);
         opts.camera = Some(camera);
@@ -497,7 +513,7 @@ impl Interaction {
             points: self.toggles.show_points,
         };
         opts.labels = true;
-        let fig = splinescope_figure::build(self.scene(), &opts).map_err(|e| e.to_string())?;
+        let fig = splinescope_figure::build(self.scene(), &opts)?;
         let pdf = path
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("pdf"));
@@ -506,8 +522,10 @@ impl Interaction {
         } else {
             splinescope_figure::svg::write(&fig).into_bytes()
         };
-        splinescope_scene::files::write_atomic(path, &bytes)
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))
+        splinescope_scene::files::write_atomic(path, &bytes).map_err(|source| ExportError::Write {
+            path: path.to_owned(),
+            source,
+        })
     }
 
     /// Closes the file dialog without choosing (what was waiting for a save is dropped).
@@ -540,7 +558,7 @@ impl Interaction {
                     }
                     Err(e) => {
                         if let Some(d) = self.dialog.as_mut() {
-                            d.error = Some(e);
+                            d.error = Some(e.to_string());
                         }
                     }
                 }

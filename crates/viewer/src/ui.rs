@@ -62,11 +62,7 @@ fn summarize_curve(i: usize, c: &SceneCurve) -> CurveSummary {
 }
 
 fn summarize_lowered(i: usize, c: &SceneCurve, segments: &[BezierSegment]) -> CurveSummary {
-    let degree = segments
-        .iter()
-        .map(|s| s.bezier.degree())
-        .max()
-        .unwrap_or(0);
+    let degree = crate::geom::max_degree(segments);
     let (a, b) = c.curve.domain();
     let [r, g, bl, _] = c.style.color.0.map(|v| (v * 255.0).round() as u8);
     let name = label(c);

@@ -293,18 +293,7 @@ impl KnotVector {
 /// file and `inspect`.
 #[must_use]
 pub fn knots_text(knots: &[f64]) -> String {
-    let items: Vec<String> = knots
-        .iter()
-        .map(|k| {
-            let t = format!("{k:.6}");
-            let t = t.trim_end_matches('0').trim_end_matches('.');
-            if t == "-0" {
-                "0".to_owned()
-            } else {
-                t.to_owned()
-            }
-        })
-        .collect();
+    let items: Vec<String> = knots.iter().map(|&k| crate::num::fixed(k, 6)).collect();
     format!("[{}]", items.join(", "))
 }
 

@@ -110,6 +110,17 @@ pub fn locate(segments: &[BezierSegment], t: f64) -> Option<(usize, f64)> {
     Some((index, segments[index].local_u(t)))
 }
 
+/// The highest degree among `segments` (0 for none): what a lowered curve needs of a
+/// kernel.
+#[must_use]
+pub fn max_degree(segments: &[BezierSegment]) -> usize {
+    segments
+        .iter()
+        .map(|s| s.bezier.degree())
+        .max()
+        .unwrap_or(0)
+}
+
 impl Lower for Bezier {
     fn lower(&self) -> Vec<BezierSegment> {
         vec![BezierSegment::polynomial(self.clone(), 0.0, 1.0)]

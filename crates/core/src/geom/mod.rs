@@ -36,7 +36,7 @@ pub use family::{
 };
 pub use interp::{CubicInterpolation, Modification, Reading};
 pub use knots::KnotVector;
-pub use lowering::{BezierSegment, Lower, locate};
+pub use lowering::{BezierSegment, Lower, locate, max_degree};
 pub use modified::ModifiedBezier;
 pub use nubmp::Nubmp;
 pub use rational::{Conic, Nurbs, RationalBezier};

@@ -129,11 +129,7 @@ impl StressFamily {
     /// through its dual, one degree higher).
     #[must_use]
     pub fn segment_degree(self, degree: usize) -> usize {
-        crate::geom::Lower::lower(&self.sample(degree))
-            .iter()
-            .map(|s| s.bezier.degree())
-            .max()
-            .unwrap_or(0)
+        crate::geom::max_degree(&crate::geom::Lower::lower(&self.sample(degree)))
     }
 
     /// Control points of one curve of `degree`.

@@ -368,13 +368,7 @@ pub struct GroupAtTau {
 /// `0.1255`).
 #[must_use]
 pub fn short_number(x: f64) -> String {
-    let text = format!("{x:.4}");
-    let text = text.trim_end_matches('0').trim_end_matches('.');
-    if text == "-0" {
-        "0".into()
-    } else {
-        text.into()
-    }
+    crate::num::fixed(x, 4)
 }
 
 /// `t* = …, v = (…)` for the bump families (no z for a planar `v`).
