@@ -37,4 +37,5 @@ pub mod analysis;
 pub mod geom;
 pub mod inspect;
 pub mod num;
+pub mod rng;
 pub mod solve;

@@ -7,16 +7,16 @@
 use glam::{DVec2, DVec3};
 use nalgebra::DMatrix;
 use proptest::prelude::*;
-use splinescope::geom::bernstein::bernstein_all;
-use splinescope::geom::{BSpline, Bezier, Curve, Nubmp, ParamCurve};
-use splinescope::scene::generate::Rng;
-use splinescope::solve::batch::{BatchResult, BatchSingleTarget};
-use splinescope::solve::linalg::min_norm_solve;
-use splinescope::solve::nubmp::{constrained, find_tau};
-use splinescope::solve::shape::{
+use splinescope_core::geom::bernstein::bernstein_all;
+use splinescope_core::geom::{BSpline, Bezier, Curve, Nubmp, ParamCurve};
+use splinescope_core::rng::Rng;
+use splinescope_core::solve::batch::{BatchResult, BatchSingleTarget};
+use splinescope_core::solve::linalg::min_norm_solve;
+use splinescope_core::solve::nubmp::{constrained, find_tau};
+use splinescope_core::solve::shape::{
     PolygonType, SingleTargetOptions, cubic_region, multi_target, single_target, tangent_kept,
 };
-use splinescope::solve::{SolveError, nearest};
+use splinescope_core::solve::{SolveError, nearest};
 
 fn random_curve(rng: &mut Rng, n: usize, three_d: bool) -> Bezier {
     Bezier::new(

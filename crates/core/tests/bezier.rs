@@ -7,7 +7,7 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, ToPrimitive, Zero};
 use proptest::prelude::*;
-use splinescope::geom::Bezier;
+use splinescope_core::geom::Bezier;
 
 type Q = BigRational;
 
@@ -59,7 +59,7 @@ fn to_f64(x: &Q) -> f64 {
 
 /// A curve with small integer coordinates (exact in f64 and in Q).
 fn integer_curve(seed: u64, n: usize) -> (Bezier, [Vec<Q>; 3]) {
-    let mut rng = splinescope::scene::generate::Rng::new(seed);
+    let mut rng = splinescope_core::rng::Rng::new(seed);
     let mut pts = Vec::new();
     let mut exact: [Vec<Q>; 3] = Default::default();
     for _ in 0..=n {
@@ -211,7 +211,7 @@ proptest! {
     #[test]
     fn bounding_box_is_tight(b in arb_curve()) {
         let bb = b.bounding_box();
-        let mut dense = splinescope::geom::Aabb::EMPTY;
+        let mut dense = splinescope_core::geom::Aabb::EMPTY;
         for k in 0..=20_000 {
             dense = dense.including(b.eval(k as f64 / 20_000.0));
         }
