@@ -26,57 +26,91 @@ const KAPPA: f64 = 0.552_284_749_830_793_4;
 pub fn write(fig: &Figure) -> Vec<u8> {
     let step = step(fig.tolerance);
     let approx = (-step.log10()).round().max(0.0) as usize;
-    let exact = approx + 6;
     let mut used = super::text::Used::default();
     for item in &fig.items {
         if let Item::Text { text, .. } = item {
             used.collect(text);
         }
     }
-    let font = used.subset();
-    let mut content = String::new();
-    let mut alphas: BTreeMap<u16, String> = BTreeMap::new();
-    let gs = |a: f64, alphas: &mut BTreeMap<u16, String>| -> Option<String> {
-        if a >= 1.0 {
-            return None;
-        }
-        let key = (a * 1000.0).round() as u16;
-        let n = alphas.len();
-        Some(alphas.entry(key).or_insert_with(|| format!("G{n}")).clone())
+    let mut content = Content {
+        text: String::new(),
+        alphas: BTreeMap::new(),
+        approx,
+        exact: approx + 6,
+        font: used.subset(),
     };
-    // y down, as the figure's coordinates.
-    let _ = writeln!(content, "1 0 0 -1 0 {} cm", num(fig.height, exact));
-    let rgb = |c: super::Color| c.0.map(|v| num(f64::from(v).clamp(0.0, 1.0), 4));
-    let [r, g, b, _] = rgb(fig.background);
-    let _ = writeln!(
-        content,
-        "{r} {g} {b} rg 0 0 {} {} re f",
-        num(fig.width, exact),
-        num(fig.height, exact)
-    );
-    content.push_str("1 J 1 j\n");
+    content.background(fig);
     for item in &fig.items {
+        content.item(item);
+    }
+    document(fig, &content)
+}
+
+/// The page's content stream as it is written, with the opacities it needs and the font.
+struct Content {
+    /// The stream.
+    text: String,
+    /// Each opacity used below 1 (in thousandths) and its graphics state's name.
+    alphas: BTreeMap<u16, String>,
+    /// Decimals of approximated pieces (the rounding step's).
+    approx: usize,
+    /// Decimals of exact commands.
+    exact: usize,
+    /// The subset of the font the text uses.
+    font: super::text::Subset,
+}
+
+impl Content {
+    fn num(&self, x: f64) -> String {
+        num(x, self.exact)
+    }
+
+    fn rgb(c: super::Color) -> [String; 4] {
+        c.0.map(|v| num(f64::from(v).clamp(0.0, 1.0), 4))
+    }
+
+    /// `q`, then the graphics state of opacity `a` where it is below 1.
+    fn begin(&mut self, a: f32) {
+        self.text.push_str("q\n");
+        let a = f64::from(a);
+        if a < 1.0 {
+            let key = (a * 1000.0).round() as u16;
+            let n = self.alphas.len();
+            let name = self
+                .alphas
+                .entry(key)
+                .or_insert_with(|| format!("G{n}"))
+                .clone();
+            let _ = writeln!(self.text, "/{name} gs");
+        }
+    }
+
+    /// The y-down transform and the background.
+    fn background(&mut self, fig: &Figure) {
+        // y down, as the figure's coordinates.
+        let _ = writeln!(self.text, "1 0 0 -1 0 {} cm", self.num(fig.height));
+        let [r, g, b, _] = Self::rgb(fig.background);
+        let (w, h) = (self.num(fig.width), self.num(fig.height));
+        let _ = writeln!(self.text, "{r} {g} {b} rg 0 0 {w} {h} re f");
+        self.text.push_str("1 J 1 j\n");
+    }
+
+    fn item(&mut self, item: &Item) {
         match item {
             Item::Path { runs, stroke, .. } => {
                 if runs.is_empty() {
-                    continue;
+                    return;
                 }
-                content.push_str("q\n");
-                if let Some(name) = gs(f64::from(stroke.color.0[3]), &mut alphas) {
-                    let _ = writeln!(content, "/{name} gs");
-                }
-                let [r, g, b, _] = rgb(stroke.color);
-                let _ = writeln!(
-                    content,
-                    "{r} {g} {b} RG {} w",
-                    num(f64::from(stroke.width_px), exact)
-                );
+                self.begin(stroke.color.0[3]);
+                let [r, g, b, _] = Self::rgb(stroke.color);
+                let width = self.num(f64::from(stroke.width_px));
+                let _ = writeln!(self.text, "{r} {g} {b} RG {width} w");
                 if stroke.dash_px > 0.0 {
-                    let half = num(f64::from(stroke.dash_px) / 2.0, exact);
-                    let _ = writeln!(content, "[{half} {half}] 0 d");
+                    let half = self.num(f64::from(stroke.dash_px) / 2.0);
+                    let _ = writeln!(self.text, "[{half} {half}] 0 d");
                 }
-                path(&mut content, runs, approx, exact);
-                content.push_str("S\nQ\n");
+                path(&mut self.text, runs, self.approx, self.exact);
+                self.text.push_str("S\nQ\n");
             }
             Item::Text {
                 at,
@@ -85,11 +119,8 @@ pub fn write(fig: &Figure) -> Vec<u8> {
                 color,
                 anchor,
             } => {
-                content.push_str("q\n");
-                if let Some(name) = gs(f64::from(color.0[3]), &mut alphas) {
-                    let _ = writeln!(content, "/{name} gs");
-                }
-                let [r, g, b, _] = rgb(*color);
+                self.begin(color.0[3]);
+                let [r, g, b, _] = Self::rgb(*color);
                 let w = super::text::width(text, *size);
                 let x = match anchor {
                     Anchor::Start => at.x,
@@ -97,13 +128,11 @@ pub fn write(fig: &Figure) -> Vec<u8> {
                     Anchor::End => at.x - w,
                 };
                 // The text matrix flips y back (the page's y points down here).
+                let (size, x, y) = (self.num(*size), self.num(x), self.num(at.y));
+                let glyphs = self.font.encode(text);
                 let _ = writeln!(
-                    content,
-                    "{r} {g} {b} rg BT /F0 {} Tf 1 0 0 -1 {} {} Tm <{}> Tj ET\nQ",
-                    num(*size, exact),
-                    num(x, exact),
-                    num(at.y, exact),
-                    font.encode(text)
+                    self.text,
+                    "{r} {g} {b} rg BT /F0 {size} Tf 1 0 0 -1 {x} {y} Tm <{glyphs}> Tj ET\nQ"
                 );
             }
             Item::Rect {
@@ -112,58 +141,55 @@ pub fn write(fig: &Figure) -> Vec<u8> {
                 fill,
                 stroke,
             } => {
-                content.push_str("q\n");
-                if let Some(name) = gs(f64::from(fill.0[3]), &mut alphas) {
-                    let _ = writeln!(content, "/{name} gs");
-                }
-                let [r, g, b, _] = rgb(*fill);
+                self.begin(fill.0[3]);
+                let [r, g, b, _] = Self::rgb(*fill);
                 let rect = format!(
                     "{} {} {} {} re",
-                    num(min.x, exact),
-                    num(min.y, exact),
-                    num(max.x - min.x, exact),
-                    num(max.y - min.y, exact)
+                    self.num(min.x),
+                    self.num(min.y),
+                    self.num(max.x - min.x),
+                    self.num(max.y - min.y)
                 );
-                let _ = writeln!(content, "{r} {g} {b} rg {rect} f");
+                let _ = writeln!(self.text, "{r} {g} {b} rg {rect} f");
                 if let Some(st) = stroke {
-                    let [r, g, b, _] = rgb(st.color);
-                    let _ = writeln!(
-                        content,
-                        "{r} {g} {b} RG {} w {rect} S",
-                        num(f64::from(st.width_px), exact)
-                    );
+                    let [r, g, b, _] = Self::rgb(st.color);
+                    let width = self.num(f64::from(st.width_px));
+                    let _ = writeln!(self.text, "{r} {g} {b} RG {width} w {rect} S");
                 }
-                content.push_str("Q\n");
+                self.text.push_str("Q\n");
             }
             Item::Disc {
                 center,
                 radius,
                 color,
             } => {
-                content.push_str("q\n");
-                if let Some(name) = gs(f64::from(color.0[3]), &mut alphas) {
-                    let _ = writeln!(content, "/{name} gs");
-                }
-                let [r, g, b, _] = rgb(*color);
-                let _ = writeln!(content, "{r} {g} {b} rg");
-                disc(&mut content, *center, *radius, exact);
-                content.push_str("f\nQ\n");
+                self.begin(color.0[3]);
+                let [r, g, b, _] = Self::rgb(*color);
+                let _ = writeln!(self.text, "{r} {g} {b} rg");
+                disc(&mut self.text, *center, *radius, self.exact);
+                self.text.push_str("f\nQ\n");
             }
         }
     }
+}
+
+/// The PDF document around the content stream: catalog, one page of the figure's size,
+/// the font subset and one graphics state per opacity.
+fn document(fig: &Figure, content: &Content) -> Vec<u8> {
     let mut pdf = Pdf::new();
     let (catalog, pages, page, stream) = (Ref::new(1), Ref::new(2), Ref::new(3), Ref::new(4));
     pdf.catalog(catalog).pages(pages);
     pdf.pages(pages).kids([page]).count(1);
     let mut next = 5;
-    let font_ref = if font.is_empty() {
+    let font_ref = if content.font.is_empty() {
         None
     } else {
-        let (r, n) = font.write(&mut pdf, next);
+        let (r, n) = content.font.write(&mut pdf, next);
         next = n;
         Some(r)
     };
-    let states: Vec<(String, Ref, f32)> = alphas
+    let states: Vec<(String, Ref, f32)> = content
+        .alphas
         .iter()
         .map(|(key, name)| {
             let id = Ref::new(next);
@@ -190,7 +216,7 @@ pub fn write(fig: &Figure) -> Vec<u8> {
             .stroking_alpha(*a)
             .non_stroking_alpha(*a);
     }
-    pdf.stream(stream, content.as_bytes());
+    pdf.stream(stream, content.text.as_bytes());
     pdf.finish()
 }
 
