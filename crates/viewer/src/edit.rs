@@ -1,8 +1,9 @@
 //! The viewer's editing model, free of GPU and window types: picking, dragging control
 //! points, pulling a Bézier curve through the pointer (paper 000's single-target solve),
 //! setting a curve from the panel, structural edits (curves added, duplicated, deleted;
-//! points inserted, removed, typed), undo/redo that keeps every edit, atomic saving, and
-//! a recovery file that holds unsaved edits until they are saved or discarded.
+//! points inserted, removed, typed), undo/redo that keeps every edit and atomic saving;
+//! the recovery file that holds unsaved edits until they are saved or discarded is kept
+//! by `edit/recovery.rs`.
 
 use std::path::{Path, PathBuf};
 
@@ -14,6 +15,9 @@ use crate::scene::{Scene, SceneCurve};
 use crate::solve::nearest;
 use crate::solve::rational;
 use crate::solve::shape::{SingleTargetOptions, single_target};
+
+mod recovery;
+pub use recovery::recovery_path;
 
 /// Why an edit, a pull or a save was refused; the scene is unchanged.
 #[derive(Debug, thiserror::Error)]
@@ -136,15 +140,6 @@ impl Changes {
     pub fn is_empty(&self) -> bool {
         self.curves.is_empty() && !self.list
     }
-}
-
-/// The recovery file kept next to a scene file while it has unsaved edits:
-/// `scene.json` → `scene.json.recovery`.
-#[must_use]
-pub fn recovery_path(path: &Path) -> PathBuf {
-    let mut name = path.file_name().unwrap_or_default().to_os_string();
-    name.push(".recovery");
-    path.with_file_name(name)
 }
 
 /// What the open (uncommitted) edit is doing.
@@ -634,65 +629,6 @@ impl Editor {
         self.sync_recovery();
         self.message = Some(format!("saved {}", path.display()));
         Ok(path)
-    }
-
-    /// Keeps the recovery file in step with the committed edits: written (atomically)
-    /// while they differ from the saved file, removed once they do not.
-    fn sync_recovery(&mut self) {
-        let Some(path) = self.path.as_deref() else {
-            return;
-        };
-        let recovery = recovery_path(path);
-        if self.committed_dirty() {
-            if let Err(e) = self.scene.save(&recovery) {
-                self.message = Some(format!(
-                    "{}: cannot write the recovery file: {e}",
-                    recovery.display()
-                ));
-            }
-        } else {
-            self.remove_recovery(&recovery);
-        }
-    }
-
-    /// Removes the recovery file `recovery` if it exists (a failure is the message).
-    fn remove_recovery(&mut self, recovery: &Path) {
-        if recovery.exists()
-            && let Err(e) = std::fs::remove_file(recovery)
-        {
-            self.message = Some(format!("{}: cannot remove: {e}", recovery.display()));
-        }
-    }
-
-    /// The recovery file left by an earlier session of this file (unsaved edits), if
-    /// any: its path and the scene it holds, or why it cannot be read.
-    #[must_use]
-    pub fn find_recovery(&self) -> Option<(PathBuf, Result<Scene, crate::scene::SceneError>)> {
-        let recovery = recovery_path(self.path.as_deref()?);
-        if !recovery.exists() {
-            return None;
-        }
-        let scene = Scene::load(&recovery);
-        Some((recovery, scene))
-    }
-
-    /// Restores the curves of a recovered scene as one undoable edit (the scene is then
-    /// unsaved, and the recovery file kept until it is saved).
-    pub fn restore(&mut self, recovered: &Scene) {
-        self.finish();
-        if recovered.curves == self.scene.curves {
-            return;
-        }
-        self.edit_list(recovered.curves.clone(), None);
-        self.message = Some("unsaved edits restored".into());
-    }
-
-    /// Removes the recovery file (the user discarded the unsaved edits).
-    pub fn discard_recovery(&mut self) {
-        if let Some(path) = self.path.as_deref() {
-            let recovery = recovery_path(path);
-            self.remove_recovery(&recovery);
-        }
     }
 
     /// Curve `index`, or a message saying it does not exist.
