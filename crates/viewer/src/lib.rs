@@ -26,6 +26,7 @@
 
 #![forbid(unsafe_code)]
 
+mod digest;
 pub mod edit;
 mod egui_layer;
 pub mod files;
@@ -195,7 +196,7 @@ struct Running {
     model: Interaction,
     modifiers: ModifiersState,
     frames_presented: u64,
-    fps: ui::FpsCounter,
+    fps: digest::FpsCounter,
     adapter: String,
     stress: Option<stress::StressSolver>,
     started: Instant,
@@ -415,7 +416,7 @@ impl Running {
             model,
             modifiers: ModifiersState::empty(),
             frames_presented: 0,
-            fps: ui::FpsCounter::new(Instant::now()),
+            fps: digest::FpsCounter::new(Instant::now()),
             stress,
             started: Instant::now(),
         })

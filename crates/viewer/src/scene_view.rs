@@ -3,10 +3,10 @@
 //! tessellated and drawn every frame.
 
 use super::AppError;
+use super::digest;
 use super::edit::Changes;
 use super::interaction::Toggles;
 use super::readback::Readback;
-use super::ui;
 use crate::geom::BezierSegment;
 use crate::geom::Lower;
 use crate::gpu::adaptive::FrameSettings;
@@ -28,7 +28,7 @@ pub(crate) struct SceneView {
     /// The overlay switches the GPU's overlays were built with.
     uploaded: Switches,
     /// What the panel and canvas overlay show of the scene, derived on each change.
-    pub digest: ui::SceneDigest,
+    pub digest: digest::SceneDigest,
     stats: StatsReader,
     /// The chunks' statistics of a recent frame (read back without waiting).
     pub last_stats: Vec<FrameStats>,
@@ -102,7 +102,7 @@ impl SceneView {
             gpu,
             prepared,
             uploaded: switches,
-            digest: ui::SceneDigest::of(scene),
+            digest: digest::SceneDigest::of(scene),
             stats: StatsReader::new(),
             last_stats: Vec::new(),
         })

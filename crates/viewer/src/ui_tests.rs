@@ -10,9 +10,10 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::{DVec2, DVec3};
 
+use super::digest::SceneDigest;
 use super::edit::Editor;
 use super::interaction::{Interaction, Pending, Prompt};
-use super::ui::{self, Actions, PanelInfo, SceneDigest};
+use super::ui::{self, Actions, PanelInfo};
 use crate::geom::{Bezier, Curve, ModifiedBezier};
 use crate::scene::Scene;
 
