@@ -25,37 +25,12 @@ fn bezier(points: &[(f64, f64)]) -> Bezier {
 }
 
 fn circle(r: f64) -> Nurbs {
-    let s = FRAC_1_SQRT_2;
-    let corners = [
-        (1.0, 0.0),
-        (1.0, 1.0),
-        (0.0, 1.0),
-        (-1.0, 1.0),
-        (-1.0, 0.0),
-        (-1.0, -1.0),
-        (0.0, -1.0),
-        (1.0, -1.0),
-        (1.0, 0.0),
-    ];
-    Nurbs::try_new(
-        corners.iter().map(|&(x, y)| p2(r * x, r * y)).collect(),
-        (0..9).map(|i| if i % 2 == 0 { 1.0 } else { s }).collect(),
-        vec![0., 0., 0., 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1., 1., 1.],
-        3,
-    )
-    .expect("circle")
+    Nurbs::circle(DVec3::ZERO, r).expect("circle")
 }
 
 /// A circle of radius `r` about `(cx, cy)`.
 fn circle_at(cx: f64, cy: f64, r: f64) -> Nurbs {
-    let c = circle(r);
-    Nurbs::try_new(
-        c.points().iter().map(|p| *p + p2(cx, cy)).collect(),
-        c.weights().to_vec(),
-        c.knots().knots().to_vec(),
-        3,
-    )
-    .expect("circle")
+    Nurbs::circle(p2(cx, cy), r).expect("circle")
 }
 
 // ---------------------------------------------------------------------------------------

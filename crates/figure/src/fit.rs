@@ -13,6 +13,7 @@
 
 use glam::{DVec2, DVec3};
 
+use splinescope_core::analysis::poly::{elevate_to, product};
 use splinescope_core::geom::Bezier;
 
 /// One path command after the current point.
@@ -74,44 +75,6 @@ impl Projection {
         }
         (w > 0.0).then(|| DVec2::new(x / w, y / w))
     }
-}
-
-/// Binomial coefficient as `f64` (exact for the degrees used here).
-fn binom(n: usize, k: usize) -> f64 {
-    let k = k.min(n - k);
-    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
-}
-
-/// The Bernstein coefficients of the product of two polynomials in Bernstein form.
-fn product(a: &[f64], b: &[f64]) -> Vec<f64> {
-    let (m, n) = (a.len() - 1, b.len() - 1);
-    let mut out = vec![0.0; m + n + 1];
-    for (i, ai) in a.iter().enumerate() {
-        for (j, bj) in b.iter().enumerate() {
-            out[i + j] += binom(m, i) * binom(n, j) * ai * bj;
-        }
-    }
-    for (k, o) in out.iter_mut().enumerate() {
-        *o /= binom(m + n, k);
-    }
-    out
-}
-
-/// The Bernstein coefficients of the same polynomial at degree `to`.
-fn elevate(a: &[f64], to: usize) -> Vec<f64> {
-    let mut c = a.to_vec();
-    while c.len() - 1 < to {
-        let n = c.len() - 1;
-        let mut next = Vec::with_capacity(n + 2);
-        next.push(c[0]);
-        for i in 1..=n {
-            let r = i as f64 / (n + 1) as f64;
-            next.push(r * c[i - 1] + (1.0 - r) * c[i]);
-        }
-        next.push(c[n]);
-        c = next;
-    }
-    c
 }
 
 /// How many times a piece may be halved: a piece is then 2⁻⁴⁰ of its segment, where the
@@ -304,7 +267,7 @@ impl Fitter<'_> {
         let bound = {
             let mut m = DVec2::ZERO;
             for axis in 0..2 {
-                let num = elevate(&h.iter().map(|v| v[axis]).collect::<Vec<_>>(), n + 3);
+                let num = elevate_to(&h.iter().map(|v| v[axis]).collect::<Vec<_>>(), n + 3);
                 let hw = product(&hermite.map(|p| p[axis]), &w);
                 let worst = num
                     .iter()
@@ -344,6 +307,7 @@ impl Fitter<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use splinescope_core::geom::bernstein::binomial;
 
     #[test]
     fn product_and_elevation_keep_the_polynomial() {
@@ -354,11 +318,13 @@ mod tests {
             let n = c.len() - 1;
             c.iter()
                 .enumerate()
-                .map(|(i, ci)| binom(n, i) * u.powi(i as i32) * (1.0 - u).powi((n - i) as i32) * ci)
+                .map(|(i, ci)| {
+                    binomial(n, i) * u.powi(i as i32) * (1.0 - u).powi((n - i) as i32) * ci
+                })
                 .sum::<f64>()
         };
         let p = product(&a, &b);
-        let e = elevate(&b, 6);
+        let e = elevate_to(&b, 6);
         for k in 0..=10 {
             let u = f64::from(k) / 10.0;
             assert!((eval(&p, u) - eval(&a, u) * eval(&b, u)).abs() < 1e-13);

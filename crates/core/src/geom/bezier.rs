@@ -256,9 +256,8 @@ impl Bezier {
     }
 
     /// The tight bounding box of the curve on `[0, 1]`: the end points and the points where
-    /// a coordinate's derivative vanishes. The roots are isolated by Bernstein subdivision
-    /// and refined to `1e-12` in `t`, so the box is exact to within
-    /// `1e-12 · max|P′|` per side.
+    /// a coordinate's derivative vanishes, found by the analysis' Bernstein root finder
+    /// ([`crate::analysis::roots::bernstein_roots`], polished to full precision).
     #[must_use]
     pub fn bounding_box(&self) -> Aabb {
         let n = self.degree();
@@ -269,50 +268,12 @@ impl Bezier {
         let hodograph = self.deriv();
         for axis in 0..3 {
             let coeffs: Vec<f64> = hodograph.points.iter().map(|p| p[axis]).collect();
-            let mut roots = Vec::new();
-            bernstein_roots(&coeffs, 0.0, 1.0, 0, &mut roots);
-            for t in roots {
-                bbox = bbox.including(self.eval(t));
+            for root in crate::analysis::roots::bernstein_roots(&coeffs).roots {
+                bbox = bbox.including(self.eval(root.t));
             }
         }
         bbox
     }
-}
-
-/// Pushes the roots in `(lo, hi)` of the polynomial with Bernstein coefficients `c` over
-/// `[lo, hi]` (variation diminishing: no sign change in `c` means no root).
-fn bernstein_roots(c: &[f64], lo: f64, hi: f64, depth: u32, out: &mut Vec<f64>) {
-    let scale = c.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    if scale == 0.0 {
-        return; // identically zero: the coordinate is constant here, no extremum needed
-    }
-    let eps = scale * 1e-14;
-    let positive = c.iter().all(|&v| v > eps);
-    let negative = c.iter().all(|&v| v < -eps);
-    if positive || negative {
-        return;
-    }
-    if hi - lo < 1e-12 || depth >= 48 {
-        out.push(0.5 * (lo + hi));
-        return;
-    }
-    // Split the Bernstein coefficients at 1/2 (de Casteljau on scalars).
-    let n = c.len() - 1;
-    let mut work = c.to_vec();
-    let mut left = Vec::with_capacity(n + 1);
-    let mut right = vec![0.0; n + 1];
-    left.push(work[0]);
-    right[n] = work[n];
-    for r in 1..=n {
-        for i in 0..=(n - r) {
-            work[i] = 0.5 * (work[i] + work[i + 1]);
-        }
-        left.push(work[0]);
-        right[n - r] = work[n - r];
-    }
-    let mid = 0.5 * (lo + hi);
-    bernstein_roots(&left, lo, mid, depth + 1, out);
-    bernstein_roots(&right, mid, hi, depth + 1, out);
 }
 
 /// Checks every coordinate of `points` is finite.

@@ -61,15 +61,18 @@ pub(crate) fn canvas(
         }
     }
     let mut status = String::new();
+    let name_of = |curve: usize| {
+        scene
+            .curves
+            .get(curve)
+            .map(SceneCurve::label)
+            .unwrap_or_default()
+    };
     match model.hovered {
         Some(Hit::Point { curve, index, at }) if !model.is_editing() => {
             ring(at, 9.0, accent.gamma_multiply(0.8), false);
             ctx.set_cursor_icon(egui::CursorIcon::Grab);
-            let name = scene
-                .curves
-                .get(curve)
-                .map(SceneCurve::label)
-                .unwrap_or_default();
+            let name = name_of(curve);
             status = format!(
                 "curves[{curve}] {name:?} point {index} = {}",
                 coords(at, facts.planar)
@@ -84,11 +87,7 @@ pub(crate) fn canvas(
             } else {
                 ctx.set_cursor_icon(egui::CursorIcon::PointingHand);
             }
-            let name = scene
-                .curves
-                .get(curve)
-                .map(SceneCurve::label)
-                .unwrap_or_default();
+            let name = name_of(curve);
             status = format!(
                 "curves[{curve}] {name:?} at t = {t:.4}: {}",
                 coords(at, facts.planar)
