@@ -213,7 +213,17 @@ impl CurveAnalysis {
     pub fn new(curve: &impl Lower) -> CurveAnalysis {
         let pieces: Vec<Piece> = curve.lower().iter().map(Piece::new).collect();
         let planar = pieces.iter().all(Piece::is_planar);
-        let speed_minima = pieces.iter().map(Piece::speed_minima).collect();
+        // Pieces with an a-priori bound (planar polynomial ones) need no cuts.
+        let speed_minima = pieces
+            .iter()
+            .map(|p| {
+                if p.planar_speed().is_some() {
+                    Vec::new()
+                } else {
+                    p.speed_minima()
+                }
+            })
+            .collect();
         CurveAnalysis {
             pieces,
             domain: curve.domain(),
@@ -320,6 +330,9 @@ impl CurveAnalysis {
         // Below the rounding of the speed (a few ε times the control polygon's length) no
         // halving helps: aim no lower.
         let tolerance = tolerance.max(ROUNDING * p.polygon_length());
+        if let Some(speed) = p.planar_speed() {
+            return speed.length(u0, u1, tolerance);
+        }
         if p.weight_spread() > WEIGHT_SPREAD {
             return self.logistic_length(k, u0, u1, tolerance);
         }

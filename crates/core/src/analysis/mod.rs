@@ -8,6 +8,7 @@
 //! their bounds are stated in `docs/math.md` §7.
 
 pub mod curve;
+pub mod gauss;
 pub mod intersect;
 pub mod piece;
 pub mod poly;

@@ -6,6 +6,7 @@
 
 use glam::{DVec2, DVec3};
 
+use super::gauss::PlanarSpeed;
 use super::poly;
 use crate::geom::BezierSegment;
 
@@ -33,6 +34,9 @@ pub struct Piece {
     power: Option<[Vec<f64>; 3]>,
     /// The length of the control polygon (at least the segment's).
     polygon: f64,
+    /// For a planar polynomial segment of degree ≤ 7: its speed as `|ℓ| Π |u − r_j|`,
+    /// which bounds the Gauss rules' error in advance ([`super::gauss`]).
+    planar_speed: Option<PlanarSpeed>,
 }
 
 /// The power-basis coefficients (ascending) of `Σ c_i B_{i,m}`: `a_k = C(m, k) Δᵏ c_0`.
@@ -88,7 +92,12 @@ impl Piece {
             ]
         });
         let polygon = pts.windows(2).map(|w| (w[1] - w[0]).length()).sum();
+        let planar_speed = match &power {
+            Some([x, y, _]) if planar => PlanarSpeed::new(x, y),
+            _ => None,
+        };
         Piece {
+            planar_speed,
             polygon,
             t0: seg.t0,
             t1: seg.t1,
@@ -197,6 +206,13 @@ impl Piece {
             }
         }
         out
+    }
+
+    /// The factors of the speed of a planar polynomial segment of degree ≤ 7 (`None`
+    /// for the others).
+    #[must_use]
+    pub fn planar_speed(&self) -> Option<&PlanarSpeed> {
+        self.planar_speed.as_ref()
     }
 
     /// The box of the control points in `x` and `y` (the segment lies in it).

@@ -1,0 +1,741 @@
+//! The arc length of a planar polynomial segment by Gauss–Legendre rules whose error is
+//! bounded before any value is computed, from where the speed stops being analytic.
+//!
+//! With `p(u) = x′(u) + i y′(u)` (a complex polynomial with roots `r_j` and leading
+//! coefficient `ℓ`), the speed on the real line is `|C′(u)| = |p(u)| = |ℓ| Π_j |u − r_j|`:
+//! the square root of `p(u) p̄(u)`, analytic everywhere but at the `r_j` and their
+//! conjugates. On an interval `[c − h, c + h]` it is therefore analytic inside the
+//! Bernstein ellipse `E_ρ` (foci at the ends, `ρ` the sum of its semi-axes over `h`) that
+//! passes through the nearest root, and there `|f| ≤ M = |ℓ| Π_j (|c − r_j| + h (ρ + ρ⁻¹)/2)`.
+//! The `n`-point Gauss–Legendre rule's error is then at most
+//! `64 h M / (15 (ρ² − 1) ρ^{2n})` (Trefethen, *Approximation Theory and Approximation
+//! Practice*, Theorem 19.3): each interval gets the fewest nodes whose bound meets its share
+//! of the tolerance, and an interval that would need more than [`MAX_NODES`] is cut — at a
+//! root's real part where it lies inside, and otherwise, toward a root beyond an end, at
+//! four times the root's distance from that end (so the pieces grow geometrically away from
+//! a near-cusp).
+//!
+//! A root within `δ` of the real axis (a near-cusp), with `δ` so small that replacing
+//! `√((u − x)² + δ²)` by `|u − x|` changes the integral by at most
+//! `G δ² (5/2 + ln⁺(2 (b − a) / δ) + S)` (`G` the other factors' maximum on the interval,
+//! `S ≈ 8.2` the most any rule's nodes pick up from a difference `δ² / (2v)` at a distance
+//! `v` from an end) and that is below a quarter of the share, is treated as an exact cusp:
+//! the interval is cut at `x`, on each side `|u − x|` is a polynomial, and that bound is
+//! added to the error. So even a cusp
+//! `10⁻¹⁵` off the axis costs a handful of intervals, not fifty halvings.
+
+use std::sync::OnceLock;
+
+use super::quadrature::Quadrature;
+
+/// The most nodes one interval's rule may have before the interval is cut.
+pub const MAX_NODES: usize = 48;
+
+/// The most intervals one length evaluates.
+const MAX_INTERVALS: usize = 1 << 12;
+
+/// A complex number, for the roots of the velocity.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Complex {
+    re: f64,
+    im: f64,
+}
+
+impl Complex {
+    const ZERO: Complex = Complex { re: 0.0, im: 0.0 };
+    fn new(re: f64, im: f64) -> Complex {
+        Complex { re, im }
+    }
+    fn add(self, o: Complex) -> Complex {
+        Complex::new(self.re + o.re, self.im + o.im)
+    }
+    fn sub(self, o: Complex) -> Complex {
+        Complex::new(self.re - o.re, self.im - o.im)
+    }
+    fn mul(self, o: Complex) -> Complex {
+        Complex::new(
+            self.re * o.re - self.im * o.im,
+            self.re * o.im + self.im * o.re,
+        )
+    }
+    fn scale(self, s: f64) -> Complex {
+        Complex::new(self.re * s, self.im * s)
+    }
+    fn abs(self) -> f64 {
+        self.re.hypot(self.im)
+    }
+    fn div(self, o: Complex) -> Complex {
+        // Smith's algorithm: no overflow of the intermediate |o|².
+        if o.re.abs() >= o.im.abs() {
+            let r = o.im / o.re;
+            let d = o.re + o.im * r;
+            Complex::new((self.re + self.im * r) / d, (self.im - self.re * r) / d)
+        } else {
+            let r = o.re / o.im;
+            let d = o.re * r + o.im;
+            Complex::new((self.re * r + self.im) / d, (self.im * r - self.re) / d)
+        }
+    }
+    fn sqrt(self) -> Complex {
+        let m = self.abs();
+        if m == 0.0 {
+            return Complex::ZERO;
+        }
+        let re = (0.5 * (m + self.re.abs())).sqrt();
+        let im = 0.5 * self.im.abs() / re;
+        if self.re >= 0.0 {
+            Complex::new(re, im.copysign(self.im))
+        } else {
+            Complex::new(im, re.copysign(self.im))
+        }
+    }
+    fn is_finite(self) -> bool {
+        self.re.is_finite() && self.im.is_finite()
+    }
+}
+
+/// `Σ c_j z^j` and its derivative.
+fn eval_with_derivative(c: &[Complex], z: Complex) -> (Complex, Complex) {
+    let mut p = Complex::ZERO;
+    let mut dp = Complex::ZERO;
+    for &cj in c.iter().rev() {
+        dp = dp.mul(z).add(p);
+        p = p.mul(z).add(cj);
+    }
+    (p, dp)
+}
+
+/// The speed of a planar polynomial segment: its hodograph (power basis, ascending) and
+/// its factors `|ℓ| Π_j |u − r_j|`, each root as `(Re r_j, |Im r_j|)` (a root and its
+/// conjugate act alike).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlanarSpeed {
+    x: [f64; MAX_ROOTS + 1],
+    y: [f64; MAX_ROOTS + 1],
+    /// The hodograph's degree (`x`, `y` beyond it are 0).
+    degree: usize,
+    lead: f64,
+    roots: [(f64, f64); MAX_ROOTS],
+    count: usize,
+}
+
+impl PlanarSpeed {
+    /// The speed whose hodograph has these power-basis coefficients (ascending); `None`
+    /// for a degree above 6 or where the roots cannot be found to full precision
+    /// (coefficients whose products overflow, or a root iteration that does not settle).
+    #[must_use]
+    pub fn new(x: &[f64], y: &[f64]) -> Option<PlanarSpeed> {
+        let mut c: Vec<Complex> = x.iter().zip(y).map(|(&a, &b)| Complex::new(a, b)).collect();
+        while c.last().is_some_and(|v| v.re == 0.0 && v.im == 0.0) {
+            c.pop();
+        }
+        if c.len() > MAX_ROOTS + 1 || c.iter().any(|v| !v.is_finite()) {
+            return None;
+        }
+        let found = match c.len() {
+            0 | 1 => Vec::new(),
+            2 => vec![c[0].div(c[1]).scale(-1.0)],
+            3 => quadratic_roots(c[0], c[1], c[2]),
+            _ => aberth(&c)?,
+        };
+        let lead = c.last().map_or(0.0, |v| v.abs());
+        if !lead.is_finite() || found.iter().any(|r| !r.is_finite()) {
+            return None;
+        }
+        let mut out = PlanarSpeed {
+            x: [0.0; MAX_ROOTS + 1],
+            y: [0.0; MAX_ROOTS + 1],
+            degree: c.len().saturating_sub(1),
+            lead,
+            roots: [(0.0, 0.0); MAX_ROOTS],
+            count: found.len(),
+        };
+        for (k, v) in c.iter().enumerate() {
+            out.x[k] = v.re;
+            out.y[k] = v.im;
+        }
+        for (slot, r) in out.roots.iter_mut().zip(&found) {
+            *slot = (r.re, r.im.abs());
+        }
+        Some(out)
+    }
+
+    /// The roots, as `(Re r_j, |Im r_j|)`.
+    fn roots(&self) -> &[(f64, f64)] {
+        &self.roots[..self.count]
+    }
+
+    /// `|C′(u)|`.
+    #[must_use]
+    pub fn speed(&self, u: f64) -> f64 {
+        match self.degree {
+            0 => self.speed_of::<0>(u),
+            1 => self.speed_of::<1>(u),
+            2 => self.speed_of::<2>(u),
+            3 => self.speed_of::<3>(u),
+            4 => self.speed_of::<4>(u),
+            5 => self.speed_of::<5>(u),
+            _ => self.speed_of::<6>(u),
+        }
+    }
+
+    #[inline(always)]
+    fn speed_of<const D: usize>(&self, u: f64) -> f64 {
+        let (mut dx, mut dy) = (self.x[D], self.y[D]);
+        for k in (0..D).rev() {
+            dx = dx * u + self.x[k];
+            dy = dy * u + self.y[k];
+        }
+        let s = (dx * dx + dy * dy).sqrt();
+        if s.is_finite() { s } else { dx.hypot(dy) }
+    }
+
+    /// `∫_{c−h}^{c+h} |C′|` by the `n`-point rule.
+    fn apply(&self, n: usize, c: f64, h: f64) -> f64 {
+        match self.degree {
+            0 => self.apply_of::<0>(n, c, h),
+            1 => self.apply_of::<1>(n, c, h),
+            2 => self.apply_of::<2>(n, c, h),
+            3 => self.apply_of::<3>(n, c, h),
+            4 => self.apply_of::<4>(n, c, h),
+            5 => self.apply_of::<5>(n, c, h),
+            _ => self.apply_of::<6>(n, c, h),
+        }
+    }
+
+    fn apply_of<const D: usize>(&self, n: usize, c: f64, h: f64) -> f64 {
+        let r = rule(n);
+        let mut sum = 0.0;
+        let mut k0 = 0;
+        if n % 2 == 1 {
+            sum = r.weights[0] * self.speed_of::<D>(c);
+            k0 = 1;
+        }
+        // The nodes in pairs `c ∓ h x`, two square roots at once, the squares' overflow
+        // checked once on the total.
+        let mut pairs = 0.0;
+        for (&x, &w) in r.nodes[k0..].iter().zip(&r.weights[k0..]) {
+            let u = [c - h * x, c + h * x];
+            let (mut dx, mut dy) = ([self.x[D]; 2], [self.y[D]; 2]);
+            for k in (0..D).rev() {
+                for l in 0..2 {
+                    dx[l] = dx[l] * u[l] + self.x[k];
+                    dy[l] = dy[l] * u[l] + self.y[k];
+                }
+            }
+            let s = sqrt2([dx[0] * dx[0] + dy[0] * dy[0], dx[1] * dx[1] + dy[1] * dy[1]]);
+            pairs += w * (s[0] + s[1]);
+        }
+        if !pairs.is_finite() {
+            pairs = 0.0;
+            for (&x, &w) in r.nodes[k0..].iter().zip(&r.weights[k0..]) {
+                pairs += w * (self.speed_of::<D>(c - h * x) + self.speed_of::<D>(c + h * x));
+            }
+        }
+        (sum + pairs) * h
+    }
+
+    /// `∫_{u0}^{u1} |C′|` within `tolerance`: the error returned is the sum of the
+    /// intervals' bounds and of the rules' rounding, `(n + 8) ε` of each value.
+    #[must_use]
+    pub fn length(&self, u0: f64, u1: f64, tolerance: f64) -> Quadrature {
+        let mut out = Quadrature::default();
+        if u1 <= u0 || self.lead == 0.0 {
+            return out;
+        }
+        let mut stack = Stack::default();
+        let mut next = Some((u0, u1));
+        let mut intervals = 0;
+        // The intervals are done left to right; each gets its width's share of what the
+        // ones before it left of the tolerance.
+        let mut used = 0.0;
+        while let Some((a, b)) = next.take().or_else(|| stack.pop()) {
+            intervals += 1;
+            let share = (tolerance - used).max(0.0) * (b - a) / (u1 - a);
+            let (n, bound) = match self.plan(a, b, share) {
+                Plan::Cut(m) if m > a && m < b && intervals + stack.len() < MAX_INTERVALS => {
+                    stack.push((m, b));
+                    next = Some((a, m));
+                    continue;
+                }
+                Plan::Rule { n, bound } => (n, bound),
+                // No room left to cut: the largest rule, and an unknown error.
+                Plan::Cut(_) => (MAX_NODES, f64::INFINITY),
+            };
+            let v = self.apply(n, 0.5 * (a + b), 0.5 * (b - a));
+            let error = bound + (n as f64 + 8.0) * f64::EPSILON * v.abs();
+            used += error;
+            out.value += v;
+            out.error += error;
+            out.evaluations += n;
+        }
+        if !out.value.is_finite() {
+            out.error = f64::INFINITY;
+        }
+        out
+    }
+}
+
+/// The roots of `a + b z + c z²` (`c ≠ 0`), without cancellation.
+fn quadratic_roots(a: Complex, b: Complex, c: Complex) -> Vec<Complex> {
+    let mut s = b.mul(b).sub(a.mul(c).scale(4.0)).sqrt();
+    // The sign that adds to `b` rather than cancelling it.
+    if b.re * s.re + b.im * s.im < 0.0 {
+        s = s.scale(-1.0);
+    }
+    let q = b.add(s).scale(-0.5);
+    if q.abs() == 0.0 {
+        return vec![Complex::ZERO, Complex::ZERO];
+    }
+    vec![q.div(c), a.div(q)]
+}
+
+/// All roots of `Σ c_j z^j` (degree ≥ 3, `c_last ≠ 0`) by the Aberth–Ehrlich iteration,
+/// polished by Newton steps on the polynomial itself.
+fn aberth(c: &[Complex]) -> Option<Vec<Complex>> {
+    let n = c.len() - 1;
+    let lead = c[n];
+    // Cauchy's bound on the roots' moduli sets the starting circle.
+    let radius = c[..n]
+        .iter()
+        .map(|v| v.div(lead).abs())
+        .fold(0.0_f64, f64::max)
+        .max(f64::MIN_POSITIVE);
+    let radius = (1.0 + radius).min(1e150);
+    let mut z: Vec<Complex> = (0..n)
+        .map(|k| {
+            let angle = std::f64::consts::TAU * (k as f64 + 0.25) / n as f64 + 0.4;
+            Complex::new(angle.cos(), angle.sin()).scale(0.5 * radius)
+        })
+        .collect();
+    let mut settled = false;
+    for _ in 0..200 {
+        let mut largest = 0.0_f64;
+        for i in 0..n {
+            let (p, dp) = eval_with_derivative(c, z[i]);
+            if p.abs() == 0.0 {
+                continue;
+            }
+            let ratio = p.div(dp);
+            let mut sum = Complex::ZERO;
+            for (j, zj) in z.iter().enumerate() {
+                if j != i {
+                    sum = sum.add(Complex::new(1.0, 0.0).div(z[i].sub(*zj)));
+                }
+            }
+            let step = ratio.div(Complex::new(1.0, 0.0).sub(ratio.mul(sum)));
+            if !step.is_finite() {
+                return None;
+            }
+            z[i] = z[i].sub(step);
+            largest = largest.max(step.abs() / z[i].abs().max(1.0));
+        }
+        if largest <= 4.0 * f64::EPSILON {
+            settled = true;
+            break;
+        }
+    }
+    if !settled {
+        return None;
+    }
+    for zi in &mut z {
+        for _ in 0..2 {
+            let (p, dp) = eval_with_derivative(c, *zi);
+            let step = p.div(dp);
+            if step.is_finite() {
+                *zi = zi.sub(step);
+            }
+        }
+    }
+    Some(z)
+}
+
+/// One Gauss–Legendre rule on `[−1, 1]`: the nonnegative nodes (ascending from the
+/// middle) and their weights.
+#[derive(Debug)]
+struct Rule {
+    nodes: Vec<f64>,
+    weights: Vec<f64>,
+}
+
+/// The `n`-point rule: the roots of `P_n` by Newton's method from Tricomi's estimate, the
+/// weights `2 / ((1 − x²) P_n′(x)²)`.
+fn legendre_rule(n: usize) -> Rule {
+    let mut nodes = Vec::new();
+    let mut weights = Vec::new();
+    let nf = n as f64;
+    for i in 0..n.div_ceil(2) {
+        // The i-th largest root.
+        let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (nf + 0.5)).cos();
+        // P_n(x) and P_n′(x) by the three-term recurrence.
+        let legendre = |x: f64| {
+            let (mut p0, mut p1) = (1.0_f64, x);
+            for k in 2..=n {
+                let kf = k as f64;
+                let p2 = ((2.0 * kf - 1.0) * x * p1 - (kf - 1.0) * p0) / kf;
+                p0 = p1;
+                p1 = p2;
+            }
+            let (pn, pn1) = if n == 1 { (x, 1.0) } else { (p1, p0) };
+            (pn, nf * (x * pn - pn1) / (x * x - 1.0))
+        };
+        for _ in 0..100 {
+            let (pn, dp) = legendre(x);
+            let dx = pn / dp;
+            x -= dx;
+            if dx.abs() <= 1e-17 {
+                break;
+            }
+        }
+        let dp = legendre(x).1;
+        nodes.push(x);
+        weights.push(2.0 / ((1.0 - x * x) * dp * dp));
+    }
+    nodes.reverse();
+    weights.reverse();
+    if n % 2 == 1 {
+        // The middle node is exactly 0.
+        nodes[0] = 0.0;
+    }
+    Rule { nodes, weights }
+}
+
+/// The rules for `n = 0..=MAX_NODES` (0 standing for 1), and the largest over them of
+/// `S_n = Σ_i w_i / (2 (1 − |ξ_i|))`: the most a rule's nodes can pick up from a
+/// difference `≤ δ² / (2 v)` at distance `v` beyond an end of the interval, in units of `δ²`.
+fn rules() -> &'static (Vec<Rule>, f64) {
+    static RULES: OnceLock<(Vec<Rule>, f64)> = OnceLock::new();
+    RULES.get_or_init(|| {
+        let rules: Vec<Rule> = (0..=MAX_NODES).map(|n| legendre_rule(n.max(1))).collect();
+        let end_sum = rules
+            .iter()
+            .map(|r| {
+                r.nodes
+                    .iter()
+                    .zip(&r.weights)
+                    .map(|(&x, &w)| {
+                        let pair = if x == 0.0 { 1.0 } else { 2.0 };
+                        pair * w / (2.0 * (1.0 - x))
+                    })
+                    .sum::<f64>()
+            })
+            .fold(0.0, f64::max);
+        (rules, end_sum)
+    })
+}
+
+fn rule(n: usize) -> &'static Rule {
+    &rules().0[n]
+}
+
+/// Two square roots, written lane by lane so the compiler can pack them.
+#[inline(always)]
+fn sqrt2(v: [f64; 2]) -> [f64; 2] {
+    [v[0].sqrt(), v[1].sqrt()]
+}
+
+/// The intervals still to do: a few in place, more on the heap.
+#[derive(Default)]
+struct Stack {
+    near: [(f64, f64); 16],
+    len: usize,
+    far: Vec<(f64, f64)>,
+}
+
+impl Stack {
+    fn push(&mut self, v: (f64, f64)) {
+        if self.len < self.near.len() {
+            self.near[self.len] = v;
+            self.len += 1;
+        } else {
+            self.far.push(v);
+        }
+    }
+    fn pop(&mut self) -> Option<(f64, f64)> {
+        if let Some(v) = self.far.pop() {
+            Some(v)
+        } else if self.len > 0 {
+            self.len -= 1;
+            Some(self.near[self.len])
+        } else {
+            None
+        }
+    }
+    fn len(&self) -> usize {
+        self.len + self.far.len()
+    }
+}
+
+/// What to do with one interval.
+enum Plan {
+    /// Apply the `n`-point rule; its error is at most `bound`.
+    Rule { n: usize, bound: f64 },
+    /// Cut at this parameter.
+    Cut(f64),
+}
+
+/// `√(x² + y²)`, by `hypot` only where the squares overflow.
+fn norm(x: f64, y: f64) -> f64 {
+    let n = (x * x + y * y).sqrt();
+    if n.is_finite() { n } else { x.hypot(y) }
+}
+
+impl PlanarSpeed {
+    fn plan(&self, a: f64, b: f64, share: f64) -> Plan {
+        let roots = self;
+        let (c, h) = (0.5 * (a + b), 0.5 * (b - a));
+        let inv_h = 1.0 / h;
+        let count = roots.count;
+        let mut dist = [0.0_f64; MAX_ROOTS];
+        let mut top = roots.lead;
+        for (dj, &(x, d)) in dist.iter_mut().zip(roots.roots()) {
+            *dj = norm(c - x, d);
+            top *= *dj + h;
+        }
+        let mut cusp_error = 0.0;
+        let mut cusps = 0;
+        // `δ` of the roots taken as cusps: `|z − x| ≤ |z − r| + δ` in the bound below.
+        let mut cusp_widths = [0.0_f64; MAX_ROOTS];
+        let mut rho = f64::INFINITY;
+        let mut critical = None;
+        let per_cusp = 0.25 * share / count.max(1) as f64;
+        for (j, &(x, delta)) in roots.roots().iter().enumerate() {
+            // Replacing √((u − x)² + δ²) by |u − x| (x at an end or beyond) changes the
+            // integral by at most `G δ² (3/2 + ln(2 (b − a) / δ + 1))` and the rule's sum
+            // by at most `G δ² S_n`; `ln(y + 1) ≤ ln⁺ y + 1`.
+            let others = top / (dist[j] + h);
+            let base = others * delta * delta * (2.5 + rules().1);
+            let replaced = if delta == 0.0 {
+                0.0
+            } else if base > per_cusp {
+                base
+            } else {
+                base + others * delta * delta * (2.0 * (b - a) / delta).ln().max(0.0)
+            };
+            if replaced <= per_cusp {
+                if x > a && x < b {
+                    return Plan::Cut(x);
+                }
+                cusp_error += replaced;
+                cusps += 1;
+                cusp_widths[j] = delta;
+                continue;
+            }
+            let (wr, wi) = ((x - c) * inv_h, delta * inv_h);
+            let alpha = 0.5 * (norm(wr - 1.0, wi) + norm(wr + 1.0, wi));
+            let r = alpha + ((alpha - 1.0) * (alpha + 1.0)).max(0.0).sqrt();
+            if r < rho {
+                rho = r;
+                critical = Some((x, delta));
+            }
+        }
+        let Some((x, delta)) = critical else {
+            // A polynomial of degree `cusps` (and `cusps = 0`: a constant).
+            return Plan::Rule {
+                n: (cusps + 2) / 2,
+                bound: cusp_error,
+            };
+        };
+        let semi = 0.5 * (rho + 1.0 / rho);
+        let mut m = roots.lead;
+        for (dj, d) in dist.iter().zip(&cusp_widths).take(count) {
+            m *= dj + h * semi + d;
+        }
+        let k = 64.0 * h * m / (15.0 * (rho * rho - 1.0));
+        // The fewest nodes whose bound `k ρ^{−2n}` meets the share left by the cusps and
+        // by the rule's rounding (`(n + 8) ε` of a value at most `2 h top`) — or a tenth
+        // of the share, where rounding takes more (the caller's floor then applies).
+        let rounding = (MAX_NODES as f64 + 8.0) * f64::EPSILON * 2.0 * h * top;
+        let target = (share - cusp_error - rounding).max(0.1 * share);
+        // Binary lifting on `m = n − 1`: the largest `m` with `k q^m` above the target.
+        let q = 1.0 / (rho * rho);
+        let mut powers = [q; 6];
+        for i in 1..6 {
+            powers[i] = powers[i - 1] * powers[i - 1];
+        }
+        let (mut m, mut above) = (0, k);
+        for i in (0..6).rev() {
+            let next = above * powers[i];
+            if next > target && m + (1 << i) < MAX_NODES {
+                above = next;
+                m += 1 << i;
+            }
+        }
+        let bound = above * q;
+        if bound <= target {
+            return Plan::Rule {
+                n: m + 1,
+                bound: bound + cusp_error,
+            };
+        }
+        if x > a && x < b {
+            return Plan::Cut(x);
+        }
+        let (end, dir) = if x <= a { (a, 1.0) } else { (b, -1.0) };
+        let step = GRADING * norm(x - end, delta);
+        if step >= h {
+            Plan::Cut(c)
+        } else {
+            Plan::Cut(end + dir * step)
+        }
+    }
+}
+
+/// How far from an end, in multiples of a root's distance beyond it, an interval is cut.
+const GRADING: f64 = 4.0;
+
+/// The most roots a speed has (degree 7: a hodograph of degree 6).
+const MAX_ROOTS: usize = 6;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rules_integrate_polynomials_exactly() {
+        for n in 1..=MAX_NODES {
+            let r = rule(n);
+            // Σ w = 2 and ∫ x^{2k} = 2 / (2k + 1) for 2k ≤ 2n − 1.
+            for k in 0..n {
+                let exact = 2.0 / (2 * k + 1) as f64;
+                let got: f64 = r
+                    .nodes
+                    .iter()
+                    .zip(&r.weights)
+                    .map(|(&x, &w)| w * x.powi(2 * k as i32) * if x == 0.0 { 1.0 } else { 2.0 })
+                    .sum();
+                assert!(
+                    (got - exact).abs() <= 3e-14 * exact,
+                    "n = {n}, x^{}: {got} vs {exact}",
+                    2 * k
+                );
+            }
+        }
+        assert!((rule(2).nodes[0] - 1.0 / 3f64.sqrt()).abs() <= 2.0 * f64::EPSILON);
+    }
+
+    #[test]
+    fn roots_of_the_velocity() {
+        // x′ = (u − 0.25)(u − 0.75), y′ = 0: real roots at 0.25 and 0.75, ℓ = 1.
+        let s = PlanarSpeed::new(&[0.1875, -1.0, 1.0], &[0.0, 0.0, 0.0]).unwrap();
+        let mut r = s.roots().to_vec();
+        r.sort_by(|a, b| a.0.total_cmp(&b.0));
+        assert!((r[0].0 - 0.25).abs() < 1e-15 && (r[1].0 - 0.75).abs() < 1e-15);
+        assert!(r.iter().all(|&(_, d)| d < 1e-15) && s.lead == 1.0);
+        // Degree 5: roots 0.1, 0.2 ± 0.3i, 0.9 + 0.01i, −2 (product of the factors,
+        // expanded exactly in rationals is not needed: the speed agrees).
+        let p: [(f64, f64); 5] = [
+            (0.1, 0.0),
+            (0.2, 0.3),
+            (0.2, -0.3),
+            (0.9, 0.01),
+            (-2.0, 0.0),
+        ];
+        let mut c = vec![Complex::new(1.0, 0.0)];
+        for &(re, im) in &p {
+            let mut next = vec![Complex::ZERO; c.len() + 1];
+            for (i, ci) in c.iter().enumerate() {
+                next[i + 1] = next[i + 1].add(*ci);
+                next[i] = next[i].sub(ci.mul(Complex::new(re, im)));
+            }
+            c = next;
+        }
+        let x: Vec<f64> = c.iter().map(|v| v.re).collect();
+        let y: Vec<f64> = c.iter().map(|v| v.im).collect();
+        let s = PlanarSpeed::new(&x, &y).unwrap();
+        for &(re, im) in &p {
+            assert!(
+                s.roots()
+                    .iter()
+                    .any(|&(a, d)| (a - re).abs() < 1e-12 && (d - im.abs()).abs() < 1e-12),
+                "{re} + {im}i not in {:?}",
+                s.roots()
+            );
+        }
+    }
+
+    fn simpson(f: &impl Fn(f64) -> f64, a: f64, b: f64) -> f64 {
+        let n = 20_000;
+        let h = (b - a) / n as f64;
+        let mut sum = f(a) + f(b);
+        for i in 1..n {
+            sum += f(a + h * i as f64) * if i % 2 == 1 { 4.0 } else { 2.0 };
+        }
+        sum * h / 3.0
+    }
+
+    #[test]
+    fn a_linear_velocity_against_its_closed_form() {
+        // x′ + i y′ = 3 (u − (0.4 + δ i)): ∫₀¹ 3 √((u − 0.4)² + δ²) in closed form.
+        for delta in [0.3, 1e-2, 1e-5, 1e-10, 0.0] {
+            let s = PlanarSpeed::new(&[-1.2, 3.0], &[-3.0 * delta, 0.0]).unwrap();
+            let g = |u: f64| {
+                let v = u - 0.4;
+                let tail = if delta > 0.0 {
+                    delta * delta * (v / delta).asinh()
+                } else {
+                    0.0
+                };
+                1.5 * (v * v.hypot(delta) + tail)
+            };
+            let exact = g(1.0) - g(0.0);
+            for tol in [1e-6, 1e-9, 1e-12, 1e-14] {
+                let q = s.length(0.0, 1.0, tol);
+                // Below the rounding of the sum (about 50 ε of the value) no rule can go.
+                assert!(
+                    q.error <= tol.max(64.0 * f64::EPSILON * exact),
+                    "δ {delta} tol {tol}: {q:?}"
+                );
+                assert!(
+                    (q.value - exact).abs() <= q.error,
+                    "δ {delta} tol {tol}: {} vs {exact} ({q:?})",
+                    q.value
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn bounds_hold_against_a_reference() {
+        // |u − x| · √((u − 0.5)² + δ²) style speeds: x′ + i y′ = (u − r₁)(u − r₂).
+        for (r1, r2) in [
+            ((0.5, 1e-3), (-0.4, 0.7)),
+            ((0.5, 1e-14), (2.0, 0.1)),
+            ((1.2, 0.05), (0.3, 0.0)),
+            ((0.0, 1e-9), (1.0, 1e-6)),
+        ] {
+            let r1 = Complex::new(r1.0, r1.1);
+            let r2 = Complex::new(r2.0, r2.1);
+            let c = [r1.mul(r2), r1.add(r2).scale(-1.0), Complex::new(1.0, 0.0)];
+            let x: Vec<f64> = c.iter().map(|v| v.re).collect();
+            let y: Vec<f64> = c.iter().map(|v| v.im).collect();
+            let s = PlanarSpeed::new(&x, &y).unwrap();
+            let f =
+                |u: f64| Complex::new(u, 0.0).sub(r1).abs() * Complex::new(u, 0.0).sub(r2).abs();
+            // Reference: composite Simpson's rule on 20,000 panels per piece, cut at the
+            // roots' real parts and at distances δ, 10δ, 100δ, … from them (so each piece
+            // is smooth at its resolution).
+            let mut cuts = vec![0.0, 1.0];
+            for r in [r1, r2] {
+                let mut step = r.im.abs();
+                cuts.push(r.re);
+                while step > 0.0 && step < 1.0 {
+                    cuts.extend([r.re - step, r.re + step]);
+                    step *= 10.0;
+                }
+            }
+            cuts.retain(|c| (0.0..=1.0).contains(c));
+            cuts.sort_by(f64::total_cmp);
+            let reference: f64 = cuts.windows(2).map(|w| simpson(&f, w[0], w[1])).sum();
+            for tol in [1e-6, 1e-9, 1e-12] {
+                let q = s.length(0.0, 1.0, tol);
+                assert!(q.error <= tol, "{r1:?} {r2:?} tol {tol}: {q:?}");
+                assert!(
+                    (q.value - reference).abs() <= q.error + 1e-13,
+                    "{r1:?} {r2:?} tol {tol}: {} vs {reference} ({q:?})",
+                    q.value
+                );
+            }
+        }
+    }
+}
