@@ -7,9 +7,12 @@
 //! * [`splinescope_core`] — [`geom`], the exact curve math in `f64` (every family and its
 //!   lowering to Bézier segments), and [`solve`], the solvers of papers 000 and 001. No
 //!   GPU, window, command-line or image crate in its dependency tree.
+//! * [`splinescope_io`] — the input [`limits`] and the output-path policy ([`files`]):
+//!   std and thiserror only.
+//! * [`splinescope_image`] ([`image`]) — RGBA images, PNG reading within the limits and
+//!   atomic writing, per-channel and FLIP comparison; no GPU.
 //! * [`splinescope_scene`] — the JSON [`scene`] and [`request`] formats with typed,
-//!   path-naming errors, the input [`limits`], the [`camera`] and the output-path policy
-//!   ([`files`]).
+//!   path-naming errors, and the [`camera`].
 //! * [`splinescope_gpu`] ([`gpu`]) — the only layer that names `wgpu`: device setup, the
 //!   WGSL kernels and their CPU twin, the renderer, offscreen capture.
 //! * [`splinescope_viewer`] ([`app`]) — the interactive winit + egui viewer.
@@ -27,14 +30,15 @@
 
 pub use splinescope_core::{analysis, geom, inspect, num, solve};
 pub use splinescope_gpu as gpu;
-pub use splinescope_scene::{camera, files, limits, request, scene};
+pub use splinescope_io::{files, limits};
+pub use splinescope_scene::{camera, request, scene};
 pub use splinescope_viewer as app;
 
 pub mod image {
-    //! Images and their comparison: [`splinescope_gpu::image`] (the image type, PNG
-    //! reading and writing) and [`splinescope_gpu::compare`] (per-channel and FLIP).
-    pub use splinescope_gpu::compare::*;
-    pub use splinescope_gpu::image::{ImageError, RgbaImage};
+    //! Images and their comparison: [`splinescope_image`] (the image type, PNG reading
+    //! and writing) and [`splinescope_image::compare`] (per-channel and FLIP).
+    pub use splinescope_image::compare::*;
+    pub use splinescope_image::{ImageError, RgbaImage};
 }
 pub mod offscreen;
 pub mod outputs;

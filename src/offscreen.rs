@@ -6,9 +6,9 @@ use glam::DVec2;
 
 use crate::camera::Camera;
 use crate::gpu::context::GpuContext;
-use crate::gpu::image::RgbaImage;
 use crate::gpu::offscreen::render_with;
 use crate::gpu::{GpuError, Pipelines};
+use crate::image::RgbaImage;
 use crate::scene::Scene;
 use crate::scene::encoding::Encoding;
 

@@ -11,8 +11,8 @@ use super::pipelines::Pipelines;
 use super::renderer::{GpuScene, Renderer, camera_uniform};
 use super::tessellator::read_buffer;
 use crate::camera::Camera;
-use crate::image::RgbaImage;
 use crate::scene::encoding::Encoding;
+use splinescope_image::RgbaImage;
 
 /// The texture format offscreen images are drawn in: 8-bit RGBA, colours stored as given
 /// (sRGB values, blended as such, like the window's non-sRGB surface).

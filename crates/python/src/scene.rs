@@ -9,9 +9,9 @@ use glam::DVec2;
 use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
-use splinescope_gpu::compare::{Tolerance, compare_images as compare};
-use splinescope_gpu::image::RgbaImage;
 use splinescope_gpu::{BackendChoice, ContextOptions, GpuContext, Pipelines};
+use splinescope_image::RgbaImage;
+use splinescope_image::compare::{Tolerance, compare_images as compare};
 use splinescope_scene::request::apply_text;
 use splinescope_scene::scene::encoding::Encoding;
 use splinescope_scene::scene::{Scene, from_json_str, to_json_string};
@@ -388,7 +388,7 @@ pub fn compare_images(
     let tolerance: Tolerance =
         tolerance
             .parse()
-            .map_err(|e: splinescope_gpu::compare::ToleranceError| {
+            .map_err(|e: splinescope_image::compare::ToleranceError| {
                 raise::<ImageError>(e.to_string(), "tolerance")
             })?;
     let a = array_image(actual, "actual")?;

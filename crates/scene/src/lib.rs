@@ -1,9 +1,9 @@
 //! splinescope's scene layer: the JSON scene and solve-request formats with their typed,
-//! path-naming errors and form-keeping writer ([`scene`], [`request`]), the documented
-//! input limits ([`limits`]), the camera ([`camera`]) and the output-path policy every
-//! writer follows ([`files`]).
+//! path-naming errors and form-keeping writer ([`scene`], [`request`]) and the camera
+//! ([`camera`]); the input limits and output-path policy it checks and follows are
+//! `splinescope-io`'s ([`limits`], [`files`], re-exported).
 //!
-//! What it may use: [`splinescope_core`] (curves and solvers), serde, serde_json and
+//! What it may use: [`splinescope_core`] (curves and solvers), `splinescope-io`, serde, serde_json and
 //! schemars — no GPU, window or command-line crate. The GPU and viewer layers build on it.
 //!
 //! ```
@@ -25,12 +25,14 @@
 #![forbid(unsafe_code)]
 
 pub mod camera;
-pub mod files;
 mod jsonread;
-pub mod limits;
 pub mod request;
 pub mod scene;
 pub mod text;
+
+// The I/O policy's modules, re-exported under the names this layer's users know
+// (`splinescope_scene::limits`).
+pub use splinescope_io::{files, limits};
 
 // The core's modules under the names the code of this layer uses (`crate::geom`).
 use splinescope_core::{geom, solve};

@@ -2,7 +2,7 @@
 //! per-channel and NVIDIA FLIP, on the [`RgbaImage`]s the renderer makes. No GPU is
 //! needed.
 
-use super::image::RgbaImage;
+use crate::RgbaImage;
 
 use thiserror::Error;
 

@@ -1,5 +1,31 @@
-//! RGBA8 images, as offscreen renders come back: PNG reading (untrusted input, checked
-//! against [`crate::limits::IMAGE_PIXELS`] before anything is allocated) and atomic writing.
+//! splinescope's images: RGBA8 images as offscreen renders come back, PNG reading
+//! (untrusted input, checked against [`limits::IMAGE_PIXELS`] before anything is
+//! allocated) and atomic writing ([`RgbaImage`]), and their comparison for image tests,
+//! `regress`, `diff` and the Python module ([`compare`]: per channel and NVIDIA FLIP).
+//!
+//! What it may use: `splinescope-io` (the limits, atomic files), png, nv-flip, serde (a
+//! comparison serializes into reports) — no GPU:
+//! comparing two PNGs does not pull in wgpu.
+//!
+//! ```
+//! use splinescope_image::RgbaImage;
+//! use splinescope_image::compare::{Tolerance, compare_images};
+//!
+//! let a = RgbaImage { width: 2, height: 1, data: vec![255, 0, 0, 255, 0, 0, 255, 255] };
+//! let mut b = a.clone();
+//! b.data[0] = 250; // one channel of one pixel off by 5
+//! let strict: Tolerance = "channel=4,pixels=0%".parse().unwrap();
+//! let (c, _pictures) = compare_images(&b, &a, &strict).unwrap();
+//! assert!(!c.matches && c.differing_pixels == 1 && c.max_channel_diff == 5);
+//! let loose: Tolerance = "channel=8".parse().unwrap();
+//! assert!(compare_images(&b, &a, &loose).unwrap().0.matches);
+//! ```
+
+#![forbid(unsafe_code)]
+
+pub mod compare;
+
+use splinescope_io::{files, limits};
 
 use std::fs;
 use std::io::Read;
@@ -48,7 +74,7 @@ pub enum ImageError {
         /// What is wrong (the decoder's words).
         reason: String,
     },
-    /// The image is larger than [`crate::limits::IMAGE_PIXELS`] allows; found from its
+    /// The image is larger than [`limits::IMAGE_PIXELS`] allows; found from its
     /// header, before its pixels are decoded or any memory is set aside for them.
     #[error("{path}: a {width}×{height} image: {limit}")]
     TooLarge {
@@ -59,11 +85,11 @@ pub enum ImageError {
         /// The height its header declares.
         height: u32,
         /// The limit breached.
-        limit: crate::limits::LimitError,
+        limit: limits::LimitError,
     },
     /// The limit's environment variable does not hold a whole number.
     #[error("{0}")]
-    BadLimit(crate::limits::LimitError),
+    BadLimit(limits::LimitError),
     /// The PNG's pixel format cannot be turned into 8-bit RGBA.
     #[error("{path}: unsupported PNG format {format} (expected 8-bit RGB or RGBA)")]
     Format {
@@ -111,7 +137,7 @@ impl RgbaImage {
     /// I/O or encoder errors, naming the path.
     pub fn write_png(&self, path: &Path) -> Result<(), ImageError> {
         let bytes = self.png_bytes(path)?;
-        crate::files::write_atomic(path, &bytes).map_err(|source| ImageError::Io {
+        files::write_atomic(path, &bytes).map_err(|source| ImageError::Io {
             path: path.to_path_buf(),
             source,
         })
@@ -142,7 +168,7 @@ impl RgbaImage {
     /// are looked up, grey is spread to red, green and blue, a `tRNS` chunk becomes alpha,
     /// and 16-bit samples keep their high byte.
     ///
-    /// The header's dimensions are checked against [`crate::limits::IMAGE_PIXELS`] before
+    /// The header's dimensions are checked against [`limits::IMAGE_PIXELS`] before
     /// anything is allocated for the pixels, so a few hundred bytes that declare a huge
     /// image are refused rather than decoded.
     ///
@@ -179,7 +205,7 @@ impl RgbaImage {
                 path: path.to_path_buf(),
                 reason: format!(
                     "it needs more memory to decode than {} allows",
-                    crate::limits::IMAGE_PIXELS.var
+                    limits::IMAGE_PIXELS.var
                 ),
             },
             other => ImageError::Invalid {
@@ -187,11 +213,9 @@ impl RgbaImage {
                 reason: plain_decoder_message(&other.to_string()),
             },
         };
-        let limit = crate::limits::IMAGE_PIXELS
-            .value()
-            .map_err(ImageError::BadLimit)?;
+        let limit = limits::IMAGE_PIXELS.value().map_err(ImageError::BadLimit)?;
         let too_large = |width: u32, height: u32| {
-            crate::limits::IMAGE_PIXELS
+            limits::IMAGE_PIXELS
                 .check(u64::from(width) * u64::from(height))
                 .map_err(|limit| ImageError::TooLarge {
                     path: path.to_path_buf(),
