@@ -203,16 +203,18 @@ impl Sub {
         let pts = h.as_mut_slice();
         let n = pts.len() - 1;
         // Right part at `lo`, then the left part of that at the rescaled `hi`.
+        // (A polynomial piece's weights stay 1: only `x` and `y` are interpolated.)
+        let rational = self.rational;
         let split_right = |pts: &mut [[f64; 3]], t: f64| {
             let s = 1.0 - t;
             for k in 1..=n {
                 for i in 0..=(n - k) {
                     let (p, q) = (pts[i], pts[i + 1]);
-                    pts[i] = [
-                        s * p[0] + t * q[0],
-                        s * p[1] + t * q[1],
-                        s * p[2] + t * q[2],
-                    ];
+                    pts[i][0] = s * p[0] + t * q[0];
+                    pts[i][1] = s * p[1] + t * q[1];
+                    if rational {
+                        pts[i][2] = s * p[2] + t * q[2];
+                    }
                 }
             }
         };
