@@ -3,43 +3,48 @@
 //! documented in `docs/inspect-format.md`; its JSON Schema, generated from these types, is
 //! `docs/schemas/inspect.schema.json`.
 
+#[cfg(feature = "serde")]
 use schemars::JsonSchema;
+#[cfg(feature = "serde")]
 use serde::Serialize;
 
 use crate::geom::family::{AtTau, Xyz, xyz};
 use crate::geom::{Curve, FamilyDetails, GeomError, Lower, ParamCurve};
 
 /// The whole output of `splinescope inspect`.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct InspectOutput {
     /// One report per selected curve, in scene order.
     pub curves: Vec<CurveReport>,
 }
 
 /// The report of one curve.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct CurveReport {
     /// The curve's index in the scene.
     pub index: usize,
     /// Its family (`"bezier"`, …).
     pub family: &'static str,
     /// Its name, when it has one.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub name: Option<String>,
     /// The parameter domain `[a, b]`.
     pub domain: [f64; 2],
     /// The exact lowering: Bézier segments with their parameter ranges.
     pub segments: Vec<SegmentReport>,
     /// The family's own data.
-    #[serde(flatten)]
+    #[cfg_attr(feature = "serde", serde(flatten))]
     pub details: FamilyDetails,
     /// With `--tau`, for B-splines and NUBMP curves: what the structure allows there.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub at_tau: Option<AtTau>,
 }
 
 /// One Bézier segment of a lowering.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct SegmentReport {
     /// The curve parameter where the segment starts.
     pub t0: f64,
@@ -50,7 +55,7 @@ pub struct SegmentReport {
     /// Its control points.
     pub points: Vec<Xyz>,
     /// A rational segment's weights (absent for a polynomial one).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub weights: Option<Vec<f64>>,
 }
 

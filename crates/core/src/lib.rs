@@ -2,8 +2,9 @@
 //! ([`solve`]), with the number formatting both use in messages ([`num`]) and the
 //! per-curve report of `splinescope inspect` ([`inspect`]).
 //!
-//! What it may use: glam, nalgebra, rayon, exact rationals, serde and schemars (reports
-//! are serialisable). Nothing GPU, window, command-line or image related is in its
+//! What it may use: glam, nalgebra, rayon, exact rationals, and — behind the `serde`
+//! feature, on by default — serde and schemars (reports and details serialise; with
+//! `default-features = false` no serde is in the tree). Nothing GPU, window, command-line or image related is in its
 //! dependency tree, so a program that only evaluates or modifies curves compiles this
 //! crate alone. Every layer above (scene, gpu, viewer, the command line) builds on it.
 //!

@@ -4,7 +4,9 @@
 //! self-intersections. Its JSON Schema, generated from these types, is
 //! `docs/schemas/analyze.schema.json`.
 
+#[cfg(feature = "serde")]
 use schemars::JsonSchema;
+#[cfg(feature = "serde")]
 use serde::Serialize;
 
 use super::curve::{AnalysisError, CurveAnalysis, ExtremumKind, HitKind};
@@ -12,7 +14,8 @@ use super::intersect::{Intersections, all_intersections};
 use crate::geom::family::Xyz;
 
 /// The whole output of `splinescope analyze`.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct AnalyzeOutput {
     /// The accuracy lengths were computed to (absolute, scene units).
     pub accuracy: f64,
@@ -20,19 +23,20 @@ pub struct AnalyzeOutput {
     pub curves: Vec<CurveAnalysisReport>,
     /// With intersections asked for: every pair of selected curves that meet, `i < j`
     /// (absent otherwise).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub intersections: Option<Vec<PairReport>>,
 }
 
 /// One curve's answers.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct CurveAnalysisReport {
     /// The curve's index in the scene.
     pub index: usize,
     /// Its family.
     pub family: &'static str,
     /// Its name, when it has one.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub name: Option<String>,
     /// 2 for a planar curve (`z = 0` everywhere), 3 otherwise.
     pub dimension: usize,
@@ -48,26 +52,27 @@ pub struct CurveAnalysisReport {
     pub closed: bool,
     /// The signed area a closed planar curve encloses (positive counter-clockwise);
     /// absent for open or 3D curves.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub signed_area: Option<f64>,
     /// Where a coordinate's derivative vanishes.
     pub extrema: Vec<ExtremumReport>,
     /// Planar curves: where `C′ × C″` changes sign (absent for 3D curves).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub inflections: Option<Vec<PointReport>>,
     /// Planar curves: where `C′ = 0`.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub cusps: Option<Vec<PointReport>>,
     /// Planar curves: the local extrema of the signed curvature.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub curvature_extrema: Option<Vec<CurvatureReport>>,
     /// With intersections asked for, planar curves: where the curve meets itself.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub self_intersections: Option<IntersectionsReport>,
 }
 
 /// An axis-aligned box.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct BoxReport {
     /// The smallest corner.
     pub min: Xyz,
@@ -76,7 +81,8 @@ pub struct BoxReport {
 }
 
 /// A parameter and its point.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct PointReport {
     /// The curve parameter.
     pub t: f64,
@@ -85,7 +91,8 @@ pub struct PointReport {
 }
 
 /// A coordinate extremum.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct ExtremumReport {
     /// The curve parameter.
     pub t: f64,
@@ -96,7 +103,8 @@ pub struct ExtremumReport {
 }
 
 /// A curvature extremum.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct CurvatureReport {
     /// The curve parameter.
     pub t: f64,
@@ -109,7 +117,8 @@ pub struct CurvatureReport {
 }
 
 /// Points and overlaps two curves (or one curve and itself) have in common.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct IntersectionsReport {
     /// The points.
     pub points: Vec<HitReport>,
@@ -118,7 +127,8 @@ pub struct IntersectionsReport {
 }
 
 /// One intersection point.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct HitReport {
     /// The first curve's parameter.
     pub s: f64,
@@ -133,7 +143,8 @@ pub struct HitReport {
 }
 
 /// A coincident stretch.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct OverlapReport {
     /// The first curve's parameter interval.
     pub s: [f64; 2],
@@ -142,12 +153,13 @@ pub struct OverlapReport {
 }
 
 /// One intersecting pair.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct PairReport {
     /// The two curves' indices in the scene, `[i, j]` with `i < j`.
     pub curves: [usize; 2],
     /// What they have in common (`s` is curve `i`'s parameter).
-    #[serde(flatten)]
+    #[cfg_attr(feature = "serde", serde(flatten))]
     pub found: IntersectionsReport,
 }
 

@@ -2,7 +2,9 @@
 
 use glam::DVec3;
 
+#[cfg(feature = "serde")]
 use schemars::JsonSchema;
+#[cfg(feature = "serde")]
 use serde::Serialize;
 
 use super::family::{AtTau, Control, ControlId, ControlValue, Family, OverlayPolyline};
@@ -73,8 +75,9 @@ macro_rules! define_families {
 
         /// The per-family part of an `inspect` report (flattened into the curve's
         /// object): each family's [`Family::Details`].
-        #[derive(Debug, Clone, Serialize, JsonSchema)]
-        #[serde(untagged)]
+        #[derive(Debug, Clone)]
+        #[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+        #[cfg_attr(feature = "serde", serde(untagged))]
         pub enum FamilyDetails {
             $( $(#[$doc])* $variant(<$ty as Family>::Details), )*
         }

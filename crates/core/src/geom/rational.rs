@@ -18,7 +18,9 @@
 //! divides; with every weight 1 they lower to the polynomial segments themselves.
 
 use glam::DVec3;
+#[cfg(feature = "serde")]
 use schemars::JsonSchema;
+#[cfg(feature = "serde")]
 use serde::Serialize;
 
 use super::{BSpline, Bezier, BezierSegment, GeomError, KnotVector, Lower, ParamCurve};
@@ -438,8 +440,9 @@ impl Lower for Nurbs {
 
 /// A conic's type from a quadratic rational Bézier curve's weights: the shape factor
 /// `k = w₀w₂ / w₁²` is above 1 for an ellipse, 1 for a parabola, below 1 for a hyperbola.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Conic {
     /// `w₁² < w₀w₂`.
     Ellipse,

@@ -2,7 +2,9 @@
 //! report (power basis, paper 000 §2.3's polygon type of a cubic).
 
 use glam::DVec3;
+#[cfg(feature = "serde")]
 use schemars::JsonSchema;
+#[cfg(feature = "serde")]
 use serde::Serialize;
 
 use super::{Control, ControlId, ControlValue, Family, Xyz, unknown_control};
@@ -98,31 +100,33 @@ impl Family for Bezier {
     }
 }
 /// What `inspect` reports for a Bézier curve.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct BezierDetails {
     /// `n`.
     pub degree: usize,
     /// The power-basis coefficients, up to degree [`POWER_BASIS_MAX_DEGREE`].
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub power_basis: Option<PowerBasis>,
     /// For a cubic: paper 000 §2.3's polygon type.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub cubic_region: Option<CubicRegionReport>,
     /// For a cubic without end tangents: why there is no type.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub cubic_region_unavailable: Option<String>,
 }
 
 /// A cubic's polygon type (paper 000 §2.3) as `inspect` reports it.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct CubicRegionReport {
     /// 1, 2 or 3.
-    #[serde(rename = "type")]
+    #[cfg_attr(feature = "serde", serde(rename = "type"))]
     pub kind: u8,
     /// The finer classification ([`CubicRegion::subtype`]).
     pub subtype: &'static str,
     /// Where the legs' lines meet, when they do.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub lines_meet_at: Option<Xyz>,
 }
 
@@ -131,17 +135,18 @@ pub struct CubicRegionReport {
 pub const POWER_BASIS_MAX_DEGREE: usize = 64;
 
 /// The power-basis coefficients `a_k` of `P(t) = Σ_k a_k t^k`.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct PowerBasis {
     /// Each `a_k` as exact rationals (`"p/q"`) per coordinate.
     pub exact: Vec<[String; 3]>,
     /// Each `a_k` rounded to `f64`; absent when some coefficient is beyond `f64`'s range
     /// (the binomial factors multiply coordinates near ±1.8e308 past it), and then
     /// `values_unavailable` names it and `exact` alone holds the coefficients.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub values: Option<Vec<Xyz>>,
     /// Why `values` is absent: the first coefficient beyond `f64`.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub values_unavailable: Option<String>,
 }
 

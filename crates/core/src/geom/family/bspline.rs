@@ -2,7 +2,9 @@
 //! report — the structure of the standard NUBMP curve on its knots (paper 001 §2).
 
 use glam::DVec3;
+#[cfg(feature = "serde")]
 use schemars::JsonSchema;
+#[cfg(feature = "serde")]
 use serde::Serialize;
 
 use super::nubmp::{NubmpDetails, NubmpStructure, SplineDetails, nubmp_at_tau};
@@ -81,6 +83,7 @@ impl Family for BSpline {
 
 /// What `inspect` reports for a B-spline: the structure of the standard NUBMP curve on its
 /// knots.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
-#[serde(transparent)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+#[cfg_attr(feature = "serde", serde(transparent))]
 pub struct BSplineDetails(pub NubmpDetails);

@@ -2,7 +2,9 @@
 //! the tangent-handle overlay, the `inspect` report (paper 002 §5).
 
 use glam::DVec3;
+#[cfg(feature = "serde")]
 use schemars::JsonSchema;
+#[cfg(feature = "serde")]
 use serde::Serialize;
 
 use super::{
@@ -191,7 +193,8 @@ impl Family for CubicInterpolation {
 }
 
 /// What `inspect` reports for an interpolating spline.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct InterpolationDetails {
     /// `t_0..t_k`.
     pub params: Vec<f64>,
@@ -204,12 +207,13 @@ pub struct InterpolationDetails {
     /// Each piece's inner points `P_{i−2/3}`, `P_{i−1/3}`.
     pub inner_points: Vec<[Xyz; 2]>,
     /// The modification, when there is one.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub modification: Option<ModificationReport>,
 }
 
 /// A modification as reports write it.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct ModificationReport {
     /// `t*`.
     pub t_star: f64,

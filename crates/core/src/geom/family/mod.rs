@@ -14,7 +14,9 @@ pub mod nubmp;
 pub mod rational;
 
 use glam::DVec3;
+#[cfg(feature = "serde")]
 use schemars::JsonSchema;
+#[cfg(feature = "serde")]
 use serde::Serialize;
 
 use crate::geom::aabb::Aabb;
@@ -50,7 +52,11 @@ pub trait Family: ParamCurve + Lower + Clone + std::fmt::Debug {
 
     /// What `splinescope inspect` reports for this family beyond the common fields
     /// (`docs/inspect-format.md`).
+    #[cfg(feature = "serde")]
     type Details: Serialize + JsonSchema;
+    /// The family's own facts for `inspect`.
+    #[cfg(not(feature = "serde"))]
+    type Details;
 
     /// The points the user places (drawn as dots): control points, or the interpolated
     /// points.
@@ -341,7 +347,8 @@ pub fn xyz(points: &[DVec3]) -> Vec<Xyz> {
 /// What a NUBMP curve (or a B-spline, as the standard NUBMP curve) allows at `τ` (paper
 /// 001, §4): the point `P(τ)` and, per group whose dual B-spline is non-zero there, its
 /// weight and the region `P(τ)` reaches by changing that group alone.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct AtTau {
     /// `τ`.
     pub tau: f64,
@@ -352,7 +359,8 @@ pub struct AtTau {
 }
 
 /// One group's reach at `τ`.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct GroupAtTau {
     /// The group `j`.
     pub group: usize,

@@ -2,7 +2,9 @@
 //! overlay, the `inspect` report (paper 002 §4).
 
 use glam::DVec3;
+#[cfg(feature = "serde")]
 use schemars::JsonSchema;
+#[cfg(feature = "serde")]
 use serde::Serialize;
 
 use super::{
@@ -138,7 +140,8 @@ impl Family for ModifiedBezier {
 }
 
 /// What `inspect` reports for a modified Bézier curve.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct ModifiedDetails {
     /// The base curve's degree `n`.
     pub degree: usize,
@@ -151,7 +154,8 @@ pub struct ModifiedDetails {
 }
 
 /// The peak of a bump.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct Peak {
     /// `t*`.
     pub t: f64,

@@ -3,7 +3,9 @@
 //! groups, variation-diminishing ranges).
 
 use glam::DVec3;
+#[cfg(feature = "serde")]
 use schemars::JsonSchema;
+#[cfg(feature = "serde")]
 use serde::Serialize;
 
 use super::{
@@ -247,7 +249,8 @@ pub(crate) fn nubmp_at_tau(n: &Nubmp, tau: f64) -> Result<AtTau, GeomError> {
 }
 
 /// The knot data `inspect` reports for B-splines and NUBMP curves.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct SplineDetails {
     /// `k` (degree `k − 1`).
     pub order: usize,
@@ -270,13 +273,14 @@ impl SplineDetails {
 }
 
 /// What `inspect` reports for a NUBMP curve.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct NubmpDetails {
     /// The knots.
-    #[serde(flatten)]
+    #[cfg_attr(feature = "serde", serde(flatten))]
     pub spline: SplineDetails,
     /// The multiple-shape-parameter structure.
-    #[serde(flatten)]
+    #[cfg_attr(feature = "serde", serde(flatten))]
     pub structure: NubmpStructure,
 }
 
@@ -289,12 +293,13 @@ pub const EXACT_MAX_POINTS: usize = 10_000;
 
 /// Paper 001's structure of a NUBMP curve: the refined knots `T*`, the degree-elevation
 /// coefficients `c^i_j` (Eq. 6), the groups with their parameters, and the dual points.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct NubmpStructure {
     /// `T*`.
     pub refined_knots: Vec<f64>,
     /// Why exact coefficients are missing, when they are.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub exact_omitted: Option<String>,
     /// `"decimal knots"` (exact from the file's decimals) or `"binary f64 knots"`.
     pub exact_from: &'static str,
@@ -309,7 +314,8 @@ pub struct NubmpStructure {
 }
 
 /// One row of elevation coefficients.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct CoefficientReport {
     /// The control point `i`.
     pub i: usize,
@@ -318,12 +324,13 @@ pub struct CoefficientReport {
     /// `c^i_j` in `f64`.
     pub values: Vec<f64>,
     /// `c^i_j` as exact rationals.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub exact: Option<Vec<String>>,
 }
 
 /// One group as `inspect` reports it.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct GroupReport {
     /// `j`.
     pub group: usize,
@@ -338,15 +345,16 @@ pub struct GroupReport {
     /// The parameter spans it affects.
     pub affected_spans: Vec<[f64; 2]>,
     /// Order 4: Theorem 1's value (`null` when the group has no such condition).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub vd: Option<Option<f64>>,
     /// Order 4: the permissible range of each member with each absorber.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub permissible_ranges: Option<Vec<RangeReport>>,
 }
 
 /// A permissible range (`null` ends: the current value violates a condition).
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct RangeReport {
     /// The changed member.
     pub member: usize,

@@ -2,7 +2,9 @@
 //! templates' weights, the `inspect` reports (homogeneous points, conic type, knots).
 
 use glam::DVec3;
+#[cfg(feature = "serde")]
 use schemars::JsonSchema;
+#[cfg(feature = "serde")]
 use serde::Serialize;
 
 use super::nubmp::SplineDetails;
@@ -69,7 +71,8 @@ fn weight_on_leg(weights: &[f64], leg: usize, s: f64) -> f64 {
 }
 
 /// What `inspect` reports for a rational Bézier curve.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct RationalBezierDetails {
     /// `n`.
     pub degree: usize,
@@ -78,15 +81,16 @@ pub struct RationalBezierDetails {
     /// The homogeneous control points `(w_i x_i, w_i y_i, w_i z_i, w_i)`.
     pub homogeneous: Vec<[f64; 4]>,
     /// For a quadratic: the conic it is an arc of.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub conic: Option<Conic>,
 }
 
 /// What `inspect` reports for a NURBS curve.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct NurbsDetails {
     /// The knots.
-    #[serde(flatten)]
+    #[cfg_attr(feature = "serde", serde(flatten))]
     pub spline: SplineDetails,
     /// The weights `w_i`.
     pub weights: Vec<f64>,
