@@ -13,8 +13,9 @@ use splinescope_core::rng::Rng;
 use splinescope_core::solve::batch::{BatchResult, BatchSingleTarget};
 use splinescope_core::solve::linalg::min_norm_solve;
 use splinescope_core::solve::nubmp::{constrained, find_tau};
+use splinescope_core::solve::region::cubic_region;
 use splinescope_core::solve::shape::{
-    PolygonType, SingleTargetOptions, cubic_region, multi_target, single_target, tangent_kept,
+    PolygonType, SingleTargetOptions, multi_target, single_target, tangent_kept,
 };
 use splinescope_core::solve::{SolveError, nearest};
 

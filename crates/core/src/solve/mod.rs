@@ -7,6 +7,7 @@ pub mod linalg;
 pub mod nubmp;
 pub mod project;
 pub mod rational;
+pub mod region;
 pub mod roots;
 pub mod shape;
 

@@ -15,8 +15,9 @@ use crate::geom::{Bezier, Curve, Nubmp, Nurbs, ParamCurve, RationalBezier};
 use crate::jsonread::{Node, Obj};
 use crate::scene::{Annotation, AnnotationShape, Color, Scene, SceneError, SceneErrorKind};
 use crate::solve::rational::{self, RationalCurve};
+use crate::solve::region::cubic_region;
 use crate::solve::shape::{
-    PolygonType, SingleTargetOptions, cubic_region, multi_target, single_target, tangent_kept,
+    PolygonType, SingleTargetOptions, multi_target, single_target, tangent_kept,
 };
 use crate::solve::{SolveError, nearest, nubmp};
 
