@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use serde_json::Value;
 
 use splinescope_core::analysis::{AnalysisError, CurveAnalysis, Intersections};
-use splinescope_core::geom::batch::{CurveSampler, sample_many};
+use splinescope_core::geom::batch::CurveSampler;
 use splinescope_core::geom::{Curve, Lower, ParamCurve, curvature};
 use splinescope_scene::scene::{SceneCurve, curve_from_value, curve_to_value};
 
@@ -23,7 +23,7 @@ const PARALLEL_ABOVE: usize = 32_768;
 
 /// `f` applied to the parameters block by block (spread over every core for many), its
 /// points written as `dim` coordinates each into one vector.
-fn fill(ts: &[f64], dim: usize, f: &(impl Fn(&[f64], &mut [DVec3]) + Sync)) -> Vec<f64> {
+pub(crate) fn fill(ts: &[f64], dim: usize, f: &(impl Fn(&[f64], &mut [DVec3]) + Sync)) -> Vec<f64> {
     let mut out = vec![0.0; ts.len() * dim];
     let block = |(ts, out): (&[f64], &mut [f64])| {
         let mut buf = [DVec3::ZERO; BLOCK];
@@ -49,13 +49,13 @@ fn fill(ts: &[f64], dim: usize, f: &(impl Fn(&[f64], &mut [DVec3]) + Sync)) -> V
 #[pyclass(name = "_Curve", module = "splinescope._splinescope", frozen)]
 pub struct PyCurve {
     pub(crate) curve: SceneCurve,
-    sampler: CurveSampler,
+    pub(crate) sampler: CurveSampler,
     /// The first and second derivatives' samplers, made on first use.
     derivatives: std::sync::OnceLock<[CurveSampler; 2]>,
     /// The analysis (lowered segments in Bernstein form), made on first use.
     analysis: std::sync::OnceLock<CurveAnalysis>,
     /// Coordinates per point in results: 2 (planar input) or 3.
-    dim: usize,
+    pub(crate) dim: usize,
 }
 
 impl PyCurve {
@@ -72,7 +72,7 @@ impl PyCurve {
     }
 
     /// The curve's analysis.
-    fn analysis(&self) -> &CurveAnalysis {
+    pub(crate) fn analysis(&self) -> &CurveAnalysis {
         self.analysis
             .get_or_init(|| CurveAnalysis::new(&self.curve.curve))
     }
@@ -682,7 +682,7 @@ impl PyCurve {
 }
 
 /// An analysis error as the module's `CurveError`, naming the argument.
-fn analysis_error(e: &AnalysisError) -> PyErr {
+pub(crate) fn analysis_error(e: &AnalysisError) -> PyErr {
     let path = match e {
         AnalysisError::Accuracy(_) => "accuracy",
         AnalysisError::OutsideDomain { what, .. } => what,
@@ -697,7 +697,7 @@ fn analysis_error(e: &AnalysisError) -> PyErr {
 
 /// Intersections as Python values: `(s, t)` pairs, kinds, overlaps.
 #[allow(clippy::type_complexity)]
-fn hits_out<'py>(
+pub(crate) fn hits_out<'py>(
     py: Python<'py>,
     found: &Intersections,
 ) -> PyResult<(
@@ -714,45 +714,8 @@ fn hits_out<'py>(
     Ok((PyCurve::pairs(py, found)?, kinds, overlaps))
 }
 
-/// Every intersecting pair among `curves` (2D): a list of `(i, j, (s, t) pairs (K, 2),
-/// kinds, overlaps)`, `i < j`, on every core.
-#[pyfunction]
-#[allow(clippy::type_complexity)]
-pub fn intersections<'py>(
-    py: Python<'py>,
-    curves: Vec<PyRef<'py, PyCurve>>,
-) -> PyResult<
-    Vec<(
-        usize,
-        usize,
-        Bound<'py, PyAny>,
-        Vec<&'static str>,
-        Vec<((f64, f64), (f64, f64))>,
-    )>,
-> {
-    let analyses: Vec<CurveAnalysis> = curves.iter().map(|c| c.analysis().clone()).collect();
-    if let Some(k) = analyses.iter().position(|c| !c.is_planar()) {
-        return Err(raise::<CurveError>(
-            format!(
-                "curves[{k}] is not planar (it leaves z = 0); intersections are computed for planar curves"
-            ),
-            &format!("curves[{k}]"),
-        ));
-    }
-    let pairs = py
-        .detach(|| splinescope_core::analysis::all_intersections(&analyses))
-        .map_err(|e| analysis_error(&e))?;
-    pairs
-        .iter()
-        .map(|p| {
-            let (st, kinds, overlaps) = hits_out(py, &p.found)?;
-            Ok((p.i, p.j, st, kinds, overlaps))
-        })
-        .collect()
-}
-
 /// One point of `dim` coordinates.
-fn point(obj: &Bound<'_, PyAny>, what: &str, dim: usize) -> PyResult<DVec3> {
+pub(crate) fn point(obj: &Bound<'_, PyAny>, what: &str, dim: usize) -> PyResult<DVec3> {
     let a = arrays::float_array(obj, what)?;
     let v = a
         .as_slice()
@@ -771,7 +734,7 @@ fn point(obj: &Bound<'_, PyAny>, what: &str, dim: usize) -> PyResult<DVec3> {
 
 /// Checks a sample count `n` (at least 2) for `curves` curves against the command line's
 /// sample limit, before anything is allocated.
-fn check_sample_count(n: usize, curves: usize) -> PyResult<()> {
+pub(crate) fn check_sample_count(n: usize, curves: usize) -> PyResult<()> {
     if n < 2 {
         return Err(raise::<CurveError>(
             format!("n must be at least 2, not {n}"),
@@ -789,66 +752,4 @@ fn check_sample_count(n: usize, curves: usize) -> PyResult<()> {
             };
             raise::<CurveError>(format!("{what}: {e}"), "n")
         })
-}
-
-/// `n ≥ 2` uniform samples of every curve, `(C, n, dim)`, spread over every core.
-#[pyfunction]
-pub fn eval_many<'py>(
-    py: Python<'py>,
-    curves: Vec<PyRef<'py, PyCurve>>,
-    n: usize,
-) -> PyResult<Bound<'py, PyAny>> {
-    check_sample_count(n, curves.len())?;
-    let dim = curves.first().map_or(2, |c| c.dim);
-    if let Some(i) = curves.iter().position(|c| c.dim != dim) {
-        return Err(raise::<CurveError>(
-            format!(
-                "curves[{i}] has {} coordinates per point and curves[0] has {dim}: eval_many needs one dimension",
-                curves[i].dim
-            ),
-            &format!("curves[{i}]"),
-        ));
-    }
-    let samplers: Vec<CurveSampler> = curves.iter().map(|c| c.sampler.clone()).collect();
-    let count = curves.len();
-    let total = count * n;
-    let out = py.detach(|| {
-        let mut pts = vec![DVec3::ZERO; total];
-        sample_many(&samplers, n, &mut pts);
-        arrays::flatten(&pts, dim)
-    });
-    if let Some(k) = out.iter().position(|v| !v.is_finite()) {
-        let (i, j) = (k / dim / n, k / dim % n);
-        return Err(raise::<CurveError>(
-            format!(
-                "curves[{i}]: sample {j} of {n} is not a finite number (its coordinates or weights are too large for this computation in f64)"
-            ),
-            &format!("curves[{i}]"),
-        ));
-    }
-    arrays::shaped(py, out, &[count, n, dim])
-}
-
-/// Seconds per call of the same evaluation made in Rust, without Python: `t` (a 1-D
-/// float64 array) evaluated `repeats` times into a fresh vector of `dim` coordinates
-/// per point, on the threads the module uses. The benchmark compares the binding with
-/// it to measure its overhead.
-#[pyfunction]
-pub fn rust_eval_seconds(
-    py: Python<'_>,
-    curve: PyRef<'_, PyCurve>,
-    t: &Bound<'_, PyAny>,
-    repeats: u32,
-) -> PyResult<f64> {
-    let params = arrays::params(t, "t")?;
-    let ts = params.as_slice()?;
-    let sampler = &curve.sampler;
-    let dim = curve.dim;
-    Ok(py.detach(|| {
-        let started = std::time::Instant::now();
-        for _ in 0..repeats.max(1) {
-            std::hint::black_box(fill(ts, dim, &|ts, out| sampler.eval_into(ts, out)));
-        }
-        started.elapsed().as_secs_f64() / f64::from(repeats.max(1))
-    }))
 }

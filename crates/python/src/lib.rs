@@ -12,6 +12,7 @@
 mod arrays;
 mod curve;
 mod errors;
+mod many;
 mod scene;
 
 use pyo3::prelude::*;
@@ -22,10 +23,10 @@ fn _splinescope(m: &Bound<'_, PyModule>) -> PyResult<()> {
     errors::register(m)?;
     m.add_class::<curve::PyCurve>()?;
     m.add_class::<scene::PyScene>()?;
-    m.add_function(wrap_pyfunction!(curve::eval_many, m)?)?;
-    m.add_function(wrap_pyfunction!(curve::intersections, m)?)?;
+    m.add_function(wrap_pyfunction!(many::eval_many, m)?)?;
+    m.add_function(wrap_pyfunction!(many::intersections, m)?)?;
     m.add_function(wrap_pyfunction!(scene::compare_images, m)?)?;
-    m.add_function(wrap_pyfunction!(curve::rust_eval_seconds, m)?)?;
+    m.add_function(wrap_pyfunction!(many::rust_eval_seconds, m)?)?;
     m.add(
         "FAMILY_NAMES",
         splinescope_core::geom::Curve::FAMILY_NAMES.to_vec(),

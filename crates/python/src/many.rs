@@ -1,0 +1,112 @@
+//! Functions over many curves at once: `eval_many` (every curve at its own parameters, on
+//! every core), `intersections` (every intersecting pair) and the timing hook the peer
+//! benchmark reads.
+
+use glam::DVec3;
+use pyo3::prelude::*;
+
+use splinescope_core::analysis::CurveAnalysis;
+use splinescope_core::geom::batch::{CurveSampler, sample_many};
+
+use crate::arrays;
+use crate::curve::{PyCurve, analysis_error, check_sample_count, fill, hits_out};
+use crate::errors::{CurveError, raise};
+
+/// Every intersecting pair among `curves` (2D): a list of `(i, j, (s, t) pairs (K, 2),
+/// kinds, overlaps)`, `i < j`, on every core.
+#[pyfunction]
+#[allow(clippy::type_complexity)]
+pub fn intersections<'py>(
+    py: Python<'py>,
+    curves: Vec<PyRef<'py, PyCurve>>,
+) -> PyResult<
+    Vec<(
+        usize,
+        usize,
+        Bound<'py, PyAny>,
+        Vec<&'static str>,
+        Vec<((f64, f64), (f64, f64))>,
+    )>,
+> {
+    let analyses: Vec<CurveAnalysis> = curves.iter().map(|c| c.analysis().clone()).collect();
+    if let Some(k) = analyses.iter().position(|c| !c.is_planar()) {
+        return Err(raise::<CurveError>(
+            format!(
+                "curves[{k}] is not planar (it leaves z = 0); intersections are computed for planar curves"
+            ),
+            &format!("curves[{k}]"),
+        ));
+    }
+    let pairs = py
+        .detach(|| splinescope_core::analysis::all_intersections(&analyses))
+        .map_err(|e| analysis_error(&e))?;
+    pairs
+        .iter()
+        .map(|p| {
+            let (st, kinds, overlaps) = hits_out(py, &p.found)?;
+            Ok((p.i, p.j, st, kinds, overlaps))
+        })
+        .collect()
+}
+
+/// `n ≥ 2` uniform samples of every curve, `(C, n, dim)`, spread over every core.
+#[pyfunction]
+pub fn eval_many<'py>(
+    py: Python<'py>,
+    curves: Vec<PyRef<'py, PyCurve>>,
+    n: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    check_sample_count(n, curves.len())?;
+    let dim = curves.first().map_or(2, |c| c.dim);
+    if let Some(i) = curves.iter().position(|c| c.dim != dim) {
+        return Err(raise::<CurveError>(
+            format!(
+                "curves[{i}] has {} coordinates per point and curves[0] has {dim}: eval_many needs one dimension",
+                curves[i].dim
+            ),
+            &format!("curves[{i}]"),
+        ));
+    }
+    let samplers: Vec<CurveSampler> = curves.iter().map(|c| c.sampler.clone()).collect();
+    let count = curves.len();
+    let total = count * n;
+    let out = py.detach(|| {
+        let mut pts = vec![DVec3::ZERO; total];
+        sample_many(&samplers, n, &mut pts);
+        arrays::flatten(&pts, dim)
+    });
+    if let Some(k) = out.iter().position(|v| !v.is_finite()) {
+        let (i, j) = (k / dim / n, k / dim % n);
+        return Err(raise::<CurveError>(
+            format!(
+                "curves[{i}]: sample {j} of {n} is not a finite number (its coordinates or weights are too large for this computation in f64)"
+            ),
+            &format!("curves[{i}]"),
+        ));
+    }
+    arrays::shaped(py, out, &[count, n, dim])
+}
+
+/// Seconds per call of the same evaluation made in Rust, without Python: `t` (a 1-D
+/// float64 array) evaluated `repeats` times into a fresh vector of `dim` coordinates
+/// per point, on the threads the module uses. The benchmark compares the binding with
+/// it to measure its overhead.
+#[pyfunction]
+pub fn rust_eval_seconds(
+    py: Python<'_>,
+    curve: PyRef<'_, PyCurve>,
+    t: &Bound<'_, PyAny>,
+    repeats: u32,
+) -> PyResult<f64> {
+    let params = arrays::params(t, "t")?;
+    let ts = params.as_slice()?;
+    let sampler = &curve.sampler;
+    let dim = curve.dim;
+    Ok(py.detach(|| {
+        let started = std::time::Instant::now();
+        for _ in 0..repeats.max(1) {
+            std::hint::black_box(fill(ts, dim, &|ts, out| sampler.eval_into(ts, out)));
+        }
+        started.elapsed().as_secs_f64() / f64::from(repeats.max(1))
+    }))
+}
