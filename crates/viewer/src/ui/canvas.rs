@@ -106,9 +106,8 @@ pub(crate) fn canvas(
         };
     }
     if !status.is_empty() {
-        let rect = ctx.content_rect();
         painter.text(
-            rect.right_bottom() - egui::vec2(8.0, 6.0),
+            ctx.content_rect().right_bottom() - egui::vec2(8.0, 6.0),
             egui::Align2::RIGHT_BOTTOM,
             status,
             egui::FontId::monospace(12.0),
@@ -125,7 +124,24 @@ pub(crate) fn canvas(
             egui::Color32::from_rgb(r, g, b),
         );
     }
-    // Labels just past the ends of the 3D axis triad.
+    axis_labels(&painter, facts, &pixel);
+    if let Some(at) = model.context_menu {
+        context_menu(&ctx, model, to_pos(at), actions);
+    }
+    if model.show_help {
+        help_window(&ctx);
+    }
+    if let Some(prompt) = &model.prompt {
+        prompt_modal(&ctx, model, prompt, actions);
+    }
+}
+
+/// Labels just past the ends of the 3D axis triad.
+fn axis_labels(
+    painter: &egui::Painter,
+    facts: &crate::digest::SceneFacts,
+    pixel: &impl Fn(DVec3) -> Option<egui::Pos2>,
+) {
     for axis in &facts.axes {
         let [r, g, b, _] = axis.color.0.map(|v| (v * 255.0).round() as u8);
         let color = egui::Color32::from_rgb(r, g, b);
@@ -138,15 +154,6 @@ pub(crate) fn canvas(
                 color,
             );
         }
-    }
-    if let Some(at) = model.context_menu {
-        context_menu(&ctx, model, to_pos(at), actions);
-    }
-    if model.show_help {
-        help_window(&ctx);
-    }
-    if let Some(prompt) = &model.prompt {
-        prompt_modal(&ctx, model, prompt, actions);
     }
 }
 

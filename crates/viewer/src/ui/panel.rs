@@ -33,32 +33,7 @@ pub(crate) fn panel(
         .max_size(PANEL_WIDTH_POINTS as f32 * 1.6)
         .resizable(true)
         .show(ui, |ui| {
-            let scene = editor.scene();
-            ui.heading(scene.name.as_deref().unwrap_or("splinescope"));
-            ui.label(format!(
-                "{} curve(s) · {} samples/frame · {:.1} fps",
-                scene.curves.len(),
-                info.samples_per_frame,
-                info.fps
-            ));
-            if info.capped {
-                ui.colored_label(
-                    WARNING,
-                    "sample buffer full: curves drawn coarser than the tolerance",
-                );
-            }
-            ui.small(info.adapter);
-            if let Some([count, scan, tessellate, draw]) = info.stage_ms {
-                ui.small(format!(
-                    "GPU ms: count {count:.2} · scan {scan:.2} · tessellate {tessellate:.2} · draw {draw:.2}"
-                ));
-            }
-            if let Some((curves, ms)) = info.solving {
-                ui.label(format!(
-                    "re-solving {curves} curves per frame: {ms:.2} ms ({:.1} M solves/s)",
-                    curves as f64 / (ms.max(1e-6) * 1e3)
-                ));
-            }
+            header(ui, info, editor.scene());
             ui.separator();
             let mut tolerance = *tolerance_px;
             let response = ui
@@ -136,10 +111,85 @@ pub(crate) fn panel(
                         editor.selected = Some(i);
                     }
                 }
-
             });
         });
     response.response.rect.width()
+}
+
+/// The scene's name and what the frame costs: curves, samples, fps, the adapter, GPU
+/// stage times and the re-solve rate while solving.
+fn header(ui: &mut egui::Ui, info: &PanelInfo<'_>, scene: &crate::scene::Scene) {
+    ui.heading(scene.name.as_deref().unwrap_or("splinescope"));
+    ui.label(format!(
+        "{} curve(s) · {} samples/frame · {:.1} fps",
+        scene.curves.len(),
+        info.samples_per_frame,
+        info.fps
+    ));
+    if info.capped {
+        ui.colored_label(
+            WARNING,
+            "sample buffer full: curves drawn coarser than the tolerance",
+        );
+    }
+    ui.small(info.adapter);
+    if let Some([count, scan, tessellate, draw]) = info.stage_ms {
+        ui.small(format!(
+            "GPU ms: count {count:.2} · scan {scan:.2} · tessellate {tessellate:.2} · draw {draw:.2}"
+        ));
+    }
+    if let Some((curves, ms)) = info.solving {
+        ui.label(format!(
+            "re-solving {curves} curves per frame: {ms:.2} ms ({:.1} M solves/s)",
+            curves as f64 / (ms.max(1e-6) * 1e3)
+        ));
+    }
+}
+
+/// The selected control point's coordinates (typed) and its delete button, or how to
+/// select or insert one.
+fn point_row(
+    ui: &mut egui::Ui,
+    editor: &mut Editor,
+    index: usize,
+    sc: &crate::scene::SceneCurve,
+    planar: bool,
+) {
+    if let Some(point) = editor.selected_point
+        && let Some(&p) = sc.curve.control_points().get(point)
+    {
+        let field = format!("point {point}");
+        ui.horizontal(|ui| {
+            ui.label(&field);
+            let mut v = p;
+            if vector_row(ui, "", &mut v, planar)
+                && let Err(e) = editor.set_point(index, point, v)
+            {
+                editor.refuse(index, &field, e.to_string());
+            }
+        });
+        refusal_note(ui, editor, index, &field);
+        if ui
+            .button("delete point")
+            .on_hover_text(if sc.curve.inserts_by_knot() {
+                "Delete: remove this point with the knot nearest it"
+            } else {
+                "Delete: remove this point"
+            })
+            .clicked()
+        {
+            if let Err(e) = editor.delete_point(index, point) {
+                editor.message = Some(e.to_string());
+            }
+            editor.selected_point = None;
+        }
+    } else {
+        ui.small(if sc.curve.inserts_by_knot() {
+            "I inserts a knot at the curve point nearest the pointer (the shape stays); click a point to type its coordinates."
+        } else {
+            "I inserts a point on the control polygon at the pointer; click a point to type its coordinates."
+        });
+    }
 }
 
 /// The file menu (new, open, recent, save, save as) and the file's name with `*` when
@@ -274,41 +324,7 @@ pub(crate) fn edit_section(
             editor.message = Some(e.to_string());
         }
     });
-    if let Some(point) = editor.selected_point
-        && let Some(&p) = sc.curve.control_points().get(point)
-    {
-        let field = format!("point {point}");
-        ui.horizontal(|ui| {
-            ui.label(&field);
-            let mut v = p;
-            if vector_row(ui, "", &mut v, planar)
-                && let Err(e) = editor.set_point(index, point, v)
-            {
-                editor.refuse(index, &field, e.to_string());
-            }
-        });
-        refusal_note(ui, editor, index, &field);
-        if ui
-            .button("delete point")
-            .on_hover_text(if sc.curve.inserts_by_knot() {
-                "Delete: remove this point with the knot nearest it"
-            } else {
-                "Delete: remove this point"
-            })
-            .clicked()
-        {
-            if let Err(e) = editor.delete_point(index, point) {
-                editor.message = Some(e.to_string());
-            }
-            editor.selected_point = None;
-        }
-    } else {
-        ui.small(if sc.curve.inserts_by_knot() {
-            "I inserts a knot at the curve point nearest the pointer (the shape stays); click a point to type its coordinates."
-        } else {
-            "I inserts a point on the control polygon at the pointer; click a point to type its coordinates."
-        });
-    }
+    point_row(ui, editor, index, &sc, planar);
     egui::ScrollArea::vertical()
         .id_salt("controls")
         .max_height(240.0)
