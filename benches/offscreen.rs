@@ -8,7 +8,7 @@
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::DVec2;
-use splinescope::gpu::offscreen::{OFFSCREEN_FORMAT, render_uploaded};
+use splinescope::gpu::capture::{OFFSCREEN_FORMAT, render_uploaded};
 use splinescope::gpu::pack::{ChunkLimits, prepare};
 use splinescope::gpu::renderer::Renderer;
 use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext};

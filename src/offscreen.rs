@@ -5,8 +5,8 @@
 use glam::DVec2;
 
 use crate::camera::Camera;
+use crate::gpu::capture::render_with;
 use crate::gpu::context::GpuContext;
-use crate::gpu::offscreen::render_with;
 use crate::gpu::{GpuError, Pipelines};
 use crate::image::RgbaImage;
 use crate::scene::Scene;
@@ -16,7 +16,7 @@ use crate::scene::encoding::Encoding;
 /// that size when `None`), at the default tolerance.
 ///
 /// # Errors
-/// As [`crate::gpu::offscreen::render`].
+/// As [`crate::gpu::capture::render`].
 pub fn render_scene(
     ctx: &GpuContext,
     pipelines: &Pipelines,
@@ -38,7 +38,7 @@ pub fn render_scene(
 /// [`render_scene`] for a tolerance of `tolerance_px` pixels.
 ///
 /// # Errors
-/// As [`crate::gpu::offscreen::render`].
+/// As [`crate::gpu::capture::render`].
 pub fn render_scene_with(
     ctx: &GpuContext,
     pipelines: &Pipelines,

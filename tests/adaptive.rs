@@ -388,7 +388,7 @@ fn a_full_buffer_coarsens_every_curve_in_proportion_and_writes_nothing_outside()
 #[test]
 fn an_offscreen_render_grows_a_buffer_the_view_outgrew_and_draws_uncapped() {
     use splinescope::gpu::adaptive::{DEFAULT_TOLERANCE_PX, read_stats};
-    use splinescope::gpu::offscreen::{OFFSCREEN_FORMAT, render_uploaded};
+    use splinescope::gpu::capture::{OFFSCREEN_FORMAT, render_uploaded};
     use splinescope::gpu::renderer::Renderer;
     common::on_each_gpu(
         "an_offscreen_render_grows_a_buffer_the_view_outgrew_and_draws_uncapped",

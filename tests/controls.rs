@@ -53,13 +53,13 @@ fn elevating_a_bezier_keeps_the_curve_and_adds_a_point() {
 #[test]
 fn a_modified_curves_t_star_moves_the_peak_and_bad_values_are_refused() {
     let m = ModifiedBezier::try_new(cubic(), 0.5, DVec3::new(0.0, 1.0, 0.0)).unwrap();
-    let mut e = Editor::new(scene_of(vec![Curve::Modified(m)]), None);
+    let mut e = Editor::new(scene_of(vec![Curve::ModifiedBezier(m)]), None);
     let t_star = control(&e.scene().curves[0].curve, "t*");
     // Two slider moves are one edit.
     e.apply_control(0, &t_star, ControlValue::Number(0.6));
     e.apply_control(0, &t_star, ControlValue::Number(0.7));
     e.finish();
-    let Curve::Modified(now) = &e.scene().curves[0].curve else {
+    let Curve::ModifiedBezier(now) = &e.scene().curves[0].curve else {
         panic!("family changed")
     };
     assert_eq!(now.t_star(), 0.7);
@@ -76,7 +76,7 @@ fn a_modified_curves_t_star_moves_the_peak_and_bad_values_are_refused() {
     // The vector.
     let v = control(&before, "v");
     e.apply_control(0, &v, ControlValue::Vector(DVec3::new(0.5, -1.0, 0.0)));
-    let Curve::Modified(now) = &e.scene().curves[0].curve else {
+    let Curve::ModifiedBezier(now) = &e.scene().curves[0].curve else {
         panic!()
     };
     assert_eq!(now.v(), DVec3::new(0.5, -1.0, 0.0));

@@ -142,7 +142,7 @@ fn random_curves_of_every_family_match_up_to_the_maximum_degree() {
             let t_star = rng.range(0.05, 0.95);
             curves.push((
                 format!("modified degree {n}"),
-                Curve::Modified(
+                Curve::ModifiedBezier(
                     ModifiedBezier::try_new(Bezier::new(pts), t_star, v).expect("valid"),
                 ),
             ));

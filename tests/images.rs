@@ -256,7 +256,7 @@ fn curve_pixels_hug_the_exact_curve() {
 fn an_edit_written_in_place_renders_like_a_fresh_upload() {
     use splinescope::geom::Lower;
     use splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX;
-    use splinescope::gpu::offscreen::{OFFSCREEN_FORMAT, render_uploaded};
+    use splinescope::gpu::capture::{OFFSCREEN_FORMAT, render_uploaded};
     use splinescope::gpu::pack::{ChunkLimits, prepare, repack_points};
     use splinescope::gpu::renderer::Renderer;
     use splinescope::scene::encoding::Encoding;

@@ -240,7 +240,7 @@ fn presses_and_the_wheel_over_the_panel_or_a_menu_do_not_reach_the_canvas() {
 /// name (someone else's scene) is replaced only when the user confirms a second time.
 #[test]
 fn saving_the_gallery_asks_where_and_never_replaces_a_file_unasked() {
-    use splinescope::app::files::DialogMode;
+    use splinescope::app::file_dialog::DialogMode;
     use splinescope::app::{DEFAULT_SAVE_NAME, ViewOptions, editor_for};
     let gallery = splinescope::scene::gallery::gallery();
     let opts = ViewOptions {

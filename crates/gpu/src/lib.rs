@@ -1,21 +1,21 @@
 //! splinescope's GPU layer, the only one that names `wgpu` and `naga`: device setup, the
 //! data layout shared with the WGSL shaders, packing, the compute tessellator and its CPU
-//! twin, the renderer, offscreen capture (into an [`image::RgbaImage`]), GPU
-//! evaluation, and comparing images ([`compare`]: per-channel and FLIP, no GPU needed).
+//! twin, the renderer, offscreen capture ([`capture`], into a
+//! [`splinescope_image::RgbaImage`]) and GPU evaluation.
 //!
-//! What it may use: [`splinescope_core`] and [`splinescope_scene`], wgpu, naga, png,
-//! nv-flip. No
+//! What it may use: [`splinescope_core`], [`splinescope_io`], [`splinescope_image`] and
+//! [`splinescope_scene`], wgpu, naga. No
 //! window or command-line crate: the viewer and the command line build on it.
 
 #![forbid(unsafe_code)]
 
 pub mod adaptive;
 pub mod bindings;
+pub mod capture;
 pub mod chunks;
 pub mod context;
 pub mod eval;
 pub mod layout;
-pub mod offscreen;
 pub mod overlays;
 pub mod pack;
 pub mod pack_error;

@@ -285,7 +285,7 @@ impl PyScene {
         py.detach(|| {
             let (ctx, pipelines) = &*gpu;
             let camera = scene.camera(DVec2::new(f64::from(width), f64::from(height)));
-            splinescope_gpu::offscreen::render_with(
+            splinescope_gpu::capture::render_with(
                 ctx,
                 pipelines,
                 &Encoding::of(scene),

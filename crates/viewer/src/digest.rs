@@ -253,7 +253,7 @@ mod tests {
         let i = scene
             .curves
             .iter()
-            .position(|c| matches!(c.curve, Curve::Modified(_)))
+            .position(|c| matches!(c.curve, Curve::ModifiedBezier(_)))
             .unwrap();
         let mut e = Editor::new(scene, None);
         let label = |e: &Editor| summarize(e.scene())[i].label.clone();

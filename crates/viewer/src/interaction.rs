@@ -9,7 +9,7 @@ use glam::{DVec2, DVec3};
 mod file_actions;
 
 use super::edit::{Editor, Hit};
-use super::files::{FileDialog, RecentFiles};
+use super::file_dialog::{FileDialog, RecentFiles};
 use crate::camera::Camera;
 use crate::scene::{Scene, SceneCurve, Style};
 

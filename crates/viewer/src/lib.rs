@@ -29,7 +29,7 @@
 mod digest;
 pub mod edit;
 mod egui_layer;
-pub mod files;
+pub mod file_dialog;
 pub mod interaction;
 mod readback;
 mod scene_view;
@@ -91,7 +91,7 @@ pub struct ViewOptions {
     pub source: Option<String>,
 }
 
-pub use files::DEFAULT_SAVE_NAME;
+pub use file_dialog::DEFAULT_SAVE_NAME;
 
 /// The editor of the scene `opts` shows: saving to its file when it has one (keeping the
 /// file's form), to no file otherwise — a scene that did not come from a file never
@@ -384,7 +384,7 @@ impl Running {
             ui::PANEL_WIDTH_POINTS,
         );
         model.editable = stress.is_none();
-        model.recent = files::RecentFiles::load(files::RecentFiles::default_store());
+        model.recent = file_dialog::RecentFiles::load(file_dialog::RecentFiles::default_store());
         if model.editable {
             if let Some(path) = opts.path.as_deref().filter(|p| p.is_file())
                 && let Err(e) = model.recent.add(path)

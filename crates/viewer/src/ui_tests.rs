@@ -86,7 +86,7 @@ fn modified() -> Curve {
         DVec3::new(3.0, 2.0, 0.0),
         DVec3::new(4.0, 0.0, 0.0),
     ]);
-    Curve::Modified(ModifiedBezier::try_new(base, 0.3, DVec3::new(0.0, 1.0, 0.0)).unwrap())
+    Curve::ModifiedBezier(ModifiedBezier::try_new(base, 0.3, DVec3::new(0.0, 1.0, 0.0)).unwrap())
 }
 
 #[test]
@@ -149,7 +149,7 @@ fn a_typed_parameter_is_one_edit_and_an_out_of_range_one_is_refused_whole() {
         .click();
     h.run();
     type_into(&mut h, "0.30", "0.45");
-    let Curve::Modified(m) = &h.state().model.scene().curves[0].curve else {
+    let Curve::ModifiedBezier(m) = &h.state().model.scene().curves[0].curve else {
         panic!()
     };
     assert_eq!(m.t_star(), 0.45);

@@ -10,9 +10,9 @@ use glam::DVec2;
 
 use super::say;
 
+use splinescope::gpu::capture::OFFSCREEN_FORMAT;
 use splinescope::gpu::layout::GpuVertex;
 use splinescope::gpu::layout::{MAX_GPU_DEGREE, TESSELLATE_WORKGROUP_SIZE};
-use splinescope::gpu::offscreen::OFFSCREEN_FORMAT;
 use splinescope::gpu::pack::{ChunkLimits, prepare};
 use splinescope::gpu::renderer::{Renderer, camera_uniform};
 use splinescope::gpu::tessellator::read_buffer;

@@ -28,7 +28,7 @@ macro_rules! family_table {
             /// A Bézier curve of any degree (all papers).
             Bezier($crate::geom::Bezier) = "bezier",
             /// `R(t) = Q(t) + S(t) v` (paper 002, §4).
-            Modified($crate::geom::ModifiedBezier) = "modified_bezier",
+            ModifiedBezier($crate::geom::ModifiedBezier) = "modified_bezier",
             /// Cubic Bézier interpolation, plain or modified (paper 002, §5).
             Interpolation($crate::geom::CubicInterpolation) = "interpolation",
             /// A non-uniform B-spline of any order (paper 001, §2).
@@ -150,7 +150,7 @@ macro_rules! each_family {
     ($curve:expr, $c:ident => $body:expr) => {
         match $curve {
             $crate::geom::Curve::Bezier($c) => $body,
-            $crate::geom::Curve::Modified($c) => $body,
+            $crate::geom::Curve::ModifiedBezier($c) => $body,
             $crate::geom::Curve::Interpolation($c) => $body,
             $crate::geom::Curve::BSpline($c) => $body,
             $crate::geom::Curve::Nubmp($c) => $body,

@@ -16,7 +16,7 @@ pub mod curve;
 pub mod error;
 pub mod exact;
 pub mod family;
-pub mod interp;
+pub mod interpolation;
 pub mod knots;
 pub mod lowering;
 pub mod modified;
@@ -34,7 +34,7 @@ pub use family::rational::{NurbsDetails, RationalBezierDetails};
 pub use family::{
     Control, ControlId, ControlKind, ControlValue, Family, OverlayKind, OverlayPolyline,
 };
-pub use interp::{CubicInterpolation, Modification, Reading};
+pub use interpolation::{CubicInterpolation, Modification, Reading};
 pub use knots::KnotVector;
 pub use lowering::{BezierSegment, Lower, locate, max_degree};
 pub use modified::ModifiedBezier;

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use super::{Answer, ExportError, Interaction, Pending, Prompt, Response};
 use crate::camera::Camera;
 use crate::edit::Editor;
-use crate::files::{self, DialogMode, FileDialog};
+use crate::file_dialog::{self, DialogMode, FileDialog};
 use crate::scene::Scene;
 
 impl Interaction {
@@ -160,7 +160,7 @@ impl Interaction {
     pub fn save_as_dialog(&mut self) {
         self.cancel_gesture();
         let name = self.editor.path().and_then(Path::file_name).map_or_else(
-            || files::DEFAULT_SAVE_NAME.into(),
+            || file_dialog::DEFAULT_SAVE_NAME.into(),
             |n| n.to_string_lossy().into_owned(),
         );
         self.dialog = Some(FileDialog::new(
@@ -231,7 +231,7 @@ impl Interaction {
         } else {
             splinescope_figure::svg::write(&fig).into_bytes()
         };
-        splinescope_scene::files::write_atomic(path, &bytes).map_err(|source| ExportError::Write {
+        splinescope_io::files::write_atomic(path, &bytes).map_err(|source| ExportError::Write {
             path: path.to_owned(),
             source,
         })

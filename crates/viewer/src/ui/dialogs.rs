@@ -1,6 +1,6 @@
 //! Dialogs and windows: the shortcuts' help, prompts and the file dialog.
 
-use crate::files::{DialogMode, FileDialog};
+use crate::file_dialog::{DialogMode, FileDialog};
 use crate::interaction::{Answer, Interaction, Pending, Prompt};
 
 use super::actions::*;

@@ -1,5 +1,5 @@
 //! What every curve family provides, behind one trait: [`Family`]. Each family implements
-//! it in its own file here (`bezier.rs`, `modified.rs`, `interp.rs`, `bspline.rs`,
+//! it in its own file here (`bezier.rs`, `modified.rs`, `interpolation.rs`, `bspline.rs`,
 //! `nubmp.rs`, `rational.rs`), apart from its math file in `geom` (evaluation, lowering,
 //! structure edits — no serde, no words for a person);
 //! [`crate::geom::Curve`] dispatches to it, and the scene codec, `inspect`, the viewer's
@@ -8,7 +8,7 @@
 
 pub mod bezier;
 pub mod bspline;
-pub mod interp;
+pub mod interpolation;
 pub mod modified;
 pub mod nubmp;
 pub mod rational;

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use glam::{DVec2, DVec3};
 use splinescope::app::edit::{Editor, recovery_path};
-use splinescope::app::files::{DialogMode, Entry, FileDialog, RECENT_KEPT, RecentFiles};
+use splinescope::app::file_dialog::{DialogMode, Entry, FileDialog, RECENT_KEPT, RecentFiles};
 use splinescope::app::interaction::{Answer, Button, Input, Interaction, Key, Pending, Prompt};
 use splinescope::geom::{Bezier, Curve};
 use splinescope::scene::{Scene, to_json_string};
