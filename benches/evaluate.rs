@@ -10,7 +10,7 @@ use splinescope::geom::{BSpline, Bezier, Curve, Nubmp, ParamCurve};
 use splinescope::gpu::layout::GpuVertex;
 use splinescope::gpu::pack::{ChunkLimits, prepare};
 use splinescope::gpu::twin;
-use splinescope::scene::encoding::Encoding;
+use splinescope::scene::encoding::encode;
 use splinescope::scene::generate::{Rng, StressOptions, random_bezier_scene};
 
 fn bench(c: &mut Criterion) {
@@ -50,11 +50,7 @@ fn bench(c: &mut Criterion) {
         samples: 64,
         ..Default::default()
     });
-    let prepared = prepare(
-        &Encoding::of(&scene),
-        ChunkLimits::for_binding_size(1 << 27),
-    )
-    .unwrap();
+    let prepared = prepare(&encode(&scene), ChunkLimits::for_binding_size(1 << 27)).unwrap();
     let chunk = &prepared.chunks[0];
     let mut out = vec![
         GpuVertex {

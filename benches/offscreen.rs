@@ -12,7 +12,7 @@ use splinescope::gpu::capture::{OFFSCREEN_FORMAT, render_uploaded};
 use splinescope::gpu::pack::{ChunkLimits, prepare};
 use splinescope::gpu::renderer::Renderer;
 use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext};
-use splinescope::scene::encoding::Encoding;
+use splinescope::scene::encoding::encode;
 use splinescope::scene::generate::{StressOptions, random_bezier_scene};
 
 fn bench(c: &mut Criterion) {
@@ -31,7 +31,7 @@ fn bench(c: &mut Criterion) {
             scene.samples_per_segment = None;
         }
         let prepared = prepare(
-            &Encoding::of(&scene),
+            &encode(&scene),
             ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
         )
         .expect("the stress scene packs");

@@ -11,10 +11,13 @@
 //!   std and thiserror only.
 //! * [`splinescope_image`] ([`image`]) — RGBA images, PNG reading within the limits and
 //!   atomic writing, per-channel and FLIP comparison; no GPU.
+//! * [`splinescope_encoding`] — what the GPU layer is handed: each curve's exact segments,
+//!   samples and stroke, the draw list, colours and the [`camera`]; no format, no GPU.
 //! * [`splinescope_scene`] — the JSON [`scene`] and [`request`] formats with typed,
-//!   path-naming errors, and the [`camera`].
+//!   path-naming errors, and a scene's encoding.
 //! * [`splinescope_gpu`] ([`gpu`]) — the only layer that names `wgpu`: device setup, the
-//!   WGSL kernels and their CPU twin, the renderer, offscreen capture.
+//!   WGSL kernels and their CPU twin, the renderer, offscreen capture; handed an
+//!   encoding, never a scene file.
 //! * [`splinescope_viewer`] ([`app`]) — the interactive winit + egui viewer.
 //! * this package — the command line, and what only it prints or writes: [`outputs`] of
 //!   `eval`/`check`, [`regress`]ion runs, the JSON [`schemas`], and drawing a scene

@@ -10,7 +10,7 @@ use crate::gpu::context::GpuContext;
 use crate::gpu::{GpuError, Pipelines};
 use crate::image::RgbaImage;
 use crate::scene::Scene;
-use crate::scene::encoding::Encoding;
+use crate::scene::encoding::encode;
 
 /// Draws `scene` into a `width × height` image with `camera` (the scene's own view for
 /// that size when `None`), at the default tolerance.
@@ -52,7 +52,7 @@ pub fn render_scene_with(
     render_with(
         ctx,
         pipelines,
-        &Encoding::of(scene),
+        &encode(scene),
         &camera,
         (width, height),
         tolerance_px,

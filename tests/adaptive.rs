@@ -18,7 +18,7 @@ use splinescope::gpu::pack::{ChunkLimits, PreparedScene, prepare};
 use splinescope::gpu::renderer::camera_uniform;
 use splinescope::gpu::tessellator::read_buffer;
 use splinescope::gpu::twin;
-use splinescope::scene::encoding::Encoding;
+use splinescope::scene::encoding::encode;
 use splinescope::scene::generate::Rng;
 use splinescope::scene::{Scene, SceneCurve, Style};
 
@@ -138,7 +138,7 @@ fn exact_segments(scene: &Scene, prepared: &PreparedScene, c: usize) -> Vec<(u32
 fn check(backend: &common::Backend, scene: &Scene, camera: &Camera, tolerance_px: f64, what: &str) {
     let ctx = &backend.ctx;
     let prepared = prepare(
-        &Encoding::of(scene),
+        &encode(scene),
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )
     .expect("pack");
@@ -334,7 +334,7 @@ fn a_full_buffer_coarsens_every_curve_in_proportion_and_writes_nothing_outside()
             let ctx = &backend.ctx;
             let scene = random_scene(13, false);
             let prepared = prepare(
-                &Encoding::of(&scene),
+                &encode(&scene),
                 ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
             )
             .expect("pack");
@@ -396,7 +396,7 @@ fn an_offscreen_render_grows_a_buffer_the_view_outgrew_and_draws_uncapped() {
             let ctx = &backend.ctx;
             let scene = random_scene(14, false);
             let prepared = prepare(
-                &Encoding::of(&scene),
+                &encode(&scene),
                 ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
             )
             .expect("pack");

@@ -1,6 +1,6 @@
 //! What each crate pulls in, read from `cargo tree` (the lock file, no build): core without
 //! its `serde` feature has no serde; the I/O policy crate only thiserror; comparing images
-//! needs no GPU. A dependency added to the wrong crate fails here, naming it.
+//! needs no GPU; the GPU layer is handed an encoding and compiles without the JSON format. A dependency added to the wrong crate fails here, naming it.
 
 use std::process::Command;
 
@@ -78,6 +78,25 @@ fn image_comparison_needs_no_gpu() {
         tree("splinescope-image", &[])
             .iter()
             .any(|n| n == "nv-flip")
+    );
+}
+
+#[test]
+fn the_gpu_layer_is_handed_an_encoding_not_the_scene_format() {
+    assert_none(
+        "splinescope-gpu",
+        &[],
+        &["serde_json", "schemars", "splinescope-scene"],
+    );
+    assert_none(
+        "splinescope-encoding",
+        &[],
+        &["serde", "serde_json", "wgpu", "splinescope-scene"],
+    );
+    assert!(
+        tree("splinescope-gpu", &[])
+            .iter()
+            .any(|n| n == "splinescope-encoding")
     );
 }
 

@@ -20,7 +20,7 @@ use splinescope::gpu::pack::{ChunkBuilder, ChunkLimits, TessChunk, prepare};
 use splinescope::gpu::tessellator::{POISON, Tessellator, plan, read_buffer};
 use splinescope::gpu::twin;
 use splinescope::scene::Color;
-use splinescope::scene::encoding::Encoding;
+use splinescope::scene::encoding::encode;
 use splinescope::scene::generate::{Rng, StressOptions, random_bezier_scene};
 
 /// The bound for a curve of `degree` with control points `points` (see the module doc).
@@ -272,7 +272,7 @@ fn one_million_cubics_tessellate_correctly_in_chunks() {
                 ..Default::default()
             });
             let limits = ChunkLimits::for_binding_size(ctx.max_binding_bytes());
-            let prepared = prepare(&Encoding::of(&scene), limits).expect("packs");
+            let prepared = prepare(&encode(&scene), limits).expect("packs");
             let total: u64 = prepared
                 .chunks
                 .iter()

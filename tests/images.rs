@@ -259,7 +259,7 @@ fn an_edit_written_in_place_renders_like_a_fresh_upload() {
     use splinescope::gpu::capture::{OFFSCREEN_FORMAT, render_uploaded};
     use splinescope::gpu::pack::{ChunkLimits, prepare, repack_points};
     use splinescope::gpu::renderer::Renderer;
-    use splinescope::scene::encoding::Encoding;
+    use splinescope::scene::encoding::encode;
     common::on_each_gpu(
         "an_edit_written_in_place_renders_like_a_fresh_upload",
         |backend| {
@@ -268,7 +268,7 @@ fn an_edit_written_in_place_renders_like_a_fresh_upload() {
             let scene = Scene::load(&path).expect("scene");
             let limits = ChunkLimits::for_binding_size(ctx.max_binding_bytes());
             let renderer = Renderer::new(&ctx.device, &backend.pipelines, OFFSCREEN_FORMAT);
-            let prepared = prepare(&Encoding::of(&scene), limits).expect("pack");
+            let prepared = prepare(&encode(&scene), limits).expect("pack");
             let mut gpu = renderer.upload(ctx, &prepared);
             let viewport = DVec2::new(320.0, 240.0);
             let camera = scene.camera(viewport);

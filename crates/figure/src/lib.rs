@@ -41,7 +41,7 @@ use thiserror::Error;
 
 use splinescope_scene::camera::Camera;
 use splinescope_scene::scene::draw::{Stroke, Switches};
-use splinescope_scene::scene::encoding::Encoding;
+use splinescope_scene::scene::encoding::{Encoding, encode_with};
 use splinescope_scene::scene::{Color, Scene};
 
 use fit::{Budget, FitError, Page, Piece, Projection, segment_pieces};
@@ -401,7 +401,7 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
     if (opts.axes || opts.grid) && !proj.affine {
         return Err(FigureError::AxesIn3d);
     }
-    let encoding = Encoding::with(scene, opts.switches);
+    let encoding = encode_with(scene, opts.switches);
     let (mut items, guides) = annotate::axes(&proj, size, opts.axes, opts.grid);
     let behind = items.len();
     if opts.curves {

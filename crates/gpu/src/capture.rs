@@ -11,7 +11,7 @@ use super::pipelines::Pipelines;
 use super::renderer::{GpuScene, Renderer, camera_uniform};
 use super::tessellator::read_buffer;
 use crate::camera::Camera;
-use crate::scene::encoding::Encoding;
+use crate::encoding::Encoding;
 use splinescope_image::RgbaImage;
 
 /// The texture format offscreen images are drawn in: 8-bit RGBA, colours stored as given

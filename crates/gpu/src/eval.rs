@@ -16,9 +16,9 @@ use super::context::GpuContext;
 use super::layout::GpuVertex;
 use super::pack::{ChunkBuilder, ChunkLimits, check_gpu_fit};
 use super::pipelines::Pipelines;
+use crate::encoding::Color;
 use crate::geom::{BezierSegment, locate};
 use crate::num::{scale_by_power_of_two, split_exponent};
-use crate::scene::Color;
 
 /// Evaluates each curve (given as its lowered segments, with its scene index for error
 /// messages) at its parameters, on the GPU.

@@ -140,7 +140,7 @@ pub struct GpuFrame {
 
 /// The most samples adaptive tessellation gives one segment (a scene's fixed counts have
 /// the same maximum).
-pub const MAX_SAMPLES_PER_SEGMENT: u32 = crate::scene::MAX_SAMPLES_PER_SEGMENT;
+pub const MAX_SAMPLES_PER_SEGMENT: u32 = crate::encoding::MAX_SAMPLES_PER_SEGMENT;
 
 /// The most segments of one chunk in adaptive tessellation: the prefix sum scans blocks of
 /// [`SCAN_BLOCK`] and then at most [`SCAN_BLOCK`] block totals in one workgroup.

@@ -1,12 +1,12 @@
-//! Packing the scene's draw list ([`crate::scene::draw`]) for the GPU: strokes become
+//! Packing the scene's draw list ([`crate::encoding::draw`]) for the GPU: strokes become
 //! [`GpuLineStyle`] table entries, polylines and points binding-sized batches.
 
 use std::ops::Range;
 
 use super::chunks::{BatchBuilder, BatchPiece, ChunkLimits, LineBatch};
 use super::layout::{GpuLineStyle, GpuVertex};
-use crate::scene::Color;
-use crate::scene::draw::{CurveOverlays, DrawList, Stroke, Switches};
+use crate::encoding::Color;
+use crate::encoding::draw::{CurveOverlays, DrawList, Stroke, Switches};
 
 impl GpuLineStyle {
     /// A solid style.
@@ -82,8 +82,8 @@ pub fn prepare_overlays_mapped(
     (lines, points, map)
 }
 
-/// The new overlays of an edit: the changed curves' ([`crate::scene::draw::curve_overlays`]
-/// of each, with its index) and the 3D axis triad's ([`crate::scene::draw::axis_lines`]),
+/// The new overlays of an edit: the changed curves' (`splinescope_scene::scene::draw::curve_overlays`
+/// of each, with its index) and the 3D axis triad's (`splinescope_scene::scene::draw::axis_lines`),
 /// drawn with `switches` for a scene of `curve_count` curves.
 #[derive(Debug, Clone)]
 pub struct OverlayEdit {
@@ -149,9 +149,9 @@ fn write_entries(
 mod tests {
     use super::*;
     use crate::geom::ParamCurve;
-    use crate::scene::Scene;
-    use crate::scene::draw::{axis_lines, curve_overlays, draw_list};
     use glam::DVec3;
+    use splinescope_scene::scene::Scene;
+    use splinescope_scene::scene::draw::{axis_lines, curve_overlays, draw_list};
 
     fn edit(scene: &Scene, switches: Switches, c: usize) -> OverlayEdit {
         OverlayEdit {
@@ -173,7 +173,7 @@ mod tests {
     /// across them — and a change of shape asks for a fresh packing instead.
     #[test]
     fn rewritten_overlays_equal_a_fresh_packing() {
-        let scene = crate::scene::gallery::gallery();
+        let scene = splinescope_scene::scene::gallery::gallery();
         for limits in [
             ChunkLimits::for_binding_size(1 << 20),
             ChunkLimits {
@@ -221,7 +221,7 @@ mod tests {
             };
             assert!(map.rewrite(&edit(&scene, off, c)).is_none());
             let mut recoloured = scene.clone();
-            recoloured.curves[c].style.color = crate::scene::Color([0.1, 0.2, 0.3, 1.0]);
+            recoloured.curves[c].style.color = crate::encoding::Color([0.1, 0.2, 0.3, 1.0]);
             assert!(map.rewrite(&edit(&recoloured, Switches::ALL, c)).is_none());
         }
     }

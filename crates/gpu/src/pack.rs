@@ -13,9 +13,9 @@ pub use super::chunks::{BatchBuilder, ChunkBuilder, ChunkLimits, LineBatch, Plac
 use super::layout::{GpuControlPoint, GpuLineStyle, MAX_GPU_DEGREE};
 pub use super::overlays::{OverlayEdit, OverlayMap, prepare_overlays_mapped};
 pub use super::pack_error::{GPU_COORDINATE_LIMIT, GPU_WEIGHT_RATIO, PackError};
+use crate::encoding::Encoding;
+use crate::encoding::{Color, auto_samples};
 use crate::geom::BezierSegment;
-use crate::scene::encoding::Encoding;
-use crate::scene::{Color, auto_samples};
 
 /// Checks that the kernel can evaluate every segment: its degree is at most
 /// [`MAX_GPU_DEGREE`], every coordinate is within [`GPU_COORDINATE_LIMIT`] and every
@@ -203,7 +203,7 @@ pub fn prepare(encoding: &Encoding, limits: ChunkLimits) -> Result<PreparedScene
 mod tests {
     use super::*;
     use crate::geom::{Bezier, Lower};
-    use crate::scene::Scene;
+    use splinescope_scene::scene::Scene;
 
     fn style() -> GpuLineStyle {
         GpuLineStyle::solid(Color::WHITE, 1.0)
@@ -395,7 +395,7 @@ mod tests {
     #[test]
     fn repacking_an_edited_curve_in_place_equals_packing_it_anew() {
         use crate::geom::{Curve, Nubmp};
-        use crate::scene::{SceneCurve, Style, ViewSpec};
+        use splinescope_scene::scene::{SceneCurve, Style, ViewSpec};
         let pts: Vec<DVec3> = (0..7)
             .map(|i| DVec3::new(f64::from(i), f64::from(i % 2), 0.0))
             .collect();
@@ -427,12 +427,20 @@ mod tests {
             max_records: 1000,
             max_styles: 1000,
         };
-        let before = prepare(&Encoding::of(&scene(&nub)), limits).unwrap();
+        let before = prepare(
+            &splinescope_scene::scene::encoding::encode(&scene(&nub)),
+            limits,
+        )
+        .unwrap();
         assert!(before.chunks.len() > 2);
         assert!(before.placements[1].len() > 4, "{:?}", before.placements[1]);
         let mut edited = nub.clone();
         edited.set_group(5, &[0.5, 0.2, 0.3]).unwrap();
-        let after = prepare(&Encoding::of(&scene(&edited)), limits).unwrap();
+        let after = prepare(
+            &splinescope_scene::scene::encoding::encode(&scene(&edited)),
+            limits,
+        )
+        .unwrap();
         let mut chunks: Vec<Vec<GpuControlPoint>> =
             before.chunks.iter().map(|c| c.points.clone()).collect();
         let writes = repack_points(

@@ -13,7 +13,7 @@ use splinescope_gpu::{BackendChoice, ContextOptions, GpuContext, Pipelines};
 use splinescope_image::RgbaImage;
 use splinescope_image::compare::{Tolerance, compare_images as compare};
 use splinescope_scene::request::apply_text;
-use splinescope_scene::scene::encoding::Encoding;
+use splinescope_scene::scene::encoding::encode;
 use splinescope_scene::scene::{Scene, from_json_str, to_json_string};
 
 use crate::arrays;
@@ -288,7 +288,7 @@ impl PyScene {
             splinescope_gpu::capture::render_with(
                 ctx,
                 pipelines,
-                &Encoding::of(scene),
+                &encode(scene),
                 &camera,
                 (width, height),
                 tolerance_px,

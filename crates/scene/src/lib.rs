@@ -3,7 +3,8 @@
 //! ([`camera`]); the input limits and output-path policy it checks and follows are
 //! `splinescope-io`'s ([`limits`], [`files`], re-exported).
 //!
-//! What it may use: [`splinescope_core`] (curves and solvers), `splinescope-io`, serde, serde_json and
+//! What it may use: [`splinescope_core`] (curves and solvers), `splinescope-io`,
+//! `splinescope-encoding` (what it encodes a scene into), serde, serde_json and
 //! schemars — no GPU, window or command-line crate. The GPU and viewer layers build on it.
 //!
 //! ```
@@ -24,7 +25,6 @@
 
 #![forbid(unsafe_code)]
 
-pub mod camera;
 mod jsonread;
 pub mod request;
 pub mod scene;
@@ -33,6 +33,9 @@ pub mod text;
 // The I/O policy's modules, re-exported under the names this layer's users know
 // (`splinescope_scene::limits`).
 pub use splinescope_io::{files, limits};
+
+// The camera is the encoding's (what the GPU layer draws through).
+pub use splinescope_encoding::camera;
 
 // The core's modules under the names the code of this layer uses (`crate::geom`).
 use splinescope_core::{geom, solve};

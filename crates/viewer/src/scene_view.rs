@@ -18,7 +18,7 @@ use crate::gpu::renderer::{GpuScene, Renderer};
 use crate::gpu::{GpuContext, GpuError, Pipelines};
 use crate::scene::Scene;
 use crate::scene::draw::{Switches, axis_polylines, curve_overlays, draw_list_with};
-use crate::scene::encoding::Encoding;
+use crate::scene::encoding::encode_with;
 
 /// What the GPU holds of the scene, and the panel's per-curve summaries.
 pub(crate) struct SceneView {
@@ -284,7 +284,7 @@ fn upload(
     switches: Switches,
 ) -> Result<(GpuScene, PreparedScene), AppError> {
     let prepared = prepare(
-        &Encoding::with(scene, switches),
+        &encode_with(scene, switches),
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )
     .map_err(GpuError::from)?;

@@ -18,7 +18,7 @@ use splinescope::gpu::renderer::{Renderer, camera_uniform};
 use splinescope::gpu::tessellator::read_buffer;
 use splinescope::gpu::twin;
 use splinescope::gpu::{GpuContext, Pipelines};
-use splinescope::scene::encoding::Encoding;
+use splinescope::scene::encoding::encode;
 use splinescope::scene::generate::{StressFamily, StressOptions, random_bezier_scene};
 
 mod compare;
@@ -352,7 +352,7 @@ fn gpu_rates(
     report: &mut BenchReport,
 ) -> Result<()> {
     let prepared = prepare(
-        &Encoding::of(scene),
+        &encode(scene),
         ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )?;
     report.chunks = Some(prepared.chunks.len());

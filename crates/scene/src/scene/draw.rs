@@ -6,48 +6,12 @@
 use glam::DVec3;
 
 use super::{AnnotationShape, Color, Scene, SceneCurve};
-use crate::geom::OverlayKind;
 
-/// How a polyline or a point set is drawn.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Stroke {
-    /// Straight-alpha sRGB colour.
-    pub color: Color,
-    /// Line width, or point diameter, in logical pixels.
-    pub width_px: f32,
-    /// Dash period in pixels (0 = solid).
-    pub dash_px: f32,
-}
-
-impl Stroke {
-    /// A solid stroke.
-    #[must_use]
-    pub fn solid(color: Color, width_px: f32) -> Stroke {
-        Stroke {
-            color,
-            width_px,
-            dash_px: 0.0,
-        }
-    }
-}
-
-/// Polylines and point sets with their strokes.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct DrawList {
-    /// Polylines.
-    pub lines: Vec<(Vec<DVec3>, Stroke)>,
-    /// Point sets (drawn as discs of the stroke's width).
-    pub points: Vec<(Vec<DVec3>, Stroke)>,
-    /// Per curve, which entries of `lines` and `points` are its overlays (so that an edit
-    /// of one curve can rewrite its overlays alone).
-    pub curves: Vec<(std::ops::Range<usize>, std::ops::Range<usize>)>,
-    /// The entries of `lines` that are the 3D axis triad (which follows the scene's
-    /// bounds, so any edit may move it).
-    pub axes: std::ops::Range<usize>,
-}
-
-/// One curve's overlays as the draw list holds them: its polylines and point sets.
-pub type CurveOverlays = (Vec<(Vec<DVec3>, Stroke)>, Vec<(Vec<DVec3>, Stroke)>);
+// The list's types are the encoding's; what is built from a scene is here.
+pub use splinescope_encoding::draw::{
+    Axis, CurveOverlays, DERIVED_POINT_DIAMETER_PX, DUAL_COLOR, DrawList, POINT_DIAMETER_PX,
+    POLYGON_WIDTH_PX, Stroke, Switches, axis_polylines, overlay_point_style, overlay_style,
+};
 
 /// Curve `sc`'s overlay polylines and point sets under `switches` (its entries of
 /// [`draw_list_with`]).
@@ -84,76 +48,6 @@ pub fn axis_lines(scene: &Scene) -> Vec<(Vec<DVec3>, Stroke)> {
     axis_polylines(&axis_triad(scene))
 }
 
-/// The polylines that draw `axes` (for a caller that keeps the triad already).
-#[must_use]
-pub fn axis_polylines(axes: &[Axis]) -> Vec<(Vec<DVec3>, Stroke)> {
-    axes.iter()
-        .map(|axis| (vec![axis.from, axis.to], Stroke::solid(axis.color, 2.0)))
-        .collect()
-}
-
-/// Width in pixels of control polygons.
-pub const POLYGON_WIDTH_PX: f32 = 1.25;
-/// Diameter in pixels of control points.
-pub const POINT_DIAMETER_PX: f32 = 7.0;
-
-/// Diameter in pixels of derived points (dual control points, inner Bézier points).
-pub const DERIVED_POINT_DIAMETER_PX: f32 = 5.0;
-/// The colour of NUBMP dual polygons and points.
-pub const DUAL_COLOR: Color = Color([0.95, 0.55, 0.05, 0.95]);
-
-/// The style of an overlay polyline of `kind` over a curve of colour `curve`.
-#[must_use]
-pub fn overlay_style(kind: OverlayKind, curve: Color) -> Stroke {
-    let grey = Color([0.55, 0.55, 0.55, 1.0]);
-    match kind {
-        OverlayKind::ControlPolygon => {
-            let mut c = curve.mix(grey, 0.55);
-            c.0[3] = 0.9;
-            Stroke::solid(c, POLYGON_WIDTH_PX)
-        }
-        OverlayKind::DualPolygon => Stroke {
-            dash_px: 8.0,
-            ..Stroke::solid(DUAL_COLOR, POLYGON_WIDTH_PX)
-        },
-        OverlayKind::TangentHandles => {
-            let mut c = curve.mix(grey, 0.7);
-            c.0[3] = 0.85;
-            Stroke::solid(c, 1.0)
-        }
-        OverlayKind::BumpVector => Stroke {
-            dash_px: 6.0,
-            ..Stroke::solid(curve.mix(Color([0.0, 0.0, 0.0, 1.0]), 0.3), 2.0)
-        },
-    }
-}
-
-/// The style of the derived points shown with an overlay of `kind`, if any.
-#[must_use]
-pub fn overlay_point_style(kind: OverlayKind, curve: Color) -> Option<Stroke> {
-    match kind {
-        OverlayKind::DualPolygon => Some(Stroke::solid(DUAL_COLOR, DERIVED_POINT_DIAMETER_PX)),
-        OverlayKind::TangentHandles => Some(Stroke::solid(
-            curve.mix(Color([0.55, 0.55, 0.55, 1.0]), 0.6),
-            DERIVED_POINT_DIAMETER_PX - 1.0,
-        )),
-        OverlayKind::ControlPolygon | OverlayKind::BumpVector => None,
-    }
-}
-
-/// One axis of the triad drawn in 3D scenes.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Axis {
-    /// `"x"`, `"y"` or `"z"`.
-    pub name: &'static str,
-    /// Where it starts (the scene's lowest corner).
-    pub from: DVec3,
-    /// Where it ends (a fifth of the scene's diagonal along the axis).
-    pub to: DVec3,
-    /// x red, y green, z blue.
-    pub color: Color,
-}
-
 /// The axis triad at the lowest corner of `scene`'s bounds.
 #[must_use]
 pub fn axis_triad(scene: &Scene) -> [Axis; 3] {
@@ -178,25 +72,6 @@ pub fn axis_triad(scene: &Scene) -> [Axis; 3] {
 #[must_use]
 pub fn draw_list(scene: &Scene) -> DrawList {
     draw_list_with(scene, Switches::ALL)
-}
-
-/// Which curve overlays are drawn, over and above each curve's own style: the viewer's
-/// `P` (control polygons and the families' explaining polylines) and `C` (control points)
-/// switches. A curve's overlay is drawn when its style and the switch both ask for it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Switches {
-    /// Control polygons and explaining polylines.
-    pub polygons: bool,
-    /// Control points.
-    pub points: bool,
-}
-
-impl Switches {
-    /// Everything the curves' styles ask for.
-    pub const ALL: Switches = Switches {
-        polygons: true,
-        points: true,
-    };
 }
 
 /// [`draw_list`] with the curves' overlays further limited by `switches` (the scene is

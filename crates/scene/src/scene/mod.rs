@@ -27,80 +27,15 @@ pub use json::{
 };
 pub use preserve::to_json_string_keeping;
 
+/// The colour, the sample counts and their limit are the encoding's.
+pub use splinescope_encoding::{
+    AUTO_SAMPLES_TOLERANCE, Color, MAX_SAMPLES_PER_SEGMENT, auto_samples,
+};
+
 /// The scene format version this build reads and writes.
 pub const FORMAT_VERSION: u32 = 1;
 /// Samples per Bézier segment of the stress scenes and benchmarks.
 pub const DEFAULT_SAMPLES_PER_SEGMENT: u32 = 64;
-/// With automatic sampling, the largest distance between a segment and its polyline,
-/// relative to the segment's control-box diagonal (2e-4: a fifth of a pixel when the
-/// segment spans a thousand).
-pub const AUTO_SAMPLES_TOLERANCE: f64 = 2e-4;
-/// The most samples one segment may ask for.
-pub const MAX_SAMPLES_PER_SEGMENT: u32 = 4096;
-
-/// A colour with straight (not premultiplied) alpha, each channel in `[0, 1]`, sRGB.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Color(pub [f32; 4]);
-
-impl Color {
-    /// Opaque white.
-    pub const WHITE: Color = Color([1.0, 1.0, 1.0, 1.0]);
-
-    /// This colour mixed with `other` by `f` (`0` keeps `self`).
-    #[must_use]
-    pub fn mix(self, other: Color, f: f32) -> Color {
-        let mut c = self.0;
-        for (ch, o) in c.iter_mut().zip(other.0) {
-            *ch += (o - *ch) * f;
-        }
-        Color(c)
-    }
-
-    /// As `#rrggbb` or `#rrggbbaa` (alpha written only when not opaque).
-    #[must_use]
-    pub fn to_hex(self) -> String {
-        let b = self.0.map(|c| (c * 255.0).round() as u8);
-        if b[3] == 255 {
-            format!("#{:02x}{:02x}{:02x}", b[0], b[1], b[2])
-        } else {
-            format!("#{:02x}{:02x}{:02x}{:02x}", b[0], b[1], b[2], b[3])
-        }
-    }
-}
-
-/// The automatic sample count of a Bézier segment: enough uniform samples that the
-/// polyline stays within [`AUTO_SAMPLES_TOLERANCE`] of the segment, relative to its
-/// control-box diagonal. From `|P(u) − polyline| ≤ h²/8 · max|P″|` with
-/// `|P″| ≤ n(n−1) · max_i |P_{i+2} − 2P_{i+1} + P_i|` and `h = 1/(samples − 1)`, rounded up
-/// to the ladder 2, 3, 4, 6, 8, 12, 16, 24, … (so that small edits keep the count and can be
-/// written in place); between 2 (a straight segment) and [`MAX_SAMPLES_PER_SEGMENT`].
-#[must_use]
-pub fn auto_samples(points: &[glam::DVec3]) -> u32 {
-    let n = points.len().saturating_sub(1);
-    let size = Aabb::from_points(points).diagonal();
-    if n < 2 || size == 0.0 {
-        return 2;
-    }
-    let second = points
-        .windows(3)
-        .map(|w| (w[2] - 2.0 * w[1] + w[0]).length())
-        .fold(0.0, f64::max);
-    let bound = (n * (n - 1)) as f64 * second;
-    let intervals = (bound / (8.0 * AUTO_SAMPLES_TOLERANCE * size))
-        .sqrt()
-        .ceil();
-    let needed = (intervals + 1.0).clamp(2.0, f64::from(MAX_SAMPLES_PER_SEGMENT)) as u32;
-    let mut rung = 2;
-    while rung < needed {
-        // 2, 3, 4, 6, 8, 12, …: alternately ×1.5 and ×4/3.
-        rung = if rung.is_power_of_two() {
-            rung + rung / 2
-        } else {
-            rung / 3 * 4
-        };
-    }
-    rung.min(MAX_SAMPLES_PER_SEGMENT)
-}
 
 /// The palette curves take their colour from, by index, when the scene gives none.
 pub const PALETTE: [Color; 8] = [

@@ -9,7 +9,7 @@
 
 use glam::{DMat4, DVec2, DVec3, DVec4};
 
-use crate::geom::Aabb;
+use splinescope_core::geom::Aabb;
 
 /// An orthographic camera looking down `−z` at the plane `z = 0`.
 #[derive(Debug, Clone, Copy, PartialEq)]

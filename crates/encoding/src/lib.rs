@@ -1,0 +1,112 @@
+//! splinescope's encoding: what the GPU layer is handed to draw — every curve's exact
+//! Bézier segments with its sample count and stroke ([`Encoding`], [`EncodedCurve`]), the
+//! overlays with their resolved strokes ([`draw`]), the annotations' points, the
+//! background ([`Color`]) — and the [`camera`] it is drawn through. Points are `f64`
+//! here; the GPU layer packs them into `f32`.
+//!
+//! What it may use: [`splinescope_core`] (the segments) and glam — no file format, no
+//! serde, no GPU. The scene layer builds an encoding from a scene
+//! (`splinescope_scene::scene::encoding::encode`); the GPU layer packs and draws it, and
+//! so compiles without the scene format (as vello keeps `vello_encoding`).
+//!
+//! ```
+//! use glam::DVec3;
+//! use splinescope_core::geom::{Bezier, Lower};
+//! use splinescope_encoding::{Color, EncodedCurve, Encoding, auto_samples};
+//!
+//! let arch = Bezier::new(vec![DVec3::ZERO, DVec3::new(1.0, 2.0, 0.0), DVec3::new(3.0, 0.0, 0.0)]);
+//! let segments = arch.lower();
+//! let samples = auto_samples(segments[0].points());
+//! assert!((2..=64).contains(&samples));
+//! let encoding = Encoding {
+//!     curves: vec![EncodedCurve { segments, samples: Some(samples), color: Color::WHITE, width: 2.0 }],
+//!     overlays: Default::default(),
+//!     switches: splinescope_encoding::draw::Switches::ALL,
+//!     annotations: Vec::new(),
+//!     background: Color([0.0, 0.0, 0.0, 1.0]),
+//! };
+//! assert_eq!(encoding.curves.len(), 1);
+//! ```
+
+#![forbid(unsafe_code)]
+
+pub mod camera;
+mod color;
+pub mod draw;
+
+pub use color::Color;
+
+use glam::DVec3;
+use splinescope_core::geom::{Aabb, BezierSegment};
+
+use draw::{DrawList, Switches};
+
+/// With automatic sampling, the largest distance between a segment and its polyline,
+/// relative to the segment's control-box diagonal (2e-4: a fifth of a pixel when the
+/// segment spans a thousand).
+pub const AUTO_SAMPLES_TOLERANCE: f64 = 2e-4;
+/// The most samples one segment may ask for.
+pub const MAX_SAMPLES_PER_SEGMENT: u32 = 4096;
+
+/// The automatic sample count of a Bézier segment: enough uniform samples that the
+/// polyline stays within [`AUTO_SAMPLES_TOLERANCE`] of the segment, relative to its
+/// control-box diagonal. From `|P(u) − polyline| ≤ h²/8 · max|P″|` with
+/// `|P″| ≤ n(n−1) · max_i |P_{i+2} − 2P_{i+1} + P_i|` and `h = 1/(samples − 1)`, rounded up
+/// to the ladder 2, 3, 4, 6, 8, 12, 16, 24, … (so that small edits keep the count and can be
+/// written in place); between 2 (a straight segment) and [`MAX_SAMPLES_PER_SEGMENT`].
+#[must_use]
+pub fn auto_samples(points: &[glam::DVec3]) -> u32 {
+    let n = points.len().saturating_sub(1);
+    let size = Aabb::from_points(points).diagonal();
+    if n < 2 || size == 0.0 {
+        return 2;
+    }
+    let second = points
+        .windows(3)
+        .map(|w| (w[2] - 2.0 * w[1] + w[0]).length())
+        .fold(0.0, f64::max);
+    let bound = (n * (n - 1)) as f64 * second;
+    let intervals = (bound / (8.0 * AUTO_SAMPLES_TOLERANCE * size))
+        .sqrt()
+        .ceil();
+    let needed = (intervals + 1.0).clamp(2.0, f64::from(MAX_SAMPLES_PER_SEGMENT)) as u32;
+    let mut rung = 2;
+    while rung < needed {
+        // 2, 3, 4, 6, 8, 12, …: alternately ×1.5 and ×4/3.
+        rung = if rung.is_power_of_two() {
+            rung + rung / 2
+        } else {
+            rung / 3 * 4
+        };
+    }
+    rung.min(MAX_SAMPLES_PER_SEGMENT)
+}
+
+/// One curve as drawn: its lowering and how it is stroked.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EncodedCurve {
+    /// Its exact Bézier segments (the family's lowering).
+    pub segments: Vec<BezierSegment>,
+    /// Fixed samples per segment, or `None` for counts chosen for the view.
+    pub samples: Option<u32>,
+    /// Its colour.
+    pub color: Color,
+    /// Its line width in pixels.
+    pub width: f32,
+}
+
+/// A scene as drawn (see the module doc).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Encoding {
+    /// Every curve, in the scene's order (drawn in that order).
+    pub curves: Vec<EncodedCurve>,
+    /// The overlays: polylines and point sets with their strokes, each curve's entries,
+    /// the 3D axis triad's and the annotations'.
+    pub overlays: DrawList,
+    /// The overlay switches the overlays were drawn with.
+    pub switches: Switches,
+    /// Each annotation's points (their range is checked before drawing).
+    pub annotations: Vec<Vec<DVec3>>,
+    /// The clear colour.
+    pub background: Color,
+}
