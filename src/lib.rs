@@ -34,7 +34,7 @@
 pub use splinescope_core::{analysis, geom, inspect, num, solve};
 pub use splinescope_gpu as gpu;
 pub use splinescope_io::{files, limits};
-pub use splinescope_scene::{camera, request, scene};
+pub use splinescope_scene::{camera, format as scene, request};
 pub use splinescope_viewer as app;
 
 pub mod image {

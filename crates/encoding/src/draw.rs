@@ -1,6 +1,6 @@
 //! The draw list's types: polylines and point sets with resolved strokes, the overlay
 //! switches, the 3D axis triad, and the styles of each overlay kind. Building a list
-//! from a scene is the scene layer's (`splinescope_scene::scene::draw`).
+//! from a scene is the scene layer's (`splinescope_scene::format::draw`).
 
 use glam::DVec3;
 

@@ -6,7 +6,7 @@
 //!
 //! What it may use: [`splinescope_core`] (the segments) and glam — no file format, no
 //! serde, no GPU. The scene layer builds an encoding from a scene
-//! (`splinescope_scene::scene::encoding::encode`); the GPU layer packs and draws it, and
+//! (`splinescope_scene::format::encoding::encode`); the GPU layer packs and draws it, and
 //! so compiles without the scene format (as vello keeps `vello_encoding`).
 //!
 //! ```

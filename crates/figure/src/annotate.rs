@@ -6,8 +6,8 @@ use glam::DVec2;
 
 use splinescope_core::geom::ParamCurve;
 
-use splinescope_scene::scene::draw::Stroke;
-use splinescope_scene::scene::{Color, Scene};
+use splinescope_scene::format::draw::Stroke;
+use splinescope_scene::format::{Color, Scene};
 
 use super::fit::{Piece, Projection, Seg};
 use super::text::width;

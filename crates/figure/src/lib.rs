@@ -14,7 +14,7 @@
 //!
 //! ```
 //! use splinescope_figure::{FigureOptions, build, svg};
-//! use splinescope_scene::scene::from_json_str;
+//! use splinescope_scene::format::from_json_str;
 //!
 //! let scene = from_json_str(
 //!     r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1, 2], [3, 2], [4, 0]]}]}"#,
@@ -40,9 +40,9 @@ use glam::{DVec2, DVec3};
 use thiserror::Error;
 
 use splinescope_scene::camera::Camera;
-use splinescope_scene::scene::draw::{Stroke, Switches};
-use splinescope_scene::scene::encoding::{Encoding, encode_with};
-use splinescope_scene::scene::{Color, Scene};
+use splinescope_scene::format::draw::{Stroke, Switches};
+use splinescope_scene::format::encoding::{Encoding, encode_with};
+use splinescope_scene::format::{Color, Scene};
 
 use fit::{Budget, FitError, Page, Piece, Projection, segment_pieces};
 

@@ -7,12 +7,12 @@
 use ab_glyph::{Font, FontRef, PxScale, point};
 use glam::DVec2;
 
-use splinescope_scene::scene::Color;
+use splinescope_scene::format::Color;
 
 use super::fit::Seg;
 use super::text::FONT;
 use super::{Anchor, Figure, FigureError, FigureOptions, Item, TextOptions};
-use splinescope_scene::scene::Scene;
+use splinescope_scene::format::Scene;
 
 /// An image to draw on.
 pub struct Canvas<'a> {

@@ -82,8 +82,8 @@ pub fn prepare_overlays_mapped(
     (lines, points, map)
 }
 
-/// The new overlays of an edit: the changed curves' (`splinescope_scene::scene::draw::curve_overlays`
-/// of each, with its index) and the 3D axis triad's (`splinescope_scene::scene::draw::axis_lines`),
+/// The new overlays of an edit: the changed curves' (`splinescope_scene::format::draw::curve_overlays`
+/// of each, with its index) and the 3D axis triad's (`splinescope_scene::format::draw::axis_lines`),
 /// drawn with `switches` for a scene of `curve_count` curves.
 #[derive(Debug, Clone)]
 pub struct OverlayEdit {
@@ -150,8 +150,8 @@ mod tests {
     use super::*;
     use crate::geom::ParamCurve;
     use glam::DVec3;
-    use splinescope_scene::scene::Scene;
-    use splinescope_scene::scene::draw::{axis_lines, curve_overlays, draw_list};
+    use splinescope_scene::format::Scene;
+    use splinescope_scene::format::draw::{axis_lines, curve_overlays, draw_list};
 
     fn edit(scene: &Scene, switches: Switches, c: usize) -> OverlayEdit {
         OverlayEdit {
@@ -173,7 +173,7 @@ mod tests {
     /// across them — and a change of shape asks for a fresh packing instead.
     #[test]
     fn rewritten_overlays_equal_a_fresh_packing() {
-        let scene = splinescope_scene::scene::gallery::gallery();
+        let scene = splinescope_scene::format::gallery::gallery();
         for limits in [
             ChunkLimits::for_binding_size(1 << 20),
             ChunkLimits {

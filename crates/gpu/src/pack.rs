@@ -203,7 +203,7 @@ pub fn prepare(encoding: &Encoding, limits: ChunkLimits) -> Result<PreparedScene
 mod tests {
     use super::*;
     use crate::geom::{Bezier, Lower};
-    use splinescope_scene::scene::Scene;
+    use splinescope_scene::format::Scene;
 
     fn style() -> GpuLineStyle {
         GpuLineStyle::solid(Color::WHITE, 1.0)
@@ -395,7 +395,7 @@ mod tests {
     #[test]
     fn repacking_an_edited_curve_in_place_equals_packing_it_anew() {
         use crate::geom::{Curve, Nubmp};
-        use splinescope_scene::scene::{SceneCurve, Style, ViewSpec};
+        use splinescope_scene::format::{SceneCurve, Style, ViewSpec};
         let pts: Vec<DVec3> = (0..7)
             .map(|i| DVec3::new(f64::from(i), f64::from(i % 2), 0.0))
             .collect();
@@ -428,7 +428,7 @@ mod tests {
             max_styles: 1000,
         };
         let before = prepare(
-            &splinescope_scene::scene::encoding::encode(&scene(&nub)),
+            &splinescope_scene::format::encoding::encode(&scene(&nub)),
             limits,
         )
         .unwrap();
@@ -437,7 +437,7 @@ mod tests {
         let mut edited = nub.clone();
         edited.set_group(5, &[0.5, 0.2, 0.3]).unwrap();
         let after = prepare(
-            &splinescope_scene::scene::encoding::encode(&scene(&edited)),
+            &splinescope_scene::format::encoding::encode(&scene(&edited)),
             limits,
         )
         .unwrap();

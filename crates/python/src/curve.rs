@@ -10,7 +10,7 @@ use serde_json::Value;
 use splinescope_core::analysis::{AnalysisError, CurveAnalysis, Intersections};
 use splinescope_core::geom::batch::CurveSampler;
 use splinescope_core::geom::{Curve, Lower, ParamCurve, curvature};
-use splinescope_scene::scene::{SceneCurve, curve_from_value, curve_to_value};
+use splinescope_scene::format::{SceneCurve, curve_from_value, curve_to_value};
 
 use crate::arrays::{self, DETACH_ABOVE, Params};
 use crate::errors::{CurveError, SceneError, geom_error, raise, scene_error};

@@ -56,7 +56,7 @@ pub fn raise<E: pyo3::PyTypeInfo>(message: impl Into<String>, path: &str) -> PyE
 }
 
 /// A scene or curve description error.
-pub fn scene_error(e: &splinescope_scene::scene::SceneError) -> PyErr {
+pub fn scene_error(e: &splinescope_scene::format::SceneError) -> PyErr {
     raise::<SceneError>(e.to_string(), &e.path)
 }
 

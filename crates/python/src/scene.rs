@@ -12,9 +12,9 @@ use pyo3::prelude::*;
 use splinescope_gpu::{BackendChoice, ContextOptions, GpuContext, Pipelines};
 use splinescope_image::RgbaImage;
 use splinescope_image::compare::{Tolerance, compare_images as compare};
+use splinescope_scene::format::encoding::encode;
+use splinescope_scene::format::{Scene, from_json_str, to_json_string};
 use splinescope_scene::request::apply_text;
-use splinescope_scene::scene::encoding::encode;
-use splinescope_scene::scene::{Scene, from_json_str, to_json_string};
 
 use crate::arrays;
 use crate::curve::PyCurve;
@@ -72,9 +72,9 @@ impl PyScene {
         Ok(PyScene {
             scene: Scene {
                 name,
-                background: splinescope_scene::scene::Color::WHITE,
+                background: splinescope_scene::format::Color::WHITE,
                 samples_per_segment: None,
-                view: splinescope_scene::scene::ViewSpec::Auto,
+                view: splinescope_scene::format::ViewSpec::Auto,
                 curves: curves.iter().map(|c| c.curve.clone()).collect(),
                 annotations: Vec::new(),
             },
@@ -86,7 +86,7 @@ impl PyScene {
     /// (key order, number spelling) kept otherwise.
     fn to_json(&self) -> String {
         match &self.original {
-            Some(text) => splinescope_scene::scene::to_json_string_keeping(&self.scene, text),
+            Some(text) => splinescope_scene::format::to_json_string_keeping(&self.scene, text),
             None => to_json_string(&self.scene),
         }
     }

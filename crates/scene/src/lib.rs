@@ -1,5 +1,5 @@
 //! splinescope's scene layer: the JSON scene and solve-request formats with their typed,
-//! path-naming errors and form-keeping writer ([`scene`], [`request`]) and the camera
+//! path-naming errors and form-keeping writer ([`format`](mod@format), [`request`]) and the camera
 //! ([`camera`]); the input limits and output-path policy it checks and follows are
 //! `splinescope-io`'s ([`limits`], [`files`], re-exported).
 //!
@@ -8,7 +8,7 @@
 //! schemars — no GPU, window or command-line crate. The GPU and viewer layers build on it.
 //!
 //! ```
-//! use splinescope_scene::scene::{from_json_str, to_json_string};
+//! use splinescope_scene::format::{from_json_str, to_json_string};
 //!
 //! let text = r#"{"version": 1, "curves": [
 //!     {"type": "bezier", "name": "arch", "points": [[0, 0], [1, 2], [3, 2], [4, 0]]}
@@ -25,9 +25,9 @@
 
 #![forbid(unsafe_code)]
 
+pub mod format;
 mod jsonread;
 pub mod request;
-pub mod scene;
 pub mod text;
 
 // The I/O policy's modules, re-exported under the names this layer's users know

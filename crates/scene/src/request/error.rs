@@ -3,8 +3,8 @@
 
 use thiserror::Error;
 
+use crate::format::SceneError;
 use crate::jsonread::Node;
-use crate::scene::SceneError;
 use crate::solve::SolveError;
 
 /// Why a request could not be applied: the path of the offending value in the request

@@ -10,10 +10,10 @@ use super::types::{
     ProjectReport, ProjectRequest, SingleTargetReport, SingleTargetRequest, TangentKeptReport,
     TangentKeptRequest,
 };
+use crate::format::{Annotation, AnnotationShape, Color, Scene, SceneError, SceneErrorKind};
 use crate::geom::family::xyz;
 use crate::geom::{Bezier, Curve, Nubmp, Nurbs, ParamCurve, RationalBezier};
 use crate::jsonread::{Node, Obj};
-use crate::scene::{Annotation, AnnotationShape, Color, Scene, SceneError, SceneErrorKind};
 use crate::solve::rational::{self, RationalCurve};
 use crate::solve::region::cubic_region;
 use crate::solve::shape::{

@@ -10,8 +10,8 @@ pub mod types;
 use glam::DVec3;
 use serde_json::Value;
 
+use crate::format::{Annotation, AnnotationShape, Color, Scene};
 use crate::jsonread::{Node, parse_document};
-use crate::scene::{Annotation, AnnotationShape, Color, Scene};
 pub use error::RequestError;
 use error::field_path;
 use methods::Fields;
@@ -304,7 +304,7 @@ mod tests {
             );
             assert!(m.fields.contains(&"target") || m.fields.contains(&"targets"));
         }
-        let scene = crate::scene::Scene::load(
+        let scene = crate::format::Scene::load(
             &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/solve_demo.json"),
         )
         .expect("the demo scene");

@@ -7,8 +7,8 @@ use glam::DVec3;
 use schemars::JsonSchema;
 use serde::Serialize;
 
+use crate::format::doc::PointDoc;
 use crate::geom::family::Xyz;
-use crate::scene::doc::PointDoc;
 
 /// A request document: one request, or an array applied in order.
 #[derive(Debug, Clone, JsonSchema)]

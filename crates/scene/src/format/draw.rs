@@ -107,7 +107,7 @@ mod tests {
 
     #[test]
     fn the_draw_list_follows_the_scene_styles() {
-        let scene = crate::scene::from_json_str(
+        let scene = crate::format::from_json_str(
             r##"{"version": 1, "curves": [
                 {"type": "bezier", "points": [[0, 0, 0], [1, 2, 1], [2, 0, 0]],
                  "style": {"polygon": true, "points": false}},
@@ -139,7 +139,7 @@ mod tests {
     /// draws (what the viewer used to build by copying the scene), without a copy.
     #[test]
     fn switches_draw_what_the_styles_turned_off_would() {
-        let scene = crate::scene::gallery::gallery();
+        let scene = crate::format::gallery::gallery();
         for (polygons, points) in [(true, true), (false, true), (true, false), (false, false)] {
             let mut styled = scene.clone();
             for c in &mut styled.curves {

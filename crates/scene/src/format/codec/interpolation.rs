@@ -4,10 +4,10 @@ use schemars::JsonSchema;
 use serde::Serialize;
 
 use super::{Codec, Written, geom_error};
+use crate::format::SceneError;
+use crate::format::point_doc::PointDoc;
 use crate::geom::{CubicInterpolation, GeomError, Modification, Reading};
 use crate::jsonread::{Node, Obj};
-use crate::scene::SceneError;
-use crate::scene::point_doc::PointDoc;
 
 /// An interpolating spline's fields.
 #[derive(Debug, Clone, Serialize, JsonSchema)]

@@ -352,8 +352,8 @@ impl Scene {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::format::generate::Rng;
     use crate::geom::Bezier;
-    use crate::scene::generate::Rng;
 
     /// The largest distance from dense points of the curve to the polyline of `samples`
     /// uniform samples.

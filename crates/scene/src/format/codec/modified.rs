@@ -5,10 +5,10 @@ use serde::Serialize;
 
 use super::bezier::bezier_points;
 use super::{Codec, Written, geom_error};
+use crate::format::SceneError;
+use crate::format::point_doc::PointDoc;
 use crate::geom::{Bezier, ModifiedBezier};
 use crate::jsonread::{Node, Obj};
-use crate::scene::SceneError;
-use crate::scene::point_doc::PointDoc;
 
 /// A modified Bézier curve's fields.
 #[derive(Debug, Clone, Serialize, JsonSchema)]

@@ -7,10 +7,10 @@ use serde::Serialize;
 use super::bezier::bezier_points;
 use super::bspline::{KnotsDoc, decode_spline_parts};
 use super::{Codec, Written, geom_error};
+use crate::format::SceneError;
+use crate::format::point_doc::PointDoc;
 use crate::geom::{Family, Nurbs, RationalBezier};
 use crate::jsonread::{Node, Obj};
-use crate::scene::SceneError;
-use crate::scene::point_doc::PointDoc;
 
 /// A rational Bézier curve's fields.
 #[derive(Debug, Clone, Serialize, JsonSchema)]

@@ -5,11 +5,11 @@ use serde::Serialize;
 use serde_json::Value;
 
 use super::{Codec, Written, geom_error};
+use crate::format::SceneError;
+use crate::format::point_doc::PointDoc;
 use crate::geom::exact::{Rational, parse_decimal};
 use crate::geom::{BSpline, Family, KnotVector};
 use crate::jsonread::{Node, Obj};
-use crate::scene::SceneError;
-use crate::scene::point_doc::PointDoc;
 
 /// A B-spline's fields.
 #[derive(Debug, Clone, Serialize, JsonSchema)]

@@ -1,6 +1,6 @@
-//! The scene file as Rust types: what [`crate::scene::to_json_string`] writes (through
+//! The scene file as Rust types: what [`crate::format::to_json_string`] writes (through
 //! `Serialize`) and what `docs/schemas/scene.schema.json` is generated from (through
-//! `JsonSchema`). The reader ([`crate::scene::from_json_str`]) walks the parsed JSON by
+//! `JsonSchema`). The reader ([`crate::format::from_json_str`]) walks the parsed JSON by
 //! hand instead, to name the path of the first offending value; a test checks that every
 //! document it accepts validates against the schema.
 
@@ -130,7 +130,7 @@ pub struct CurveDoc {
 macro_rules! family_docs {
     ($( $(#[$doc:meta])* $variant:ident($ty:ty) = $name:literal ),* $(,)?) => {
         /// A curve's family and its own fields; one variant per row of the core's family
-        /// table, each defined with the family's codec (`crates/scene/src/scene/codec/`).
+        /// table, each defined with the family's codec (`crates/scene/src/format/codec/`).
         #[derive(Debug, Clone, Serialize, JsonSchema)]
         #[serde(tag = "type")]
         pub enum FamilyDoc {

@@ -5,10 +5,10 @@ use serde::Serialize;
 
 use super::bspline::{KnotsDoc, decode_spline_parts};
 use super::{Codec, Written, geom_error};
+use crate::format::point_doc::PointDoc;
+use crate::format::{SceneError, SceneErrorKind};
 use crate::geom::{Family, GeomError, Nubmp};
 use crate::jsonread::{Node, Obj};
-use crate::scene::point_doc::PointDoc;
-use crate::scene::{SceneError, SceneErrorKind};
 
 /// A NUBMP curve's fields.
 #[derive(Debug, Clone, Serialize, JsonSchema)]
