@@ -4,12 +4,12 @@
 //! every change is undoable.
 
 use glam::DVec3;
-use splinescope::app::edit::Editor;
-use splinescope::geom::{
+use splinescope_core::geom::{
     Bezier, Control, ControlKind, ControlValue, CubicInterpolation, Curve, ModifiedBezier, Nubmp,
     ParamCurve, Reading,
 };
-use splinescope::scene::Scene;
+use splinescope_scene::format::Scene;
+use splinescope_viewer::edit::Editor;
 
 fn scene_of(curves: Vec<Curve>) -> Scene {
     Scene::of_curves(curves)

@@ -7,11 +7,11 @@
 use std::path::{Path, PathBuf};
 
 use glam::{DVec2, DVec3};
-use splinescope::app::edit::{Editor, recovery_path};
-use splinescope::app::file_dialog::{DialogMode, Entry, FileDialog, RECENT_KEPT, RecentFiles};
-use splinescope::app::interaction::{Answer, Button, Input, Interaction, Key, Pending, Prompt};
-use splinescope::geom::{Bezier, Curve};
-use splinescope::scene::{Scene, to_json_string};
+use splinescope_core::geom::{Bezier, Curve};
+use splinescope_scene::format::{Scene, to_json_string};
+use splinescope_viewer::edit::{Editor, recovery_path};
+use splinescope_viewer::file_dialog::{DialogMode, Entry, FileDialog, RECENT_KEPT, RecentFiles};
+use splinescope_viewer::interaction::{Answer, Button, Input, Interaction, Key, Pending, Prompt};
 
 const VIEWPORT: DVec2 = DVec2::new(1000.0, 700.0);
 
@@ -290,7 +290,7 @@ fn a_new_scene_asks_where_on_first_save_and_a_close_waits_for_that_save() {
         m.editor.title()
     );
     let index = m.add_curve(
-        splinescope::app::interaction::Template::of_family("bezier").expect("a Bézier template"),
+        splinescope_viewer::interaction::Template::of_family("bezier").expect("a Bézier template"),
         DVec3::ZERO,
     );
     assert_eq!(index, 0);
@@ -411,7 +411,7 @@ fn export_view_writes_the_figure_of_the_screen() {
     );
     let mut opts = splinescope_figure::FigureOptions::new(380, 400);
     opts.camera = Some(camera);
-    opts.switches = splinescope::scene::draw::Switches {
+    opts.switches = splinescope_scene::format::draw::Switches {
         polygons: m.toggles.show_polygons,
         points: false,
     };

@@ -2,12 +2,12 @@
 //! validated with naga (no adapter needed).
 
 use naga::{Module, TypeInner};
-use splinescope::gpu::layout::{
+use splinescope_gpu::layout::{
     ADAPTIVE_SEGMENT_LANES, GpuCamera, GpuControlPoint, GpuFrame, GpuLineStyle, GpuRecord,
     GpuSegment, GpuTessParams, GpuVertex, MAX_GPU_DEGREE, SCAN_BLOCK, TESSELLATE_KERNELS,
     TESSELLATE_WORKGROUP_SIZE, WORK_HEADER,
 };
-use splinescope::gpu::shaders::{self, ALL};
+use splinescope_gpu::shaders::{self, ALL};
 
 /// The WGSL struct `name`: its size and its members' (name, offset).
 fn wgsl_struct(module: &Module, name: &str) -> (usize, Vec<(String, usize)>) {
@@ -261,7 +261,7 @@ fn shader_errors_name_the_right_file_and_line() {
 /// storage with the same access.
 #[test]
 fn bind_group_layouts_match_the_shaders() {
-    use splinescope::gpu::bindings;
+    use splinescope_gpu::bindings;
     type Binding = (u32, u32, String);
     fn from_layouts(groups: &[Vec<wgpu::BindGroupLayoutEntry>]) -> Vec<Binding> {
         let mut out = Vec::new();

@@ -6,7 +6,7 @@
 
 use glam::{DMat4, DVec3, DVec4};
 
-use splinescope::geom::{BSpline, Bezier, GeomError, Nurbs, ParamCurve, RationalBezier};
+use splinescope_core::geom::{BSpline, Bezier, GeomError, Nurbs, ParamCurve, RationalBezier};
 
 const EPS: f64 = f64::EPSILON;
 
@@ -233,7 +233,7 @@ fn bad_weights_are_refused_naming_the_weight() {
 /// polynomial solver's change.
 #[test]
 fn rational_solves_pass_through_keep_weights_and_are_minimal() {
-    use splinescope::solve::rational::{multi_target, rational_basis, single_target};
+    use splinescope_core::solve::rational::{multi_target, rational_basis, single_target};
     let arc = RationalBezier::try_new(
         vec![
             DVec3::new(0.0, 0.0, 0.0),
@@ -267,7 +267,7 @@ fn rational_solves_pass_through_keep_weights_and_are_minimal() {
     let poly = Bezier::new(arc.points().to_vec());
     let unit = RationalBezier::try_new(arc.points().to_vec(), vec![1.0; 5]).expect("unit");
     let a = multi_target(&unit, &targets, Some(&[0.2, 0.8]), None).expect("rational");
-    let b = splinescope::solve::shape::multi_target(&poly, &targets, Some(&[0.2, 0.8]), None)
+    let b = splinescope_core::solve::shape::multi_target(&poly, &targets, Some(&[0.2, 0.8]), None)
         .expect("polynomial");
     for (p, q) in a.curve.points().iter().zip(b.curve.points()) {
         assert!((*p - *q).length() < 1e-12);
@@ -317,7 +317,7 @@ fn min_norm(a: &[Vec<f64>], d: &[f64]) -> Vec<f64> {
 /// the moves the minimum-norm ones (against `Aᵀ(AAᵀ)⁻¹d` computed here per coordinate).
 #[test]
 fn nurbs_multi_target_passes_through_and_is_the_minimum_norm_change() {
-    use splinescope::solve::rational::{RationalCurve, multi_target, single_target};
+    use splinescope_core::solve::rational::{RationalCurve, multi_target, single_target};
     let pts: Vec<DVec3> = (0..7)
         .map(|i| DVec3::new(f64::from(i), f64::from((i * 5) % 3), 0.0))
         .collect();
@@ -366,7 +366,7 @@ fn nurbs_multi_target_passes_through_and_is_the_minimum_norm_change() {
 /// met, and the change (μ₁, μ₂, ε_i) the minimum-norm one.
 #[test]
 fn tangent_kept_on_rational_curves_keeps_the_end_tangents() {
-    use splinescope::solve::rational::{RationalCurve, tangent_kept};
+    use splinescope_core::solve::rational::{RationalCurve, tangent_kept};
     let arc = RationalBezier::try_new(
         vec![
             DVec3::new(0.0, 0.0, 0.0),
@@ -408,7 +408,7 @@ fn tangent_kept_on_rational_curves_keeps_the_end_tangents() {
 /// are refused naming the weight (nothing clamped), elevation keeps the curve.
 #[test]
 fn weight_controls_apply_refuse_and_elevation_keeps_the_curve() {
-    use splinescope::geom::{ControlId, ControlKind, ControlValue, Family};
+    use splinescope_core::geom::{ControlId, ControlKind, ControlValue, Family};
     let c = Nurbs::circle(DVec3::ZERO, 2.0).expect("circle");
     let controls = c.controls();
     let weights: Vec<_> = controls.iter().filter(|k| k.id.key == "w").collect();
@@ -461,7 +461,7 @@ fn weight_controls_apply_refuse_and_elevation_keeps_the_curve() {
 /// written and read back to the same curves.
 #[test]
 fn templates_conic_types_and_scene_round_trip() {
-    use splinescope::geom::{Conic, Curve, Family};
+    use splinescope_core::geom::{Conic, Curve, Family};
     let labels: Vec<&str> = Curve::templates(DVec3::ZERO, 1.0)
         .iter()
         .map(|(l, _)| *l)
@@ -492,9 +492,9 @@ fn templates_conic_types_and_scene_round_trip() {
         let shoulder = (DVec3::new(1.0, 0.0, 0.0) + w1 * DVec3::new(1.0, 2.0, 0.0)) / (1.0 + w1);
         assert!((mid - shoulder).length() < 1e-14);
     }
-    let scene = splinescope::scene::gallery::gallery();
-    let text = splinescope::scene::to_json_string(&scene);
-    let back = splinescope::scene::from_json_str(&text).expect("read back");
+    let scene = splinescope_scene::format::gallery::gallery();
+    let text = splinescope_scene::format::to_json_string(&scene);
+    let back = splinescope_scene::format::from_json_str(&text).expect("read back");
     for (a, b) in scene.curves.iter().zip(&back.curves) {
         assert_eq!(a.curve, b.curve, "{:?}", a.name);
     }
@@ -511,8 +511,8 @@ fn templates_conic_types_and_scene_round_trip() {
 /// with each family's own evaluation.
 #[test]
 fn the_batch_sampler_agrees_with_the_rational_curves() {
-    use splinescope::geom::Curve;
-    use splinescope::geom::batch::CurveSampler;
+    use splinescope_core::geom::Curve;
+    use splinescope_core::geom::batch::CurveSampler;
     let curves = [
         Curve::Nurbs(circle(DVec3::new(3.0, -2.0, 0.0), 2.5)),
         Curve::RationalBezier(
@@ -566,8 +566,8 @@ fn the_batch_sampler_agrees_with_the_rational_curves() {
 /// several-target system whose rank rounding lost is refused, not solved in least squares.
 #[test]
 fn rational_solves_meet_their_targets_or_are_refused() {
-    use splinescope::solve::SolveError;
-    use splinescope::solve::rational::{multi_target, single_target, tangent_kept};
+    use splinescope_core::solve::SolveError;
+    use splinescope_core::solve::rational::{multi_target, single_target, tangent_kept};
     let c = circle(DVec3::ZERO, 1.0);
     let target = DVec3::new(-1.5, 0.2, 0.0);
     match single_target(&c, target, Some(0.5), Some((1, 1)), None) {
@@ -653,7 +653,7 @@ fn rational_solves_meet_their_targets_or_are_refused() {
     // The polynomial solvers: the same rules.
     let poly = Bezier::new(arc.points().to_vec());
     assert!(
-        splinescope::solve::shape::multi_target(&poly, &targets, Some(&[0.3, 1e-300]), None)
+        splinescope_core::solve::shape::multi_target(&poly, &targets, Some(&[0.3, 1e-300]), None)
             .is_err()
     );
 }

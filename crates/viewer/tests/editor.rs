@@ -9,12 +9,12 @@
 use std::path::{Path, PathBuf};
 
 use glam::{DVec2, DVec3};
-use splinescope::app::edit::{Editor, Hit, recovery_path};
-use splinescope::app::interaction::{
+use splinescope_core::geom::{BSpline, Bezier, Curve, Nubmp, ParamCurve};
+use splinescope_scene::format::{Scene, to_json_string};
+use splinescope_viewer::edit::{Editor, Hit, recovery_path};
+use splinescope_viewer::interaction::{
     Answer, Button, Input, Interaction, Key, Pending, Prompt, Response, Template,
 };
-use splinescope::geom::{BSpline, Bezier, Curve, Nubmp, ParamCurve};
-use splinescope::scene::{Scene, to_json_string};
 
 const VIEWPORT: DVec2 = DVec2::new(1000.0, 700.0);
 
@@ -355,7 +355,7 @@ fn points_are_inserted_and_deleted_keeping_b_spline_shapes() {
 
 #[test]
 fn inserting_into_an_interpolation_passes_through_the_new_point() {
-    use splinescope::geom::CubicInterpolation;
+    use splinescope_core::geom::CubicInterpolation;
     let data = vec![
         DVec3::ZERO,
         DVec3::new(1.0, 1.0, 0.0),

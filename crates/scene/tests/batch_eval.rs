@@ -6,13 +6,13 @@
 
 use glam::DVec3;
 use num_traits::{One, ToPrimitive, Zero};
-use splinescope::geom::ParamCurve;
-use splinescope::geom::batch::{
+use splinescope_core::geom::ParamCurve;
+use splinescope_core::geom::batch::{
     CurveSampler, UniformCubicWeights, bezier_into, for_each_sampled, sample_many, uniform,
 };
-use splinescope::geom::exact::{Rational, rational_from_f64};
-use splinescope::geom::{Bezier, Curve};
-use splinescope::scene::generate::Rng;
+use splinescope_core::geom::exact::{Rational, rational_from_f64};
+use splinescope_core::geom::{Bezier, Curve};
+use splinescope_core::rng::Rng;
 
 fn exact_bezier(points: &[DVec3], u: f64) -> [f64; 3] {
     let n = points.len() - 1;
@@ -82,7 +82,7 @@ fn bezier_batches_are_within_the_bound_of_exact_evaluation() {
 
 #[test]
 fn every_family_samples_like_its_own_evaluation() {
-    let scene = splinescope::scene::gallery::gallery();
+    let scene = splinescope_scene::format::gallery::gallery();
     for (i, c) in scene.curves.iter().enumerate() {
         let sampler = CurveSampler::new(&c.curve);
         let (a, b) = c.curve.domain();
@@ -121,8 +121,8 @@ fn every_family_samples_like_its_own_evaluation() {
 
 #[test]
 fn the_parallel_batch_equals_the_serial_one() {
-    let scene = splinescope::scene::generate::random_bezier_scene(
-        splinescope::scene::generate::StressOptions {
+    let scene = splinescope_scene::format::generate::random_bezier_scene(
+        splinescope_scene::format::generate::StressOptions {
             curves: 3000,
             degree: 5,
             ..Default::default()
@@ -191,8 +191,8 @@ fn shared_cubic_weights_sample_within_the_bound_of_exact_evaluation() {
 
 #[test]
 fn streamed_samples_equal_the_serial_ones_curve_by_curve() {
-    let mut curves = splinescope::scene::generate::random_bezier_scene(
-        splinescope::scene::generate::StressOptions {
+    let mut curves = splinescope_scene::format::generate::random_bezier_scene(
+        splinescope_scene::format::generate::StressOptions {
             curves: 2000,
             degree: 3,
             ..Default::default()
@@ -200,7 +200,7 @@ fn streamed_samples_equal_the_serial_ones_curve_by_curve() {
     )
     .curves;
     // Other families and degrees take the general path.
-    curves.extend(splinescope::scene::gallery::gallery().curves);
+    curves.extend(splinescope_scene::format::gallery::gallery().curves);
     let samplers: Vec<CurveSampler> = curves.iter().map(|c| CurveSampler::new(&c.curve)).collect();
     let count = 40;
     let weights = UniformCubicWeights::new(count);
