@@ -222,7 +222,11 @@ pub fn eval_split(c: &[f64], t: f64, s: f64) -> f64 {
                 }
                 v[0]
             };
-            if len <= STACK {
+            if len <= 8 {
+                let mut v = [0.0; 8];
+                v[..len].copy_from_slice(c);
+                run(&mut v[..len])
+            } else if len <= STACK {
                 let mut v = [0.0; STACK];
                 v[..len].copy_from_slice(c);
                 run(&mut v[..len])
@@ -264,7 +268,12 @@ pub fn eval_with_derivative(c: &[f64], t: f64) -> (f64, f64) {
         let (a, b) = (v[0], v[1]);
         (s * a + t * b, n as f64 * (b - a))
     };
-    if len <= STACK {
+    if len <= 8 {
+        // The common degrees in a buffer of their size (no 32-wide clear per call).
+        let mut v = [0.0; 8];
+        v[..len].copy_from_slice(c);
+        run(&mut v[..len])
+    } else if len <= STACK {
         let mut v = [0.0; STACK];
         v[..len].copy_from_slice(c);
         run(&mut v[..len])
