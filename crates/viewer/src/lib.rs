@@ -54,7 +54,8 @@ use winit::window::WindowId;
 // The lower layers' modules under the names the code of this layer uses (`crate::gpu`).
 use splinescope_core::{geom, solve};
 use splinescope_gpu as gpu;
-use splinescope_scene::{camera, files as file_output, format as scene};
+use splinescope_io::files as file_output;
+use splinescope_scene::{camera, format as scene};
 
 use crate::gpu::renderer::camera_uniform;
 use crate::gpu::{BackendChoice, ContextOptions, GpuContext, GpuError};

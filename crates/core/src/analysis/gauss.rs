@@ -26,6 +26,8 @@
 
 use std::sync::OnceLock;
 
+use nalgebra::Complex;
+
 use super::quadrature::Quadrature;
 
 /// The most nodes one interval's rule may have before the interval is cut.
@@ -34,73 +36,19 @@ pub const MAX_NODES: usize = 48;
 /// The most intervals one length evaluates.
 const MAX_INTERVALS: usize = 1 << 12;
 
-/// A complex number, for the roots of the velocity.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Complex {
-    re: f64,
-    im: f64,
-}
+/// Complex numbers (num-complex's, through nalgebra), for the roots of the velocity.
+type C64 = Complex<f64>;
 
-impl Complex {
-    const ZERO: Complex = Complex { re: 0.0, im: 0.0 };
-    fn new(re: f64, im: f64) -> Complex {
-        Complex { re, im }
-    }
-    fn add(self, o: Complex) -> Complex {
-        Complex::new(self.re + o.re, self.im + o.im)
-    }
-    fn sub(self, o: Complex) -> Complex {
-        Complex::new(self.re - o.re, self.im - o.im)
-    }
-    fn mul(self, o: Complex) -> Complex {
-        Complex::new(
-            self.re * o.re - self.im * o.im,
-            self.re * o.im + self.im * o.re,
-        )
-    }
-    fn scale(self, s: f64) -> Complex {
-        Complex::new(self.re * s, self.im * s)
-    }
-    fn abs(self) -> f64 {
-        self.re.hypot(self.im)
-    }
-    fn div(self, o: Complex) -> Complex {
-        // Smith's algorithm: no overflow of the intermediate |o|².
-        if o.re.abs() >= o.im.abs() {
-            let r = o.im / o.re;
-            let d = o.re + o.im * r;
-            Complex::new((self.re + self.im * r) / d, (self.im - self.re * r) / d)
-        } else {
-            let r = o.re / o.im;
-            let d = o.re * r + o.im;
-            Complex::new((self.re * r + self.im) / d, (self.im * r - self.re) / d)
-        }
-    }
-    fn sqrt(self) -> Complex {
-        let m = self.abs();
-        if m == 0.0 {
-            return Complex::ZERO;
-        }
-        let re = (0.5 * (m + self.re.abs())).sqrt();
-        let im = 0.5 * self.im.abs() / re;
-        if self.re >= 0.0 {
-            Complex::new(re, im.copysign(self.im))
-        } else {
-            Complex::new(im, re.copysign(self.im))
-        }
-    }
-    fn is_finite(self) -> bool {
-        self.re.is_finite() && self.im.is_finite()
-    }
-}
+const ZERO: C64 = C64::new(0.0, 0.0);
+const ONE: C64 = C64::new(1.0, 0.0);
 
 /// `Σ c_j z^j` and its derivative.
-fn eval_with_derivative(c: &[Complex], z: Complex) -> (Complex, Complex) {
-    let mut p = Complex::ZERO;
-    let mut dp = Complex::ZERO;
+fn eval_with_derivative(c: &[C64], z: C64) -> (C64, C64) {
+    let mut p = ZERO;
+    let mut dp = ZERO;
     for &cj in c.iter().rev() {
-        dp = dp.mul(z).add(p);
-        p = p.mul(z).add(cj);
+        dp = dp * z + p;
+        p = p * z + cj;
     }
     (p, dp)
 }
@@ -125,8 +73,8 @@ impl PlanarSpeed {
     /// (coefficients whose products overflow, or a root iteration that does not settle).
     #[must_use]
     pub fn new(x: &[f64], y: &[f64]) -> Option<PlanarSpeed> {
-        let mut c: Vec<Complex> = x.iter().zip(y).map(|(&a, &b)| Complex::new(a, b)).collect();
-        while c.last().is_some_and(|v| v.re == 0.0 && v.im == 0.0) {
+        let mut c: Vec<C64> = x.iter().zip(y).map(|(&a, &b)| C64::new(a, b)).collect();
+        while c.last().is_some_and(|v| *v == ZERO) {
             c.pop();
         }
         if c.len() > MAX_ROOTS + 1 || c.iter().any(|v| !v.is_finite()) {
@@ -134,11 +82,11 @@ impl PlanarSpeed {
         }
         let found = match c.len() {
             0 | 1 => Vec::new(),
-            2 => vec![c[0].div(c[1]).scale(-1.0)],
+            2 => vec![-c[0].fdiv(c[1])],
             3 => quadratic_roots(c[0], c[1], c[2]),
             _ => aberth(&c)?,
         };
-        let lead = c.last().map_or(0.0, |v| v.abs());
+        let lead = c.last().map_or(0.0, |v| v.norm());
         if !lead.is_finite() || found.iter().any(|r| !r.is_finite()) {
             return None;
         }
@@ -276,36 +224,37 @@ impl PlanarSpeed {
     }
 }
 
-/// The roots of `a + b z + c z²` (`c ≠ 0`), without cancellation.
-fn quadratic_roots(a: Complex, b: Complex, c: Complex) -> Vec<Complex> {
-    let mut s = b.mul(b).sub(a.mul(c).scale(4.0)).sqrt();
+/// The roots of `a + b z + c z²` (`c ≠ 0`), without cancellation (divisions by `fdiv`,
+/// which does not overflow).
+fn quadratic_roots(a: C64, b: C64, c: C64) -> Vec<C64> {
+    let mut s = (b * b - a * c * 4.0).sqrt();
     // The sign that adds to `b` rather than cancelling it.
     if b.re * s.re + b.im * s.im < 0.0 {
-        s = s.scale(-1.0);
+        s = -s;
     }
-    let q = b.add(s).scale(-0.5);
-    if q.abs() == 0.0 {
-        return vec![Complex::ZERO, Complex::ZERO];
+    let q = (b + s) * -0.5;
+    if q == ZERO {
+        return vec![ZERO, ZERO];
     }
-    vec![q.div(c), a.div(q)]
+    vec![q.fdiv(c), a.fdiv(q)]
 }
 
 /// All roots of `Σ c_j z^j` (degree ≥ 3, `c_last ≠ 0`) by the Aberth–Ehrlich iteration,
 /// polished by Newton steps on the polynomial itself.
-fn aberth(c: &[Complex]) -> Option<Vec<Complex>> {
+fn aberth(c: &[C64]) -> Option<Vec<C64>> {
     let n = c.len() - 1;
     let lead = c[n];
     // Cauchy's bound on the roots' moduli sets the starting circle.
     let radius = c[..n]
         .iter()
-        .map(|v| v.div(lead).abs())
+        .map(|v| v.fdiv(lead).norm())
         .fold(0.0_f64, f64::max)
         .max(f64::MIN_POSITIVE);
     let radius = (1.0 + radius).min(1e150);
-    let mut z: Vec<Complex> = (0..n)
+    let mut z: Vec<C64> = (0..n)
         .map(|k| {
             let angle = std::f64::consts::TAU * (k as f64 + 0.25) / n as f64 + 0.4;
-            Complex::new(angle.cos(), angle.sin()).scale(0.5 * radius)
+            C64::from_polar(0.5 * radius, angle)
         })
         .collect();
     let mut settled = false;
@@ -313,22 +262,22 @@ fn aberth(c: &[Complex]) -> Option<Vec<Complex>> {
         let mut largest = 0.0_f64;
         for i in 0..n {
             let (p, dp) = eval_with_derivative(c, z[i]);
-            if p.abs() == 0.0 {
+            if p == ZERO {
                 continue;
             }
-            let ratio = p.div(dp);
-            let mut sum = Complex::ZERO;
+            let ratio = p.fdiv(dp);
+            let mut sum = ZERO;
             for (j, zj) in z.iter().enumerate() {
                 if j != i {
-                    sum = sum.add(Complex::new(1.0, 0.0).div(z[i].sub(*zj)));
+                    sum += ONE.fdiv(z[i] - zj);
                 }
             }
-            let step = ratio.div(Complex::new(1.0, 0.0).sub(ratio.mul(sum)));
+            let step = ratio.fdiv(ONE - ratio * sum);
             if !step.is_finite() {
                 return None;
             }
-            z[i] = z[i].sub(step);
-            largest = largest.max(step.abs() / z[i].abs().max(1.0));
+            z[i] -= step;
+            largest = largest.max(step.norm() / z[i].norm().max(1.0));
         }
         if largest <= 4.0 * f64::EPSILON {
             settled = true;
@@ -341,9 +290,9 @@ fn aberth(c: &[Complex]) -> Option<Vec<Complex>> {
     for zi in &mut z {
         for _ in 0..2 {
             let (p, dp) = eval_with_derivative(c, *zi);
-            let step = p.div(dp);
+            let step = p.fdiv(dp);
             if step.is_finite() {
-                *zi = zi.sub(step);
+                *zi -= step;
             }
         }
     }
@@ -631,12 +580,12 @@ mod tests {
             (0.9, 0.01),
             (-2.0, 0.0),
         ];
-        let mut c = vec![Complex::new(1.0, 0.0)];
+        let mut c = vec![ONE];
         for &(re, im) in &p {
-            let mut next = vec![Complex::ZERO; c.len() + 1];
+            let mut next = vec![ZERO; c.len() + 1];
             for (i, ci) in c.iter().enumerate() {
-                next[i + 1] = next[i + 1].add(*ci);
-                next[i] = next[i].sub(ci.mul(Complex::new(re, im)));
+                next[i + 1] += ci;
+                next[i] -= ci * C64::new(re, im);
             }
             c = next;
         }
@@ -704,14 +653,13 @@ mod tests {
             ((1.2, 0.05), (0.3, 0.0)),
             ((0.0, 1e-9), (1.0, 1e-6)),
         ] {
-            let r1 = Complex::new(r1.0, r1.1);
-            let r2 = Complex::new(r2.0, r2.1);
-            let c = [r1.mul(r2), r1.add(r2).scale(-1.0), Complex::new(1.0, 0.0)];
+            let r1 = C64::new(r1.0, r1.1);
+            let r2 = C64::new(r2.0, r2.1);
+            let c = [r1 * r2, -(r1 + r2), ONE];
             let x: Vec<f64> = c.iter().map(|v| v.re).collect();
             let y: Vec<f64> = c.iter().map(|v| v.im).collect();
             let s = PlanarSpeed::new(&x, &y).unwrap();
-            let f =
-                |u: f64| Complex::new(u, 0.0).sub(r1).abs() * Complex::new(u, 0.0).sub(r2).abs();
+            let f = |u: f64| (C64::new(u, 0.0) - r1).norm() * (C64::new(u, 0.0) - r2).norm();
             // Reference: composite Simpson's rule on 20,000 panels per piece, cut at the
             // roots' real parts and at distances δ, 10δ, 100δ, … from them (so each piece
             // is smooth at its resolution).

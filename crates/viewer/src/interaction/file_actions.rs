@@ -231,7 +231,7 @@ impl Interaction {
         } else {
             splinescope_figure::svg::write(&fig).into_bytes()
         };
-        splinescope_io::files::write_atomic(path, &bytes).map_err(|source| ExportError::Write {
+        crate::file_output::write_atomic(path, &bytes).map_err(|source| ExportError::Write {
             path: path.to_owned(),
             source,
         })
