@@ -31,9 +31,11 @@
 
 #![forbid(unsafe_code)]
 
-pub use splinescope_core::{analysis, geom, inspect, num, solve};
+pub use splinescope_core::{analysis, geom, num, solve};
 pub use splinescope_gpu as gpu;
 pub use splinescope_io::{files, limits};
+pub use splinescope_present as present;
+pub use splinescope_present::inspect;
 pub use splinescope_scene::{camera, format as scene, request};
 pub use splinescope_viewer as app;
 

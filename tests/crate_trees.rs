@@ -101,6 +101,29 @@ fn the_gpu_layer_is_handed_an_encoding_not_the_scene_format() {
 }
 
 #[test]
+fn words_for_a_person_sit_above_the_math() {
+    // The presentation layer uses core; core, the encoding and the GPU layer never reach
+    // it (a curve's labels, controls and reports are not math, nor what the GPU draws).
+    assert!(
+        tree("splinescope-present", &[])
+            .iter()
+            .any(|n| n == "splinescope-core")
+    );
+    for below in [
+        "splinescope-core",
+        "splinescope-encoding",
+        "splinescope-gpu",
+    ] {
+        assert_none(below, &[], &["splinescope-present"]);
+    }
+    assert_none(
+        "splinescope-present",
+        &[],
+        &["wgpu", "splinescope-scene", "png", "winit"],
+    );
+}
+
+#[test]
 fn the_io_policy_uses_only_thiserror() {
     let names = tree("splinescope-io", &[]);
     let others: Vec<&String> = names

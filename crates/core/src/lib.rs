@@ -36,7 +36,6 @@
 
 pub mod analysis;
 pub mod geom;
-pub mod inspect;
 pub mod num;
 pub mod rng;
 pub mod solve;

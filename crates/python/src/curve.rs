@@ -251,7 +251,7 @@ impl PyCurve {
 
     /// One line describing the curve's structure ("degree 3", …).
     fn summary(&self) -> String {
-        self.curve.curve.summary()
+        splinescope_present::Present::summary(&self.curve.curve)
     }
 
     /// The points the user places (control points, or the interpolated points), `(N, dim)`.
@@ -392,7 +392,7 @@ impl PyCurve {
 
     /// The same data as `splinescope inspect` for this curve, as JSON text.
     fn inspect_json(&self) -> PyResult<String> {
-        let report = splinescope_core::inspect::curve_report(
+        let report = splinescope_present::inspect::curve_report(
             0,
             self.curve.name.as_deref(),
             &self.curve.curve,
@@ -676,7 +676,7 @@ impl PyCurve {
         format!(
             "<{} curve, {}>",
             self.curve.curve.family(),
-            self.curve.curve.summary()
+            splinescope_present::Present::summary(&self.curve.curve)
         )
     }
 }

@@ -408,7 +408,8 @@ fn tangent_kept_on_rational_curves_keeps_the_end_tangents() {
 /// are refused naming the weight (nothing clamped), elevation keeps the curve.
 #[test]
 fn weight_controls_apply_refuse_and_elevation_keeps_the_curve() {
-    use splinescope_core::geom::{ControlId, ControlKind, ControlValue, Family};
+    use splinescope_core::geom::Family;
+    use splinescope_present::{ControlId, ControlKind, ControlValue, Present};
     let c = Nurbs::circle(DVec3::ZERO, 2.0).expect("circle");
     let controls = c.controls();
     let weights: Vec<_> = controls.iter().filter(|k| k.id.key == "w").collect();
@@ -461,7 +462,8 @@ fn weight_controls_apply_refuse_and_elevation_keeps_the_curve() {
 /// written and read back to the same curves.
 #[test]
 fn templates_conic_types_and_scene_round_trip() {
-    use splinescope_core::geom::{Conic, Curve, Family};
+    use splinescope_core::geom::{Conic, Curve};
+    use splinescope_present::Present;
     let labels: Vec<&str> = Curve::templates(DVec3::ZERO, 1.0)
         .iter()
         .map(|(l, _)| *l)

@@ -248,7 +248,8 @@ mod tests {
     #[test]
     fn labels_show_the_parameters_as_they_are_now() {
         use crate::edit::Editor;
-        use crate::geom::{ControlValue, Nubmp};
+        use crate::geom::Nubmp;
+        use splinescope_present::{ControlValue, Present};
         let scene = crate::scene::gallery::gallery();
         let i = scene
             .curves

@@ -9,8 +9,9 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 
-use crate::geom::{Control, ControlValue, Curve};
+use crate::geom::Curve;
 use crate::scene::{Scene, SceneCurve};
+use splinescope_present::{Control, ControlValue, Present};
 
 mod gesture;
 mod recovery;
@@ -308,7 +309,7 @@ impl Editor {
         });
     }
 
-    /// Applies one of a family's panel controls ([`crate::geom::Family::controls`]) to
+    /// Applies one of a family's panel controls ([`splinescope_present::Present::controls`]) to
     /// curve `index`. A refused value (or one whose derived data overflows) leaves the
     /// curve as it was and sets [`Editor::message`]; a discrete control (button, toggle,
     /// choice) is one edit on its own, a stream of slider changes is one edit together.

@@ -5,6 +5,7 @@
 use std::path::PathBuf;
 
 use glam::{DVec2, DVec3};
+use splinescope_present::Present;
 
 mod file_actions;
 

@@ -1,13 +1,13 @@
-//! The panel's controls as data (`Family::controls` / `Family::apply_control`), driven
+//! The panel's controls as data (`Present::controls` / `Present::apply_control`), driven
 //! through the editor as the viewer does, without a window: each family's controls change
 //! what they name, refuse bad values with a message (nothing clamped, nothing changed), and
 //! every change is undoable.
 
 use glam::DVec3;
 use splinescope_core::geom::{
-    Bezier, Control, ControlKind, ControlValue, CubicInterpolation, Curve, ModifiedBezier, Nubmp,
-    ParamCurve, Reading,
+    Bezier, CubicInterpolation, Curve, ModifiedBezier, Nubmp, ParamCurve, Reading,
 };
+use splinescope_present::{Control, ControlKind, ControlValue, Present};
 use splinescope_scene::format::Scene;
 use splinescope_viewer::edit::Editor;
 

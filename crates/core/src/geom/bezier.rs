@@ -5,6 +5,10 @@ use glam::DVec3;
 use super::aabb::Aabb;
 use super::{GeomError, ParamCurve};
 
+// Bézier's `Family` side sits in a file of its own: `family.rs` imports the lowering,
+// which imports this file for `BezierSegment`.
+mod family;
+
 /// Curves of up to this many control points evaluate on the stack (no allocation); more
 /// allocate once per call.
 pub(crate) const STACK_POINTS: usize = 64;

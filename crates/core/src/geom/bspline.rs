@@ -9,6 +9,7 @@ use glam::DVec3;
 use super::bezier::check_finite;
 use super::exact::Scalar;
 
+use super::family::{AtTau, Family};
 use super::{Bezier, BezierSegment, GeomError, KnotVector, Lower, ParamCurve};
 
 /// A non-uniform B-spline curve of order `k` (degree `k − 1`):
@@ -403,6 +404,53 @@ impl ParamCurve for BSpline {
 impl Lower for BSpline {
     fn lower(&self) -> Vec<BezierSegment> {
         self.bezier_segments()
+    }
+}
+
+// The family: what the editor, the reports and the drawing need of every curve family.
+
+// The B-spline as a family: it is the standard NUBMP curve on its knots (paper 001, §3),
+// so its report and its `at_tau` are that curve's.
+
+impl Family for BSpline {
+    const NAME: &'static str = "bspline";
+
+    fn inserts_by_knot(&self) -> bool {
+        true
+    }
+
+    fn with_knot_inserted(&self, t: f64) -> Result<BSpline, GeomError> {
+        self.insert_knot(t)
+    }
+
+    fn with_point_removed(&self, index: usize) -> Result<BSpline, GeomError> {
+        let (points, knots) =
+            crate::geom::structure::spline_without(self.points(), self.knots(), index, Self::NAME)?;
+        BSpline::try_new(points, knots, self.order())
+    }
+
+    /// The clamped uniform B-spline of order `degree + 1` on `degree + 4` points: four
+    /// Bézier segments of `degree`.
+    fn generated(degree: usize, point: &mut dyn FnMut() -> DVec3) -> Result<BSpline, GeomError> {
+        let points: Vec<DVec3> = (0..degree + 4).map(|_| point()).collect();
+        let knots = KnotVector::clamped_uniform(degree + 1, points.len())?;
+        BSpline::from_parts(points, knots)
+    }
+
+    fn control_points(&self) -> &[DVec3] {
+        self.points()
+    }
+
+    fn with_control_points(&self, points: Vec<DVec3>) -> Result<BSpline, GeomError> {
+        BSpline::from_parts(points, self.knots().clone())
+    }
+
+    fn derived_field(&self) -> &'static str {
+        "knots"
+    }
+
+    fn at_tau(&self, tau: f64) -> Result<Option<AtTau>, GeomError> {
+        Family::at_tau(&self.standard_nubmp()?, tau)
     }
 }
 

@@ -2,18 +2,14 @@
 
 use glam::DVec3;
 
-#[cfg(feature = "serde")]
-use schemars::JsonSchema;
-#[cfg(feature = "serde")]
-use serde::Serialize;
-
-use super::family::{AtTau, Control, ControlId, ControlValue, Family, OverlayPolyline};
+use super::family::{AtTau, Family, OverlayPolyline};
 use super::{Aabb, BezierSegment, GeomError, Lower, ParamCurve};
 
 /// The one table of curve families: one row per family, `Variant(Type) = "name"`, with
 /// the variant's documentation (its formula's paper). Every list of families is generated
-/// from it: [`Curve`] and [`FamilyDetails`] here, the `From` conversions,
-/// [`Curve::FAMILY_NAMES`], [`Curve::templates`]; in the scene layer the written forms
+/// from it: [`Curve`] here, the `From` conversions, [`Curve::FAMILY_NAMES`]; in the
+/// presentation layer each family's report (`FamilyDetails`) and the templates; in the
+/// scene layer the written forms
 /// (`FamilyDoc`) and the codecs' reader table. Where a list cannot be generated it is an
 /// exhaustive `match` ([`each_family!`](crate::each_family)), so a new row does not compile
 /// until every place has the new family. `name` must equal the type's [`Family::NAME`]
@@ -66,32 +62,18 @@ macro_rules! define_families {
         /// Every curve family splinescope knows, generated from
         /// [`family_table!`](crate::family_table). Each one implements [`Family`] in its
         /// own file: it evaluates exactly in `f64` ([`ParamCurve`]), lowers exactly to
-        /// Bézier segments ([`Lower`]) and describes its overlays, reports, panel
-        /// controls, structure edits and templates.
+        /// Bézier segments ([`Lower`]) and describes its overlays and structure edits;
+        /// what it says to a person (controls, summaries, reports) is in the
+        /// presentation layer above core.
         #[derive(Debug, Clone, PartialEq)]
         pub enum Curve {
             $( $(#[$doc])* $variant($ty), )*
-        }
-
-        /// The per-family part of an `inspect` report (flattened into the curve's
-        /// object): each family's [`Family::Details`].
-        #[derive(Debug, Clone)]
-        #[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
-        #[cfg_attr(feature = "serde", serde(untagged))]
-        pub enum FamilyDetails {
-            $( $(#[$doc])* $variant(<$ty as Family>::Details), )*
         }
 
         $(
             impl From<$ty> for Curve {
                 fn from(c: $ty) -> Curve {
                     Curve::$variant(c)
-                }
-            }
-
-            impl From<<$ty as Family>::Details> for FamilyDetails {
-                fn from(d: <$ty as Family>::Details) -> FamilyDetails {
-                    FamilyDetails::$variant(d)
                 }
             }
 
@@ -122,20 +104,6 @@ macro_rules! define_families {
                 }
             }
 
-            /// Every family's templates ([`Family::templates`]) centred on `center`, about
-            /// `size` wide, in the table's order: what the editor offers to add.
-            #[must_use]
-            pub fn templates(center: DVec3, size: f64) -> Vec<(&'static str, Curve)> {
-                let mut out = Vec::new();
-                $(
-                    out.extend(
-                        <$ty as Family>::templates(center, size)
-                            .into_iter()
-                            .map(|(label, c)| (label, Curve::from(c))),
-                    );
-                )*
-                out
-            }
         }
     };
 }
@@ -263,46 +231,12 @@ impl Curve {
         each_family!(self, c => c.is_planar())
     }
 
-    /// One line describing the curve's structure: [`Family::summary`].
-    #[must_use]
-    pub fn summary(&self) -> String {
-        each_family!(self, c => c.summary())
-    }
-
-    /// The shape parameters as they are now: [`Family::parameter_text`].
-    #[must_use]
-    pub fn parameter_text(&self) -> Option<String> {
-        each_family!(self, c => c.parameter_text())
-    }
-
-    /// The family's derived data for `inspect`: [`Family::details`].
-    ///
-    /// # Errors
-    /// A derived structure that overflows `f64`.
-    pub fn details(&self) -> Result<FamilyDetails, GeomError> {
-        each_family!(self, c => c.details().map(Into::into))
-    }
-
     /// What the structure allows at `τ`: [`Family::at_tau`].
     ///
     /// # Errors
     /// `τ` outside the domain, or a derived structure that overflows.
     pub fn at_tau(&self, tau: f64) -> Result<Option<AtTau>, GeomError> {
         each_family!(self, c => c.at_tau(tau))
-    }
-
-    /// The panel's controls: [`Family::controls`].
-    #[must_use]
-    pub fn controls(&self) -> Vec<Control> {
-        each_family!(self, c => c.controls())
-    }
-
-    /// The curve with a control changed: [`Family::apply_control`].
-    ///
-    /// # Errors
-    /// An unknown control, or a value the family refuses.
-    pub fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Curve, GeomError> {
-        each_family!(self, c => c.apply_control(id, value).map(Into::into))
     }
 
     /// Whether points are inserted by knot insertion: [`Family::inserts_by_knot`].

@@ -2,7 +2,9 @@
 
 use glam::DVec3;
 
+use super::Aabb;
 use super::bezier::check_finite;
+use super::family::{Family, OverlayKind, OverlayPolyline, lowered_box};
 use super::modified::{
     ModifiedBezier, bump, bump_deriv, bump_second_deriv, check_t_star, check_vector,
 };
@@ -271,6 +273,75 @@ impl Lower for CubicInterpolation {
             }
         }
         out
+    }
+}
+
+// The family: what the editor, the reports and the drawing need of every curve family.
+
+impl Family for CubicInterpolation {
+    const NAME: &'static str = "interpolation";
+
+    /// The new point's parameter lies between its neighbours' in proportion to where
+    /// `at` projects on the leg.
+    fn with_point_on_polygon(&self, at: DVec3) -> Result<(CubicInterpolation, usize), GeomError> {
+        let (points, leg, s) = crate::geom::structure::insert_on_polygon(self.points(), at);
+        let mut params = self.params().to_vec();
+        let t = params[leg] + s.clamp(0.05, 0.95) * (params[leg + 1] - params[leg]);
+        params.insert(leg + 1, t);
+        Ok((
+            CubicInterpolation::try_new(points, Some(params), self.modification())?,
+            leg + 1,
+        ))
+    }
+
+    fn with_point_removed(&self, index: usize) -> Result<CubicInterpolation, GeomError> {
+        let points = crate::geom::structure::without(self.points(), index, 2, Self::NAME)?;
+        let mut params = self.params().to_vec();
+        params.remove(index);
+        CubicInterpolation::try_new(points, Some(params), self.modification())
+    }
+
+    /// `degree + 1` points (at least 2) interpolated by the plain cubic spline: always
+    /// cubic, `degree` pieces.
+    fn generated(
+        degree: usize,
+        point: &mut dyn FnMut() -> DVec3,
+    ) -> Result<CubicInterpolation, GeomError> {
+        let points = (0..=degree.max(1)).map(|_| point()).collect();
+        CubicInterpolation::try_new(points, None, None)
+    }
+
+    fn control_points(&self) -> &[DVec3] {
+        self.points()
+    }
+
+    fn with_control_points(&self, points: Vec<DVec3>) -> Result<CubicInterpolation, GeomError> {
+        CubicInterpolation::try_new(points, Some(self.params.clone()), self.modification)
+    }
+
+    /// Each piece's inner Bézier points joined to its ends: the tangent handles.
+    fn overlays(&self) -> Vec<OverlayPolyline> {
+        self.pieces
+            .iter()
+            .map(|p| OverlayPolyline {
+                kind: OverlayKind::TangentHandles,
+                points: p.points().to_vec(),
+            })
+            .collect()
+    }
+
+    /// The curve leaves the hull of the interpolated points: it is bounded by its pieces.
+    fn control_box(&self) -> Aabb {
+        lowered_box(self)
+    }
+
+    fn is_planar(&self) -> bool {
+        self.points.iter().all(|p| p.z == 0.0) && self.modification.is_none_or(|m| m.v.z == 0.0)
+    }
+
+    /// Tangents depend on points and parameters alike: the curve itself is named.
+    fn derived_field(&self) -> &'static str {
+        ""
     }
 }
 

@@ -23,17 +23,13 @@ pub mod modified;
 pub mod nubmp;
 pub mod rational;
 pub mod structure;
-pub mod template;
 
 pub use aabb::Aabb;
 pub use bezier::Bezier;
 pub use bspline::BSpline;
-pub use curve::{Curve, FamilyDetails};
+pub use curve::Curve;
 pub use error::GeomError;
-pub use family::rational::{NurbsDetails, RationalBezierDetails};
-pub use family::{
-    Control, ControlId, ControlKind, ControlValue, Family, OverlayKind, OverlayPolyline,
-};
+pub use family::{AtTau, Family, GroupAtTau, OverlayKind, OverlayPolyline, Xyz, xyz};
 pub use interpolation::{CubicInterpolation, Modification, Reading};
 pub use knots::KnotVector;
 pub use lowering::{BezierSegment, Lower, locate, max_degree};

@@ -4,6 +4,8 @@
 
 use glam::DVec3;
 
+use super::Aabb;
+use super::family::{Family, OverlayKind, OverlayPolyline, lowered_box};
 use super::{Bezier, BezierSegment, GeomError, Lower, ParamCurve};
 
 /// The bump `S` of paper 002 for `t* ∈ (0, 1)`:
@@ -174,6 +176,68 @@ impl Lower for ModifiedBezier {
             BezierSegment::polynomial(left, 0.0, self.t_star),
             BezierSegment::polynomial(right, self.t_star, 1.0),
         ]
+    }
+}
+
+// The family: what the editor, the reports and the drawing need of every curve family.
+
+impl Family for ModifiedBezier {
+    const NAME: &'static str = "modified_bezier";
+
+    fn with_point_on_polygon(&self, at: DVec3) -> Result<(ModifiedBezier, usize), GeomError> {
+        let (points, leg, _) = crate::geom::structure::insert_on_polygon(self.base().points(), at);
+        let base = Bezier::try_new(points)?;
+        Ok((
+            ModifiedBezier::try_new(base, self.t_star(), self.v())?,
+            leg + 1,
+        ))
+    }
+
+    fn with_point_removed(&self, index: usize) -> Result<ModifiedBezier, GeomError> {
+        let points = crate::geom::structure::without(self.base().points(), index, 2, Self::NAME)?;
+        ModifiedBezier::try_new(Bezier::try_new(points)?, self.t_star(), self.v())
+    }
+
+    /// The base `Q` of `degree` from `point`, `t* = 1/2`, and `v` a quarter of the
+    /// difference of two more points.
+    fn generated(
+        degree: usize,
+        point: &mut dyn FnMut() -> DVec3,
+    ) -> Result<ModifiedBezier, GeomError> {
+        let base = Bezier::generated(degree, point)?;
+        let v = 0.25 * (point() - point());
+        ModifiedBezier::try_new(base, 0.5, v)
+    }
+
+    fn control_points(&self) -> &[DVec3] {
+        self.base.points()
+    }
+
+    fn with_control_points(&self, points: Vec<DVec3>) -> Result<ModifiedBezier, GeomError> {
+        ModifiedBezier::try_new(Bezier::try_new(points)?, self.t_star, self.v)
+    }
+
+    fn overlays(&self) -> Vec<OverlayPolyline> {
+        let q = self.base.eval(self.t_star);
+        vec![
+            OverlayPolyline {
+                kind: OverlayKind::ControlPolygon,
+                points: self.base.points().to_vec(),
+            },
+            OverlayPolyline {
+                kind: OverlayKind::BumpVector,
+                points: vec![q, q + self.v],
+            },
+        ]
+    }
+
+    /// The modified curve leaves its base's hull: it is bounded by its two pieces.
+    fn control_box(&self) -> Aabb {
+        lowered_box(self)
+    }
+
+    fn is_planar(&self) -> bool {
+        self.base.points().iter().all(|p| p.z == 0.0) && self.v.z == 0.0
     }
 }
 

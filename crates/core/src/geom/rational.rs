@@ -23,6 +23,7 @@ use schemars::JsonSchema;
 #[cfg(feature = "serde")]
 use serde::Serialize;
 
+use super::family::Family;
 use super::{BSpline, Bezier, BezierSegment, GeomError, KnotVector, Lower, ParamCurve};
 
 /// Checks weights: as many as points, each finite and greater than 0.
@@ -499,5 +500,98 @@ impl Nurbs {
             0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
         ];
         Nurbs::try_new(points, weights, knots, 3)
+    }
+}
+
+// The family: what the editor, the reports and the drawing need of every curve family.
+
+/// The weight of a point inserted on leg `leg` at fraction `s`: the legs' weights
+/// interpolated.
+fn weight_on_leg(weights: &[f64], leg: usize, s: f64) -> f64 {
+    let (a, b) = (weights[leg], weights[(leg + 1).min(weights.len() - 1)]);
+    a + (b - a) * s
+}
+
+/// Weights for generated curves: a fixed cycle in `[0.5, 2]`, so that every generated
+/// rational curve exercises the division.
+fn generated_weights(n: usize) -> Vec<f64> {
+    const CYCLE: [f64; 4] = [1.0, 2.0, 0.5, 1.5];
+    (0..n).map(|i| CYCLE[i % CYCLE.len()]).collect()
+}
+
+impl Family for RationalBezier {
+    const NAME: &'static str = "rational_bezier";
+
+    fn control_points(&self) -> &[DVec3] {
+        &self.points
+    }
+
+    fn with_control_points(&self, points: Vec<DVec3>) -> Result<RationalBezier, GeomError> {
+        RationalBezier::try_new(points, self.weights.clone())
+    }
+
+    fn with_point_on_polygon(&self, at: DVec3) -> Result<(RationalBezier, usize), GeomError> {
+        let (points, leg, s) = crate::geom::structure::insert_on_polygon(&self.points, at);
+        let mut weights = self.weights.clone();
+        weights.insert(leg + 1, weight_on_leg(&self.weights, leg, s));
+        Ok((RationalBezier::try_new(points, weights)?, leg + 1))
+    }
+
+    fn with_point_removed(&self, index: usize) -> Result<RationalBezier, GeomError> {
+        let points = crate::geom::structure::without(&self.points, index, 2, Self::NAME)?;
+        let mut weights = self.weights.clone();
+        weights.remove(index);
+        RationalBezier::try_new(points, weights)
+    }
+
+    /// Degree `degree`, its weights cycling through `1, 2, 0.5, 1.5`.
+    fn generated(
+        degree: usize,
+        point: &mut dyn FnMut() -> DVec3,
+    ) -> Result<RationalBezier, GeomError> {
+        let points: Vec<DVec3> = (0..=degree).map(|_| point()).collect();
+        let weights = generated_weights(points.len());
+        RationalBezier::try_new(points, weights)
+    }
+}
+
+impl Family for Nurbs {
+    const NAME: &'static str = "nurbs";
+
+    fn control_points(&self) -> &[DVec3] {
+        &self.points
+    }
+
+    fn with_control_points(&self, points: Vec<DVec3>) -> Result<Nurbs, GeomError> {
+        Nurbs::from_knot_vector(points, self.weights.clone(), self.knots().clone())
+    }
+
+    fn derived_field(&self) -> &'static str {
+        "knots"
+    }
+
+    fn inserts_by_knot(&self) -> bool {
+        true
+    }
+
+    fn with_knot_inserted(&self, t: f64) -> Result<Nurbs, GeomError> {
+        self.insert_knot(t)
+    }
+
+    fn with_point_removed(&self, index: usize) -> Result<Nurbs, GeomError> {
+        let (points, knots) =
+            crate::geom::structure::spline_without(&self.points, self.knots(), index, Self::NAME)?;
+        let mut weights = self.weights.clone();
+        weights.remove(index);
+        Nurbs::try_new(points, weights, knots, self.order())
+    }
+
+    /// The clamped uniform NURBS curve of order `degree + 1` on `degree + 4` points (four
+    /// rational Bézier segments), its weights cycling through `1, 2, 0.5, 1.5`.
+    fn generated(degree: usize, point: &mut dyn FnMut() -> DVec3) -> Result<Nurbs, GeomError> {
+        let points: Vec<DVec3> = (0..degree + 4).map(|_| point()).collect();
+        let knots = KnotVector::clamped_uniform(degree + 1, points.len())?;
+        let weights = generated_weights(points.len());
+        Nurbs::from_knot_vector(points, weights, knots)
     }
 }

@@ -97,7 +97,7 @@ impl SceneCurve {
     #[must_use]
     pub fn label(&self) -> String {
         let name = self.name.as_deref().unwrap_or(self.curve.family());
-        match self.curve.parameter_text() {
+        match splinescope_present::Present::parameter_text(&self.curve) {
             Some(p) => format!("{name} · {p}"),
             None => name.to_owned(),
         }

@@ -4,7 +4,7 @@ use glam::DVec3;
 
 use crate::camera::Camera;
 use crate::digest::{LISTED_CURVES, label};
-use crate::geom::{Control, ControlKind, ControlValue};
+use splinescope_present::{Control, ControlKind, ControlValue, Present};
 
 use crate::edit::Editor;
 use crate::interaction::{Interaction, Template};

@@ -1,4 +1,4 @@
-//! Shapes the families' templates ([`super::Family::templates`]) are built from: points
+//! Shapes the families' templates ([`crate::Present::templates`]) are built from: points
 //! centred on a point, about a size wide, in the plane through it parallel to `z = 0`.
 
 use glam::DVec3;

@@ -1,50 +1,46 @@
 //! The derived data of each curve (`splinescope inspect`): its Bézier segments and, per
-//! family, what the papers define on it ([`crate::geom::Family::details`]). The format is
+//! family, what the papers define on it ([`crate::Present::details`]). The format is
 //! documented in `docs/inspect-format.md`; its JSON Schema, generated from these types, is
 //! `docs/schemas/inspect.schema.json`.
 
-#[cfg(feature = "serde")]
 use schemars::JsonSchema;
-#[cfg(feature = "serde")]
 use serde::Serialize;
 
-use crate::geom::family::{AtTau, Xyz, xyz};
-use crate::geom::{Curve, FamilyDetails, GeomError, Lower, ParamCurve};
+use splinescope_core::geom::{AtTau, Curve, GeomError, Lower, ParamCurve, Xyz, xyz};
+
+use crate::{FamilyDetails, Present};
 
 /// The whole output of `splinescope inspect`.
-#[derive(Debug, Clone)]
-#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct InspectOutput {
     /// One report per selected curve, in scene order.
     pub curves: Vec<CurveReport>,
 }
 
 /// The report of one curve.
-#[derive(Debug, Clone)]
-#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct CurveReport {
     /// The curve's index in the scene.
     pub index: usize,
     /// Its family (`"bezier"`, …).
     pub family: &'static str,
     /// Its name, when it has one.
-    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
     /// The parameter domain `[a, b]`.
     pub domain: [f64; 2],
     /// The exact lowering: Bézier segments with their parameter ranges.
     pub segments: Vec<SegmentReport>,
     /// The family's own data.
-    #[cfg_attr(feature = "serde", serde(flatten))]
+    #[serde(flatten)]
     pub details: FamilyDetails,
     /// With `--tau`, for B-splines and NUBMP curves: what the structure allows there.
-    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub at_tau: Option<AtTau>,
 }
 
 /// One Bézier segment of a lowering.
-#[derive(Debug, Clone)]
-#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct SegmentReport {
     /// The curve parameter where the segment starts.
     pub t0: f64,
@@ -55,7 +51,7 @@ pub struct SegmentReport {
     /// Its control points.
     pub points: Vec<Xyz>,
     /// A rational segment's weights (absent for a polynomial one).
-    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub weights: Option<Vec<f64>>,
 }
 
@@ -63,7 +59,7 @@ pub struct SegmentReport {
 ///
 /// # Errors
 /// A B-spline whose standard NUBMP structure overflows `f64`
-/// ([`crate::geom::GeomError::DerivedNotFinite`]).
+/// ([`GeomError::DerivedNotFinite`]).
 pub fn curve_report(
     index: usize,
     name: Option<&str>,

@@ -1,123 +1,57 @@
-//! [`CubicInterpolation`]'s [`Family`] side: the parameter and modification controls,
-//! the tangent-handle overlay, the `inspect` report (paper 002 §5).
+//! [`CubicInterpolation`]'s words: the modification controls, the template, the `inspect`
+//! report (paper 002 §5).
 
 use glam::DVec3;
-#[cfg(feature = "serde")]
 use schemars::JsonSchema;
-#[cfg(feature = "serde")]
 use serde::Serialize;
+use splinescope_core::geom::{CubicInterpolation, GeomError, Modification, Reading, Xyz, xyz};
 
-use super::{
-    Control, ControlId, ControlKind, ControlValue, Family, OverlayKind, OverlayPolyline, Xyz,
-    lowered_box, unknown_control, xyz,
-};
-use crate::geom::{Aabb, CubicInterpolation, GeomError, Modification, Reading};
+use splinescope_core::geom::Family;
 
-impl Family for CubicInterpolation {
-    const NAME: &'static str = "interpolation";
+use crate::Present;
+use crate::controls::{Control, ControlId, ControlKind, ControlValue, unknown_control};
+
+impl Present for CubicInterpolation {
     type Details = InterpolationDetails;
 
-    /// The new point's parameter lies between its neighbours' in proportion to where
-    /// `at` projects on the leg.
-    fn with_point_on_polygon(&self, at: DVec3) -> Result<(CubicInterpolation, usize), GeomError> {
-        let (points, leg, s) = crate::geom::structure::insert_on_polygon(self.points(), at);
-        let mut params = self.params().to_vec();
-        let t = params[leg] + s.clamp(0.05, 0.95) * (params[leg + 1] - params[leg]);
-        params.insert(leg + 1, t);
-        Ok((
-            CubicInterpolation::try_new(points, Some(params), self.modification())?,
-            leg + 1,
-        ))
-    }
-
-    fn with_point_removed(&self, index: usize) -> Result<CubicInterpolation, GeomError> {
-        let points = crate::geom::structure::without(self.points(), index, 2, Self::NAME)?;
-        let mut params = self.params().to_vec();
-        params.remove(index);
-        CubicInterpolation::try_new(points, Some(params), self.modification())
-    }
-
     fn templates(center: DVec3, size: f64) -> Vec<(&'static str, CubicInterpolation)> {
-        CubicInterpolation::try_new(crate::geom::template::zigzag(center, size, 4), None, None)
+        CubicInterpolation::try_new(crate::template::zigzag(center, size, 4), None, None)
             .map(|c| vec![("interpolation", c)])
             .unwrap_or_default()
     }
 
-    /// `degree + 1` points (at least 2) interpolated by the plain cubic spline: always
-    /// cubic, `degree` pieces.
-    fn generated(
-        degree: usize,
-        point: &mut dyn FnMut() -> DVec3,
-    ) -> Result<CubicInterpolation, GeomError> {
-        let points = (0..=degree.max(1)).map(|_| point()).collect();
-        CubicInterpolation::try_new(points, None, None)
-    }
-
-    fn control_points(&self) -> &[DVec3] {
-        self.points()
-    }
-
-    fn with_control_points(&self, points: Vec<DVec3>) -> Result<CubicInterpolation, GeomError> {
-        CubicInterpolation::try_new(points, Some(self.params.clone()), self.modification)
-    }
-
-    /// Each piece's inner Bézier points joined to its ends: the tangent handles.
-    fn overlays(&self) -> Vec<OverlayPolyline> {
-        self.pieces
-            .iter()
-            .map(|p| OverlayPolyline {
-                kind: OverlayKind::TangentHandles,
-                points: p.points().to_vec(),
-            })
-            .collect()
-    }
-
-    /// The curve leaves the hull of the interpolated points: it is bounded by its pieces.
-    fn control_box(&self) -> Aabb {
-        lowered_box(self)
-    }
-
-    fn is_planar(&self) -> bool {
-        self.points.iter().all(|p| p.z == 0.0) && self.modification.is_none_or(|m| m.v.z == 0.0)
-    }
-
-    /// Tangents depend on points and parameters alike: the curve itself is named.
-    fn derived_field(&self) -> &'static str {
-        ""
-    }
-
     fn summary(&self) -> String {
-        let kind = match self.modification {
+        let kind = match self.modification() {
             None => "plain".to_owned(),
             Some(m) => format!("modified ({} reading)", m.reading.name()),
         };
-        format!("{} points, {kind}", self.points.len())
+        format!("{} points, {kind}", self.points().len())
     }
 
     fn parameter_text(&self) -> Option<String> {
-        self.modification
-            .map(|m| crate::geom::family::bump_text(m.t_star, m.v))
+        self.modification()
+            .map(|m| crate::text::bump_text(m.t_star, m.v))
     }
 
     fn details(&self) -> Result<InterpolationDetails, GeomError> {
         // Paper 002 §5: chord slopes C_i and the parabola weights α_i behind s_i.
-        let (p, t) = (self.points(), &self.params);
+        let (p, t) = (self.points(), &self.params());
         let chords: Vec<DVec3> = (0..p.len() - 1)
             .map(|i| (p[i + 1] - p[i]) / (t[i + 1] - t[i]))
             .collect();
         Ok(InterpolationDetails {
-            params: self.params.clone(),
+            params: self.params().to_vec(),
             chord_slopes: xyz(&chords),
             parabola_weights: (1..p.len() - 1)
                 .map(|i| (t[i] - t[i - 1]) / (t[i + 1] - t[i - 1]))
                 .collect(),
-            tangents: xyz(&self.tangents),
+            tangents: xyz(self.tangents()),
             inner_points: self
-                .pieces
+                .pieces()
                 .iter()
                 .map(|b| [b.points()[1].to_array(), b.points()[2].to_array()])
                 .collect(),
-            modification: self.modification.map(|m| ModificationReport {
+            modification: self.modification().map(|m| ModificationReport {
                 t_star: m.t_star,
                 v: m.v.to_array(),
                 reading: m.reading.name(),
@@ -131,10 +65,10 @@ impl Family for CubicInterpolation {
             label: "modified (paper 002)".into(),
             hint: Some("a bump of vector v peaking at t* in every piece".into()),
             kind: ControlKind::Toggle {
-                value: self.modification.is_some(),
+                value: self.modification().is_some(),
             },
         }];
-        if let Some(m) = self.modification {
+        if let Some(m) = self.modification() {
             out.push(Control {
                 id: ControlId::new("t_star"),
                 label: "t*".into(),
@@ -169,7 +103,7 @@ impl Family for CubicInterpolation {
         id: ControlId,
         value: ControlValue,
     ) -> Result<CubicInterpolation, GeomError> {
-        let current = self.modification;
+        let current = self.modification();
         let next = match (id.key, value, current) {
             ("modified", ControlValue::Toggle(on), _) => on.then_some(Modification {
                 t_star: 0.5,
@@ -188,13 +122,12 @@ impl Family for CubicInterpolation {
             }),
             _ => return Err(unknown_control(Self::NAME, id, value)),
         };
-        CubicInterpolation::try_new(self.points.clone(), Some(self.params.clone()), next)
+        CubicInterpolation::try_new(self.points().to_vec(), Some(self.params().to_vec()), next)
     }
 }
 
 /// What `inspect` reports for an interpolating spline.
-#[derive(Debug, Clone)]
-#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct InterpolationDetails {
     /// `t_0..t_k`.
     pub params: Vec<f64>,
@@ -207,13 +140,12 @@ pub struct InterpolationDetails {
     /// Each piece's inner points `P_{i−2/3}`, `P_{i−1/3}`.
     pub inner_points: Vec<[Xyz; 2]>,
     /// The modification, when there is one.
-    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub modification: Option<ModificationReport>,
 }
 
 /// A modification as reports write it.
-#[derive(Debug, Clone)]
-#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct ModificationReport {
     /// `t*`.
     pub t_star: f64,

@@ -1,51 +1,25 @@
-//! [`Bezier`]'s [`Family`] side: the editor's controls and templates, the `inspect`
-//! report (power basis, paper 000 §2.3's polygon type of a cubic).
+//! [`Bezier`]'s words: the elevate button, the template, the `inspect` report (power
+//! basis, paper 000 §2.3's polygon type of a cubic).
 
 use glam::DVec3;
-#[cfg(feature = "serde")]
 use schemars::JsonSchema;
-#[cfg(feature = "serde")]
 use serde::Serialize;
+use splinescope_core::geom::cubic_region::CubicRegion;
+use splinescope_core::geom::{Bezier, GeomError, Xyz};
 
-use super::{Control, ControlId, ControlValue, Family, Xyz, unknown_control};
-use crate::geom::cubic_region::CubicRegion;
-use crate::geom::{Bezier, GeomError};
+use splinescope_core::geom::Family;
 
-impl Family for Bezier {
-    const NAME: &'static str = "bezier";
+use crate::Present;
+use crate::controls::{Control, ControlId, ControlValue, unknown_control};
+
+impl Present for Bezier {
     type Details = BezierDetails;
-
-    fn with_point_on_polygon(&self, at: DVec3) -> Result<(Bezier, usize), GeomError> {
-        let (points, leg, _) = crate::geom::structure::insert_on_polygon(self.points(), at);
-        Ok((Bezier::try_new(points)?, leg + 1))
-    }
-
-    fn with_point_removed(&self, index: usize) -> Result<Bezier, GeomError> {
-        Bezier::try_new(crate::geom::structure::without(
-            self.points(),
-            index,
-            2,
-            Self::NAME,
-        )?)
-    }
 
     fn templates(center: DVec3, size: f64) -> Vec<(&'static str, Bezier)> {
         vec![(
             "Bézier (cubic)",
-            Bezier::new(crate::geom::template::arch(center, size)),
+            Bezier::new(crate::template::arch(center, size)),
         )]
-    }
-
-    fn generated(degree: usize, point: &mut dyn FnMut() -> DVec3) -> Result<Bezier, GeomError> {
-        Bezier::try_new((0..=degree).map(|_| point()).collect())
-    }
-
-    fn control_points(&self) -> &[DVec3] {
-        self.points()
-    }
-
-    fn with_control_points(&self, points: Vec<DVec3>) -> Result<Bezier, GeomError> {
-        Bezier::try_new(points)
     }
 
     fn summary(&self) -> String {
@@ -99,34 +73,33 @@ impl Family for Bezier {
         }
     }
 }
+
 /// What `inspect` reports for a Bézier curve.
-#[derive(Debug, Clone)]
-#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct BezierDetails {
     /// `n`.
     pub degree: usize,
     /// The power-basis coefficients, up to degree [`POWER_BASIS_MAX_DEGREE`].
-    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub power_basis: Option<PowerBasis>,
     /// For a cubic: paper 000 §2.3's polygon type.
-    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub cubic_region: Option<CubicRegionReport>,
     /// For a cubic without end tangents: why there is no type.
-    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub cubic_region_unavailable: Option<String>,
 }
 
 /// A cubic's polygon type (paper 000 §2.3) as `inspect` reports it.
-#[derive(Debug, Clone)]
-#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct CubicRegionReport {
     /// 1, 2 or 3.
-    #[cfg_attr(feature = "serde", serde(rename = "type"))]
+    #[serde(rename = "type")]
     pub kind: u8,
     /// The finer classification ([`CubicRegion::subtype`]).
     pub subtype: &'static str,
     /// Where the legs' lines meet, when they do.
-    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub lines_meet_at: Option<Xyz>,
 }
 
@@ -135,18 +108,17 @@ pub struct CubicRegionReport {
 pub const POWER_BASIS_MAX_DEGREE: usize = 64;
 
 /// The power-basis coefficients `a_k` of `P(t) = Σ_k a_k t^k`.
-#[derive(Debug, Clone)]
-#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct PowerBasis {
     /// Each `a_k` as exact rationals (`"p/q"`) per coordinate.
     pub exact: Vec<[String; 3]>,
     /// Each `a_k` rounded to `f64`; absent when some coefficient is beyond `f64`'s range
     /// (the binomial factors multiply coordinates near ±1.8e308 past it), and then
     /// `values_unavailable` names it and `exact` alone holds the coefficients.
-    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub values: Option<Vec<Xyz>>,
     /// Why `values` is absent: the first coefficient beyond `f64`.
-    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub values_unavailable: Option<String>,
 }
 
@@ -154,13 +126,13 @@ pub struct PowerBasis {
 /// shortest decimal form (the decimal written in the scene file, for inputs of up to 15
 /// significant digits) and, when every one is within its range, as `f64`.
 fn power_basis(pts: &[DVec3]) -> PowerBasis {
-    use crate::geom::exact::{Rational, Scalar, format_rational, parse_decimal};
+    use splinescope_core::geom::exact::{Rational, Scalar, format_rational, parse_decimal};
     let n = pts.len() - 1;
     let exact: Vec<[Rational; 3]> = pts
         .iter()
         .map(|p| {
             p.to_array().map(|c| {
-                parse_decimal(&crate::num::Num(c).to_string())
+                parse_decimal(&splinescope_core::num::Num(c).to_string())
                     .unwrap_or_else(|| unreachable!("a finite coordinate's decimal parses"))
             })
         })

@@ -1,98 +1,33 @@
-//! [`Nubmp`]'s [`Family`] side: the shape-parameter and knot controls, the dual polygon
-//! overlay, the `inspect` report (the structure of paper 001's curve: coefficients,
-//! groups, variation-diminishing ranges).
+//! [`Nubmp`]'s words: the shape-parameter sliders with their variation-diminishing
+//! bands, the reset button, the template, and the `inspect` report (the structure of paper
+//! 001's curve: coefficients, groups, variation-diminishing ranges).
 
 use glam::DVec3;
-#[cfg(feature = "serde")]
 use schemars::JsonSchema;
-#[cfg(feature = "serde")]
 use serde::Serialize;
+use splinescope_core::geom::bspline::elevation_coefficients;
+use splinescope_core::geom::{GeomError, KnotVector, Nubmp, Xyz, xyz};
 
-use super::{
-    AtTau, Control, ControlId, ControlKind, ControlValue, Family, GroupAtTau, OverlayKind,
-    OverlayPolyline, Xyz, unknown_control, xyz,
-};
-use crate::geom::bspline::elevation_coefficients;
-use crate::geom::{BSpline, GeomError, KnotVector, Nubmp, ParamCurve};
+use splinescope_core::geom::Family;
 
-impl Family for Nubmp {
-    const NAME: &'static str = "nubmp";
+use crate::Present;
+use crate::controls::{Control, ControlId, ControlKind, ControlValue, unknown_control};
+
+impl Present for Nubmp {
     type Details = NubmpDetails;
 
-    fn inserts_by_knot(&self) -> bool {
-        true
-    }
-
-    /// Standard curves only: the groups of the new knot vector differ from the old ones.
-    fn with_knot_inserted(&self, t: f64) -> Result<Nubmp, GeomError> {
-        if !self.is_standard() {
-            return Err(GeomError::refused(
-                Self::NAME,
-                "reset the shape parameters to the standard curve before inserting a knot (the groups of the new knot vector differ)",
-            ));
-        }
-        let b = BSpline::from_parts(self.points().to_vec(), self.knots().clone())?;
-        let b = b.insert_knot(t)?;
-        Nubmp::standard(b.points().to_vec(), b.knots().clone())
-    }
-
-    fn with_point_removed(&self, index: usize) -> Result<Nubmp, GeomError> {
-        if !self.is_standard() {
-            return Err(GeomError::refused(
-                Self::NAME,
-                "reset the shape parameters to the standard curve before removing a point (the groups of the new knot vector differ)",
-            ));
-        }
-        let (points, knots) =
-            crate::geom::structure::spline_without(self.points(), self.knots(), index, Self::NAME)?;
-        Nubmp::try_new(points, knots, self.order())
-    }
-
     fn templates(center: DVec3, size: f64) -> Vec<(&'static str, Nubmp)> {
-        let points = crate::geom::template::zigzag(center, size, 7);
-        Nubmp::try_new(points, crate::geom::template::clamped_knots(7, 4), 4)
+        let points = crate::template::zigzag(center, size, 7);
+        Nubmp::try_new(points, crate::template::clamped_knots(7, 4), 4)
             .map(|n| vec![("NUBMP (order 4)", n)])
             .unwrap_or_default()
-    }
-
-    /// The standard NUBMP curve of [`BSpline::generated`]'s spline (four segments, which
-    /// lower one degree higher).
-    fn generated(degree: usize, point: &mut dyn FnMut() -> DVec3) -> Result<Nubmp, GeomError> {
-        let b = BSpline::generated(degree, point)?;
-        Nubmp::standard(b.points().to_vec(), b.knots().clone())
-    }
-
-    fn control_points(&self) -> &[DVec3] {
-        &self.points
-    }
-
-    fn with_control_points(&self, points: Vec<DVec3>) -> Result<Nubmp, GeomError> {
-        self.with_points(points)
-    }
-
-    /// The control polygon and the dual polygon `P*_j`.
-    fn overlays(&self) -> Vec<OverlayPolyline> {
-        vec![
-            OverlayPolyline {
-                kind: OverlayKind::ControlPolygon,
-                points: self.points.clone(),
-            },
-            OverlayPolyline {
-                kind: OverlayKind::DualPolygon,
-                points: self.dual.points().to_vec(),
-            },
-        ]
-    }
-
-    fn derived_field(&self) -> &'static str {
-        "knots"
     }
 
     /// The parameters that differ from the standard curve's (the first three, then a
     /// count); `None` for the standard curve.
     fn parameter_text(&self) -> Option<String> {
         let changed: Vec<String> = self
-            .groups
+            .groups()
             .iter()
             .enumerate()
             .flat_map(|(j, g)| {
@@ -100,7 +35,9 @@ impl Family for Nubmp {
                     .iter()
                     .zip(g.values.iter().zip(&g.standard))
                     .filter(|(_, (a, c))| a != c)
-                    .map(move |(i, (a, _))| format!("a^{i}_{j} = {}", super::short_number(*a)))
+                    .map(move |(i, (a, _))| {
+                        format!("a^{i}_{j} = {}", crate::text::short_number(*a))
+                    })
             })
             .collect();
         match changed.len() {
@@ -114,20 +51,16 @@ impl Family for Nubmp {
         format!(
             "order {}, {} groups, {} free parameters",
             self.order(),
-            self.groups.len(),
+            self.groups().len(),
             self.free_parameter_count()
         )
     }
 
     fn details(&self) -> Result<NubmpDetails, GeomError> {
         Ok(NubmpDetails {
-            spline: SplineDetails::of(&self.knots),
+            spline: SplineDetails::of(self.knots()),
             structure: NubmpStructure::of(self),
         })
-    }
-
-    fn at_tau(&self, tau: f64) -> Result<Option<AtTau>, GeomError> {
-        nubmp_at_tau(self, tau).map(Some)
     }
 
     /// A slider per shape parameter of every effective group (the group's last member
@@ -145,7 +78,7 @@ impl Family for Nubmp {
             }),
             kind: ControlKind::Action,
         }];
-        for (j, g) in self.groups.iter().enumerate() {
+        for (j, g) in self.groups().iter().enumerate() {
             if !g.effective || g.members.len() < 2 {
                 continue;
             }
@@ -207,7 +140,7 @@ impl Family for Nubmp {
     fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Nubmp, GeomError> {
         match (id.key, value) {
             ("reset", ControlValue::Press) => {
-                Nubmp::standard(self.points.clone(), self.knots.clone())
+                Nubmp::standard(self.points().to_vec(), self.knots().clone())
             }
             ("a", ControlValue::Number(a)) => {
                 let [i, j] = id.index;
@@ -221,36 +154,8 @@ impl Family for Nubmp {
     }
 }
 
-/// [`Family::at_tau`] for NUBMP curves (and B-splines, as standard NUBMP curves).
-pub(crate) fn nubmp_at_tau(n: &Nubmp, tau: f64) -> Result<AtTau, GeomError> {
-    let (start, end) = n.domain();
-    if !(tau >= start && tau <= end) {
-        return Err(GeomError::ParameterOutsideDomain {
-            value: tau,
-            start,
-            end,
-        });
-    }
-    let groups = n
-        .groups_at(tau)
-        .into_iter()
-        .map(|j| GroupAtTau {
-            group: j,
-            members: n.groups[j].members.clone(),
-            weight: n.dual_basis_value(j, tau),
-            region: xyz(&n.reachable_region(tau, j).unwrap_or_default()),
-        })
-        .collect();
-    Ok(AtTau {
-        tau,
-        point: n.eval(tau).to_array(),
-        groups,
-    })
-}
-
 /// The knot data `inspect` reports for B-splines and NUBMP curves.
-#[derive(Debug, Clone)]
-#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct SplineDetails {
     /// `k` (degree `k − 1`).
     pub order: usize,
@@ -273,14 +178,13 @@ impl SplineDetails {
 }
 
 /// What `inspect` reports for a NUBMP curve.
-#[derive(Debug, Clone)]
-#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct NubmpDetails {
     /// The knots.
-    #[cfg_attr(feature = "serde", serde(flatten))]
+    #[serde(flatten)]
     pub spline: SplineDetails,
     /// The multiple-shape-parameter structure.
-    #[cfg_attr(feature = "serde", serde(flatten))]
+    #[serde(flatten)]
     pub structure: NubmpStructure,
 }
 
@@ -293,13 +197,12 @@ pub const EXACT_MAX_POINTS: usize = 10_000;
 
 /// Paper 001's structure of a NUBMP curve: the refined knots `T*`, the degree-elevation
 /// coefficients `c^i_j` (Eq. 6), the groups with their parameters, and the dual points.
-#[derive(Debug, Clone)]
-#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct NubmpStructure {
     /// `T*`.
     pub refined_knots: Vec<f64>,
     /// Why exact coefficients are missing, when they are.
-    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub exact_omitted: Option<String>,
     /// `"decimal knots"` (exact from the file's decimals) or `"binary f64 knots"`.
     pub exact_from: &'static str,
@@ -314,8 +217,7 @@ pub struct NubmpStructure {
 }
 
 /// One row of elevation coefficients.
-#[derive(Debug, Clone)]
-#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct CoefficientReport {
     /// The control point `i`.
     pub i: usize,
@@ -324,13 +226,12 @@ pub struct CoefficientReport {
     /// `c^i_j` in `f64`.
     pub values: Vec<f64>,
     /// `c^i_j` as exact rationals.
-    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub exact: Option<Vec<String>>,
 }
 
 /// One group as `inspect` reports it.
-#[derive(Debug, Clone)]
-#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct GroupReport {
     /// `j`.
     pub group: usize,
@@ -345,16 +246,15 @@ pub struct GroupReport {
     /// The parameter spans it affects.
     pub affected_spans: Vec<[f64; 2]>,
     /// Order 4: Theorem 1's value (`null` when the group has no such condition).
-    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub vd: Option<Option<f64>>,
     /// Order 4: the permissible range of each member with each absorber.
-    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub permissible_ranges: Option<Vec<RangeReport>>,
 }
 
 /// A permissible range (`null` ends: the current value violates a condition).
-#[derive(Debug, Clone)]
-#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct RangeReport {
     /// The changed member.
     pub member: usize,
@@ -371,17 +271,17 @@ impl NubmpStructure {
     /// coefficient: they are computed up to [`EXACT_MAX_ORDER`], the `f64` values always.
     #[must_use]
     pub fn of(n: &Nubmp) -> NubmpStructure {
-        use crate::geom::exact::format_rational;
-        let exact = (n.order() <= EXACT_MAX_ORDER && n.points.len() <= EXACT_MAX_POINTS)
+        use splinescope_core::geom::exact::format_rational;
+        let exact = (n.order() <= EXACT_MAX_ORDER && n.points().len() <= EXACT_MAX_POINTS)
             .then(|| n.exact_coefficients());
         let exact_omitted = exact.is_none().then(|| {
             format!(
                 "exact rational coefficients are computed up to order {EXACT_MAX_ORDER} and {EXACT_MAX_POINTS} points; this curve has order {} and {} points",
                 n.order(),
-                n.points.len()
+                n.points().len()
             )
         });
-        let rows = elevation_coefficients(n.knots.knots(), n.order()).rows;
+        let rows = elevation_coefficients(n.knots().knots(), n.order()).rows;
         let coefficients = rows
             .into_iter()
             .enumerate()
@@ -395,57 +295,56 @@ impl NubmpStructure {
             })
             .collect();
         NubmpStructure {
-            refined_knots: n.refined.knots().to_vec(),
+            refined_knots: n.refined_knots().knots().to_vec(),
             exact_omitted,
-            exact_from: if n.knots.has_exact() {
+            exact_from: if n.knots().has_exact() {
                 "decimal knots"
             } else {
                 "binary f64 knots"
             },
             coefficients,
             free_parameters: n.free_parameter_count(),
-            dual_points: xyz(n.dual.points()),
-            groups: (0..n.groups.len()).map(|j| n.group_report(j)).collect(),
+            dual_points: xyz(n.dual_points()),
+            groups: (0..n.groups().len()).map(|j| group_report(n, j)).collect(),
         }
     }
 }
 
-impl Nubmp {
-    fn group_report(&self, j: usize) -> GroupReport {
-        let g = &self.groups[j];
-        let order4 = self.order() == 4;
-        let ranges = order4.then(|| {
-            let mut ranges = Vec::new();
-            for &i in &g.members {
-                for &l in &g.members {
-                    if i == l {
-                        continue;
-                    }
-                    if let Ok(r) = self.permissible_range(j, i, l) {
-                        ranges.push(RangeReport {
-                            member: i,
-                            absorber: l,
-                            min: r.map(|r| r.min),
-                            max: r.map(|r| r.max),
-                        });
-                    }
+/// One group's report.
+fn group_report(n: &Nubmp, j: usize) -> GroupReport {
+    let g = &n.groups()[j];
+    let order4 = n.order() == 4;
+    let ranges = order4.then(|| {
+        let mut ranges = Vec::new();
+        for &i in &g.members {
+            for &l in &g.members {
+                if i == l {
+                    continue;
+                }
+                if let Ok(r) = n.permissible_range(j, i, l) {
+                    ranges.push(RangeReport {
+                        member: i,
+                        absorber: l,
+                        min: r.map(|r| r.min),
+                        max: r.map(|r| r.max),
+                    });
                 }
             }
-            ranges
-        });
-        GroupReport {
-            group: j,
-            members: g.members.clone(),
-            standard: g.standard.clone(),
-            values: g.values.clone(),
-            effective: g.effective,
-            affected_spans: self
-                .affected_spans(j)
-                .into_iter()
-                .map(|(a, b)| [a, b])
-                .collect(),
-            vd: order4.then(|| self.vd_value(j)),
-            permissible_ranges: ranges,
         }
+        ranges
+    });
+    GroupReport {
+        group: j,
+        members: g.members.clone(),
+        standard: g.standard.clone(),
+        values: g.values.clone(),
+        effective: g.effective,
+        affected_spans: n
+            .affected_spans(j)
+            .into_iter()
+            .map(|(a, b)| [a, b])
+            .collect(),
+        vd: order4.then(|| n.vd_value(j)),
+        permissible_ranges: ranges,
     }
 }
