@@ -321,3 +321,133 @@ fn tessellate_any(
         );
     }
 }
+
+// ---------------------------------------------------------------------------------------
+// The curvature comb (docs/math.md §8), from the samples just placed: at each sample the
+// curve's point P, and a hair to P − scale · K, where K = (P″ − (P″·T) T) / |P′|² is the
+// curvature vector (length κ, towards the centre of curvature; in the plane, κ signed, so
+// the hairs change side at an inflection). The hair tips joined in order are the comb's
+// envelope. Derivatives come from the segment's homogeneous control points H_i = (w P, w):
+// H^(k)(u) = n!/(n−k)! Σ Δ^k H_i B_i^{n−k}(u), then P′ = (H′ − w′ P)/w and
+// P″ = (H″ − w″ P − 2 w′ P′)/w. CPU twin: comb_hair in crates/gpu/src/twin.rs.
+
+// Twin: GpuComb.
+struct Comb {
+    // World length of a hair per unit of curvature.
+    scale: f32,
+    groups_x: u32,
+    // Chunk-local curve whose comb is drawn: COMB_ALL for every curve.
+    curve: u32,
+    _padding: u32,
+}
+
+const COMB_ALL: u32 = 0xffffffffu;
+// Tags that differ from each neighbour's: the line pipeline skips a piece between them.
+const COMB_HIDDEN: u32 = 0x80000000u;
+
+@group(1) @binding(0) var<uniform> comb: Comb;
+// Two vertices per sample: the point on the curve, then the hair's tip.
+@group(1) @binding(1) var<storage, read_write> hairs: array<Vertex>;
+// One vertex per sample: the hair's tip.
+@group(1) @binding(2) var<storage, read_write> envelope: array<Vertex>;
+// The hairs' indirect draw: (corners, hairs, 0, 0).
+@group(1) @binding(3) var<storage, read_write> comb_args: array<u32>;
+
+// The k-th forward difference of the homogeneous points at i (k ≤ 2).
+fn difference(first: u32, i: u32, k: u32) -> vec4<f32> {
+    let a = control_point4(first, i);
+    if (k == 0u) {
+        return a;
+    }
+    let b = control_point4(first, i + 1u);
+    if (k == 1u) {
+        return b - a;
+    }
+    return control_point4(first, i + 2u) - 2.0 * b + a;
+}
+
+// Σ Δ^k H_i B_i^m(u), m = n − k, by Horner's rule in u / v (or v / u past the middle) as
+// bernstein_horner4 does.
+fn difference_sum(first: u32, n: u32, k: u32, u: f32, v: f32) -> vec4<f32> {
+    let m = n - k;
+    var acc: vec4<f32>;
+    var scale = 1.0;
+    var binomial = 1.0;
+    if (u <= 0.5) {
+        let x = u / v;
+        acc = difference(first, m, k);
+        for (var i = m; i > 0u; i--) {
+            binomial = binomial * f32(i) / f32(m - i + 1u);
+            acc = acc * x + binomial * difference(first, i - 1u, k);
+            scale = scale * v;
+        }
+    } else {
+        let x = v / u;
+        acc = difference(first, 0u, k);
+        for (var i = 1u; i <= m; i++) {
+            binomial = binomial * f32(m - i + 1u) / f32(i);
+            acc = acc * x + binomial * difference(first, i, k);
+            scale = scale * u;
+        }
+    }
+    return acc * scale;
+}
+
+// The point and the curvature vector of a segment of degree n at u.
+fn point_and_curvature(first: u32, n: u32, u: f32) -> array<vec3<f32>, 2> {
+    let v = 1.0 - u;
+    let nf = f32(n);
+    let h = difference_sum(first, n, 0u, u, v);
+    var h1 = vec4<f32>(0.0);
+    var h2 = vec4<f32>(0.0);
+    if (n >= 1u) {
+        h1 = nf * difference_sum(first, n, 1u, u, v);
+    }
+    if (n >= 2u) {
+        h2 = nf * (nf - 1.0) * difference_sum(first, n, 2u, u, v);
+    }
+    let p = h.xyz / h.w;
+    let d1 = (h1.xyz - h1.w * p) / h.w;
+    let d2 = (h2.xyz - h2.w * p - 2.0 * h1.w * d1) / h.w;
+    let speed2 = dot(d1, d1);
+    var k = vec3<f32>(0.0);
+    // At a cusp (P′ = 0) the curvature is unbounded: no hair.
+    if (speed2 > 0.0) {
+        k = (d2 - (dot(d2, d1) / speed2) * d1) / speed2;
+    }
+    return array<vec3<f32>, 2>(p, k);
+}
+
+@compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
+fn comb_hairs(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let s = group.x + group.y * comb.groups_x;
+    if (s == 0u && lane == 0u) {
+        comb_args[1] = work[STAT_DRAWN];
+    }
+    if (s >= frame.segment_count) {
+        return;
+    }
+    let seg = segments[s];
+    let count = work[WORK_COUNTS + s];
+    let first = work[scan_base() + 2u * s];
+    let n = min(seg.degree, MAX_DEGREE);
+    let shown = comb.curve == COMB_ALL || comb.curve == seg.curve;
+    for (var j = lane; j < count; j += TESSELLATE_WORKGROUP_SIZE) {
+        let u = adaptive_param(j, count);
+        let pk = point_and_curvature(seg.first_point, n, u);
+        let tip = pk[0] - comb.scale * pk[1];
+        let tag = seg.curve;
+        var tip_tag = seg.curve;
+        var edge_tag = seg.curve;
+        if (!shown) {
+            tip_tag = seg.curve | COMB_HIDDEN;
+            edge_tag = seg.curve | select(0u, COMB_HIDDEN, (first + j) % 2u == 1u);
+        }
+        hairs[2u * (first + j)] = Vertex(pk[0], tag);
+        hairs[2u * (first + j) + 1u] = Vertex(tip, tip_tag);
+        envelope[first + j] = Vertex(tip, edge_tag);
+    }
+}

@@ -1,7 +1,8 @@
 // Anti-aliased polylines of a width in pixels, read straight from a storage buffer of
 // tagged vertices (the tessellator's samples, or CPU-made overlays). Instance i draws the
 // piece from vertex i to vertex i + 1 as a screen-space quad around a capsule (round caps
-// make round joins); pieces whose two vertices have different tags are skipped.
+// make round joins); pieces whose two vertices have different tags are skipped. `vs_hair`
+// draws disjoint pieces (vertex pairs) the same way.
 
 @group(0) @binding(0) var<uniform> camera: Camera;
 @group(1) @binding(0) var<storage, read> vertices: array<Vertex>;
@@ -40,8 +41,18 @@ fn culled() -> LineOut {
 
 @vertex
 fn vs_line(@builtin(vertex_index) corner: u32, @builtin(instance_index) piece: u32) -> LineOut {
-    let a = vertices[piece];
-    let b = vertices[piece + 1u];
+    return piece_corner(vertices[piece], vertices[piece + 1u], corner);
+}
+
+// Separate pieces, two vertices each (the curvature comb's hairs): instance i draws the
+// piece from vertex 2 i to vertex 2 i + 1.
+@vertex
+fn vs_hair(@builtin(vertex_index) corner: u32, @builtin(instance_index) hair: u32) -> LineOut {
+    return piece_corner(vertices[2u * hair], vertices[2u * hair + 1u], corner);
+}
+
+// Corner `corner` of the quad around the piece from a to b.
+fn piece_corner(a: Vertex, b: Vertex, corner: u32) -> LineOut {
     if (a.id != b.id) {
         return culled();
     }

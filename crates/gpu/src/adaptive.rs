@@ -5,9 +5,9 @@
 //! Twins: [`super::twin::wang_count`], [`super::twin::scan_and_place`].
 
 use super::layout::{
-    ADAPTIVE_SEGMENT_LANES, FrameStats, GpuCamera, GpuFrame, GpuLineStyle, GpuTessParams,
-    GpuVertex, MAX_SAMPLES_PER_SEGMENT, SCAN_BLOCK, TESSELLATE_KERNELS, TESSELLATE_WORKGROUP_SIZE,
-    WORK_HEADER,
+    ADAPTIVE_SEGMENT_LANES, FrameStats, GpuCamera, GpuComb, GpuFrame, GpuLineStyle, GpuTessParams,
+    GpuVertex, LINE_CORNERS, MAX_SAMPLES_PER_SEGMENT, SCAN_BLOCK, TESSELLATE_KERNELS,
+    TESSELLATE_WORKGROUP_SIZE, WORK_HEADER,
 };
 use super::pack::TessChunk;
 use super::tessellator::{compute_pipelines, control_points_buffer, dispatch_grid};
@@ -50,7 +50,28 @@ pub struct AdaptiveTessellator {
     scan_sums: wgpu::ComputePipeline,
     finalize: wgpu::ComputePipeline,
     kernels: Vec<wgpu::ComputePipeline>,
+    comb: wgpu::ComputePipeline,
+    comb_layout: wgpu::BindGroupLayout,
     max_groups_per_dim: u32,
+}
+
+/// One chunk's curvature comb: the hairs (two vertices per sample: the curve's point and
+/// the hair's tip), the envelope (the tips, one per sample, in the samples' order) and the
+/// hairs' indirect draw arguments, written by the comb pass from the chunk's placed
+/// samples every frame.
+#[derive(Debug)]
+pub struct CombChunk {
+    /// `2 × capacity` vertices.
+    pub hairs: wgpu::Buffer,
+    /// `capacity` vertices.
+    pub envelope: wgpu::Buffer,
+    /// `[corners, hairs, 0, 0]`.
+    pub args: wgpu::Buffer,
+    uniform: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+    grid: (u32, u32),
+    /// The samples the buffers hold (the chunk's capacity when they were made).
+    pub capacity: u32,
 }
 
 /// One chunk's buffers for adaptive tessellation and drawing.
@@ -125,6 +146,24 @@ impl AdaptiveTessellator {
             &entries,
         );
         let kernels = pipelines.split_off(passes.len());
+        let layouts = super::bindings::adaptive();
+        let comb_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("comb"),
+            entries: &layouts[1],
+        });
+        let comb_pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("comb"),
+            bind_group_layouts: &[Some(&layout), Some(&comb_layout)],
+            immediate_size: 0,
+        });
+        let comb = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("comb_hairs"),
+            layout: Some(&comb_pipeline_layout),
+            module: &module,
+            entry_point: Some("comb_hairs"),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            cache: None,
+        });
         let [count, scan_blocks, scan_sums, finalize]: [wgpu::ComputePipeline; 4] = pipelines
             .try_into()
             .unwrap_or_else(|_| unreachable!("four passes"));
@@ -134,6 +173,8 @@ impl AdaptiveTessellator {
             scan_sums,
             finalize,
             kernels,
+            comb,
+            comb_layout,
             layout,
             max_groups_per_dim: device.limits().max_compute_workgroups_per_dimension,
         }
@@ -368,6 +409,97 @@ impl AdaptiveTessellator {
                 pass.set_bind_group(0, group, &[]);
                 pass.dispatch_workgroups(grid.0, grid.1, 1);
             }
+        }
+    }
+}
+
+impl AdaptiveTessellator {
+    /// A comb for `chunk`: buffers for its capacity and the pass's bind group.
+    /// `usage` is added to the hairs' and envelope's `STORAGE` usage.
+    #[must_use]
+    pub fn comb_chunk(
+        &self,
+        device: &wgpu::Device,
+        chunk: &AdaptiveChunk,
+        usage: wgpu::BufferUsages,
+    ) -> CombChunk {
+        let vertices = |label: &str, count: u64| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: count.max(2) * size_of::<GpuVertex>() as u64,
+                usage: wgpu::BufferUsages::STORAGE | usage,
+                mapped_at_creation: false,
+            })
+        };
+        let capacity = chunk.capacity;
+        let hairs = vertices("comb hairs", 2 * u64::from(capacity));
+        let envelope = vertices("comb envelope", u64::from(capacity));
+        let args = super::init_buffer(
+            device,
+            "comb draw",
+            bytemuck::cast_slice(&[LINE_CORNERS, 0, 0, 0]),
+            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT | usage,
+        );
+        let grid = dispatch_grid(chunk.segment_count, self.max_groups_per_dim);
+        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("comb"),
+            size: size_of::<GpuComb>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("comb"),
+            layout: &self.comb_layout,
+            entries: &[
+                entry(0, &uniform),
+                entry(1, &hairs),
+                entry(2, &envelope),
+                entry(3, &args),
+            ],
+        });
+        CombChunk {
+            hairs,
+            envelope,
+            args,
+            uniform,
+            bind_group,
+            grid,
+            capacity,
+        }
+    }
+
+    /// Sets a comb's scale (world length of a hair per unit of curvature) and the curve it
+    /// is drawn for ([`super::layout::COMB_ALL`], [`super::layout::COMB_NONE`] or a
+    /// chunk-local tag).
+    pub fn write_comb(&self, queue: &wgpu::Queue, comb: &CombChunk, scale: f32, curve: u32) {
+        let uniform = GpuComb {
+            scale,
+            groups_x: comb.grid.0,
+            curve,
+            _padding: 0,
+        };
+        queue.write_buffer(&comb.uniform, 0, bytemuck::bytes_of(&uniform));
+    }
+
+    /// Records the comb pass of each `(chunk, comb)` pair, after the chunk's tessellation
+    /// (it reads the placed counts and offsets).
+    pub fn encode_comb<'a>(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        pairs: impl IntoIterator<Item = (&'a AdaptiveChunk, &'a CombChunk)>,
+    ) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("curvature comb"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.comb);
+        for (chunk, comb) in pairs {
+            if chunk.segment_count == 0 {
+                continue;
+            }
+            pass.set_bind_group(0, &chunk.base, &[]);
+            pass.set_bind_group(1, &comb.bind_group, &[]);
+            pass.dispatch_workgroups(comb.grid.0, comb.grid.1, 1);
         }
     }
 }

@@ -50,18 +50,28 @@ pub fn tessellate() -> Vec<Vec<wgpu::BindGroupLayoutEntry>> {
 }
 
 /// `shaders/adaptive.wgsl`, group 0: the frame and the dispatch's range (uniforms), control
-/// points and segments (read), the work buffer and the samples (read-write).
+/// points and segments (read), the work buffer and the samples (read-write); group 1, the
+/// comb pass's alone: its uniform, then the hairs, the envelope and the hairs' draw
+/// arguments (read-write).
 #[must_use]
 pub fn adaptive() -> Vec<Vec<wgpu::BindGroupLayoutEntry>> {
     let c = wgpu::ShaderStages::COMPUTE;
-    vec![vec![
-        uniform(0, c),
-        uniform(1, c),
-        storage(2, true, c),
-        storage(3, true, c),
-        storage(4, false, c),
-        storage(5, false, c),
-    ]]
+    vec![
+        vec![
+            uniform(0, c),
+            uniform(1, c),
+            storage(2, true, c),
+            storage(3, true, c),
+            storage(4, false, c),
+            storage(5, false, c),
+        ],
+        vec![
+            uniform(0, c),
+            storage(1, false, c),
+            storage(2, false, c),
+            storage(3, false, c),
+        ],
+    ]
 }
 
 /// `shaders/lines.wgsl` and `shaders/points.wgsl`: group 0 the camera (uniform), group 1

@@ -114,6 +114,33 @@ pub struct GpuSegment {
     pub rational: u32,
 }
 
+/// The curvature comb's uniform, one per chunk (`comb_hairs` in `shaders/adaptive.wgsl`).
+/// Twin: `Comb` in `shaders/adaptive.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuComb {
+    /// World length of a hair per unit of curvature.
+    pub scale: f32,
+    /// Workgroups along x of the 2D dispatch (segment = `x + y · groups_x`).
+    pub groups_x: u32,
+    /// The chunk-local curve whose comb is drawn, or [`COMB_ALL`].
+    pub curve: u32,
+    /// Uniform structs are 16-byte aligned.
+    pub _padding: u32,
+}
+
+/// [`GpuComb::curve`] for a comb on every curve. Twin: `COMB_ALL` in
+/// `shaders/adaptive.wgsl`.
+pub const COMB_ALL: u32 = u32::MAX;
+
+/// [`GpuComb::curve`] for no comb in the chunk (no curve has this tag).
+pub const COMB_NONE: u32 = u32::MAX - 1;
+
+/// The bit a hidden comb vertex's tag carries, so that it differs from its neighbours'
+/// and the line pipeline skips the pieces around it. Twin: `COMB_HIDDEN` in
+/// `shaders/adaptive.wgsl`.
+pub const COMB_HIDDEN: u32 = 0x8000_0000;
+
 /// The per-frame uniform of adaptive tessellation, one per chunk. Twin: `Frame` in
 /// `shaders/common.wgsl`.
 #[repr(C)]

@@ -4,9 +4,13 @@
 
 use glam::DVec2;
 
-use super::adaptive::{AdaptiveChunk, AdaptiveTessellator, FrameSettings, initial_capacity};
+use super::adaptive::{
+    AdaptiveChunk, AdaptiveTessellator, CombChunk, FrameSettings, initial_capacity,
+};
 use super::context::GpuContext;
-use super::layout::{FrameStats, GpuCamera, GpuControlPoint, GpuLineStyle, GpuVertex};
+use super::layout::{
+    COMB_ALL, COMB_NONE, FrameStats, GpuCamera, GpuControlPoint, GpuLineStyle, GpuVertex,
+};
 use super::pack::{LineBatch, PreparedScene};
 use super::pipelines::Pipelines;
 use super::shaders;
@@ -23,6 +27,7 @@ pub struct Renderer {
     camera_bind_group: wgpu::BindGroup,
     batch_layout: wgpu::BindGroupLayout,
     line_pipeline: wgpu::RenderPipeline,
+    hair_pipeline: wgpu::RenderPipeline,
     point_pipeline: wgpu::RenderPipeline,
     format: wgpu::TextureFormat,
 }
@@ -44,6 +49,44 @@ pub struct GpuChunk {
     pub adaptive: AdaptiveChunk,
     draw: DrawBatch,
     styles: Vec<GpuLineStyle>,
+    comb: Option<CombDraw>,
+}
+
+/// A chunk's curvature comb on the GPU: the comb pass's buffers and the draws over them.
+#[derive(Debug)]
+struct CombDraw {
+    buffers: CombChunk,
+    hairs: DrawBatch,
+    envelope: DrawBatch,
+    /// The curve tag the pass draws for ([`COMB_ALL`], [`COMB_NONE`] or one tag).
+    curve: u32,
+}
+
+/// Which curvature combs are drawn, and how long their hairs are.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CombRequest {
+    /// World length of a hair per unit of curvature.
+    pub scale: f32,
+    /// `None`: every curve's comb; `Some(tags)`: only the curve with these
+    /// `(chunk, tag)` pairs ([`super::pack::curve_tags`]).
+    pub only: Option<Vec<(usize, u32)>>,
+}
+
+/// The style of a comb's hairs and envelope over a curve of style `curve`: one pixel,
+/// the curve's colour, the hairs fainter.
+fn comb_styles(curve: &[GpuLineStyle]) -> (Vec<GpuLineStyle>, Vec<GpuLineStyle>) {
+    let with = |alpha: f32| {
+        curve
+            .iter()
+            .map(|s| GpuLineStyle {
+                color: [s.color[0], s.color[1], s.color[2], s.color[3] * alpha],
+                width_px: 1.0,
+                dash_px: 0.0,
+                ..*s
+            })
+            .collect()
+    };
+    (with(0.45), with(0.9))
 }
 
 /// A scene uploaded to the GPU.
@@ -55,6 +98,7 @@ pub struct GpuScene {
     points: Vec<DrawBatch>,
     /// The clear colour.
     pub background: wgpu::Color,
+    comb_scale: f32,
 }
 
 impl GpuScene {
@@ -139,6 +183,70 @@ impl GpuScene {
             self.chunks.iter().map(|c| &c.adaptive),
             timestamp_writes,
         );
+        self.encode_comb(renderer, encoder);
+    }
+
+    /// Records the comb pass of every chunk with a comb (after its tessellation).
+    pub fn encode_comb(&self, renderer: &Renderer, encoder: &mut wgpu::CommandEncoder) {
+        let pairs: Vec<(&AdaptiveChunk, &CombChunk)> = self
+            .chunks
+            .iter()
+            .filter_map(|c| {
+                c.comb
+                    .as_ref()
+                    .filter(|comb| comb.curve != COMB_NONE)
+                    .map(|comb| (&c.adaptive, &comb.buffers))
+            })
+            .collect();
+        if !pairs.is_empty() {
+            renderer.adaptive.encode_comb(encoder, pairs);
+        }
+    }
+
+    /// Turns the curvature combs on (`Some`: every curve's, or one curve's, with hairs of
+    /// `scale` world units per unit of curvature) or off (`None`, freeing their buffers).
+    pub fn set_comb(&mut self, ctx: &GpuContext, renderer: &Renderer, comb: Option<&CombRequest>) {
+        let Some(request) = comb else {
+            for chunk in &mut self.chunks {
+                chunk.comb = None;
+            }
+            return;
+        };
+        self.comb_scale = request.scale;
+        for (index, chunk) in self.chunks.iter_mut().enumerate() {
+            let curve = match &request.only {
+                None => COMB_ALL,
+                Some(tags) => tags
+                    .iter()
+                    .find(|(c, _)| *c == index)
+                    .map_or(COMB_NONE, |&(_, tag)| tag),
+            };
+            let fits = chunk
+                .comb
+                .as_ref()
+                .is_some_and(|c| c.buffers.capacity == chunk.adaptive.capacity);
+            if !fits {
+                chunk.comb = Some(renderer.comb_draw(ctx, &chunk.adaptive, &chunk.styles, curve));
+            }
+            if let Some(comb) = &mut chunk.comb {
+                comb.curve = curve;
+                renderer
+                    .adaptive
+                    .write_comb(&ctx.queue, &comb.buffers, request.scale, curve);
+            }
+        }
+    }
+
+    /// Whether any chunk draws a comb.
+    #[must_use]
+    pub fn has_comb(&self) -> bool {
+        self.chunks.iter().any(|c| c.comb.is_some())
+    }
+
+    /// Chunk `chunk`'s comb buffers (hairs, envelope, draw arguments), when it has them.
+    #[must_use]
+    pub fn comb_buffers(&self, chunk: usize) -> Option<&CombChunk> {
+        self.chunks.get(chunk)?.comb.as_ref().map(|c| &c.buffers)
     }
 
     /// Gives every chunk whose last frame asked for more samples than its buffer holds a
@@ -166,6 +274,16 @@ impl GpuScene {
                 chunk.adaptive.capacity,
                 &chunk.styles,
             );
+            if let Some(old) = chunk.comb.take() {
+                let comb = renderer.comb_draw(ctx, &chunk.adaptive, &chunk.styles, old.curve);
+                renderer.adaptive.write_comb(
+                    &ctx.queue,
+                    &comb.buffers,
+                    self.comb_scale,
+                    comb.curve,
+                );
+                chunk.comb = Some(comb);
+            }
             grew = true;
         }
         grew
@@ -264,6 +382,12 @@ impl Renderer {
             "fs_line",
             wgpu::PrimitiveTopology::TriangleStrip,
         );
+        let hair_pipeline = pipeline(
+            shaders::LINES,
+            "vs_hair",
+            "fs_line",
+            wgpu::PrimitiveTopology::TriangleStrip,
+        );
         let point_pipeline = pipeline(
             shaders::POINTS,
             "vs_point",
@@ -276,8 +400,41 @@ impl Renderer {
             camera_bind_group,
             batch_layout,
             line_pipeline,
+            hair_pipeline,
             point_pipeline,
             format,
+        }
+    }
+
+    /// A chunk's comb: its buffers and the draws of its hairs and envelope.
+    fn comb_draw(
+        &self,
+        ctx: &GpuContext,
+        chunk: &AdaptiveChunk,
+        styles: &[GpuLineStyle],
+        curve: u32,
+    ) -> CombDraw {
+        let buffers = self
+            .adaptive
+            .comb_chunk(&ctx.device, chunk, wgpu::BufferUsages::COPY_SRC);
+        let (hair_styles, envelope_styles) = comb_styles(styles);
+        let hairs = self.batch(
+            &ctx.device,
+            buffers.hairs.clone(),
+            2 * buffers.capacity,
+            &hair_styles,
+        );
+        let envelope = self.batch(
+            &ctx.device,
+            buffers.envelope.clone(),
+            buffers.capacity,
+            &envelope_styles,
+        );
+        CombDraw {
+            buffers,
+            hairs,
+            envelope,
+            curve,
         }
     }
 
@@ -358,6 +515,7 @@ impl Renderer {
                     adaptive,
                     draw,
                     styles: chunk.styles.clone(),
+                    comb: None,
                 }
             })
             .collect();
@@ -375,6 +533,7 @@ impl Renderer {
                 .map(|b| self.overlay_batch(device, b))
                 .collect(),
             background: wgpu::Color { r, g, b, a },
+            comb_scale: 0.0,
         }
     }
 
@@ -468,6 +627,19 @@ impl Renderer {
         for batch in &scene.lines {
             draw_lines(pass, batch);
         }
+        // The combs under the curves: hairs, then the envelope joining their tips.
+        for chunk in &scene.chunks {
+            let Some(comb) = chunk.comb.as_ref().filter(|c| c.curve != COMB_NONE) else {
+                continue;
+            };
+            pass.set_pipeline(&self.hair_pipeline);
+            pass.set_bind_group(1, &comb.hairs.bind_group, &[]);
+            pass.draw_indirect(&comb.buffers.args, 0);
+            pass.set_pipeline(&self.line_pipeline);
+            pass.set_bind_group(1, &comb.envelope.bind_group, &[]);
+            pass.draw_indirect(&chunk.adaptive.work, 0);
+        }
+        pass.set_pipeline(&self.line_pipeline);
         for chunk in &scene.chunks {
             // As many pieces as the adaptive passes wrote samples, less one.
             pass.set_bind_group(1, &chunk.draw.bind_group, &[]);

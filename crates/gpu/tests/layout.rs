@@ -3,9 +3,9 @@
 
 use naga::{Module, TypeInner};
 use splinescope_gpu::layout::{
-    ADAPTIVE_SEGMENT_LANES, GpuCamera, GpuControlPoint, GpuFrame, GpuLineStyle, GpuRecord,
-    GpuSegment, GpuTessParams, GpuVertex, MAX_GPU_DEGREE, SCAN_BLOCK, TESSELLATE_KERNELS,
-    TESSELLATE_WORKGROUP_SIZE, WORK_HEADER,
+    ADAPTIVE_SEGMENT_LANES, COMB_ALL, COMB_HIDDEN, GpuCamera, GpuComb, GpuControlPoint, GpuFrame,
+    GpuLineStyle, GpuRecord, GpuSegment, GpuTessParams, GpuVertex, MAX_GPU_DEGREE, SCAN_BLOCK,
+    TESSELLATE_KERNELS, TESSELLATE_WORKGROUP_SIZE, WORK_HEADER,
 };
 use splinescope_gpu::shaders::{self, ALL};
 
@@ -70,6 +70,10 @@ fn adaptive_constants_match_their_rust_twins() {
         ADAPTIVE_SEGMENT_LANES
     );
     assert_eq!(constant_u32(&module, "WORK_COUNTS") as usize, WORK_HEADER);
+    assert_eq!(constant_u32(&module, "COMB_ALL"), COMB_ALL);
+    assert_eq!(constant_u32(&module, "COMB_HIDDEN"), COMB_HIDDEN);
+    let m = &module;
+    assert_twin!(m, "Comb", GpuComb, [scale, groups_x, curve, _padding]);
 }
 
 #[test]
@@ -322,5 +326,5 @@ fn bind_group_layouts_match_the_shaders() {
         from_layouts(&bindings::adaptive()),
         from_shader(&shaders::ADAPTIVE)
     );
-    assert_eq!(from_shader(&shaders::ADAPTIVE).len(), 6);
+    assert_eq!(from_shader(&shaders::ADAPTIVE).len(), 10);
 }

@@ -7,6 +7,7 @@
 //! ([`roots::bernstein_roots`]) on the Bernstein arithmetic of [`poly`]. The algorithms and
 //! their bounds are stated in `docs/math.md` §7.
 
+pub mod comb;
 pub mod curve;
 pub mod gauss;
 pub mod intersect;

@@ -1,0 +1,161 @@
+//! The curvature comb a shape designer judges a curve by (Rhino's curvature graph,
+//! Alias's comb): at points along the curve a hair from `P` to `P − s K`, where
+//! `K = (P″ − (P″·T) T) / |P′|²` is the curvature vector (length `κ`, pointing to the
+//! centre of curvature; in the plane `κ` is signed, so the hairs change side at an
+//! inflection), and `s` the comb's scale — world length per unit of curvature. The tips
+//! joined in order are the comb's envelope. Hairs point away from the centre of
+//! curvature, as those tools draw them. The GPU computes the same hairs from the same
+//! segments every frame (`comb_hairs` in `shaders/adaptive.wgsl`); this is the exact
+//! `f64` version that figures draw and tests compare with (`docs/math.md` §8).
+
+use glam::DVec3;
+
+use super::CurveAnalysis;
+
+/// The curvature vector from the first two derivatives: `(P″ − (P″·T) T) / |P′|²`;
+/// `None` where `P′ = 0` (a cusp: the curvature is unbounded there).
+#[must_use]
+pub fn curvature_vector(d1: DVec3, d2: DVec3) -> Option<DVec3> {
+    let speed2 = d1.length_squared();
+    if !(speed2 > 0.0) || !speed2.is_finite() {
+        return None;
+    }
+    Some((d2 - (d2.dot(d1) / speed2) * d1) / speed2)
+}
+
+/// One hair of a comb.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hair {
+    /// The curve parameter.
+    pub t: f64,
+    /// The point on the curve.
+    pub point: DVec3,
+    /// The hair's tip, `point − scale · K` (the point itself at a cusp).
+    pub tip: DVec3,
+}
+
+/// The comb of a curve: `per_segment` hairs (at least 2) at uniform parameters of each of
+/// its lowered segments, ends included, with hairs `scale` world units long per unit of
+/// curvature — what the GPU draws at its own sample parameters.
+#[must_use]
+pub fn comb(analysis: &CurveAnalysis, per_segment: usize, scale: f64) -> Vec<Hair> {
+    let n = per_segment.max(2);
+    let mut out = Vec::with_capacity(n * analysis.pieces().len());
+    for piece in analysis.pieces() {
+        for j in 0..n {
+            let u = j as f64 / (n - 1) as f64;
+            let t = piece.t0 + u * (piece.t1 - piece.t0);
+            let h = piece.t1 - piece.t0;
+            let point = piece.point(u);
+            let k = curvature_vector(piece.deriv(u) / h, piece.second_deriv(u) / (h * h));
+            out.push(Hair {
+                t,
+                point,
+                tip: point - scale * k.unwrap_or(DVec3::ZERO),
+            });
+        }
+    }
+    out
+}
+
+/// The fraction of the view's height the automatic comb scale gives a typical long hair.
+pub const AUTO_COMB_FRACTION: f64 = 0.15;
+
+/// Samples per segment the automatic scale measures the curvature at.
+const REFERENCE_SAMPLES: usize = 16;
+
+/// The curvature an automatic comb scale is set against: the 90th percentile of `|κ|` at
+/// 16 uniform parameters of every segment of every curve (robust to the unbounded
+/// curvature near a cusp, which a maximum is not); `None` when every sample is straight
+/// or at a cusp.
+#[must_use]
+pub fn reference_curvature<'a>(curves: impl IntoIterator<Item = &'a CurveAnalysis>) -> Option<f64> {
+    let mut ks: Vec<f64> = Vec::new();
+    for analysis in curves {
+        for piece in analysis.pieces() {
+            let h = piece.t1 - piece.t0;
+            for j in 0..REFERENCE_SAMPLES {
+                let u = j as f64 / (REFERENCE_SAMPLES - 1) as f64;
+                if let Some(k) =
+                    curvature_vector(piece.deriv(u) / h, piece.second_deriv(u) / (h * h))
+                {
+                    let k = k.length();
+                    if k > 0.0 && k.is_finite() {
+                        ks.push(k);
+                    }
+                }
+            }
+        }
+    }
+    if ks.is_empty() {
+        return None;
+    }
+    let rank = (ks.len() - 1) * 9 / 10;
+    let (_, k, _) = ks.select_nth_unstable_by(rank, f64::total_cmp);
+    Some(*k)
+}
+
+/// The automatic comb scale for a view `view_height` world units tall: a hair at the
+/// reference curvature ([`reference_curvature`]) is [`AUTO_COMB_FRACTION`] of the view
+/// tall; 1 when there is no curvature to measure.
+#[must_use]
+pub fn auto_scale(reference: Option<f64>, view_height: f64) -> f64 {
+    match reference {
+        Some(k) if view_height.is_finite() && view_height > 0.0 => {
+            AUTO_COMB_FRACTION * view_height / k
+        }
+        _ => 1.0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::{Bezier, Nurbs};
+
+    #[test]
+    fn a_circles_hairs_point_outward_by_scale_over_radius() {
+        // κ = 1/r along the whole circle, K towards the centre: tips at r + s/r.
+        let r = 2.0;
+        let circle = Nurbs::circle(DVec3::new(1.0, -1.0, 0.0), r).expect("circle");
+        let hairs = comb(&CurveAnalysis::new(&circle), 9, 0.5);
+        assert!(hairs.len() >= 9);
+        for h in hairs {
+            let out = h.point - DVec3::new(1.0, -1.0, 0.0);
+            let tip = h.tip - DVec3::new(1.0, -1.0, 0.0);
+            assert!((out.length() - r).abs() < 1e-12, "{h:?}");
+            assert!((tip.length() - (r + 0.5 / r)).abs() < 1e-12, "{h:?}");
+            assert!(tip.normalize().dot(out.normalize()) > 1.0 - 1e-12, "{h:?}");
+        }
+    }
+
+    #[test]
+    fn a_line_has_no_hairs_and_a_cusp_none_either() {
+        let line = Bezier::new(vec![DVec3::ZERO, DVec3::X, DVec3::new(2.0, 0.0, 0.0)]);
+        for h in comb(&CurveAnalysis::new(&line), 5, 3.0) {
+            assert_eq!(h.tip, h.point);
+        }
+        assert_eq!(reference_curvature([&CurveAnalysis::new(&line)]), None);
+        // P′(1/2) = 0 for this symmetric cubic: no hair there, a finite one elsewhere.
+        let cusp = Bezier::new(vec![
+            DVec3::ZERO,
+            DVec3::new(2.0, 1.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(2.0, 0.0, 0.0),
+        ]);
+        let hairs = comb(&CurveAnalysis::new(&cusp), 5, 1.0);
+        assert_eq!(hairs[2].tip, hairs[2].point);
+        assert!(hairs.iter().all(|h| h.tip.is_finite()));
+    }
+
+    #[test]
+    fn the_automatic_scale_makes_the_reference_hair_a_fraction_of_the_view() {
+        let r = 4.0;
+        let circle = Nurbs::circle(DVec3::ZERO, r).expect("circle");
+        let k = reference_curvature([&CurveAnalysis::new(&circle)]).expect("curved");
+        assert!((k - 1.0 / r).abs() < 1e-12);
+        let s = auto_scale(Some(k), 10.0);
+        assert!((s * k - AUTO_COMB_FRACTION * 10.0).abs() < 1e-12);
+        assert_eq!(auto_scale(None, 10.0), 1.0);
+    }
+}

@@ -1,0 +1,349 @@
+//! The curvature comb on the GPU (`comb_hairs` in `shaders/adaptive.wgsl`) against the
+//! exact `f64` curvature at the same parameters, on every backend: each hair starts at the
+//! curve's point and ends at `P − s K` (K the curvature vector) within the `f32` bound
+//! stated below, for every family (rational ones included) in 2D and 3D; a comb for one
+//! curve hides every other curve's hairs and envelope; and a planar comb changes side
+//! exactly at the inflections the analysis finds.
+
+mod common;
+
+use glam::{DVec2, DVec3};
+use splinescope::analysis::CurveAnalysis;
+use splinescope::analysis::comb::curvature_vector;
+use splinescope::geom::{
+    BSpline, Bezier, BezierSegment, Curve, Lower, ModifiedBezier, Nurbs, ParamCurve, RationalBezier,
+};
+use splinescope::gpu::adaptive::{FrameSettings, read_work};
+use splinescope::gpu::capture::OFFSCREEN_FORMAT;
+use splinescope::gpu::layout::{COMB_HIDDEN, GpuVertex, WORK_HEADER};
+use splinescope::gpu::pack::{ChunkLimits, PreparedScene, curve_tags, prepare};
+use splinescope::gpu::renderer::{CombRequest, GpuScene, Renderer, camera_uniform};
+use splinescope::gpu::tessellator::read_buffer;
+use splinescope::scene::encoding::encode;
+use splinescope::scene::{Scene, SceneCurve, Style};
+
+const VIEWPORT: DVec2 = DVec2::new(640.0, 480.0);
+
+fn p(x: f64, y: f64) -> DVec3 {
+    DVec3::new(x, y, 0.0)
+}
+
+/// One curve of every family, none with a cusp (the hair is unbounded there).
+fn families() -> Vec<Curve> {
+    let base = Bezier::new(vec![p(-3.0, 0.0), p(-2.0, 2.0), p(0.0, 2.0), p(1.0, 0.5)]);
+    vec![
+        // An S: one inflection.
+        Curve::Bezier(Bezier::new(vec![
+            p(-4.0, -2.0),
+            p(-2.0, 1.0),
+            p(-1.0, -3.0),
+            p(1.0, -1.0),
+        ])),
+        Curve::Bezier(Bezier::new(
+            (0..=7)
+                .map(|i| {
+                    let t = f64::from(i) / 7.0;
+                    p(2.0 * t - 1.0, (3.0 * t).sin() + 1.5)
+                })
+                .collect(),
+        )),
+        Curve::ModifiedBezier(ModifiedBezier::try_new(base, 0.4, p(0.0, 0.6)).expect("bump")),
+        Curve::RationalBezier(RationalBezier::quarter_ellipse(p(2.0, -2.0), 2.0, 1.0)),
+        Curve::Nurbs(Nurbs::circle(p(3.0, 2.0), 1.0).expect("circle")),
+        Curve::BSpline(
+            BSpline::try_new(
+                vec![
+                    p(-4.0, 2.5),
+                    p(-3.0, 3.5),
+                    p(-2.0, 2.0),
+                    p(-1.0, 3.5),
+                    p(0.0, 2.5),
+                ],
+                vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0],
+                4,
+            )
+            .expect("spline"),
+        ),
+    ]
+}
+
+fn scene_of(curves: Vec<Curve>) -> Scene {
+    let mut scene = splinescope::scene::gallery::gallery();
+    scene.annotations.clear();
+    scene.samples_per_segment = None;
+    scene.curves = curves
+        .into_iter()
+        .map(|curve| SceneCurve {
+            name: None,
+            curve,
+            style: Style::default_for(3),
+        })
+        .collect();
+    scene
+}
+
+/// The comb computed on the GPU: per chunk, the placed counts and offsets and the hairs.
+struct Combed {
+    prepared: PreparedScene,
+    /// Per chunk: (counts, offsets, hairs).
+    chunks: Vec<(Vec<u32>, Vec<u32>, Vec<GpuVertex>)>,
+}
+
+fn comb_on_gpu(backend: &common::Backend, scene: &Scene, request: &CombRequest) -> Combed {
+    let ctx = &backend.ctx;
+    let prepared = prepare(
+        &encode(scene),
+        ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
+    )
+    .expect("pack");
+    let renderer = Renderer::new(&ctx.device, &backend.pipelines, OFFSCREEN_FORMAT);
+    let mut gpu: GpuScene = renderer.upload(ctx, &prepared);
+    gpu.set_comb(ctx, &renderer, Some(request));
+    assert!(gpu.has_comb());
+    let camera = scene.camera(VIEWPORT);
+    let settings = FrameSettings {
+        camera: camera_uniform(&camera, VIEWPORT, 1.0),
+        tolerance_px: 0.25,
+    };
+    gpu.prepare_frame(&renderer, &ctx.queue, &settings);
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    gpu.encode_tessellation(&renderer, &mut encoder, None);
+    ctx.queue.submit([encoder.finish()]);
+    let mut chunks = Vec::new();
+    for (c, chunk) in gpu.chunks.iter().enumerate() {
+        let s = prepared.chunks[c].segments.len();
+        let work = read_work(&ctx.device, &ctx.queue, &chunk.adaptive).expect("work");
+        let counts = work[WORK_HEADER..WORK_HEADER + s].to_vec();
+        let offsets = (0..s).map(|i| work[WORK_HEADER + s + 2 * i]).collect();
+        let comb = gpu.comb_buffers(c).expect("a comb per chunk");
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        let hairs: Vec<GpuVertex> =
+            read_buffer(&ctx.device, &ctx.queue, &mut encoder, &comb.hairs).expect("hairs");
+        chunks.push((counts, offsets, hairs));
+    }
+    ctx.check_health().expect("healthy device");
+    Combed { prepared, chunks }
+}
+
+/// The exact segment behind each adaptive segment of chunk `c`, with its curve's index.
+fn exact_segments(
+    scene: &Scene,
+    prepared: &PreparedScene,
+    c: usize,
+) -> Vec<(u32, usize, BezierSegment)> {
+    let mut out = Vec::new();
+    for (curve, places) in prepared.placements.iter().enumerate() {
+        let lowered = scene.curves[curve].curve.lower();
+        for pl in places.iter().filter(|pl| pl.chunk == c) {
+            out.push((pl.first_point, curve, lowered[pl.segment].clone()));
+        }
+    }
+    out
+}
+
+/// The exact point and curvature vector of a segment at its own parameter `u`.
+fn exact(seg: &BezierSegment, u: f64) -> (DVec3, DVec3) {
+    let (point, d1, d2) = match seg.rational() {
+        Some(r) => (r.eval(u), r.eval_deriv(u), r.eval_second_deriv(u)),
+        None => (
+            seg.bezier.eval(u),
+            seg.bezier.eval_deriv(u),
+            seg.bezier.eval_second_deriv(u),
+        ),
+    };
+    (
+        point,
+        curvature_vector(d1, d2).expect("no cusp in these curves"),
+    )
+}
+
+fn v3(v: &GpuVertex) -> DVec3 {
+    DVec3::from_array(v.position.map(f64::from))
+}
+
+/// Every hair of every drawn segment: `(curve, u, point, tip)` with the exact values.
+fn each_hair(
+    scene: &Scene,
+    combed: &Combed,
+    mut f: impl FnMut(usize, f64, (&GpuVertex, &GpuVertex), (DVec3, DVec3)),
+) -> usize {
+    let mut checked = 0;
+    for (c, (counts, offsets, hairs)) in combed.chunks.iter().enumerate() {
+        let exacts = exact_segments(scene, &combed.prepared, c);
+        for (s, seg) in combed.prepared.chunks[c].segments.iter().enumerate() {
+            let (_, curve, exact_seg) = exacts
+                .iter()
+                .find(|(first, _, _)| *first == seg.first_point)
+                .expect("every segment has its exact twin");
+            let count = counts[s];
+            for j in 0..count {
+                // The kernel's parameter: j / (count − 1) in f32.
+                let u = if count < 2 {
+                    0.0
+                } else {
+                    f64::from(j as f32 / (count - 1) as f32)
+                };
+                let k = (offsets[s] + j) as usize;
+                f(
+                    *curve,
+                    u,
+                    (&hairs[2 * k], &hairs[2 * k + 1]),
+                    exact(exact_seg, u),
+                );
+                checked += 1;
+            }
+        }
+    }
+    checked
+}
+
+#[test]
+fn gpu_hairs_match_the_exact_curvature_on_every_family() {
+    common::on_each_gpu(
+        "gpu_hairs_match_the_exact_curvature_on_every_family",
+        |backend| {
+            let mut curves = families();
+            // A 3D cubic: the hair along the principal normal, |κ| long.
+            curves.push(Curve::Bezier(Bezier::new(vec![
+                DVec3::new(0.0, -3.0, 0.0),
+                DVec3::new(1.0, -2.0, 1.0),
+                DVec3::new(2.0, -3.0, 2.0),
+                DVec3::new(3.0, -2.0, 0.5),
+            ])));
+            let scene = scene_of(curves);
+            let scale = 0.3_f64;
+            let combed = comb_on_gpu(
+                backend,
+                &scene,
+                &CombRequest {
+                    scale: scale as f32,
+                    only: None,
+                },
+            );
+            // The f32 bound: the kernel's Horner sums carry a relative error of a few n ε₃₂
+            // in each derivative, and K divides by |P′|² — for these curves (speed bounded
+            // away from 0, coordinates within 5) a point within 2e-5 of the curve's extent
+            // and a hair within 2e-4 of its own length plus 2e-5 of the extent.
+            let extent = 8.0;
+            let mut longest = 0.0_f64;
+            let checked = each_hair(&scene, &combed, |curve, u, (gp, gt), (point, k)| {
+                assert_eq!(gp.id, gt.id, "curve {curve}: hair tags differ");
+                let hair = -scale * k;
+                longest = longest.max(hair.length());
+                let got_point = v3(gp);
+                let got_hair = v3(gt) - got_point;
+                assert!(
+                    (got_point - point).length() <= 2e-5 * extent,
+                    "curve {curve} at u = {u}: point {got_point} vs {point}"
+                );
+                assert!(
+                    (got_hair - hair).length() <= 2e-4 * hair.length() + 2e-5 * extent,
+                    "curve {curve} at u = {u}: hair {got_hair} vs {hair}"
+                );
+            });
+            assert!(checked > 100, "{checked} hairs checked");
+            assert!(longest > 0.1, "the combs have length: {longest}");
+        },
+    );
+}
+
+#[test]
+fn a_comb_for_one_curve_hides_the_others() {
+    common::on_each_gpu("a_comb_for_one_curve_hides_the_others", |backend| {
+        let scene = scene_of(families());
+        let ctx = &backend.ctx;
+        let prepared = prepare(
+            &encode(&scene),
+            ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
+        )
+        .expect("pack");
+        let only = 3;
+        let request = CombRequest {
+            scale: 0.5,
+            only: Some(curve_tags(&prepared, only)),
+        };
+        assert!(!request.only.as_ref().expect("tags").is_empty());
+        let combed = comb_on_gpu(backend, &scene, &request);
+        let (mut shown, mut hidden) = (0, 0);
+        each_hair(&scene, &combed, |curve, _, (gp, gt), _| {
+            if curve == only {
+                assert_eq!(gp.id, gt.id, "the chosen curve's hairs are drawn");
+                shown += 1;
+            } else {
+                assert_eq!(
+                    gt.id,
+                    gp.id | COMB_HIDDEN,
+                    "curve {curve}'s hairs are hidden"
+                );
+                hidden += 1;
+            }
+        });
+        assert!(shown > 0 && hidden > 0, "{shown} shown, {hidden} hidden");
+    });
+}
+
+#[test]
+fn a_planar_comb_changes_side_exactly_at_the_inflections() {
+    common::on_each_gpu(
+        "a_planar_comb_changes_side_exactly_at_the_inflections",
+        |backend| {
+            let curves = families();
+            let scene = scene_of(curves.clone());
+            let combed = comb_on_gpu(
+                backend,
+                &scene,
+                &CombRequest {
+                    scale: 0.5,
+                    only: None,
+                },
+            );
+            // Per curve: the analysis's inflections (curve parameters), and the side of each
+            // GPU hair, (P′ × hair)_z, at its curve parameter.
+            let inflections: Vec<Vec<f64>> = curves
+                .iter()
+                .map(|c| CurveAnalysis::new(c).inflections().expect("planar"))
+                .collect();
+            assert_eq!(inflections[0].len(), 1, "the S has one inflection");
+            let mut sides: Vec<Vec<(f64, f64)>> = vec![Vec::new(); curves.len()];
+            for (c, (counts, offsets, hairs)) in combed.chunks.iter().enumerate() {
+                let exacts = exact_segments(&scene, &combed.prepared, c);
+                for (s, seg) in combed.prepared.chunks[c].segments.iter().enumerate() {
+                    let (_, curve, exact_seg) = exacts
+                        .iter()
+                        .find(|(first, _, _)| *first == seg.first_point)
+                        .expect("twin");
+                    for j in 0..counts[s] {
+                        let u = f64::from(j as f32 / (counts[s] - 1) as f32);
+                        let t = exact_seg.t0 + u * (exact_seg.t1 - exact_seg.t0);
+                        let k = (offsets[s] + j) as usize;
+                        let hair = v3(&hairs[2 * k + 1]) - v3(&hairs[2 * k]);
+                        let d1 = curves[*curve].eval_deriv(t);
+                        sides[*curve].push((t, d1.x * hair.y - d1.y * hair.x));
+                    }
+                }
+            }
+            for (curve, (found, side)) in inflections.iter().zip(&mut sides).enumerate() {
+                side.sort_by(|a, b| a.0.total_cmp(&b.0));
+                // Away from an inflection (where κ is within f32 noise of 0) the side is the
+                // sign of −κ; it changes between two hairs exactly when an inflection lies
+                // between them.
+                let firm: Vec<(f64, f64)> = side
+                    .iter()
+                    .copied()
+                    .filter(|(t, _)| found.iter().all(|i| (t - i).abs() > 1e-3))
+                    .collect();
+                for w in firm.windows(2) {
+                    let (ta, sa) = w[0];
+                    let (tb, sb) = w[1];
+                    let between = found.iter().filter(|&&i| ta < i && i < tb).count();
+                    let changed = (sa > 0.0) != (sb > 0.0);
+                    assert_eq!(
+                        changed,
+                        between % 2 == 1,
+                        "curve {curve}: side {sa} at {ta}, {sb} at {tb}, inflections {found:?}"
+                    );
+                }
+            }
+        },
+    );
+}
