@@ -11,6 +11,7 @@ use crate::gpu::{GpuError, Pipelines};
 use crate::image::RgbaImage;
 use crate::scene::Scene;
 use crate::scene::encoding::encode;
+use crate::scene::shape::{ShapeOptions, marker_points, markers};
 
 /// Draws `scene` into a `width × height` image with `camera` (the scene's own view for
 /// that size when `None`), at the default tolerance.
@@ -53,6 +54,44 @@ pub fn render_scene_with(
         ctx,
         pipelines,
         &encode(scene),
+        &camera,
+        (width, height),
+        tolerance_px,
+    )
+}
+
+/// [`render_scene_with`] with the shape overlays of `shape`: the curvature comb (its
+/// scale resolved for the view when automatic) drawn by the GPU, and the markers as
+/// points over the curves.
+///
+/// # Errors
+/// As [`crate::gpu::capture::render`].
+pub fn render_scene_shaped(
+    ctx: &GpuContext,
+    pipelines: &Pipelines,
+    scene: &Scene,
+    camera: Option<Camera>,
+    (width, height): (u32, u32),
+    tolerance_px: f64,
+    shape: &ShapeOptions,
+) -> Result<RgbaImage, GpuError> {
+    let viewport = DVec2::new(f64::from(width), f64::from(height));
+    let camera = camera.unwrap_or_else(|| scene.camera(viewport));
+    let mut encoding = encode(scene);
+    encoding.comb = shape
+        .comb
+        .map(|c| c.resolve(scene, camera.view_height(viewport)));
+    if shape.any_marker() {
+        let found = markers(scene, shape);
+        encoding
+            .overlays
+            .points
+            .extend(marker_points(scene, &found));
+    }
+    render_with(
+        ctx,
+        pipelines,
+        &encoding,
         &camera,
         (width, height),
         tolerance_px,

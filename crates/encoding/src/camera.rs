@@ -227,6 +227,16 @@ impl Camera {
         }
     }
 
+    /// The height, in world units, of what a `viewport` shows (in 3D, at the target's
+    /// distance).
+    #[must_use]
+    pub fn view_height(&self, viewport: DVec2) -> f64 {
+        match self {
+            Camera::Ortho2d(c) => viewport.y / c.pixels_per_unit,
+            Camera::Orbit3d(c) => 2.0 * c.distance * (0.5 * c.fov_y).tan(),
+        }
+    }
+
     /// Whether this is the 3D camera.
     #[must_use]
     pub fn is_3d(&self) -> bool {

@@ -138,3 +138,84 @@ impl Switches {
         points: true,
     };
 }
+
+/// What a shape marker marks (the viewer's, `render`'s and figures' markers).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum MarkerKind {
+    /// An inflection (`P′ × P″` changes sign).
+    Inflection,
+    /// A cusp (`P′ = 0`).
+    Cusp,
+    /// A local maximum of the signed curvature.
+    CurvatureMax,
+    /// A local minimum of the signed curvature.
+    CurvatureMin,
+    /// Two curves meet.
+    Intersection,
+    /// A curve meets itself.
+    SelfIntersection,
+}
+
+impl MarkerKind {
+    /// Every kind, in the legend's order.
+    pub const ALL: [MarkerKind; 6] = [
+        MarkerKind::Inflection,
+        MarkerKind::Cusp,
+        MarkerKind::CurvatureMax,
+        MarkerKind::CurvatureMin,
+        MarkerKind::Intersection,
+        MarkerKind::SelfIntersection,
+    ];
+
+    /// The legend's words.
+    #[must_use]
+    pub fn label(self) -> &'static str {
+        match self {
+            MarkerKind::Inflection => "inflection",
+            MarkerKind::Cusp => "cusp",
+            MarkerKind::CurvatureMax => "curvature maximum",
+            MarkerKind::CurvatureMin => "curvature minimum",
+            MarkerKind::Intersection => "intersection",
+            MarkerKind::SelfIntersection => "self-intersection",
+        }
+    }
+}
+
+/// A marker's two discs, drawn one over the other: the ring, then the core. Each kind has
+/// its own pattern in the curve's colour, so that kinds differ at a glance and a curve's
+/// markers match its stroke: inflection — the curve's colour on white; cusp — dark on the
+/// curve's colour; curvature maximum — the curve's colour on dark; minimum — white on the
+/// curve's colour; intersection — white on dark; self-intersection — white on the curve's
+/// colour, larger.
+#[must_use]
+pub fn marker_style(kind: MarkerKind, curve: Color) -> (Stroke, Stroke) {
+    const DARK: Color = Color([0.08, 0.08, 0.1, 1.0]);
+    let (ring, core, outer, inner) = match kind {
+        MarkerKind::Inflection => (Color::WHITE, curve, 11.0, 7.0),
+        MarkerKind::Cusp => (curve, DARK, 11.0, 5.0),
+        MarkerKind::CurvatureMax => (DARK, curve, 9.0, 6.0),
+        MarkerKind::CurvatureMin => (curve, Color::WHITE, 9.0, 4.0),
+        MarkerKind::Intersection => (DARK, Color::WHITE, 10.0, 6.0),
+        MarkerKind::SelfIntersection => (curve, Color::WHITE, 12.0, 6.0),
+    };
+    (Stroke::solid(ring, outer), Stroke::solid(core, inner))
+}
+
+/// The opacity of a comb's hairs, relative to their curve's colour.
+pub const COMB_HAIR_ALPHA: f32 = 0.45;
+
+/// The opacity of a comb's envelope, relative to its curve's colour.
+pub const COMB_ENVELOPE_ALPHA: f32 = 0.9;
+
+/// The width of a comb's hairs and envelope, in pixels.
+pub const COMB_WIDTH_PX: f32 = 1.0;
+
+/// The strokes of a comb over a curve of colour `curve`: its hairs, then its envelope.
+#[must_use]
+pub fn comb_strokes(curve: Color) -> (Stroke, Stroke) {
+    let with = |alpha: f32| {
+        let [r, g, b, a] = curve.0;
+        Stroke::solid(Color([r, g, b, a * alpha]), COMB_WIDTH_PX)
+    };
+    (with(COMB_HAIR_ALPHA), with(COMB_ENVELOPE_ALPHA))
+}

@@ -24,6 +24,7 @@
 //!     switches: splinescope_encoding::draw::Switches::ALL,
 //!     annotations: Vec::new(),
 //!     background: Color([0.0, 0.0, 0.0, 1.0]),
+//!     comb: None,
 //! };
 //! assert_eq!(encoding.curves.len(), 1);
 //! ```
@@ -109,4 +110,7 @@ pub struct Encoding {
     pub annotations: Vec<Vec<DVec3>>,
     /// The clear colour.
     pub background: Color,
+    /// The curvature comb of every curve, when drawn: the world length of a hair per unit
+    /// of curvature (the hairs and their envelope are computed by the GPU every frame).
+    pub comb: Option<f64>,
 }

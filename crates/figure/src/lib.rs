@@ -40,8 +40,9 @@ use glam::{DVec2, DVec3};
 use thiserror::Error;
 
 use splinescope_scene::camera::Camera;
-use splinescope_scene::format::draw::{Stroke, Switches};
+use splinescope_scene::format::draw::{COMB_WIDTH_PX, Stroke, Switches, comb_strokes};
 use splinescope_scene::format::encoding::{Encoding, encode_with};
+use splinescope_scene::format::shape::{ShapeOptions, marker_points, markers};
 use splinescope_scene::format::{Color, Scene};
 
 use fit::{Budget, FitError, Page, Piece, Projection, segment_pieces};
@@ -90,6 +91,8 @@ pub struct FigureOptions {
     /// The curves and overlays themselves; `false` makes only the guides and text (what
     /// [`raster::annotate`] draws over a picture the GPU made).
     pub curves: bool,
+    /// The curvature combs and shape markers (drawn with the curves).
+    pub shape: ShapeOptions,
 }
 
 impl FigureOptions {
@@ -107,6 +110,7 @@ impl FigureOptions {
             axes: false,
             grid: false,
             curves: true,
+            shape: ShapeOptions::default(),
         }
     }
 }
@@ -401,10 +405,21 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
     if (opts.axes || opts.grid) && !proj.affine {
         return Err(FigureError::AxesIn3d);
     }
-    let encoding = encode_with(scene, opts.switches);
+    let mut encoding = encode_with(scene, opts.switches);
+    if opts.shape.any_marker() {
+        let found = markers(scene, &opts.shape);
+        encoding
+            .overlays
+            .points
+            .extend(marker_points(scene, &found));
+    }
     let (mut items, guides) = annotate::axes(&proj, size, opts.axes, opts.grid);
     let behind = items.len();
     if opts.curves {
+        if let Some(scale) = opts.shape.comb {
+            let scale = scale.resolve(scene, camera.view_height(size));
+            comb_items(scene, scale, &proj, size, &mut items);
+        }
         curve_items(&encoding, &proj, size, opts.tolerance, &mut items)?;
     }
     let front = items.len();
@@ -427,6 +442,48 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
     };
     fig.check_finite()?;
     Ok(fig)
+}
+
+/// Hairs of a comb per lowered segment in a figure (uniform in the segment's parameter,
+/// ends included).
+pub const COMB_HAIRS_PER_SEGMENT: usize = 24;
+
+/// Each curve's curvature comb ([`splinescope_core::analysis::comb::comb`]): its hairs as
+/// one path of straight runs, then its envelope, in the curve's colour
+/// ([`comb_strokes`]), at exact positions.
+fn comb_items(scene: &Scene, scale: f64, proj: &Projection, size: DVec2, items: &mut Vec<Item>) {
+    let margin = DVec2::splat(2.0 + f64::from(COMB_WIDTH_PX));
+    let page = Page {
+        min: -margin,
+        max: size + margin,
+    };
+    for sc in &scene.curves {
+        let analysis = splinescope_core::analysis::CurveAnalysis::new(&sc.curve);
+        let hairs =
+            splinescope_core::analysis::comb::comb(&analysis, COMB_HAIRS_PER_SEGMENT, scale);
+        let (hair_stroke, envelope_stroke) = comb_strokes(sc.style.color);
+        let runs: Vec<SubPath> = hairs
+            .iter()
+            .filter(|h| h.tip != h.point)
+            .flat_map(|h| polyline_runs(&[h.point, h.tip], proj, &page))
+            .collect();
+        if !runs.is_empty() {
+            items.push(Item::Path {
+                runs,
+                stroke: hair_stroke,
+                curve: None,
+            });
+        }
+        let tips: Vec<DVec3> = hairs.iter().map(|h| h.tip).collect();
+        let runs = polyline_runs(&tips, proj, &page);
+        if !runs.is_empty() {
+            items.push(Item::Path {
+                runs,
+                stroke: envelope_stroke,
+                curve: None,
+            });
+        }
+    }
 }
 
 /// The overlay polylines, the curves and the points of `encoding`, in drawing order.

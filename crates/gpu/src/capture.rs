@@ -61,6 +61,16 @@ pub fn render_with(
     )?;
     let renderer = Renderer::new(&ctx.device, pipelines, OFFSCREEN_FORMAT);
     let mut gpu_scene = renderer.upload(ctx, &prepared);
+    if let Some(scale) = encoding.comb {
+        gpu_scene.set_comb(
+            ctx,
+            &renderer,
+            Some(&super::renderer::CombRequest {
+                scale: scale as f32,
+                only: None,
+            }),
+        );
+    }
     render_uploaded(
         ctx,
         &renderer,

@@ -199,6 +199,26 @@ pub fn prepare(encoding: &Encoding, limits: ChunkLimits) -> Result<PreparedScene
     })
 }
 
+/// The `(chunk, tag)` pairs under which curve `curve` of a prepared scene was packed: what
+/// a comb for that curve alone is given ([`super::renderer::CombRequest::only`]).
+#[must_use]
+pub fn curve_tags(prepared: &PreparedScene, curve: usize) -> Vec<(usize, u32)> {
+    let mut out: Vec<(usize, u32)> = Vec::new();
+    for p in prepared.placements.get(curve).into_iter().flatten() {
+        let tag = prepared.chunks[p.chunk]
+            .segments
+            .iter()
+            .find(|s| s.first_point == p.first_point)
+            .map(|s| s.curve);
+        if let Some(tag) = tag
+            && !out.contains(&(p.chunk, tag))
+        {
+            out.push((p.chunk, tag));
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -506,24 +526,4 @@ mod tests {
             .collect();
         assert_eq!(xs, vec![vec![0.0, 1.0, 2.0, 3.0], vec![3.0, 4.0, 5.0]]);
     }
-}
-
-/// The `(chunk, tag)` pairs under which curve `curve` of a prepared scene was packed: what
-/// a comb for that curve alone is given ([`super::renderer::CombRequest::only`]).
-#[must_use]
-pub fn curve_tags(prepared: &PreparedScene, curve: usize) -> Vec<(usize, u32)> {
-    let mut out: Vec<(usize, u32)> = Vec::new();
-    for p in prepared.placements.get(curve).into_iter().flatten() {
-        let tag = prepared.chunks[p.chunk]
-            .segments
-            .iter()
-            .find(|s| s.first_point == p.first_point)
-            .map(|s| s.curve);
-        if let Some(tag) = tag
-            && !out.contains(&(p.chunk, tag))
-        {
-            out.push((p.chunk, tag));
-        }
-    }
-    out
 }

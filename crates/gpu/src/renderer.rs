@@ -15,6 +15,7 @@ use super::pack::{LineBatch, PreparedScene};
 use super::pipelines::Pipelines;
 use super::shaders;
 use crate::camera::Camera;
+use crate::encoding::draw::{COMB_ENVELOPE_ALPHA, COMB_HAIR_ALPHA, COMB_WIDTH_PX};
 
 pub use super::layout::LINE_CORNERS;
 
@@ -72,21 +73,22 @@ pub struct CombRequest {
     pub only: Option<Vec<(usize, u32)>>,
 }
 
-/// The style of a comb's hairs and envelope over a curve of style `curve`: one pixel,
-/// the curve's colour, the hairs fainter.
+/// The style of a comb's hairs and envelope over a curve of style `curve`
+/// ([`crate::encoding::draw::comb_strokes`]): one pixel, the curve's colour, the hairs
+/// fainter.
 fn comb_styles(curve: &[GpuLineStyle]) -> (Vec<GpuLineStyle>, Vec<GpuLineStyle>) {
     let with = |alpha: f32| {
         curve
             .iter()
             .map(|s| GpuLineStyle {
                 color: [s.color[0], s.color[1], s.color[2], s.color[3] * alpha],
-                width_px: 1.0,
+                width_px: COMB_WIDTH_PX,
                 dash_px: 0.0,
                 ..*s
             })
             .collect()
     };
-    (with(0.45), with(0.9))
+    (with(COMB_HAIR_ALPHA), with(COMB_ENVELOPE_ALPHA))
 }
 
 /// A scene uploaded to the GPU.

@@ -8,7 +8,7 @@ use anyhow::{Context, Result, bail};
 
 use splinescope::scene::{Scene, gallery};
 
-use crate::{GpuArgs, TextArgs, say};
+use crate::{GpuArgs, ShapeArgs, TextArgs, say};
 
 /// The arguments of `splinescope export`.
 #[derive(Debug, clap::Args)]
@@ -35,6 +35,8 @@ pub struct ExportArgs {
     pub view: Option<String>,
     #[command(flatten)]
     pub text: TextArgs,
+    #[command(flatten)]
+    pub shape: ShapeArgs,
     #[command(flatten)]
     pub gpu: GpuArgs,
 }
@@ -108,8 +110,14 @@ pub fn run(a: &ExportArgs) -> Result<()> {
     let bytes = match format {
         Format::Png => {
             let (ctx, pipelines) = a.gpu.context()?;
-            let mut image = splinescope::offscreen::render_scene(
-                &ctx, &pipelines, &scene, None, a.width, a.height,
+            let mut image = splinescope::offscreen::render_scene_shaped(
+                &ctx,
+                &pipelines,
+                &scene,
+                None,
+                (a.width, a.height),
+                splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX,
+                &a.shape.options(),
             )?;
             splinescope::offscreen::annotate(&mut image, &scene, &a.text.options())?;
             image.png_bytes(&a.output)?
@@ -118,6 +126,7 @@ pub fn run(a: &ExportArgs) -> Result<()> {
             let mut opts = splinescope_figure::FigureOptions::new(a.width, a.height)
                 .with_text(a.text.options());
             opts.tolerance = a.tolerance;
+            opts.shape = a.shape.options();
             let fig = splinescope_figure::build(&scene, &opts)?;
             if format == Format::Svg {
                 splinescope_figure::svg::write(&fig).into_bytes()

@@ -71,6 +71,49 @@ impl TextArgs {
     }
 }
 
+/// What a picture shows of its curves' shape (`render`, `export`): the curvature comb
+/// and the markers the analysis finds.
+#[derive(Debug, Clone, Copy, clap::Args)]
+struct ShapeArgs {
+    /// Draw each curve's curvature comb: hairs along the normal, their length SCALE world
+    /// units per unit of curvature (omit SCALE for one chosen for the view).
+    #[arg(long, value_name = "SCALE", num_args = 0..=1, default_missing_value = "auto", value_parser = parse_comb, allow_negative_numbers = true)]
+    comb: Option<splinescope::scene::shape::CombScale>,
+    /// Mark inflections and cusps (2D curves).
+    #[arg(long)]
+    inflections: bool,
+    /// Mark the local extrema of the curvature (2D curves).
+    #[arg(long)]
+    curvature_extrema: bool,
+    /// Mark where curves cross each other or themselves (2D curves).
+    #[arg(long)]
+    intersections: bool,
+}
+
+impl ShapeArgs {
+    fn options(self) -> splinescope::scene::shape::ShapeOptions {
+        splinescope::scene::shape::ShapeOptions {
+            comb: self.comb,
+            inflections: self.inflections,
+            curvature_extrema: self.curvature_extrema,
+            intersections: self.intersections,
+        }
+    }
+}
+
+/// `--comb`'s value: `auto`, or a finite number above 0.
+fn parse_comb(s: &str) -> Result<splinescope::scene::shape::CombScale, String> {
+    use splinescope::scene::shape::CombScale;
+    if s.trim() == "auto" {
+        return Ok(CombScale::Auto);
+    }
+    let v: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("{s:?} is neither a number nor `auto`"))?;
+    CombScale::fixed(v).map_err(|e| e.to_string())
+}
+
 #[derive(Debug, clap::Args)]
 struct GpuArgs {
     /// Graphics API: auto, vulkan, gl, metal or dx12 (default: WGPU_BACKEND, else auto).

@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 
 use splinescope::scene::{Scene, gallery};
 
-use crate::{GpuArgs, TextArgs, parse_tolerance_px, say};
+use crate::{GpuArgs, ShapeArgs, TextArgs, parse_tolerance_px, say};
 
 /// The arguments of `splinescope render`.
 #[derive(Debug, clap::Args)]
@@ -29,6 +29,8 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub text: TextArgs,
     #[command(flatten)]
+    pub shape: ShapeArgs,
+    #[command(flatten)]
     pub gpu: GpuArgs,
 }
 
@@ -42,7 +44,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         &a.output,
         (a.width, a.height),
         a.tolerance_px,
-        a.text,
+        (a.text, a.shape),
         &a.gpu,
     )
 }
@@ -53,18 +55,19 @@ fn render(
     output: &Path,
     (width, height): (u32, u32),
     tolerance_px: f64,
-    text: TextArgs,
+    (text, shape): (TextArgs, ShapeArgs),
     gpu: &GpuArgs,
 ) -> Result<()> {
     let scene = load_scene_or_gallery(scene)?;
     let (ctx, pipelines) = gpu.context()?;
-    let mut image = splinescope::offscreen::render_scene_with(
+    let mut image = splinescope::offscreen::render_scene_shaped(
         &ctx,
         &pipelines,
         &scene,
         None,
         (width, height),
         tolerance_px,
+        &shape.options(),
     )?;
     splinescope::offscreen::annotate(&mut image, &scene, &text.options())?;
     image.write_png(output)?;

@@ -17,7 +17,7 @@ use super::CurveAnalysis;
 #[must_use]
 pub fn curvature_vector(d1: DVec3, d2: DVec3) -> Option<DVec3> {
     let speed2 = d1.length_squared();
-    if !(speed2 > 0.0) || !speed2.is_finite() {
+    if speed2 <= 0.0 || !speed2.is_finite() {
         return None;
     }
     Some((d2 - (d2.dot(d1) / speed2) * d1) / speed2)
@@ -59,12 +59,12 @@ pub fn comb(analysis: &CurveAnalysis, per_segment: usize, scale: f64) -> Vec<Hai
 }
 
 /// The fraction of the view's height the automatic comb scale gives a typical long hair.
-pub const AUTO_COMB_FRACTION: f64 = 0.15;
+pub const AUTO_COMB_FRACTION: f64 = 0.1;
 
 /// Samples per segment the automatic scale measures the curvature at.
 const REFERENCE_SAMPLES: usize = 16;
 
-/// The curvature an automatic comb scale is set against: the 90th percentile of `|κ|` at
+/// The curvature an automatic comb scale is set against: the 98th percentile of `|κ|` at
 /// 16 uniform parameters of every segment of every curve (robust to the unbounded
 /// curvature near a cusp, which a maximum is not); `None` when every sample is straight
 /// or at a cusp.
@@ -90,7 +90,7 @@ pub fn reference_curvature<'a>(curves: impl IntoIterator<Item = &'a CurveAnalysi
     if ks.is_empty() {
         return None;
     }
-    let rank = (ks.len() - 1) * 9 / 10;
+    let rank = (ks.len() - 1) * 49 / 50;
     let (_, k, _) = ks.select_nth_unstable_by(rank, f64::total_cmp);
     Some(*k)
 }

@@ -9,8 +9,10 @@ use super::{AnnotationShape, Color, Scene, SceneCurve};
 
 // The list's types are the encoding's; what is built from a scene is here.
 pub use splinescope_encoding::draw::{
-    Axis, CurveOverlays, DERIVED_POINT_DIAMETER_PX, DUAL_COLOR, DrawList, POINT_DIAMETER_PX,
-    POLYGON_WIDTH_PX, Stroke, Switches, axis_polylines, overlay_point_style, overlay_style,
+    Axis, COMB_ENVELOPE_ALPHA, COMB_HAIR_ALPHA, COMB_WIDTH_PX, CurveOverlays,
+    DERIVED_POINT_DIAMETER_PX, DUAL_COLOR, DrawList, MarkerKind, POINT_DIAMETER_PX,
+    POLYGON_WIDTH_PX, Stroke, Switches, axis_polylines, comb_strokes, marker_style,
+    overlay_point_style, overlay_style,
 };
 
 /// Curve `sc`'s overlay polylines and point sets under `switches` (its entries of

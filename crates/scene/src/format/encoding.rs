@@ -45,6 +45,7 @@ pub fn encode_with(scene: &Scene, switches: Switches) -> Encoding {
         switches,
         annotations: annotation_points(scene),
         background: scene.background,
+        comb: None,
     }
 }
 

@@ -13,6 +13,7 @@ pub mod generate;
 mod json;
 pub mod point_doc;
 mod preserve;
+pub mod shape;
 
 use std::path::Path;
 

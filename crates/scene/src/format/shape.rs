@@ -1,0 +1,271 @@
+//! What a scene shows of its curves' shape beyond the curves themselves — the curvature
+//! comb and the markers a shape designer judges a change by — as the viewer, `render`,
+//! `export` and Python ask for it: [`ShapeOptions`]. The comb's hairs are drawn by the
+//! GPU (and by figures from [`splinescope_core::analysis::comb`]); the markers are points
+//! found by the analysis engine ([`markers`]): inflections and cusps, curvature extrema,
+//! intersections between curves and of a curve with itself. Markers need a plane: 3D
+//! curves have none.
+
+use glam::DVec3;
+
+use splinescope_core::analysis::comb::{auto_scale, reference_curvature};
+use splinescope_core::analysis::{CurveAnalysis, ExtremumKind, all_intersections};
+
+use super::Color;
+use super::Scene;
+pub use splinescope_encoding::draw::MarkerKind;
+use splinescope_encoding::draw::{Stroke, marker_style};
+
+/// How long a comb's hairs are.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CombScale {
+    /// Chosen for the view: a hair at the scene's reference curvature is
+    /// [`splinescope_core::analysis::comb::AUTO_COMB_FRACTION`] of the view's height.
+    Auto,
+    /// World length of a hair per unit of curvature (a finite number above 0).
+    Fixed(f64),
+}
+
+/// A comb scale that is not a finite number above 0.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[error("comb scale {}: must be a finite number above 0", splinescope_core::num::Num(*.0))]
+pub struct CombScaleError(pub f64);
+
+impl CombScale {
+    /// A fixed scale given by a user, checked.
+    ///
+    /// # Errors
+    /// [`CombScaleError`] naming the value when it is not a finite number above 0.
+    pub fn fixed(scale: f64) -> Result<CombScale, CombScaleError> {
+        if scale.is_finite() && scale > 0.0 {
+            Ok(CombScale::Fixed(scale))
+        } else {
+            Err(CombScaleError(scale))
+        }
+    }
+
+    /// The world length per unit of curvature for `scene` seen `view_height` world units
+    /// tall.
+    #[must_use]
+    pub fn resolve(self, scene: &Scene, view_height: f64) -> f64 {
+        match self {
+            CombScale::Fixed(s) => s,
+            CombScale::Auto => {
+                let analyses: Vec<CurveAnalysis> = scene
+                    .curves
+                    .iter()
+                    .map(|c| CurveAnalysis::new(&c.curve))
+                    .collect();
+                auto_scale(reference_curvature(&analyses), view_height)
+            }
+        }
+    }
+}
+
+/// Which shape overlays are shown.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ShapeOptions {
+    /// The curvature comb of every curve, and its scale.
+    pub comb: Option<CombScale>,
+    /// Inflections (where `P′ × P″` changes sign) and cusps (`P′ = 0`).
+    pub inflections: bool,
+    /// The local extrema of the signed curvature.
+    pub curvature_extrema: bool,
+    /// Where curves cross each other or themselves.
+    pub intersections: bool,
+}
+
+impl ShapeOptions {
+    /// Whether any marker is asked for.
+    #[must_use]
+    pub fn any_marker(&self) -> bool {
+        self.inflections || self.curvature_extrema || self.intersections
+    }
+}
+
+/// One marker.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Marker {
+    /// What it marks.
+    pub kind: MarkerKind,
+    /// The curve (the first one, for an intersection).
+    pub curve: usize,
+    /// Its parameter on that curve.
+    pub t: f64,
+    /// The point.
+    pub point: DVec3,
+    /// The signed curvature there (curvature extrema).
+    pub curvature: Option<f64>,
+    /// The other curve and its parameter (intersections).
+    pub other: Option<(usize, f64)>,
+}
+
+/// The markers `options` asks for on `scene`'s planar curves, by kind then curve then
+/// parameter. A curve the analysis refuses (3D, or a degree past its limits) has none.
+#[must_use]
+pub fn markers(scene: &Scene, options: &ShapeOptions) -> Vec<Marker> {
+    let analyses: Vec<CurveAnalysis> = scene
+        .curves
+        .iter()
+        .map(|c| CurveAnalysis::new(&c.curve))
+        .collect();
+    markers_of(&analyses, options)
+}
+
+/// [`markers`] for curves already analysed.
+#[must_use]
+pub fn markers_of(analyses: &[CurveAnalysis], options: &ShapeOptions) -> Vec<Marker> {
+    let mut out = Vec::new();
+    let at = |kind, curve, t: f64, point| Marker {
+        kind,
+        curve,
+        t,
+        point,
+        curvature: None,
+        other: None,
+    };
+    for (i, a) in analyses.iter().enumerate().filter(|(_, a)| a.is_planar()) {
+        if options.inflections {
+            for t in a.inflections().unwrap_or_default() {
+                out.push(at(MarkerKind::Inflection, i, t, a.point(t)));
+            }
+            for t in a.cusps().unwrap_or_default() {
+                out.push(at(MarkerKind::Cusp, i, t, a.point(t)));
+            }
+        }
+        if options.curvature_extrema {
+            for e in a.curvature_extrema().unwrap_or_default() {
+                let kind = match e.kind {
+                    ExtremumKind::Maximum => MarkerKind::CurvatureMax,
+                    ExtremumKind::Minimum => MarkerKind::CurvatureMin,
+                };
+                out.push(Marker {
+                    curvature: Some(e.curvature),
+                    ..at(kind, i, e.t, e.point)
+                });
+            }
+        }
+        if options.intersections {
+            for h in a.self_intersections().map(|f| f.hits).unwrap_or_default() {
+                out.push(Marker {
+                    other: Some((i, h.t)),
+                    ..at(MarkerKind::SelfIntersection, i, h.s, h.point)
+                });
+            }
+        }
+    }
+    if options.intersections {
+        let planar: Vec<usize> = (0..analyses.len())
+            .filter(|&i| analyses[i].is_planar())
+            .collect();
+        let subset: Vec<CurveAnalysis> = planar.iter().map(|&i| analyses[i].clone()).collect();
+        for pair in all_intersections(&subset).unwrap_or_default() {
+            let (i, j) = (planar[pair.i], planar[pair.j]);
+            for h in pair.found.hits {
+                out.push(Marker {
+                    other: Some((j, h.t)),
+                    ..at(MarkerKind::Intersection, i, h.s, h.point)
+                });
+            }
+        }
+    }
+    out.sort_by(|a, b| {
+        (a.kind, a.curve)
+            .cmp(&(b.kind, b.curve))
+            .then(a.t.total_cmp(&b.t))
+    });
+    out
+}
+
+/// The markers as point sets for the draw list: per marker kind and curve, its rings then
+/// its cores ([`marker_style`]), in the curve's colour (an intersection's first curve's).
+#[must_use]
+pub fn marker_points(scene: &Scene, markers: &[Marker]) -> Vec<(Vec<DVec3>, Stroke)> {
+    let mut rings = Vec::new();
+    let mut cores = Vec::new();
+    let mut k = 0;
+    while k < markers.len() {
+        let (kind, curve) = (markers[k].kind, markers[k].curve);
+        let end = k + markers[k..]
+            .iter()
+            .take_while(|m| m.kind == kind && m.curve == curve)
+            .count();
+        let color = scene
+            .curves
+            .get(curve)
+            .map_or(Color::WHITE, |c| c.style.color);
+        let (ring, core) = marker_style(kind, color);
+        let points: Vec<DVec3> = markers[k..end].iter().map(|m| m.point).collect();
+        rings.push((points.clone(), ring));
+        cores.push((points, core));
+        k = end;
+    }
+    rings.extend(cores);
+    rings
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use splinescope_core::geom::{Bezier, Curve};
+
+    fn p(x: f64, y: f64) -> DVec3 {
+        DVec3::new(x, y, 0.0)
+    }
+
+    fn scene_of(curves: Vec<Curve>) -> Scene {
+        Scene::of_curves(curves)
+    }
+
+    #[test]
+    fn an_s_and_a_line_through_it_give_the_markers_the_analysis_finds() {
+        // An antisymmetric S about (1, 0): its inflection is at t = 1/2, the point (1, 0),
+        // and the x axis crosses it there and at two other points.
+        let s = Curve::Bezier(Bezier::new(vec![
+            p(0.0, 0.0),
+            p(1.0, 2.0),
+            p(1.0, -2.0),
+            p(2.0, 0.0),
+        ]));
+        let line = Curve::Bezier(Bezier::new(vec![p(-1.0, 0.0), p(3.0, 0.0)]));
+        let scene = scene_of(vec![s, line]);
+        let all = ShapeOptions {
+            comb: None,
+            inflections: true,
+            curvature_extrema: true,
+            intersections: true,
+        };
+        let found = markers(&scene, &all);
+        let of = |k: MarkerKind| found.iter().filter(|m| m.kind == k).collect::<Vec<_>>();
+        let inflections = of(MarkerKind::Inflection);
+        assert_eq!(inflections.len(), 1, "{found:?}");
+        assert!((inflections[0].t - 0.5).abs() < 1e-12);
+        assert!((inflections[0].point - p(1.0, 0.0)).length() < 1e-12);
+        // y(t) = 6t(1−t)(1−2t) vanishes at t = 0, 1/2, 1: three crossings with the axis.
+        let crossings = of(MarkerKind::Intersection);
+        assert_eq!(crossings.len(), 3, "{crossings:?}");
+        for (m, want) in crossings.iter().zip([0.0, 0.5, 1.0]) {
+            assert_eq!((m.curve, m.other.map(|o| o.0)), (0, Some(1)));
+            assert!((m.t - want).abs() < 1e-9, "{m:?}");
+        }
+        // Curvature extrema carry κ, and every marker lies on its curve.
+        for m in &found {
+            let on = scene.curves[m.curve].curve.clone();
+            let q = splinescope_core::geom::ParamCurve::eval(&on, m.t);
+            assert!((q - m.point).length() < 1e-9, "{m:?}");
+            if matches!(m.kind, MarkerKind::CurvatureMax | MarkerKind::CurvatureMin) {
+                assert!(m.curvature.is_some());
+            }
+        }
+        assert!(markers(&scene, &ShapeOptions::default()).is_empty());
+    }
+
+    #[test]
+    fn a_comb_scale_must_be_a_positive_finite_number() {
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let e = CombScale::fixed(bad).unwrap_err();
+            assert!(e.to_string().contains("comb scale"), "{e}");
+        }
+        assert_eq!(CombScale::fixed(2.5), Ok(CombScale::Fixed(2.5)));
+    }
+}

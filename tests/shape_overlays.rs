@@ -1,0 +1,222 @@
+//! Curvature combs and shape markers as pictures show them — figures (`export`, the
+//! figure library) and renders (`render --comb`, on the GPU) — read back against exact
+//! values: a circle's hairs all end `s / r` beyond it on its radii; an S curve's inflection
+//! marker sits at its centre of symmetry and its crossings with a line where the line's
+//! equation says; a render with a comb is coloured where the hairs are and nowhere a
+//! render without one is not; bad `--comb` values are refused with their value named.
+
+mod common;
+
+use glam::{DVec2, DVec3};
+use splinescope::geom::{Bezier, Curve, Nurbs};
+use splinescope::image::RgbaImage;
+use splinescope::scene::Scene;
+use splinescope::scene::shape::{CombScale, ShapeOptions};
+use splinescope_figure::{FigureOptions, Item, build};
+
+fn p(x: f64, y: f64) -> DVec3 {
+    DVec3::new(x, y, 0.0)
+}
+
+fn bare(curves: Vec<Curve>) -> Scene {
+    let mut scene = Scene::of_curves(curves);
+    for c in &mut scene.curves {
+        c.style.show_polygon = false;
+        c.style.show_points = false;
+    }
+    scene
+}
+
+#[test]
+fn a_circles_figure_comb_ends_scale_over_radius_beyond_it() {
+    let (r, s) = (2.0, 0.2);
+    let center = p(1.0, -0.5);
+    let scene = bare(vec![Curve::Nurbs(
+        Nurbs::circle(center, r).expect("circle"),
+    )]);
+    let mut opts = FigureOptions::new(600, 600);
+    opts.shape.comb = Some(CombScale::Fixed(s));
+    let fig = build(&scene, &opts).expect("figure");
+    let c = fig.projection.point(center).expect("in front");
+    // The output's scale: world unit → points, from two projected points.
+    let unit = (fig.projection.point(center + DVec3::X).expect("x") - c).length();
+    let mut hairs = 0;
+    let mut envelope = 0;
+    for item in &fig.items {
+        let Item::Path {
+            runs,
+            curve: None,
+            stroke,
+        } = item
+        else {
+            continue;
+        };
+        for run in runs {
+            let ends: Vec<DVec2> = std::iter::once(run.start)
+                .chain(run.pieces.iter().map(|pc| pc.seg.end()))
+                .collect();
+            for e in &ends {
+                // Every point of a comb path — a hair's foot, a tip — is on the circle
+                // (radius r) or on the tips' circle (radius r + s / r).
+                let d = (*e - c).length() / unit;
+                let on_curve = (d - r).abs() < 1e-6;
+                let on_tips = (d - (r + s / r)).abs() < 1e-6;
+                assert!(
+                    on_curve || on_tips,
+                    "comb point at radius {d} (stroke {stroke:?})"
+                );
+            }
+            if ends.len() == 2 {
+                // A hair: its foot and tip on one radius.
+                let (a, b) = ((ends[0] - c).normalize(), (ends[1] - c).normalize());
+                assert!(a.dot(b) > 1.0 - 1e-9, "a hair off its radius: {ends:?}");
+                hairs += 1;
+            } else {
+                envelope += ends.len();
+            }
+        }
+    }
+    assert!(hairs >= 4 * 20, "{hairs} hairs");
+    assert!(envelope >= hairs, "{envelope} envelope vertices");
+    // The SVG carries them.
+    let text = splinescope_figure::svg::write(&fig);
+    assert!(text.matches("<path").count() >= 3, "{text:.400}");
+}
+
+#[test]
+fn markers_sit_where_the_exact_answers_are() {
+    // An S antisymmetric about (1, 0): one inflection there; the x axis meets it at
+    // t = 0, 1/2, 1 (y = 6 t (1 − t)(1 − 2t)).
+    let s = Curve::Bezier(Bezier::new(vec![
+        p(0.0, 0.0),
+        p(1.0, 2.0),
+        p(1.0, -2.0),
+        p(2.0, 0.0),
+    ]));
+    let line = Curve::Bezier(Bezier::new(vec![p(-1.0, 0.0), p(3.0, 0.0)]));
+    let scene = bare(vec![s, line]);
+    let mut opts = FigureOptions::new(400, 300);
+    opts.shape = ShapeOptions {
+        comb: None,
+        inflections: true,
+        curvature_extrema: false,
+        intersections: true,
+    };
+    let fig = build(&scene, &opts).expect("figure");
+    let discs: Vec<DVec2> = fig
+        .items
+        .iter()
+        .filter_map(|i| match i {
+            Item::Disc { center, .. } => Some(*center),
+            _ => None,
+        })
+        .collect();
+    let at = |q: DVec3| fig.projection.point(q).expect("in front");
+    for want in [p(0.0, 0.0), p(1.0, 0.0), p(2.0, 0.0)] {
+        let w = at(want);
+        assert!(
+            discs.iter().any(|d| (*d - w).length() < 1e-6),
+            "no marker at {want} ({w}); discs {discs:?}"
+        );
+    }
+    // Nothing anywhere else: every disc is at one of those points.
+    for d in &discs {
+        assert!(
+            [p(0.0, 0.0), p(1.0, 0.0), p(2.0, 0.0)]
+                .iter()
+                .any(|q| (at(*q) - *d).length() < 1e-6),
+            "stray marker at {d}"
+        );
+    }
+}
+
+fn render(scene: &std::path::Path, out: &std::path::Path, extra: &[&str]) -> RgbaImage {
+    let mut args = vec![
+        "render",
+        scene.to_str().expect("utf-8"),
+        "-o",
+        out.to_str().expect("utf-8"),
+        "--width",
+        "400",
+        "--height",
+        "400",
+    ];
+    args.extend_from_slice(extra);
+    let run = common::run(&args);
+    assert!(run.status.success(), "{}", common::text(&run));
+    RgbaImage::read_png(out).expect("png")
+}
+
+#[test]
+fn render_draws_the_comb_on_the_gpu_where_the_hairs_are() {
+    let gpus = common::gpus("render_draws_the_comb_on_the_gpu_where_the_hairs_are");
+    if gpus.is_empty() {
+        return;
+    }
+    let dir = common::out_dir("shape_overlays");
+    let scene_path = dir.join("circle.json");
+    let (r, s) = (2.0, 0.4);
+    let scene = bare(vec![Curve::Nurbs(
+        Nurbs::circle(DVec3::ZERO, r).expect("circle"),
+    )]);
+    splinescope::files::write_atomic(
+        &scene_path,
+        splinescope::scene::to_json_string(&scene).as_bytes(),
+    )
+    .expect("scene");
+    for backend in gpus {
+        let plain = render(
+            &scene_path,
+            &dir.join("plain.png"),
+            &["--gpu-backend", &backend.name],
+        );
+        let combed = render(
+            &scene_path,
+            &dir.join(format!("comb-{}.png", backend.name)),
+            &["--gpu-backend", &backend.name, "--comb", "0.4"],
+        );
+        // Pixels halfway along the hairs (radius r + s / (2 r)) in 16 directions: the
+        // comb colours some there; without it they are all background.
+        let camera = scene.camera(DVec2::new(400.0, 400.0));
+        let bg = plain.pixel(0, 0);
+        let (mut inked, mut plain_inked) = (0, 0);
+        for k in 0..64 {
+            let a = std::f64::consts::TAU * f64::from(k) / 64.0;
+            let q = (r + 0.5 * s / r) * DVec3::new(a.cos(), a.sin(), 0.0);
+            let px = camera
+                .pixel_from_world(q, DVec2::new(400.0, 400.0))
+                .expect("on screen");
+            let (x, y) = (px.x.round() as u32, px.y.round() as u32);
+            let differs = |img: &RgbaImage| {
+                (x.saturating_sub(1)..=x + 1)
+                    .any(|xx| (y.saturating_sub(1)..=y + 1).any(|yy| img.pixel(xx, yy) != bg))
+            };
+            inked += usize::from(differs(&combed));
+            plain_inked += usize::from(differs(&plain));
+        }
+        assert_eq!(
+            plain_inked, 0,
+            "{}: nothing drawn there without a comb",
+            backend.name
+        );
+        assert!(
+            inked >= 16,
+            "{}: the comb's hairs reach {inked} of 64 probes",
+            backend.name
+        );
+    }
+}
+
+#[test]
+fn bad_comb_scales_are_refused_naming_the_value() {
+    for bad in ["0", "-2", "nan", "inf", "wide"] {
+        let run = common::run(&["render", "-o", "/dev/null/never.png", "--comb", bad]);
+        assert!(!run.status.success(), "--comb {bad} accepted");
+        let text = common::text(&run);
+        assert!(
+            text.contains(bad) || text.contains("NaN") || text.contains("inf"),
+            "{text}"
+        );
+        assert!(text.contains("--comb"), "{text}");
+    }
+}
