@@ -82,6 +82,19 @@ pub fn prepare_overlays_mapped(
     (lines, points, map)
 }
 
+/// Point sets (the shape markers), batched.
+#[must_use]
+pub fn prepare_points(
+    entries: &[(Vec<glam::DVec3>, Stroke)],
+    limits: ChunkLimits,
+) -> Vec<LineBatch> {
+    let mut builder = BatchBuilder::new(limits);
+    for (pts, stroke) in entries {
+        builder.push(pts, GpuLineStyle::from(*stroke));
+    }
+    builder.finish()
+}
+
 /// The new overlays of an edit: the changed curves' (`splinescope_scene::format::draw::curve_overlays`
 /// of each, with its index) and the 3D axis triad's (`splinescope_scene::format::draw::axis_lines`),
 /// drawn with `switches` for a scene of `curve_count` curves.

@@ -101,6 +101,7 @@ pub struct GpuScene {
     /// The clear colour.
     pub background: wgpu::Color,
     comb_scale: f32,
+    markers: Vec<DrawBatch>,
 }
 
 impl GpuScene {
@@ -536,6 +537,7 @@ impl Renderer {
                 .collect(),
             background: wgpu::Color { r, g, b, a },
             comb_scale: 0.0,
+            markers: Vec::new(),
         }
     }
 
@@ -554,6 +556,21 @@ impl Renderer {
         scene.points = points
             .iter()
             .map(|b| self.overlay_batch(device, b))
+            .collect();
+    }
+
+    /// Replaces the scene's shape markers (point sets drawn over everything, each a ring
+    /// then a core: `splinescope_scene::format::shape::marker_points`).
+    pub fn set_markers(
+        &self,
+        ctx: &GpuContext,
+        scene: &mut GpuScene,
+        points: &[(Vec<glam::DVec3>, crate::encoding::draw::Stroke)],
+    ) {
+        let limits = super::pack::ChunkLimits::for_binding_size(ctx.max_binding_bytes());
+        scene.markers = super::overlays::prepare_points(points, limits)
+            .iter()
+            .map(|b| self.overlay_batch(&ctx.device, b))
             .collect();
     }
 
@@ -648,7 +665,7 @@ impl Renderer {
             pass.draw_indirect(&chunk.adaptive.work, 0);
         }
         pass.set_pipeline(&self.point_pipeline);
-        for batch in &scene.points {
+        for batch in scene.points.iter().chain(&scene.markers) {
             pass.set_bind_group(1, &batch.bind_group, &[]);
             pass.draw(0..6, 0..batch.vertex_count);
         }

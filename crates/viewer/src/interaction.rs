@@ -220,6 +220,8 @@ pub struct Interaction {
     pub camera: Camera,
     /// The panel's switches.
     pub toggles: Toggles,
+    /// The curvature comb and the shape markers (the panel's "shape" section).
+    pub shape: crate::shape::ShapeView,
     /// The window size in physical pixels.
     pub viewport: DVec2,
     /// Physical pixels per logical pixel (pick radius scales with it).
@@ -277,6 +279,7 @@ impl Interaction {
             editor,
             camera,
             toggles: Toggles::default(),
+            shape: crate::shape::ShapeView::default(),
             viewport,
             scale_factor,
             panel_width_px,
@@ -539,10 +542,27 @@ impl Interaction {
             'p' => self.toggles.show_polygons ^= true,
             'c' => self.toggles.show_points ^= true,
             'h' => self.toggles.show_panel ^= true,
+            'k' => self.toggle_comb(),
             'l' => self.toggles.show_labels ^= true,
             _ => {}
         }
         Response::default()
+    }
+
+    /// Turns the curvature combs on or off (`K`); turned on with an automatic scale, the
+    /// scale is chosen for the current view.
+    pub fn toggle_comb(&mut self) {
+        self.shape.comb ^= true;
+        if self.shape.comb && self.shape.comb_auto {
+            self.fit_comb();
+        }
+    }
+
+    /// Chooses the comb's scale for the current view (the panel's "auto").
+    pub fn fit_comb(&mut self) {
+        let height = self.camera.view_height(self.viewport);
+        let scene = self.editor.scene();
+        self.shape.fit_comb(scene, height);
     }
 
     /// Selects the curve `step` places after the selected one (before it when negative),

@@ -33,6 +33,7 @@ pub mod file_dialog;
 pub mod interaction;
 mod readback;
 mod scene_view;
+pub mod shape;
 mod stress;
 mod surface;
 mod timing;
@@ -90,6 +91,9 @@ pub struct ViewOptions {
     /// The text `scene` was read from at `path` ([`Scene::read`]), so that saving keeps
     /// the file's form; `None` for a scene that is not a file's (the gallery, stress).
     pub source: Option<String>,
+    /// Start with every curve's curvature comb on (`K` turns it off), at the scale given
+    /// (`None`: chosen for the view).
+    pub comb: Option<Option<f64>>,
 }
 
 pub use file_dialog::DEFAULT_SAVE_NAME;
@@ -396,6 +400,12 @@ impl Running {
         }
         model.tolerance_px = opts.tolerance_px;
         model.toggles = toggles;
+        if let Some(scale) = opts.comb {
+            if let Some(s) = scale {
+                model.shape.set_comb_scale(s).map_err(AppError::Surface)?;
+            }
+            model.toggle_comb();
+        }
         if stress.is_some() {
             model.overlays_locked = Some(
                 "the solver moves every control point on the GPU each frame: polygons and points are not drawn while solving",
@@ -445,6 +455,13 @@ impl Running {
             &changed,
             self.model.toggles,
         )?;
+        self.view.sync_shape(
+            &self.ctx,
+            self.model.editor.scene(),
+            !changed.is_empty(),
+            &self.model.shape,
+            self.model.editor.selected,
+        );
         if let Some(s) = &mut self.stress {
             s.step(
                 self.started.elapsed().as_secs_f64(),
@@ -579,6 +596,7 @@ impl Running {
             overlays_locked: self.model.overlays_locked,
             camera: &camera,
             solving: self.stress.as_ref().map(|s| (s.curves, s.last_solve_ms)),
+            markers: &self.view.markers.markers,
         };
         let tolerance_before = self.model.tolerance_px;
         let model = &mut self.model;

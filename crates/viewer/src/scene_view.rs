@@ -11,14 +11,18 @@ use crate::geom::BezierSegment;
 use crate::geom::Lower;
 use crate::gpu::adaptive::FrameSettings;
 use crate::gpu::layout::{FrameStats, WORK_HEADER};
+use crate::gpu::pack::curve_tags;
 use crate::gpu::pack::{
     ChunkLimits, OverlayEdit, PreparedScene, prepare, prepare_overlays_mapped, repack_points,
 };
-use crate::gpu::renderer::{GpuScene, Renderer};
+use crate::gpu::renderer::{CombRequest, GpuScene, Renderer};
 use crate::gpu::{GpuContext, GpuError, Pipelines};
 use crate::scene::Scene;
 use crate::scene::draw::{Switches, axis_polylines, curve_overlays, draw_list_with};
 use crate::scene::encoding::encode_with;
+use crate::scene::shape::marker_points;
+use crate::shape::{MarkerWorker, ShapeView};
+use std::time::Instant;
 
 /// What the GPU holds of the scene, and the panel's per-curve summaries.
 pub(crate) struct SceneView {
@@ -32,6 +36,12 @@ pub(crate) struct SceneView {
     stats: StatsReader,
     /// The chunks' statistics of a recent frame (read back without waiting).
     pub last_stats: Vec<FrameStats>,
+    /// The comb the GPU scene draws (`None`: none, or not yet set on a new upload).
+    comb_applied: Option<CombRequest>,
+    /// The shape markers, computed off the frame thread.
+    pub markers: MarkerWorker,
+    /// Whether the GPU scene holds the current markers.
+    markers_uploaded: bool,
 }
 
 /// Reads the chunks' frame statistics back a few frames late, never waiting for the GPU.
@@ -105,7 +115,43 @@ impl SceneView {
             digest: digest::SceneDigest::of(scene),
             stats: StatsReader::new(),
             last_stats: Vec::new(),
+            comb_applied: None,
+            markers: MarkerWorker::default(),
+            markers_uploaded: true,
         })
+    }
+
+    /// Brings the comb and the markers up to date with the panel's shape switches
+    /// (`selected` for a comb on the selected curve alone); `changed` says the scene was
+    /// edited this frame (the markers are then recomputed, throttled, off this thread).
+    pub fn sync_shape(
+        &mut self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        changed: bool,
+        shape: &ShapeView,
+        selected: Option<usize>,
+    ) {
+        let request = shape.comb.then(|| CombRequest {
+            scale: shape.comb_scale as f32,
+            only: shape.comb_selected_only.then(|| {
+                selected
+                    .map(|s| curve_tags(&self.prepared, s))
+                    .unwrap_or_default()
+            }),
+        });
+        if request != self.comb_applied || (request.is_some() && !self.gpu.has_comb()) {
+            self.gpu.set_comb(ctx, &self.renderer, request.as_ref());
+            self.comb_applied = request;
+        }
+        self.markers
+            .poll(scene, changed, shape.marker_options(), Instant::now());
+        let fresh = self.markers.take_fresh().is_some();
+        if fresh || !self.markers_uploaded {
+            let points = marker_points(scene, &self.markers.markers);
+            self.renderer.set_markers(ctx, &mut self.gpu, &points);
+            self.markers_uploaded = true;
+        }
     }
 
     /// Brings the GPU up to date with the `changes` of `scene` and the panel's switches:
@@ -143,6 +189,9 @@ impl SceneView {
             self.gpu = gpu;
             self.prepared = prepared;
             self.uploaded = switches;
+            // A new GPU scene has no comb and no markers yet.
+            self.comb_applied = None;
+            self.markers_uploaded = false;
             // Statistics of the old chunks no longer apply.
             self.stats = StatsReader::new();
             self.last_stats.clear();
@@ -235,6 +284,7 @@ impl SceneView {
                 self.renderer
                     .adaptive()
                     .encode_staged(encoder, &chunks, writes);
+                self.gpu.encode_comb(&self.renderer, encoder);
             }
             None => self.gpu.encode_tessellation(&self.renderer, encoder, None),
         }

@@ -50,6 +50,7 @@ impl Viewer {
             overlays_locked: None,
             camera: &camera,
             solving: None,
+            markers: &[],
         };
         let mut actions = Actions::default();
         ui::draw(ui, &info, &mut self.model, &mut actions);

@@ -36,6 +36,10 @@ pub struct ViewArgs {
     /// milliseconds per stage, adapter (for benchmarking the viewer by script).
     #[arg(long)]
     pub stats: bool,
+    /// Start with every curve's curvature comb on (`K` toggles it): hairs SCALE world
+    /// units long per unit of curvature (omit SCALE for one chosen for the view).
+    #[arg(long, value_name = "SCALE", num_args = 0..=1, default_missing_value = "auto", value_parser = crate::parse_comb, allow_negative_numbers = true)]
+    pub comb: Option<splinescope::scene::shape::CombScale>,
     #[command(flatten)]
     pub gpu: GpuArgs,
 }
@@ -50,7 +54,7 @@ pub fn run(a: &ViewArgs) -> Result<()> {
         a.frames,
         (a.stress, a.degree),
         (a.solve, a.stats),
-        a.tolerance_px,
+        (a.tolerance_px, a.comb),
         &a.gpu,
     )
 }
@@ -61,9 +65,14 @@ fn view(
     frames: Option<u64>,
     (stress, degree): (Option<u64>, u64),
     (solve, print_stats): (bool, bool),
-    tolerance_px: f64,
+    (tolerance_px, comb): (f64, Option<splinescope::scene::shape::CombScale>),
     gpu: &GpuArgs,
 ) -> Result<()> {
+    use splinescope::scene::shape::CombScale;
+    let comb = comb.map(|c| match c {
+        CombScale::Auto => None,
+        CombScale::Fixed(s) => Some(s),
+    });
     if !splinescope::app::display_available() {
         bail!(
             "no display found (DISPLAY and WAYLAND_DISPLAY are unset); use `splinescope render` for a PNG, or run under xvfb-run"
@@ -114,6 +123,7 @@ fn view(
         tolerance_px,
         overlays_hidden: stress.is_some(),
         path: scene,
+        comb,
     })?;
     if print_stats {
         say!("{}", serde_json::to_string(&stats)?);
@@ -134,6 +144,7 @@ pub fn default_job() -> Result<()> {
             overlays_hidden: false,
             path: None,
             source: None,
+            comb: None,
         })?;
         return Ok(());
     }

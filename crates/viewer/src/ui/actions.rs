@@ -25,6 +25,8 @@ pub(crate) struct PanelInfo<'a> {
     pub camera: &'a Camera,
     /// Stress solving: curves re-solved per frame and the last batch's milliseconds.
     pub solving: Option<(usize, f64)>,
+    /// The latest shape markers.
+    pub markers: &'a [crate::scene::shape::Marker],
 }
 
 /// What the user asked for this frame.
@@ -42,6 +44,10 @@ pub(crate) struct Actions {
     pub menu: Option<MenuItem>,
     /// The file menu's entries and the file dialog's buttons.
     pub file: Option<FileAction>,
+    /// Turn the curvature combs on or off (`K`'s checkbox).
+    pub toggle_comb: bool,
+    /// Choose the comb's scale for the view.
+    pub fit_comb: bool,
 }
 
 /// What the file menu or the file dialog asked for.

@@ -24,6 +24,10 @@ pub(crate) const SHORTCUTS: &[(&str, &str)] = &[
     ("P / C", "control polygons / control points"),
     ("H", "hide or show the panel"),
     ("L", "hide or show the curves' labels on the canvas"),
+    (
+        "K",
+        "curvature combs on or off (the panel's shape section sets their scale)",
+    ),
     ("I", "insert a point into the selected curve at the pointer"),
     (
         "Delete, Backspace",

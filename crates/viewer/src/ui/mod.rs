@@ -7,6 +7,7 @@ mod actions;
 mod canvas;
 mod dialogs;
 mod panel;
+mod shape;
 
 pub(crate) use actions::{
     Actions, FileAction, MenuItem, PANEL_WIDTH_POINTS, PanelInfo, note_escape,
@@ -20,6 +21,12 @@ use panel::panel;
 /// Carries out what the panel, the context menu, the prompt and the file dialog asked
 /// for this frame.
 pub(crate) fn apply(model: &mut Interaction, actions: Actions) {
+    if actions.toggle_comb {
+        model.toggle_comb();
+    }
+    if actions.fit_comb {
+        model.fit_comb();
+    }
     if actions.fit {
         model.auto_fit = true;
     }
@@ -88,6 +95,7 @@ pub(crate) fn draw(
     note_escape(ui.ctx());
     let width = panel(ui, info, model, actions);
     canvas(ui, model, info.digest, actions);
+    shape::canvas_shape(ui, info, model);
     if model.prompt.is_none()
         && let Some(dialog) = model.dialog.as_mut()
     {

@@ -23,6 +23,7 @@ pub(crate) fn panel(
         toggles,
         editor,
         recent,
+        shape,
         ..
     } = model;
     if !toggles.show_panel {
@@ -69,6 +70,7 @@ pub(crate) fn panel(
             if ui.button("fit (F)").clicked() {
                 actions.fit = true;
             }
+            super::shape::shape_section(ui, info, shape, editor, actions);
             ui.small(match info.camera {
                 Camera::Ortho2d(_) => "2D · drag: pan · wheel: zoom",
                 Camera::Orbit3d(_) => "3D · left drag: orbit · right drag: pan · wheel: zoom",

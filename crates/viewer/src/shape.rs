@@ -1,0 +1,312 @@
+//! What the viewer shows of the curves' shape beyond the curves: the curvature comb (`K`,
+//! drawn by the GPU from the same segments it tessellates), the markers the analysis
+//! finds — inflections and cusps, curvature extrema, intersections — recomputed off the
+//! frame thread after an edit so a drag never waits for them, and the selected curve's
+//! readouts (length, tight box, signed area when closed, counts).
+
+use std::sync::mpsc::{Receiver, TryRecvError, channel};
+use std::time::{Duration, Instant};
+
+use splinescope_core::analysis::comb::{auto_scale, reference_curvature};
+use splinescope_core::analysis::{CurveAnalysis, DEFAULT_ACCURACY};
+use splinescope_core::geom::Aabb;
+
+use crate::scene::Scene;
+use crate::scene::shape::{Marker, MarkerKind, ShapeOptions, markers};
+
+/// The panel's shape switches and the comb's scale.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShapeView {
+    /// Curvature combs drawn (`K`, `view --comb`).
+    pub comb: bool,
+    /// Only the selected curve's comb.
+    pub comb_selected_only: bool,
+    /// The scale follows the view when the comb is turned on (the panel's "auto").
+    pub comb_auto: bool,
+    /// World length of a hair per unit of curvature.
+    pub comb_scale: f64,
+    /// Inflection and cusp markers.
+    pub inflections: bool,
+    /// Curvature extremum markers.
+    pub curvature_extrema: bool,
+    /// Intersection markers (between curves and of a curve with itself).
+    pub intersections: bool,
+    /// The selected curve's tight bounding box.
+    pub bbox: bool,
+}
+
+impl Default for ShapeView {
+    fn default() -> ShapeView {
+        ShapeView {
+            comb: false,
+            comb_selected_only: false,
+            comb_auto: true,
+            comb_scale: 1.0,
+            inflections: false,
+            curvature_extrema: false,
+            intersections: false,
+            bbox: false,
+        }
+    }
+}
+
+impl ShapeView {
+    /// The markers asked for (the comb is the GPU's, not a marker).
+    #[must_use]
+    pub fn marker_options(&self) -> ShapeOptions {
+        ShapeOptions {
+            comb: None,
+            inflections: self.inflections,
+            curvature_extrema: self.curvature_extrema,
+            intersections: self.intersections,
+        }
+    }
+
+    /// Sets the automatic scale for `scene` seen `view_height` world units tall.
+    pub fn fit_comb(&mut self, scene: &Scene, view_height: f64) {
+        let analyses: Vec<CurveAnalysis> = scene
+            .curves
+            .iter()
+            .map(|c| CurveAnalysis::new(&c.curve))
+            .collect();
+        self.comb_scale = auto_scale(reference_curvature(&analyses), view_height);
+        self.comb_auto = true;
+    }
+
+    /// Sets a scale typed or dragged by the user: a finite number above 0, else refused
+    /// (the message names the value) and the scale is left as it was.
+    ///
+    /// # Errors
+    /// The comb scale error, naming the value.
+    pub fn set_comb_scale(&mut self, scale: f64) -> Result<(), String> {
+        crate::scene::shape::CombScale::fixed(scale).map_err(|e| e.to_string())?;
+        self.comb_scale = scale;
+        self.comb_auto = false;
+        Ok(())
+    }
+}
+
+/// The least time between two marker computations started by edits.
+pub const MARKER_THROTTLE: Duration = Duration::from_millis(100);
+
+/// Markers computed on a worker thread: after an edit or a switch, at most one
+/// computation runs at a time and one starts at most every [`MARKER_THROTTLE`]; the frame
+/// only polls.
+#[derive(Debug, Default)]
+pub struct MarkerWorker {
+    /// The latest markers.
+    pub markers: Vec<Marker>,
+    /// Whether `markers` changed since it was last taken ([`MarkerWorker::take_fresh`]).
+    fresh: bool,
+    running: Option<Receiver<Vec<Marker>>>,
+    /// The scene changed (or the switches) since the running or last computation began.
+    dirty: bool,
+    started: Option<Instant>,
+    options: ShapeOptions,
+}
+
+impl MarkerWorker {
+    /// After an edit (`changed`) or with new `options`: starts a computation when one is
+    /// due, takes a finished one's result. With no marker asked for, the markers are
+    /// cleared at once.
+    pub fn poll(&mut self, scene: &Scene, changed: bool, options: ShapeOptions, now: Instant) {
+        if options != self.options {
+            self.options = options;
+            self.dirty = true;
+        }
+        self.dirty |= changed;
+        if let Some(rx) = &self.running {
+            match rx.try_recv() {
+                Ok(found) => {
+                    self.markers = found;
+                    self.fresh = true;
+                    self.running = None;
+                }
+                Err(TryRecvError::Empty) => return,
+                Err(TryRecvError::Disconnected) => self.running = None,
+            }
+        }
+        if !options.any_marker() {
+            if !self.markers.is_empty() {
+                self.markers.clear();
+                self.fresh = true;
+            }
+            self.dirty = false;
+            return;
+        }
+        let due = self
+            .started
+            .is_none_or(|t| now.duration_since(t) >= MARKER_THROTTLE);
+        if self.dirty && due {
+            self.dirty = false;
+            self.started = Some(now);
+            let (tx, rx) = channel();
+            let scene = scene.clone();
+            std::thread::spawn(move || {
+                let _ = tx.send(markers(&scene, &options));
+            });
+            self.running = Some(rx);
+        }
+    }
+
+    /// Whether a computation is running or due.
+    #[must_use]
+    pub fn busy(&self) -> bool {
+        self.running.is_some() || self.dirty
+    }
+
+    /// The markers when they changed since the last call.
+    pub fn take_fresh(&mut self) -> Option<&[Marker]> {
+        if std::mem::take(&mut self.fresh) {
+            Some(&self.markers)
+        } else {
+            None
+        }
+    }
+
+    /// Waits (up to `limit`) for the running computation: for tests and screenshots.
+    pub fn wait(&mut self, scene: &Scene, limit: Duration) {
+        let end = Instant::now() + limit;
+        while self.busy() && Instant::now() < end {
+            // Past the throttle, so that a due computation starts.
+            self.poll(scene, false, self.options, Instant::now() + MARKER_THROTTLE);
+            std::thread::sleep(Duration::from_millis(2));
+        }
+    }
+}
+
+/// What the panel says about the selected curve's shape.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Readouts {
+    /// Its length, within [`DEFAULT_ACCURACY`]; `None` when the analysis refuses it.
+    pub length: Option<f64>,
+    /// Its tight axis-aligned box.
+    pub bbox: Aabb,
+    /// The signed area it encloses, when it is closed and planar.
+    pub area: Option<f64>,
+    /// Inflections (planar curves).
+    pub inflections: Option<usize>,
+    /// Intersections with other curves and itself, from the latest markers (`None` when
+    /// intersection markers are off).
+    pub intersections: Option<usize>,
+}
+
+impl Readouts {
+    /// The readouts of curve `index` of `scene`; intersections counted in `markers`.
+    #[must_use]
+    pub fn of(scene: &Scene, index: usize, markers: Option<&[Marker]>) -> Option<Readouts> {
+        let curve = &scene.curves.get(index)?.curve;
+        let a = CurveAnalysis::new(curve);
+        let (t0, t1) = a.domain();
+        Some(Readouts {
+            length: a.length(t0, t1, DEFAULT_ACCURACY).ok().map(|l| l.value),
+            bbox: a.bounding_box(),
+            area: if a.is_closed() {
+                a.signed_area().ok()
+            } else {
+                None
+            },
+            inflections: a.inflections().ok().map(|v| v.len()),
+            intersections: markers.map(|m| {
+                m.iter()
+                    .filter(|m| {
+                        matches!(
+                            m.kind,
+                            MarkerKind::Intersection | MarkerKind::SelfIntersection
+                        ) && (m.curve == index || m.other.is_some_and(|(o, _)| o == index))
+                    })
+                    .count()
+            }),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+    use splinescope_core::geom::{Bezier, Curve, Nurbs};
+
+    #[test]
+    fn markers_arrive_from_the_worker_and_clear_when_switched_off() {
+        let scene = Scene::of_curves([
+            Curve::Bezier(Bezier::new(vec![
+                DVec3::ZERO,
+                DVec3::new(1.0, 2.0, 0.0),
+                DVec3::new(1.0, -2.0, 0.0),
+                DVec3::new(2.0, 0.0, 0.0),
+            ])),
+            Curve::Bezier(Bezier::new(vec![
+                DVec3::new(-1.0, 0.0, 0.0),
+                DVec3::new(3.0, 0.0, 0.0),
+            ])),
+        ]);
+        let mut w = MarkerWorker::default();
+        let on = ShapeOptions {
+            comb: None,
+            inflections: true,
+            curvature_extrema: false,
+            intersections: true,
+        };
+        w.poll(&scene, true, on, Instant::now());
+        assert!(w.busy());
+        w.wait(&scene, Duration::from_secs(10));
+        let found = w.take_fresh().expect("fresh markers").to_vec();
+        assert_eq!(
+            found
+                .iter()
+                .filter(|m| m.kind == MarkerKind::Inflection)
+                .count(),
+            1
+        );
+        assert_eq!(
+            found
+                .iter()
+                .filter(|m| m.kind == MarkerKind::Intersection)
+                .count(),
+            3
+        );
+        assert!(w.take_fresh().is_none(), "taken once");
+        let r = Readouts::of(&scene, 0, Some(&found)).expect("curve 0");
+        assert_eq!((r.inflections, r.intersections), (Some(1), Some(3)));
+        w.poll(&scene, false, ShapeOptions::default(), Instant::now());
+        assert_eq!(w.take_fresh().map(<[Marker]>::len), Some(0));
+    }
+
+    #[test]
+    fn a_circles_readouts_are_its_closed_forms() {
+        let r = 1.5;
+        let scene =
+            Scene::of_curves([Curve::Nurbs(Nurbs::circle(DVec3::ZERO, r).expect("circle"))]);
+        let out = Readouts::of(&scene, 0, None).expect("curve");
+        let pi = std::f64::consts::PI;
+        assert!((out.length.expect("length") - 2.0 * pi * r).abs() < 1e-9);
+        assert!((out.area.expect("closed").abs() - pi * r * r).abs() < 1e-9);
+        assert!((out.bbox.max.x - r).abs() < 1e-12 && (out.bbox.min.y + r).abs() < 1e-12);
+        assert_eq!(out.inflections, Some(0));
+        assert_eq!(out.intersections, None);
+    }
+
+    #[test]
+    fn a_typed_scale_is_checked_and_auto_follows_the_view() {
+        let mut s = ShapeView::default();
+        assert!(s.set_comb_scale(-1.0).unwrap_err().contains("-1"));
+        assert!(
+            s.comb_auto && s.comb_scale == 1.0,
+            "unchanged after a refusal"
+        );
+        s.set_comb_scale(0.25).expect("positive");
+        assert!(!s.comb_auto && s.comb_scale == 0.25);
+        let scene = Scene::of_curves([Curve::Nurbs(
+            Nurbs::circle(DVec3::ZERO, 2.0).expect("circle"),
+        )]);
+        s.fit_comb(&scene, 10.0);
+        // κ = 1/2 everywhere: the hair is the fraction of the view.
+        assert!(s.comb_auto);
+        assert!(
+            (s.comb_scale * 0.5 - 10.0 * splinescope_core::analysis::comb::AUTO_COMB_FRACTION)
+                .abs()
+                < 1e-12
+        );
+    }
+}

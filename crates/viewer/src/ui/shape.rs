@@ -1,0 +1,232 @@
+//! The panel's "shape" section — the curvature comb (on/off, the selected curve alone, its
+//! scale typed, dragged or chosen for the view), the markers with their legend, and the
+//! selected curve's readouts — and what the canvas adds: the selected curve's tight box
+//! and the curvature at the extremum marker under the pointer.
+
+use glam::DVec3;
+
+use super::actions::{SELECTION, accepted};
+use super::{Actions, PanelInfo};
+use crate::edit::Editor;
+use crate::interaction::Interaction;
+use crate::scene::draw::marker_style;
+use crate::scene::shape::{MarkerKind, ShapeOptions};
+use crate::shape::{Readouts, ShapeView};
+
+/// The colour a legend's markers are shown in (each marker takes its curve's).
+const LEGEND_CURVE: egui::Color32 = egui::Color32::from_rgb(31, 119, 180);
+
+fn color32(c: crate::scene::Color) -> egui::Color32 {
+    let [r, g, b, a] = c.0.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8);
+    egui::Color32::from_rgba_unmultiplied(r, g, b, a)
+}
+
+/// A marker of `kind` as the renderer draws it (ring, then core), at `at`.
+fn paint_marker(painter: &egui::Painter, at: egui::Pos2, kind: MarkerKind, scale: f32) {
+    let [r, g, b, _] = LEGEND_CURVE.to_array();
+    let curve = crate::scene::Color([
+        f32::from(r) / 255.0,
+        f32::from(g) / 255.0,
+        f32::from(b) / 255.0,
+        1.0,
+    ]);
+    let (ring, core) = marker_style(kind, curve);
+    painter.circle_filled(at, 0.5 * ring.width_px * scale, color32(ring.color));
+    painter.circle_filled(at, 0.5 * core.width_px * scale, color32(core.color));
+}
+
+/// The kinds the switches show.
+fn shown_kinds(options: &ShapeOptions) -> Vec<MarkerKind> {
+    MarkerKind::ALL
+        .into_iter()
+        .filter(|k| match k {
+            MarkerKind::Inflection | MarkerKind::Cusp => options.inflections,
+            MarkerKind::CurvatureMax | MarkerKind::CurvatureMin => options.curvature_extrema,
+            MarkerKind::Intersection | MarkerKind::SelfIntersection => options.intersections,
+        })
+        .collect()
+}
+
+/// The "shape" section of the panel.
+pub(crate) fn shape_section(
+    ui: &mut egui::Ui,
+    info: &PanelInfo<'_>,
+    shape: &mut ShapeView,
+    editor: &mut Editor,
+    actions: &mut Actions,
+) {
+    egui::CollapsingHeader::new("shape")
+        .default_open(true)
+        .show(ui, |ui| {
+            comb_rows(ui, shape, editor, actions);
+            let s = &mut *shape;
+            ui.checkbox(&mut s.inflections, "inflections and cusps");
+            ui.checkbox(&mut s.curvature_extrema, "curvature extrema");
+            ui.checkbox(&mut s.intersections, "intersections");
+            ui.checkbox(&mut s.bbox, "selected curve's box");
+            let kinds = shown_kinds(&s.marker_options());
+            for kind in kinds {
+                let count = info.markers.iter().filter(|m| m.kind == kind).count();
+                ui.horizontal(|ui| {
+                    let (rect, _) =
+                        ui.allocate_exact_size(egui::vec2(14.0, 14.0), egui::Sense::hover());
+                    paint_marker(ui.painter(), rect.center(), kind, 1.0);
+                    ui.small(format!("{} ({count})", kind.label()));
+                });
+            }
+            readouts(ui, info, shape, editor);
+        });
+}
+
+/// The comb's switches and scale.
+fn comb_rows(ui: &mut egui::Ui, shape: &mut ShapeView, editor: &mut Editor, actions: &mut Actions) {
+    let mut comb = shape.comb;
+    if ui
+        .checkbox(&mut comb, "curvature comb (K)")
+        .on_hover_text("hairs along the normal, as long as the curvature; their tips joined")
+        .changed()
+    {
+        actions.toggle_comb = true;
+    }
+    if !shape.comb {
+        return;
+    }
+    ui.checkbox(&mut shape.comb_selected_only, "selected curve only");
+    ui.horizontal(|ui| {
+        let mut scale = shape.comb_scale;
+        let speed = 0.01 * scale.abs().max(1e-12);
+        let response = ui
+            .add(
+                egui::DragValue::new(&mut scale)
+                    .speed(speed)
+                    .max_decimals(6),
+            )
+            .on_hover_text("world length of a hair per unit of curvature");
+        if accepted(ui.ctx(), &response)
+            && scale != shape.comb_scale
+            && let Err(e) = shape.set_comb_scale(scale)
+        {
+            editor.message = Some(e);
+        }
+        for (label, factor) in [("÷2", 0.5), ("×2", 2.0)] {
+            if ui.small_button(label).clicked() {
+                let _ = shape.set_comb_scale(shape.comb_scale * factor);
+            }
+        }
+        if ui
+            .small_button("auto")
+            .on_hover_text("a typical hair a tenth of the view")
+            .clicked()
+        {
+            actions.fit_comb = true;
+        }
+    });
+    ui.small(if shape.comb_auto {
+        "scale: chosen for the view"
+    } else {
+        "scale: as set"
+    });
+}
+
+/// The selected curve's length, box, area, and counts.
+fn readouts(ui: &mut egui::Ui, info: &PanelInfo<'_>, shape: &ShapeView, editor: &Editor) {
+    let Some(index) = editor.selected else {
+        ui.small("select a curve for its length, box and counts");
+        return;
+    };
+    let intersections = shape.intersections.then_some(info.markers);
+    let Some(r) = Readouts::of(editor.scene(), index, intersections) else {
+        return;
+    };
+    let n = |x: f64| splinescope_core::num::fixed(x, 6);
+    egui::Grid::new("shape-readouts").show(ui, |ui| {
+        ui.label("length");
+        ui.label(r.length.map_or("—".to_owned(), n));
+        ui.end_row();
+        ui.label("box");
+        ui.label(format!(
+            "[{}, {}] × [{}, {}]",
+            n(r.bbox.min.x),
+            n(r.bbox.max.x),
+            n(r.bbox.min.y),
+            n(r.bbox.max.y)
+        ));
+        ui.end_row();
+        if let Some(area) = r.area {
+            ui.label("signed area");
+            ui.label(n(area));
+            ui.end_row();
+        }
+        if let Some(k) = r.inflections {
+            ui.label("inflections");
+            ui.label(k.to_string());
+            ui.end_row();
+        }
+        if let Some(k) = r.intersections {
+            ui.label("intersections");
+            ui.label(k.to_string());
+            ui.end_row();
+        }
+    });
+}
+
+/// The canvas's shape feedback: the selected curve's tight box, and the signed curvature
+/// of the curvature-extremum marker under the pointer.
+pub(crate) fn canvas_shape(ui: &mut egui::Ui, info: &PanelInfo<'_>, model: &Interaction) {
+    let ctx = ui.ctx().clone();
+    let ppp = f64::from(ctx.pixels_per_point());
+    let pixel = |w: DVec3| {
+        model
+            .camera
+            .pixel_from_world(w, model.viewport)
+            .map(|p| egui::pos2((p.x / ppp) as f32, (p.y / ppp) as f32))
+    };
+    let painter = ctx.layer_painter(egui::LayerId::background());
+    if model.shape.bbox
+        && let Some(index) = model.editor.selected
+        && let Some(sc) = model.scene().curves.get(index)
+    {
+        let b = splinescope_core::analysis::CurveAnalysis::new(&sc.curve).bounding_box();
+        let corners = [
+            DVec3::new(b.min.x, b.min.y, b.min.z),
+            DVec3::new(b.max.x, b.min.y, b.min.z),
+            DVec3::new(b.max.x, b.max.y, b.min.z),
+            DVec3::new(b.min.x, b.max.y, b.min.z),
+            DVec3::new(b.min.x, b.min.y, b.min.z),
+        ];
+        let points: Vec<egui::Pos2> = corners.iter().filter_map(|&c| pixel(c)).collect();
+        painter.add(egui::Shape::dashed_line(
+            &points,
+            egui::Stroke::new(1.0, SELECTION),
+            6.0,
+            4.0,
+        ));
+    }
+    let Some(pointer) = ctx.pointer_hover_pos() else {
+        return;
+    };
+    let near = info
+        .markers
+        .iter()
+        .filter(|m| m.curvature.is_some())
+        .filter_map(|m| pixel(m.point).map(|p| (p.distance(pointer), m)))
+        .filter(|(d, _)| *d <= 8.0)
+        .min_by(|a, b| a.0.total_cmp(&b.0));
+    if let Some((_, m)) = near {
+        let k = m.curvature.unwrap_or_default();
+        let text = format!(
+            "{} of curve {}: κ = {} at t = {}",
+            m.kind.label(),
+            m.curve,
+            splinescope_core::num::fixed(k, 6),
+            splinescope_core::num::fixed(m.t, 6)
+        );
+        egui::Tooltip::always_open(
+            ctx.clone(),
+            egui::LayerId::background(),
+            egui::Id::unique("splinescope-curvature-hover"),
+            egui::PopupAnchor::Pointer,
+        )
+        .show(|ui| ui.label(text));
+    }
+}
