@@ -293,3 +293,50 @@ fn escape_in_a_number_field_changes_nothing() {
     assert_eq!(h.state().model.editor.history_len(), (0, 0));
     h.get_by_value("0.30");
 }
+
+/// The shape section: the comb's checkbox turns it on at the scale chosen for the view
+/// (a circle's closed form), ×2 and ÷2 scale it, a typed scale that is not a positive
+/// number is refused with its value named and changes nothing, and the marker switches
+/// show their legend.
+#[test]
+fn the_shape_section_turns_the_comb_on_scales_it_and_refuses_a_bad_scale() {
+    use crate::geom::Nurbs;
+    let r = 2.0;
+    let mut h = harness(
+        Scene::of_curves([Curve::Nurbs(Nurbs::circle(DVec3::ZERO, r).expect("circle"))]),
+        None,
+    );
+    h.get_by_label("curvature comb (K)").click();
+    h.run();
+    let (height, scale) = {
+        let m = &h.state().model;
+        (m.camera.view_height(m.viewport), m.shape.comb_scale)
+    };
+    assert!(h.state().model.shape.comb && h.state().model.shape.comb_auto);
+    // κ = 1/r on the whole circle: the automatic hair is the fraction of the view.
+    let want = splinescope_core::analysis::comb::AUTO_COMB_FRACTION * height * r;
+    assert!((scale - want).abs() <= 1e-9 * want, "{scale} vs {want}");
+    h.get_by_label("×2").click();
+    h.run();
+    assert!((h.state().model.shape.comb_scale - 2.0 * want).abs() <= 1e-9 * want);
+    assert!(!h.state().model.shape.comb_auto);
+    h.state_mut().model.shape.comb_scale = 0.125;
+    h.run();
+    type_into(&mut h, "0.125", "-3");
+    assert_eq!(h.state().model.shape.comb_scale, 0.125, "refused whole");
+    let message = h.state().model.editor.message.clone().unwrap_or_default();
+    assert!(message.contains("-3") && message.contains("comb scale"), "{message}");
+    type_into(&mut h, "0.125", "0.5");
+    assert_eq!(h.state().model.shape.comb_scale, 0.5);
+    h.get_by_label("auto").click();
+    h.run();
+    assert!((h.state().model.shape.comb_scale - want).abs() <= 1e-9 * want);
+    h.get_by_label("inflections and cusps").click();
+    h.run();
+    assert!(h.state().model.shape.inflections);
+    h.get_by_label("inflection (0)");
+    h.get_by_label("cusp (0)");
+    h.get_by_label("curvature comb (K)").click();
+    h.run();
+    assert!(!h.state().model.shape.comb);
+}

@@ -515,3 +515,23 @@ fn brackets_select_the_next_and_previous_curve_wrapping_around() {
     m.handle(key(Key::Char(']'), false));
     assert_eq!(m.editor.selected, None);
 }
+
+/// `K` turns the combs on at the scale chosen for the view and off again; a typed scale
+/// survives turning them off and on (only "auto" follows the view).
+#[test]
+fn k_toggles_the_combs_and_keeps_a_typed_scale() {
+    let mut m = model(scene(vec![cubic(), bspline()]), None);
+    assert!(!m.shape.comb);
+    m.handle(key(Key::Char('k'), false));
+    assert!(m.shape.comb && m.shape.comb_auto);
+    let auto = m.shape.comb_scale;
+    assert!(auto.is_finite() && auto > 0.0);
+    m.handle(key(Key::Char('K'), false));
+    assert!(!m.shape.comb);
+    m.shape.set_comb_scale(3.5).expect("positive");
+    m.handle(key(Key::Char('k'), false));
+    assert!(m.shape.comb);
+    assert_eq!(m.shape.comb_scale, 3.5, "a typed scale is kept");
+    m.fit_comb();
+    assert_eq!(m.shape.comb_scale, auto, "auto again for the same view");
+}

@@ -94,14 +94,17 @@ fn comb_rows(ui: &mut egui::Ui, shape: &mut ShapeView, editor: &mut Editor, acti
     ui.checkbox(&mut shape.comb_selected_only, "selected curve only");
     ui.horizontal(|ui| {
         let mut scale = shape.comb_scale;
-        let speed = 0.01 * scale.abs().max(1e-12);
+        // Typed values are given once complete and never clamped: a scale that is not a
+        // positive number is refused whole, with a message.
         let response = ui
             .add(
-                egui::DragValue::new(&mut scale)
-                    .speed(speed)
+                egui::Slider::new(&mut scale, 1e-6..=1e6)
+                    .logarithmic(true)
+                    .clamping(egui::SliderClamping::Never)
+                    .update_while_editing(false)
                     .max_decimals(6),
             )
-            .on_hover_text("world length of a hair per unit of curvature");
+            .on_hover_text("world length of a hair per unit of curvature: drag, or double-click the number to type");
         if accepted(ui.ctx(), &response)
             && scale != shape.comb_scale
             && let Err(e) = shape.set_comb_scale(scale)
