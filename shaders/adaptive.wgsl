@@ -335,7 +335,7 @@ fn tessellate_any(
 struct Comb {
     // World length of a hair per unit of curvature.
     scale: f32,
-    groups_x: u32,
+    _padding0: u32,
     // Chunk-local curve whose comb is drawn: COMB_ALL for every curve.
     curve: u32,
     _padding: u32,
@@ -346,11 +346,13 @@ const COMB_ALL: u32 = 0xffffffffu;
 const COMB_HIDDEN: u32 = 0x80000000u;
 
 @group(1) @binding(0) var<uniform> comb: Comb;
-// Two vertices per sample: the point on the curve, then the hair's tip.
+// Two vertices per sample: the point on the curve, then the hair's tip. The samples'
+// order is the tessellation's (per dispatch range, its segments' placed offsets).
 @group(1) @binding(1) var<storage, read_write> hairs: array<Vertex>;
 // One vertex per sample: the hair's tip.
 @group(1) @binding(2) var<storage, read_write> envelope: array<Vertex>;
-// The hairs' indirect draw: (corners, hairs, 0, 0).
+// The comb's indirect draws (line lists): the hairs' (2 × samples, 1, 0, 0), then the
+// envelope's (2 × (samples − 1), 1, 0, 0).
 @group(1) @binding(3) var<storage, read_write> comb_args: array<u32>;
 
 // The k-th forward difference of the homogeneous points at i (k ≤ 2).
@@ -418,24 +420,25 @@ fn point_and_curvature(first: u32, n: u32, u: f32) -> array<vec3<f32>, 2> {
     return array<vec3<f32>, 2>(p, k);
 }
 
-@compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
-fn comb_hairs(
-    @builtin(workgroup_id) group: vec3<u32>,
-    @builtin(local_invocation_index) lane: u32,
-) {
-    let s = group.x + group.y * comb.groups_x;
-    if (s == 0u && lane == 0u) {
-        comb_args[1] = work[STAT_DRAWN];
+// Writes the hairs of samples j = first_lane, first_lane + stride, … of segment slot `slot`
+// of the dispatch's range, and (from the range's first invocation) the comb's draw
+// arguments: 2 vertices per hair, then 2 per envelope piece.
+fn comb_segment(slot: u32, first_lane: u32, stride: u32) {
+    if (slot == 0u && first_lane == 0u) {
+        let drawn = work[STAT_DRAWN];
+        comb_args[0] = 2u * drawn;
+        comb_args[4] = 2u * (max(drawn, 1u) - 1u);
     }
-    if (s >= frame.segment_count) {
+    let w = adaptive_work(slot);
+    if (!w.ok) {
         return;
     }
-    let seg = segments[s];
-    let count = work[WORK_COUNTS + s];
-    let first = work[scan_base() + 2u * s];
+    let seg = w.seg;
+    let count = w.count;
+    let first = w.first;
     let n = min(seg.degree, MAX_DEGREE);
     let shown = comb.curve == COMB_ALL || comb.curve == seg.curve;
-    for (var j = lane; j < count; j += TESSELLATE_WORKGROUP_SIZE) {
+    for (var j = first_lane; j < count; j += stride) {
         let u = adaptive_param(j, count);
         let pk = point_and_curvature(seg.first_point, n, u);
         let tip = pk[0] - comb.scale * pk[1];
@@ -450,4 +453,24 @@ fn comb_hairs(
         hairs[2u * (first + j) + 1u] = Vertex(tip, tip_tag);
         envelope[first + j] = Vertex(tip, edge_tag);
     }
+}
+
+// The comb of the cubic and quartic classes: SEGMENT_LANES invocations per segment, as
+// their tessellation kernels.
+@compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
+fn comb_narrow(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) index: u32,
+) {
+    let slot = (group.x + group.y * range.groups_x) * SEGMENTS_PER_GROUP + index / SEGMENT_LANES;
+    comb_segment(slot, index % SEGMENT_LANES, SEGMENT_LANES);
+}
+
+// The comb of every other segment: one workgroup per segment (see tessellate_any).
+@compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
+fn comb_wide(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    comb_segment(group.x + group.y * range.groups_x, lane, TESSELLATE_WORKGROUP_SIZE);
 }

@@ -1,8 +1,9 @@
 // Anti-aliased polylines of a width in pixels, read straight from a storage buffer of
 // tagged vertices (the tessellator's samples, or CPU-made overlays). Instance i draws the
 // piece from vertex i to vertex i + 1 as a screen-space quad around a capsule (round caps
-// make round joins); pieces whose two vertices have different tags are skipped. `vs_hair`
-// draws disjoint pieces (vertex pairs) the same way.
+// make round joins); pieces whose two vertices have different tags are skipped. The
+// curvature comb is drawn as one-pixel line lists (`vs_hair_line`: vertex pairs;
+// `vs_envelope_line`: consecutive vertices), cheap enough for a hair at every sample.
 
 @group(0) @binding(0) var<uniform> camera: Camera;
 @group(1) @binding(0) var<storage, read> vertices: array<Vertex>;
@@ -42,13 +43,6 @@ fn culled() -> LineOut {
 @vertex
 fn vs_line(@builtin(vertex_index) corner: u32, @builtin(instance_index) piece: u32) -> LineOut {
     return piece_corner(vertices[piece], vertices[piece + 1u], corner);
-}
-
-// Separate pieces, two vertices each (the curvature comb's hairs): instance i draws the
-// piece from vertex 2 i to vertex 2 i + 1.
-@vertex
-fn vs_hair(@builtin(vertex_index) corner: u32, @builtin(instance_index) hair: u32) -> LineOut {
-    return piece_corner(vertices[2u * hair], vertices[2u * hair + 1u], corner);
 }
 
 // Corner `corner` of the quad around the piece from a to b.
@@ -111,4 +105,56 @@ fn fs_line(in: LineOut) -> @location(0) vec4<f32> {
     }
     let alpha = in.color.a * coverage;
     return vec4<f32>(in.color.rgb * alpha, alpha);
+}
+
+// A one-pixel line's end.
+struct FlatOut {
+    @builtin(position) position: vec4<f32>,
+    @location(0) color: vec4<f32>,
+}
+
+// End `end` (0 or 1) of the line from a to b; nothing when their tags differ or both are
+// behind the eye.
+fn flat_end(a: Vertex, b: Vertex, end: u32) -> FlatOut {
+    var out: FlatOut;
+    out.position = vec4<f32>(-4.0, -4.0, 0.5, 1.0);
+    if (a.id != b.id) {
+        return out;
+    }
+    var ca = camera.clip_from_world * vec4<f32>(a.position, 1.0);
+    var cb = camera.clip_from_world * vec4<f32>(b.position, 1.0);
+    if (ca.w < NEAR_W && cb.w < NEAR_W) {
+        return out;
+    }
+    if (ca.w < NEAR_W) {
+        ca = mix(ca, cb, (NEAR_W - ca.w) / (cb.w - ca.w));
+    } else if (cb.w < NEAR_W) {
+        cb = mix(cb, ca, (NEAR_W - cb.w) / (ca.w - cb.w));
+    }
+    var c = ca;
+    if (end == 1u) {
+        c = cb;
+    }
+    out.position = vec4<f32>(c.xy / c.w, 0.5, 1.0);
+    out.color = styles[a.id].color;
+    return out;
+}
+
+// Hair v / 2 of a comb: vertices 2 h and 2 h + 1.
+@vertex
+fn vs_hair_line(@builtin(vertex_index) v: u32) -> FlatOut {
+    let h = v / 2u;
+    return flat_end(vertices[2u * h], vertices[2u * h + 1u], v % 2u);
+}
+
+// Piece v / 2 of a comb's envelope: vertices k and k + 1.
+@vertex
+fn vs_envelope_line(@builtin(vertex_index) v: u32) -> FlatOut {
+    let k = v / 2u;
+    return flat_end(vertices[k], vertices[k + 1u], v % 2u);
+}
+
+@fragment
+fn fs_flat(in: FlatOut) -> @location(0) vec4<f32> {
+    return vec4<f32>(in.color.rgb * in.color.a, in.color.a);
 }

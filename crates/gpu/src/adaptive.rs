@@ -6,8 +6,8 @@
 
 use super::layout::{
     ADAPTIVE_SEGMENT_LANES, FrameStats, GpuCamera, GpuComb, GpuFrame, GpuLineStyle, GpuTessParams,
-    GpuVertex, LINE_CORNERS, MAX_SAMPLES_PER_SEGMENT, SCAN_BLOCK, TESSELLATE_KERNELS,
-    TESSELLATE_WORKGROUP_SIZE, WORK_HEADER,
+    GpuVertex, MAX_SAMPLES_PER_SEGMENT, SCAN_BLOCK, TESSELLATE_KERNELS, TESSELLATE_WORKGROUP_SIZE,
+    WORK_HEADER,
 };
 use super::pack::TessChunk;
 use super::tessellator::{compute_pipelines, control_points_buffer, dispatch_grid};
@@ -50,7 +50,8 @@ pub struct AdaptiveTessellator {
     scan_sums: wgpu::ComputePipeline,
     finalize: wgpu::ComputePipeline,
     kernels: Vec<wgpu::ComputePipeline>,
-    comb: wgpu::ComputePipeline,
+    /// The comb passes: for the cubic and quartic classes, then for the general one.
+    comb: [wgpu::ComputePipeline; 2],
     comb_layout: wgpu::BindGroupLayout,
     max_groups_per_dim: u32,
 }
@@ -65,11 +66,10 @@ pub struct CombChunk {
     pub hairs: wgpu::Buffer,
     /// `capacity` vertices.
     pub envelope: wgpu::Buffer,
-    /// `[corners, hairs, 0, 0]`.
+    /// The line-list draws: `[2 × hairs, 1, 0, 0, 2 × envelope pieces, 1, 0, 0]`.
     pub args: wgpu::Buffer,
     uniform: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
-    grid: (u32, u32),
     /// The samples the buffers hold (the chunk's capacity when they were made).
     pub capacity: u32,
 }
@@ -156,13 +156,15 @@ impl AdaptiveTessellator {
             bind_group_layouts: &[Some(&layout), Some(&comb_layout)],
             immediate_size: 0,
         });
-        let comb = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("comb_hairs"),
-            layout: Some(&comb_pipeline_layout),
-            module: &module,
-            entry_point: Some("comb_hairs"),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
-            cache: None,
+        let comb = ["comb_narrow", "comb_wide"].map(|entry| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&comb_pipeline_layout),
+                module: &module,
+                entry_point: Some(entry),
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+                cache: None,
+            })
         });
         let [count, scan_blocks, scan_sums, finalize]: [wgpu::ComputePipeline; 4] = pipelines
             .try_into()
@@ -437,10 +439,9 @@ impl AdaptiveTessellator {
         let args = super::init_buffer(
             device,
             "comb draw",
-            bytemuck::cast_slice(&[LINE_CORNERS, 0, 0, 0]),
+            bytemuck::cast_slice(&[0u32, 1, 0, 0, 0, 1, 0, 0]),
             wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT | usage,
         );
-        let grid = dispatch_grid(chunk.segment_count, self.max_groups_per_dim);
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("comb"),
             size: size_of::<GpuComb>() as u64,
@@ -463,7 +464,6 @@ impl AdaptiveTessellator {
             args,
             uniform,
             bind_group,
-            grid,
             capacity,
         }
     }
@@ -474,7 +474,7 @@ impl AdaptiveTessellator {
     pub fn write_comb(&self, queue: &wgpu::Queue, comb: &CombChunk, scale: f32, curve: u32) {
         let uniform = GpuComb {
             scale,
-            groups_x: comb.grid.0,
+            _padding0: 0,
             curve,
             _padding: 0,
         };
@@ -492,14 +492,16 @@ impl AdaptiveTessellator {
             label: Some("curvature comb"),
             timestamp_writes: None,
         });
-        pass.set_pipeline(&self.comb);
         for (chunk, comb) in pairs {
-            if chunk.segment_count == 0 {
-                continue;
+            // Per kernel class range, as the tessellation: the narrow pass where the
+            // tessellation shares a workgroup among segments.
+            for (kernel, group, grid, _) in &chunk.dispatches {
+                let narrow = matches!(TESSELLATE_KERNELS.get(*kernel), Some((_, Some(_))));
+                pass.set_pipeline(&self.comb[usize::from(!narrow)]);
+                pass.set_bind_group(0, group, &[]);
+                pass.set_bind_group(1, &comb.bind_group, &[]);
+                pass.dispatch_workgroups(grid.0, grid.1, 1);
             }
-            pass.set_bind_group(0, &chunk.base, &[]);
-            pass.set_bind_group(1, &comb.bind_group, &[]);
-            pass.dispatch_workgroups(comb.grid.0, comb.grid.1, 1);
         }
     }
 }

@@ -121,8 +121,8 @@ pub struct GpuSegment {
 pub struct GpuComb {
     /// World length of a hair per unit of curvature.
     pub scale: f32,
-    /// Workgroups along x of the 2D dispatch (segment = `x + y · groups_x`).
-    pub groups_x: u32,
+    /// Uniform structs are 16-byte aligned.
+    pub _padding0: u32,
     /// The chunk-local curve whose comb is drawn, or [`COMB_ALL`].
     pub curve: u32,
     /// Uniform structs are 16-byte aligned.

@@ -29,6 +29,7 @@ pub struct Renderer {
     batch_layout: wgpu::BindGroupLayout,
     line_pipeline: wgpu::RenderPipeline,
     hair_pipeline: wgpu::RenderPipeline,
+    envelope_pipeline: wgpu::RenderPipeline,
     point_pipeline: wgpu::RenderPipeline,
     format: wgpu::TextureFormat,
 }
@@ -387,9 +388,15 @@ impl Renderer {
         );
         let hair_pipeline = pipeline(
             shaders::LINES,
-            "vs_hair",
-            "fs_line",
-            wgpu::PrimitiveTopology::TriangleStrip,
+            "vs_hair_line",
+            "fs_flat",
+            wgpu::PrimitiveTopology::LineList,
+        );
+        let envelope_pipeline = pipeline(
+            shaders::LINES,
+            "vs_envelope_line",
+            "fs_flat",
+            wgpu::PrimitiveTopology::LineList,
         );
         let point_pipeline = pipeline(
             shaders::POINTS,
@@ -404,6 +411,7 @@ impl Renderer {
             batch_layout,
             line_pipeline,
             hair_pipeline,
+            envelope_pipeline,
             point_pipeline,
             format,
         }
@@ -654,9 +662,9 @@ impl Renderer {
             pass.set_pipeline(&self.hair_pipeline);
             pass.set_bind_group(1, &comb.hairs.bind_group, &[]);
             pass.draw_indirect(&comb.buffers.args, 0);
-            pass.set_pipeline(&self.line_pipeline);
+            pass.set_pipeline(&self.envelope_pipeline);
             pass.set_bind_group(1, &comb.envelope.bind_group, &[]);
-            pass.draw_indirect(&chunk.adaptive.work, 0);
+            pass.draw_indirect(&comb.buffers.args, 16);
         }
         pass.set_pipeline(&self.line_pipeline);
         for chunk in &scene.chunks {

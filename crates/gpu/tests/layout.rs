@@ -73,7 +73,7 @@ fn adaptive_constants_match_their_rust_twins() {
     assert_eq!(constant_u32(&module, "COMB_ALL"), COMB_ALL);
     assert_eq!(constant_u32(&module, "COMB_HIDDEN"), COMB_HIDDEN);
     let m = &module;
-    assert_twin!(m, "Comb", GpuComb, [scale, groups_x, curve, _padding]);
+    assert_twin!(m, "Comb", GpuComb, [scale, _padding0, curve, _padding]);
 }
 
 #[test]

@@ -325,7 +325,10 @@ fn the_shape_section_turns_the_comb_on_scales_it_and_refuses_a_bad_scale() {
     type_into(&mut h, "0.125", "-3");
     assert_eq!(h.state().model.shape.comb_scale, 0.125, "refused whole");
     let message = h.state().model.editor.message.clone().unwrap_or_default();
-    assert!(message.contains("-3") && message.contains("comb scale"), "{message}");
+    assert!(
+        message.contains("-3") && message.contains("comb scale"),
+        "{message}"
+    );
     type_into(&mut h, "0.125", "0.5");
     assert_eq!(h.state().model.shape.comb_scale, 0.5);
     h.get_by_label("auto").click();
