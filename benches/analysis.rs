@@ -12,6 +12,7 @@ use kurbo::{CubicBez, ParamCurveArclen, Point};
 use splinescope::analysis::{CurveAnalysis, all_intersections};
 use splinescope::geom::Bezier;
 use splinescope::scene::generate::{Rng, StressOptions, random_bezier_scene};
+use splinescope::scene::shape::{ShapeOptions, markers};
 
 fn cubic(rng: &mut Rng) -> [DVec3; 4] {
     [(); 4].map(|()| DVec3::new(rng.range(0.0, 1.0), rng.range(0.0, 1.0), 0.0))
@@ -118,6 +119,32 @@ fn bench(c: &mut Criterion) {
         .collect();
     g.bench_function("1,000 cubics in one square", |b| {
         b.iter(|| all_intersections(black_box(&crowd)).map(|v| v.len()))
+    });
+    g.finish();
+
+    // What the viewer recomputes after an edit (off the frame thread): every marker of a
+    // 1,000-curve stress scene, from the scene (analyses included).
+    let mut g = c.benchmark_group("viewer markers");
+    g.sample_size(10);
+    let thousand = random_bezier_scene(StressOptions {
+        curves: 1000,
+        ..StressOptions::default()
+    });
+    let only_crossings = ShapeOptions {
+        intersections: true,
+        ..ShapeOptions::default()
+    };
+    let every = ShapeOptions {
+        comb: None,
+        inflections: true,
+        curvature_extrema: true,
+        intersections: true,
+    };
+    g.bench_function("1,000 stress cubics: intersections", |b| {
+        b.iter(|| markers(black_box(&thousand), &only_crossings).len())
+    });
+    g.bench_function("1,000 stress cubics: every marker", |b| {
+        b.iter(|| markers(black_box(&thousand), &every).len())
     });
     g.finish();
 }

@@ -11,7 +11,7 @@ use crate::gpu::{GpuError, Pipelines};
 use crate::image::RgbaImage;
 use crate::scene::Scene;
 use crate::scene::encoding::encode;
-use crate::scene::shape::{ShapeOptions, marker_points, markers};
+use crate::scene::shape::{ShapeOptions, encode_shaped};
 
 /// Draws `scene` into a `width × height` image with `camera` (the scene's own view for
 /// that size when `None`), at the default tolerance.
@@ -77,17 +77,7 @@ pub fn render_scene_shaped(
 ) -> Result<RgbaImage, GpuError> {
     let viewport = DVec2::new(f64::from(width), f64::from(height));
     let camera = camera.unwrap_or_else(|| scene.camera(viewport));
-    let mut encoding = encode(scene);
-    encoding.comb = shape
-        .comb
-        .map(|c| c.resolve(scene, camera.view_height(viewport)));
-    if shape.any_marker() {
-        let found = markers(scene, shape);
-        encoding
-            .overlays
-            .points
-            .extend(marker_points(scene, &found));
-    }
+    let encoding = encode_shaped(scene, camera.view_height(viewport), shape);
     render_with(
         ctx,
         pipelines,

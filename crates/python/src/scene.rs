@@ -12,7 +12,7 @@ use pyo3::prelude::*;
 use splinescope_gpu::{BackendChoice, ContextOptions, GpuContext, Pipelines};
 use splinescope_image::RgbaImage;
 use splinescope_image::compare::{Tolerance, compare_images as compare};
-use splinescope_scene::format::encoding::encode;
+use splinescope_scene::format::shape::{CombScale, ShapeOptions, encode_shaped};
 use splinescope_scene::format::{Scene, from_json_str, to_json_string};
 use splinescope_scene::request::apply_text;
 
@@ -138,7 +138,10 @@ impl PyScene {
     /// The scene drawn on the GPU (`width × height`, its own camera, the tolerance in
     /// pixels) as an `(height, width, 4)` uint8 RGBA array; the same image as
     /// `splinescope render` on the same adapter.
-    #[pyo3(signature = (width, height, tolerance_px=0.25, backend="auto"))]
+    /// `shape`: `(comb, comb_scale, inflections, curvature_extrema, intersections)` — the
+    /// curvature comb (its scale chosen for the view when `comb_scale` is `None`) and the
+    /// markers, as `render --comb …` draws them.
+    #[pyo3(signature = (width, height, tolerance_px=0.25, backend="auto", shape=(false, None, false, false, false)))]
     fn render<'py>(
         &self,
         py: Python<'py>,
@@ -146,13 +149,15 @@ impl PyScene {
         height: u32,
         tolerance_px: f64,
         backend: &str,
+        shape: ShapeArgs,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let image = self.image(py, width, height, tolerance_px, backend)?;
+        let shape = shape_options(shape)?;
+        let image = self.image(py, (width, height), tolerance_px, backend, &shape)?;
         image_array(py, image)
     }
 
     /// The scene drawn as for `render`, encoded as a PNG file's bytes.
-    #[pyo3(signature = (width, height, tolerance_px=0.25, backend="auto"))]
+    #[pyo3(signature = (width, height, tolerance_px=0.25, backend="auto", shape=(false, None, false, false, false)))]
     fn png<'py>(
         &self,
         py: Python<'py>,
@@ -160,8 +165,10 @@ impl PyScene {
         height: u32,
         tolerance_px: f64,
         backend: &str,
+        shape: ShapeArgs,
     ) -> PyResult<Vec<u8>> {
-        let image = self.image(py, width, height, tolerance_px, backend)?;
+        let shape = shape_options(shape)?;
+        let image = self.image(py, (width, height), tolerance_px, backend, &shape)?;
         image
             .png_bytes(std::path::Path::new("(in memory)"))
             .map_err(|e| raise::<ImageError>(e.to_string(), ""))
@@ -170,7 +177,7 @@ impl PyScene {
     /// Writes the scene as a figure, by `path`'s extension: `.svg` or `.pdf` (exact
     /// curves, pieces within `tolerance` points elsewhere) or `.png` (the GPU picture),
     /// with labels, legend, axes and grid as asked; atomically.
-    #[pyo3(signature = (path, width=800, height=500, tolerance=0.01, labels=false, legend=false, axes=false, grid=false, backend="auto"))]
+    #[pyo3(signature = (path, width=800, height=500, tolerance=0.01, labels=false, legend=false, axes=false, grid=false, backend="auto", shape=(false, None, false, false, false)))]
     #[allow(clippy::too_many_arguments)]
     fn export(
         &self,
@@ -184,7 +191,9 @@ impl PyScene {
         axes: bool,
         grid: bool,
         backend: &str,
+        shape: ShapeArgs,
     ) -> PyResult<()> {
+        let shape = shape_options(shape)?;
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
@@ -198,6 +207,7 @@ impl PyScene {
             },
         );
         opts.tolerance = tolerance;
+        opts.shape = shape;
         let figure = |opts: &splinescope_figure::FigureOptions| {
             splinescope_figure::build(&self.scene, opts).map_err(|e| {
                 use splinescope_figure::FigureError as F;
@@ -217,7 +227,7 @@ impl PyScene {
                 // The guides and text only: the curves are the GPU's picture.
                 opts.curves = false;
                 let fig = figure(&opts)?;
-                let mut image = self.image(py, width, height, 0.25, backend)?;
+                let mut image = self.image(py, (width, height), 0.25, backend, &shape)?;
                 splinescope_figure::raster::draw_guides(
                     &fig,
                     &mut splinescope_figure::raster::Canvas {
@@ -264,10 +274,10 @@ impl PyScene {
     fn image(
         &self,
         py: Python<'_>,
-        width: u32,
-        height: u32,
+        (width, height): (u32, u32),
         tolerance_px: f64,
         backend: &str,
+        shape: &ShapeOptions,
     ) -> PyResult<RgbaImage> {
         let choice: BackendChoice =
             backend
@@ -284,11 +294,12 @@ impl PyScene {
         let scene = &self.scene;
         py.detach(|| {
             let (ctx, pipelines) = &*gpu;
-            let camera = scene.camera(DVec2::new(f64::from(width), f64::from(height)));
+            let viewport = DVec2::new(f64::from(width), f64::from(height));
+            let camera = scene.camera(viewport);
             splinescope_gpu::capture::render_with(
                 ctx,
                 pipelines,
-                &encode(scene),
+                &encode_shaped(scene, camera.view_height(viewport), shape),
                 &camera,
                 (width, height),
                 tolerance_px,
@@ -296,6 +307,29 @@ impl PyScene {
         })
         .map_err(|e| gpu_error(&e))
     }
+}
+
+/// The shape overlays as Python hands them: the comb on, its scale (`None`: chosen for
+/// the view), and the three marker switches.
+type ShapeArgs = (bool, Option<f64>, bool, bool, bool);
+
+/// The shape options of `ShapeArgs`, the scale checked ([`SceneError`] naming `comb`).
+fn shape_options(
+    (comb, scale, inflections, curvature_extrema, intersections): ShapeArgs,
+) -> PyResult<ShapeOptions> {
+    let comb = match (comb, scale) {
+        (false, _) => None,
+        (true, None) => Some(CombScale::Auto),
+        (true, Some(s)) => {
+            Some(CombScale::fixed(s).map_err(|e| raise::<SceneError>(e.to_string(), "comb"))?)
+        }
+    };
+    Ok(ShapeOptions {
+        comb,
+        inflections,
+        curvature_extrema,
+        intersections,
+    })
 }
 
 type Device = Arc<(GpuContext, Pipelines)>;

@@ -895,17 +895,39 @@ class Scene:
         height: int = 500,
         tolerance_px: float = 0.25,
         backend: str = "auto",
+        comb: Union[None, bool, str, float] = None,
+        inflections: bool = False,
+        curvature_extrema: bool = False,
+        intersections: bool = False,
     ) -> np.ndarray:
         """The scene drawn on the GPU (a software adapter works), as an
         ``(height, width, 4)`` uint8 RGBA array: the image ``splinescope render``
-        makes. ``backend``: ``auto``, ``vulkan``, ``gl``, ``metal`` or ``dx12``."""
-        w, h = _size(width, height, "render")
-        return self._s.render(w, h, _number(tolerance_px, "tolerance_px"), _str(backend, "backend", "render"))
+        makes. ``backend``: ``auto``, ``vulkan``, ``gl``, ``metal`` or ``dx12``.
 
-    def png(self, width: int = 800, height: int = 500, backend: str = "auto") -> bytes:
-        """The rendered scene as PNG file bytes."""
+        ``comb``: each curve's curvature comb — ``True`` or ``"auto"`` for a scale chosen
+        for the view, a number for the world length of a hair per unit of curvature;
+        ``inflections``, ``curvature_extrema``, ``intersections``: the markers
+        (``render --comb --inflections …``)."""
+        w, h = _size(width, height, "render")
+        shape = _shape(comb, inflections, curvature_extrema, intersections, "render")
+        return self._s.render(
+            w, h, _number(tolerance_px, "tolerance_px"), _str(backend, "backend", "render"), shape
+        )
+
+    def png(
+        self,
+        width: int = 800,
+        height: int = 500,
+        backend: str = "auto",
+        comb: Union[None, bool, str, float] = None,
+        inflections: bool = False,
+        curvature_extrema: bool = False,
+        intersections: bool = False,
+    ) -> bytes:
+        """The rendered scene as PNG file bytes (the shape overlays as for ``render``)."""
         w, h = _size(width, height, "png")
-        return bytes(self._s.png(w, h, 0.25, _str(backend, "backend", "png")))
+        shape = _shape(comb, inflections, curvature_extrema, intersections, "png")
+        return bytes(self._s.png(w, h, 0.25, _str(backend, "backend", "png"), shape))
 
     def export(
         self,
@@ -918,12 +940,19 @@ class Scene:
         axes: bool = False,
         grid: bool = False,
         backend: str = "auto",
+        comb: Union[None, bool, str, float] = None,
+        inflections: bool = False,
+        curvature_extrema: bool = False,
+        intersections: bool = False,
     ) -> None:
         """Writes the scene as a figure, by the extension: ``.svg`` or ``.pdf`` (curves
         of degree ≤ 3 in a 2D view exact, other pieces within ``tolerance`` points) or
         ``.png`` (the GPU picture), with labels, legend, axes and grid as asked
-        (``splinescope export``'s options); atomically."""
+        (``splinescope export``'s options), and the curvature comb and markers as for
+        ``render`` (in SVG and PDF the comb's hairs are exact line segments and the
+        markers circles at exact positions); atomically."""
         w, h = _size(width, height, "export")
+        shape = _shape(comb, inflections, curvature_extrema, intersections, "export")
         self._s.export(
             str(path),
             w,
@@ -934,6 +963,7 @@ class Scene:
             _bool(axes, "axes", "export"),
             _bool(grid, "grid", "export"),
             _str(backend, "backend", "export"),
+            shape,
         )
 
     def _repr_png_(self) -> bytes:
@@ -964,6 +994,27 @@ def solve(
         isinstance(request, str) and request.lstrip().startswith("[")
     )
     return Scene._wrap(new), parsed[0] if single else parsed
+
+
+def _shape(
+    comb: Any, inflections: Any, curvature_extrema: Any, intersections: Any, method: str
+) -> Tuple[bool, Optional[float], bool, bool, bool]:
+    """The shape overlays' arguments: ``comb`` ``None``/``False`` (off), ``True`` or
+    ``"auto"`` (a scale chosen for the view), or a number (the scale: finite, above 0 —
+    else a :class:`SceneError` naming ``comb``)."""
+    flags = (
+        _bool(inflections, "inflections", method),
+        _bool(curvature_extrema, "curvature_extrema", method),
+        _bool(intersections, "intersections", method),
+    )
+    if comb is None or comb is False:
+        return (False, None) + flags
+    if comb is True or (isinstance(comb, str) and comb == "auto"):
+        return (True, None) + flags
+    scale = _float(comb, "comb", method)
+    if not (np.isfinite(scale) and scale > 0):
+        raise _error(SceneError, f"{method}: comb scale {scale}: must be a finite number above 0", "comb")
+    return (True, scale) + flags
 
 
 def _size(width: Any, height: Any, method: str) -> Tuple[int, int]:

@@ -84,7 +84,12 @@ class _Scene:
     def curves(self) -> List[_Curve]: ...
     def solve(self, request: str) -> Tuple[_Scene, str]: ...
     def render(
-        self, width: int, height: int, tolerance_px: float = 0.25, backend: str = "auto"
+        self,
+        width: int,
+        height: int,
+        tolerance_px: float = 0.25,
+        backend: str = "auto",
+        shape: Tuple[bool, Optional[float], bool, bool, bool] = ...,
     ) -> npt.NDArray[np.uint8]: ...
     def export(
         self,
@@ -97,9 +102,15 @@ class _Scene:
         axes: bool = False,
         grid: bool = False,
         backend: str = "auto",
+        shape: Tuple[bool, Optional[float], bool, bool, bool] = ...,
     ) -> None: ...
     def png(
-        self, width: int, height: int, tolerance_px: float = 0.25, backend: str = "auto"
+        self,
+        width: int,
+        height: int,
+        tolerance_px: float = 0.25,
+        backend: str = "auto",
+        shape: Tuple[bool, Optional[float], bool, bool, bool] = ...,
     ) -> bytes: ...
 
 def eval_many(curves: Sequence[_Curve], n: int) -> npt.NDArray[np.float64]: ...

@@ -177,6 +177,27 @@ pub fn markers_of(analyses: &[CurveAnalysis], options: &ShapeOptions) -> Vec<Mar
     out
 }
 
+/// `scene` encoded for the GPU with the shape overlays of `options`: the comb's scale
+/// resolved for a view `view_height` world units tall, the markers appended to the draw
+/// list's points (over everything else).
+#[must_use]
+pub fn encode_shaped(
+    scene: &Scene,
+    view_height: f64,
+    options: &ShapeOptions,
+) -> splinescope_encoding::Encoding {
+    let mut encoding = super::encoding::encode(scene);
+    encoding.comb = options.comb.map(|c| c.resolve(scene, view_height));
+    if options.any_marker() {
+        let found = markers(scene, options);
+        encoding
+            .overlays
+            .points
+            .extend(marker_points(scene, &found));
+    }
+    encoding
+}
+
 /// The markers as point sets for the draw list: per marker kind and curve, its rings then
 /// its cores ([`marker_style`]), in the curve's colour (an intersection's first curve's).
 #[must_use]
