@@ -93,6 +93,9 @@ pub struct FigureOptions {
     pub curves: bool,
     /// The curvature combs and shape markers (drawn with the curves).
     pub shape: ShapeOptions,
+    /// The comb of this curve alone (the viewer's "selected curve only"); `None`: every
+    /// curve's.
+    pub comb_only: Option<usize>,
 }
 
 impl FigureOptions {
@@ -111,6 +114,7 @@ impl FigureOptions {
             grid: false,
             curves: true,
             shape: ShapeOptions::default(),
+            comb_only: None,
         }
     }
 }
@@ -418,7 +422,7 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
     if opts.curves {
         if let Some(scale) = opts.shape.comb {
             let scale = scale.resolve(scene, camera.view_height(size));
-            comb_items(scene, scale, &proj, size, &mut items);
+            comb_items(scene, (scale, opts.comb_only), &proj, size, &mut items);
         }
         curve_items(&encoding, &proj, size, opts.tolerance, &mut items)?;
     }
@@ -451,13 +455,22 @@ pub const COMB_HAIRS_PER_SEGMENT: usize = 24;
 /// Each curve's curvature comb ([`splinescope_core::analysis::comb::comb`]): its hairs as
 /// one path of straight runs, then its envelope, in the curve's colour
 /// ([`comb_strokes`]), at exact positions.
-fn comb_items(scene: &Scene, scale: f64, proj: &Projection, size: DVec2, items: &mut Vec<Item>) {
+fn comb_items(
+    scene: &Scene,
+    (scale, only): (f64, Option<usize>),
+    proj: &Projection,
+    size: DVec2,
+    items: &mut Vec<Item>,
+) {
     let margin = DVec2::splat(2.0 + f64::from(COMB_WIDTH_PX));
     let page = Page {
         min: -margin,
         max: size + margin,
     };
-    for sc in &scene.curves {
+    for (index, sc) in scene.curves.iter().enumerate() {
+        if only.is_some_and(|o| o != index) {
+            continue;
+        }
         let analysis = splinescope_core::analysis::CurveAnalysis::new(&sc.curve);
         let hairs =
             splinescope_core::analysis::comb::comb(&analysis, COMB_HAIRS_PER_SEGMENT, scale);

@@ -535,3 +535,40 @@ fn k_toggles_the_combs_and_keeps_a_typed_scale() {
     m.fit_comb();
     assert_eq!(m.shape.comb_scale, auto, "auto again for the same view");
 }
+
+/// The viewer's export writes what is shown: with the comb on, its hairs (two-point runs
+/// in the SVG, one per hair); with the selected curve's alone, only that curve's; off,
+/// none.
+#[test]
+fn the_exported_view_carries_the_comb_as_shown() {
+    let dir = std::env::temp_dir().join(format!("splinescope-comb-export-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let circle = |x: f64| {
+        Curve::Nurbs(
+            splinescope_core::geom::Nurbs::circle(DVec3::new(x, 0.0, 0.0), 1.0).expect("circle"),
+        )
+    };
+    let mut m = model(scene(vec![circle(0.0), circle(3.0)]), None);
+    m.toggles.show_polygons = false;
+    m.toggles.show_points = false;
+    let hairs = |m: &Interaction, name: &str| {
+        let path = dir.join(name);
+        m.export_view(&path).expect("export");
+        let svg = std::fs::read_to_string(&path).expect("svg");
+        svg.split(" d=\"")
+            .skip(1)
+            .map(|d| d.split('"').next().unwrap_or(""))
+            .map(|d| d.matches('M').count() * usize::from(!d.contains('C') && !d.contains('Q')))
+            .sum::<usize>()
+    };
+    let none = hairs(&m, "off.svg");
+    m.shape.comb = true;
+    m.shape.set_comb_scale(0.3).expect("scale");
+    let both = hairs(&m, "on.svg");
+    m.shape.comb_selected_only = true;
+    m.editor.selected = Some(1);
+    let one = hairs(&m, "one.svg");
+    assert!(both > none + 100, "{none} → {both}");
+    assert!(one > none && one < both, "{none} < {one} < {both}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -207,8 +207,9 @@ impl Interaction {
         }
     }
 
-    /// Writes what is on screen — the canvas right of the panel, with the same camera and
-    /// overlay toggles, curves labelled as on the canvas — as an SVG or PDF figure at
+    /// Writes what is on screen — the canvas right of the panel, with the same camera,
+    /// overlay toggles, comb and markers, curves labelled as on the canvas — as an SVG or
+    /// PDF figure at
     /// `path` (atomically).
     ///
     /// # Errors
@@ -222,6 +223,15 @@ impl Interaction {
             points: self.toggles.show_points,
         };
         opts.labels = true;
+        // The shape overlays as shown: the comb at the panel's scale, the markers.
+        opts.shape = self.shape.marker_options();
+        if self.shape.comb && (!self.shape.comb_selected_only || self.editor.selected.is_some()) {
+            opts.shape.comb = Some(crate::scene::shape::CombScale::Fixed(self.shape.comb_scale));
+            opts.comb_only = self
+                .editor
+                .selected
+                .filter(|_| self.shape.comb_selected_only);
+        }
         let fig = splinescope_figure::build(self.scene(), &opts)?;
         let pdf = path
             .extension()
