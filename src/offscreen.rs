@@ -109,4 +109,26 @@ pub fn annotate(
     )
 }
 
+/// [`annotate`] whose legend also lists the markers `shape` shows.
+///
+/// # Errors
+/// As [`annotate`].
+pub fn annotate_shaped(
+    image: &mut RgbaImage,
+    scene: &Scene,
+    opts: &TextOptions,
+    shape: &ShapeOptions,
+) -> Result<(), splinescope_figure::FigureError> {
+    splinescope_figure::raster::annotate_shaped(
+        &mut splinescope_figure::raster::Canvas {
+            data: &mut image.data,
+            width: image.width,
+            height: image.height,
+        },
+        scene,
+        *opts,
+        shape,
+    )
+}
+
 pub use splinescope_figure::TextOptions;

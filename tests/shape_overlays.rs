@@ -220,3 +220,39 @@ fn bad_comb_scales_are_refused_naming_the_value() {
         assert!(text.contains("--comb"), "{text}");
     }
 }
+
+#[test]
+fn the_legend_lists_the_markers_shown() {
+    let scene = bare(vec![Curve::Bezier(Bezier::new(vec![
+        p(0.0, 0.0),
+        p(1.0, 2.0),
+        p(1.0, -2.0),
+        p(2.0, 0.0),
+    ]))]);
+    let mut opts = FigureOptions::new(400, 300);
+    opts.legend = true;
+    opts.shape.inflections = true;
+    let texts = |fig: &splinescope_figure::Figure| -> Vec<String> {
+        fig.items
+            .iter()
+            .filter_map(|i| match i {
+                Item::Text { text, .. } => Some(text.clone()),
+                _ => None,
+            })
+            .collect()
+    };
+    let fig = build(&scene, &opts).expect("figure");
+    let rows = texts(&fig);
+    assert!(rows.iter().any(|t| t.starts_with("inflection")), "{rows:?}");
+    assert!(rows.iter().any(|t| t.starts_with("cusp")), "{rows:?}");
+    assert!(
+        !rows.iter().any(|t| t.starts_with("intersection")),
+        "{rows:?}"
+    );
+    opts.shape.inflections = false;
+    let rows = texts(&build(&scene, &opts).expect("figure"));
+    assert!(
+        !rows.iter().any(|t| t.starts_with("inflection")),
+        "{rows:?}"
+    );
+}

@@ -6,7 +6,7 @@ use glam::DVec2;
 
 use splinescope_core::geom::ParamCurve;
 
-use splinescope_scene::format::draw::Stroke;
+use splinescope_scene::format::draw::{MarkerKind, Stroke, marker_style};
 use splinescope_scene::format::{Color, Scene};
 
 use super::fit::{Piece, Projection, Seg};
@@ -23,6 +23,19 @@ const TICK_SIZE: f64 = 10.0;
 const LEGEND_ROWS: usize = 24;
 
 const INK: Color = Color([0.2, 0.2, 0.2, 1.0]);
+
+/// The curve colour a legend's marker rows are shown in.
+const LEGEND_CURVE: Color = Color([0.12, 0.47, 0.71, 1.0]);
+
+/// What a legend row shows left of its text.
+enum Mark {
+    /// A curve's stroke.
+    Line(Color, f32),
+    /// A marker kind.
+    Marker(MarkerKind),
+    /// Nothing.
+    None,
+}
 const GRID: Color = Color([0.85, 0.85, 0.85, 1.0]);
 
 fn line(a: DVec2, b: DVec2, stroke: Stroke) -> Item {
@@ -102,19 +115,25 @@ fn darker(c: Color) -> Color {
 
 /// The legend: a box in the top right corner with a stroke sample and the label of each
 /// curve (the first [`LEGEND_ROWS`], then how many more).
-pub fn legend(scene: &Scene, size: DVec2, out: &mut Vec<Item>) {
-    let mut rows: Vec<(Option<(Color, f32)>, String)> = scene
+pub fn legend(scene: &Scene, size: DVec2, markers: &[MarkerKind], out: &mut Vec<Item>) {
+    let mut rows: Vec<(Mark, String)> = scene
         .curves
         .iter()
         .take(LEGEND_ROWS)
-        .map(|sc| (Some((sc.style.color, sc.style.width)), sc.label()))
+        .map(|sc| (Mark::Line(sc.style.color, sc.style.width), sc.label()))
         .collect();
     if scene.curves.len() > LEGEND_ROWS {
         rows.push((
-            None,
+            Mark::None,
             format!("… and {} more", scene.curves.len() - LEGEND_ROWS),
         ));
     }
+    // Each marker kind shown, in a neutral curve colour (each marker takes its curve's).
+    rows.extend(
+        markers
+            .iter()
+            .map(|&k| (Mark::Marker(k), k.label().to_owned())),
+    );
     if rows.is_empty() {
         return;
     }
@@ -133,14 +152,25 @@ pub fn legend(scene: &Scene, size: DVec2, out: &mut Vec<Item>) {
         fill: Color([1.0, 1.0, 1.0, 0.9]),
         stroke: Some(Stroke::solid(Color([0.6, 0.6, 0.6, 1.0]), 0.75)),
     });
-    for (i, (style, text)) in rows.into_iter().enumerate() {
+    for (i, (mark, text)) in rows.into_iter().enumerate() {
         let mid = min.y + 6.0 + line_h * (i as f64 + 0.5);
-        if let Some((color, w)) = style {
-            out.push(line(
+        match mark {
+            Mark::Line(color, w) => out.push(line(
                 DVec2::new(min.x + 8.0, mid),
                 DVec2::new(min.x + 8.0 + sample, mid),
                 Stroke::solid(color, w),
-            ));
+            )),
+            Mark::Marker(kind) => {
+                let (ring, core) = marker_style(kind, LEGEND_CURVE);
+                for s in [ring, core] {
+                    out.push(Item::Disc {
+                        center: DVec2::new(min.x + 8.0 + 0.5 * sample, mid),
+                        radius: 0.5 * f64::from(s.width_px),
+                        color: s.color,
+                    });
+                }
+            }
+            Mark::None => {}
         }
         out.push(Item::Text {
             at: DVec2::new(min.x + 8.0 + sample + 6.0, mid + 0.35 * LEGEND_SIZE),

@@ -40,7 +40,7 @@ use glam::{DVec2, DVec3};
 use thiserror::Error;
 
 use splinescope_scene::camera::Camera;
-use splinescope_scene::format::draw::{COMB_WIDTH_PX, Stroke, Switches, comb_strokes};
+use splinescope_scene::format::draw::{COMB_WIDTH_PX, MarkerKind, Stroke, Switches, comb_strokes};
 use splinescope_scene::format::encoding::{Encoding, encode_with};
 use splinescope_scene::format::shape::{ShapeOptions, marker_points, markers};
 use splinescope_scene::format::{Color, Scene};
@@ -410,7 +410,7 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
         return Err(FigureError::AxesIn3d);
     }
     let mut encoding = encode_with(scene, opts.switches);
-    if opts.shape.any_marker() {
+    if opts.curves && opts.shape.any_marker() {
         let found = markers(scene, &opts.shape);
         encoding
             .overlays
@@ -432,7 +432,7 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
         annotate::labels(scene, &proj, size, &mut items);
     }
     if opts.legend {
-        annotate::legend(scene, size, &mut items);
+        annotate::legend(scene, size, &shown_markers(&opts.shape), &mut items);
     }
     let fig = Figure {
         width: size.x,
@@ -446,6 +446,19 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
     };
     fig.check_finite()?;
     Ok(fig)
+}
+
+/// The marker kinds `shape` shows, in the legend's order.
+#[must_use]
+pub fn shown_markers(shape: &ShapeOptions) -> Vec<MarkerKind> {
+    MarkerKind::ALL
+        .into_iter()
+        .filter(|k| match k {
+            MarkerKind::Inflection | MarkerKind::Cusp => shape.inflections,
+            MarkerKind::CurvatureMax | MarkerKind::CurvatureMin => shape.curvature_extrema,
+            MarkerKind::Intersection | MarkerKind::SelfIntersection => shape.intersections,
+        })
+        .collect()
 }
 
 /// Hairs of a comb per lowered segment in a figure (uniform in the segment's parameter,

@@ -13,6 +13,7 @@ use super::fit::Seg;
 use super::text::FONT;
 use super::{Anchor, Figure, FigureError, FigureOptions, Item, TextOptions};
 use splinescope_scene::format::Scene;
+use splinescope_scene::format::shape::ShapeOptions;
 
 /// An image to draw on.
 pub struct Canvas<'a> {
@@ -168,7 +169,22 @@ impl Canvas<'_> {
                     self.text(font, *at, *size, text, *color, *anchor);
                 }
             }
-            Item::Disc { .. } => {}
+            Item::Disc {
+                center,
+                radius,
+                color,
+            } => {
+                let r = radius + 1.0;
+                for y in (center.y - r).floor() as i64..=(center.y + r).ceil() as i64 {
+                    for x in (center.x - r).floor() as i64..=(center.x + r).ceil() as i64 {
+                        let d = DVec2::new(x as f64 + 0.5, y as f64 + 0.5).distance(*center);
+                        let coverage = (radius + 0.5 - d).clamp(0.0, 1.0);
+                        if coverage > 0.0 {
+                            self.blend(x, y, *color, coverage, only_on);
+                        }
+                    }
+                }
+            }
         }
     }
 }
@@ -200,12 +216,27 @@ pub fn annotate(
     scene: &Scene,
     text: TextOptions,
 ) -> Result<(), FigureError> {
+    annotate_shaped(canvas, scene, text, &ShapeOptions::default())
+}
+
+/// [`annotate`] with the legend's marker rows for the markers `shape` shows (the picture
+/// drawn with them).
+///
+/// # Errors
+/// As [`annotate`].
+pub fn annotate_shaped(
+    canvas: &mut Canvas<'_>,
+    scene: &Scene,
+    text: TextOptions,
+    shape: &ShapeOptions,
+) -> Result<(), FigureError> {
     if !text.any() {
         return Ok(());
     }
     // Only the guides and text: the curves are the GPU's picture already.
     let mut opts = FigureOptions::new(canvas.width, canvas.height).with_text(text);
     opts.curves = false;
+    opts.shape = *shape;
     let fig = super::build(scene, &opts)?;
     draw_guides(&fig, canvas);
     Ok(())

@@ -119,7 +119,12 @@ pub fn run(a: &ExportArgs) -> Result<()> {
                 splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX,
                 &a.shape.options(),
             )?;
-            splinescope::offscreen::annotate(&mut image, &scene, &a.text.options())?;
+            splinescope::offscreen::annotate_shaped(
+                &mut image,
+                &scene,
+                &a.text.options(),
+                &a.shape.options(),
+            )?;
             image.png_bytes(&a.output)?
         }
         Format::Svg | Format::Pdf => {

@@ -69,7 +69,7 @@ fn render(
         tolerance_px,
         &shape.options(),
     )?;
-    splinescope::offscreen::annotate(&mut image, &scene, &text.options())?;
+    splinescope::offscreen::annotate_shaped(&mut image, &scene, &text.options(), &shape.options())?;
     image.write_png(output)?;
     say!(
         "rendered {} curve(s) to {} ({width}×{height}, {})",
