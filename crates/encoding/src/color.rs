@@ -18,10 +18,27 @@ impl Color {
         Color(c)
     }
 
+    /// The colour's bytes, each channel × 255 rounded: what a scene file writes.
+    #[must_use]
+    pub fn to_rgba8(self) -> [u8; 4] {
+        self.0.map(|c| (c * 255.0).round() as u8)
+    }
+
+    /// A colour from its bytes, each ÷ 255: what a scene file reads.
+    #[must_use]
+    pub const fn from_rgba8(bytes: [u8; 4]) -> Color {
+        Color([
+            bytes[0] as f32 / 255.0,
+            bytes[1] as f32 / 255.0,
+            bytes[2] as f32 / 255.0,
+            bytes[3] as f32 / 255.0,
+        ])
+    }
+
     /// As `#rrggbb` or `#rrggbbaa` (alpha written only when not opaque).
     #[must_use]
     pub fn to_hex(self) -> String {
-        let b = self.0.map(|c| (c * 255.0).round() as u8);
+        let b = self.to_rgba8();
         if b[3] == 255 {
             format!("#{:02x}{:02x}{:02x}", b[0], b[1], b[2])
         } else {

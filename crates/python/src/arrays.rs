@@ -34,8 +34,9 @@ impl Params<'_> {
     }
 }
 
-/// `obj` as a float64 array, converted once by `numpy.ascontiguousarray` when it is not
-/// already a contiguous float64 array.
+/// `obj` as a float64 array, converted once by `numpy.require` when it is not already a
+/// contiguous, aligned float64 array (arrays rebuilt from bytes — by pickle, Dask, shared
+/// memory — may be misaligned).
 pub fn float_array<'py>(
     obj: &Bound<'py, PyAny>,
     what: &str,
@@ -43,13 +44,16 @@ pub fn float_array<'py>(
     if let Ok(a) = obj.cast::<PyArrayDyn<f64>>()
         && a.is_contiguous()
     {
-        return Ok(a.readonly());
+        let read = a.readonly();
+        if read.as_slice().is_ok() {
+            return Ok(read);
+        }
     }
     let py = obj.py();
     let numpy = py.import("numpy")?;
     let float64 = numpy.getattr("float64")?;
     let converted = numpy
-        .call_method1("ascontiguousarray", (obj, float64))
+        .call_method1("require", (obj, float64, "CA"))
         .map_err(|e| {
             PyValueError::new_err(format!(
                 "{what} must be numbers (a float64 array or something numpy converts to one): {}",
@@ -134,4 +138,68 @@ pub fn shaped<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let a: Bound<'py, PyArray1<f64>> = flat.into_pyarray(py);
     Ok(a.reshape(shape.to_vec())?.into_any())
+}
+
+/// `out=` (numpy's convention): a C-contiguous, writeable float64 array of exactly
+/// `shape`, to be written in place and returned; anything else is refused with a
+/// [`crate::errors::CurveError`] naming `out` and what is wrong with it.
+///
+/// # Errors
+/// Not a float64 array, another shape, not C-contiguous.
+pub fn out_array<'py>(
+    obj: &Bound<'py, PyAny>,
+    shape: &[usize],
+) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    let refuse = |why: String| crate::errors::raise::<crate::errors::CurveError>(why, "out");
+    let Ok(a) = obj.cast::<PyArrayDyn<f64>>() else {
+        let what = match obj.getattr("dtype") {
+            Ok(dtype) => format!("an array of dtype {dtype}"),
+            Err(_) => format!("{}", obj.get_type().name()?),
+        };
+        return Err(refuse(format!(
+            "out must be a float64 numpy array, not {what}"
+        )));
+    };
+    if a.shape() != shape {
+        let tuple = |s: &[usize]| match s {
+            [n] => format!("({n},)"),
+            _ => format!(
+                "({})",
+                s.iter()
+                    .map(ToString::to_string)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        };
+        return Err(refuse(format!(
+            "out has shape {}, expected {}",
+            tuple(a.shape()),
+            tuple(shape)
+        )));
+    }
+    if !a.is_c_contiguous() {
+        return Err(refuse(
+            "out must be C-contiguous (numpy.ascontiguousarray makes one)".to_owned(),
+        ));
+    }
+    Ok(a.clone())
+}
+
+/// Runs `write` on `out`'s elements (see [`out_array`]), refusing a read-only array or one
+/// whose memory overlaps an argument being read.
+///
+/// # Errors
+/// The array is read-only or overlaps another argument; or `write`'s error.
+pub fn write_out<T>(
+    out: &Bound<'_, PyArrayDyn<f64>>,
+    write: impl FnOnce(&mut [f64]) -> PyResult<T>,
+) -> PyResult<T> {
+    let refuse = |why: &str| crate::errors::raise::<crate::errors::CurveError>(why, "out");
+    let mut rw = out
+        .try_readwrite()
+        .map_err(|_| refuse("out is read-only, or shares memory with an argument being read"))?;
+    let slice = rw
+        .as_slice_mut()
+        .map_err(|_| refuse("out must be C-contiguous and aligned"))?;
+    write(slice)
 }

@@ -25,6 +25,17 @@ const PARALLEL_ABOVE: usize = 32_768;
 /// points written as `dim` coordinates each into one vector.
 pub(crate) fn fill(ts: &[f64], dim: usize, f: &(impl Fn(&[f64], &mut [DVec3]) + Sync)) -> Vec<f64> {
     let mut out = vec![0.0; ts.len() * dim];
+    fill_into(ts, dim, f, &mut out);
+    out
+}
+
+/// [`fill`] into `out` (`ts.len() × dim` values, row-major).
+pub(crate) fn fill_into(
+    ts: &[f64],
+    dim: usize,
+    f: &(impl Fn(&[f64], &mut [DVec3]) + Sync),
+    out: &mut [f64],
+) {
     let block = |(ts, out): (&[f64], &mut [f64])| {
         let mut buf = [DVec3::ZERO; BLOCK];
         let buf = &mut buf[..ts.len()];
@@ -42,7 +53,6 @@ pub(crate) fn fill(ts: &[f64], dim: usize, f: &(impl Fn(&[f64], &mut [DVec3]) + 
             .zip(out.chunks_mut(BLOCK * dim))
             .for_each(block);
     }
-    out
 }
 
 /// One curve: its family, fields, name and style, and its lowering (computed once).
@@ -167,11 +177,31 @@ impl PyCurve {
         ))
     }
 
+    /// Refuses curvatures that left `f64` (infinite), naming the first parameter.
+    fn check_curvature(&self, ts: &[f64], out: &[f64], scalar: bool) -> PyResult<()> {
+        let Some(k) = out.iter().position(|k| k.is_infinite()) else {
+            return Ok(());
+        };
+        let name = if scalar {
+            "t".to_owned()
+        } else {
+            format!("t[{k}]")
+        };
+        Err(raise::<CurveError>(
+            format!(
+                "{name} = {}: the curvature of this {} curve is not a finite number there (its derivatives or their ratio leave f64)",
+                ts[k],
+                self.curve.curve.family()
+            ),
+            &name,
+        ))
+    }
+
     /// `f(t)` for every parameter, as `(N, dim)` (or `(dim,)` for a scalar).
     fn map_params<'py>(
         &self,
         py: Python<'py>,
-        t: &Bound<'py, PyAny>,
+        (t, out): (&Bound<'py, PyAny>, Option<&Bound<'py, PyAny>>),
         what: &str,
         f: impl Fn(&[f64], &mut [DVec3]) + Sync,
     ) -> PyResult<Bound<'py, PyAny>> {
@@ -181,6 +211,22 @@ impl PyCurve {
         self.check_domain(ts, "t", scalar)?;
         let dim = self.dim;
         let n = ts.len();
+        if let Some(out) = out {
+            let shape = match &params {
+                Params::Scalar(_) => vec![dim],
+                Params::Array(a) => vec![a.shape()[0], dim],
+            };
+            let array = arrays::out_array(out, &shape)?;
+            arrays::write_out(&array, |values| {
+                if n > DETACH_ABOVE {
+                    py.detach(|| fill_into(ts, dim, &f, values));
+                } else {
+                    fill_into(ts, dim, &f, values);
+                }
+                self.check_finite(ts, values, dim, what, scalar)
+            })?;
+            return Ok(array.into_any());
+        }
         let run = || fill(ts, dim, &f);
         let out = if n > DETACH_ABOVE {
             py.detach(run)
@@ -259,19 +305,27 @@ impl PyCurve {
         arrays::points_array(py, self.curve.curve.control_points(), self.dim)
     }
 
-    /// `P(t)`: a number gives `(dim,)`, a 1-D array `(N, dim)`.
-    fn eval<'py>(&self, py: Python<'py>, t: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+    /// `P(t)`: a number gives `(dim,)`, a 1-D array `(N, dim)`; with `out`, written into
+    /// that array (C-contiguous float64 of that shape) and returned.
+    #[pyo3(signature = (t, out=None))]
+    fn eval<'py>(
+        &self,
+        py: Python<'py>,
+        t: &Bound<'py, PyAny>,
+        out: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         let sampler = &self.sampler;
-        self.map_params(py, t, "point", |ts, out| sampler.eval_into(ts, out))
+        self.map_params(py, (t, out), "point", |ts, o| sampler.eval_into(ts, o))
     }
 
     /// The first or second derivative with respect to `t`.
-    #[pyo3(signature = (t, order=1))]
+    #[pyo3(signature = (t, order=1, out=None))]
     fn derivative<'py>(
         &self,
         py: Python<'py>,
         t: &Bound<'py, PyAny>,
         order: u32,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         match order {
             1 | 2 => {
@@ -281,7 +335,7 @@ impl PyCurve {
                 } else {
                     "second derivative"
                 };
-                self.map_params(py, t, what, |ts, out| d.eval_into(ts, out))
+                self.map_params(py, (t, out), what, |ts, o| d.eval_into(ts, o))
             }
             _ => Err(raise::<CurveError>(
                 format!("order must be 1 or 2, not {order}"),
@@ -292,18 +346,19 @@ impl PyCurve {
 
     /// The curvature `κ = |P′ × P″| / |P′|³` (NaN where `P′ = 0`): a number for a number,
     /// `(N,)` for an array.
+    #[pyo3(signature = (t, out=None))]
     fn curvature<'py>(
         &self,
         py: Python<'py>,
         t: &Bound<'py, PyAny>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let params = arrays::params(t, "t")?;
         let ts = params.as_slice()?;
         let scalar = matches!(params, Params::Scalar(_));
         self.check_domain(ts, "t", scalar)?;
         let (d1, d2) = (self.derivative_sampler(1), self.derivative_sampler(2));
-        let run = || {
-            let mut out = vec![0.0; ts.len()];
+        let run = |out: &mut [f64]| {
             let block = |(ts, out): (&[f64], &mut [f64])| {
                 let mut p1 = [DVec3::ZERO; BLOCK];
                 let mut p2 = [DVec3::ZERO; BLOCK];
@@ -326,33 +381,29 @@ impl PyCurve {
             } else {
                 ts.chunks(BLOCK).zip(out.chunks_mut(BLOCK)).for_each(block);
             }
-            out
         };
-        let out = if ts.len() > DETACH_ABOVE {
-            py.detach(run)
-        } else {
-            run()
-        };
-        if let Some(k) = out.iter().position(|k| k.is_infinite()) {
-            let name = if scalar {
-                "t".to_owned()
+        let compute = |out: &mut [f64]| -> PyResult<()> {
+            if ts.len() > DETACH_ABOVE {
+                py.detach(|| run(out));
             } else {
-                format!("t[{k}]")
-            };
-            return Err(raise::<CurveError>(
-                format!(
-                    "{name} = {}: the curvature of this {} curve is not a finite number there (its derivatives or their ratio leave f64)",
-                    ts[k],
-                    self.curve.curve.family()
-                ),
-                &name,
-            ));
+                run(out);
+            }
+            self.check_curvature(ts, out, scalar)
+        };
+        if let Some(out) = out {
+            // A number's curvature goes into a 0-d array, an array's into `(N,)`.
+            let shape: Vec<usize> = if scalar { Vec::new() } else { vec![ts.len()] };
+            let array = arrays::out_array(out, &shape)?;
+            arrays::write_out(&array, compute)?;
+            return Ok(array.into_any());
         }
+        let mut values = vec![0.0; ts.len()];
+        compute(&mut values)?;
         match params {
-            Params::Scalar(_) => Ok(pyo3::types::PyFloat::new(py, out[0]).into_any()),
+            Params::Scalar(_) => Ok(pyo3::types::PyFloat::new(py, values[0]).into_any()),
             Params::Array(_) => {
-                let n = out.len();
-                arrays::shaped(py, out, &[n])
+                let n = values.len();
+                arrays::shaped(py, values, &[n])
             }
         }
     }
@@ -365,7 +416,7 @@ impl PyCurve {
             .map(|j| splinescope_core::geom::batch::uniform(a, b, j, n))
             .collect();
         let arr = numpy::IntoPyArray::into_pyarray(ts, py);
-        self.eval(py, arr.as_any())
+        self.eval(py, arr.as_any(), None)
     }
 
     /// The exact Bézier segments: a list of `(t0, t1, points (degree + 1, dim))`, and for

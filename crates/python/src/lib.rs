@@ -27,6 +27,7 @@ fn _splinescope(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(many::intersections, m)?)?;
     m.add_function(wrap_pyfunction!(scene::compare_images, m)?)?;
     m.add_function(wrap_pyfunction!(many::rust_eval_seconds, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::stress_scene, m)?)?;
     m.add(
         "FAMILY_NAMES",
         splinescope_core::geom::Curve::FAMILY_NAMES.to_vec(),

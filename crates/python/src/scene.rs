@@ -91,6 +91,13 @@ impl PyScene {
         }
     }
 
+    /// The scene as JSON text in the canonical form (every number in its shortest
+    /// round-trip spelling, keys in the format's order): equal for equal scenes whatever
+    /// form their files had.
+    fn canonical_json(&self) -> String {
+        to_json_string(&self.scene)
+    }
+
     /// Writes the scene to `path` atomically (a temporary file renamed over it: a crash
     /// never leaves half a file), keeping the form of the text it was read from.
     fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
@@ -431,4 +438,37 @@ pub fn compare_images(
         .detach(|| compare(&a, &r, &tolerance))
         .map_err(|e| raise::<ImageError>(e.to_string(), ""))?;
     serde_json::to_string(&figures).map_err(|e| raise::<ImageError>(e.to_string(), ""))
+}
+
+/// The stress generator's scene (`view --stress`, `bench --families`): `curves` random
+/// curves of `family` and `degree`, each in a unit cell of a square grid, from `seed`.
+#[pyfunction]
+#[pyo3(signature = (curves, family="bezier", degree=3, seed=1))]
+pub fn stress_scene(curves: usize, family: &str, degree: usize, seed: u64) -> PyResult<PyScene> {
+    use splinescope_scene::format::generate::{StressFamily, StressOptions, random_bezier_scene};
+    let family: StressFamily =
+        family
+            .parse()
+            .map_err(|e: splinescope_scene::format::generate::UnknownFamily| {
+                raise::<SceneError>(e.to_string(), "family")
+            })?;
+    if !(1..=31).contains(&degree) {
+        return Err(raise::<SceneError>(
+            format!("degree {degree}: must be 1 to 31"),
+            "degree",
+        ));
+    }
+    splinescope_scene::limits::CURVES
+        .check(curves as u64)
+        .map_err(|e| raise::<SceneError>(e.to_string(), "curves"))?;
+    Ok(PyScene {
+        scene: random_bezier_scene(StressOptions {
+            curves,
+            degree,
+            seed,
+            family,
+            ..StressOptions::default()
+        }),
+        original: None,
+    })
 }

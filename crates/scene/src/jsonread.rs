@@ -453,9 +453,9 @@ pub(crate) fn parse_hex_color(s: &str) -> Option<Color> {
     if !(hex.len() == 6 || hex.len() == 8) || !hex.chars().all(|c| c.is_ascii_hexdigit()) {
         return None;
     }
-    let mut c = [1.0_f32; 4];
-    for (i, slot) in c.iter_mut().enumerate().take(hex.len() / 2) {
-        *slot = f32::from(u8::from_str_radix(&hex[2 * i..2 * i + 2], 16).ok()?) / 255.0;
+    let mut bytes = [255_u8; 4];
+    for (i, slot) in bytes.iter_mut().enumerate().take(hex.len() / 2) {
+        *slot = u8::from_str_radix(&hex[2 * i..2 * i + 2], 16).ok()?;
     }
-    Some(Color(c))
+    Some(Color::from_rgba8(bytes))
 }

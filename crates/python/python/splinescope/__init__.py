@@ -48,6 +48,7 @@ __all__ = [
     "Nurbs",
     "Scene",
     "load",
+    "stress_scene",
     "solve",
     "eval_many",
     "intersections",
@@ -61,6 +62,13 @@ __all__ = [
     "ImageError",
     "GpuError",
 ]
+
+
+
+def __dir__() -> List[str]:
+    """The public API (``__all__``) and the version: not the names the module imports."""
+    return sorted(__all__ + ["__version__"])
+
 
 __version__: str = _native.__version__
 #: The families' names in scene files, in the order of the family table.
@@ -220,6 +228,11 @@ def _number(x: Any, what: str) -> float:
     return v
 
 
+def _curve_from_state(text: str, dim: int) -> "Curve":
+    """A pickled curve back from its scene-format text and dimension."""
+    return Curve._wrap(_native._Curve.from_json(text, dim))
+
+
 class Curve:
     """A curve of one of the families; construct it through its family's class.
 
@@ -297,21 +310,61 @@ class Curve:
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.summary()}, dim={self.dim})"
 
+    # -- a value: pickling, copies, equality ---------------------------------------
+
+    def _key(self) -> Tuple[int, str]:
+        # The scene-format text writes every number in its shortest round-trip form, so
+        # two curves have the same text exactly when their numbers are the same bit for
+        # bit (and their family, name and style the same).
+        return (self.dim, self._c.to_json())
+
+    def __reduce__(self) -> Tuple[Any, Tuple[str, int]]:
+        """Pickles (protocols 2–5) as the scene-format text and the dimension: unpickled,
+        every coordinate, knot, weight and shape parameter is the same double."""
+        return (_curve_from_state, (self._c.to_json(), self.dim))
+
+    def __copy__(self) -> "Curve":
+        # Curves are immutable (every edit makes a new one): a copy may share the value.
+        return Curve._wrap(self._c)
+
+    def __deepcopy__(self, memo: Dict[int, Any]) -> "Curve":
+        return _curve_from_state(self._c.to_json(), self.dim)
+
+    def __eq__(self, other: object) -> bool:
+        """Equal: the same family, dimension, name, style and numbers, bit for bit."""
+        if not isinstance(other, Curve):
+            return NotImplemented
+        return self._key() == other._key()
+
+    def __hash__(self) -> int:
+        return hash(self._key())
+
     # -- evaluation -----------------------------------------------------------------
 
-    def eval(self, t: ArrayLike) -> np.ndarray:
-        """``P(t)``: shape ``(dim,)`` for a number, ``(N, dim)`` for an array."""
-        return self._c.eval(t)
+    def eval(self, t: ArrayLike, out: Optional[np.ndarray] = None) -> np.ndarray:
+        """``P(t)``: shape ``(dim,)`` for a number, ``(N, dim)`` for an array.
+
+        ``out``: numpy's convention — a C-contiguous, writeable float64 array of that
+        shape, written in place and returned (a loop that evaluates the same number of
+        parameters each step allocates nothing); any other array is refused with a
+        :class:`CurveError` naming ``out``."""
+        return self._c.eval(t, out)
 
     __call__ = eval
 
-    def derivative(self, t: ArrayLike, order: int = 1) -> np.ndarray:
-        """The first or second derivative with respect to ``t``."""
-        return self._c.derivative(t, _int(order, "order", 1, 2, "derivative"))
+    def derivative(
+        self, t: ArrayLike, order: int = 1, out: Optional[np.ndarray] = None
+    ) -> np.ndarray:
+        """The first or second derivative with respect to ``t`` (``out`` as for
+        :meth:`eval`)."""
+        return self._c.derivative(t, _int(order, "order", 1, 2, "derivative"), out)
 
-    def curvature(self, t: ArrayLike) -> Union[float, np.ndarray]:
-        """``κ = |P′ × P″| / |P′|³``; NaN where ``P′ = 0``."""
-        return self._c.curvature(t)
+    def curvature(
+        self, t: ArrayLike, out: Optional[np.ndarray] = None
+    ) -> Union[float, np.ndarray]:
+        """``κ = |P′ × P″| / |P′|³``; NaN where ``P′ = 0``. ``out``: a float64 array of
+        shape ``(N,)`` (``()`` for a number), written in place and returned."""
+        return self._c.curvature(t, out)
 
     def sample(self, n: int) -> np.ndarray:
         """``n`` points at uniform parameters over the domain, ends included (``n`` at
@@ -834,6 +887,11 @@ _CLASSES = {
 }
 
 
+def _scene_from_state(text: str) -> "Scene":
+    """A pickled scene back from its JSON text."""
+    return Scene._wrap(_native._Scene.from_json(text))
+
+
 class Scene:
     """A scene: curves, view, annotations (``docs/scene-format.md``)."""
 
@@ -880,6 +938,30 @@ class Scene:
     def to_json(self) -> str:
         """The scene as JSON text, in the form it was read in."""
         return self._s.to_json()
+
+    # -- a value: pickling, copies, equality ---------------------------------------
+
+    def __reduce__(self) -> Tuple[Any, Tuple[str]]:
+        """Pickles (protocols 2–5) as its JSON text in the form it was read in: unpickled,
+        every number is the same double and a save writes the same bytes."""
+        return (_scene_from_state, (self._s.to_json(),))
+
+    def __copy__(self) -> "Scene":
+        # Scenes are immutable (a solve returns a new one): a copy may share the value.
+        return Scene._wrap(self._s)
+
+    def __deepcopy__(self, memo: Dict[int, Any]) -> "Scene":
+        return _scene_from_state(self._s.to_json())
+
+    def __eq__(self, other: object) -> bool:
+        """Equal: the same curves (as :class:`Curve` compares them), view, annotations,
+        name and background — whatever form their files were written in."""
+        if not isinstance(other, Scene):
+            return NotImplemented
+        return self._s.canonical_json() == other._s.canonical_json()
+
+    def __hash__(self) -> int:
+        return hash(self._s.canonical_json())
 
     def save(self, path: Any) -> None:
         """Writes the scene atomically; an unedited scene keeps the file's bytes."""
@@ -971,6 +1053,20 @@ class Scene:
 
     def __repr__(self) -> str:
         return repr(self._s)
+
+
+def stress_scene(curves: int, family: str = "bezier", degree: int = 3, seed: int = 1) -> Scene:
+    """The stress generator's scene (``view --stress``, ``bench --families``): ``curves``
+    random curves of ``family`` (a name of :data:`FAMILY_NAMES`) and ``degree`` (1–31),
+    each in a unit cell of a square grid, the same for the same ``seed``."""
+    return Scene._wrap(
+        _native.stress_scene(
+            _int(curves, "curves", 0, 2**63 - 1, "stress_scene"),
+            _str(family, "family", "stress_scene"),
+            _int(degree, "degree", 1, 31, "stress_scene"),
+            _int(seed, "seed", 0, 2**64 - 1, "stress_scene"),
+        )
+    )
 
 
 def load(path: Any) -> Scene:

@@ -139,7 +139,11 @@ pub fn random_bezier_scene(opts: StressOptions) -> Scene {
                 name: None,
                 curve,
                 style: Style {
-                    color: Color([0.2 + 0.6 * hue, 0.3, 0.8 - 0.6 * hue, 1.0]),
+                    // On the 8-bit grid scene files write, so that a generated scene
+                    // survives a save (or a pickle) unchanged.
+                    color: Color::from_rgba8(
+                        Color([0.2 + 0.6 * hue, 0.3, 0.8 - 0.6 * hue, 1.0]).to_rgba8(),
+                    ),
                     width: 1.0,
                     show_polygon: false,
                     show_points: false,

@@ -87,7 +87,7 @@ fn decode_scene(root: &Node<'_>) -> Result<Scene, SceneError> {
 }
 
 /// The default colour of annotations.
-const ANNOTATION_COLOR: Color = Color([0.35, 0.35, 0.35, 0.9]);
+const ANNOTATION_COLOR: Color = Color::from_rgba8([89, 89, 89, 230]);
 
 fn decode_annotation(node: &Node<'_>) -> Result<Annotation, SceneError> {
     let obj = node.object(&["polyline", "points", "color", "width", "label"])?;

@@ -38,16 +38,18 @@ pub const FORMAT_VERSION: u32 = 1;
 /// Samples per Bézier segment of the stress scenes and benchmarks.
 pub const DEFAULT_SAMPLES_PER_SEGMENT: u32 = 64;
 
-/// The palette curves take their colour from, by index, when the scene gives none.
+/// The palette curves take their colour from, by index, when the scene gives none
+/// (tab10's first eight), on the 8-bit grid scene files write: a scene saved and read
+/// back (or pickled) keeps its colours exactly.
 pub const PALETTE: [Color; 8] = [
-    Color([0.12, 0.47, 0.71, 1.0]),
-    Color([0.84, 0.15, 0.16, 1.0]),
-    Color([0.17, 0.63, 0.17, 1.0]),
-    Color([1.0, 0.50, 0.05, 1.0]),
-    Color([0.58, 0.40, 0.74, 1.0]),
-    Color([0.55, 0.34, 0.29, 1.0]),
-    Color([0.89, 0.47, 0.76, 1.0]),
-    Color([0.09, 0.75, 0.81, 1.0]),
+    Color::from_rgba8([31, 119, 180, 255]),
+    Color::from_rgba8([214, 39, 40, 255]),
+    Color::from_rgba8([44, 160, 44, 255]),
+    Color::from_rgba8([255, 127, 14, 255]),
+    Color::from_rgba8([148, 103, 189, 255]),
+    Color::from_rgba8([140, 86, 75, 255]),
+    Color::from_rgba8([227, 119, 194, 255]),
+    Color::from_rgba8([23, 190, 207, 255]),
 ];
 
 /// How one curve is drawn.

@@ -363,7 +363,7 @@ pub(super) fn run_cubic_region(
     for line in &boundary {
         scene.annotations.push(Annotation {
             shape: AnnotationShape::Polyline(line.clone()),
-            color: Color([0.45, 0.45, 0.45, 0.9]),
+            color: Color::from_rgba8([115, 115, 115, 230]),
             width: 1.5,
             label: Some(format!("allowed region of curves[{}]", r.curve)),
         });

@@ -193,7 +193,7 @@ fn check_outputs(scene: &Scene, node: &Node<'_>, report: &Report) -> Result<(), 
 
 /// The colour of target markers: each request's targets are marked in the scene (red
 /// discs), so the result can be checked by eye.
-pub const TARGET_COLOR: Color = Color([0.85, 0.1, 0.1, 1.0]);
+pub const TARGET_COLOR: Color = Color::from_rgba8([217, 26, 26, 255]);
 
 /// Reads one request object into its typed request: the method, only the fields it
 /// reads, an existing curve, then the method's own fields.
