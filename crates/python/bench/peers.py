@@ -16,6 +16,8 @@ Cases (array conversion included in every timing):
      one can beat;
   6. the binding's overhead: BSpline.eval against the same evaluation made in Rust
      (splinescope._splinescope.rust_eval_seconds), 1,000,000 points;
+  8. BSpline.eval(t, out=…) into an array allocated once, one thread and two (case 1's
+     curve and parameters);
   7. curve–curve intersection per pair, bezier's Curve.intersect vs Curve.intersect
      (cubics crossing three times, a tangency, degree 7 crossing), and arc length
      (bezier's Curve.length vs Curve.length at 1e-12) on 200 random cubics.
@@ -62,6 +64,9 @@ def measure():
     out["write_limit_s"] = best(lambda: np.multiply.outer(t, [1.0, 1.0]))
     out["bspline_scipy_s"] = best(lambda: sci(t))
     out["bspline_splinescope_s"] = best(lambda: ours.eval(t))
+    # 8. the same into an array allocated once (out=): a loop's steady state.
+    buf = np.empty((n_eval, 2))
+    out["bspline_splinescope_out_s"] = best(lambda: ours.eval(t, out=buf))
 
     # 5. the binding's overhead on the same case.
     native = ours._c
@@ -178,6 +183,8 @@ def main():
         "bspline_vs_scipy_1_thread": one["bspline_scipy_s"] / one["bspline_splinescope_s"],
         "bspline_vs_scipy_2_threads": two["bspline_scipy_s"] / two["bspline_splinescope_s"],
         "bspline_2_threads_over_1": one["bspline_splinescope_s"] / two["bspline_splinescope_s"],
+        "bspline_out_vs_scipy_1_thread": one["bspline_scipy_s"] / one["bspline_splinescope_out_s"],
+        "bspline_out_vs_scipy_2_threads": two["bspline_scipy_s"] / two["bspline_splinescope_out_s"],
         "interp_vs_scipy_1_thread": one["interp_scipy_s"] / one["interp_splinescope_s"],
         "binding_overhead_1_thread": one["bspline_splinescope_s"] / one["bspline_rust_s"] - 1,
         "binding_overhead_2_threads": two["bspline_splinescope_s"] / two["bspline_rust_s"] - 1,
