@@ -264,6 +264,17 @@ impl PyScene {
             })
     }
 
+    /// The scene as an SVG figure (`splinescope export`'s: exact curves, the scene's own
+    /// view), labelled when `labels`: what a notebook shows.
+    #[pyo3(signature = (width=640, height=400, labels=true))]
+    fn svg(&self, width: u32, height: u32, labels: bool) -> PyResult<String> {
+        let mut opts = splinescope_figure::FigureOptions::new(width, height);
+        opts.labels = labels;
+        let figure = splinescope_figure::build(&self.scene, &opts)
+            .map_err(|e| raise::<ImageError>(e.to_string(), ""))?;
+        Ok(splinescope_figure::svg::write(&figure))
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "<scene {}with {} curve(s)>",

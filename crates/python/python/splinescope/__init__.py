@@ -310,6 +310,11 @@ class Curve:
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.summary()}, dim={self.dim})"
 
+    def _repr_svg_(self) -> str:
+        """A notebook's picture of the curve: an SVG figure of a scene of it alone,
+        labelled."""
+        return Scene([self]).svg(480, 300)
+
     # -- a value: pickling, copies, equality ---------------------------------------
 
     def _key(self) -> Tuple[int, str]:
@@ -1048,8 +1053,18 @@ class Scene:
             shape,
         )
 
+    def svg(self, width: int = 640, height: int = 400, labels: bool = True) -> str:
+        """The scene as an SVG figure (``splinescope export``'s: exact curves in the
+        scene's view), its curves labelled unless ``labels=False``."""
+        w, h = _size(width, height, "svg")
+        return self._s.svg(w, h, _bool(labels, "labels", "svg"))
+
     def _repr_png_(self) -> bytes:
         return self.png()
+
+    def _repr_svg_(self) -> str:
+        # A notebook's vector picture of the scene, labelled; no GPU needed.
+        return self.svg()
 
     def __repr__(self) -> str:
         return repr(self._s)
