@@ -10,7 +10,6 @@
 //! delete them), and a `--report` path that is a symbolic link is followed, like every
 //! other output.
 
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
@@ -19,6 +18,7 @@ use thiserror::Error;
 use crate::gpu::{GpuContext, Pipelines};
 use crate::image::{Comparison, ComparisonImages, RgbaImage, Tolerance, compare_images};
 use crate::scene::Scene;
+use splinescope_image::report::{ReportRow, figures_text, write_report};
 
 /// How to run a regression.
 #[derive(Debug, Clone, PartialEq)]
@@ -509,13 +509,6 @@ fn encode_blessed(compared: &[Compared]) -> Result<Vec<(PathBuf, Vec<u8>)>, Regr
         .collect()
 }
 
-fn html_escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
 /// Builds the report in a hidden directory beside `dir` and returns that directory.
 fn stage_report(
     dir: &Path,
@@ -554,69 +547,25 @@ fn fill_report(
 ) -> std::io::Result<()> {
     std::fs::create_dir(staging)
         .map_err(|e| std::io::Error::new(e.kind(), format!("{}: {e}", staging.display())))?;
-    let mut rows = String::new();
-    for c in compared {
-        let r = &c.result;
-        let stem = Path::new(&r.scene)
-            .file_stem()
-            .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
-        let mut cells = String::new();
-        for (kind, image) in [
-            ("reference", c.reference.as_ref()),
-            ("actual", c.actual.as_ref()),
-            ("diff", c.pictures.as_ref().map(|p| &p.diff)),
-            ("flip", c.pictures.as_ref().map(|p| &p.flip)),
-        ] {
-            match image {
-                Some(image) => {
-                    let file = format!("{stem}.{kind}.png");
-                    image
-                        .write_png(&staging.join(&file))
-                        .map_err(|e| std::io::Error::other(e.to_string()))?;
-                    let file = html_escape(&file);
-                    let _ = write!(
-                        cells,
-                        "<td><a href=\"{file}\"><img src=\"{file}\" alt=\"{kind}\"></a></td>"
-                    );
-                }
-                None => cells.push_str("<td class=\"none\">—</td>"),
+    let rows: Vec<ReportRow<'_>> = compared
+        .iter()
+        .map(|c| {
+            let r = &c.result;
+            ReportRow {
+                name: r.scene.clone(),
+                status: format!("{:?}", r.status).to_lowercase(),
+                figures: r.comparison.as_ref().map_or_else(String::new, figures_text),
+                message: r.message.clone().unwrap_or_default(),
+                images: [
+                    c.reference.as_ref(),
+                    c.actual.as_ref(),
+                    c.pictures.as_ref().map(|p| &p.diff),
+                    c.pictures.as_ref().map(|p| &p.flip),
+                ],
             }
-        }
-        let figures = r.comparison.as_ref().map_or_else(String::new, |m| {
-            format!(
-                "{} px differ ({:.3} %), largest channel difference {}, FLIP mean {:.4}, max {:.4}",
-                m.differing_pixels,
-                m.differing_fraction * 100.0,
-                m.max_channel_diff,
-                m.flip_mean,
-                m.flip_max
-            )
-        });
-        let status = format!("{:?}", r.status).to_lowercase();
-        let _ = writeln!(
-            rows,
-            "<tr class=\"{status}\"><th>{}<br><span class=\"status\">{status}</span><p>{}</p><p>{}</p></th>{cells}</tr>",
-            html_escape(&r.scene),
-            html_escape(&figures),
-            html_escape(r.message.as_deref().unwrap_or("")),
-        );
-    }
-    let summary = report.summary();
-    let page = format!(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
-<title>splinescope regression report</title><style>\
-body{{font-family:sans-serif;margin:1em}}table{{border-collapse:collapse}}\
-td,th{{border:1px solid #ccc;padding:4px;vertical-align:top;text-align:left}}\
-th{{max-width:18em;font-weight:normal}}img{{width:240px;image-rendering:pixelated}}\
-.status{{font-weight:bold}}.differs .status,.missing .status,.error .status{{color:#c00}}\
-.match .status{{color:#080}}.blessed .status{{color:#a60}}</style></head><body>\
-<h1>splinescope regression report</h1><p>{}</p>\
-<table><tr><th>scene</th><th>reference</th><th>actual</th>\
-<th>diff (red: a channel off by more than the tolerance)</th>\
-<th>FLIP error (black: same, yellow: most different)</th></tr>\n{rows}</table></body></html>\n",
-        html_escape(&summary)
-    );
-    crate::files::write_atomic(&staging.join("index.html"), page.as_bytes())
+        })
+        .collect();
+    write_report(staging, &report.summary(), &rows)
 }
 
 #[cfg(test)]
@@ -645,13 +594,5 @@ mod tests {
             Err(RegressError::NoScenes(_))
         ));
         std::fs::remove_dir_all(&base).unwrap();
-    }
-
-    #[test]
-    fn html_is_escaped() {
-        assert_eq!(
-            html_escape("<a href=\"x\">&</a>"),
-            "&lt;a href=&quot;x&quot;&gt;&amp;&lt;/a&gt;"
-        );
     }
 }

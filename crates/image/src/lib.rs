@@ -24,6 +24,7 @@
 #![forbid(unsafe_code)]
 
 pub mod compare;
+pub mod report;
 
 use splinescope_io::{files, limits};
 
