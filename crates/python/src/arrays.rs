@@ -10,9 +10,16 @@ use numpy::{
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyFloat;
+use rayon::prelude::*;
 
 /// Past this many values, work runs with the GIL released (other Python threads run).
 pub const DETACH_ABOVE: usize = 4096;
+
+/// Parameters evaluated per block (one stack buffer of points, then written out).
+pub const BLOCK: usize = 256;
+
+/// Past this many parameters, a single curve's evaluation is spread over every core.
+pub const PARALLEL_ABOVE: usize = 32_768;
 
 /// Parameters: one number, or a 1-D array of them.
 pub enum Params<'py> {
@@ -202,4 +209,38 @@ pub fn write_out<T>(
         .as_slice_mut()
         .map_err(|_| refuse("out must be C-contiguous and aligned"))?;
     write(slice)
+}
+
+/// `f` applied to the parameters block by block (spread over every core for many), its
+/// points written as `dim` coordinates each into one vector.
+pub(crate) fn fill(ts: &[f64], dim: usize, f: &(impl Fn(&[f64], &mut [DVec3]) + Sync)) -> Vec<f64> {
+    let mut out = vec![0.0; ts.len() * dim];
+    fill_into(ts, dim, f, &mut out);
+    out
+}
+
+/// [`fill`] into `out` (`ts.len() × dim` values, row-major).
+pub(crate) fn fill_into(
+    ts: &[f64],
+    dim: usize,
+    f: &(impl Fn(&[f64], &mut [DVec3]) + Sync),
+    out: &mut [f64],
+) {
+    let block = |(ts, out): (&[f64], &mut [f64])| {
+        let mut buf = [DVec3::ZERO; BLOCK];
+        let buf = &mut buf[..ts.len()];
+        f(ts, buf);
+        for (o, p) in out.chunks_exact_mut(dim).zip(buf.iter()) {
+            o.copy_from_slice(&p.to_array()[..dim]);
+        }
+    };
+    if ts.len() > PARALLEL_ABOVE {
+        ts.par_chunks(BLOCK)
+            .zip(out.par_chunks_mut(BLOCK * dim))
+            .for_each(block);
+    } else {
+        ts.chunks(BLOCK)
+            .zip(out.chunks_mut(BLOCK * dim))
+            .for_each(block);
+    }
 }

@@ -12,48 +12,8 @@ use splinescope_core::geom::batch::CurveSampler;
 use splinescope_core::geom::{Curve, Lower, ParamCurve, curvature};
 use splinescope_scene::format::{SceneCurve, curve_from_value, curve_to_value};
 
-use crate::arrays::{self, DETACH_ABOVE, Params};
+use crate::arrays::{self, BLOCK, DETACH_ABOVE, PARALLEL_ABOVE, Params, fill, fill_into};
 use crate::errors::{CurveError, SceneError, geom_error, raise, scene_error};
-
-/// Parameters evaluated per block (one stack buffer of points, then written out).
-const BLOCK: usize = 256;
-
-/// Past this many parameters, a single curve's evaluation is spread over every core.
-const PARALLEL_ABOVE: usize = 32_768;
-
-/// `f` applied to the parameters block by block (spread over every core for many), its
-/// points written as `dim` coordinates each into one vector.
-pub(crate) fn fill(ts: &[f64], dim: usize, f: &(impl Fn(&[f64], &mut [DVec3]) + Sync)) -> Vec<f64> {
-    let mut out = vec![0.0; ts.len() * dim];
-    fill_into(ts, dim, f, &mut out);
-    out
-}
-
-/// [`fill`] into `out` (`ts.len() × dim` values, row-major).
-pub(crate) fn fill_into(
-    ts: &[f64],
-    dim: usize,
-    f: &(impl Fn(&[f64], &mut [DVec3]) + Sync),
-    out: &mut [f64],
-) {
-    let block = |(ts, out): (&[f64], &mut [f64])| {
-        let mut buf = [DVec3::ZERO; BLOCK];
-        let buf = &mut buf[..ts.len()];
-        f(ts, buf);
-        for (o, p) in out.chunks_exact_mut(dim).zip(buf.iter()) {
-            o.copy_from_slice(&p.to_array()[..dim]);
-        }
-    };
-    if ts.len() > PARALLEL_ABOVE {
-        ts.par_chunks(BLOCK)
-            .zip(out.par_chunks_mut(BLOCK * dim))
-            .for_each(block);
-    } else {
-        ts.chunks(BLOCK)
-            .zip(out.chunks_mut(BLOCK * dim))
-            .for_each(block);
-    }
-}
 
 /// One curve: its family, fields, name and style, and its lowering (computed once).
 #[pyclass(name = "_Curve", module = "splinescope._splinescope", frozen)]

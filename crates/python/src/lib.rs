@@ -13,6 +13,7 @@ mod arrays;
 mod curve;
 mod errors;
 mod many;
+mod regression;
 mod scene;
 
 use pyo3::prelude::*;
@@ -28,6 +29,10 @@ fn _splinescope(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene::compare_images, m)?)?;
     m.add_function(wrap_pyfunction!(many::rust_eval_seconds, m)?)?;
     m.add_function(wrap_pyfunction!(scene::stress_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(regression::read_png, m)?)?;
+    m.add_function(wrap_pyfunction!(regression::write_png, m)?)?;
+    m.add_function(wrap_pyfunction!(regression::compare_pictures, m)?)?;
+    m.add_function(wrap_pyfunction!(regression::write_report, m)?)?;
     m.add(
         "FAMILY_NAMES",
         splinescope_core::geom::Curve::FAMILY_NAMES.to_vec(),

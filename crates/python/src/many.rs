@@ -9,7 +9,8 @@ use splinescope_core::analysis::CurveAnalysis;
 use splinescope_core::geom::batch::{CurveSampler, sample_many};
 
 use crate::arrays;
-use crate::curve::{PyCurve, analysis_error, check_sample_count, fill, hits_out};
+use crate::arrays::fill;
+use crate::curve::{PyCurve, analysis_error, check_sample_count, hits_out};
 use crate::errors::{CurveError, raise};
 
 /// Every intersecting pair among `curves` (2D): a list of `(i, j, (s, t) pairs (K, 2),

@@ -378,14 +378,14 @@ fn device(py: Python<'_>, choice: BackendChoice) -> PyResult<Device> {
 }
 
 /// An image as an `(height, width, 4)` uint8 array (handed to numpy without copying).
-fn image_array(py: Python<'_>, image: RgbaImage) -> PyResult<Bound<'_, PyAny>> {
+pub(crate) fn image_array(py: Python<'_>, image: RgbaImage) -> PyResult<Bound<'_, PyAny>> {
     let (w, h) = (image.width as usize, image.height as usize);
     let a = numpy::IntoPyArray::into_pyarray(image.data, py);
     Ok(a.reshape(vec![h, w, 4])?.into_any())
 }
 
 /// An `(H, W, 4)` (or `(H, W, 3)`) uint8 array as an image.
-fn array_image(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<RgbaImage> {
+pub(crate) fn array_image(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<RgbaImage> {
     let a = obj.cast::<PyArrayDyn<u8>>().map_err(|_| {
         raise::<ImageError>(
             format!("{what} must be a uint8 numpy array of shape (H, W, 4) or (H, W, 3)"),

@@ -7,6 +7,9 @@ from pathlib import Path
 
 import pytest
 
+# pytest's own fixture for testing plugins (the image-regression plugin's tests).
+pytest_plugins = ["pytester"]
+
 ROOT = Path(__file__).resolve().parents[3]
 SCENES = ROOT / "scenes"
 
