@@ -5,7 +5,41 @@
 use glam::DVec3;
 
 use crate::color::Color;
-use splinescope_core::geom::OverlayKind;
+
+/// What an overlay polyline shows, so that the renderer can style it. Each family says which
+/// polylines explain it (`splinescope_present::Present::overlays`); the draw list styles
+/// them by kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum OverlayKind {
+    /// The control polygon the user edits.
+    ControlPolygon,
+    /// The dual control polygon of a NUBMP curve (`P*_j`).
+    DualPolygon,
+    /// An interpolation piece's inner Bézier points, joined to its ends (tangent handles).
+    TangentHandles,
+    /// The vector `v` of a modified curve, drawn from `Q(t*)` to `R(t*) = Q(t*) + v`.
+    BumpVector,
+}
+
+/// A polyline drawn over a curve to explain it (control polygon, dual polygon, …).
+#[derive(Debug, Clone, PartialEq)]
+pub struct OverlayPolyline {
+    /// What it shows.
+    pub kind: OverlayKind,
+    /// Its vertices, in order.
+    pub points: Vec<DVec3>,
+}
+
+impl OverlayPolyline {
+    /// The control polygon through `points`.
+    #[must_use]
+    pub fn control_polygon(points: &[DVec3]) -> OverlayPolyline {
+        OverlayPolyline {
+            kind: OverlayKind::ControlPolygon,
+            points: points.to_vec(),
+        }
+    }
+}
 
 /// How a polyline or a point set is drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]

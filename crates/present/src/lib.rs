@@ -36,6 +36,7 @@ use glam::DVec3;
 use schemars::JsonSchema;
 use serde::Serialize;
 use splinescope_core::geom::{Curve, GeomError};
+pub use splinescope_encoding::draw::{OverlayKind, OverlayPolyline};
 
 pub use controls::{Control, ControlId, ControlKind, ControlValue};
 
@@ -50,6 +51,11 @@ pub trait Present: Sized {
 
     /// One line describing the curve's structure for the panel ("degree 3", …).
     fn summary(&self) -> String;
+
+    /// The polylines that explain the curve, drawn over it when control polygons are
+    /// shown: its control polygon, and the family's own (a NUBMP curve's dual polygon, an
+    /// interpolation's tangent handles, a modified curve's bump vector).
+    fn overlays(&self) -> Vec<OverlayPolyline>;
 
     /// The curve's shape parameters as they are now, for labels that must not go stale
     /// when they are edited (`t* = 0.3, v = (1, 2)`; a NUBMP curve's parameters that
@@ -100,6 +106,10 @@ macro_rules! define_details {
 
             fn summary(&self) -> String {
                 splinescope_core::each_family!(self, c => c.summary())
+            }
+
+            fn overlays(&self) -> Vec<OverlayPolyline> {
+                splinescope_core::each_family!(self, c => c.overlays())
             }
 
             fn parameter_text(&self) -> Option<String> {

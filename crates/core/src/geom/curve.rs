@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use super::family::{AtTau, Family, OverlayPolyline};
+use super::family::{AtTau, Family};
 use super::{Aabb, BezierSegment, GeomError, Lower, ParamCurve};
 
 /// The one table of curve families: one row per family, `Variant(Type) = "name"`, with
@@ -211,12 +211,6 @@ impl Curve {
     pub fn with_control_points(&self, pts: Vec<DVec3>) -> Result<Curve, GeomError> {
         crate::geom::bezier::check_finite(&pts)?;
         each_family!(self, c => c.with_control_points(pts).map(Into::into))
-    }
-
-    /// The polylines that explain the curve: [`Family::overlays`].
-    #[must_use]
-    pub fn overlays(&self) -> Vec<OverlayPolyline> {
-        each_family!(self, c => c.overlays())
     }
 
     /// A box holding the whole curve: [`Family::control_box`].

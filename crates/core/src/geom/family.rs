@@ -17,30 +17,8 @@ use serde::Serialize;
 use crate::geom::aabb::Aabb;
 use crate::geom::{GeomError, Lower, ParamCurve};
 
-/// What an overlay polyline shows, so that the renderer can style it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum OverlayKind {
-    /// The control polygon the user edits.
-    ControlPolygon,
-    /// The dual control polygon of a NUBMP curve (`P*_j`).
-    DualPolygon,
-    /// An interpolation piece's inner Bézier points, joined to its ends (tangent handles).
-    TangentHandles,
-    /// The vector `v` of a modified curve, drawn from `Q(t*)` to `R(t*) = Q(t*) + v`.
-    BumpVector,
-}
-
-/// A polyline drawn over a curve to explain it (control polygon, dual polygon, …).
-#[derive(Debug, Clone, PartialEq)]
-pub struct OverlayPolyline {
-    /// What it shows.
-    pub kind: OverlayKind,
-    /// Its vertices, in order.
-    pub points: Vec<DVec3>,
-}
-
 /// A curve family: exact `f64` evaluation ([`ParamCurve`]), exact lowering to Bézier
-/// segments ([`Lower`]), and what the editor, the reports and the drawing need.
+/// segments ([`Lower`]), and what the editor and the drawing need of its structure.
 pub trait Family: ParamCurve + Lower + Clone + std::fmt::Debug {
     /// The family's name as written in scene files (`"bezier"`, …).
     const NAME: &'static str;
@@ -56,14 +34,6 @@ pub trait Family: ParamCurve + Lower + Clone + std::fmt::Debug {
     /// The family's own error when the points break it (non-finite values, derived values
     /// that overflow).
     fn with_control_points(&self, points: Vec<DVec3>) -> Result<Self, GeomError>;
-
-    /// The polylines that explain the curve; by default its control polygon.
-    fn overlays(&self) -> Vec<OverlayPolyline> {
-        vec![OverlayPolyline {
-            kind: OverlayKind::ControlPolygon,
-            points: self.control_points().to_vec(),
-        }]
-    }
 
     /// A box holding the whole curve; by default the box of the control points (the
     /// convex-hull property).

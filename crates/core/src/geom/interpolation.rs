@@ -4,7 +4,7 @@ use glam::DVec3;
 
 use super::Aabb;
 use super::bezier::check_finite;
-use super::family::{Family, OverlayKind, OverlayPolyline, lowered_box};
+use super::family::{Family, lowered_box};
 use super::modified::{
     ModifiedBezier, bump, bump_deriv, bump_second_deriv, check_t_star, check_vector,
 };
@@ -317,17 +317,6 @@ impl Family for CubicInterpolation {
 
     fn with_control_points(&self, points: Vec<DVec3>) -> Result<CubicInterpolation, GeomError> {
         CubicInterpolation::try_new(points, Some(self.params.clone()), self.modification)
-    }
-
-    /// Each piece's inner Bézier points joined to its ends: the tangent handles.
-    fn overlays(&self) -> Vec<OverlayPolyline> {
-        self.pieces
-            .iter()
-            .map(|p| OverlayPolyline {
-                kind: OverlayKind::TangentHandles,
-                points: p.points().to_vec(),
-            })
-            .collect()
     }
 
     /// The curve leaves the hull of the interpolated points: it is bounded by its pieces.

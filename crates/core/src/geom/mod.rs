@@ -29,7 +29,7 @@ pub use bezier::Bezier;
 pub use bspline::BSpline;
 pub use curve::Curve;
 pub use error::GeomError;
-pub use family::{AtTau, Family, GroupAtTau, OverlayKind, OverlayPolyline, Xyz, xyz};
+pub use family::{AtTau, Family, GroupAtTau, Xyz, xyz};
 pub use interpolation::{CubicInterpolation, Modification, Reading};
 pub use knots::KnotVector;
 pub use lowering::{BezierSegment, Lower, locate, max_degree};

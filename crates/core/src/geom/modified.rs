@@ -5,7 +5,7 @@
 use glam::DVec3;
 
 use super::Aabb;
-use super::family::{Family, OverlayKind, OverlayPolyline, lowered_box};
+use super::family::{Family, lowered_box};
 use super::{Bezier, BezierSegment, GeomError, Lower, ParamCurve};
 
 /// The bump `S` of paper 002 for `t* ∈ (0, 1)`:
@@ -215,20 +215,6 @@ impl Family for ModifiedBezier {
 
     fn with_control_points(&self, points: Vec<DVec3>) -> Result<ModifiedBezier, GeomError> {
         ModifiedBezier::try_new(Bezier::try_new(points)?, self.t_star, self.v)
-    }
-
-    fn overlays(&self) -> Vec<OverlayPolyline> {
-        let q = self.base.eval(self.t_star);
-        vec![
-            OverlayPolyline {
-                kind: OverlayKind::ControlPolygon,
-                points: self.base.points().to_vec(),
-            },
-            OverlayPolyline {
-                kind: OverlayKind::BumpVector,
-                points: vec![q, q + self.v],
-            },
-        ]
     }
 
     /// The modified curve leaves its base's hull: it is bounded by its two pieces.

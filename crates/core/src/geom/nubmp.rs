@@ -9,7 +9,7 @@ use super::bezier::check_finite;
 use super::bspline::{Elevation, elevation_coefficients};
 use super::exact::Rational;
 
-use super::family::{AtTau, Family, GroupAtTau, OverlayKind, OverlayPolyline, xyz};
+use super::family::{AtTau, Family, GroupAtTau, xyz};
 use super::{BSpline, BezierSegment, GeomError, KnotVector, Lower, ParamCurve};
 
 /// How far a group's sum may be from 1 and still be accepted.
@@ -543,20 +543,6 @@ impl Family for Nubmp {
 
     fn with_control_points(&self, points: Vec<DVec3>) -> Result<Nubmp, GeomError> {
         self.with_points(points)
-    }
-
-    /// The control polygon and the dual polygon `P*_j`.
-    fn overlays(&self) -> Vec<OverlayPolyline> {
-        vec![
-            OverlayPolyline {
-                kind: OverlayKind::ControlPolygon,
-                points: self.points.clone(),
-            },
-            OverlayPolyline {
-                kind: OverlayKind::DualPolygon,
-                points: self.dual.points().to_vec(),
-            },
-        ]
     }
 
     fn derived_field(&self) -> &'static str {

@@ -9,6 +9,7 @@ use splinescope_core::geom::{Bezier, GeomError, Xyz};
 
 use splinescope_core::geom::Family;
 
+use crate::OverlayPolyline;
 use crate::Present;
 use crate::controls::{Control, ControlId, ControlValue, unknown_control};
 
@@ -20,6 +21,10 @@ impl Present for Bezier {
             "Bézier (cubic)",
             Bezier::new(crate::template::arch(center, size)),
         )]
+    }
+
+    fn overlays(&self) -> Vec<OverlayPolyline> {
+        vec![OverlayPolyline::control_polygon(self.points())]
     }
 
     fn summary(&self) -> String {

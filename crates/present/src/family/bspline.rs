@@ -8,6 +8,7 @@ use splinescope_core::geom::{BSpline, GeomError};
 
 use splinescope_core::geom::Family;
 
+use crate::OverlayPolyline;
 use crate::Present;
 use crate::controls::{ControlId, ControlValue, unknown_control};
 use crate::family::nubmp::{NubmpDetails, NubmpStructure, SplineDetails};
@@ -20,6 +21,10 @@ impl Present for BSpline {
         BSpline::try_new(points, crate::template::clamped_knots(6, 4), 4)
             .map(|b| vec![("B-spline (cubic)", b)])
             .unwrap_or_default()
+    }
+
+    fn overlays(&self) -> Vec<OverlayPolyline> {
+        vec![OverlayPolyline::control_polygon(self.points())]
     }
 
     fn summary(&self) -> String {

@@ -10,6 +10,7 @@ use splinescope_core::geom::Family;
 
 use crate::Present;
 use crate::controls::{Control, ControlId, ControlKind, ControlValue, unknown_control};
+use crate::{OverlayKind, OverlayPolyline};
 
 impl Present for CubicInterpolation {
     type Details = InterpolationDetails;
@@ -18,6 +19,17 @@ impl Present for CubicInterpolation {
         CubicInterpolation::try_new(crate::template::zigzag(center, size, 4), None, None)
             .map(|c| vec![("interpolation", c)])
             .unwrap_or_default()
+    }
+
+    /// Each piece's inner Bézier points joined to its ends: the tangent handles.
+    fn overlays(&self) -> Vec<OverlayPolyline> {
+        self.pieces()
+            .iter()
+            .map(|p| OverlayPolyline {
+                kind: OverlayKind::TangentHandles,
+                points: p.points().to_vec(),
+            })
+            .collect()
     }
 
     fn summary(&self) -> String {

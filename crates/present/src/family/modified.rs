@@ -10,6 +10,7 @@ use splinescope_core::geom::Family;
 
 use crate::Present;
 use crate::controls::{Control, ControlId, ControlKind, ControlValue, unknown_control};
+use crate::{OverlayKind, OverlayPolyline};
 
 impl Present for ModifiedBezier {
     type Details = ModifiedDetails;
@@ -19,6 +20,18 @@ impl Present for ModifiedBezier {
         ModifiedBezier::try_new(base, 0.5, DVec3::new(0.0, 0.2 * size, 0.0))
             .map(|m| vec![("modified Bézier", m)])
             .unwrap_or_default()
+    }
+
+    /// The base's control polygon and the bump vector `v` from `Q(t*)` to `R(t*)`.
+    fn overlays(&self) -> Vec<OverlayPolyline> {
+        let q = self.base().eval(self.t_star());
+        vec![
+            OverlayPolyline::control_polygon(self.base().points()),
+            OverlayPolyline {
+                kind: OverlayKind::BumpVector,
+                points: vec![q, q + self.v()],
+            },
+        ]
     }
 
     fn summary(&self) -> String {

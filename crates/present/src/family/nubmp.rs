@@ -12,6 +12,7 @@ use splinescope_core::geom::Family;
 
 use crate::Present;
 use crate::controls::{Control, ControlId, ControlKind, ControlValue, unknown_control};
+use crate::{OverlayKind, OverlayPolyline};
 
 impl Present for Nubmp {
     type Details = NubmpDetails;
@@ -45,6 +46,17 @@ impl Present for Nubmp {
             n if n <= 3 => Some(changed.join(", ")),
             n => Some(format!("{}, … ({n} changed)", changed[..3].join(", "))),
         }
+    }
+
+    /// The control polygon and the dual polygon `P*_j`.
+    fn overlays(&self) -> Vec<OverlayPolyline> {
+        vec![
+            OverlayPolyline::control_polygon(self.points()),
+            OverlayPolyline {
+                kind: OverlayKind::DualPolygon,
+                points: self.dual_points().to_vec(),
+            },
+        ]
     }
 
     fn summary(&self) -> String {

@@ -8,12 +8,17 @@ use splinescope_core::geom::{Conic, GeomError, Nurbs, RationalBezier};
 
 use splinescope_core::geom::Family;
 
+use crate::OverlayPolyline;
 use crate::Present;
 use crate::controls::{Control, ControlId, ControlKind, ControlValue, unknown_control};
 use crate::family::nubmp::SplineDetails;
 
 impl Present for RationalBezier {
     type Details = RationalBezierDetails;
+
+    fn overlays(&self) -> Vec<OverlayPolyline> {
+        vec![OverlayPolyline::control_polygon(self.points())]
+    }
 
     fn summary(&self) -> String {
         format!("degree {}, rational", self.degree())
@@ -75,6 +80,10 @@ impl Present for RationalBezier {
 
 impl Present for Nurbs {
     type Details = NurbsDetails;
+
+    fn overlays(&self) -> Vec<OverlayPolyline> {
+        vec![OverlayPolyline::control_polygon(self.points())]
+    }
 
     fn summary(&self) -> String {
         format!(

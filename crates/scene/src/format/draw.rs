@@ -21,7 +21,7 @@ pub use splinescope_encoding::draw::{
 pub fn curve_overlays(sc: &SceneCurve, switches: Switches) -> CurveOverlays {
     let (mut lines, mut points) = (Vec::new(), Vec::new());
     if sc.style.show_polygon && switches.polygons {
-        for overlay in sc.curve.overlays() {
+        for overlay in splinescope_present::Present::overlays(&sc.curve) {
             lines.push((
                 overlay.points.clone(),
                 overlay_style(overlay.kind, sc.style.color),
