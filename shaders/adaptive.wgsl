@@ -15,8 +15,9 @@
 // twins are `wang_count`, `scan_and_place` and `tessellate_adaptive` in src/gpu/twin.rs.
 // The bound (docs/math.md §5): with H_i = (x, y, w) the control points in homogeneous
 // pixel coordinates (a rational segment's weights multiply its points' w), M_xy and M_w
-// their largest second differences, R the largest distance of a projected control point
-// from the viewport centre and W the smallest w,
+// their largest second differences (x and y taken about the centre of the projected
+// control points' box), R the largest distance of a projected control point from that
+// centre and W the smallest w,
 // N uniform intervals keep every screen chord within
 // n (n − 1) (M_xy + R M_w) / (8 N² W) pixels of the curve (orthographic: w = 1, M_w = 0,
 // Wang's own bound).
@@ -78,7 +79,13 @@ fn wang_count(seg: Segment) -> u32 {
         let p = h[i].xy / h[i].z;
         lo = min(lo, p);
         hi = max(hi, p);
-        r = max(r, length(p));
+    }
+    // The bound holds with pixel coordinates taken about any point (the chords do not
+    // move with the origin): about the middle of the projected control points, R is the
+    // segment's own size rather than its distance from the viewport's centre.
+    let centre = 0.5 * (lo + hi);
+    for (var i = 0u; i <= n; i++) {
+        r = max(r, length(h[i].xy / h[i].z - centre));
     }
     // The curve lies in the hull of its projected control points: wholly off screen
     // (with a margin for the line's width), it needs no samples.
@@ -90,7 +97,7 @@ fn wang_count(seg: Segment) -> u32 {
     var m_w = 0.0;
     for (var i = 0u; i + 2u <= n; i++) {
         let d = h[i] - 2.0 * h[i + 1u] + h[i + 2u];
-        m_xy = max(m_xy, length(d.xy));
+        m_xy = max(m_xy, length(d.xy - centre * d.z));
         m_w = max(m_w, abs(d.z));
     }
     let nn = f32(n * (n - min(n, 1u)));

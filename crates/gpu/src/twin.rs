@@ -200,7 +200,11 @@ pub fn wang_count(frame: &GpuFrame, points: &[GpuControlPoint], seg: &GpuSegment
         let p = q.truncate() / q.z;
         lo = lo.min(p);
         hi = hi.max(p);
-        r = r.max(p.length());
+    }
+    // Pixel coordinates about the middle of the projected control points (see the shader).
+    let centre = 0.5 * (lo + hi);
+    for q in &h[..=n] {
+        r = r.max((q.truncate() / q.z - centre).length());
     }
     let margin = frame.cull_margin_px;
     if hi.x < -half.x - margin
@@ -213,7 +217,7 @@ pub fn wang_count(frame: &GpuFrame, points: &[GpuControlPoint], seg: &GpuSegment
     let (mut m_xy, mut m_w) = (0.0_f32, 0.0_f32);
     for i in 0..n.saturating_sub(1) {
         let d = h[i] - 2.0 * h[i + 1] + h[i + 2];
-        m_xy = m_xy.max(d.truncate().length());
+        m_xy = m_xy.max((d.truncate() - centre * d.z).length());
         m_w = m_w.max(d.z.abs());
     }
     let nn = (n * n.saturating_sub(1)) as f32;

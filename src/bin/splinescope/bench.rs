@@ -70,7 +70,7 @@ pub struct BenchArgs {
 }
 
 /// A family on the command line: a name of the family table.
-fn parse_family(s: &str) -> Result<StressFamily, String> {
+pub(crate) fn parse_family(s: &str) -> Result<StressFamily, String> {
     s.trim()
         .parse()
         .map_err(|e: splinescope::scene::generate::UnknownFamily| e.to_string())

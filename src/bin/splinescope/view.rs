@@ -18,9 +18,14 @@ pub struct ViewArgs {
     /// Exit after this many presented frames (smoke tests).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..), allow_hyphen_values = true)]
     pub frames: Option<u64>,
-    /// Instead of a scene, show this many random Bézier curves (stress mode).
+    /// Instead of a scene, show this many random curves (stress mode; Bézier unless
+    /// --family says otherwise).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=10_000_000), conflicts_with = "scene", allow_hyphen_values = true)]
     pub stress: Option<u64>,
+    /// Family of the stress curves (a name of the family table: bezier, modified_bezier,
+    /// interpolation, bspline, nubmp, rational_bezier, nurbs).
+    #[arg(long, default_value = "bezier", value_parser = crate::bench::parse_family, requires = "stress")]
+    pub family: splinescope::scene::generate::StressFamily,
     /// Degree of the stress curves.
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=31), requires = "stress", allow_hyphen_values = true)]
     pub degree: u64,
@@ -52,7 +57,7 @@ pub fn run(a: &ViewArgs) -> Result<()> {
     view(
         a.scene.clone(),
         a.frames,
-        (a.stress, a.degree),
+        (a.stress, a.degree, a.family),
         (a.solve, a.stats),
         (a.tolerance_px, a.comb),
         &a.gpu,
@@ -63,7 +68,7 @@ pub fn run(a: &ViewArgs) -> Result<()> {
 fn view(
     scene: Option<PathBuf>,
     frames: Option<u64>,
-    (stress, degree): (Option<u64>, u64),
+    (stress, degree, family): (Option<u64>, u64, splinescope::scene::generate::StressFamily),
     (solve, print_stats): (bool, bool),
     (tolerance_px, comb): (f64, Option<splinescope::scene::shape::CombScale>),
     gpu: &GpuArgs,
@@ -76,6 +81,12 @@ fn view(
     if !splinescope::app::display_available() {
         bail!(
             "no display found (DISPLAY and WAYLAND_DISPLAY are unset); use `splinescope render` for a PNG, or run under xvfb-run"
+        );
+    }
+    if solve && family.name() != "bezier" {
+        bail!(
+            "--solve re-solves Bézier curves (paper 000's single target): --family {} cannot be solved in stress mode",
+            family.name()
         );
     }
     if solve && degree < 2 {
@@ -93,6 +104,7 @@ fn view(
                 splinescope::scene::generate::StressOptions {
                     curves: n as usize,
                     degree: degree as usize,
+                    family,
                     ..Default::default()
                 },
             );
