@@ -126,6 +126,34 @@ fn cubic(p0: DVec3, p1: DVec3, p2: DVec3, p3: DVec3, u: f64) -> DVec3 {
     a * p0 + b * p1 + c * p2 + d * p3
 }
 
+/// A rational quadratic or cubic at every `us[k]` into `out[k]`, the numerator `A` and the
+/// weight `W` summed in one pass with the same Bernstein weights (the written-out forms of
+/// the polynomial path: `s²`, `2su`, `u²` and the cubic's), then divided — what two
+/// polynomial passes and a division cost, in about one. `false` (nothing written) for
+/// other degrees.
+fn fused_rational(a: &[DVec3], w: &[DVec3], us: &[f64], out: &mut [DVec3]) -> bool {
+    match (a, w) {
+        ([a0, a1, a2], [w0, w1, w2]) => {
+            for (o, &u) in out.iter_mut().zip(us) {
+                let s = 1.0 - u;
+                let b = [s * s, 2.0 * s * u, u * u];
+                let num = b[0] * *a0 + b[1] * *a1 + b[2] * *a2;
+                *o = num / (b[0] * w0.x + b[1] * w1.x + b[2] * w2.x);
+            }
+            true
+        }
+        ([a0, a1, a2, a3], [w0, w1, w2, w3]) => {
+            for (o, &u) in out.iter_mut().zip(us) {
+                let b = cubic_weights(u);
+                let num = b[0] * *a0 + b[1] * *a1 + b[2] * *a2 + b[3] * *a3;
+                *o = num / (b[0] * w0.x + b[1] * w1.x + b[2] * w2.x + b[3] * w3.x);
+            }
+            true
+        }
+        _ => false,
+    }
+}
+
 /// A rational segment's homogeneous parts as polynomial Bézier control points: `A` (the
 /// weighted points) and `W` (the weights as `(w, 0, 0)`), each with its first and second
 /// hodographs (in the segment's own parameter).
@@ -242,6 +270,9 @@ impl CurveSampler {
         out: &mut [DVec3],
     ) {
         let n = us.len();
+        if self.order == 0 && fused_rational(&parts.a[0], &parts.w[0], us, out) {
+            return;
+        }
         if self.order == 0 {
             // A into `out`, W beside it, then the division: one scratch run.
             let mut w = [DVec3::ZERO; 64];
