@@ -98,15 +98,7 @@ pub fn annotate(
     scene: &Scene,
     opts: &TextOptions,
 ) -> Result<(), splinescope_figure::FigureError> {
-    splinescope_figure::raster::annotate(
-        &mut splinescope_figure::raster::Canvas {
-            data: &mut image.data,
-            width: image.width,
-            height: image.height,
-        },
-        scene,
-        *opts,
-    )
+    annotate_shaped(image, scene, opts, &ShapeOptions::default())
 }
 
 /// [`annotate`] whose legend also lists the markers `shape` shows.

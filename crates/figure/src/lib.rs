@@ -40,7 +40,7 @@ use glam::{DVec2, DVec3};
 use thiserror::Error;
 
 use splinescope_scene::camera::Camera;
-use splinescope_scene::format::draw::{COMB_WIDTH_PX, MarkerKind, Stroke, Switches, comb_strokes};
+use splinescope_scene::format::draw::{COMB_WIDTH_PX, Stroke, Switches, comb_strokes};
 use splinescope_scene::format::encoding::{Encoding, encode_with};
 use splinescope_scene::format::shape::{ShapeOptions, marker_points, markers};
 use splinescope_scene::format::{Color, Scene};
@@ -432,7 +432,7 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
         annotate::labels(scene, &proj, size, &mut items);
     }
     if opts.legend {
-        annotate::legend(scene, size, &shown_markers(&opts.shape), &mut items);
+        annotate::legend(scene, size, &opts.shape.marker_kinds(), &mut items);
     }
     let fig = Figure {
         width: size.x,
@@ -446,19 +446,6 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
     };
     fig.check_finite()?;
     Ok(fig)
-}
-
-/// The marker kinds `shape` shows, in the legend's order.
-#[must_use]
-pub fn shown_markers(shape: &ShapeOptions) -> Vec<MarkerKind> {
-    MarkerKind::ALL
-        .into_iter()
-        .filter(|k| match k {
-            MarkerKind::Inflection | MarkerKind::Cusp => shape.inflections,
-            MarkerKind::CurvatureMax | MarkerKind::CurvatureMin => shape.curvature_extrema,
-            MarkerKind::Intersection | MarkerKind::SelfIntersection => shape.intersections,
-        })
-        .collect()
 }
 
 /// Hairs of a comb per lowered segment in a figure (uniform in the segment's parameter,

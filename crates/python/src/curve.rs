@@ -15,6 +15,16 @@ use splinescope_scene::format::{SceneCurve, curve_from_value, curve_to_value};
 use crate::arrays::{self, BLOCK, DETACH_ABOVE, PARALLEL_ABOVE, Params, fill, fill_into};
 use crate::errors::{CurveError, SceneError, geom_error, raise, scene_error};
 
+/// The name of parameter `k` of argument `what` in a message: `what` for a number,
+/// `what[k]` for an array.
+fn param_name(what: &str, scalar: bool, k: usize) -> String {
+    if scalar {
+        what.to_owned()
+    } else {
+        format!("{what}[{k}]")
+    }
+}
+
 /// One curve: its family, fields, name and style, and its lowering (computed once).
 #[pyclass(name = "_Curve", module = "splinescope._splinescope", frozen)]
 pub struct PyCurve {
@@ -88,11 +98,7 @@ impl PyCurve {
         match bad {
             None => Ok(()),
             Some(k) => {
-                let name = if scalar {
-                    what.to_owned()
-                } else {
-                    format!("{what}[{k}]")
-                };
+                let name = param_name(what, scalar, k);
                 Err(raise::<CurveError>(
                     format!(
                         "{name} = {} is outside the domain [{}, {}] of this {} curve",
@@ -122,11 +128,7 @@ impl PyCurve {
             return Ok(());
         }
         let k = out.iter().position(|v| !v.is_finite()).unwrap_or(0) / per.max(1);
-        let name = if scalar {
-            "t".to_owned()
-        } else {
-            format!("t[{k}]")
-        };
+        let name = param_name("t", scalar, k);
         Err(raise::<CurveError>(
             format!(
                 "{name} = {}: the {what} of this {} curve is not a finite number there (its coordinates or weights are too large for this computation in f64)",
@@ -142,11 +144,7 @@ impl PyCurve {
         let Some(k) = out.iter().position(|k| k.is_infinite()) else {
             return Ok(());
         };
-        let name = if scalar {
-            "t".to_owned()
-        } else {
-            format!("t[{k}]")
-        };
+        let name = param_name("t", scalar, k);
         Err(raise::<CurveError>(
             format!(
                 "{name} = {}: the curvature of this {} curve is not a finite number there (its derivatives or their ratio leave f64)",

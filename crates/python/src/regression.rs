@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use pyo3::prelude::*;
 use splinescope_image::RgbaImage;
-use splinescope_image::compare::{Tolerance, compare_images};
+use splinescope_image::compare::{Comparison, ComparisonImages, Tolerance, compare_images};
 use splinescope_image::report::{ReportRow, write_report as write_page};
 
 use crate::errors::{ImageError, raise};
@@ -39,6 +39,27 @@ pub fn compare_pictures<'py>(
     reference: &Bound<'py, PyAny>,
     tolerance: &str,
 ) -> PyResult<(String, Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let (figures, pictures) = compare_arrays(py, actual, reference, tolerance)?;
+    let json =
+        serde_json::to_string(&figures).map_err(|e| raise::<ImageError>(e.to_string(), ""))?;
+    Ok((
+        json,
+        image_array(py, pictures.diff)?,
+        image_array(py, pictures.flip)?,
+    ))
+}
+
+/// `actual` and `reference` (uint8 arrays) compared within `tolerance` (its text, refused
+/// naming `tolerance`): the figures and the pictures, as `splinescope diff` makes them.
+///
+/// # Errors
+/// A tolerance that does not parse, an array that is not an image, sizes that differ.
+pub(crate) fn compare_arrays(
+    py: Python<'_>,
+    actual: &Bound<'_, PyAny>,
+    reference: &Bound<'_, PyAny>,
+    tolerance: &str,
+) -> PyResult<(Comparison, ComparisonImages)> {
     let tolerance: Tolerance =
         tolerance
             .parse()
@@ -47,16 +68,8 @@ pub fn compare_pictures<'py>(
             })?;
     let a = array_image(actual, "actual")?;
     let r = array_image(reference, "reference")?;
-    let (figures, pictures) = py
-        .detach(|| compare_images(&a, &r, &tolerance))
-        .map_err(|e| raise::<ImageError>(e.to_string(), ""))?;
-    let json =
-        serde_json::to_string(&figures).map_err(|e| raise::<ImageError>(e.to_string(), ""))?;
-    Ok((
-        json,
-        image_array(py, pictures.diff)?,
-        image_array(py, pictures.flip)?,
-    ))
+    py.detach(|| compare_images(&a, &r, &tolerance))
+        .map_err(|e| raise::<ImageError>(e.to_string(), ""))
 }
 
 /// One report row as Python hands it: name, status, figures, message, and the reference,

@@ -11,7 +11,6 @@ use pyo3::prelude::*;
 
 use splinescope_gpu::{BackendChoice, ContextOptions, GpuContext, Pipelines};
 use splinescope_image::RgbaImage;
-use splinescope_image::compare::{Tolerance, compare_images as compare};
 use splinescope_scene::format::shape::{CombScale, ShapeOptions, encode_shaped};
 use splinescope_scene::format::{Scene, from_json_str, to_json_string};
 use splinescope_scene::request::apply_text;
@@ -437,17 +436,7 @@ pub fn compare_images(
     reference: &Bound<'_, PyAny>,
     tolerance: &str,
 ) -> PyResult<String> {
-    let tolerance: Tolerance =
-        tolerance
-            .parse()
-            .map_err(|e: splinescope_image::compare::ToleranceError| {
-                raise::<ImageError>(e.to_string(), "tolerance")
-            })?;
-    let a = array_image(actual, "actual")?;
-    let r = array_image(reference, "reference")?;
-    let (figures, _) = py
-        .detach(|| compare(&a, &r, &tolerance))
-        .map_err(|e| raise::<ImageError>(e.to_string(), ""))?;
+    let (figures, _) = crate::regression::compare_arrays(py, actual, reference, tolerance)?;
     serde_json::to_string(&figures).map_err(|e| raise::<ImageError>(e.to_string(), ""))
 }
 

@@ -36,8 +36,10 @@ pub(crate) struct SceneView {
     stats: StatsReader,
     /// The chunks' statistics of a recent frame (read back without waiting).
     pub last_stats: Vec<FrameStats>,
-    /// The comb the GPU scene draws (`None`: none, or not yet set on a new upload).
-    comb_applied: Option<CombRequest>,
+    /// What the GPU scene's comb was set from — on, selected only, scale, the selected
+    /// curve — (`None`: not yet set on this upload), so that the request (and the selected
+    /// curve's tags) is made again only when one of them changes, not every frame.
+    comb_applied: Option<(bool, bool, u64, Option<usize>)>,
     /// The shape markers, computed off the frame thread.
     pub markers: MarkerWorker,
     /// Whether the GPU scene holds the current markers.
@@ -132,17 +134,23 @@ impl SceneView {
         shape: &ShapeView,
         selected: Option<usize>,
     ) {
-        let request = shape.comb.then(|| CombRequest {
-            scale: shape.comb_scale as f32,
-            only: shape.comb_selected_only.then(|| {
-                selected
-                    .map(|s| curve_tags(&self.prepared, s))
-                    .unwrap_or_default()
-            }),
-        });
-        if request != self.comb_applied || (request.is_some() && !self.gpu.has_comb()) {
+        let key = (
+            shape.comb,
+            shape.comb_selected_only,
+            shape.comb_scale.to_bits(),
+            selected.filter(|_| shape.comb_selected_only),
+        );
+        if self.comb_applied != Some(key) {
+            let request = shape.comb.then(|| CombRequest {
+                scale: shape.comb_scale as f32,
+                only: shape.comb_selected_only.then(|| {
+                    selected
+                        .map(|s| curve_tags(&self.prepared, s))
+                        .unwrap_or_default()
+                }),
+            });
             self.gpu.set_comb(ctx, &self.renderer, request.as_ref());
-            self.comb_applied = request;
+            self.comb_applied = Some(key);
         }
         self.markers
             .poll(scene, changed, shape.marker_options(), Instant::now());

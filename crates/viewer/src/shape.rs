@@ -7,12 +7,11 @@
 use std::sync::mpsc::{Receiver, TryRecvError, channel};
 use std::time::{Duration, Instant};
 
-use splinescope_core::analysis::comb::{auto_scale, reference_curvature};
 use splinescope_core::analysis::{CurveAnalysis, DEFAULT_ACCURACY};
 use splinescope_core::geom::Aabb;
 
 use crate::scene::Scene;
-use crate::scene::shape::{Marker, MarkerKind, ShapeOptions, markers};
+use crate::scene::shape::{CombScale, Marker, MarkerKind, ShapeOptions, markers};
 
 /// The panel's shape switches and the comb's scale.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -64,12 +63,7 @@ impl ShapeView {
 
     /// Sets the automatic scale for `scene` seen `view_height` world units tall.
     pub fn fit_comb(&mut self, scene: &Scene, view_height: f64) {
-        let analyses: Vec<CurveAnalysis> = scene
-            .curves
-            .iter()
-            .map(|c| CurveAnalysis::new(&c.curve))
-            .collect();
-        self.comb_scale = auto_scale(reference_curvature(&analyses), view_height);
+        self.comb_scale = CombScale::Auto.resolve(scene, view_height);
         self.comb_auto = true;
     }
 
@@ -79,7 +73,7 @@ impl ShapeView {
     /// # Errors
     /// The comb scale error, naming the value.
     pub fn set_comb_scale(&mut self, scale: f64) -> Result<(), String> {
-        crate::scene::shape::CombScale::fixed(scale).map_err(|e| e.to_string())?;
+        CombScale::fixed(scale).map_err(|e| e.to_string())?;
         self.comb_scale = scale;
         self.comb_auto = false;
         Ok(())

@@ -76,6 +76,19 @@ pub struct ShapeOptions {
 }
 
 impl ShapeOptions {
+    /// The marker kinds these options show, in the legend's order.
+    #[must_use]
+    pub fn marker_kinds(&self) -> Vec<MarkerKind> {
+        MarkerKind::ALL
+            .into_iter()
+            .filter(|k| match k {
+                MarkerKind::Inflection | MarkerKind::Cusp => self.inflections,
+                MarkerKind::CurvatureMax | MarkerKind::CurvatureMin => self.curvature_extrema,
+                MarkerKind::Intersection | MarkerKind::SelfIntersection => self.intersections,
+            })
+            .collect()
+    }
+
     /// Whether any marker is asked for.
     #[must_use]
     pub fn any_marker(&self) -> bool {
@@ -158,8 +171,14 @@ pub fn markers_of(analyses: &[CurveAnalysis], options: &ShapeOptions) -> Vec<Mar
         let planar: Vec<usize> = (0..analyses.len())
             .filter(|&i| analyses[i].is_planar())
             .collect();
-        let subset: Vec<CurveAnalysis> = planar.iter().map(|&i| analyses[i].clone()).collect();
-        for pair in all_intersections(&subset).unwrap_or_default() {
+        // The planar curves alone (a copy only when some curve is 3D).
+        let pairs = if planar.len() == analyses.len() {
+            all_intersections(analyses)
+        } else {
+            let subset: Vec<CurveAnalysis> = planar.iter().map(|&i| analyses[i].clone()).collect();
+            all_intersections(&subset)
+        };
+        for pair in pairs.unwrap_or_default() {
             let (i, j) = (planar[pair.i], planar[pair.j]);
             for h in pair.found.hits {
                 out.push(Marker {

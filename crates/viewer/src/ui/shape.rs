@@ -10,7 +10,7 @@ use super::{Actions, PanelInfo};
 use crate::edit::Editor;
 use crate::interaction::Interaction;
 use crate::scene::draw::marker_style;
-use crate::scene::shape::{MarkerKind, ShapeOptions};
+use crate::scene::shape::MarkerKind;
 use crate::shape::{Readouts, ShapeView};
 
 /// The colour a legend's markers are shown in (each marker takes its curve's).
@@ -35,18 +35,6 @@ fn paint_marker(painter: &egui::Painter, at: egui::Pos2, kind: MarkerKind, scale
     painter.circle_filled(at, 0.5 * core.width_px * scale, color32(core.color));
 }
 
-/// The kinds the switches show.
-fn shown_kinds(options: &ShapeOptions) -> Vec<MarkerKind> {
-    MarkerKind::ALL
-        .into_iter()
-        .filter(|k| match k {
-            MarkerKind::Inflection | MarkerKind::Cusp => options.inflections,
-            MarkerKind::CurvatureMax | MarkerKind::CurvatureMin => options.curvature_extrema,
-            MarkerKind::Intersection | MarkerKind::SelfIntersection => options.intersections,
-        })
-        .collect()
-}
-
 /// The "shape" section of the panel.
 pub(crate) fn shape_section(
     ui: &mut egui::Ui,
@@ -64,7 +52,7 @@ pub(crate) fn shape_section(
             ui.checkbox(&mut s.curvature_extrema, "curvature extrema");
             ui.checkbox(&mut s.intersections, "intersections");
             ui.checkbox(&mut s.bbox, "selected curve's box");
-            let kinds = shown_kinds(&s.marker_options());
+            let kinds = s.marker_options().marker_kinds();
             for kind in kinds {
                 let count = info.markers.iter().filter(|m| m.kind == kind).count();
                 ui.horizontal(|ui| {
