@@ -6,7 +6,9 @@ use std::path::PathBuf;
 
 use pyo3::prelude::*;
 use splinescope_image::RgbaImage;
-use splinescope_image::compare::{Comparison, ComparisonImages, Tolerance, compare_images};
+use splinescope_image::compare::{
+    Comparison, ComparisonImages, Tolerance, compare_images as compare,
+};
 use splinescope_image::report::{ReportRow, write_report as write_page};
 
 use crate::errors::{ImageError, raise};
@@ -68,7 +70,7 @@ pub(crate) fn compare_arrays(
             })?;
     let a = array_image(actual, "actual")?;
     let r = array_image(reference, "reference")?;
-    py.detach(|| compare_images(&a, &r, &tolerance))
+    py.detach(|| compare(&a, &r, &tolerance))
         .map_err(|e| raise::<ImageError>(e.to_string(), ""))
 }
 
@@ -119,4 +121,20 @@ pub fn write_report(
         .collect();
     py.detach(|| write_page(&dir, summary, &report))
         .map_err(|e| raise::<ImageError>(format!("{}: {e}", dir.display()), "dir"))
+}
+
+/// Compares two images (`(H, W, 4)` or `(H, W, 3)` uint8 arrays, `actual` against
+/// `reference`) per channel and by NVIDIA FLIP, as `splinescope diff` does: the figures
+/// as JSON text (`matches`, `max_channel_diff`, `differing_pixels`, `differing_fraction`,
+/// `flip_mean`, `flip_max`, `width`, `height`).
+#[pyfunction]
+#[pyo3(signature = (actual, reference, tolerance="channel=24,pixels=0.1%"))]
+pub fn compare_images(
+    py: Python<'_>,
+    actual: &Bound<'_, PyAny>,
+    reference: &Bound<'_, PyAny>,
+    tolerance: &str,
+) -> PyResult<String> {
+    let (figures, _) = compare_arrays(py, actual, reference, tolerance)?;
+    serde_json::to_string(&figures).map_err(|e| raise::<ImageError>(e.to_string(), ""))
 }

@@ -1,5 +1,5 @@
 //! `_Scene`: a scene file's contents, its solve requests, and its picture from the GPU
-//! path; `compare_images` for image regression in pytest.
+//! path.
 
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -422,22 +422,6 @@ pub(crate) fn array_image(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<RgbaIm
         height: u32::try_from(h).map_err(|_| too_big())?,
         data: rgba,
     })
-}
-
-/// Compares two images (`(H, W, 4)` or `(H, W, 3)` uint8 arrays, `actual` against
-/// `reference`) per channel and by NVIDIA FLIP, as `splinescope diff` does: the figures
-/// as JSON text (`matches`, `max_channel_diff`, `differing_pixels`, `differing_fraction`,
-/// `flip_mean`, `flip_max`, `width`, `height`).
-#[pyfunction]
-#[pyo3(signature = (actual, reference, tolerance="channel=24,pixels=0.1%"))]
-pub fn compare_images(
-    py: Python<'_>,
-    actual: &Bound<'_, PyAny>,
-    reference: &Bound<'_, PyAny>,
-    tolerance: &str,
-) -> PyResult<String> {
-    let (figures, _) = crate::regression::compare_arrays(py, actual, reference, tolerance)?;
-    serde_json::to_string(&figures).map_err(|e| raise::<ImageError>(e.to_string(), ""))
 }
 
 /// The stress generator's scene (`view --stress`, `bench --families`): `curves` random
