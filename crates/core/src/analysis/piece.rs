@@ -250,12 +250,15 @@ impl Piece {
     }
 
     fn eval3(&self, c: &[Vec<f64>; 3], u: f64) -> DVec3 {
-        let z = if self.planar {
-            0.0
-        } else {
-            poly::eval(&c[2], u)
-        };
-        DVec3::new(poly::eval(&c[0], u), poly::eval(&c[1], u), z)
+        if self.planar {
+            let (x, y) = poly::eval2(&c[0], &c[1], u);
+            return DVec3::new(x, y, 0.0);
+        }
+        DVec3::new(
+            poly::eval(&c[0], u),
+            poly::eval(&c[1], u),
+            poly::eval(&c[2], u),
+        )
     }
 
     fn weight(&self, u: f64) -> f64 {
@@ -275,8 +278,7 @@ impl Piece {
     /// `C(u)` and `dC/du` from one de Casteljau triangle per coordinate (and for `W`).
     #[must_use]
     pub fn point_and_deriv(&self, u: f64) -> (DVec3, DVec3) {
-        let (x, dx) = poly::eval_with_derivative(&self.a[0], u);
-        let (y, dy) = poly::eval_with_derivative(&self.a[1], u);
+        let ((x, dx), (y, dy)) = poly::eval_with_derivative2(&self.a[0], &self.a[1], u);
         let (z, dz) = if self.planar {
             (0.0, 0.0)
         } else {

@@ -278,6 +278,75 @@ pub fn eval_with_derivative(c: &[f64], t: f64) -> (f64, f64) {
     in_buffer(c, run)
 }
 
+/// [`eval`] of two polynomials of one degree (a planar curve's `x` and `y`) in one
+/// triangle: the same operations on each, so the same values, the two chains interleaved
+/// (degree ≤ 7 in a fixed buffer).
+#[must_use]
+#[inline]
+pub fn eval2(cx: &[f64], cy: &[f64], t: f64) -> (f64, f64) {
+    let len = cx.len();
+    if len != cy.len() || !(5..=8).contains(&len) {
+        return (eval(cx, t), eval(cy, t));
+    }
+    let s = 1.0 - t;
+    let n = len - 1;
+    let mut v = [[0.0_f64; 2]; 8];
+    for ((vi, &x), &y) in v.iter_mut().zip(cx).zip(cy) {
+        *vi = [x, y];
+    }
+    for r in 1..=n {
+        for i in 0..=(n - r).min(6) {
+            let next = v[i + 1];
+            for (d, nd) in v[i].iter_mut().zip(next) {
+                *d = s * *d + t * nd;
+            }
+        }
+    }
+    (v[0][0], v[0][1])
+}
+
+/// [`eval_with_derivative`] of two polynomials of one degree (a planar curve's `x` and
+/// `y`) in one triangle: the same operations on each, so the same values, with the two
+/// coordinates' chains of dependences interleaved (degree ≤ 7 in a fixed buffer).
+#[must_use]
+#[inline]
+pub fn eval_with_derivative2(cx: &[f64], cy: &[f64], t: f64) -> ((f64, f64), (f64, f64)) {
+    let len = cx.len();
+    let s = 1.0 - t;
+    if let ([a0, a1, a2, a3], [b0, b1, b2, b3]) = (cx, cy) {
+        let (p, q, r) = (s * a0 + t * a1, s * a1 + t * a2, s * a2 + t * a3);
+        let (e, f, g) = (s * b0 + t * b1, s * b1 + t * b2, s * b2 + t * b3);
+        let (p, q) = (s * p + t * q, s * q + t * r);
+        let (e, f) = (s * e + t * f, s * f + t * g);
+        return (
+            (s * p + t * q, 3.0 * (q - p)),
+            (s * e + t * f, 3.0 * (f - e)),
+        );
+    }
+    if len != cy.len() || !(5..=8).contains(&len) {
+        return (eval_with_derivative(cx, t), eval_with_derivative(cy, t));
+    }
+    let n = len - 1;
+    let mut v = [[0.0_f64; 2]; 8];
+    for ((vi, &x), &y) in v.iter_mut().zip(cx).zip(cy) {
+        *vi = [x, y];
+    }
+    for r in 1..n {
+        for i in 0..=(n - r).min(6) {
+            let next = v[i + 1];
+            for (d, nd) in v[i].iter_mut().zip(next) {
+                *d = s * *d + t * nd;
+            }
+        }
+    }
+    let nf = n as f64;
+    let [a, b] = [v[0], v[1]];
+    (
+        (s * a[0] + t * b[0], nf * (b[0] - a[0])),
+        (s * a[1] + t * b[1], nf * (b[1] - a[1])),
+    )
+}
+
 /// The coefficients of `p` on `[0, t]` and on `[t, 1]`, each reparametrised to `[0, 1]`.
 #[must_use]
 pub fn split(c: &[f64], t: f64) -> (Vec<f64>, Vec<f64>) {
