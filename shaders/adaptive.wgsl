@@ -375,8 +375,8 @@ fn difference(first: u32, i: u32, k: u32) -> vec4<f32> {
     return control_point4(first, i + 2u) - 2.0 * b + a;
 }
 
-// Σ Δ^k H_i B_i^m(u), m = n − k, by Horner's rule in u / v (or v / u past the middle) as
-// bernstein_horner4 does.
+// Σ Δ^k H_i B_i^m(u), m = n − k, by Horner's rule in u / v (or v / u past the middle),
+// scaled by v^m (or u^m): the comb's derivatives, whose bound is the f32 one of §8.
 fn difference_sum(first: u32, n: u32, k: u32, u: f32, v: f32) -> vec4<f32> {
     let m = n - k;
     var acc: vec4<f32>;

@@ -1,8 +1,8 @@
 // Bézier evaluation shared by both tessellators: composed after common.wgsl into
 // tessellate.wgsl and adaptive.wgsl, each of which declares its control points as
 // `points: array<ControlPoint>`. A segment's point at u by degree class — the cubic's
-// Bernstein form, the quartic's de Casteljau written out, Horner's rule for every other
-// degree, and for rational segments Horner's rule on the homogeneous points (w P, w)
+// Bernstein form, the quartic's de Casteljau written out, Bernstein–Horner for every other
+// degree, and for rational segments Bernstein–Horner on the homogeneous points (w P, w)
 // divided by the weight.
 // CPU twin: fixed_kernel in crates/gpu/src/twin.rs, with the same operations in the same
 // order.
@@ -41,35 +41,28 @@ fn quartic(p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32>, p3: vec3<f32>, p4: vec3<
     return cubic(v * p0 + u * p1, v * p1 + u * p2, v * p2 + u * p3, v * p3 + u * p4, u, v);
 }
 
-// The Bernstein sum of degree n of the homogeneous points from `first` on, by Horner's rule in
-// x = u / v, scaled by v^n (u ≤ 1/2), or in x = v / u from the other end, scaled by u^n:
-// O(n) with the binomials built along the way and no scratch array (de Casteljau's
-// triangle is O(n²) through a dynamically indexed array, which a CPU adapter keeps in
-// memory and Mesa's GL compiler once got wrong). The ends are exact: x = 0 there.
+// The Bernstein sum of degree n of the homogeneous points from `first` on, O(n) by
+// Horner's rule in 1 − u with the powers of u and the binomials built along the way:
+// q ← C(n, k) u^k H_k + q (1 − u) for k = 1..n from q = H_0, with q (1 − u) as q − q u
+// (fused, one rounding; unfused, within two of it) where u < 1/2, else as q v with v = 1 − u
+// exact. Each term passes at most 3n roundings (2n where fma fuses), so the sum is within
+// γ_{3n} Σ|H_i| B_i(u) in f32 (docs/math.md §4); the binomials are exact up to n = 24. No
+// division and no scratch array (de Casteljau's triangle is O(n²) through a dynamically
+// indexed array, which a CPU adapter keeps in memory). The ends are exact: at u = 0 every
+// weight is 0; at u = 1 every step but the last multiplies by v = 0 and the last adds H_n.
 fn bernstein_horner4(first: u32, n: u32, u: f32, v: f32) -> vec4<f32> {
-    var acc: vec4<f32>;
-    var scale = 1.0;
+    var q = control_point4(first, 0u);
+    var power = 1.0;
     var binomial = 1.0;
-    if (u <= 0.5) {
-        let x = u / v;
-        acc = control_point4(first, n);
-        for (var i = n; i > 0u; i--) {
-            // C(n, i − 1) = C(n, i) · i / (n − i + 1)
-            binomial = binomial * f32(i) / f32(n - i + 1u);
-            acc = acc * x + binomial * control_point4(first, i - 1u);
-            scale = scale * v;
-        }
-    } else {
-        let x = v / u;
-        acc = control_point4(first, 0u);
-        for (var i = 1u; i <= n; i++) {
-            // C(n, i) = C(n, i − 1) · (n − i + 1) / i
-            binomial = binomial * f32(n - i + 1u) / f32(i);
-            acc = acc * x + binomial * control_point4(first, i);
-            scale = scale * u;
-        }
+    let below = u < 0.5;
+    for (var k = 1u; k <= n; k++) {
+        // C(n, k) = C(n, k − 1) · (n − k + 1) / k
+        binomial = binomial * f32(n - k + 1u) / f32(k);
+        power = power * u;
+        let kept = select(q * v, fma(-q, vec4<f32>(u), q), below);
+        q = fma(vec4<f32>(binomial * power), control_point4(first, k), kept);
     }
-    return acc * scale;
+    return q;
 }
 
 // A polynomial segment's point: the homogeneous sum's first three lanes (its weights are

@@ -41,9 +41,12 @@ pub fn de_casteljau(points: &[GpuControlPoint], first: u32, n: u32, u: f32) -> V
 
 /// `bernstein_horner4` of `shaders/bezier.wgsl` (the general kernels of both
 /// tessellators): the Bernstein sum of degree `n` of the homogeneous points `(w·P, w)` by
-/// Horner's rule in `x = u / v` scaled by `vⁿ` (`u ≤ ½`), else in `x = v / u` scaled by
-/// `uⁿ`, the binomials built along the way.
+/// Horner's rule in `1 − u`, `q ← C(n, k) uᵏ H_k + q (1 − u)` from `q = H_0`, with
+/// `q (1 − u)` as the fused `q − q u` where `u < ½` and as `q v` otherwise, the binomials
+/// and powers built along the way. Compiled also for AVX2 + FMA and chosen at run time
+/// (`multiversion`): the fused operations are one instruction there, software elsewhere.
 #[must_use]
+#[multiversion::multiversion(targets("x86_64+avx2+fma"))]
 pub fn bernstein_horner4(points: &[GpuControlPoint], first: u32, n: u32, u: f32) -> Vec4 {
     let v = 1.0 - u;
     let n = n.min(MAX_GPU_DEGREE as u32);
@@ -51,26 +54,19 @@ pub fn bernstein_horner4(points: &[GpuControlPoint], first: u32, n: u32, u: f32)
         let c = points[(first + i) as usize];
         Vec3::from(c.position).extend(c.weight)
     };
-    let (mut scale, mut binomial) = (1.0_f32, 1.0_f32);
-    let mut acc;
-    if u <= 0.5 {
-        let x = u / v;
-        acc = p(n);
-        for i in (1..=n).rev() {
-            binomial = binomial * i as f32 / (n - i + 1) as f32;
-            acc = acc * x + binomial * p(i - 1);
-            scale *= v;
-        }
-    } else {
-        let x = v / u;
-        acc = p(0);
-        for i in 1..=n {
-            binomial = binomial * (n - i + 1) as f32 / i as f32;
-            acc = acc * x + binomial * p(i);
-            scale *= u;
-        }
+    let (mut power, mut binomial) = (1.0_f32, 1.0_f32);
+    let mut q = p(0);
+    for k in 1..=n {
+        binomial = binomial * (n - k + 1) as f32 / k as f32;
+        power *= u;
+        let kept = if u < 0.5 {
+            (-q).mul_add(Vec4::splat(u), q)
+        } else {
+            q * v
+        };
+        q = Vec4::splat(binomial * power).mul_add(p(k), kept);
     }
-    acc * scale
+    q
 }
 
 /// `bernstein_horner` of `shaders/bezier.wgsl`: [`bernstein_horner4`]'s first three lanes.

@@ -15,10 +15,17 @@ use splinescope_core::geom::{Bezier, Curve};
 use splinescope_core::rng::Rng;
 
 fn exact_bezier(points: &[DVec3], u: f64) -> [f64; 3] {
+    exact_bezier_and_scale(points, u).0
+}
+
+/// The exact Bernstein sum at the exact `u`, and the exact `Σ|P_i| B_i(u)` per coordinate
+/// (the scale of the evaluation's rounding), each rounded to the nearest `f64` once.
+fn exact_bezier_and_scale(points: &[DVec3], u: f64) -> ([f64; 3], [f64; 3]) {
     let n = points.len() - 1;
     let t = rational_from_f64(u).expect("finite");
     let s = Rational::one() - t.clone();
     let mut sum = [Rational::zero(), Rational::zero(), Rational::zero()];
+    let mut scale = [Rational::zero(), Rational::zero(), Rational::zero()];
     let powers = |x: &Rational| {
         let mut v = vec![Rational::one()];
         for k in 0..n {
@@ -35,11 +42,13 @@ fn exact_bezier(points: &[DVec3], u: f64) -> [f64; 3] {
                 / Rational::from_integer(i.into());
         }
         let w = binomial.clone() * tp[i].clone() * sp[n - i].clone();
-        for (acc, c) in sum.iter_mut().zip(p.to_array()) {
+        for ((acc, mag), c) in sum.iter_mut().zip(scale.iter_mut()).zip(p.to_array()) {
             *acc = acc.clone() + w.clone() * rational_from_f64(c).expect("finite");
+            *mag = mag.clone() + w.clone() * rational_from_f64(c.abs()).expect("finite");
         }
     }
-    sum.map(|r| r.to_f64().expect("representable"))
+    let f = |r: &Rational| r.to_f64().expect("representable");
+    (sum.each_ref().map(f), scale.each_ref().map(f))
 }
 
 #[test]
@@ -78,6 +87,104 @@ fn bezier_batches_are_within_the_bound_of_exact_evaluation() {
         assert_eq!(out[us.len() - 3], points[0]);
         assert_eq!(out[us.len() - 2], points[degree]);
     }
+}
+
+/// The general path (degrees 4 to 31) against exact rational evaluation and its bound
+/// `γ_{2n} Σ|P_i| B_i(u)` taken at each parameter — tight where cancellation makes the
+/// curve's value small against its control points: clustered control points far from the
+/// origin, alternating ones, random ones, planar and not; parameters at and near both ends
+/// and random. Where the CPU has no fused multiply-add the path is de Casteljau, whose
+/// bound with `1 − u` rounded is `γ_{3n}`.
+#[test]
+fn high_degrees_are_within_their_bound_of_exact_evaluation() {
+    let fused = cfg!(target_arch = "x86_64") && fma_available();
+    let mut rng = Rng::new(33);
+    let mut us: Vec<f64> = vec![0.0, 1.0, 0.5, 1e-9, 1.0 - 1e-9, 0.25, 0.75, 1e-300];
+    us.extend((0..24).map(|_| rng.unit()));
+    assert_eq!(
+        us.len() % 4,
+        0,
+        "whole groups of four: every parameter on the lanes"
+    );
+    for degree in 4..=31usize {
+        let cases: [(&str, Vec<DVec3>); 4] = [
+            (
+                "clustered far from the origin",
+                (0..=degree)
+                    .map(|_| {
+                        DVec3::new(
+                            1e6 + rng.range(-1e-3, 1e-3),
+                            -3e5 + rng.range(-1e-3, 1e-3),
+                            7e4 + rng.range(-1e-3, 1e-3),
+                        )
+                    })
+                    .collect(),
+            ),
+            (
+                "alternating",
+                (0..=degree)
+                    .map(|i| {
+                        let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
+                        sign * DVec3::new(1e3, 1.0 + rng.unit(), 1e-3)
+                    })
+                    .collect(),
+            ),
+            (
+                "random",
+                (0..=degree)
+                    .map(|_| {
+                        DVec3::new(
+                            rng.range(-3.0, 3.0),
+                            rng.range(-3.0, 3.0),
+                            rng.range(-3.0, 3.0),
+                        )
+                    })
+                    .collect(),
+            ),
+            (
+                "planar",
+                (0..=degree)
+                    .map(|_| DVec3::new(rng.range(-5.0, 5.0), rng.range(-5.0, 5.0), 0.0))
+                    .collect(),
+            ),
+        ];
+        let rounds = if fused { 2 * degree } else { 3 * degree } as f64;
+        let unit = f64::EPSILON / 2.0;
+        let gamma = rounds * unit / (1.0 - rounds * unit);
+        for (name, points) in &cases {
+            let mut out = vec![DVec3::ZERO; us.len()];
+            bezier_into(points, &us, &mut out);
+            for (&u, got) in us.iter().zip(&out) {
+                let (want, scale) = exact_bezier_and_scale(points, u);
+                for ((g, w), m) in got.to_array().iter().zip(want).zip(scale) {
+                    // The bound, and the rounding of the exact value to f64.
+                    let bound = gamma * m * (1.0 + 1e-12) + unit * w.abs();
+                    assert!(
+                        (g - w).abs() <= bound,
+                        "degree {degree}, {name}, u = {u}: {g} vs exact {w} (bound {bound:e})"
+                    );
+                }
+            }
+            assert_eq!(
+                out[0], points[0],
+                "degree {degree}, {name}: the start exactly"
+            );
+            assert_eq!(
+                out[1], points[degree],
+                "degree {degree}, {name}: the end exactly"
+            );
+        }
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+fn fma_available() -> bool {
+    std::arch::is_x86_feature_detected!("fma")
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+fn fma_available() -> bool {
+    false
 }
 
 #[test]

@@ -1,12 +1,14 @@
 //! Batch evaluation: many parameters of one curve, and many curves at once, for every
 //! family through its exact Bézier segments. Nothing allocates once a [`CurveSampler`]
-//! exists; cubics and lower degrees are written out; the general degree runs de Casteljau
-//! in a stack buffer; [`sample_many`] spreads curves over every core (rayon).
+//! exists; cubics and lower degrees are written out; degrees 4 to 31 run Bernstein–Horner
+//! (O(n) per point) where the CPU fuses multiply-adds, de Casteljau in a stack buffer
+//! otherwise; [`sample_many`] spreads curves over every core (rayon).
 //!
-//! Accuracy: each point is de Casteljau's evaluation of the segment that holds `t`, at the
-//! local parameter `u = (t − t0)/(t1 − t0)`, so it is within `2 n ε Σ|P_i| B_i(u)`
-//! (`ε = 2⁻⁵³`, `n` the segment's degree) of the exact value of the lowered segment —
-//! tested against exact rational evaluation (`tests/batch_eval.rs`).
+//! Accuracy: each point is the evaluation of the segment that holds `t`, at the local
+//! parameter `u = (t − t0)/(t1 − t0)`, within `γ_{2n} Σ|P_i| B_i(u) ≈ 2 n ε Σ|P_i| B_i(u)`
+//! (`ε = 2⁻⁵³`, `n` the segment's degree) of the exact value of the lowered segment
+//! (`docs/math.md` §4) — tested against exact rational evaluation at degrees 1–40
+//! (`crates/scene/tests/batch_eval.rs`).
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -18,7 +20,9 @@ use super::{BezierSegment, Curve, Lower};
 const STACK: usize = 32;
 
 /// `P(u)` for the Bézier curve `points` at every `us[k]`, into `out[k]`: written-out
-/// forms for degrees 1 to 3 (the cubic in Bernstein form), de Casteljau otherwise.
+/// forms for degrees 1 to 3 (the cubic in Bernstein form); degrees 4 to 31 by
+/// Bernstein–Horner where the CPU fuses multiply-adds and `u ∈ [0, 1]`, else by
+/// de Casteljau; higher degrees by de Casteljau.
 ///
 /// # Panics
 /// If `us` and `out` differ in length.
@@ -46,22 +50,11 @@ pub fn bezier_into(points: &[DVec3], us: &[f64], out: &mut [DVec3]) {
             }
         }
         _ if points.len() <= STACK => {
-            // Four parameters at a time, one lane each (the same operations in the same
-            // order as `de_casteljau_in_place`, so the same bits), z skipped for a planar
-            // segment (its z is then exactly 0 for every parameter).
+            // Four parameters at a time, one lane each, z skipped for a planar segment (its
+            // z is then exactly 0 for every parameter): Bernstein–Horner where the CPU
+            // fuses multiply-adds, de Casteljau otherwise.
             let planar = points.iter().all(|p| p.z.to_bits() == 0);
-            let mut chunks = us.chunks_exact(LANES).zip(out.chunks_exact_mut(LANES));
-            for (u, o) in &mut chunks {
-                let u: &[f64; LANES] = u.try_into().unwrap_or(&[0.0; LANES]);
-                de_casteljau_lanes(points, u, planar, o);
-            }
-            let done = us.len() - us.len() % LANES;
-            let n = points.len();
-            let mut buf = [DVec3::ZERO; STACK];
-            for (o, &u) in out[done..].iter_mut().zip(&us[done..]) {
-                buf[..n].copy_from_slice(points);
-                *o = super::bezier::de_casteljau_in_place(&mut buf[..n], u);
-            }
+            general_lanes(points, &BINOMIALS[points.len() - 1], us, planar, out);
         }
         _ => {
             for (o, &u) in out.iter_mut().zip(us) {
@@ -107,6 +100,116 @@ fn de_casteljau_lanes(points: &[DVec3], u: &[f64; LANES], planar: bool, out: &mu
     }
     for (l, o) in out.iter_mut().enumerate() {
         *o = DVec3::new(x[0][l], y[0][l], if planar { 0.0 } else { z[0][l] });
+    }
+}
+
+/// `C(n, k)` for `n < STACK`, `k ≤ n` (Pascal's triangle, built at compile time): exact,
+/// every one an integer below 2⁵³.
+const BINOMIALS: [[f64; STACK]; STACK] = {
+    let mut ints = [[0_u64; STACK]; STACK];
+    let mut out = [[0.0_f64; STACK]; STACK];
+    let mut n = 0;
+    while n < STACK {
+        ints[n][0] = 1;
+        let mut k = 1;
+        while k <= n {
+            ints[n][k] = ints[n - 1][k - 1] + ints[n - 1][k];
+            k += 1;
+        }
+        let mut k = 0;
+        while k <= n {
+            out[n][k] = ints[n][k] as f64;
+            k += 1;
+        }
+        n += 1;
+    }
+    out
+};
+
+/// The most parameters of one segment evaluated by one call of [`bezier_into`] (the
+/// scratch of [`CurveSampler::eval_into`] and of its rational path).
+const RUN: usize = 64;
+
+/// Parameters evaluated together by [`bernstein_horner_block`].
+const BLOCK: usize = 16;
+
+/// The general path of [`bezier_into`] (`points.len() ≤ STACK`): where the CPU fuses
+/// multiply-adds (compiled also for AVX2 + FMA and chosen at run time), blocks of
+/// parameters all in `[0, 1]` go to [`bernstein_horner_block`] — O(n) per point, within
+/// `γ_{2n} Σ|P_i| B_i(u)` (`docs/math.md` §4); the others to [`de_casteljau_lanes`]
+/// (O(n²), within the same bound where `1 − u` is exact), four at a time, and one by one
+/// at the end.
+#[multiversion::multiversion(targets("x86_64+avx2+fma"))]
+fn general_lanes(
+    points: &[DVec3],
+    binomials: &[f64; STACK],
+    us: &[f64],
+    planar: bool,
+    out: &mut [DVec3],
+) {
+    let fused = multiversion::target::selected_target!().supports_feature_str("fma");
+    for (ub, ob) in us.chunks(BLOCK).zip(out.chunks_mut(BLOCK)) {
+        if fused && ub.iter().all(|u| (0.0..=1.0).contains(u)) {
+            bernstein_horner_block(points, binomials, ub, planar, ob);
+            continue;
+        }
+        let mut groups = ub.chunks_exact(LANES).zip(ob.chunks_exact_mut(LANES));
+        for (u, o) in &mut groups {
+            let u: &[f64; LANES] = u.try_into().unwrap_or(&[0.0; LANES]);
+            de_casteljau_lanes(points, u, planar, o);
+        }
+        let done = ub.len() - ub.len() % LANES;
+        let n = points.len();
+        let mut buf = [DVec3::ZERO; STACK];
+        for (o, &u) in ob[done..].iter_mut().zip(&ub[done..]) {
+            buf[..n].copy_from_slice(points);
+            *o = super::bezier::de_casteljau_in_place(&mut buf[..n], u);
+        }
+    }
+}
+
+/// `P(u) = Σ C(n, k) u^k (1 − u)^{n−k} P_k` at up to [`BLOCK`] parameters in `[0, 1]` by
+/// Horner's rule in `1 − u` with the powers of `u` built along the way:
+/// `q ← fma(C(n, k) u^k, P_k, fma(−q, u, q))` for `k = 1..=n` from `q = P_0`.
+/// `fma(−q, u, q)` is `q (1 − u)` rounded once — `1 − u` is never rounded — so term `k`
+/// passes `k` roundings in its weight, one in the step that adds it and two in each of
+/// the `n − k` steps after: at most `2n`, and `|P̂ − P| ≤ γ_{2n} Σ|P_i| B_i(u)`
+/// (`γ_m = m 2⁻⁵³ / (1 − m 2⁻⁵³)`), de Casteljau's bound where `1 − u` is exact, for
+/// `n` steps of `2 + 2·dims` operations instead of `n(n + 1)/2` interpolations. The ends
+/// are exact: at `u = 0` every weight is 0, at `u = 1` every step but the last multiplies
+/// by 0 and the last adds `1 · P_n`. `planar` skips `z` (then exactly 0). Called only
+/// where `mul_add` is one instruction; each step is a simple loop over the block, which
+/// the compiler vectorises.
+#[inline(always)]
+fn bernstein_horner_block(
+    points: &[DVec3],
+    binomials: &[f64; STACK],
+    us: &[f64],
+    planar: bool,
+    out: &mut [DVec3],
+) {
+    let m = us.len().min(BLOCK);
+    let mut u = [0.0_f64; BLOCK];
+    u[..m].copy_from_slice(&us[..m]);
+    let first = points[0];
+    let (mut qx, mut qy, mut qz) = ([first.x; BLOCK], [first.y; BLOCK], [first.z; BLOCK]);
+    let mut power = [1.0_f64; BLOCK];
+    for (p, &c) in points.iter().zip(binomials).skip(1) {
+        for l in 0..BLOCK {
+            power[l] *= u[l];
+            let w = c * power[l];
+            qx[l] = w.mul_add(p.x, (-qx[l]).mul_add(u[l], qx[l]));
+            qy[l] = w.mul_add(p.y, (-qy[l]).mul_add(u[l], qy[l]));
+        }
+        if !planar {
+            for l in 0..BLOCK {
+                let w = c * power[l];
+                qz[l] = w.mul_add(p.z, (-qz[l]).mul_add(u[l], qz[l]));
+            }
+        }
+    }
+    for (l, o) in out.iter_mut().enumerate().take(m) {
+        *o = DVec3::new(qx[l], qy[l], if planar { 0.0 } else { qz[l] });
     }
 }
 
@@ -275,7 +378,7 @@ impl CurveSampler {
         }
         if self.order == 0 {
             // A into `out`, W beside it, then the division: one scratch run.
-            let mut w = [DVec3::ZERO; 64];
+            let mut w = [DVec3::ZERO; RUN];
             bezier_into(&parts.a[0], us, out);
             bezier_into(&parts.w[0], us, &mut w[..n]);
             for (o, w) in out.iter_mut().zip(&w) {
@@ -283,8 +386,8 @@ impl CurveSampler {
             }
             return;
         }
-        let mut a = [[DVec3::ZERO; 64]; 3];
-        let mut w = [[DVec3::ZERO; 64]; 3];
+        let mut a = [[DVec3::ZERO; RUN]; 3];
+        let mut w = [[DVec3::ZERO; RUN]; 3];
         let order = (self.order as usize).min(2);
         for k in 0..=order {
             bezier_into(&parts.a[k], us, &mut a[k][..n]);
@@ -324,7 +427,7 @@ impl CurveSampler {
         assert_eq!(ts.len(), out.len(), "one output per parameter");
         let mut k = 0;
         // A small buffer of local parameters, so that a run is one call of bezier_into.
-        let mut us = [0.0_f64; 64];
+        let mut us = [0.0_f64; RUN];
         while k < ts.len() {
             let Some((index, _)) = super::locate(&self.segments, ts[k]) else {
                 out[k..].fill(DVec3::ZERO);
