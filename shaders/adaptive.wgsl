@@ -8,7 +8,7 @@
 //   finalize    each segment's offset in the sample buffer; when the counts exceed the
 //               buffer they are scaled down in proportion (never below 2 for a drawn
 //               segment, never past the buffer); the indirect draw's instance count
-//   tessellate_{cubic,quartic,any}
+//   tessellate_{cubic,quartic,rational_quadratic,rational_cubic,any}
 //               one workgroup per segment writes exactly its samples there
 //
 // The line pipeline then draws `instance_count` pieces with one indirect draw. The CPU
@@ -304,6 +304,53 @@ fn tessellate_quartic(
     for (var j = lane; j < count; j += SEGMENT_LANES) {
         let u = adaptive_param(j, count);
         samples[first + j] = Vertex(quartic(p0, p1, p2, p3, p4, u, 1.0 - u), seg.curve);
+    }
+}
+
+@compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
+fn tessellate_rational_quadratic(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) index: u32,
+) {
+    let slot = (group.x + group.y * range.groups_x) * SEGMENTS_PER_GROUP + index / SEGMENT_LANES;
+    let w = adaptive_work(slot);
+    let lane = index % SEGMENT_LANES;
+    if (!w.ok) {
+        return;
+    }
+    let seg = w.seg;
+    let count = w.count;
+    let first = w.first;
+    let h0 = control_point4(seg.first_point, 0u);
+    let h1 = control_point4(seg.first_point, 1u);
+    let h2 = control_point4(seg.first_point, 2u);
+    for (var j = lane; j < count; j += SEGMENT_LANES) {
+        let u = adaptive_param(j, count);
+        samples[first + j] = Vertex(rational_quadratic(h0, h1, h2, u, 1.0 - u), seg.curve);
+    }
+}
+
+@compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
+fn tessellate_rational_cubic(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) index: u32,
+) {
+    let slot = (group.x + group.y * range.groups_x) * SEGMENTS_PER_GROUP + index / SEGMENT_LANES;
+    let w = adaptive_work(slot);
+    let lane = index % SEGMENT_LANES;
+    if (!w.ok) {
+        return;
+    }
+    let seg = w.seg;
+    let count = w.count;
+    let first = w.first;
+    let h0 = control_point4(seg.first_point, 0u);
+    let h1 = control_point4(seg.first_point, 1u);
+    let h2 = control_point4(seg.first_point, 2u);
+    let h3 = control_point4(seg.first_point, 3u);
+    for (var j = lane; j < count; j += SEGMENT_LANES) {
+        let u = adaptive_param(j, count);
+        samples[first + j] = Vertex(rational_cubic(h0, h1, h2, h3, u, 1.0 - u), seg.curve);
     }
 }
 

@@ -36,6 +36,22 @@ fn cubic(p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32>, p3: vec3<f32>, u: f32, v: 
     return v * r0 + u * r1;
 }
 
+// A rational quadratic's point, written out: the homogeneous Bernstein sum
+// v²H₀ + 2vuH₁ + u²H₂ divided by its weight lane.
+fn rational_quadratic(h0: vec4<f32>, h1: vec4<f32>, h2: vec4<f32>, u: f32, v: f32) -> vec3<f32> {
+    let h = (v * v) * h0 + (2.0 * v * u) * h1 + (u * u) * h2;
+    return h.xyz / h.w;
+}
+
+// A rational cubic's point, written out: the cubic's Bernstein form on the homogeneous
+// points, divided by its weight lane.
+fn rational_cubic(h0: vec4<f32>, h1: vec4<f32>, h2: vec4<f32>, h3: vec4<f32>, u: f32, v: f32) -> vec3<f32> {
+    let v2 = v * v;
+    let u2 = u * u;
+    let h = (v2 * v) * h0 + (3.0 * v2 * u) * h1 + (3.0 * v * u2) * h2 + (u2 * u) * h3;
+    return h.xyz / h.w;
+}
+
 // One de Casteljau level, then the cubic on the four points it leaves.
 fn quartic(p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32>, p3: vec3<f32>, p4: vec3<f32>, u: f32, v: f32) -> vec3<f32> {
     return cubic(v * p0 + u * p1, v * p1 + u * p2, v * p2 + u * p3, v * p3 + u * p4, u, v);

@@ -5,8 +5,8 @@
 // TESSELLATE_WORKGROUP_SIZE samples (packing splits longer runs), so no lane loops over
 // samples.
 //
-// There is one entry point per degree class (cubic, quartic, any other degree — rational
-// segments of every degree included). Packing sorts each chunk's records by class
+// There is one entry point per degree class (cubic, quartic, rational quadratic, rational
+// cubic, any other degree — rational segments of other degrees included). Packing sorts each chunk's records by class
 // and the tessellator dispatches each class's range with its own pipeline; the evaluation
 // itself (the cubic's Bernstein form, the quartic's de Casteljau, Horner's rule for every
 // other degree) is bezier.wgsl's, shared with the adaptive kernels. CPU twin:
@@ -88,6 +88,43 @@ fn tessellate_quartic(
     let p = quartic(
         control_point(f, 0u), control_point(f, 1u), control_point(f, 2u), control_point(f, 3u),
         control_point(f, 4u), u, v,
+    );
+    samples[seg.first_sample + w.j] = Vertex(p, seg.curve);
+}
+
+@compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
+fn tessellate_rational_quadratic(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let w = work(group, lane);
+    if (!w.ok) {
+        return;
+    }
+    let seg = w.seg;
+    let u = w.u;
+    let f = seg.first_point;
+    let p = rational_quadratic(
+        control_point4(f, 0u), control_point4(f, 1u), control_point4(f, 2u), u, 1.0 - u,
+    );
+    samples[seg.first_sample + w.j] = Vertex(p, seg.curve);
+}
+
+@compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
+fn tessellate_rational_cubic(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let w = work(group, lane);
+    if (!w.ok) {
+        return;
+    }
+    let seg = w.seg;
+    let u = w.u;
+    let f = seg.first_point;
+    let p = rational_cubic(
+        control_point4(f, 0u), control_point4(f, 1u), control_point4(f, 2u),
+        control_point4(f, 3u), u, 1.0 - u,
     );
     samples[seg.first_sample + w.j] = Vertex(p, seg.curve);
 }

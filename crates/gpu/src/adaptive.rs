@@ -136,7 +136,7 @@ impl AdaptiveTessellator {
         let passes = ["count", "scan_blocks", "scan_sums", "finalize"];
         let entries: Vec<&str> = passes
             .into_iter()
-            .chain(TESSELLATE_KERNELS.iter().map(|(e, _)| *e))
+            .chain(TESSELLATE_KERNELS.iter().map(|(e, _, _)| *e))
             .collect();
         let (layout, mut pipelines) = compute_pipelines(
             device,
@@ -496,7 +496,7 @@ impl AdaptiveTessellator {
             // Per kernel class range, as the tessellation: the narrow pass where the
             // tessellation shares a workgroup among segments.
             for (kernel, group, grid, _) in &chunk.dispatches {
-                let narrow = matches!(TESSELLATE_KERNELS.get(*kernel), Some((_, Some(_))));
+                let narrow = matches!(TESSELLATE_KERNELS.get(*kernel), Some((_, Some(_), _)));
                 pass.set_pipeline(&self.comb[usize::from(!narrow)]);
                 pass.set_bind_group(0, group, &[]);
                 pass.set_bind_group(1, &comb.bind_group, &[]);
@@ -596,7 +596,9 @@ fn sample_buffer(device: &wgpu::Device, capacity: u32, usage: wgpu::BufferUsages
 #[must_use]
 pub fn adaptive_groups(kernel: usize, segments: u32) -> u32 {
     match TESSELLATE_KERNELS.get(kernel) {
-        Some((_, Some(_))) => segments.div_ceil(TESSELLATE_WORKGROUP_SIZE / ADAPTIVE_SEGMENT_LANES),
+        Some((_, Some(_), _)) => {
+            segments.div_ceil(TESSELLATE_WORKGROUP_SIZE / ADAPTIVE_SEGMENT_LANES)
+        }
         _ => segments,
     }
 }

@@ -213,28 +213,28 @@ pub struct FrameStats {
 }
 
 /// The kernels of `shaders/tessellate.wgsl` (and of `shaders/adaptive.wgsl`), one per
-/// degree class: `(entry point, the one degree it evaluates, or None for any degree)`.
-/// Rational segments of every degree go to the general kernel, which evaluates them in
-/// homogeneous coordinates (a branch on the record's `rational`, the same for a whole
-/// workgroup). Each chunk's records are sorted in this order and each class is dispatched
-/// with its own pipeline.
-pub const TESSELLATE_KERNELS: [(&str, Option<u32>); 3] = [
-    ("tessellate_cubic", Some(3)),
-    ("tessellate_quartic", Some(4)),
-    ("tessellate_any", None),
+/// degree class: `(entry point, the one degree it evaluates or None for any degree,
+/// whether that one degree is rational)`. Polynomial cubics and quartics and rational
+/// quadratics and cubics are written out; every other segment goes to the general kernel,
+/// which evaluates rational ones in homogeneous coordinates (a branch on the record's
+/// `rational`, the same for a whole workgroup). Each chunk's records are sorted in this
+/// order and each class is dispatched with its own pipeline.
+pub const TESSELLATE_KERNELS: [(&str, Option<u32>, bool); 5] = [
+    ("tessellate_cubic", Some(3), false),
+    ("tessellate_quartic", Some(4), false),
+    ("tessellate_rational_quadratic", Some(2), true),
+    ("tessellate_rational_cubic", Some(3), true),
+    ("tessellate_any", None, false),
 ];
 
 /// The index in [`TESSELLATE_KERNELS`] of the kernel that evaluates a segment of `degree`
-/// (`rational`: with weights, always the general kernel).
+/// (`rational`: with weights).
 #[must_use]
 pub fn kernel_class(degree: u32, rational: bool) -> usize {
     let general = TESSELLATE_KERNELS.len() - 1;
-    if rational {
-        return general;
-    }
     TESSELLATE_KERNELS
         .iter()
-        .position(|(_, d)| d.is_none_or(|d| d == degree))
+        .position(|&(_, d, r)| d.is_none_or(|d| d == degree && r == rational))
         .unwrap_or(general)
 }
 

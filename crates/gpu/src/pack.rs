@@ -281,7 +281,7 @@ mod tests {
         );
         assert_eq!(chunks[0].sample_count, 214);
         // Both are degree 1: all records in the general class.
-        assert_eq!(chunks[0].class_ends, [0, 0, 4]);
+        assert_eq!(chunks[0].class_ends, [0, 0, 0, 0, 4]);
     }
 
     #[test]
@@ -308,12 +308,12 @@ mod tests {
             .iter()
             .map(|s| (s.degree, s.rational))
             .collect();
-        // A rational cubic goes to the general kernel, not the cubic one.
+        // A rational cubic goes to its own kernel, not the polynomial cubic one.
         assert_eq!(
             degrees,
-            vec![(3, 0), (3, 0), (4, 0), (5, 0), (3, 1), (1, 0)]
+            vec![(3, 0), (3, 0), (4, 0), (3, 1), (5, 0), (1, 0)]
         );
-        assert_eq!(chunks[0].class_ends, [2, 3, 6]);
+        assert_eq!(chunks[0].class_ends, [2, 3, 3, 4, 6]);
         // Each record still writes its own curve's samples.
         let firsts: Vec<(u32, u32)> = chunks[0]
             .records
@@ -322,7 +322,7 @@ mod tests {
             .collect();
         assert_eq!(
             firsts,
-            vec![(2, 16), (4, 32), (3, 24), (0, 0), (1, 8), (5, 40)]
+            vec![(2, 16), (4, 32), (3, 24), (1, 8), (0, 0), (5, 40)]
         );
     }
 

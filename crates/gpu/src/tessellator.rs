@@ -103,7 +103,7 @@ impl Tessellator {
     pub fn with_module(device: &wgpu::Device, module: &wgpu::ShaderModule) -> Tessellator {
         let entries: Vec<&str> = TESSELLATE_KERNELS
             .iter()
-            .map(|(e, _)| *e)
+            .map(|(e, _, _)| *e)
             .chain([WRITE_ONLY])
             .collect();
         let (layout, mut pipelines) = compute_pipelines(

@@ -84,7 +84,9 @@ pub fn rational_point(points: &[GpuControlPoint], first: u32, n: u32, u: f32) ->
 }
 
 /// What both tessellators' kernels compute for a segment of `degree` (`shaders/bezier.wgsl`):
-/// for a rational one [`rational_point`]; otherwise the cubic's Bernstein form
+/// for a rational one the homogeneous Bernstein sum written out (quadratics and cubics,
+/// the cubic's weights as below) divided by its weight lane, [`rational_point`] for other
+/// degrees; otherwise the cubic's Bernstein form
 /// `v³P₀ + 3v²uP₁ + 3vu²P₂ + u³P₃`, de Casteljau written out for quartics,
 /// [`bernstein_horner`] for every other degree.
 #[must_use]
@@ -96,7 +98,20 @@ pub fn fixed_kernel(
     u: f32,
 ) -> Vec3 {
     if rational {
-        return rational_point(points, first, degree, u);
+        let h = |i: u32| {
+            let c = points[(first + i) as usize];
+            Vec3::from(c.position).extend(c.weight)
+        };
+        let v = 1.0 - u;
+        let sum = match degree {
+            2 => (v * v) * h(0) + (2.0 * v * u) * h(1) + (u * u) * h(2),
+            3 => {
+                let (v2, u2) = (v * v, u * u);
+                (v2 * v) * h(0) + (3.0 * v2 * u) * h(1) + (3.0 * v * u2) * h(2) + (u2 * u) * h(3)
+            }
+            _ => return rational_point(points, first, degree, u),
+        };
+        return sum.truncate() / sum.w;
     }
     match degree {
         3 => {

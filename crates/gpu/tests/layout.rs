@@ -150,7 +150,7 @@ fn gpu_structs_match_their_wgsl_twins() {
 #[test]
 fn kernel_workgroup_and_scratch_match_the_rust_constants() {
     let (module, _) = shaders::TESSELLATE.validate().expect("valid");
-    for (entry, _) in TESSELLATE_KERNELS {
+    for (entry, _, _) in TESSELLATE_KERNELS {
         let ep = module
             .entry_points
             .iter()
@@ -173,6 +173,8 @@ fn kernel_workgroup_and_scratch_match_the_rust_constants() {
         "bernstein_horner4",
         "control_point4",
         "rational_point",
+        "rational_quadratic",
+        "rational_cubic",
         "general_point",
     ];
     for source in [shaders::TESSELLATE, shaders::ADAPTIVE] {
