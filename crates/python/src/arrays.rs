@@ -212,35 +212,64 @@ pub fn write_out<T>(
 }
 
 /// `f` applied to the parameters block by block (spread over every core for many), its
-/// points written as `dim` coordinates each into one vector.
-pub(crate) fn fill(ts: &[f64], dim: usize, f: &(impl Fn(&[f64], &mut [DVec3]) + Sync)) -> Vec<f64> {
+/// points written as `dim` coordinates each into one vector; and whether every value
+/// written is finite.
+pub(crate) fn fill(
+    ts: &[f64],
+    dim: usize,
+    f: &(impl Fn(&[f64], &mut [DVec3]) + Sync),
+) -> (Vec<f64>, bool) {
     let mut out = vec![0.0; ts.len() * dim];
-    fill_into(ts, dim, f, &mut out);
-    out
+    let finite = fill_into(ts, dim, f, &mut out);
+    (out, finite)
 }
 
-/// [`fill`] into `out` (`ts.len() × dim` values, row-major).
+/// [`fill`] into `out` (`ts.len() × dim` values, row-major); whether every value written
+/// is finite (checked block by block while the block is in cache, on the same threads).
 pub(crate) fn fill_into(
     ts: &[f64],
     dim: usize,
     f: &(impl Fn(&[f64], &mut [DVec3]) + Sync),
     out: &mut [f64],
-) {
-    let block = |(ts, out): (&[f64], &mut [f64])| {
-        let mut buf = [DVec3::ZERO; BLOCK];
+) -> bool {
+    // One scratch block per thread, not one cleared per block.
+    let block = |buf: &mut [DVec3; BLOCK], (ts, out): (&[f64], &mut [f64])| {
         let buf = &mut buf[..ts.len()];
         f(ts, buf);
-        for (o, p) in out.chunks_exact_mut(dim).zip(buf.iter()) {
-            o.copy_from_slice(&p.to_array()[..dim]);
+        // Written per dimension, so each point is two or three stores (a copy of a slice
+        // of run-time length is a call per point).
+        match dim {
+            2 => {
+                for (o, p) in out.chunks_exact_mut(2).zip(buf.iter()) {
+                    o[0] = p.x;
+                    o[1] = p.y;
+                }
+            }
+            3 => {
+                for (o, p) in out.chunks_exact_mut(3).zip(buf.iter()) {
+                    o[0] = p.x;
+                    o[1] = p.y;
+                    o[2] = p.z;
+                }
+            }
+            _ => {
+                for (o, p) in out.chunks_exact_mut(dim).zip(buf.iter()) {
+                    o.copy_from_slice(&p.to_array()[..dim]);
+                }
+            }
         }
+        // Branch-free, so it vectorises.
+        out.iter().fold(true, |ok, v| ok & v.is_finite())
     };
     if ts.len() > PARALLEL_ABOVE {
         ts.par_chunks(BLOCK)
             .zip(out.par_chunks_mut(BLOCK * dim))
-            .for_each(block);
+            .map_init(|| [DVec3::ZERO; BLOCK], |buf, pair| block(buf, pair))
+            .reduce(|| true, |a, b| a & b)
     } else {
+        let mut buf = [DVec3::ZERO; BLOCK];
         ts.chunks(BLOCK)
             .zip(out.chunks_mut(BLOCK * dim))
-            .for_each(block);
+            .fold(true, |ok, pair| block(&mut buf, pair) & ok)
     }
 }

@@ -124,7 +124,11 @@ impl PyCurve {
         what: &str,
         scalar: bool,
     ) -> PyResult<()> {
-        if out.iter().all(|v| v.is_finite()) {
+        // A branch-free pass first (it vectorises); the position only on failure.
+        if out
+            .chunks(1024)
+            .all(|c| c.iter().fold(true, |ok, v| ok & v.is_finite()))
+        {
             return Ok(());
         }
         let k = out.iter().position(|v| !v.is_finite()).unwrap_or(0) / per.max(1);
@@ -176,22 +180,27 @@ impl PyCurve {
             };
             let array = arrays::out_array(out, &shape)?;
             arrays::write_out(&array, |values| {
-                if n > DETACH_ABOVE {
-                    py.detach(|| fill_into(ts, dim, &f, values));
+                let finite = if n > DETACH_ABOVE {
+                    py.detach(|| fill_into(ts, dim, &f, values))
                 } else {
-                    fill_into(ts, dim, &f, values);
+                    fill_into(ts, dim, &f, values)
+                };
+                if finite {
+                    return Ok(());
                 }
                 self.check_finite(ts, values, dim, what, scalar)
             })?;
             return Ok(array.into_any());
         }
         let run = || fill(ts, dim, &f);
-        let out = if n > DETACH_ABOVE {
+        let (out, finite) = if n > DETACH_ABOVE {
             py.detach(run)
         } else {
             run()
         };
-        self.check_finite(ts, &out, dim, what, scalar)?;
+        if !finite {
+            self.check_finite(ts, &out, dim, what, scalar)?;
+        }
         match params {
             Params::Scalar(_) => arrays::shaped(py, out, &[dim]),
             Params::Array(a) => {

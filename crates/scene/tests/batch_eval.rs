@@ -226,6 +226,67 @@ fn every_family_samples_like_its_own_evaluation() {
     }
 }
 
+/// Runs of parameters in one segment are found from the previous run's segment for
+/// sorted input, by a search otherwise: either way every parameter, sorted or shuffled,
+/// at a knot exactly, between knots, repeated or outside the domain, evaluates to the same
+/// bits as when it is passed alone (where only the search runs), for a B-spline with
+/// repeated interior knots (a zero-length segment) and a NURBS curve.
+#[test]
+fn runs_of_sorted_and_shuffled_parameters_equal_lone_evaluation() {
+    use splinescope_core::geom::{BSpline, Lower, Nurbs, locate};
+    let mut rng = Rng::new(7);
+    let points: Vec<DVec3> = (0..12)
+        .map(|_| DVec3::new(rng.range(-2.0, 2.0), rng.range(-2.0, 2.0), 0.0))
+        .collect();
+    let knots = vec![
+        0.0, 0.0, 0.0, 0.0, 0.1, 0.25, 0.25, 0.4, 0.55, 0.7, 0.7, 0.85, 1.0, 1.0, 1.0, 1.0,
+    ];
+    let weights: Vec<f64> = (0..12).map(|i| 0.5 + f64::from(i % 4) * 0.5).collect();
+    let curves: [Curve; 2] = [
+        BSpline::try_new(points.clone(), knots.clone(), 4)
+            .expect("valid")
+            .into(),
+        Nurbs::try_new(points, weights, knots.clone(), 4)
+            .expect("valid")
+            .into(),
+    ];
+    let mut ts: Vec<f64> = knots.clone();
+    ts.extend((0..600).map(|_| rng.unit()));
+    ts.extend([-0.25, 1.5, 0.25, 0.25]);
+    let mut sorted = ts.clone();
+    sorted.sort_by(f64::total_cmp);
+    for curve in &curves {
+        let sampler = CurveSampler::new(curve);
+        let segments = curve.lower();
+        for params in [&ts, &sorted] {
+            let mut batch = vec![DVec3::ZERO; params.len()];
+            sampler.eval_into(params, &mut batch);
+            for (&t, got) in params.iter().zip(&batch) {
+                let mut lone = [DVec3::ZERO];
+                sampler.eval_into(&[t], &mut lone);
+                assert_eq!(
+                    got.to_array().map(f64::to_bits),
+                    lone[0].to_array().map(f64::to_bits),
+                    "{} at t = {t}",
+                    curve.family()
+                );
+                // The polynomial curve also against its segment found by the library's
+                // search and evaluated at that segment's own local parameter.
+                if matches!(curve, Curve::BSpline(_)) {
+                    let (index, u) = locate(&segments, t).expect("segments");
+                    let mut want = [DVec3::ZERO];
+                    bezier_into(segments[index].points(), &[u], &mut want);
+                    assert_eq!(
+                        got.to_array().map(f64::to_bits),
+                        want[0].to_array().map(f64::to_bits),
+                        "B-spline at t = {t}: segment {index}, u = {u}"
+                    );
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn the_parallel_batch_equals_the_serial_one() {
     let scene = splinescope_scene::format::generate::random_bezier_scene(

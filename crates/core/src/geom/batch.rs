@@ -45,8 +45,20 @@ pub fn bezier_into(points: &[DVec3], us: &[f64], out: &mut [DVec3]) {
             }
         }
         [p0, p1, p2, p3] => {
-            for (o, &u) in out.iter_mut().zip(us) {
-                *o = cubic(p0, p1, p2, p3, u);
+            if [p0, p1, p2, p3].iter().all(|p| p.z.to_bits() == 0) {
+                // Planar: x and y only (z is then exactly 0, as the full sum gives).
+                for (o, &u) in out.iter_mut().zip(us) {
+                    let [a, b, c, d] = cubic_weights(u);
+                    *o = DVec3::new(
+                        a * p0.x + b * p1.x + c * p2.x + d * p3.x,
+                        a * p0.y + b * p1.y + c * p2.y + d * p3.y,
+                        0.0,
+                    );
+                }
+            } else {
+                for (o, &u) in out.iter_mut().zip(us) {
+                    *o = cubic(p0, p1, p2, p3, u);
+                }
             }
         }
         _ if points.len() <= STACK => {
@@ -127,8 +139,11 @@ const BINOMIALS: [[f64; STACK]; STACK] = {
 };
 
 /// The most parameters of one segment evaluated by one call of [`bezier_into`] (the
-/// scratch of [`CurveSampler::eval_into`] and of its rational path).
-const RUN: usize = 64;
+/// scratch of [`CurveSampler::eval_into`]).
+const RUN: usize = 256;
+
+/// The most parameters the rational path evaluates at once (its scratch).
+const RATIONAL_RUN: usize = 64;
 
 /// Parameters evaluated together by [`bernstein_horner_block`].
 const BLOCK: usize = 16;
@@ -235,21 +250,39 @@ fn cubic(p0: DVec3, p1: DVec3, p2: DVec3, p3: DVec3, u: f64) -> DVec3 {
 /// polynomial passes and a division cost, in about one. `false` (nothing written) for
 /// other degrees.
 fn fused_rational(a: &[DVec3], w: &[DVec3], us: &[f64], out: &mut [DVec3]) -> bool {
+    // A planar segment's `z` is exactly 0 at every parameter: `x`, `y` and the weight only
+    // (two divisions instead of three), the same operations on them.
+    let planar = a.iter().all(|p| p.z.to_bits() == 0);
     match (a, w) {
         ([a0, a1, a2], [w0, w1, w2]) => {
+            let h = [*a0, *a1, *a2].map(|p| p.to_array());
+            let ws = [w0.x, w1.x, w2.x];
             for (o, &u) in out.iter_mut().zip(us) {
                 let s = 1.0 - u;
                 let b = [s * s, 2.0 * s * u, u * u];
-                let num = b[0] * *a0 + b[1] * *a1 + b[2] * *a2;
-                *o = num / (b[0] * w0.x + b[1] * w1.x + b[2] * w2.x);
+                let den = b[0] * ws[0] + b[1] * ws[1] + b[2] * ws[2];
+                let coord = |d: usize| b[0] * h[0][d] + b[1] * h[1][d] + b[2] * h[2][d];
+                *o = if planar {
+                    DVec3::new(coord(0) / den, coord(1) / den, 0.0)
+                } else {
+                    DVec3::new(coord(0), coord(1), coord(2)) / den
+                };
             }
             true
         }
         ([a0, a1, a2, a3], [w0, w1, w2, w3]) => {
+            let h = [*a0, *a1, *a2, *a3].map(|p| p.to_array());
+            let ws = [w0.x, w1.x, w2.x, w3.x];
             for (o, &u) in out.iter_mut().zip(us) {
                 let b = cubic_weights(u);
-                let num = b[0] * *a0 + b[1] * *a1 + b[2] * *a2 + b[3] * *a3;
-                *o = num / (b[0] * w0.x + b[1] * w1.x + b[2] * w2.x + b[3] * w3.x);
+                let den = b[0] * ws[0] + b[1] * ws[1] + b[2] * ws[2] + b[3] * ws[3];
+                let coord =
+                    |d: usize| b[0] * h[0][d] + b[1] * h[1][d] + b[2] * h[2][d] + b[3] * h[3][d];
+                *o = if planar {
+                    DVec3::new(coord(0) / den, coord(1) / den, 0.0)
+                } else {
+                    DVec3::new(coord(0), coord(1), coord(2)) / den
+                };
             }
             true
         }
@@ -378,7 +411,7 @@ impl CurveSampler {
         }
         if self.order == 0 {
             // A into `out`, W beside it, then the division: one scratch run.
-            let mut w = [DVec3::ZERO; RUN];
+            let mut w = [DVec3::ZERO; RATIONAL_RUN];
             bezier_into(&parts.a[0], us, out);
             bezier_into(&parts.w[0], us, &mut w[..n]);
             for (o, w) in out.iter_mut().zip(&w) {
@@ -386,8 +419,8 @@ impl CurveSampler {
             }
             return;
         }
-        let mut a = [[DVec3::ZERO; RUN]; 3];
-        let mut w = [[DVec3::ZERO; RUN]; 3];
+        let mut a = [[DVec3::ZERO; RATIONAL_RUN]; 3];
+        let mut w = [[DVec3::ZERO; RATIONAL_RUN]; 3];
         let order = (self.order as usize).min(2);
         for k in 0..=order {
             bezier_into(&parts.a[k], us, &mut a[k][..n]);
@@ -426,13 +459,37 @@ impl CurveSampler {
     pub fn eval_into(&self, ts: &[f64], out: &mut [DVec3]) {
         assert_eq!(ts.len(), out.len(), "one output per parameter");
         let mut k = 0;
-        // A small buffer of local parameters, so that a run is one call of bezier_into.
+        // A buffer of local parameters, so that a run is one call of bezier_into.
         let mut us = [0.0_f64; RUN];
+        // The segment of the previous run: sorted parameters are usually in it or the next.
+        let mut last: Option<usize> = None;
         while k < ts.len() {
-            let Some((index, _)) = super::locate(&self.segments, ts[k]) else {
-                out[k..].fill(DVec3::ZERO);
-                return;
+            let t = ts[k];
+            let following = last.and_then(|i| {
+                [i, i + 1].into_iter().find(|&j| {
+                    let lo = if j == 0 {
+                        f64::NEG_INFINITY
+                    } else {
+                        self.segments.get(j).map_or(f64::INFINITY, |s| s.t0)
+                    };
+                    let hi = self
+                        .segments
+                        .get(j + 1)
+                        .map_or(f64::INFINITY, |next| next.t0);
+                    j < self.segments.len() && t >= lo && t < hi
+                })
+            });
+            let index = match following {
+                Some(j) => j,
+                None => match super::locate(&self.segments, t) {
+                    Some((index, _)) => index,
+                    None => {
+                        out[k..].fill(DVec3::ZERO);
+                        return;
+                    }
+                },
             };
+            last = Some(index);
             let seg = &self.segments[index];
             // The segment `locate` picks: the last whose t0 ≤ t (the first for t before it).
             let lo = if index == 0 {
@@ -445,16 +502,31 @@ impl CurveSampler {
                 .get(index + 1)
                 .map_or(f64::INFINITY, |next| next.t0);
             let in_segment = |t: f64| t >= lo && t < hi;
-            // The located parameter always belongs to its run (even a NaN one).
-            us[0] = seg.local_u(ts[k]);
-            let mut end = k + 1;
-            while end < ts.len() && end - k < us.len() && in_segment(ts[end]) {
-                us[end - k] = seg.local_u(ts[end]);
-                end += 1;
+            // The located parameter always belongs to its run (even a NaN one). The run's
+            // end first (comparisons only), then its local parameters in one loop that
+            // vectorises.
+            let limit = (ts.len() - k).min(us.len());
+            let mut len = 1;
+            while len < limit && in_segment(ts[k + len]) {
+                len += 1;
+            }
+            let end = k + len;
+            let (t0, span) = (seg.t0, seg.t1 - seg.t0);
+            for (u, &t) in us[..len].iter_mut().zip(&ts[k..end]) {
+                // `seg.local_u(t)`, the same operations.
+                *u = (t - t0) / span;
             }
             match &self.rational[index] {
                 None => bezier_into(seg.bezier.points(), &us[..end - k], &mut out[k..end]),
-                Some(parts) => self.rational_into(parts, seg, &us[..end - k], &mut out[k..end]),
+                Some(parts) => {
+                    // The rational path's scratch holds RATIONAL_RUN parameters.
+                    for (u, o) in us[..end - k]
+                        .chunks(RATIONAL_RUN)
+                        .zip(out[k..end].chunks_mut(RATIONAL_RUN))
+                    {
+                        self.rational_into(parts, seg, u, o);
+                    }
+                }
             }
             k = end;
         }
