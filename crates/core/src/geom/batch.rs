@@ -263,7 +263,9 @@ fn fused_rational(a: &[DVec3], w: &[DVec3], us: &[f64], out: &mut [DVec3]) -> bo
                 let den = b[0] * ws[0] + b[1] * ws[1] + b[2] * ws[2];
                 let coord = |d: usize| b[0] * h[0][d] + b[1] * h[1][d] + b[2] * h[2][d];
                 *o = if planar {
-                    DVec3::new(coord(0) / den, coord(1) / den, 0.0)
+                    // One packed division of both coordinates.
+                    let [x, y] = div2([coord(0), coord(1)], den);
+                    DVec3::new(x, y, 0.0)
                 } else {
                     DVec3::new(coord(0), coord(1), coord(2)) / den
                 };
@@ -279,7 +281,9 @@ fn fused_rational(a: &[DVec3], w: &[DVec3], us: &[f64], out: &mut [DVec3]) -> bo
                 let coord =
                     |d: usize| b[0] * h[0][d] + b[1] * h[1][d] + b[2] * h[2][d] + b[3] * h[3][d];
                 *o = if planar {
-                    DVec3::new(coord(0) / den, coord(1) / den, 0.0)
+                    // One packed division of both coordinates.
+                    let [x, y] = div2([coord(0), coord(1)], den);
+                    DVec3::new(x, y, 0.0)
                 } else {
                     DVec3::new(coord(0), coord(1), coord(2)) / den
                 };
@@ -288,6 +292,12 @@ fn fused_rational(a: &[DVec3], w: &[DVec3], us: &[f64], out: &mut [DVec3]) -> bo
         }
         _ => false,
     }
+}
+
+/// `[x / d, y / d]`, written lane by lane so the compiler can pack the two divisions.
+#[inline(always)]
+fn div2(v: [f64; 2], d: f64) -> [f64; 2] {
+    [v[0] / d, v[1] / d]
 }
 
 /// A rational segment's homogeneous parts as polynomial Bézier control points: `A` (the
