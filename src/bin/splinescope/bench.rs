@@ -525,8 +525,13 @@ fn print_report(r: &BenchReport) -> Result<()> {
     Ok(())
 }
 
+/// Timed passes of each CPU rate in [`cpu_rates`].
+const CPU_PASSES: usize = 3;
+
 /// CPU rates over at most 2M samples: the batch `f64` evaluator on one thread and on
-/// every core, `per_curve` uniform samples of each curve.
+/// every core, `per_curve` uniform samples of each curve; each the best of
+/// [`CPU_PASSES`] timed passes after an untimed one (one pass of a few milliseconds moves
+/// by a fifth between runs on a busy machine).
 fn cpu_rates(scene: &splinescope::scene::Scene, per_curve: usize) -> (f64, f64) {
     use splinescope::geom::batch::{CurveSampler, UniformCubicWeights, for_each_sampled};
     let cpu_curves = (2_000_000 / per_curve).clamp(1, scene.curves.len());
@@ -537,22 +542,35 @@ fn cpu_rates(scene: &splinescope::scene::Scene, per_curve: usize) -> (f64, f64) 
     let total = (cpu_curves * per_curve) as u64;
     let mut out = vec![glam::DVec3::ZERO; per_curve];
     let weights = UniformCubicWeights::new(per_curve);
-    let started = Instant::now();
-    for s in &samplers {
-        s.sample_uniform_with(&weights, &mut out);
-        std::hint::black_box(&mut out);
-    }
-    let one = rate(total, started.elapsed());
+    let mut one_thread = || {
+        for s in &samplers {
+            s.sample_uniform_with(&weights, &mut out);
+            std::hint::black_box(&mut out);
+        }
+    };
     let all_cores = || {
         for_each_sampled(&samplers, per_curve, |_, points| {
             std::hint::black_box(points);
         });
     };
-    // A first pass starts rayon's threads; the second is timed.
+    // A first pass of each warms the caches and starts rayon's threads.
+    one_thread();
+    let one = (0..CPU_PASSES)
+        .map(|_| {
+            let started = Instant::now();
+            one_thread();
+            rate(total, started.elapsed())
+        })
+        .fold(0.0, f64::max);
     all_cores();
-    let started = Instant::now();
-    all_cores();
-    (one, rate(total, started.elapsed()))
+    let all = (0..CPU_PASSES)
+        .map(|_| {
+            let started = Instant::now();
+            all_cores();
+            rate(total, started.elapsed())
+        })
+        .fold(0.0, f64::max);
+    (one, all)
 }
 
 /// The `f32` twin of the kernel, one thread, over at most 2M samples of the first chunk.
