@@ -234,6 +234,12 @@ struct AdaptiveWork {
 const SEGMENT_LANES: u32 = 8u;
 const SEGMENTS_PER_GROUP: u32 = TESSELLATE_WORKGROUP_SIZE / SEGMENT_LANES;
 
+// The segment slot of invocation `index` of workgroup `group` in the kernels that share a
+// workgroup among SEGMENTS_PER_GROUP segments, SEGMENT_LANES invocations each.
+fn narrow_slot(group: vec3<u32>, index: u32) -> u32 {
+    return (group.x + group.y * range.groups_x) * SEGMENTS_PER_GROUP + index / SEGMENT_LANES;
+}
+
 // Segment `slot` of the dispatch's range.
 fn adaptive_work(slot: u32) -> AdaptiveWork {
     var w: AdaptiveWork;
@@ -263,8 +269,7 @@ fn tessellate_cubic(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(local_invocation_index) index: u32,
 ) {
-    let slot = (group.x + group.y * range.groups_x) * SEGMENTS_PER_GROUP + index / SEGMENT_LANES;
-    let w = adaptive_work(slot);
+    let w = adaptive_work(narrow_slot(group, index));
     let lane = index % SEGMENT_LANES;
     if (!w.ok) {
         return;
@@ -287,8 +292,7 @@ fn tessellate_quartic(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(local_invocation_index) index: u32,
 ) {
-    let slot = (group.x + group.y * range.groups_x) * SEGMENTS_PER_GROUP + index / SEGMENT_LANES;
-    let w = adaptive_work(slot);
+    let w = adaptive_work(narrow_slot(group, index));
     let lane = index % SEGMENT_LANES;
     if (!w.ok) {
         return;
@@ -312,8 +316,7 @@ fn tessellate_rational_quadratic(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(local_invocation_index) index: u32,
 ) {
-    let slot = (group.x + group.y * range.groups_x) * SEGMENTS_PER_GROUP + index / SEGMENT_LANES;
-    let w = adaptive_work(slot);
+    let w = adaptive_work(narrow_slot(group, index));
     let lane = index % SEGMENT_LANES;
     if (!w.ok) {
         return;
@@ -335,8 +338,7 @@ fn tessellate_rational_cubic(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(local_invocation_index) index: u32,
 ) {
-    let slot = (group.x + group.y * range.groups_x) * SEGMENTS_PER_GROUP + index / SEGMENT_LANES;
-    let w = adaptive_work(slot);
+    let w = adaptive_work(narrow_slot(group, index));
     let lane = index % SEGMENT_LANES;
     if (!w.ok) {
         return;
@@ -516,8 +518,7 @@ fn comb_narrow(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(local_invocation_index) index: u32,
 ) {
-    let slot = (group.x + group.y * range.groups_x) * SEGMENTS_PER_GROUP + index / SEGMENT_LANES;
-    comb_segment(slot, index % SEGMENT_LANES, SEGMENT_LANES);
+    comb_segment(narrow_slot(group, index), index % SEGMENT_LANES, SEGMENT_LANES);
 }
 
 // The comb of every other segment: one workgroup per segment (see tessellate_any).

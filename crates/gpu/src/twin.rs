@@ -20,6 +20,13 @@ pub fn sample_param(seg: &GpuRecord, j: u32) -> f32 {
     seg.u0 * (1.0 - f) + seg.u1 * f
 }
 
+/// The homogeneous control point `(w·P, w)` at `first + i`: `control_point4` of
+/// `shaders/bezier.wgsl`.
+fn control_point4(points: &[GpuControlPoint], first: u32, i: u32) -> Vec4 {
+    let c = points[(first + i) as usize];
+    Vec3::from(c.position).extend(c.weight)
+}
+
 /// De Casteljau of degree `n` from `points[first ..= first + n]` at `u`: what the
 /// quartic kernels (`quartic` of `shaders/bezier.wgsl`) write out, with exactly this loop's
 /// operations in this order.
@@ -50,10 +57,7 @@ pub fn de_casteljau(points: &[GpuControlPoint], first: u32, n: u32, u: f32) -> V
 pub fn bernstein_horner4(points: &[GpuControlPoint], first: u32, n: u32, u: f32) -> Vec4 {
     let v = 1.0 - u;
     let n = n.min(MAX_GPU_DEGREE as u32);
-    let p = |i: u32| {
-        let c = points[(first + i) as usize];
-        Vec3::from(c.position).extend(c.weight)
-    };
+    let p = |i: u32| control_point4(points, first, i);
     let (mut power, mut binomial) = (1.0_f32, 1.0_f32);
     let mut q = p(0);
     for k in 1..=n {
@@ -98,10 +102,7 @@ pub fn fixed_kernel(
     u: f32,
 ) -> Vec3 {
     if rational {
-        let h = |i: u32| {
-            let c = points[(first + i) as usize];
-            Vec3::from(c.position).extend(c.weight)
-        };
+        let h = |i: u32| control_point4(points, first, i);
         let v = 1.0 - u;
         let sum = match degree {
             2 => (v * v) * h(0) + (2.0 * v * u) * h(1) + (u * u) * h(2),

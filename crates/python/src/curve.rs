@@ -124,14 +124,15 @@ impl PyCurve {
         what: &str,
         scalar: bool,
     ) -> PyResult<()> {
-        // A branch-free pass first (it vectorises); the position only on failure.
-        if out
-            .chunks(1024)
-            .all(|c| c.iter().fold(true, |ok, v| ok & v.is_finite()))
-        {
+        // Called once the evaluation found a value that is not finite (`fill` checks as
+        // it writes): only its position is sought here.
+        let Some(k) = out
+            .iter()
+            .position(|v| !v.is_finite())
+            .map(|i| i / per.max(1))
+        else {
             return Ok(());
-        }
-        let k = out.iter().position(|v| !v.is_finite()).unwrap_or(0) / per.max(1);
+        };
         let name = param_name("t", scalar, k);
         Err(raise::<CurveError>(
             format!(

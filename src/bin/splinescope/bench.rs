@@ -548,29 +548,23 @@ fn cpu_rates(scene: &splinescope::scene::Scene, per_curve: usize) -> (f64, f64) 
             std::hint::black_box(&mut out);
         }
     };
-    let all_cores = || {
+    let mut all_cores = || {
         for_each_sampled(&samplers, per_curve, |_, points| {
             std::hint::black_box(points);
         });
     };
     // A first pass of each warms the caches and starts rayon's threads.
-    one_thread();
-    let one = (0..CPU_PASSES)
-        .map(|_| {
-            let started = Instant::now();
-            one_thread();
-            rate(total, started.elapsed())
-        })
-        .fold(0.0, f64::max);
-    all_cores();
-    let all = (0..CPU_PASSES)
-        .map(|_| {
-            let started = Instant::now();
-            all_cores();
-            rate(total, started.elapsed())
-        })
-        .fold(0.0, f64::max);
-    (one, all)
+    let best = |pass: &mut dyn FnMut()| {
+        pass();
+        (0..CPU_PASSES)
+            .map(|_| {
+                let started = Instant::now();
+                pass();
+                rate(total, started.elapsed())
+            })
+            .fold(0.0, f64::max)
+    };
+    (best(&mut one_thread), best(&mut all_cores))
 }
 
 /// The `f32` twin of the kernel, one thread, over at most 2M samples of the first chunk.

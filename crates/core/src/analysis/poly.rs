@@ -278,23 +278,18 @@ pub fn eval_with_derivative(c: &[f64], t: f64) -> (f64, f64) {
     in_buffer(c, run)
 }
 
-/// [`eval`] of two polynomials of one degree (a planar curve's `x` and `y`) in one
-/// triangle: the same operations on each, so the same values, the two chains interleaved
-/// (degree ≤ 7 in a fixed buffer).
-#[must_use]
+/// Two polynomials of one degree `n = cx.len() − 1 ≤ 7` (a planar curve's `x` and `y`)
+/// side by side, and `levels` levels of their de Casteljau triangle at `t` (`s = 1 − t`):
+/// the same operations on each as [`eval`]'s triangle, with the two coordinates' chains of
+/// dependences interleaved.
 #[inline]
-pub fn eval2(cx: &[f64], cy: &[f64], t: f64) -> (f64, f64) {
-    let len = cx.len();
-    if len != cy.len() || !(5..=8).contains(&len) {
-        return (eval(cx, t), eval(cy, t));
-    }
-    let s = 1.0 - t;
-    let n = len - 1;
+fn triangle2(cx: &[f64], cy: &[f64], t: f64, s: f64, levels: usize) -> [[f64; 2]; 8] {
+    let n = cx.len() - 1;
     let mut v = [[0.0_f64; 2]; 8];
     for ((vi, &x), &y) in v.iter_mut().zip(cx).zip(cy) {
         *vi = [x, y];
     }
-    for r in 1..=n {
+    for r in 1..=levels {
         for i in 0..=(n - r).min(6) {
             let next = v[i + 1];
             for (d, nd) in v[i].iter_mut().zip(next) {
@@ -302,12 +297,26 @@ pub fn eval2(cx: &[f64], cy: &[f64], t: f64) -> (f64, f64) {
             }
         }
     }
+    v
+}
+
+/// [`eval`] of two polynomials of one degree (a planar curve's `x` and `y`) in one
+/// triangle ([`triangle2`] for degrees 4 to 7): the same operations on each, so the same
+/// values.
+#[must_use]
+#[inline]
+pub fn eval2(cx: &[f64], cy: &[f64], t: f64) -> (f64, f64) {
+    let len = cx.len();
+    if len != cy.len() || !(5..=8).contains(&len) {
+        return (eval(cx, t), eval(cy, t));
+    }
+    let v = triangle2(cx, cy, t, 1.0 - t, len - 1);
     (v[0][0], v[0][1])
 }
 
 /// [`eval_with_derivative`] of two polynomials of one degree (a planar curve's `x` and
-/// `y`) in one triangle: the same operations on each, so the same values, with the two
-/// coordinates' chains of dependences interleaved (degree ≤ 7 in a fixed buffer).
+/// `y`) in one triangle (written out for cubics, [`triangle2`] for degrees 4 to 7): the
+/// same operations on each, so the same values.
 #[must_use]
 #[inline]
 pub fn eval_with_derivative2(cx: &[f64], cy: &[f64], t: f64) -> ((f64, f64), (f64, f64)) {
@@ -327,18 +336,8 @@ pub fn eval_with_derivative2(cx: &[f64], cy: &[f64], t: f64) -> ((f64, f64), (f6
         return (eval_with_derivative(cx, t), eval_with_derivative(cy, t));
     }
     let n = len - 1;
-    let mut v = [[0.0_f64; 2]; 8];
-    for ((vi, &x), &y) in v.iter_mut().zip(cx).zip(cy) {
-        *vi = [x, y];
-    }
-    for r in 1..n {
-        for i in 0..=(n - r).min(6) {
-            let next = v[i + 1];
-            for (d, nd) in v[i].iter_mut().zip(next) {
-                *d = s * *d + t * nd;
-            }
-        }
-    }
+    // All but the last level; its two points give the value and the derivative.
+    let v = triangle2(cx, cy, t, s, n - 1);
     let nf = n as f64;
     let [a, b] = [v[0], v[1]];
     (

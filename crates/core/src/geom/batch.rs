@@ -45,20 +45,9 @@ pub fn bezier_into(points: &[DVec3], us: &[f64], out: &mut [DVec3]) {
             }
         }
         [p0, p1, p2, p3] => {
-            if [p0, p1, p2, p3].iter().all(|p| p.z.to_bits() == 0) {
-                // Planar: x and y only (z is then exactly 0, as the full sum gives).
-                for (o, &u) in out.iter_mut().zip(us) {
-                    let [a, b, c, d] = cubic_weights(u);
-                    *o = DVec3::new(
-                        a * p0.x + b * p1.x + c * p2.x + d * p3.x,
-                        a * p0.y + b * p1.y + c * p2.y + d * p3.y,
-                        0.0,
-                    );
-                }
-            } else {
-                for (o, &u) in out.iter_mut().zip(us) {
-                    *o = cubic(p0, p1, p2, p3, u);
-                }
+            let planar = points.iter().all(|p| p.z.to_bits() == 0);
+            for (o, &u) in out.iter_mut().zip(us) {
+                *o = cubic([p0, p1, p2, p3], u, planar);
             }
         }
         _ if points.len() <= STACK => {
@@ -237,11 +226,13 @@ fn cubic_weights(u: f64) -> [f64; 4] {
 }
 
 /// A cubic in Bernstein form, `s³P₀ + 3s²uP₁ + 3su²P₂ + u³P₃` (`s = 1 − u`): fewer
-/// operations than de Casteljau's six interpolations, within the same bound.
+/// operations than de Casteljau's six interpolations, within the same bound. `planar`
+/// skips `z` (all control points have `z = +0`, so the sum's `z` is exactly 0 anyway).
 #[inline]
-fn cubic(p0: DVec3, p1: DVec3, p2: DVec3, p3: DVec3, u: f64) -> DVec3 {
+fn cubic(p: [DVec3; 4], u: f64, planar: bool) -> DVec3 {
     let [a, b, c, d] = cubic_weights(u);
-    a * p0 + b * p1 + c * p2 + d * p3
+    let sum = |k: usize| a * p[0][k] + b * p[1][k] + c * p[2][k] + d * p[3][k];
+    DVec3::new(sum(0), sum(1), if planar { 0.0 } else { sum(2) })
 }
 
 /// A rational quadratic or cubic at every `us[k]` into `out[k]`, the numerator `A` and the
@@ -262,13 +253,7 @@ fn fused_rational(a: &[DVec3], w: &[DVec3], us: &[f64], out: &mut [DVec3]) -> bo
                 let b = [s * s, 2.0 * s * u, u * u];
                 let den = b[0] * ws[0] + b[1] * ws[1] + b[2] * ws[2];
                 let coord = |d: usize| b[0] * h[0][d] + b[1] * h[1][d] + b[2] * h[2][d];
-                *o = if planar {
-                    // One packed division of both coordinates.
-                    let [x, y] = div2([coord(0), coord(1)], den);
-                    DVec3::new(x, y, 0.0)
-                } else {
-                    DVec3::new(coord(0), coord(1), coord(2)) / den
-                };
+                *o = divided(coord, den, planar);
             }
             true
         }
@@ -280,13 +265,7 @@ fn fused_rational(a: &[DVec3], w: &[DVec3], us: &[f64], out: &mut [DVec3]) -> bo
                 let den = b[0] * ws[0] + b[1] * ws[1] + b[2] * ws[2] + b[3] * ws[3];
                 let coord =
                     |d: usize| b[0] * h[0][d] + b[1] * h[1][d] + b[2] * h[2][d] + b[3] * h[3][d];
-                *o = if planar {
-                    // One packed division of both coordinates.
-                    let [x, y] = div2([coord(0), coord(1)], den);
-                    DVec3::new(x, y, 0.0)
-                } else {
-                    DVec3::new(coord(0), coord(1), coord(2)) / den
-                };
+                *o = divided(coord, den, planar);
             }
             true
         }
@@ -294,10 +273,17 @@ fn fused_rational(a: &[DVec3], w: &[DVec3], us: &[f64], out: &mut [DVec3]) -> bo
     }
 }
 
-/// `[x / d, y / d]`, written lane by lane so the compiler can pack the two divisions.
+/// The point whose homogeneous coordinates are `coord(0..3)` over `den`; for a planar
+/// segment `z` is skipped (exactly 0) and `x`, `y` are divided lane by lane, so the
+/// compiler packs the two divisions into one.
 #[inline(always)]
-fn div2(v: [f64; 2], d: f64) -> [f64; 2] {
-    [v[0] / d, v[1] / d]
+fn divided(coord: impl Fn(usize) -> f64, den: f64, planar: bool) -> DVec3 {
+    if planar {
+        let xy = [coord(0), coord(1)].map(|v| v / den);
+        DVec3::new(xy[0], xy[1], 0.0)
+    } else {
+        DVec3::new(coord(0), coord(1), coord(2)) / den
+    }
 }
 
 /// A rational segment's homogeneous parts as polynomial Bézier control points: `A` (the
@@ -460,6 +446,17 @@ impl CurveSampler {
         }
     }
 
+    /// The parameters `[lo, hi)` that [`super::locate`] gives segment `j`: from its `t0`
+    /// (from −∞ for the first) to the next one's (to +∞ for the last).
+    fn run_range(&self, j: usize) -> (f64, f64) {
+        let lo = match j {
+            0 => f64::NEG_INFINITY,
+            _ => self.segments.get(j).map_or(f64::INFINITY, |s| s.t0),
+        };
+        let hi = self.segments.get(j + 1).map_or(f64::INFINITY, |s| s.t0);
+        (lo, hi)
+    }
+
     /// `P(t)` at every `ts[k]` into `out[k]`, each in the segment holding it (parameters
     /// outside the domain extrapolate the first or last segment). Runs of parameters in
     /// one segment are evaluated together.
@@ -477,15 +474,7 @@ impl CurveSampler {
             let t = ts[k];
             let following = last.and_then(|i| {
                 [i, i + 1].into_iter().find(|&j| {
-                    let lo = if j == 0 {
-                        f64::NEG_INFINITY
-                    } else {
-                        self.segments.get(j).map_or(f64::INFINITY, |s| s.t0)
-                    };
-                    let hi = self
-                        .segments
-                        .get(j + 1)
-                        .map_or(f64::INFINITY, |next| next.t0);
+                    let (lo, hi) = self.run_range(j);
                     j < self.segments.len() && t >= lo && t < hi
                 })
             });
@@ -501,16 +490,7 @@ impl CurveSampler {
             };
             last = Some(index);
             let seg = &self.segments[index];
-            // The segment `locate` picks: the last whose t0 ≤ t (the first for t before it).
-            let lo = if index == 0 {
-                f64::NEG_INFINITY
-            } else {
-                seg.t0
-            };
-            let hi = self
-                .segments
-                .get(index + 1)
-                .map_or(f64::INFINITY, |next| next.t0);
+            let (lo, hi) = self.run_range(index);
             let in_segment = |t: f64| t >= lo && t < hi;
             // The located parameter always belongs to its run (even a NaN one). The run's
             // end first (comparisons only), then its local parameters in one loop that
