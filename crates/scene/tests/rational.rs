@@ -529,6 +529,19 @@ fn the_batch_sampler_agrees_with_the_rational_curves() {
             )
             .expect("cubic"),
         ),
+        // Planar (every z = 0): its own path, x, y and the weight only.
+        Curve::RationalBezier(
+            RationalBezier::try_new(
+                vec![
+                    DVec3::new(-1.0, 0.5, 0.0),
+                    DVec3::new(1.0, 2.0, 0.0),
+                    DVec3::new(3.0, -2.5, 0.0),
+                    DVec3::new(5.0, 1.0, 0.0),
+                ],
+                vec![0.5, 3.0, 0.125, 2.0],
+            )
+            .expect("planar cubic"),
+        ),
     ];
     for c in &curves {
         let sampler = CurveSampler::new(c);

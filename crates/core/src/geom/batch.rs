@@ -239,11 +239,8 @@ fn cubic(p: [DVec3; 4], u: f64, planar: bool) -> DVec3 {
 /// weight `W` summed in one pass with the same Bernstein weights (the written-out forms of
 /// the polynomial path: `s²`, `2su`, `u²` and the cubic's), then divided — what two
 /// polynomial passes and a division cost, in about one. `false` (nothing written) for
-/// other degrees.
+/// other degrees. (Planar ones take [`planar_rational`].)
 fn fused_rational(a: &[DVec3], w: &[DVec3], us: &[f64], out: &mut [DVec3]) -> bool {
-    // A planar segment's `z` is exactly 0 at every parameter: `x`, `y` and the weight only
-    // (two divisions instead of three), the same operations on them.
-    let planar = a.iter().all(|p| p.z.to_bits() == 0);
     match (a, w) {
         ([a0, a1, a2], [w0, w1, w2]) => {
             let h = [*a0, *a1, *a2].map(|p| p.to_array());
@@ -253,7 +250,7 @@ fn fused_rational(a: &[DVec3], w: &[DVec3], us: &[f64], out: &mut [DVec3]) -> bo
                 let b = [s * s, 2.0 * s * u, u * u];
                 let den = b[0] * ws[0] + b[1] * ws[1] + b[2] * ws[2];
                 let coord = |d: usize| b[0] * h[0][d] + b[1] * h[1][d] + b[2] * h[2][d];
-                *o = divided(coord, den, planar);
+                *o = DVec3::new(coord(0), coord(1), coord(2)) / den;
             }
             true
         }
@@ -265,7 +262,7 @@ fn fused_rational(a: &[DVec3], w: &[DVec3], us: &[f64], out: &mut [DVec3]) -> bo
                 let den = b[0] * ws[0] + b[1] * ws[1] + b[2] * ws[2] + b[3] * ws[3];
                 let coord =
                     |d: usize| b[0] * h[0][d] + b[1] * h[1][d] + b[2] * h[2][d] + b[3] * h[3][d];
-                *o = divided(coord, den, planar);
+                *o = DVec3::new(coord(0), coord(1), coord(2)) / den;
             }
             true
         }
@@ -273,16 +270,45 @@ fn fused_rational(a: &[DVec3], w: &[DVec3], us: &[f64], out: &mut [DVec3]) -> bo
     }
 }
 
-/// The point whose homogeneous coordinates are `coord(0..3)` over `den`; for a planar
-/// segment `z` is skipped (exactly 0) and `x`, `y` are divided lane by lane, so the
-/// compiler packs the two divisions into one.
-#[inline(always)]
-fn divided(coord: impl Fn(usize) -> f64, den: f64, planar: bool) -> DVec3 {
-    if planar {
-        let xy = [coord(0), coord(1)].map(|v| v / den);
-        DVec3::new(xy[0], xy[1], 0.0)
-    } else {
-        DVec3::new(coord(0), coord(1), coord(2)) / den
+/// A planar rational quadratic or cubic (the sums of [`fused_rational`]), a block of parameters at a time with
+/// each step one loop over the block (Bernstein weights, the sums of `x`, `y` and the
+/// weight, the two divisions, the stores): the loops vectorise across parameters (compiled
+/// also for AVX2, chosen at run time). The operations on each parameter are the ones of
+/// the scalar forms — no fused multiply-adds — so every CPU gets the same bits.
+#[multiversion::multiversion(targets("x86_64+avx2"))]
+fn planar_rational(xy: [[f64; 4]; 2], ws: [f64; 4], cubic: bool, us: &[f64], out: &mut [DVec3]) {
+    const B: usize = 16;
+    for (ub, ob) in us.chunks(B).zip(out.chunks_mut(B)) {
+        let mut u = [0.0_f64; B];
+        u[..ub.len()].copy_from_slice(ub);
+        let mut b = [[0.0_f64; B]; 4];
+        for l in 0..B {
+            let s = 1.0 - u[l];
+            if cubic {
+                let (s2, u2) = (s * s, u[l] * u[l]);
+                b[0][l] = s2 * s;
+                b[1][l] = 3.0 * s2 * u[l];
+                b[2][l] = 3.0 * s * u2;
+                b[3][l] = u2 * u[l];
+            } else {
+                b[0][l] = s * s;
+                b[1][l] = 2.0 * s * u[l];
+                b[2][l] = u[l] * u[l];
+            }
+        }
+        let sum = |c: &[f64; 4], l: usize| {
+            let v = b[0][l] * c[0] + b[1][l] * c[1] + b[2][l] * c[2];
+            if cubic { v + b[3][l] * c[3] } else { v }
+        };
+        let (mut x, mut y) = ([0.0_f64; B], [0.0_f64; B]);
+        for l in 0..B {
+            let den = sum(&ws, l);
+            x[l] = sum(&xy[0], l) / den;
+            y[l] = sum(&xy[1], l) / den;
+        }
+        for (l, o) in ob.iter_mut().enumerate() {
+            *o = DVec3::new(x[l], y[l], 0.0);
+        }
     }
 }
 
@@ -293,6 +319,38 @@ fn divided(coord: impl Fn(usize) -> f64, den: f64, planar: bool) -> DVec3 {
 struct Homogeneous {
     a: [Vec<DVec3>; 3],
     w: [Vec<DVec3>; 3],
+    /// A planar quadratic or cubic's weighted `x`, `y` and weights inline, so that
+    /// evaluating it reads no memory beyond the sampler's own arrays.
+    planar: Option<PlanarRational>,
+}
+
+/// A planar rational quadratic or cubic: per control point its weighted `x` and `y` and
+/// its weight (the fourth entries 0 for a quadratic).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct PlanarRational {
+    xy: [[f64; 4]; 2],
+    ws: [f64; 4],
+    cubic: bool,
+}
+
+impl PlanarRational {
+    fn of(a: &[DVec3], w: &[DVec3]) -> Option<PlanarRational> {
+        let planar = a.iter().all(|p| p.z.to_bits() == 0);
+        if !planar || !matches!(a.len(), 3 | 4) || a.len() != w.len() {
+            return None;
+        }
+        let mut out = PlanarRational {
+            xy: [[0.0; 4]; 2],
+            ws: [0.0; 4],
+            cubic: a.len() == 4,
+        };
+        for (i, (p, q)) in a.iter().zip(w).enumerate() {
+            out.xy[0][i] = p.x;
+            out.xy[1][i] = p.y;
+            out.ws[i] = q.x;
+        }
+        Some(out)
+    }
 }
 
 impl Homogeneous {
@@ -304,10 +362,9 @@ impl Homogeneous {
             [b0, b1, b2].map(|b| b.points().to_vec())
         };
         let (a, w) = seg.homogeneous();
-        Some(Homogeneous {
-            a: hodographs(a),
-            w: hodographs(w),
-        })
+        let (a, w) = (hodographs(a), hodographs(w));
+        let planar = PlanarRational::of(&a[0], &w[0]);
+        Some(Homogeneous { a, w, planar })
     }
 }
 
@@ -402,6 +459,10 @@ impl CurveSampler {
         out: &mut [DVec3],
     ) {
         let n = us.len();
+        if let (0, Some(p)) = (self.order, &parts.planar) {
+            planar_rational(p.xy, p.ws, p.cubic, us, out);
+            return;
+        }
         if self.order == 0 && fused_rational(&parts.a[0], &parts.w[0], us, out) {
             return;
         }
