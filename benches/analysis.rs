@@ -41,6 +41,24 @@ fn bench(c: &mut Criterion) {
                     .sum::<f64>()
             });
         });
+        // The whole call from the control points, as kurbo's is: the analysis built
+        // (segments, hodograph, its roots) and the length taken.
+        g.bench_with_input(
+            BenchmarkId::new("splinescope from points", acc),
+            &acc,
+            |b, &acc| {
+                b.iter(|| {
+                    cubics
+                        .iter()
+                        .map(|p| {
+                            CurveAnalysis::new(&Bezier::new(black_box(p).to_vec()))
+                                .length(0.0, 1.0, black_box(acc))
+                                .map_or(0.0, |l| l.value)
+                        })
+                        .sum::<f64>()
+                });
+            },
+        );
         g.bench_with_input(BenchmarkId::new("kurbo", acc), &acc, |b, &acc| {
             b.iter(|| theirs.iter().map(|c| c.arclen(black_box(acc))).sum::<f64>());
         });
