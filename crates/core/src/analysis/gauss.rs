@@ -262,7 +262,7 @@ impl PlanarSpeed {
 /// The roots of `a + b z + c z²` (`c ≠ 0`), without cancellation (divisions by `fdiv`,
 /// which does not overflow).
 fn quadratic_roots(a: C64, b: C64, c: C64) -> Vec<C64> {
-    let mut s = (b * b - a * c * 4.0).sqrt();
+    let mut s = complex_sqrt(b * b - a * c * 4.0);
     // The sign that adds to `b` rather than cancelling it.
     if b.re * s.re + b.im * s.im < 0.0 {
         s = -s;
@@ -272,6 +272,25 @@ fn quadratic_roots(a: C64, b: C64, c: C64) -> Vec<C64> {
         return vec![ZERO, ZERO];
     }
     vec![q.fdiv(c), a.fdiv(q)]
+}
+
+/// The principal square root of `z` in algebraic form (`num-complex`'s goes through
+/// `atan2` and `sin`/`cos`): `t = √((|Re z| + |z|) / 2)`, then the other part is
+/// `Im z / 2t` — no cancellation, both halves scaled by ½ first so that nothing overflows.
+fn complex_sqrt(z: C64) -> C64 {
+    if z.im == 0.0 {
+        return if z.re >= 0.0 {
+            C64::new(z.re.sqrt(), z.im)
+        } else {
+            C64::new(0.0, (-z.re).sqrt())
+        };
+    }
+    let t = (0.5 * z.re.abs() + 0.5 * z.norm()).sqrt();
+    if z.re >= 0.0 {
+        C64::new(t, z.im / (2.0 * t))
+    } else {
+        C64::new(z.im.abs() / (2.0 * t), t.copysign(z.im))
+    }
 }
 
 /// All roots of `Σ c_j z^j` (degree ≥ 3, `c_last ≠ 0`) by the Aberth–Ehrlich iteration,
@@ -648,6 +667,40 @@ mod tests {
                 s.roots()
             );
         }
+    }
+
+    #[test]
+    fn complex_square_roots() {
+        // Squares of known roots, exact in binary: the root comes back exactly (principal
+        // branch: real part ≥ 0), on the axes and in every quadrant; and huge or tiny
+        // values neither overflow nor lose the small part.
+        for (re, im) in [
+            (3.0, 4.0),
+            (0.5, -0.25),
+            (0.0, 2.0),
+            (2.0, -3.0),
+            (1.5, 0.0),
+            (0.75, 1e-8),
+        ] {
+            let r = C64::new(re, im);
+            let got = complex_sqrt(r * r);
+            assert!(
+                (got - r).norm() <= 4.0 * f64::EPSILON * r.norm(),
+                "{r}: {got}"
+            );
+        }
+        assert_eq!(complex_sqrt(C64::new(-9.0, 0.0)), C64::new(0.0, 3.0));
+        let big = complex_sqrt(C64::new(-1e308, 1e308));
+        let want = C64::new(1e308, 1e308).norm().sqrt();
+        assert!(
+            big.is_finite() && (big.norm() - want).abs() <= 1e-15 * want,
+            "{big}"
+        );
+        let small = complex_sqrt(C64::new(1e-300, 3e-310));
+        assert!(
+            (small.im - 1.5e-310 / 1e-150).abs() <= 1e-10 * 1.5e-160,
+            "{small}"
+        );
     }
 
     fn simpson(f: &impl Fn(f64) -> f64, a: f64, b: f64) -> f64 {

@@ -44,8 +44,12 @@ fn power_basis(c: &[f64]) -> Vec<f64> {
     let m = c.len().saturating_sub(1);
     let mut diff = c.to_vec();
     let mut out = Vec::with_capacity(c.len());
+    // C(m, k) along the row: `C(m, k) (m − k)` is an integer below 2⁵³ for the degrees
+    // here (≤ 31), so the product and the division by `k + 1` are exact.
+    let mut binomial = 1.0;
     for k in 0..=m {
-        out.push(poly::binomial(m, k) * diff[0]);
+        out.push(binomial * diff[0]);
+        binomial = binomial * (m - k) as f64 / (k + 1) as f64;
         for i in 0..diff.len().saturating_sub(1) {
             diff[i] = diff[i + 1] - diff[i];
         }
