@@ -385,7 +385,8 @@ fn tessellate_any(
 // the hairs change side at an inflection). The hair tips joined in order are the comb's
 // envelope. Derivatives come from the segment's homogeneous control points H_i = (w P, w):
 // H^(k)(u) = n!/(n−k)! Σ Δ^k H_i B_i^{n−k}(u), then P′ = (H′ − w′ P)/w and
-// P″ = (H″ − w″ P − 2 w′ P′)/w. CPU twin: comb_hair in crates/gpu/src/twin.rs.
+// P″ = (H″ − w″ P − 2 w′ P′)/w (cubics written out in Bernstein form). Checked against the
+// exact curvature in tests/gpu_comb.rs.
 
 // Twin: GpuComb.
 struct Comb {
@@ -464,6 +465,28 @@ fn point_and_curvature(first: u32, n: u32, u: f32) -> array<vec3<f32>, 2> {
     if (n >= 2u) {
         h2 = nf * (nf - 1.0) * difference_sum(first, n, 2u, u, v);
     }
+    return curvature_from(h, h1, h2);
+}
+
+// The same for a cubic whose homogeneous control points are h: the three sums in
+// Bernstein form, written out (v = 1 − u) — H = Σ H_i B_i³, H′ = 3 Σ ΔH_i B_i²,
+// H″ = 6 Σ Δ²H_i B_i¹, each a sum of nonnegative weights times differences, as §8's.
+fn cubic_point_and_curvature(h: array<vec4<f32>, 4>, u: f32) -> array<vec3<f32>, 2> {
+    let v = 1.0 - u;
+    let v2 = v * v;
+    let u2 = u * u;
+    let point = h[0] * (v2 * v) + h[1] * (3.0 * v2 * u) + h[2] * (3.0 * v * u2) + h[3] * (u2 * u);
+    let d0 = h[1] - h[0];
+    let d1 = h[2] - h[1];
+    let d2 = h[3] - h[2];
+    let h1 = 3.0 * (d0 * v2 + d1 * (2.0 * u * v) + d2 * u2);
+    let h2 = 6.0 * ((d1 - d0) * v + (d2 - d1) * u);
+    return curvature_from(point, h1, h2);
+}
+
+// The point and the curvature vector from the homogeneous point H and its first two
+// derivatives.
+fn curvature_from(h: vec4<f32>, h1: vec4<f32>, h2: vec4<f32>) -> array<vec3<f32>, 2> {
     let p = h.xyz / h.w;
     let d1 = (h1.xyz - h1.w * p) / h.w;
     let d2 = (h2.xyz - h2.w * p - 2.0 * h1.w * d1) / h.w;
@@ -476,43 +499,70 @@ fn point_and_curvature(first: u32, n: u32, u: f32) -> array<vec3<f32>, 2> {
     return array<vec3<f32>, 2>(p, k);
 }
 
-// Writes the hairs of samples j = first_lane, first_lane + stride, … of segment slot `slot`
-// of the dispatch's range, and (from the range's first invocation) the comb's draw
-// arguments: 2 vertices per hair, then 2 per envelope piece.
-fn comb_segment(slot: u32, first_lane: u32, stride: u32) {
+// The segment of comb invocation `slot`, and (from the range's first invocation) the
+// comb's draw arguments: 2 vertices per hair, then 2 per envelope piece.
+fn comb_work(slot: u32, first_lane: u32) -> AdaptiveWork {
     if (slot == 0u && first_lane == 0u) {
         let drawn = work[STAT_DRAWN];
         comb_args[0] = 2u * drawn;
         comb_args[4] = 2u * (max(drawn, 1u) - 1u);
     }
-    let w = adaptive_work(slot);
+    return adaptive_work(slot);
+}
+
+// Writes the hair of sample j of the segment of `w`, from its point and curvature vector.
+fn write_hair(w: AdaptiveWork, j: u32, pk: array<vec3<f32>, 2>) {
+    let seg = w.seg;
+    let shown = comb.curve == COMB_ALL || comb.curve == seg.curve;
+    let tip = pk[0] - comb.scale * pk[1];
+    let tag = seg.curve;
+    var tip_tag = seg.curve;
+    var edge_tag = seg.curve;
+    if (!shown) {
+        tip_tag = seg.curve | COMB_HIDDEN;
+        edge_tag = seg.curve | select(0u, COMB_HIDDEN, (w.first + j) % 2u == 1u);
+    }
+    hairs[2u * (w.first + j)] = Vertex(pk[0], tag);
+    hairs[2u * (w.first + j) + 1u] = Vertex(tip, tip_tag);
+    envelope[w.first + j] = Vertex(tip, edge_tag);
+}
+
+// The hairs of samples j = first_lane, first_lane + stride, … of segment slot `slot` of
+// the dispatch's range, any degree.
+fn comb_segment(slot: u32, first_lane: u32, stride: u32) {
+    let w = comb_work(slot, first_lane);
     if (!w.ok) {
         return;
     }
-    let seg = w.seg;
-    let count = w.count;
-    let first = w.first;
-    let n = min(seg.degree, MAX_DEGREE);
-    let shown = comb.curve == COMB_ALL || comb.curve == seg.curve;
-    for (var j = first_lane; j < count; j += stride) {
-        let u = adaptive_param(j, count);
-        let pk = point_and_curvature(seg.first_point, n, u);
-        let tip = pk[0] - comb.scale * pk[1];
-        let tag = seg.curve;
-        var tip_tag = seg.curve;
-        var edge_tag = seg.curve;
-        if (!shown) {
-            tip_tag = seg.curve | COMB_HIDDEN;
-            edge_tag = seg.curve | select(0u, COMB_HIDDEN, (first + j) % 2u == 1u);
-        }
-        hairs[2u * (first + j)] = Vertex(pk[0], tag);
-        hairs[2u * (first + j) + 1u] = Vertex(tip, tip_tag);
-        envelope[first + j] = Vertex(tip, edge_tag);
+    let n = min(w.seg.degree, MAX_DEGREE);
+    for (var j = first_lane; j < w.count; j += stride) {
+        write_hair(w, j, point_and_curvature(w.seg.first_point, n, adaptive_param(j, w.count)));
     }
 }
 
-// The comb of the cubic and quartic classes: SEGMENT_LANES invocations per segment, as
-// their tessellation kernels.
+// The comb of the cubic classes (polynomial and rational): their control points read
+// once, the sums written out; SEGMENT_LANES invocations per segment, as their kernels.
+@compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
+fn comb_cubic(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) index: u32,
+) {
+    let first_lane = index % SEGMENT_LANES;
+    let w = comb_work(narrow_slot(group, index), first_lane);
+    if (!w.ok) {
+        return;
+    }
+    var h: array<vec4<f32>, 4>;
+    for (var i = 0u; i < 4u; i++) {
+        h[i] = control_point4(w.seg.first_point, i);
+    }
+    for (var j = first_lane; j < w.count; j += SEGMENT_LANES) {
+        write_hair(w, j, cubic_point_and_curvature(h, adaptive_param(j, w.count)));
+    }
+}
+
+// The comb of the other narrow classes (quartics, rational quadratics): SEGMENT_LANES
+// invocations per segment, as their tessellation kernels.
 @compute @workgroup_size(TESSELLATE_WORKGROUP_SIZE)
 fn comb_narrow(
     @builtin(workgroup_id) group: vec3<u32>,

@@ -49,6 +49,14 @@ fn families() -> Vec<Curve> {
         )),
         Curve::ModifiedBezier(ModifiedBezier::try_new(base, 0.4, p(0.0, 0.6)).expect("bump")),
         Curve::RationalBezier(RationalBezier::quarter_ellipse(p(2.0, -2.0), 2.0, 1.0)),
+        // A rational cubic (the cubic comb kernel's weighted path).
+        Curve::RationalBezier(
+            RationalBezier::try_new(
+                vec![p(-1.0, -4.0), p(0.0, -2.0), p(1.5, -4.5), p(3.0, -3.0)],
+                vec![1.0, 3.0, 0.5, 2.0],
+            )
+            .expect("rational cubic"),
+        ),
         Curve::Nurbs(Nurbs::circle(p(3.0, 2.0), 1.0).expect("circle")),
         Curve::BSpline(
             BSpline::try_new(

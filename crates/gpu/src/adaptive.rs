@@ -50,8 +50,8 @@ pub struct AdaptiveTessellator {
     scan_sums: wgpu::ComputePipeline,
     finalize: wgpu::ComputePipeline,
     kernels: Vec<wgpu::ComputePipeline>,
-    /// The comb passes: for the cubic and quartic classes, then for the general one.
-    comb: [wgpu::ComputePipeline; 2],
+    /// The comb passes: for the cubic classes, the other narrow ones and the general one.
+    comb: [wgpu::ComputePipeline; 3],
     comb_layout: wgpu::BindGroupLayout,
     max_groups_per_dim: u32,
 }
@@ -156,7 +156,7 @@ impl AdaptiveTessellator {
             bind_group_layouts: &[Some(&layout), Some(&comb_layout)],
             immediate_size: 0,
         });
-        let comb = ["comb_narrow", "comb_wide"].map(|entry| {
+        let comb = ["comb_cubic", "comb_narrow", "comb_wide"].map(|entry| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(entry),
                 layout: Some(&comb_pipeline_layout),
@@ -496,8 +496,12 @@ impl AdaptiveTessellator {
             // Per kernel class range, as the tessellation: the narrow pass where the
             // tessellation shares a workgroup among segments.
             for (kernel, group, grid, _) in &chunk.dispatches {
-                let narrow = matches!(TESSELLATE_KERNELS.get(*kernel), Some((_, Some(_), _)));
-                pass.set_pipeline(&self.comb[usize::from(!narrow)]);
+                let pipeline = match TESSELLATE_KERNELS.get(*kernel) {
+                    Some((_, Some(3), _)) => 0,
+                    Some((_, Some(_), _)) => 1,
+                    _ => 2,
+                };
+                pass.set_pipeline(&self.comb[pipeline]);
                 pass.set_bind_group(0, group, &[]);
                 pass.set_bind_group(1, &comb.bind_group, &[]);
                 pass.dispatch_workgroups(grid.0, grid.1, 1);
