@@ -61,6 +61,11 @@ pub fn comb(analysis: &CurveAnalysis, per_segment: usize, scale: f64) -> Vec<Hai
 /// The fraction of the view's height the automatic comb scale gives a typical long hair.
 pub const AUTO_COMB_FRACTION: f64 = 0.1;
 
+/// The most the automatic comb scale gives that hair, as a fraction of a typical curve's
+/// length ([`reference_length`]): on a scene of many small curves the combs stay the size
+/// of their curves instead of a tenth of the view each.
+pub const AUTO_COMB_CURVE_FRACTION: f64 = 0.5;
+
 /// Samples per segment the automatic scale measures the curvature at.
 const REFERENCE_SAMPLES: usize = 16;
 
@@ -95,14 +100,35 @@ pub fn reference_curvature<'a>(curves: impl IntoIterator<Item = &'a CurveAnalysi
     Some(*k)
 }
 
+/// A typical curve's length for the automatic comb scale: the median over the curves of
+/// their control polygons' lengths (each at least the curve's length); `None` without a
+/// curve of positive length.
+#[must_use]
+pub fn reference_length<'a>(curves: impl IntoIterator<Item = &'a CurveAnalysis>) -> Option<f64> {
+    let mut lengths: Vec<f64> = curves
+        .into_iter()
+        .map(|a| a.pieces().iter().map(|p| p.polygon_length()).sum::<f64>())
+        .filter(|l| *l > 0.0 && l.is_finite())
+        .collect();
+    if lengths.is_empty() {
+        return None;
+    }
+    let middle = lengths.len() / 2;
+    let (_, l, _) = lengths.select_nth_unstable_by(middle, f64::total_cmp);
+    Some(*l)
+}
+
 /// The automatic comb scale for a view `view_height` world units tall: a hair at the
 /// reference curvature ([`reference_curvature`]) is [`AUTO_COMB_FRACTION`] of the view
-/// tall; 1 when there is no curvature to measure.
+/// tall, or [`AUTO_COMB_CURVE_FRACTION`] of the typical curve's length
+/// ([`reference_length`]) where that is shorter; 1 when there is no curvature to measure.
 #[must_use]
-pub fn auto_scale(reference: Option<f64>, view_height: f64) -> f64 {
+pub fn auto_scale(reference: Option<f64>, typical_length: Option<f64>, view_height: f64) -> f64 {
     match reference {
         Some(k) if view_height.is_finite() && view_height > 0.0 => {
-            AUTO_COMB_FRACTION * view_height / k
+            let reach = AUTO_COMB_FRACTION * view_height;
+            let reach = typical_length.map_or(reach, |l| reach.min(AUTO_COMB_CURVE_FRACTION * l));
+            reach / k
         }
         _ => 1.0,
     }
@@ -154,8 +180,34 @@ mod tests {
         let circle = Nurbs::circle(DVec3::ZERO, r).expect("circle");
         let k = reference_curvature([&CurveAnalysis::new(&circle)]).expect("curved");
         assert!((k - 1.0 / r).abs() < 1e-12);
-        let s = auto_scale(Some(k), 10.0);
+        let l = reference_length([&CurveAnalysis::new(&circle)]).expect("long");
+        let s = auto_scale(Some(k), Some(l), 10.0);
         assert!((s * k - AUTO_COMB_FRACTION * 10.0).abs() < 1e-12);
-        assert_eq!(auto_scale(None, 10.0), 1.0);
+        assert_eq!(auto_scale(None, Some(l), 10.0), 1.0);
+    }
+
+    #[test]
+    fn the_automatic_scale_keeps_small_curves_combs_their_size() {
+        // Three cubics whose control polygons are 3, 5 and 7 long (legs 1, 1, 1 to 3, 3,
+        // 1 — right angles, lengths exact): the median is 5. In a view 1,000 tall a tenth
+        // of the view would be 100; half the typical curve, 2.5, is what the hair gets.
+        let cubic = |a: f64, b: f64| {
+            Bezier::new(vec![
+                DVec3::ZERO,
+                DVec3::new(a, 0.0, 0.0),
+                DVec3::new(a, b, 0.0),
+                DVec3::new(a - 1.0, b, 0.0),
+            ])
+        };
+        let curves = [cubic(1.0, 1.0), cubic(2.0, 2.0), cubic(3.0, 3.0)];
+        let analyses: Vec<CurveAnalysis> = curves.iter().map(CurveAnalysis::new).collect();
+        assert_eq!(reference_length(&analyses), Some(5.0));
+        let k = reference_curvature(&analyses).expect("curved");
+        let s = auto_scale(Some(k), reference_length(&analyses), 1000.0);
+        assert!((s * k - 2.5).abs() < 1e-12, "{}", s * k);
+        // Zoomed in until a tenth of the view is shorter, the view decides again.
+        let s = auto_scale(Some(k), Some(5.0), 10.0);
+        assert!((s * k - 1.0).abs() < 1e-12);
+        assert_eq!(reference_length(&[]), None);
     }
 }

@@ -8,7 +8,7 @@
 
 use glam::DVec3;
 
-use splinescope_core::analysis::comb::{auto_scale, reference_curvature};
+use splinescope_core::analysis::comb::{auto_scale, reference_curvature, reference_length};
 use splinescope_core::analysis::{CurveAnalysis, ExtremumKind, all_intersections};
 
 use super::Color;
@@ -20,7 +20,9 @@ use splinescope_encoding::draw::{Stroke, marker_style};
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum CombScale {
     /// Chosen for the view: a hair at the scene's reference curvature is
-    /// [`splinescope_core::analysis::comb::AUTO_COMB_FRACTION`] of the view's height.
+    /// [`splinescope_core::analysis::comb::AUTO_COMB_FRACTION`] of the view's height, or
+    /// [`splinescope_core::analysis::comb::AUTO_COMB_CURVE_FRACTION`] of a typical curve's
+    /// length where that is shorter.
     Auto,
     /// World length of a hair per unit of curvature (a finite number above 0).
     Fixed(f64),
@@ -56,7 +58,11 @@ impl CombScale {
                     .iter()
                     .map(|c| CurveAnalysis::new(&c.curve))
                     .collect();
-                auto_scale(reference_curvature(&analyses), view_height)
+                auto_scale(
+                    reference_curvature(&analyses),
+                    reference_length(&analyses),
+                    view_height,
+                )
             }
         }
     }
