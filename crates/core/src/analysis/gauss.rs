@@ -76,20 +76,40 @@ impl PlanarSpeed {
     /// (coefficients whose products overflow, or a root iteration that does not settle).
     #[must_use]
     pub fn new(x: &[f64], y: &[f64]) -> Option<PlanarSpeed> {
-        let mut c: Vec<C64> = x.iter().zip(y).map(|(&a, &b)| C64::new(a, b)).collect();
-        while c.last().is_some_and(|v| *v == ZERO) {
-            c.pop();
+        let mut len = x.len().min(y.len());
+        while len > 0 && x[len - 1] == 0.0 && y[len - 1] == 0.0 {
+            len -= 1;
         }
-        if c.len() > MAX_ROOTS + 1 || c.iter().any(|v| !v.is_finite()) {
+        if len > MAX_ROOTS + 1 {
             return None;
         }
-        let found = match c.len() {
-            0 | 1 => Vec::new(),
-            2 => vec![-c[0].fdiv(c[1])],
-            3 => quadratic_roots(c[0], c[1], c[2]),
-            _ => aberth(&c)?,
+        let mut c = [ZERO; MAX_ROOTS + 1];
+        for (k, v) in c.iter_mut().enumerate().take(len) {
+            *v = C64::new(x[k], y[k]);
+        }
+        let c = &c[..len];
+        if c.iter().any(|v| !v.is_finite()) {
+            return None;
+        }
+        // Lines and quadratics (the hodographs of quadratics and cubics) without allocating.
+        let mut few = [ZERO; 2];
+        let many;
+        let found: &[C64] = match c.len() {
+            0 | 1 => &[],
+            2 => {
+                few[0] = -quotient(c[0], c[1]);
+                &few[..1]
+            }
+            3 => {
+                few = quadratic_roots(c[0], c[1], c[2]);
+                &few
+            }
+            _ => {
+                many = aberth(c)?;
+                &many
+            }
         };
-        let lead = c.last().map_or(0.0, |v| v.norm());
+        let lead = c.last().map_or(0.0, |v| modulus(*v));
         if !lead.is_finite() || found.iter().any(|r| !r.is_finite()) {
             return None;
         }
@@ -105,7 +125,7 @@ impl PlanarSpeed {
             out.x[k] = v.re;
             out.y[k] = v.im;
         }
-        for (slot, r) in out.roots.iter_mut().zip(&found) {
+        for (slot, r) in out.roots.iter_mut().zip(found) {
             *slot = (r.re, r.im.abs());
         }
         Some(out)
@@ -259,9 +279,9 @@ impl PlanarSpeed {
     }
 }
 
-/// The roots of `a + b z + c z²` (`c ≠ 0`), without cancellation (divisions by `fdiv`,
+/// The roots of `a + b z + c z²` (`c ≠ 0`), without cancellation (divisions by `quotient`,
 /// which does not overflow).
-fn quadratic_roots(a: C64, b: C64, c: C64) -> Vec<C64> {
+fn quadratic_roots(a: C64, b: C64, c: C64) -> [C64; 2] {
     let mut s = complex_sqrt(b * b - a * c * 4.0);
     // The sign that adds to `b` rather than cancelling it.
     if b.re * s.re + b.im * s.im < 0.0 {
@@ -269,9 +289,32 @@ fn quadratic_roots(a: C64, b: C64, c: C64) -> Vec<C64> {
     }
     let q = (b + s) * -0.5;
     if q == ZERO {
-        return vec![ZERO, ZERO];
+        return [ZERO, ZERO];
     }
-    vec![q.fdiv(c), a.fdiv(q)]
+    [quotient(q, c), quotient(a, q)]
+}
+
+/// `|z|`: `√(x² + y²)` where the sum of squares is a normal number, `hypot` (which scales)
+/// only where it overflows or underflows.
+fn modulus(z: C64) -> f64 {
+    let s = z.re * z.re + z.im * z.im;
+    if s.is_normal() { s.sqrt() } else { z.norm() }
+}
+
+/// `a / b`: `a b̄ / |b|²` where `|b|²` is a normal number and the result finite, `fdiv`
+/// (which scales) otherwise.
+fn quotient(a: C64, b: C64) -> C64 {
+    let s = b.re * b.re + b.im * b.im;
+    if s.is_normal() {
+        let q = C64::new(
+            (a.re * b.re + a.im * b.im) / s,
+            (a.im * b.re - a.re * b.im) / s,
+        );
+        if q.is_finite() {
+            return q;
+        }
+    }
+    a.fdiv(b)
 }
 
 /// The principal square root of `z` in algebraic form (`num-complex`'s goes through
@@ -285,7 +328,7 @@ fn complex_sqrt(z: C64) -> C64 {
             C64::new(0.0, (-z.re).sqrt())
         };
     }
-    let t = (0.5 * z.re.abs() + 0.5 * z.norm()).sqrt();
+    let t = (0.5 * z.re.abs() + 0.5 * modulus(z)).sqrt();
     if z.re >= 0.0 {
         C64::new(t, z.im / (2.0 * t))
     } else {
@@ -701,6 +744,33 @@ mod tests {
             (small.im - 1.5e-310 / 1e-150).abs() <= 1e-10 * 1.5e-160,
             "{small}"
         );
+    }
+
+    #[test]
+    fn quotients_and_moduli_across_the_range() {
+        // Exact cases: (3 + 4i) / (1 + 2i) = 2.2 − 0.4i rounds like the closed form;
+        // |3 + 4i| = 5 exactly. Then values whose squares overflow or underflow take the
+        // scaled path and stay right.
+        let q = quotient(C64::new(3.0, 4.0), C64::new(1.0, 2.0));
+        assert!(
+            (q - C64::new(2.2, -0.4)).norm() <= 2.0 * f64::EPSILON * 2.3,
+            "{q}"
+        );
+        assert_eq!(modulus(C64::new(3.0, 4.0)), 5.0);
+        for scale in [1e200, 1e-200, 1e300, 1e-300] {
+            let a = C64::new(3.0 * scale, 4.0 * scale);
+            assert!((modulus(a) / scale - 5.0).abs() <= 1e-15 * 5.0, "{scale}");
+            let q = quotient(a, C64::new(1.0 * scale, 2.0 * scale));
+            assert!(
+                (q - C64::new(2.2, -0.4)).norm() <= 1e-15 * 2.3,
+                "{scale}: {q}"
+            );
+            let q = quotient(C64::new(3.0, 4.0), C64::new(scale, 0.0));
+            assert!(
+                ((q * scale) - C64::new(3.0, 4.0)).norm() <= 1e-14 * 5.0,
+                "{scale}: {q}"
+            );
+        }
     }
 
     fn simpson(f: &impl Fn(f64) -> f64, a: f64, b: f64) -> f64 {

@@ -31,7 +31,7 @@ pub struct Piece {
     planar: bool,
     /// For a polynomial segment of degree ≤ 7: `A′` per coordinate in the power basis
     /// (ascending), for the arc length's many evaluations of `|C′|` by Horner's rule.
-    power: Option<[Vec<f64>; 3]>,
+    power: Option<[Power; 3]>,
     /// The length of the control polygon (at least the segment's).
     polygon: f64,
     /// For a planar polynomial segment of degree ≤ 7: its speed as `|ℓ| Π |u − r_j|`,
@@ -39,21 +39,42 @@ pub struct Piece {
     planar_speed: Option<PlanarSpeed>,
 }
 
-/// The power-basis coefficients (ascending) of `Σ c_i B_{i,m}`: `a_k = C(m, k) Δᵏ c_0`.
-fn power_basis(c: &[f64]) -> Vec<f64> {
-    let m = c.len().saturating_sub(1);
-    let mut diff = c.to_vec();
-    let mut out = Vec::with_capacity(c.len());
+/// The most coefficients a hodograph kept in the power basis has (segments of degree ≤ 7).
+const POWER_MAX: usize = 7;
+
+/// A hodograph coordinate in the power basis (ascending), inline.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Power {
+    c: [f64; POWER_MAX],
+    len: usize,
+}
+
+impl Power {
+    fn as_slice(&self) -> &[f64] {
+        &self.c[..self.len]
+    }
+}
+
+/// The power-basis coefficients (ascending) of `Σ c_i B_{i,m}` (`c.len() ≤ POWER_MAX`):
+/// `a_k = C(m, k) Δᵏ c_0`.
+fn power_basis(c: &[f64]) -> Power {
+    let len = c.len().min(POWER_MAX);
+    let mut diff = [0.0; POWER_MAX];
+    diff[..len].copy_from_slice(&c[..len]);
+    let mut out = Power {
+        c: [0.0; POWER_MAX],
+        len,
+    };
+    let m = len.saturating_sub(1);
     // C(m, k) along the row: `C(m, k) (m − k)` is an integer below 2⁵³ for the degrees
-    // here (≤ 31), so the product and the division by `k + 1` are exact.
+    // here, so the product and the division by `k + 1` are exact.
     let mut binomial = 1.0;
-    for k in 0..=m {
-        out.push(binomial * diff[0]);
+    for k in 0..len {
+        out.c[k] = binomial * diff[0];
         binomial = binomial * (m - k) as f64 / (k + 1) as f64;
-        for i in 0..diff.len().saturating_sub(1) {
+        for i in 0..len.saturating_sub(1 + k) {
             diff[i] = diff[i + 1] - diff[i];
         }
-        diff.pop();
     }
     out
 }
@@ -88,7 +109,7 @@ impl Piece {
                 (lo.min(p.truncate()), hi.max(p.truncate()))
             });
         let planar = a[2].iter().all(|v| *v == 0.0);
-        let power = (w.is_none() && pts.len() <= 8).then(|| {
+        let power = (w.is_none() && pts.len() <= POWER_MAX + 1).then(|| {
             [
                 power_basis(&da[0]),
                 power_basis(&da[1]),
@@ -97,7 +118,7 @@ impl Piece {
         });
         let polygon = pts.windows(2).map(|w| (w[1] - w[0]).length()).sum();
         let planar_speed = match &power {
-            Some([x, y, _]) if planar => PlanarSpeed::new(x, y),
+            Some([x, y, _]) if planar => PlanarSpeed::new(x.as_slice(), y.as_slice()),
             _ => None,
         };
         Piece {
@@ -121,8 +142,12 @@ impl Piece {
     pub fn speed(&self, u: f64) -> f64 {
         match &self.power {
             Some([x, y, z]) => {
-                let (dx, dy) = (horner(x, u), horner(y, u));
-                let dz = if self.planar { 0.0 } else { horner(z, u) };
+                let (dx, dy) = (horner(x.as_slice(), u), horner(y.as_slice(), u));
+                let dz = if self.planar {
+                    0.0
+                } else {
+                    horner(z.as_slice(), u)
+                };
                 let s = (dx * dx + dy * dy + dz * dz).sqrt();
                 if s.is_finite() {
                     s
