@@ -270,11 +270,12 @@ fn fused_rational(a: &[DVec3], w: &[DVec3], us: &[f64], out: &mut [DVec3]) -> bo
     }
 }
 
-/// A planar rational quadratic or cubic (the sums of [`fused_rational`]), a block of parameters at a time with
-/// each step one loop over the block (Bernstein weights, the sums of `x`, `y` and the
-/// weight, the two divisions, the stores): the loops vectorise across parameters (compiled
-/// also for AVX2, chosen at run time). The operations on each parameter are the ones of
-/// the scalar forms — no fused multiply-adds — so every CPU gets the same bits.
+/// A planar rational quadratic or cubic (the sums of [`fused_rational`]), a block of
+/// parameters at a time with each step one loop over the block (Bernstein weights, the
+/// sums of `x`, `y` and the weight, the two divisions, the stores): the loops vectorise
+/// across parameters (compiled also for AVX2, chosen at run time). The operations on each
+/// parameter are the ones of the scalar forms — no fused multiply-adds — so every CPU gets
+/// the same bits.
 #[multiversion::multiversion(targets("x86_64+avx2"))]
 fn planar_rational(xy: [[f64; 4]; 2], ws: [f64; 4], cubic: bool, us: &[f64], out: &mut [DVec3]) {
     const B: usize = 16;
