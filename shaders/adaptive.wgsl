@@ -100,14 +100,39 @@ fn wang_count(seg: Segment) -> u32 {
         m_xy = max(m_xy, length(d.xy - centre * d.z));
         m_w = max(m_w, abs(d.z));
     }
+    // A lower bound of H_w on [0, 1], at least W = min w_i (docs/math.md §5): the smallest
+    // Bernstein coefficient of H_w's two halves split at ½ (each half lies in the hull of
+    // its coefficients), the k-th of each half 2⁻ᵏ Σ_j C(k, j) w_j (from its own end), less
+    // WEIGHT_ROUNDING of itself for the rounding. (Written as sums, not as de Casteljau's
+    // averages in place: GL on llvmpipe lost those writes to a local array in the nested
+    // loop.) Twin: w_floor in src/gpu/twin.rs.
+    var low = min(h[0].z, h[n].z);
+    var half_k = 1.0;
+    for (var k = 1u; k <= n; k++) {
+        half_k = 0.5 * half_k;
+        var binomial = 1.0;
+        var left = 0.0;
+        var right = 0.0;
+        for (var j = 0u; j <= k; j++) {
+            left += binomial * h[j].z;
+            right += binomial * h[n - k + j].z;
+            binomial = binomial * f32(k - j) / f32(j + 1u);
+        }
+        low = min(low, min(left, right) * half_k);
+    }
+    let w_floor = max(w_min, low * (1.0 - WEIGHT_ROUNDING));
     let nn = f32(n * (n - min(n, 1u)));
-    let intervals = ceil(sqrt(nn * (m_xy + r * m_w) / (8.0 * frame.tolerance_px * w_min)));
+    let intervals = ceil(sqrt(nn * (m_xy + r * m_w) / (8.0 * frame.tolerance_px * w_floor)));
     // NaN or overflow (a degenerate camera) asks for the most samples, not garbage.
     if (!(intervals < f32(frame.max_count))) {
         return frame.max_count;
     }
     return clamp(u32(intervals) + 1u, 2u, frame.max_count);
 }
+
+// Twin: WEIGHT_ROUNDING in src/gpu/twin.rs. Above (n + 3) · 2⁻²⁴ for every degree up to
+// 31: the relative rounding of a sum of n + 1 positive terms whose binomials are rounded.
+const WEIGHT_ROUNDING: f32 = 4e-6;
 
 @compute @workgroup_size(64)
 fn count(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -233,7 +233,7 @@ pub fn wang_count(frame: &GpuFrame, points: &[GpuControlPoint], seg: &GpuSegment
         m_w = m_w.max(d.z.abs());
     }
     let nn = (n * n.saturating_sub(1)) as f32;
-    let intervals = (nn * (m_xy + r * m_w) / (8.0 * frame.tolerance_px * w_min))
+    let intervals = (nn * (m_xy + r * m_w) / (8.0 * frame.tolerance_px * w_floor(&h, n, w_min)))
         .sqrt()
         .ceil();
     if intervals.is_nan() || intervals >= frame.max_count as f32 {
@@ -241,6 +241,31 @@ pub fn wang_count(frame: &GpuFrame, points: &[GpuControlPoint], seg: &GpuSegment
     }
     (intervals as u32 + 1).clamp(2, frame.max_count)
 }
+
+/// A lower bound of the homogeneous `w` of `h[..=n]` on `[0, 1]`, at least `w_min`: the
+/// smallest Bernstein coefficient of its two halves split at ½, the `k`-th of each
+/// `2⁻ᵏ Σ_j C(k, j) w_j` from its own end, less [`WEIGHT_ROUNDING`] of itself. Twin of the
+/// same lines of `wang_count` in `shaders/adaptive.wgsl` (the same operations in `f32`).
+fn w_floor(h: &[Vec3], n: usize, w_min: f32) -> f32 {
+    let mut low = h[0].z.min(h[n].z);
+    let mut half_k = 1.0_f32;
+    for k in 1..=n {
+        half_k *= 0.5;
+        let (mut binomial, mut left, mut right) = (1.0_f32, 0.0_f32, 0.0_f32);
+        for j in 0..=k {
+            left += binomial * h[j].z;
+            right += binomial * h[n - k + j].z;
+            binomial = binomial * (k - j) as f32 / (j + 1) as f32;
+        }
+        low = low.min(left.min(right) * half_k);
+    }
+    w_min.max(low * (1.0 - WEIGHT_ROUNDING))
+}
+
+/// Twin of `WEIGHT_ROUNDING` in `shaders/adaptive.wgsl`: above `(n + 3) 2⁻²⁴` (the relative
+/// rounding of a sum of `n + 1` positive terms with rounded binomials) for every degree up
+/// to 31.
+pub const WEIGHT_ROUNDING: f32 = 4e-6;
 
 /// Twin of `NEAR_W` in `shaders/adaptive.wgsl`.
 pub const ADAPTIVE_NEAR_W: f32 = 1e-5;
@@ -315,5 +340,59 @@ pub fn tessellate_adaptive(
                 id: seg.curve,
             };
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `Σ w_i B_i(t)` in `f64`, by de Casteljau.
+    fn weight_at(w: &[f32], t: f64) -> f64 {
+        let mut v: Vec<f64> = w.iter().map(|&x| f64::from(x)).collect();
+        for level in 1..v.len() {
+            for i in 0..v.len() - level {
+                v[i] = (1.0 - t) * v[i] + t * v[i + 1];
+            }
+        }
+        v[0]
+    }
+
+    #[test]
+    fn the_weight_floor_stays_under_the_weight_and_above_the_smallest_one() {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 40) as f32 / (1u64 << 24) as f32
+        };
+        for n in 1..=MAX_GPU_DEGREE {
+            for _ in 0..20 {
+                // Positive weights over three orders of magnitude.
+                let w: Vec<f32> = (0..=n).map(|_| 0.02 * 1000f32.powf(next())).collect();
+                let h: Vec<Vec3> = w.iter().map(|&x| Vec3::new(0.0, 0.0, x)).collect();
+                let w_min = w.iter().copied().fold(f32::MAX, f32::min);
+                let floor = w_floor(&h, n, w_min);
+                assert!(floor >= w_min, "degree {n}: {floor} below {w_min}");
+                for s in 0..=4000 {
+                    let t = f64::from(s) / 4000.0;
+                    let v = weight_at(&w, t);
+                    assert!(
+                        f64::from(floor) <= v,
+                        "degree {n}: {floor} above w({t}) = {v} ({w:?})"
+                    );
+                }
+            }
+        }
+        // Where the smallest weight is an inner one, the floor is well above it: for
+        // (1, 4, ¼, 2) the halves' coefficients are (1, 5/2, 37/16, 63/32) and
+        // (63/32, 13/8, 9/8, 2), so the floor is 1 (the weight's own minimum, at t = 0).
+        let h: Vec<Vec3> = [1.0, 4.0, 0.25, 2.0]
+            .iter()
+            .map(|&x| Vec3::new(0.0, 0.0, x))
+            .collect();
+        let floor = w_floor(&h, 3, 0.25);
+        assert!((floor - 1.0).abs() <= 2.0 * WEIGHT_ROUNDING, "{floor}");
     }
 }
