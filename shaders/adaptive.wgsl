@@ -106,9 +106,10 @@ fn wang_count(seg: Segment) -> u32 {
     // WEIGHT_ROUNDING of itself for the rounding. (Written as sums, not as de Casteljau's
     // averages in place: GL on llvmpipe lost those writes to a local array in the nested
     // loop.) Twin: w_floor in src/gpu/twin.rs.
+    // Equal weights (a polynomial segment seen orthographically) are their own floor.
     var low = min(h[0].z, h[n].z);
     var half_k = 1.0;
-    for (var k = 1u; k <= n; k++) {
+    for (var k = 1u; k <= n && w_max > w_min; k++) {
         half_k = 0.5 * half_k;
         var binomial = 1.0;
         var left = 0.0;
@@ -500,7 +501,7 @@ fn cubic_point_and_curvature(h: array<vec4<f32>, 4>, u: f32) -> array<vec3<f32>,
     let v = 1.0 - u;
     let v2 = v * v;
     let u2 = u * u;
-    let point = h[0] * (v2 * v) + h[1] * (3.0 * v2 * u) + h[2] * (3.0 * v * u2) + h[3] * (u2 * u);
+    let point = cubic_bernstein4(h[0], h[1], h[2], h[3], u, v);
     let d0 = h[1] - h[0];
     let d1 = h[2] - h[1];
     let d2 = h[3] - h[2];

@@ -17,12 +17,24 @@ fn control_point4(first: u32, i: u32) -> vec4<f32> {
     return vec4<f32>(c.position, c.weight);
 }
 
+// The cubic Bernstein weights (v³, 3v²u, 3vu², u³), v = 1 − u.
+fn cubic_weights(u: f32, v: f32) -> vec4<f32> {
+    let v2 = v * v;
+    let u2 = u * u;
+    return vec4<f32>(v2 * v, 3.0 * v2 * u, 3.0 * v * u2, u2 * u);
+}
+
 // The cubic's Bernstein form, v³P₀ + 3v²uP₁ + 3vu²P₂ + u³P₃: half de Casteljau's
 // operations. v = 1 − u.
 fn cubic_bernstein(p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32>, p3: vec3<f32>, u: f32, v: f32) -> vec3<f32> {
-    let v2 = v * v;
-    let u2 = u * u;
-    return (v2 * v) * p0 + (3.0 * v2 * u) * p1 + (3.0 * v * u2) * p2 + (u2 * u) * p3;
+    let b = cubic_weights(u, v);
+    return b.x * p0 + b.y * p1 + b.z * p2 + b.w * p3;
+}
+
+// The same sum of homogeneous points (w P, w).
+fn cubic_bernstein4(h0: vec4<f32>, h1: vec4<f32>, h2: vec4<f32>, h3: vec4<f32>, u: f32, v: f32) -> vec4<f32> {
+    let b = cubic_weights(u, v);
+    return b.x * h0 + b.y * h1 + b.z * h2 + b.w * h3;
 }
 
 // De Casteljau of a cubic, written out (its three levels): the quartic's last three.
@@ -46,9 +58,7 @@ fn rational_quadratic(h0: vec4<f32>, h1: vec4<f32>, h2: vec4<f32>, u: f32, v: f3
 // A rational cubic's point, written out: the cubic's Bernstein form on the homogeneous
 // points, divided by its weight lane.
 fn rational_cubic(h0: vec4<f32>, h1: vec4<f32>, h2: vec4<f32>, h3: vec4<f32>, u: f32, v: f32) -> vec3<f32> {
-    let v2 = v * v;
-    let u2 = u * u;
-    let h = (v2 * v) * h0 + (3.0 * v2 * u) * h1 + (3.0 * v * u2) * h2 + (u2 * u) * h3;
+    let h = cubic_bernstein4(h0, h1, h2, h3, u, v);
     return h.xyz / h.w;
 }
 

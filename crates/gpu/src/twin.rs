@@ -87,6 +87,13 @@ pub fn rational_point(points: &[GpuControlPoint], first: u32, n: u32, u: f32) ->
     h.truncate() / h.w
 }
 
+/// `cubic_weights` of `shaders/bezier.wgsl`: `(v³, 3v²u, 3vu², u³)`, `v = 1 − u`.
+fn cubic_weights(u: f32) -> [f32; 4] {
+    let v = 1.0 - u;
+    let (v2, u2) = (v * v, u * u);
+    [v2 * v, 3.0 * v2 * u, 3.0 * v * u2, u2 * u]
+}
+
 /// What both tessellators' kernels compute for a segment of `degree` (`shaders/bezier.wgsl`):
 /// for a rational one the homogeneous Bernstein sum written out (quadratics and cubics,
 /// the cubic's weights as below) divided by its weight lane, [`rational_point`] for other
@@ -107,8 +114,8 @@ pub fn fixed_kernel(
         let sum = match degree {
             2 => (v * v) * h(0) + (2.0 * v * u) * h(1) + (u * u) * h(2),
             3 => {
-                let (v2, u2) = (v * v, u * u);
-                (v2 * v) * h(0) + (3.0 * v2 * u) * h(1) + (3.0 * v * u2) * h(2) + (u2 * u) * h(3)
+                let b = cubic_weights(u);
+                b[0] * h(0) + b[1] * h(1) + b[2] * h(2) + b[3] * h(3)
             }
             _ => return rational_point(points, first, degree, u),
         };
@@ -117,9 +124,8 @@ pub fn fixed_kernel(
     match degree {
         3 => {
             let p = |i: u32| Vec3::from(points[(first + i) as usize].position);
-            let v = 1.0 - u;
-            let (v2, u2) = (v * v, u * u);
-            (v2 * v) * p(0) + (3.0 * v2 * u) * p(1) + (3.0 * v * u2) * p(2) + (u2 * u) * p(3)
+            let b = cubic_weights(u);
+            b[0] * p(0) + b[1] * p(1) + b[2] * p(2) + b[3] * p(3)
         }
         4 => de_casteljau(points, first, degree, u),
         _ => bernstein_horner(points, first, degree, u),
@@ -233,20 +239,26 @@ pub fn wang_count(frame: &GpuFrame, points: &[GpuControlPoint], seg: &GpuSegment
         m_w = m_w.max(d.z.abs());
     }
     let nn = (n * n.saturating_sub(1)) as f32;
-    let intervals = (nn * (m_xy + r * m_w) / (8.0 * frame.tolerance_px * w_floor(&h, n, w_min)))
-        .sqrt()
-        .ceil();
+    let intervals = (nn * (m_xy + r * m_w)
+        / (8.0 * frame.tolerance_px * w_floor(&h, n, w_min, w_max)))
+    .sqrt()
+    .ceil();
     if intervals.is_nan() || intervals >= frame.max_count as f32 {
         return frame.max_count;
     }
     (intervals as u32 + 1).clamp(2, frame.max_count)
 }
 
-/// A lower bound of the homogeneous `w` of `h[..=n]` on `[0, 1]`, at least `w_min`: the
-/// smallest Bernstein coefficient of its two halves split at ½, the `k`-th of each
-/// `2⁻ᵏ Σ_j C(k, j) w_j` from its own end, less [`WEIGHT_ROUNDING`] of itself. Twin of the
+/// A lower bound of the homogeneous `w` of `h[..=n]` (weights from `w_min` to `w_max`) on
+/// `[0, 1]`, at least `w_min`: the smallest Bernstein coefficient of its two halves split
+/// at ½, the `k`-th of each `2⁻ᵏ Σ_j C(k, j) w_j` from its own end, less
+/// [`WEIGHT_ROUNDING`] of itself; `w_min` itself when every weight is the same. Twin of the
 /// same lines of `wang_count` in `shaders/adaptive.wgsl` (the same operations in `f32`).
-fn w_floor(h: &[Vec3], n: usize, w_min: f32) -> f32 {
+fn w_floor(h: &[Vec3], n: usize, w_min: f32, w_max: f32) -> f32 {
+    // Equal weights (a polynomial segment seen orthographically) are their own floor.
+    if w_max <= w_min {
+        return w_min;
+    }
     let mut low = h[0].z.min(h[n].z);
     let mut half_k = 1.0_f32;
     for k in 1..=n {
@@ -373,7 +385,7 @@ mod tests {
                 let w: Vec<f32> = (0..=n).map(|_| 0.02 * 1000f32.powf(next())).collect();
                 let h: Vec<Vec3> = w.iter().map(|&x| Vec3::new(0.0, 0.0, x)).collect();
                 let w_min = w.iter().copied().fold(f32::MAX, f32::min);
-                let floor = w_floor(&h, n, w_min);
+                let floor = w_floor(&h, n, w_min, w.iter().copied().fold(0.0, f32::max));
                 assert!(floor >= w_min, "degree {n}: {floor} below {w_min}");
                 for s in 0..=4000 {
                     let t = f64::from(s) / 4000.0;
@@ -392,7 +404,7 @@ mod tests {
             .iter()
             .map(|&x| Vec3::new(0.0, 0.0, x))
             .collect();
-        let floor = w_floor(&h, 3, 0.25);
+        let floor = w_floor(&h, 3, 0.25, 4.0);
         assert!((floor - 1.0).abs() <= 2.0 * WEIGHT_ROUNDING, "{floor}");
     }
 }
