@@ -7,6 +7,10 @@
 const MAX_DEGREE: u32 = 31u;
 // Twin: TESSELLATE_WORKGROUP_SIZE in src/gpu/layout.rs.
 const TESSELLATE_WORKGROUP_SIZE: u32 = 64u;
+// Twins: COMB_RASTER_WORKGROUP and COMB_RASTER_GROUPS in src/gpu/layout.rs. The comb
+// layer's rasterizer: invocations per workgroup, and the most workgroups it dispatches.
+const COMB_RASTER_WORKGROUP: u32 = 64u;
+const COMB_RASTER_GROUPS: u32 = 4096u;
 
 // Twin: GpuVertex. A point with a tag (curve index for samples, style index for overlays).
 struct Vertex {

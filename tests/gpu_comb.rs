@@ -113,7 +113,7 @@ fn comb_on_gpu(backend: &common::Backend, scene: &Scene, request: &CombRequest) 
         camera: camera_uniform(&camera, VIEWPORT, 1.0),
         tolerance_px: 0.25,
     };
-    gpu.prepare_frame(&renderer, &ctx.queue, &settings);
+    gpu.prepare_frame(ctx, &renderer, &settings);
     let mut encoder = ctx.device.create_command_encoder(&Default::default());
     gpu.encode_tessellation(&renderer, &mut encoder, None);
     ctx.queue.submit([encoder.finish()]);
@@ -354,4 +354,228 @@ fn a_planar_comb_changes_side_exactly_at_the_inflections() {
             }
         },
     );
+}
+
+fn read_back<T: bytemuck::Pod>(
+    ctx: &splinescope::gpu::context::GpuContext,
+    buffer: &wgpu::Buffer,
+) -> Vec<T> {
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    read_buffer(&ctx.device, &ctx.queue, &mut encoder, buffer).expect("read back")
+}
+
+/// The comb layer (`raster_comb` in `shaders/comb.wgsl`) against its CPU twin run on the
+/// hairs and envelope the GPU wrote, on every backend: the same pixels lit with the same
+/// colours, but for pixels where the `f32` position of a line rounds to the neighbouring
+/// row or column (at most 1 % of them, each with the same colour one pixel away).
+#[test]
+fn the_comb_layer_holds_the_lines_its_twin_rasterizes() {
+    use splinescope::gpu::comb_twin::{CombLines, layer_size, raster_comb};
+    use splinescope::gpu::renderer::comb_styles;
+    common::on_each_gpu(
+        "the_comb_layer_holds_the_lines_its_twin_rasterizes",
+        |backend| {
+            let ctx = &backend.ctx;
+            let scene = scene_of(families());
+            let prepared = prepare(
+                &encode(&scene),
+                ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
+            )
+            .expect("pack");
+            let renderer = Renderer::new(&ctx.device, &backend.pipelines, OFFSCREEN_FORMAT);
+            let mut gpu: GpuScene = renderer.upload(ctx, &prepared);
+            gpu.set_comb(
+                ctx,
+                &renderer,
+                Some(&CombRequest {
+                    scale: 0.4,
+                    only: None,
+                }),
+            );
+            let camera = camera_uniform(&scene.camera(VIEWPORT), VIEWPORT, 1.0);
+            renderer.set_camera(&ctx.queue, &camera);
+            let settings = FrameSettings {
+                camera,
+                tolerance_px: 0.25,
+            };
+            gpu.prepare_frame(ctx, &renderer, &settings);
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            gpu.encode_tessellation(&renderer, &mut encoder, None);
+            ctx.queue.submit([encoder.finish()]);
+            let (layer_buffer, size) = gpu.comb_layer().expect("a layer while a comb is on");
+            assert_eq!(size, layer_size(&camera));
+            assert_eq!(size, [640, 480]);
+            let got: Vec<u32> = read_back(ctx, layer_buffer);
+            let mut want = vec![0u32; got.len()];
+            for (c, chunk) in prepared.chunks.iter().enumerate() {
+                let comb = gpu.comb_buffers(c).expect("a comb per chunk");
+                let hairs: Vec<GpuVertex> = read_back(ctx, &comb.hairs);
+                let envelope: Vec<GpuVertex> = read_back(ctx, &comb.envelope);
+                let args: Vec<u32> = read_back(ctx, &comb.args);
+                let (hair_styles, envelope_styles) = comb_styles(&chunk.styles);
+                let lines = CombLines {
+                    hairs: &hairs,
+                    envelope: &envelope,
+                    hair_styles: &hair_styles,
+                    envelope_styles: &envelope_styles,
+                    hair_count: args[0] / 2,
+                    piece_count: args[4] / 2,
+                };
+                raster_comb(&camera, &lines, &mut want);
+            }
+            ctx.check_health().expect("healthy device");
+            let w = size[0] as usize;
+            let near = |layer: &[u32], i: usize, key: u32| {
+                let (x, y) = ((i % w) as i64, (i / w) as i64);
+                (-1..=1).any(|dy| {
+                    (-1..=1).any(|dx| {
+                        let (nx, ny) = (x + dx, y + dy);
+                        (0..w as i64).contains(&nx)
+                            && ny >= 0
+                            && layer.get(ny as usize * w + nx as usize) == Some(&key)
+                    })
+                })
+            };
+            let lit = want.iter().filter(|&&k| k != 0).count();
+            let mut moved = 0;
+            for i in 0..got.len() {
+                if got[i] == want[i] {
+                    continue;
+                }
+                moved += 1;
+                for (a, b, which) in [(&got, &want, "GPU"), (&want, &got, "twin")] {
+                    assert!(
+                        a[i] == 0 || near(b, i, a[i]),
+                        "{}: pixel ({}, {}) {:#x} of the {which} has no twin within a pixel",
+                        backend.name,
+                        i % w,
+                        i / w,
+                        a[i]
+                    );
+                }
+            }
+            assert!(lit > 3000, "{}: {lit} pixels lit", backend.name);
+            assert!(
+                moved * 100 <= lit,
+                "{}: {moved} of {lit} pixels differ",
+                backend.name
+            );
+            eprintln!("{}: {lit} pixels lit, {moved} moved by one", backend.name);
+        },
+    );
+}
+
+/// The comb layer draws the pixels the GPU's own line rasterizer draws: a render with
+/// the comb through the layer and one with the comb as line lists (the path taken where a
+/// layer does not fit) change the same pixels of the render without a comb, where that
+/// render is background, but for pixels one away (the two place a line's pixels by
+/// different rules at a line's ends) — at most a quarter of them (15 % on llvmpipe),
+/// each next to one the other changed. Colours are not compared: where translucent lines
+/// cross, line lists blend twice and the layer once. The three renders are written under
+/// `target/test-output/gpu_comb`.
+#[test]
+fn the_comb_layer_draws_what_line_lists_draw() {
+    use splinescope::gpu::capture::render_uploaded;
+    common::on_each_gpu("the_comb_layer_draws_what_line_lists_draw", |backend| {
+        let ctx = &backend.ctx;
+        let scene = scene_of(families());
+        let prepared = prepare(
+            &encode(&scene),
+            ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
+        )
+        .expect("pack");
+        let renderer = Renderer::new(&ctx.device, &backend.pipelines, OFFSCREEN_FORMAT);
+        let (w, h) = (VIEWPORT.x as u32, VIEWPORT.y as u32);
+        let camera = scene.camera(VIEWPORT);
+        let render = |comb: Option<bool>| {
+            let mut gpu: GpuScene = renderer.upload(ctx, &prepared);
+            if let Some(layer) = comb {
+                gpu.set_comb(
+                    ctx,
+                    &renderer,
+                    Some(&CombRequest {
+                        scale: 0.4,
+                        only: None,
+                    }),
+                );
+                gpu.set_comb_layer(layer);
+            }
+            let image =
+                render_uploaded(ctx, &renderer, &mut gpu, &camera, (w, h), 0.25).expect("render");
+            assert_eq!(
+                gpu.comb_layer().is_some(),
+                comb == Some(true),
+                "{}: a layer exactly when asked for",
+                backend.name
+            );
+            image
+        };
+        let (plain, layer, lines) = (render(None), render(Some(true)), render(Some(false)));
+        let dir = common::out_dir("gpu_comb");
+        for (name, img) in [("plain", &plain), ("layer", &layer), ("lines", &lines)] {
+            img.write_png(&dir.join(format!("{}-{name}.png", backend.name)))
+                .expect("write");
+        }
+        let changed = |img: &splinescope::image::RgbaImage| -> Vec<bool> {
+            img.data
+                .chunks(4)
+                .zip(plain.data.chunks(4))
+                .map(|(a, b)| a != b)
+                .collect()
+        };
+        let (by_layer, by_lines) = (changed(&layer), changed(&lines));
+        let wu = w as usize;
+        let near = |mask: &[bool], i: usize| {
+            let (x, y) = ((i % wu) as i64, (i / wu) as i64);
+            (-1..=1).any(|dy| {
+                (-1..=1).any(|dx| {
+                    let (nx, ny) = (x + dx, y + dy);
+                    (0..wu as i64).contains(&nx)
+                        && ny >= 0
+                        && mask.get(ny as usize * wu + nx as usize) == Some(&true)
+                })
+            })
+        };
+        // Only where the render without a comb is background within a pixel: under a
+        // curve's edge one drawing's pixel shows and the other's, one further in, not.
+        let background = &plain.data[..4];
+        let drawn: Vec<bool> = plain.data.chunks(4).map(|p| p != background).collect();
+        let open = |i: usize| !drawn[i] && !near(&drawn, i);
+        let lit = (0..by_lines.len())
+            .filter(|&i| by_lines[i] && open(i))
+            .count();
+        let mut apart = 0;
+        for i in 0..by_layer.len() {
+            if by_layer[i] == by_lines[i] || !open(i) {
+                continue;
+            }
+            apart += 1;
+            let (mine, other, which) = if by_layer[i] {
+                (&by_layer, &by_lines, "the layer")
+            } else {
+                (&by_lines, &by_layer, "the line lists")
+            };
+            assert!(
+                mine[i] && near(other, i),
+                "{}: pixel ({}, {}) changed by {which} alone, nothing near it by the other",
+                backend.name,
+                i % wu,
+                i / wu
+            );
+        }
+        assert!(
+            lit > 3000,
+            "{}: the comb changed {lit} pixels",
+            backend.name
+        );
+        assert!(
+            apart * 4 <= lit,
+            "{}: {apart} of {lit} pixels changed by one drawing only",
+            backend.name
+        );
+        eprintln!(
+            "{}: {lit} pixels changed, {apart} by one drawing only",
+            backend.name
+        );
+    });
 }

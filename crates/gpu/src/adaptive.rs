@@ -66,7 +66,9 @@ pub struct CombChunk {
     pub hairs: wgpu::Buffer,
     /// `capacity` vertices.
     pub envelope: wgpu::Buffer,
-    /// The line-list draws: `[2 × hairs, 1, 0, 0, 2 × envelope pieces, 1, 0, 0]`.
+    /// The line-list draws, then the comb layer rasterizer's dispatch (at
+    /// [`super::layout::COMB_RASTER_ARGS_OFFSET`]): `[2 × hairs, 1, 0, 0, 2 × envelope
+    /// pieces, 1, 0, 0, workgroups, 1, 1, 0]`.
     pub args: wgpu::Buffer,
     uniform: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
@@ -439,7 +441,7 @@ impl AdaptiveTessellator {
         let args = super::init_buffer(
             device,
             "comb draw",
-            bytemuck::cast_slice(&[0u32, 1, 0, 0, 0, 1, 0, 0]),
+            bytemuck::cast_slice(&[0u32, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 0]),
             wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT | usage,
         );
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {

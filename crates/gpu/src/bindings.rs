@@ -74,13 +74,45 @@ pub fn adaptive() -> Vec<Vec<wgpu::BindGroupLayoutEntry>> {
     ]
 }
 
+/// The camera uniform's stages: the line and point pipelines' vertices, the comb layer's
+/// rasterizer and its full-screen pass.
+const CAMERA_STAGES: wgpu::ShaderStages = wgpu::ShaderStages::VERTEX
+    .union(wgpu::ShaderStages::FRAGMENT)
+    .union(wgpu::ShaderStages::COMPUTE);
+
 /// `shaders/lines.wgsl` and `shaders/points.wgsl`: group 0 the camera (uniform), group 1
 /// the vertices and the style table (read).
 #[must_use]
 pub fn draw() -> Vec<Vec<wgpu::BindGroupLayoutEntry>> {
     let v = wgpu::ShaderStages::VERTEX;
     vec![
-        vec![uniform(0, v)],
+        vec![uniform(0, CAMERA_STAGES)],
         vec![storage(0, true, v), storage(1, true, v)],
     ]
+}
+
+/// `shaders/comb.wgsl`: group 0 the camera; group 1 the rasterizer's hairs, envelope,
+/// their two style tables and the comb's draw arguments (read), the layer (read-write,
+/// bindings 0–5), and the full-screen pass's layer (read, binding 6, a bind group of its
+/// own: [`comb_raster`] and [`comb_layer`] split the group).
+#[must_use]
+pub fn comb() -> Vec<Vec<wgpu::BindGroupLayoutEntry>> {
+    let mut group = comb_raster();
+    group.extend(comb_layer());
+    vec![vec![uniform(0, CAMERA_STAGES)], group]
+}
+
+/// Group 1 of `raster_comb` in `shaders/comb.wgsl`.
+#[must_use]
+pub fn comb_raster() -> Vec<wgpu::BindGroupLayoutEntry> {
+    let c = wgpu::ShaderStages::COMPUTE;
+    let mut group: Vec<_> = (0..5).map(|b| storage(b, true, c)).collect();
+    group.push(storage(5, false, c));
+    group
+}
+
+/// Group 1 of `vs_layer`/`fs_layer` in `shaders/comb.wgsl`.
+#[must_use]
+pub fn comb_layer() -> Vec<wgpu::BindGroupLayoutEntry> {
+    vec![storage(6, true, wgpu::ShaderStages::FRAGMENT)]
 }

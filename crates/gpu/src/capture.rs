@@ -134,7 +134,7 @@ pub fn render_uploaded(
 fn render_once(
     ctx: &GpuContext,
     renderer: &Renderer,
-    gpu_scene: &GpuScene,
+    gpu_scene: &mut GpuScene,
     camera: &Camera,
     (width, height): (u32, u32),
     tolerance_px: f64,
@@ -145,8 +145,8 @@ fn render_once(
     let camera = camera_uniform(camera, viewport, 1.0);
     renderer.set_camera(&ctx.queue, &camera);
     gpu_scene.prepare_frame(
+        ctx,
         renderer,
-        &ctx.queue,
         &FrameSettings {
             camera,
             tolerance_px: tolerance_px as f32,

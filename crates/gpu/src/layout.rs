@@ -141,6 +141,18 @@ pub const COMB_NONE: u32 = u32::MAX - 1;
 /// `shaders/adaptive.wgsl`.
 pub const COMB_HIDDEN: u32 = 0x8000_0000;
 
+/// Invocations per workgroup of the comb layer's rasterizer. Twin:
+/// `COMB_RASTER_WORKGROUP` in `shaders/common.wgsl`.
+pub const COMB_RASTER_WORKGROUP: u32 = 64;
+
+/// Byte offset of the comb layer rasterizer's indirect dispatch arguments in a comb's
+/// argument buffer ([`crate::adaptive::CombChunk::args`]).
+pub const COMB_RASTER_ARGS_OFFSET: u64 = 32;
+
+/// The most workgroups the comb layer's rasterizer dispatches (each invocation then takes
+/// every line a stride apart). Twin: `COMB_RASTER_GROUPS` in `shaders/common.wgsl`.
+pub const COMB_RASTER_GROUPS: u32 = 4096;
+
 /// The per-frame uniform of adaptive tessellation, one per chunk. Twin: `Frame` in
 /// `shaders/common.wgsl`.
 #[repr(C)]

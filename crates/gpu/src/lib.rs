@@ -13,6 +13,7 @@ pub mod adaptive;
 pub mod bindings;
 pub mod capture;
 pub mod chunks;
+pub mod comb_twin;
 pub mod context;
 pub mod eval;
 pub mod layout;

@@ -1,6 +1,6 @@
-//! The render pipelines (`shaders/lines.wgsl`, `shaders/points.wgsl`) and a scene as it
-//! lives on the GPU. Curves are drawn straight from the tessellator's sample buffers: no
-//! sample comes back to the CPU in a frame.
+//! The render pipelines (`shaders/lines.wgsl`, `shaders/points.wgsl`, the comb layer's of
+//! `shaders/comb.wgsl`) and a scene as it lives on the GPU. Curves are drawn straight from
+//! the tessellator's sample buffers: no sample comes back to the CPU in a frame.
 
 use glam::DVec2;
 
@@ -9,7 +9,8 @@ use super::adaptive::{
 };
 use super::context::GpuContext;
 use super::layout::{
-    COMB_ALL, COMB_NONE, FrameStats, GpuCamera, GpuControlPoint, GpuLineStyle, GpuVertex,
+    COMB_ALL, COMB_NONE, COMB_RASTER_ARGS_OFFSET, FrameStats, GpuCamera, GpuControlPoint,
+    GpuLineStyle, GpuVertex,
 };
 use super::pack::{LineBatch, PreparedScene};
 use super::pipelines::Pipelines;
@@ -28,10 +29,26 @@ pub struct Renderer {
     camera_bind_group: wgpu::BindGroup,
     batch_layout: wgpu::BindGroupLayout,
     line_pipeline: wgpu::RenderPipeline,
+    /// The comb as line lists, where the comb layer does not fit in one binding.
     hair_pipeline: wgpu::RenderPipeline,
     envelope_pipeline: wgpu::RenderPipeline,
     point_pipeline: wgpu::RenderPipeline,
+    /// The comb layer: its rasterizer and the full-screen pass blending it.
+    comb_raster: wgpu::ComputePipeline,
+    comb_raster_layout: wgpu::BindGroupLayout,
+    comb_layer_pipeline: wgpu::RenderPipeline,
+    comb_layer_layout: wgpu::BindGroupLayout,
     format: wgpu::TextureFormat,
+}
+
+/// The comb layer: one `u32` per pixel of the target (`shaders/comb.wgsl`), cleared and
+/// rasterized into each frame, then blended over the target in the draw pass.
+#[derive(Debug)]
+struct CombLayer {
+    buffer: wgpu::Buffer,
+    /// Width and height in pixels.
+    size: [u32; 2],
+    bind_group: wgpu::BindGroup,
 }
 
 /// A drawable set of tagged vertices with their styles.
@@ -60,8 +77,18 @@ struct CombDraw {
     buffers: CombChunk,
     hairs: DrawBatch,
     envelope: DrawBatch,
+    /// The rasterizer's bind group over these buffers and the scene's layer (made when
+    /// the layer is).
+    raster: Option<wgpu::BindGroup>,
     /// The curve tag the pass draws for ([`COMB_ALL`], [`COMB_NONE`] or one tag).
     curve: u32,
+}
+
+impl CombDraw {
+    /// Whether the comb pass draws any curve's comb.
+    fn shown(&self) -> bool {
+        self.curve != COMB_NONE
+    }
 }
 
 /// Which curvature combs are drawn, and how long their hairs are.
@@ -77,7 +104,8 @@ pub struct CombRequest {
 /// The style of a comb's hairs and envelope over a curve of style `curve`
 /// ([`crate::encoding::draw::comb_strokes`]): one pixel, the curve's colour, the hairs
 /// fainter.
-fn comb_styles(curve: &[GpuLineStyle]) -> (Vec<GpuLineStyle>, Vec<GpuLineStyle>) {
+#[must_use]
+pub fn comb_styles(curve: &[GpuLineStyle]) -> (Vec<GpuLineStyle>, Vec<GpuLineStyle>) {
     let with = |alpha: f32| {
         curve
             .iter()
@@ -102,6 +130,10 @@ pub struct GpuScene {
     /// The clear colour.
     pub background: wgpu::Color,
     comb_scale: f32,
+    /// The comb layer, while a comb is on and the layer fits in one binding.
+    comb_layer: Option<CombLayer>,
+    /// Whether combs may be drawn through the layer (else as line lists).
+    comb_layer_allowed: bool,
     markers: Vec<DrawBatch>,
 }
 
@@ -163,16 +195,39 @@ impl GpuScene {
             .sum()
     }
 
-    /// Writes every chunk's frame uniform (camera and tolerance) for the next frame.
+    /// Writes every chunk's frame uniform (camera and tolerance) for the next frame, and
+    /// sizes the comb layer to the frame's viewport while a comb is on.
     pub fn prepare_frame(
-        &self,
+        &mut self,
+        ctx: &GpuContext,
         renderer: &Renderer,
-        queue: &wgpu::Queue,
         settings: &FrameSettings,
     ) {
-        renderer
-            .adaptive
-            .prepare(queue, self.chunks.iter().map(|c| &c.adaptive), settings);
+        renderer.adaptive.prepare(
+            &ctx.queue,
+            self.chunks.iter().map(|c| &c.adaptive),
+            settings,
+        );
+        if !(self.has_comb() && self.comb_layer_allowed) {
+            self.comb_layer = None;
+            return;
+        }
+        let [w, h] = settings.camera.viewport_px;
+        // Viewports are whole pixels; at least one, so that the buffer is never empty.
+        let size = [w.round().max(1.0) as u32, h.round().max(1.0) as u32];
+        if self.comb_layer.as_ref().is_none_or(|l| l.size != size) {
+            self.comb_layer = renderer.comb_layer(ctx, size);
+            for comb in self.chunks.iter_mut().filter_map(|c| c.comb.as_mut()) {
+                comb.raster = None;
+            }
+        }
+        if let Some(layer) = &self.comb_layer {
+            for comb in self.chunks.iter_mut().filter_map(|c| c.comb.as_mut()) {
+                if comb.raster.is_none() {
+                    comb.raster = Some(renderer.comb_raster_group(&ctx.device, comb, layer));
+                }
+            }
+        }
     }
 
     /// Records the adaptive tessellation of every chunk.
@@ -198,12 +253,29 @@ impl GpuScene {
             .filter_map(|c| {
                 c.comb
                     .as_ref()
-                    .filter(|comb| comb.curve != COMB_NONE)
+                    .filter(|comb| comb.shown())
                     .map(|comb| (&c.adaptive, &comb.buffers))
             })
             .collect();
-        if !pairs.is_empty() {
-            renderer.adaptive.encode_comb(encoder, pairs);
+        if pairs.is_empty() {
+            return;
+        }
+        renderer.adaptive.encode_comb(encoder, pairs);
+        let Some(layer) = &self.comb_layer else {
+            return;
+        };
+        encoder.clear_buffer(&layer.buffer, 0, None);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("comb layer"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&renderer.comb_raster);
+        pass.set_bind_group(0, &renderer.camera_bind_group, &[]);
+        for comb in self.chunks.iter().filter_map(|c| c.comb.as_ref()) {
+            if let (true, Some(group)) = (comb.shown(), &comb.raster) {
+                pass.set_bind_group(1, group, &[]);
+                pass.dispatch_workgroups_indirect(&comb.buffers.args, COMB_RASTER_ARGS_OFFSET);
+            }
         }
     }
 
@@ -245,6 +317,21 @@ impl GpuScene {
     #[must_use]
     pub fn has_comb(&self) -> bool {
         self.chunks.iter().any(|c| c.comb.is_some())
+    }
+
+    /// Whether combs are drawn through the comb layer (`true`, the default: a compute pass
+    /// rasterizes them, one full-screen triangle blends them) or as line lists (`false`,
+    /// also what happens where the layer would not fit in one storage binding). Takes
+    /// effect at the next [`GpuScene::prepare_frame`].
+    pub fn set_comb_layer(&mut self, allowed: bool) {
+        self.comb_layer_allowed = allowed;
+    }
+
+    /// The comb layer (`shaders/comb.wgsl`: one `u32` per pixel, row by row) and its width
+    /// and height, while a comb is on and the layer fits in one binding.
+    #[must_use]
+    pub fn comb_layer(&self) -> Option<(&wgpu::Buffer, [u32; 2])> {
+        self.comb_layer.as_ref().map(|l| (&l.buffer, l.size))
     }
 
     /// Chunk `chunk`'s comb buffers (hairs, envelope, draw arguments), when it has them.
@@ -404,6 +491,61 @@ impl Renderer {
             "fs_point",
             wgpu::PrimitiveTopology::TriangleList,
         );
+        let comb_raster_layout =
+            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("comb raster"),
+                entries: &super::bindings::comb_raster(),
+            });
+        let comb_layer_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("comb layer"),
+            entries: &super::bindings::comb_layer(),
+        });
+        let comb_module = shaders::COMB.module(device);
+        let comb_raster = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("raster_comb"),
+            layout: Some(
+                &device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                    label: Some("comb raster"),
+                    bind_group_layouts: &[Some(&camera_layout), Some(&comb_raster_layout)],
+                    immediate_size: 0,
+                }),
+            ),
+            module: &comb_module,
+            entry_point: Some("raster_comb"),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            cache: None,
+        });
+        let comb_layer_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("comb layer"),
+            layout: Some(
+                &device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                    label: Some("comb layer"),
+                    bind_group_layouts: &[Some(&camera_layout), Some(&comb_layer_layout)],
+                    immediate_size: 0,
+                }),
+            ),
+            vertex: wgpu::VertexState {
+                module: &comb_module,
+                entry_point: Some("vs_layer"),
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: None,
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &comb_module,
+                entry_point: Some("fs_layer"),
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format,
+                    blend: Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING),
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
         Renderer {
             adaptive: pipelines.adaptive.clone(),
             camera_buffer,
@@ -413,6 +555,10 @@ impl Renderer {
             hair_pipeline,
             envelope_pipeline,
             point_pipeline,
+            comb_raster,
+            comb_raster_layout,
+            comb_layer_pipeline,
+            comb_layer_layout,
             format,
         }
     }
@@ -445,8 +591,69 @@ impl Renderer {
             buffers,
             hairs,
             envelope,
+            raster: None,
             curve,
         }
+    }
+
+    /// A comb layer of `size` pixels, or `None` where it would not fit in one storage
+    /// binding (the comb is then drawn as line lists).
+    fn comb_layer(&self, ctx: &GpuContext, size: [u32; 2]) -> Option<CombLayer> {
+        let bytes = u64::from(size[0]) * u64::from(size[1]) * 4;
+        if bytes > ctx.max_binding_bytes() {
+            return None;
+        }
+        let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("comb layer"),
+            size: bytes,
+            // COPY_SRC: read back by tests.
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_DST
+                | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("comb layer"),
+            layout: &self.comb_layer_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 6,
+                resource: buffer.as_entire_binding(),
+            }],
+        });
+        Some(CombLayer {
+            buffer,
+            size,
+            bind_group,
+        })
+    }
+
+    /// The rasterizer's bind group for `comb` into `layer`.
+    fn comb_raster_group(
+        &self,
+        device: &wgpu::Device,
+        comb: &CombDraw,
+        layer: &CombLayer,
+    ) -> wgpu::BindGroup {
+        let buffers = [
+            &comb.buffers.hairs,
+            &comb.buffers.envelope,
+            &comb.hairs.buffers[1],
+            &comb.envelope.buffers[1],
+            &comb.buffers.args,
+            &layer.buffer,
+        ];
+        let entries: Vec<wgpu::BindGroupEntry<'_>> = (0u32..)
+            .zip(buffers)
+            .map(|(binding, buffer)| wgpu::BindGroupEntry {
+                binding,
+                resource: buffer.as_entire_binding(),
+            })
+            .collect();
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("comb raster"),
+            layout: &self.comb_raster_layout,
+            entries: &entries,
+        })
     }
 
     /// The colour format the pipelines draw to.
@@ -545,6 +752,8 @@ impl Renderer {
                 .collect(),
             background: wgpu::Color { r, g, b, a },
             comb_scale: 0.0,
+            comb_layer: None,
+            comb_layer_allowed: true,
             markers: Vec::new(),
         }
     }
@@ -654,17 +863,30 @@ impl Renderer {
         for batch in &scene.lines {
             draw_lines(pass, batch);
         }
-        // The combs under the curves: hairs, then the envelope joining their tips.
-        for chunk in &scene.chunks {
-            let Some(comb) = chunk.comb.as_ref().filter(|c| c.curve != COMB_NONE) else {
-                continue;
-            };
-            pass.set_pipeline(&self.hair_pipeline);
-            pass.set_bind_group(1, &comb.hairs.bind_group, &[]);
-            pass.draw_indirect(&comb.buffers.args, 0);
-            pass.set_pipeline(&self.envelope_pipeline);
-            pass.set_bind_group(1, &comb.envelope.bind_group, &[]);
-            pass.draw_indirect(&comb.buffers.args, 16);
+        // The combs under the curves: the layer the comb pass rasterized, blended in one
+        // full-screen triangle; as line lists (hairs, then the envelope joining their
+        // tips) where no layer fits.
+        let shown = || {
+            scene
+                .chunks
+                .iter()
+                .filter_map(|c| c.comb.as_ref().filter(|comb| comb.shown()))
+        };
+        if let Some(layer) = &scene.comb_layer {
+            if shown().next().is_some() {
+                pass.set_pipeline(&self.comb_layer_pipeline);
+                pass.set_bind_group(1, &layer.bind_group, &[]);
+                pass.draw(0..3, 0..1);
+            }
+        } else {
+            for comb in shown() {
+                pass.set_pipeline(&self.hair_pipeline);
+                pass.set_bind_group(1, &comb.hairs.bind_group, &[]);
+                pass.draw_indirect(&comb.buffers.args, 0);
+                pass.set_pipeline(&self.envelope_pipeline);
+                pass.set_bind_group(1, &comb.envelope.bind_group, &[]);
+                pass.draw_indirect(&comb.buffers.args, 16);
+            }
         }
         pass.set_pipeline(&self.line_pipeline);
         for chunk in &scene.chunks {

@@ -144,6 +144,14 @@ fn gpu_structs_match_their_wgsl_twins() {
             constant_u32(m, "TESSELLATE_WORKGROUP_SIZE"),
             TESSELLATE_WORKGROUP_SIZE
         );
+        assert_eq!(
+            constant_u32(m, "COMB_RASTER_WORKGROUP"),
+            splinescope_gpu::layout::COMB_RASTER_WORKGROUP
+        );
+        assert_eq!(
+            constant_u32(m, "COMB_RASTER_GROUPS"),
+            splinescope_gpu::layout::COMB_RASTER_GROUPS
+        );
     }
 }
 
@@ -329,4 +337,20 @@ fn bind_group_layouts_match_the_shaders() {
         from_shader(&shaders::ADAPTIVE)
     );
     assert_eq!(from_shader(&shaders::ADAPTIVE).len(), 10);
+    assert_eq!(from_layouts(&bindings::comb()), from_shader(&shaders::COMB));
+    assert_eq!(from_shader(&shaders::COMB).len(), 8);
+}
+
+#[test]
+fn comb_rasterizer_workgroup_matches_its_rust_twin() {
+    let (module, _) = shaders::COMB.validate().expect("valid");
+    let ep = module
+        .entry_points
+        .iter()
+        .find(|e| e.name == "raster_comb")
+        .expect("raster_comb");
+    assert_eq!(
+        ep.workgroup_size,
+        [splinescope_gpu::layout::COMB_RASTER_WORKGROUP, 1, 1]
+    );
 }

@@ -285,7 +285,7 @@ impl SceneView {
         settings: &FrameSettings,
         timestamps: Option<[Option<wgpu::ComputePassTimestampWrites<'_>>; 3]>,
     ) -> bool {
-        self.gpu.prepare_frame(&self.renderer, &ctx.queue, settings);
+        self.gpu.prepare_frame(ctx, &self.renderer, settings);
         match timestamps {
             Some(writes) => {
                 let chunks: Vec<_> = self.gpu.chunks.iter().map(|c| &c.adaptive).collect();

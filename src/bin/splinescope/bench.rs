@@ -405,9 +405,14 @@ fn gpu_rates(
     report.gpu_compute_with_readback_samples_per_s = Some(rate(read, started.elapsed()));
     if args.frames > 0 {
         let renderer = Renderer::new(&ctx.device, pipelines, OFFSCREEN_FORMAT);
-        let gpu_scene = renderer.upload(ctx, &prepared);
-        report.frames_per_s_1920x1080 =
-            Some(draw_frames(ctx, &renderer, &gpu_scene, scene, args.frames)?);
+        let mut gpu_scene = renderer.upload(ctx, &prepared);
+        report.frames_per_s_1920x1080 = Some(draw_frames(
+            ctx,
+            &renderer,
+            &mut gpu_scene,
+            scene,
+            args.frames,
+        )?);
     }
     Ok(())
 }
@@ -658,7 +663,7 @@ fn gpu_compute_rates(
 fn draw_frames(
     ctx: &GpuContext,
     renderer: &Renderer,
-    gpu_scene: &splinescope::gpu::renderer::GpuScene,
+    gpu_scene: &mut splinescope::gpu::renderer::GpuScene,
     scene: &splinescope::scene::Scene,
     frames: u32,
 ) -> Result<f64> {
@@ -667,8 +672,8 @@ fn draw_frames(
     let camera = camera_uniform(&scene.camera(viewport), viewport, 1.0);
     renderer.set_camera(&ctx.queue, &camera);
     gpu_scene.prepare_frame(
+        ctx,
         renderer,
-        &ctx.queue,
         &splinescope::gpu::adaptive::FrameSettings {
             camera,
             tolerance_px: splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX as f32,
