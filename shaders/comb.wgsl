@@ -81,10 +81,9 @@ fn plot(x: i32, y: i32, size: vec2<u32>, key: u32) {
     }
 }
 
-// The one-pixel line from a to b into the layer; nothing when their tags differ (another
-// curve, or a hidden comb) or both are behind the eye.
+// The one-pixel line from a to b into the layer; nothing when both are behind the eye.
 fn raster_line(a: Vertex, b: Vertex, key: u32) {
-    if (a.id != b.id || key == 0u) {
+    if (key == 0u) {
         return;
     }
     var ca = camera.clip_from_world * vec4<f32>(a.position, 1.0);
@@ -147,26 +146,30 @@ fn raster_line(a: Vertex, b: Vertex, key: u32) {
     }
 }
 
-// Line p of the comb (hairs first, then the envelope pieces), for p = the invocation's
-// index, then every stride after it.
+// Sample p's hair and the envelope piece from its tip to the next sample's, for p = the
+// invocation's index, then every stride after it.
 @compute @workgroup_size(COMB_RASTER_WORKGROUP)
 fn raster_comb(
     @builtin(global_invocation_id) id: vec3<u32>,
     @builtin(num_workgroups) groups: vec3<u32>,
 ) {
     let hair_count = comb_args[0] / 2u;
-    let total = hair_count + comb_args[4] / 2u;
+    let piece_count = comb_args[4] / 2u;
     let stride = groups.x * COMB_RASTER_WORKGROUP;
-    for (var p = id.x; p < total; p += stride) {
-        if (p < hair_count) {
-            let a = hairs[2u * p];
-            let key = packed(hair_styles[a.id % arrayLength(&hair_styles)].color, false);
-            raster_line(a, hairs[2u * p + 1u], key);
-        } else {
-            let k = p - hair_count;
-            let a = envelope[k];
-            let key = packed(envelope_styles[a.id % arrayLength(&envelope_styles)].color, true);
-            raster_line(a, envelope[k + 1u], key);
+    for (var p = id.x; p < hair_count; p += stride) {
+        let foot = hairs[2u * p];
+        let tip = hairs[2u * p + 1u];
+        // Tags that differ (another curve, a hidden comb) draw nothing; equal ones index
+        // the style tables.
+        if (foot.id == tip.id) {
+            raster_line(foot, tip, packed(hair_styles[foot.id].color, false));
+        }
+        if (p < piece_count) {
+            let a = envelope[p];
+            let b = envelope[p + 1u];
+            if (a.id == b.id) {
+                raster_line(a, b, packed(envelope_styles[a.id].color, true));
+            }
         }
     }
 }

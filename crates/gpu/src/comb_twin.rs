@@ -48,17 +48,25 @@ pub fn layer_size(camera: &GpuCamera) -> [u32; 2] {
 
 /// Rasterizes `lines` into `layer` (`layer_size` wide, row by row) by maximum, as
 /// `raster_comb` does.
+///
+/// # Panics
+/// If a line's two tags are equal but not an index of its style table (the comb pass
+/// never writes one).
 pub fn raster_comb(camera: &GpuCamera, lines: &CombLines<'_>, layer: &mut [u32]) {
-    let style = |styles: &[GpuLineStyle], id: u32| styles[id as usize % styles.len()].color;
     for p in 0..lines.hair_count as usize {
-        let a = lines.hairs[2 * p];
-        let key = packed(style(lines.hair_styles, a.id), false);
-        raster_line(camera, a, lines.hairs[2 * p + 1], key, layer);
-    }
-    for k in 0..lines.piece_count as usize {
-        let a = lines.envelope[k];
-        let key = packed(style(lines.envelope_styles, a.id), true);
-        raster_line(camera, a, lines.envelope[k + 1], key, layer);
+        let (foot, tip) = (lines.hairs[2 * p], lines.hairs[2 * p + 1]);
+        // Tags that differ (another curve, a hidden comb) draw nothing.
+        if foot.id == tip.id {
+            let key = packed(lines.hair_styles[foot.id as usize].color, false);
+            raster_line(camera, foot, tip, key, layer);
+        }
+        if p < lines.piece_count as usize {
+            let (a, b) = (lines.envelope[p], lines.envelope[p + 1]);
+            if a.id == b.id {
+                let key = packed(lines.envelope_styles[a.id as usize].color, true);
+                raster_line(camera, a, b, key, layer);
+            }
+        }
     }
 }
 
@@ -95,7 +103,7 @@ fn plot(x: i32, y: i32, size: [u32; 2], key: u32, layer: &mut [u32]) {
 }
 
 fn raster_line(camera: &GpuCamera, a: GpuVertex, b: GpuVertex, key: u32, layer: &mut [u32]) {
-    if a.id != b.id || key == 0 {
+    if key == 0 {
         return;
     }
     let m = Mat4::from_cols_array_2d(&camera.clip_from_world);
