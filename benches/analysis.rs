@@ -9,7 +9,7 @@ use std::hint::black_box;
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::DVec3;
 use kurbo::{CubicBez, ParamCurveArclen, Point};
-use splinescope::analysis::{CurveAnalysis, all_intersections};
+use splinescope::analysis::{CurveAnalysis, all_intersections, bezier_length};
 use splinescope::geom::Bezier;
 use splinescope::scene::generate::{Rng, StressOptions, random_bezier_scene};
 use splinescope::scene::shape::{ShapeOptions, markers};
@@ -54,6 +54,27 @@ fn bench(c: &mut Criterion) {
                             CurveAnalysis::new(&Bezier::new(black_box(p).to_vec()))
                                 .length(0.0, 1.0, black_box(acc))
                                 .map_or(0.0, |l| l.value)
+                        })
+                        .sum::<f64>()
+                });
+            },
+        );
+        // The same from the points without the analysis (`bezier_length`).
+        g.bench_with_input(
+            BenchmarkId::new("splinescope bezier_length", acc),
+            &acc,
+            |b, &acc| {
+                b.iter(|| {
+                    cubics
+                        .iter()
+                        .map(|p| {
+                            bezier_length(
+                                &Bezier::new(black_box(p).to_vec()),
+                                0.0,
+                                1.0,
+                                black_box(acc),
+                            )
+                            .map_or(0.0, |l| l.value)
                         })
                         .sum::<f64>()
                 });

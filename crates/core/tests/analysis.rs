@@ -13,6 +13,7 @@ use proptest::prelude::*;
 
 use splinescope_core::analysis::{
     AnalysisError, CurveAnalysis, ExtremumKind, HitKind, all_intersections, bernstein_roots,
+    bezier_length,
 };
 use splinescope_core::geom::{BSpline, Bezier, Curve, Lower, Nurbs, ParamCurve, RationalBezier};
 
@@ -227,6 +228,73 @@ fn tanh_sinh(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> f64 {
 /// of degree 6 within the requested accuracy — and within the error bound they state — of
 /// a tanh-sinh reference, cut where the speed has its minima (so the
 /// reference sees the kinks at its interval ends, where it is exact to rounding).
+/// `bezier_length` (no analysis built) gives the analysis's length to the bit — value,
+/// bound and error — for planar curves of degrees 0–7 (its own path) and for 3D curves
+/// and degree 9 (through the analysis), over whole and partial, reversed and empty
+/// ranges at three accuracies; and refuses what `length` refuses, naming the same value.
+#[test]
+fn a_bezier_length_without_the_analysis_is_the_analysis_length() {
+    let mut seed = 5_u64;
+    let mut rnd = || {
+        seed = seed
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let ranges = [
+        (0.0, 1.0),
+        (0.25, 0.75),
+        (0.9, 0.1),
+        (0.5, 0.5),
+        (0.0, 0.0),
+        (1.0, 1.0),
+    ];
+    for count in 0..400 {
+        let points = [1, 2, 3, 4, 4, 4, 5, 6, 7, 8, 10][count % 11];
+        let three_d = count % 13 == 0;
+        let b = Bezier::new(
+            (0..points)
+                .map(|_| DVec3::new(4.0 * rnd() - 2.0, rnd(), if three_d { rnd() } else { 0.0 }))
+                .collect(),
+        );
+        let analysis = CurveAnalysis::new(&b);
+        for &(t0, t1) in &ranges {
+            for accuracy in [1e-6, 1e-9, 1e-12] {
+                let want = analysis.length(t0, t1, accuracy);
+                let got = bezier_length(&b, t0, t1, accuracy);
+                match (&want, &got) {
+                    (Ok(w), Ok(g)) => assert!(
+                        w.value.to_bits() == g.value.to_bits()
+                            && w.error.to_bits() == g.error.to_bits(),
+                        "{points} points, [{t0}, {t1}] at {accuracy}: {g:?} vs {w:?}"
+                    ),
+                    _ => assert_eq!(
+                        format!("{want:?}"),
+                        format!("{got:?}"),
+                        "{points} points, [{t0}, {t1}] at {accuracy}"
+                    ),
+                }
+            }
+        }
+    }
+    let cubic = bezier(&[(0.0, 0.0), (1.0, 2.0), (2.0, -1.0), (3.0, 0.0)]);
+    for (t0, t1, accuracy) in [
+        (0.0, 1.0, 0.0),
+        (0.0, 1.0, f64::NAN),
+        (-0.5, 1.0, 1e-9),
+        (0.0, f64::NAN, 1e-9),
+    ] {
+        let err = bezier_length(&cubic, t0, t1, accuracy).expect_err("refused");
+        assert_eq!(
+            err.to_string(),
+            CurveAnalysis::new(&cubic)
+                .length(t0, t1, accuracy)
+                .expect_err("refused")
+                .to_string()
+        );
+    }
+}
+
 #[test]
 fn random_cubic_lengths_within_the_accuracy() {
     let mut seed = 11_u64;

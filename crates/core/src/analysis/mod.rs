@@ -19,7 +19,7 @@ pub mod roots;
 
 pub use curve::{
     AnalysisError, CurvatureExtremum, CurveAnalysis, DEFAULT_ACCURACY, Extremum, ExtremumKind,
-    HitKind, Length, LineHit, LineIntersections,
+    HitKind, Length, LineHit, LineIntersections, bezier_length,
 };
 pub use intersect::{Hit, Intersections, Overlap, PairIntersections, all_intersections};
 pub use roots::{Root, Roots, bernstein_roots, bernstein_roots_with_noise};

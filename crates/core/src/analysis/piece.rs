@@ -79,6 +79,30 @@ fn power_basis(c: &[f64]) -> Power {
     out
 }
 
+/// The speed [`Piece::new`] keeps for a planar polynomial segment with control points
+/// `pts` (degree ≤ 7), with its control polygon's length — computed the same way, to the
+/// bit, but without the piece's other arrays; `None` where the piece would have none.
+#[must_use]
+pub fn planar_polynomial_speed(pts: &[DVec3]) -> Option<(PlanarSpeed, f64)> {
+    if pts.is_empty() || pts.len() > POWER_MAX + 1 || pts.iter().any(|p| p.z != 0.0) {
+        return None;
+    }
+    // `poly::derivative` of each coordinate, in place.
+    let n = pts.len() - 1;
+    let mut dx = [0.0; POWER_MAX];
+    let mut dy = [0.0; POWER_MAX];
+    let len = n.max(1);
+    let scale = n as f64;
+    for i in 0..n {
+        dx[i] = scale * (pts[i + 1].x - pts[i].x);
+        dy[i] = scale * (pts[i + 1].y - pts[i].y);
+    }
+    let (x, y) = (power_basis(&dx[..len]), power_basis(&dy[..len]));
+    let speed = PlanarSpeed::new(x.as_slice(), y.as_slice())?;
+    let polygon = pts.windows(2).map(|w| (w[1] - w[0]).length()).sum();
+    Some((speed, polygon))
+}
+
 fn horner(a: &[f64], u: f64) -> f64 {
     a.iter().rev().fold(0.0, |acc, c| acc * u + c)
 }

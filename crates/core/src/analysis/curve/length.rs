@@ -3,9 +3,10 @@
 //! minima for the others, and the logistic parameter for rational segments whose weights
 //! are far apart.
 
-use super::{AnalysisError, CurveAnalysis, Length, check_accuracy};
-use crate::analysis::piece::Piece;
+use super::{AnalysisError, CurveAnalysis, Length, check_accuracy, check_in};
+use crate::analysis::piece::{Piece, planar_polynomial_speed};
 use crate::analysis::quadrature::{Quadrature, integrate};
+use crate::geom::Bezier;
 
 /// Above this ratio of a rational piece's largest weight to its smallest, its length is
 /// integrated in the logistic parameter ([`CurveAnalysis::length`]).
@@ -153,24 +154,8 @@ impl CurveAnalysis {
             total.value += q.value;
             total.error += q.error;
         }
-        // Rounding alone can leave an error of about 50 ε per unit of length (the
-        // quadrature's floor), or ROUNDING per unit of the control polygon's length (the
-        // speed's rounding); more than twice that, or none at all, is a failure.
         let polygon: f64 = self.pieces.iter().map(Piece::polygon_length).sum();
-        let floor = (100.0 * f64::EPSILON * total.value.abs()).max(2.0 * ROUNDING * polygon);
-        if !(total.value.is_finite() && total.error <= accuracy.max(floor)) {
-            return Err(AnalysisError::Unresolved {
-                t0,
-                t1,
-                accuracy,
-                value: total.value,
-                error: total.error,
-            });
-        }
-        Ok(Length {
-            value: sign * total.value,
-            error: total.error,
-        })
+        finish_length(total, polygon, (t0, t1, sign), accuracy)
     }
 
     /// The parameter `t` at which the arc length from the domain's start is `s`, within
@@ -280,4 +265,75 @@ impl CurveAnalysis {
         }
         Ok(b)
     }
+}
+
+/// The length `total` (of curves whose control polygons are `polygon` long) as
+/// [`CurveAnalysis::length`] returns it: signed, or [`AnalysisError::Unresolved`] where it
+/// is not finite or its bound is above both the accuracy and the rounding's floor.
+fn finish_length(
+    total: Quadrature,
+    polygon: f64,
+    (t0, t1, sign): (f64, f64, f64),
+    accuracy: f64,
+) -> Result<Length, AnalysisError> {
+    // Rounding alone can leave an error of about 50 ε per unit of length (the
+    // quadrature's floor), or ROUNDING per unit of the control polygon's length (the
+    // speed's rounding); more than twice that, or none at all, is a failure.
+    let floor = (100.0 * f64::EPSILON * total.value.abs()).max(2.0 * ROUNDING * polygon);
+    if !(total.value.is_finite() && total.error <= accuracy.max(floor)) {
+        return Err(AnalysisError::Unresolved {
+            t0,
+            t1,
+            accuracy,
+            value: total.value,
+            error: total.error,
+        });
+    }
+    Ok(Length {
+        value: sign * total.value,
+        error: total.error,
+    })
+}
+
+/// The arc length of a Bézier curve from `t0` to `t1` (negative when `t1 < t0`), within
+/// `accuracy`: the value and bound `CurveAnalysis::new(curve).length(t0, t1, accuracy)`
+/// gives, to the bit, without building the analysis — for a planar curve of degree ≤ 7
+/// only the hodograph (in the power basis) and its roots, on the stack, then the same
+/// Gauss–Legendre plan ([`crate::analysis::gauss`]); any other curve through the
+/// analysis. For a length asked once (a curve's analysis, kept, answers later questions
+/// faster).
+///
+/// # Errors
+/// As [`CurveAnalysis::length`]: an accuracy that is not a positive number, a parameter
+/// outside `[0, 1]`, or [`AnalysisError::Unresolved`].
+pub fn bezier_length(
+    curve: &Bezier,
+    t0: f64,
+    t1: f64,
+    accuracy: f64,
+) -> Result<Length, AnalysisError> {
+    let Some((speed, polygon)) = planar_polynomial_speed(curve.points()) else {
+        return CurveAnalysis::new(curve).length(t0, t1, accuracy);
+    };
+    check_accuracy(accuracy)?;
+    let domain = (0.0, 1.0);
+    check_in(domain, "t0", t0)?;
+    check_in(domain, "t1", t1)?;
+    let (lo, hi, sign) = if t0 <= t1 {
+        (t0, t1, 1.0)
+    } else {
+        (t1, t0, -1.0)
+    };
+    // One piece over the whole domain: `u = t` ([`CurveAnalysis::length`]'s loop and
+    // `piece_length`, for that piece).
+    let mut total = Quadrature::default();
+    if hi > 0.0 && lo < 1.0 {
+        let tolerance = accuracy.max(ROUNDING * polygon);
+        let u0 = if lo > 0.0 { lo } else { 0.0 };
+        let u1 = if hi < 1.0 { hi } else { 1.0 };
+        let q = speed.length(u0, u1, tolerance);
+        total.value += q.value;
+        total.error += q.error;
+    }
+    finish_length(total, polygon, (t0, t1, sign), accuracy)
 }

@@ -6,6 +6,8 @@ use thiserror::Error;
 
 mod length;
 
+pub use length::bezier_length;
+
 use super::piece::Piece;
 use super::poly;
 use super::quadrature::integrate;
@@ -174,6 +176,20 @@ pub struct CurveAnalysis {
 /// The default accuracy of lengths: absolute, in the curve's units.
 pub const DEFAULT_ACCURACY: f64 = 1e-12;
 
+/// Refuses a parameter outside `(a, b)` (or NaN), naming it.
+fn check_in((a, b): (f64, f64), what: &'static str, t: f64) -> Result<f64, AnalysisError> {
+    if t >= a && t <= b {
+        Ok(t)
+    } else {
+        Err(AnalysisError::OutsideDomain {
+            what,
+            value: t,
+            start: a,
+            end: b,
+        })
+    }
+}
+
 fn check_accuracy(accuracy: f64) -> Result<f64, AnalysisError> {
     if accuracy.is_finite() && accuracy > 0.0 {
         Ok(accuracy)
@@ -230,17 +246,7 @@ impl CurveAnalysis {
     /// # Errors
     /// [`AnalysisError::OutsideDomain`].
     pub fn check_t(&self, what: &'static str, t: f64) -> Result<f64, AnalysisError> {
-        let (a, b) = self.domain;
-        if t >= a && t <= b {
-            Ok(t)
-        } else {
-            Err(AnalysisError::OutsideDomain {
-                what,
-                value: t,
-                start: a,
-                end: b,
-            })
-        }
+        check_in(self.domain, what, t)
     }
 
     fn require_planar(&self, what: &'static str) -> Result<(), AnalysisError> {
