@@ -489,10 +489,11 @@ impl AdaptiveTessellator {
         &self,
         encoder: &mut wgpu::CommandEncoder,
         pairs: impl IntoIterator<Item = (&'a AdaptiveChunk, &'a CombChunk)>,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("curvature comb"),
-            timestamp_writes: None,
+            timestamp_writes,
         });
         for (chunk, comb) in pairs {
             // Per kernel class range, as the tessellation: the narrow pass where the

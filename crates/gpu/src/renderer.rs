@@ -91,6 +91,18 @@ impl CombDraw {
     }
 }
 
+/// Timestamp queries around a stage of several passes: `begin` written at the start of
+/// the first, `end` at the end of the last.
+#[derive(Debug, Clone, Copy)]
+pub struct PassSpan<'a> {
+    /// The query set.
+    pub query_set: &'a wgpu::QuerySet,
+    /// The query written first.
+    pub begin: u32,
+    /// The query written last.
+    pub end: u32,
+}
+
 /// Which curvature combs are drawn, and how long their hairs are.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CombRequest {
@@ -247,6 +259,25 @@ impl GpuScene {
 
     /// Records the comb pass of every chunk with a comb (after its tessellation).
     pub fn encode_comb(&self, renderer: &Renderer, encoder: &mut wgpu::CommandEncoder) {
+        self.encode_comb_timed(renderer, encoder, None);
+    }
+
+    /// [`GpuScene::encode_comb`] with timestamps at the start of its first pass and the
+    /// end of its last (an empty pass where no comb is drawn, so the pair is always
+    /// written).
+    pub fn encode_comb_timed(
+        &self,
+        renderer: &Renderer,
+        encoder: &mut wgpu::CommandEncoder,
+        span: Option<PassSpan<'_>>,
+    ) {
+        let writes = |begin: bool, end: bool| {
+            span.as_ref().map(|s| wgpu::ComputePassTimestampWrites {
+                query_set: s.query_set,
+                beginning_of_pass_write_index: begin.then_some(s.begin),
+                end_of_pass_write_index: end.then_some(s.end),
+            })
+        };
         let pairs: Vec<(&AdaptiveChunk, &CombChunk)> = self
             .chunks
             .iter()
@@ -258,16 +289,25 @@ impl GpuScene {
             })
             .collect();
         if pairs.is_empty() {
+            if span.is_some() {
+                encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("no comb"),
+                    timestamp_writes: writes(true, true),
+                });
+            }
             return;
         }
-        renderer.adaptive.encode_comb(encoder, pairs);
-        let Some(layer) = &self.comb_layer else {
+        let layer = self.comb_layer.as_ref();
+        renderer
+            .adaptive
+            .encode_comb(encoder, pairs, writes(true, layer.is_none()));
+        let Some(layer) = layer else {
             return;
         };
         encoder.clear_buffer(&layer.buffer, 0, None);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("comb layer"),
-            timestamp_writes: None,
+            timestamp_writes: writes(false, true),
         });
         pass.set_pipeline(&renderer.comb_raster);
         pass.set_bind_group(0, &renderer.camera_bind_group, &[]);

@@ -495,7 +495,7 @@ impl Running {
             &self.ctx,
             &mut encoder,
             &settings,
-            timed.map(timing::StageTimer::compute_writes),
+            timed.map(|t| (t.compute_writes(), t.comb_span())),
         );
         {
             let mut pass = self

@@ -283,16 +283,20 @@ impl SceneView {
         ctx: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         settings: &FrameSettings,
-        timestamps: Option<[Option<wgpu::ComputePassTimestampWrites<'_>>; 3]>,
+        timestamps: Option<(
+            [Option<wgpu::ComputePassTimestampWrites<'_>>; 3],
+            crate::gpu::renderer::PassSpan<'_>,
+        )>,
     ) -> bool {
         self.gpu.prepare_frame(ctx, &self.renderer, settings);
         match timestamps {
-            Some(writes) => {
+            Some((writes, comb)) => {
                 let chunks: Vec<_> = self.gpu.chunks.iter().map(|c| &c.adaptive).collect();
                 self.renderer
                     .adaptive()
                     .encode_staged(encoder, &chunks, writes);
-                self.gpu.encode_comb(&self.renderer, encoder);
+                self.gpu
+                    .encode_comb_timed(&self.renderer, encoder, Some(comb));
             }
             None => self.gpu.encode_tessellation(&self.renderer, encoder, None),
         }

@@ -1,12 +1,16 @@
-//! Per-stage GPU times of the viewer's frames (count, scan, tessellate, draw) from
+//! Per-stage GPU times of the viewer's frames (count, scan, tessellate, draw, comb) from
 //! timestamp queries, where the adapter has them; read back a few frames late without
 //! waiting, like the frame statistics.
 
 use super::readback::Readback;
 use crate::gpu::GpuContext;
 
-/// The stages timed, in the order of their timestamp pairs.
-pub(crate) const STAGES: [&str; 4] = ["count", "scan", "tessellate", "draw"];
+/// The stages timed, in the order of their timestamp pairs (the comb's: its comb pass and
+/// layer, or an empty pass when no comb is drawn).
+pub(crate) const STAGES: [&str; 5] = ["count", "scan", "tessellate", "draw", "comb"];
+
+/// Milliseconds per stage, in the order of [`STAGES`].
+pub(crate) type StageMs = [f64; STAGES.len()];
 
 /// Timestamp queries around each stage's pass.
 pub(crate) struct StageTimer {
@@ -15,8 +19,8 @@ pub(crate) struct StageTimer {
     readback: Readback,
     period_ns: f64,
     /// The last frame's milliseconds per stage.
-    pub last_ms: Option<[f64; 4]>,
-    sums: [f64; 4],
+    pub last_ms: Option<StageMs>,
+    sums: StageMs,
     frames: u32,
 }
 
@@ -48,7 +52,7 @@ impl StageTimer {
             readback: Readback::new(&ctx.device, "stage times readback", size),
             period_ns: f64::from(ctx.queue.get_timestamp_period()),
             last_ms: None,
-            sums: [0.0; 4],
+            sums: [0.0; STAGES.len()],
             frames: 0,
         })
     }
@@ -78,6 +82,15 @@ impl StageTimer {
         }
     }
 
+    /// The comb's timestamps (the start of its first pass, the end of its last).
+    pub fn comb_span(&self) -> crate::gpu::renderer::PassSpan<'_> {
+        crate::gpu::renderer::PassSpan {
+            query_set: &self.set,
+            begin: 8,
+            end: 9,
+        }
+    }
+
     /// After the frame's passes: resolves the queries and copies them for reading.
     pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
         encoder.resolve_query_set(&self.set, 0..QUERIES, &self.resolve, 0);
@@ -100,7 +113,7 @@ impl StageTimer {
         let Some(ticks) = self.readback.take::<u64>() else {
             return;
         };
-        let mut ms = [0.0; 4];
+        let mut ms = [0.0; STAGES.len()];
         for (i, slot) in ms.iter_mut().enumerate() {
             *slot = ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * self.period_ns * 1e-6;
         }
@@ -112,7 +125,7 @@ impl StageTimer {
     }
 
     /// The mean milliseconds per stage over every timed frame.
-    pub fn mean_ms(&self) -> Option<[f64; 4]> {
+    pub fn mean_ms(&self) -> Option<StageMs> {
         (self.frames > 0).then(|| self.sums.map(|s| s / f64::from(self.frames)))
     }
 }

@@ -19,7 +19,7 @@ pub(crate) struct PanelInfo<'a> {
     /// Whether the sample buffers capped a recent frame.
     pub capped: bool,
     /// GPU milliseconds of a recent frame per stage (count, scan, tessellate, draw).
-    pub stage_ms: Option<[f64; 4]>,
+    pub stage_ms: Option<crate::timing::StageMs>,
     /// Why control polygons and points cannot be shown, when they cannot.
     pub overlays_locked: Option<&'static str>,
     pub camera: &'a Camera,
