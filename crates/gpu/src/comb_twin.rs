@@ -1,13 +1,18 @@
-//! The CPU twin of `shaders/comb.wgsl`'s rasterizer: the comb's hairs and envelope pieces
-//! into a layer of one `u32` per pixel, with the same operations in `f32`. Tests compare
-//! the GPU's layer with it (pixels where a line's position rounds differently may move by
-//! one).
+//! The CPU twin of `shaders/comb.wgsl`'s rasterizers: the curves' pieces and the comb's
+//! hairs and envelope pieces into a layer of one `u32` per pixel, with the same operations
+//! in `f32`. Tests compare the GPU's layer with it (pixels where a line's position rounds
+//! differently may move by one, and a coverage by one step).
 
 use glam::{Mat4, Vec2, Vec4};
 
 use super::layout::{GpuCamera, GpuLineStyle, GpuVertex};
 
-const ENVELOPE_BIT: u32 = 0x8000_0000;
+/// What a pixel holds (bits 31–30 of its value): the highest wins. A comb's hair.
+pub const KIND_HAIR: u32 = 1;
+/// A comb's envelope.
+pub const KIND_ENVELOPE: u32 = 2;
+/// A curve.
+pub const KIND_CURVE: u32 = 3;
 const NEAR_W: f32 = 1e-6;
 
 /// The lines of one chunk's comb as the comb pass left them.
@@ -27,17 +32,27 @@ pub struct CombLines<'a> {
     pub piece_count: u32,
 }
 
-/// `packed` of the shader: bit 31 for the envelope, a 7-bit alpha, 8-bit red, green, blue;
-/// 0 for a colour that would not show.
+/// A curve's place in the scene's style table, as a pixel's value holds it (23 bits).
+pub const ORDER_MASK: u32 = 0x007f_ffff;
+/// The bit of a stroke's core (a curve covering at least half the pixel, a comb line).
+pub const CORE_BIT: u32 = 0x2000_0000;
+
+/// `key_of` of the shader: the kind in bits 31–30, the core bit, the order in bits 28–6,
+/// the alpha in 5–0.
 #[must_use]
-pub fn packed(color: [f32; 4], envelope: bool) -> u32 {
-    let c = Vec4::from(color).clamp(Vec4::ZERO, Vec4::ONE);
-    let alpha = (c.w * 127.0).round_ties_even() as u32;
+pub fn key_of(kind: u32, core: bool, order: u32, alpha: u32) -> u32 {
+    (kind << 30) | if core { CORE_BIT } else { 0 } | ((order & ORDER_MASK) << 6) | alpha
+}
+
+/// `packed` of the shader: a comb line's value, its style's alpha times `alpha_scale`; 0
+/// for an alpha that would not show.
+#[must_use]
+pub fn packed(style: &GpuLineStyle, alpha_scale: f32, kind: u32) -> u32 {
+    let alpha = ((style.color[3] * alpha_scale).clamp(0.0, 1.0) * 63.0).round_ties_even() as u32;
     if alpha == 0 {
         return 0;
     }
-    let [r, g, b] = [c.x, c.y, c.z].map(|x| (x * 255.0).round_ties_even() as u32);
-    (if envelope { ENVELOPE_BIT } else { 0 }) | (alpha << 24) | (r << 16) | (g << 8) | b
+    key_of(kind, true, style.order, alpha)
 }
 
 /// The layer's width and height for `camera` (`layer_size` of the shader).
@@ -57,13 +72,13 @@ pub fn raster_comb(camera: &GpuCamera, lines: &CombLines<'_>, layer: &mut [u32])
         let (foot, tip) = (lines.hairs[2 * p], lines.hairs[2 * p + 1]);
         // Tags that differ (another curve, a hidden comb) draw nothing.
         if foot.id == tip.id {
-            let key = packed(lines.hair_styles[foot.id as usize].color, false);
+            let key = packed(&lines.hair_styles[foot.id as usize], 1.0, KIND_HAIR);
             raster_line(camera, foot, tip, key, layer);
         }
         if p < lines.piece_count as usize {
             let (a, b) = (lines.envelope[p], lines.envelope[p + 1]);
             if a.id == b.id {
-                let key = packed(lines.envelope_styles[a.id as usize].color, true);
+                let key = packed(&lines.envelope_styles[a.id as usize], 1.0, KIND_ENVELOPE);
                 raster_line(camera, a, b, key, layer);
             }
         }
@@ -102,26 +117,110 @@ fn plot(x: i32, y: i32, size: [u32; 2], key: u32, layer: &mut [u32]) {
     }
 }
 
-fn raster_line(camera: &GpuCamera, a: GpuVertex, b: GpuVertex, key: u32, layer: &mut [u32]) {
-    if key == 0 {
-        return;
-    }
+/// `pixel_ends` of the shader: the ends in pixels, clipped to the plane in front of the
+/// eye; `None` when both are behind it or an end is not finite.
+fn pixel_ends(camera: &GpuCamera, a: GpuVertex, b: GpuVertex) -> Option<(Vec2, Vec2)> {
     let m = Mat4::from_cols_array_2d(&camera.clip_from_world);
     let mut ca = m * glam::Vec3::from(a.position).extend(1.0);
     let mut cb = m * glam::Vec3::from(b.position).extend(1.0);
     if ca.w < NEAR_W && cb.w < NEAR_W {
-        return;
+        return None;
     }
     if ca.w < NEAR_W {
         ca = ca.lerp(cb, (NEAR_W - ca.w) / (cb.w - ca.w));
     } else if cb.w < NEAR_W {
         cb = cb.lerp(ca, (NEAR_W - cb.w) / (ca.w - cb.w));
     }
-    let p = pixel_from_clip(camera, ca);
-    let q = pixel_from_clip(camera, cb);
-    if !(p.is_finite() && q.is_finite()) {
+    let (p, q) = (pixel_from_clip(camera, ca), pixel_from_clip(camera, cb));
+    (p.is_finite() && q.is_finite()).then_some((p, q))
+}
+
+/// Rasterizes curve pieces `0 .. pieces` (samples `p`, `p + 1` with the same tag) into
+/// `layer` by maximum, as `raster_curves` does.
+///
+/// # Panics
+/// If a piece's tag is not an index of `styles` (the tessellator never writes one).
+pub fn raster_curves(
+    camera: &GpuCamera,
+    samples: &[GpuVertex],
+    styles: &[GpuLineStyle],
+    pieces: u32,
+    layer: &mut [u32],
+) {
+    let pieces = (pieces as usize).min(samples.len().max(1) - 1);
+    for p in 0..pieces {
+        let (a, b) = (samples[p], samples[p + 1]);
+        if a.id == b.id {
+            raster_piece(camera, a, b, &styles[a.id as usize], layer);
+        }
+    }
+}
+
+/// `raster_piece` of the shader.
+fn raster_piece(
+    camera: &GpuCamera,
+    a: GpuVertex,
+    b: GpuVertex,
+    style: &GpuLineStyle,
+    layer: &mut [u32],
+) {
+    let Some((pa, pb)) = pixel_ends(camera, a, b) else {
+        return;
+    };
+    let opacity = style.color[3].clamp(0.0, 1.0) * 63.0;
+    let half_width = 0.5 * style.width_px * camera.width_scale;
+    let dash = style.dash_px * camera.width_scale;
+    let reach = half_width + 0.5;
+    let d = pb - pa;
+    let len = d.length();
+    let dir = if len > 1e-6 { d / len } else { Vec2::X };
+    let size = layer_size(camera);
+    let x_major = d.x.abs() >= d.y.abs();
+    let swap = |v: Vec2| if x_major { v } else { Vec2::new(v.y, v.x) };
+    let (mut s, mut e) = (swap(pa), swap(pb));
+    let extent = swap(Vec2::new(size[0] as f32, size[1] as f32));
+    if s.x > e.x {
+        (s, e) = (e, s);
+    }
+    let slope = (e.y - s.y) / (e.x - s.x).max(1e-30);
+    let across = reach * (1.0 + slope * slope).sqrt();
+    let first = (s.x - reach - 0.5).ceil().max(0.0);
+    let last = (e.x + reach - 0.5).floor().min(extent.x - 1.0);
+    let mut column = first;
+    while column <= last {
+        let xc = column + 0.5;
+        let yc = s.y + (xc.clamp(s.x, e.x) - s.x) * slope;
+        let top = (yc - across - 0.5).ceil().max(0.0);
+        let bottom = (yc + across - 0.5).floor().min(extent.y - 1.0);
+        let mut row = top;
+        while row <= bottom {
+            let pixel = swap(Vec2::new(xc, row + 0.5));
+            let along = (pixel - pa).dot(dir).clamp(0.0, len);
+            let dist = (pixel - (pa + along * dir)).length();
+            let mut coverage = (half_width + 0.5 - dist).clamp(0.0, 1.0);
+            if dash > 0.0 && (along / dash).fract() >= 0.5 {
+                coverage = 0.0;
+            }
+            let alpha = (opacity * coverage).round_ties_even() as u32;
+            if alpha > 0 {
+                let index = (pixel.y as u32 * size[0] + pixel.x as u32) as usize;
+                if let Some(slot) = layer.get_mut(index) {
+                    *slot = (*slot).max(key_of(KIND_CURVE, coverage >= 0.5, style.order, alpha));
+                }
+            }
+            row += 1.0;
+        }
+        column += 1.0;
+    }
+}
+
+fn raster_line(camera: &GpuCamera, a: GpuVertex, b: GpuVertex, key: u32, layer: &mut [u32]) {
+    if key == 0 {
         return;
     }
+    let Some((p, q)) = pixel_ends(camera, a, b) else {
+        return;
+    };
     let size = layer_size(camera);
     let extent = Vec2::new(size[0] as f32, size[1] as f32);
     let d = q - p;
@@ -191,7 +290,7 @@ mod tests {
             color,
             width_px: 1.0,
             dash_px: 0.0,
-            _padding0: 0,
+            order: 7,
             _padding1: 0,
         }
     }
@@ -223,8 +322,8 @@ mod tests {
         };
         let mut layer = vec![0; 16 * 8];
         raster_comb(&cam, &lines, &mut layer);
-        let hair_key = (64 << 24) | (255 << 16);
-        let envelope_key = ENVELOPE_BIT | (127 << 24) | 255;
+        let hair_key = key_of(KIND_HAIR, true, 7, 32);
+        let envelope_key = key_of(KIND_ENVELOPE, true, 7, 63);
         let mut want: Vec<(u32, u32, u32)> = (1..=5).map(|y| (3, y, hair_key)).collect();
         want.extend((1..=5).map(|x| (x, 3, envelope_key)));
         want.sort_by_key(|&(x, y, _)| (y, x));
@@ -265,11 +364,76 @@ mod tests {
 
     #[test]
     fn colours_that_would_not_show_are_not_drawn() {
-        assert_eq!(packed([1.0, 1.0, 1.0, 0.001], false), 0);
-        assert_eq!(packed([0.0, 0.0, 0.0, 1.0], false), 127 << 24);
+        assert_eq!(packed(&style([1.0, 1.0, 1.0, 0.001]), 1.0, KIND_HAIR), 0);
+        let mut s = style([0.0, 0.0, 0.0, 1.0]);
         assert_eq!(
-            packed([2.0, -1.0, 0.5, 1.0], true) & 0xff_ffff,
-            (255 << 16) | 128
+            packed(&s, 1.0, KIND_HAIR),
+            (1 << 30) | CORE_BIT | (7 << 6) | 63
         );
+        // Alpha scaled, then clamped; the order's 23 bits alone.
+        assert_eq!(packed(&s, 0.5, KIND_HAIR) & 63, 32);
+        assert_eq!(packed(&s, 3.0, KIND_HAIR) & 63, 63);
+        s.order = 0x0080_0005;
+        assert_eq!(packed(&s, 1.0, KIND_ENVELOPE) >> 6 & ORDER_MASK, 5);
+    }
+
+    #[test]
+    fn a_curve_piece_covers_as_the_line_pipeline_and_wins_over_a_comb() {
+        let cam = camera(16.0, 8.0);
+        // A horizontal piece along y = 4 (between rows 3 and 4), two pixels wide, from
+        // x = 2 to x = 10: rows 3 and 4 fully covered (distance ½ ≤ w/2 + ½ − 1), rows 2
+        // and 5 at distance 3/2 (coverage 0), the round caps reaching 1½ beyond the ends.
+        let samples = [v(2.0, 4.0, 0), v(10.0, 4.0, 0)];
+        let mut s = style([0.0, 1.0, 0.0, 1.0]);
+        s.width_px = 2.0;
+        let mut layer = vec![key_of(KIND_ENVELOPE, true, 0, 63); 16 * 8];
+        raster_curves(&cam, &samples, &[s], 1, &mut layer);
+        let at = |x: usize, y: usize| layer[y * 16 + x];
+        let full = key_of(KIND_CURVE, true, 7, 63);
+        for x in 2..10 {
+            assert_eq!(at(x, 3), full, "({x}, 3)");
+            assert_eq!(at(x, 4), full, "({x}, 4)");
+            // Distance 3/2: nothing of the curve; the comb's envelope stays.
+            assert_eq!(at(x, 2) >> 30, KIND_ENVELOPE, "({x}, 2)");
+        }
+        // Pixel (1, 3): centre (1.5, 3.5), distance √(½² + ½²) ≈ 0.707 from the end:
+        // coverage 1.5 − 0.707 = 0.79, alpha 50 of 63.
+        let cap = at(1, 3);
+        assert_eq!(cap, key_of(KIND_CURVE, true, 7, 50));
+        // Pixel (1, 2): distance √(½² + (3/2)²) ≈ 1.58 from the end — beyond reach; (0, 3):
+        // distance 1.58 too; (1, 4) as (1, 3). An edge pixel: (11, 3), centre (11.5, 3.5),
+        // distance √(1.5² + ½²) ≈ 1.58: none; (10, 3): distance √(½² + ½²): a core.
+        assert_eq!(at(1, 2) >> 30, KIND_ENVELOPE);
+        assert_eq!(at(10, 3), key_of(KIND_CURVE, true, 7, 50));
+        // The same piece again as a later curve (order 9): it wins where both cover a
+        // pixel alike; an earlier one (order 3) does not.
+        let mut later = s;
+        later.order = 9;
+        let mut earlier = s;
+        earlier.order = 3;
+        raster_curves(&cam, &samples, &[later], 1, &mut layer);
+        raster_curves(&cam, &samples, &[earlier], 1, &mut layer);
+        assert_eq!(layer[3 * 16 + 5], key_of(KIND_CURVE, true, 9, 63));
+        // An edge (coverage below ½) of a later curve does not cut into an earlier core.
+        let mut faint = s;
+        faint.order = 12;
+        faint.width_px = 0.4;
+        let mut layer = vec![0; 16 * 8];
+        raster_curves(&cam, &samples, &[s], 1, &mut layer);
+        raster_curves(
+            &cam,
+            &[v(2.0, 3.0, 0), v(10.0, 3.0, 0)],
+            &[faint],
+            1,
+            &mut layer,
+        );
+        assert_eq!(layer[3 * 16 + 5], key_of(KIND_CURVE, true, 7, 63));
+        // A dashed piece of 4-pixel dashes: [0, 2) drawn, [2, 4) not, …
+        let mut dashed = s;
+        dashed.dash_px = 4.0;
+        let mut layer = vec![0; 16 * 8];
+        raster_curves(&cam, &samples, &[dashed], 1, &mut layer);
+        let lit: Vec<usize> = (2..10).filter(|&x| layer[3 * 16 + x] != 0).collect();
+        assert_eq!(lit, vec![2, 3, 6, 7]);
     }
 }

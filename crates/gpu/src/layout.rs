@@ -141,7 +141,7 @@ pub const COMB_NONE: u32 = u32::MAX - 1;
 /// `shaders/adaptive.wgsl`.
 pub const COMB_HIDDEN: u32 = 0x8000_0000;
 
-/// Invocations per workgroup of the comb layer's rasterizer. Twin:
+/// Invocations per workgroup of the layer's rasterizers. Twin:
 /// `COMB_RASTER_WORKGROUP` in `shaders/common.wgsl`.
 pub const COMB_RASTER_WORKGROUP: u32 = 64;
 
@@ -149,9 +149,10 @@ pub const COMB_RASTER_WORKGROUP: u32 = 64;
 /// argument buffer ([`crate::adaptive::CombChunk::args`]).
 pub const COMB_RASTER_ARGS_OFFSET: u64 = 32;
 
-/// The most workgroups the comb layer's rasterizer dispatches (each invocation then takes
-/// every line a stride apart). Twin: `COMB_RASTER_GROUPS` in `shaders/common.wgsl`.
-pub const COMB_RASTER_GROUPS: u32 = 4096;
+/// The most workgroups one of the layer's rasterizers dispatches (each invocation then
+/// takes every line or piece a stride apart: idle workgroups are not free on a CPU
+/// rasterizer). Twin: `COMB_RASTER_GROUPS` in `shaders/common.wgsl`.
+pub const COMB_RASTER_GROUPS: u32 = 256;
 
 /// The per-frame uniform of adaptive tessellation, one per chunk. Twin: `Frame` in
 /// `shaders/common.wgsl`.
@@ -274,8 +275,10 @@ pub struct GpuLineStyle {
     pub width_px: f32,
     /// Dash period in pixels along each line piece (0 = solid).
     pub dash_px: f32,
-    /// Keeps the size a multiple of 16 bytes.
-    pub _padding0: u32,
+    /// A curve's place in the scene (its style's index in the scene's table of curve
+    /// styles, which the layer's pixels name: a later curve over an earlier one); 0 for
+    /// overlays.
+    pub order: u32,
     /// Keeps the size a multiple of 16 bytes.
     pub _padding1: u32,
 }

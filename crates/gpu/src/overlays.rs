@@ -22,7 +22,7 @@ impl From<Stroke> for GpuLineStyle {
             color: s.color.0,
             width_px: s.width_px,
             dash_px: s.dash_px,
-            _padding0: 0,
+            order: 0,
             _padding1: 0,
         }
     }

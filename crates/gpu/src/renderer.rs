@@ -1,7 +1,9 @@
-//! The render pipelines (`shaders/lines.wgsl`, `shaders/points.wgsl`, the comb layer's of
+//! The render pipelines (`shaders/lines.wgsl`, `shaders/points.wgsl`, the layer's of
 //! `shaders/comb.wgsl`) and a scene as it lives on the GPU. Curves are drawn straight from
-//! the tessellator's sample buffers: no sample comes back to the CPU in a frame.
+//! the tessellator's sample buffers — rasterized into the layer by a compute pass, or as
+//! quads where no layer fits — and no sample comes back to the CPU in a frame.
 
+use bytemuck::Zeroable;
 use glam::DVec2;
 
 use super::adaptive::{
@@ -9,8 +11,8 @@ use super::adaptive::{
 };
 use super::context::GpuContext;
 use super::layout::{
-    COMB_ALL, COMB_NONE, COMB_RASTER_ARGS_OFFSET, FrameStats, GpuCamera, GpuControlPoint,
-    GpuLineStyle, GpuVertex,
+    COMB_ALL, COMB_NONE, COMB_RASTER_ARGS_OFFSET, COMB_RASTER_GROUPS, COMB_RASTER_WORKGROUP,
+    FrameStats, GpuCamera, GpuControlPoint, GpuLineStyle, GpuVertex,
 };
 use super::pack::{LineBatch, PreparedScene};
 use super::pipelines::Pipelines;
@@ -29,20 +31,23 @@ pub struct Renderer {
     camera_bind_group: wgpu::BindGroup,
     batch_layout: wgpu::BindGroupLayout,
     line_pipeline: wgpu::RenderPipeline,
-    /// The comb as line lists, where the comb layer does not fit in one binding.
+    /// The comb as line lists, where the layer does not fit in one binding.
     hair_pipeline: wgpu::RenderPipeline,
     envelope_pipeline: wgpu::RenderPipeline,
     point_pipeline: wgpu::RenderPipeline,
-    /// The comb layer: its rasterizer and the full-screen pass blending it.
+    /// The layer: its comb and curve rasterizers and the full-screen pass blending it.
     comb_raster: wgpu::ComputePipeline,
     comb_raster_layout: wgpu::BindGroupLayout,
+    curve_raster: wgpu::ComputePipeline,
+    curve_raster_layout: wgpu::BindGroupLayout,
     comb_layer_pipeline: wgpu::RenderPipeline,
     comb_layer_layout: wgpu::BindGroupLayout,
     format: wgpu::TextureFormat,
 }
 
-/// The comb layer: one `u32` per pixel of the target (`shaders/comb.wgsl`), cleared and
-/// rasterized into each frame, then blended over the target in the draw pass.
+/// The layer: one `u32` per pixel of the target (`shaders/comb.wgsl`), cleared and
+/// rasterized into each frame (the curves and their combs), then blended over the target
+/// in the draw pass.
 #[derive(Debug)]
 struct CombLayer {
     buffer: wgpu::Buffer,
@@ -50,6 +55,9 @@ struct CombLayer {
     size: [u32; 2],
     bind_group: wgpu::BindGroup,
 }
+
+/// Curve styles the layer's pixels can name (23 bits of order).
+const LAYER_ORDERS: usize = 1 << 23;
 
 /// A drawable set of tagged vertices with their styles.
 #[derive(Debug)]
@@ -69,6 +77,9 @@ pub struct GpuChunk {
     draw: DrawBatch,
     styles: Vec<GpuLineStyle>,
     comb: Option<CombDraw>,
+    /// The curve rasterizer's bind group over the samples, styles and work buffer and the
+    /// scene's layer (made when the layer is, and again when the chunk grows).
+    raster: Option<wgpu::BindGroup>,
 }
 
 /// A chunk's curvature comb on the GPU: the comb pass's buffers and the draws over them.
@@ -82,6 +93,15 @@ struct CombDraw {
     raster: Option<wgpu::BindGroup>,
     /// The curve tag the pass draws for ([`COMB_ALL`], [`COMB_NONE`] or one tag).
     curve: u32,
+}
+
+impl GpuChunk {
+    /// The chunk's curve styles, by tag, with their places in the scene
+    /// ([`GpuLineStyle::order`]).
+    #[must_use]
+    pub fn styles(&self) -> &[GpuLineStyle] {
+        &self.styles
+    }
 }
 
 impl CombDraw {
@@ -142,10 +162,14 @@ pub struct GpuScene {
     /// The clear colour.
     pub background: wgpu::Color,
     comb_scale: f32,
-    /// The comb layer, while a comb is on and the layer fits in one binding.
-    comb_layer: Option<CombLayer>,
-    /// Whether combs may be drawn through the layer (else as line lists).
-    comb_layer_allowed: bool,
+    /// The layer, where it fits in one binding and is allowed.
+    layer: Option<CombLayer>,
+    /// Whether curves and combs may be drawn through the layer (else as quads and line
+    /// lists).
+    layer_allowed: bool,
+    /// The curve styles in scene order (the colours the layer's pixels name); `None` for a
+    /// scene with more than the layer can name (it is then drawn without one).
+    layer_styles: Option<wgpu::Buffer>,
     markers: Vec<DrawBatch>,
 }
 
@@ -208,7 +232,7 @@ impl GpuScene {
     }
 
     /// Writes every chunk's frame uniform (camera and tolerance) for the next frame, and
-    /// sizes the comb layer to the frame's viewport while a comb is on.
+    /// sizes the layer to the frame's viewport.
     pub fn prepare_frame(
         &mut self,
         ctx: &GpuContext,
@@ -220,22 +244,28 @@ impl GpuScene {
             self.chunks.iter().map(|c| &c.adaptive),
             settings,
         );
-        if !(self.has_comb() && self.comb_layer_allowed) {
-            self.comb_layer = None;
+        let Some(styles) = self.layer_styles.as_ref().filter(|_| self.layer_allowed) else {
+            self.layer = None;
             return;
-        }
+        };
         let [w, h] = settings.camera.viewport_px;
         // Viewports are whole pixels; at least one, so that the buffer is never empty.
         let size = [w.round().max(1.0) as u32, h.round().max(1.0) as u32];
-        if self.comb_layer.as_ref().is_none_or(|l| l.size != size) {
-            self.comb_layer = renderer.comb_layer(ctx, size);
-            for comb in self.chunks.iter_mut().filter_map(|c| c.comb.as_mut()) {
-                comb.raster = None;
+        if self.layer.as_ref().is_none_or(|l| l.size != size) {
+            self.layer = renderer.layer(ctx, size, styles);
+            for chunk in &mut self.chunks {
+                chunk.raster = None;
+                if let Some(comb) = &mut chunk.comb {
+                    comb.raster = None;
+                }
             }
         }
-        if let Some(layer) = &self.comb_layer {
-            for comb in self.chunks.iter_mut().filter_map(|c| c.comb.as_mut()) {
-                if comb.raster.is_none() {
+        if let Some(layer) = &self.layer {
+            for chunk in &mut self.chunks {
+                if chunk.raster.is_none() {
+                    chunk.raster = Some(renderer.curve_raster_group(&ctx.device, chunk, layer));
+                }
+                if let Some(comb) = chunk.comb.as_mut().filter(|c| c.raster.is_none()) {
                     comb.raster = Some(renderer.comb_raster_group(&ctx.device, comb, layer));
                 }
             }
@@ -255,6 +285,60 @@ impl GpuScene {
             timestamp_writes,
         );
         self.encode_comb(renderer, encoder);
+        self.encode_layer(renderer, encoder, None);
+    }
+
+    /// Records the layer's frame (after the tessellation and the comb pass): cleared, then
+    /// every shown comb and every chunk's curves rasterized into it, with timestamps at
+    /// the start and end of its pass (an empty pass where there is no layer, so the pair
+    /// is always written).
+    pub fn encode_layer(
+        &self,
+        renderer: &Renderer,
+        encoder: &mut wgpu::CommandEncoder,
+        span: Option<PassSpan<'_>>,
+    ) {
+        let timestamp_writes = span.as_ref().map(|s| wgpu::ComputePassTimestampWrites {
+            query_set: s.query_set,
+            beginning_of_pass_write_index: Some(s.begin),
+            end_of_pass_write_index: Some(s.end),
+        });
+        let Some(layer) = &self.layer else {
+            if timestamp_writes.is_some() {
+                encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("no layer"),
+                    timestamp_writes,
+                });
+            }
+            return;
+        };
+        encoder.clear_buffer(&layer.buffer, 0, None);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("layer"),
+            timestamp_writes,
+        });
+        pass.set_bind_group(0, &renderer.camera_bind_group, &[]);
+        pass.set_pipeline(&renderer.comb_raster);
+        for comb in self.chunks.iter().filter_map(|c| c.comb.as_ref()) {
+            if let (true, Some(group)) = (comb.shown(), &comb.raster) {
+                pass.set_bind_group(1, group, &[]);
+                pass.dispatch_workgroups_indirect(&comb.buffers.args, COMB_RASTER_ARGS_OFFSET);
+            }
+        }
+        pass.set_pipeline(&renderer.curve_raster);
+        for chunk in &self.chunks {
+            if let Some(group) = &chunk.raster {
+                // Pieces by stride over at most COMB_RASTER_GROUPS workgroups (the pieces
+                // drawn are known only on the GPU).
+                let groups = chunk
+                    .adaptive
+                    .capacity
+                    .div_ceil(COMB_RASTER_WORKGROUP)
+                    .clamp(1, COMB_RASTER_GROUPS);
+                pass.set_bind_group(1, group, &[]);
+                pass.dispatch_workgroups(groups, 1, 1);
+            }
+        }
     }
 
     /// Records the comb pass of every chunk with a comb (after its tessellation).
@@ -262,9 +346,8 @@ impl GpuScene {
         self.encode_comb_timed(renderer, encoder, None);
     }
 
-    /// [`GpuScene::encode_comb`] with timestamps at the start of its first pass and the
-    /// end of its last (an empty pass where no comb is drawn, so the pair is always
-    /// written).
+    /// [`GpuScene::encode_comb`] with timestamps at the start and end of its pass (an
+    /// empty pass where no comb is drawn, so the pair is always written).
     pub fn encode_comb_timed(
         &self,
         renderer: &Renderer,
@@ -297,26 +380,9 @@ impl GpuScene {
             }
             return;
         }
-        let layer = self.comb_layer.as_ref();
         renderer
             .adaptive
-            .encode_comb(encoder, pairs, writes(true, layer.is_none()));
-        let Some(layer) = layer else {
-            return;
-        };
-        encoder.clear_buffer(&layer.buffer, 0, None);
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("comb layer"),
-            timestamp_writes: writes(false, true),
-        });
-        pass.set_pipeline(&renderer.comb_raster);
-        pass.set_bind_group(0, &renderer.camera_bind_group, &[]);
-        for comb in self.chunks.iter().filter_map(|c| c.comb.as_ref()) {
-            if let (true, Some(group)) = (comb.shown(), &comb.raster) {
-                pass.set_bind_group(1, group, &[]);
-                pass.dispatch_workgroups_indirect(&comb.buffers.args, COMB_RASTER_ARGS_OFFSET);
-            }
-        }
+            .encode_comb(encoder, pairs, writes(true, true));
     }
 
     /// Turns the curvature combs on (`Some`: every curve's, or one curve's, with hairs of
@@ -359,19 +425,20 @@ impl GpuScene {
         self.chunks.iter().any(|c| c.comb.is_some())
     }
 
-    /// Whether combs are drawn through the comb layer (`true`, the default: a compute pass
-    /// rasterizes them, one full-screen triangle blends them) or as line lists (`false`,
-    /// also what happens where the layer would not fit in one storage binding). Takes
-    /// effect at the next [`GpuScene::prepare_frame`].
-    pub fn set_comb_layer(&mut self, allowed: bool) {
-        self.comb_layer_allowed = allowed;
+    /// Whether curves and combs are drawn through the layer (`true`, the default: a
+    /// compute pass rasterizes them, one full-screen triangle blends them) or as quads and
+    /// line lists (`false`, also what happens where the layer would not fit in one storage
+    /// binding). Takes effect at the next [`GpuScene::prepare_frame`].
+    pub fn set_layer(&mut self, allowed: bool) {
+        self.layer_allowed = allowed;
     }
 
-    /// The comb layer (`shaders/comb.wgsl`: one `u32` per pixel, row by row) and its width
-    /// and height, while a comb is on and the layer fits in one binding.
+    /// The layer (`shaders/comb.wgsl`: one `u32` per pixel, row by row) and its width and
+    /// height, where it is allowed and fits in one binding (after a
+    /// [`GpuScene::prepare_frame`]).
     #[must_use]
-    pub fn comb_layer(&self) -> Option<(&wgpu::Buffer, [u32; 2])> {
-        self.comb_layer.as_ref().map(|l| (&l.buffer, l.size))
+    pub fn layer(&self) -> Option<(&wgpu::Buffer, [u32; 2])> {
+        self.layer.as_ref().map(|l| (&l.buffer, l.size))
     }
 
     /// Chunk `chunk`'s comb buffers (hairs, envelope, draw arguments), when it has them.
@@ -405,6 +472,8 @@ impl GpuScene {
                 chunk.adaptive.capacity,
                 &chunk.styles,
             );
+            // Over the old samples: made again at the next frame.
+            chunk.raster = None;
             if let Some(old) = chunk.comb.take() {
                 let comb = renderer.comb_draw(ctx, &chunk.adaptive, &chunk.styles, old.curve);
                 renderer.adaptive.write_comb(
@@ -541,6 +610,25 @@ impl Renderer {
             entries: &super::bindings::comb_layer(),
         });
         let comb_module = shaders::COMB.module(device);
+        let curve_raster_layout =
+            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("curve raster"),
+                entries: &super::bindings::curve_raster(),
+            });
+        let curve_raster = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("raster_curves"),
+            layout: Some(
+                &device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                    label: Some("curve raster"),
+                    bind_group_layouts: &[Some(&camera_layout), Some(&curve_raster_layout)],
+                    immediate_size: 0,
+                }),
+            ),
+            module: &comb_module,
+            entry_point: Some("raster_curves"),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            cache: None,
+        });
         let comb_raster = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some("raster_comb"),
             layout: Some(
@@ -597,6 +685,8 @@ impl Renderer {
             point_pipeline,
             comb_raster,
             comb_raster_layout,
+            curve_raster,
+            curve_raster_layout,
             comb_layer_pipeline,
             comb_layer_layout,
             format,
@@ -636,15 +726,15 @@ impl Renderer {
         }
     }
 
-    /// A comb layer of `size` pixels, or `None` where it would not fit in one storage
-    /// binding (the comb is then drawn as line lists).
-    fn comb_layer(&self, ctx: &GpuContext, size: [u32; 2]) -> Option<CombLayer> {
+    /// A layer of `size` pixels, or `None` where it would not fit in one storage binding
+    /// (curves and combs are then drawn as quads and line lists).
+    fn layer(&self, ctx: &GpuContext, size: [u32; 2], styles: &wgpu::Buffer) -> Option<CombLayer> {
         let bytes = u64::from(size[0]) * u64::from(size[1]) * 4;
         if bytes > ctx.max_binding_bytes() {
             return None;
         }
         let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("comb layer"),
+            label: Some("layer"),
             size: bytes,
             // COPY_SRC: read back by tests.
             usage: wgpu::BufferUsages::STORAGE
@@ -655,15 +745,48 @@ impl Renderer {
         let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("comb layer"),
             layout: &self.comb_layer_layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 6,
-                resource: buffer.as_entire_binding(),
-            }],
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 6,
+                    resource: buffer.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 10,
+                    resource: styles.as_entire_binding(),
+                },
+            ],
         });
         Some(CombLayer {
             buffer,
             size,
             bind_group,
+        })
+    }
+
+    /// The curve rasterizer's bind group for `chunk` into `layer`.
+    fn curve_raster_group(
+        &self,
+        device: &wgpu::Device,
+        chunk: &GpuChunk,
+        layer: &CombLayer,
+    ) -> wgpu::BindGroup {
+        let buffers = [
+            (5, &layer.buffer),
+            (7, &chunk.draw.buffers[0]),
+            (8, &chunk.draw.buffers[1]),
+            (9, &chunk.adaptive.work),
+        ];
+        let entries: Vec<wgpu::BindGroupEntry<'_>> = buffers
+            .into_iter()
+            .map(|(binding, buffer)| wgpu::BindGroupEntry {
+                binding,
+                resource: buffer.as_entire_binding(),
+            })
+            .collect();
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("curve raster"),
+            layout: &self.curve_raster_layout,
+            entries: &entries,
         })
     }
 
@@ -752,28 +875,58 @@ impl Renderer {
     pub fn upload(&self, ctx: &GpuContext, prepared: &PreparedScene) -> GpuScene {
         let device = &ctx.device;
         let limit = ctx.max_binding_bytes() / size_of::<GpuVertex>() as u64;
+        // Each curve style's place in the scene (chunks hold the curves in order): the
+        // layer's pixels name it, and the scene's table of them gives their colours.
+        let mut ordered: Vec<GpuLineStyle> = Vec::new();
+        let chunk_styles: Vec<Vec<GpuLineStyle>> = prepared
+            .chunks
+            .iter()
+            .map(|chunk| {
+                chunk
+                    .styles
+                    .iter()
+                    .map(|s| {
+                        let style = GpuLineStyle {
+                            order: ordered.len() as u32,
+                            ..*s
+                        };
+                        ordered.push(style);
+                        style
+                    })
+                    .collect()
+            })
+            .collect();
+        if ordered.is_empty() {
+            // A binding is never empty.
+            ordered.push(GpuLineStyle::zeroed());
+        }
+        let layer_styles = (ordered.len() <= LAYER_ORDERS).then(|| {
+            super::init_buffer(
+                device,
+                "layer styles",
+                bytemuck::cast_slice(&ordered),
+                wgpu::BufferUsages::STORAGE,
+            )
+        });
         let chunks = prepared
             .chunks
             .iter()
+            .zip(chunk_styles)
             // Every chunk, even one without segments of its own: placements index them.
-            .map(|chunk| {
+            .map(|(chunk, styles)| {
                 let adaptive = self.adaptive.upload(
                     device,
                     chunk,
                     initial_capacity(chunk, limit),
                     wgpu::BufferUsages::COPY_SRC,
                 );
-                let draw = self.batch(
-                    device,
-                    adaptive.samples.clone(),
-                    adaptive.capacity,
-                    &chunk.styles,
-                );
+                let draw = self.batch(device, adaptive.samples.clone(), adaptive.capacity, &styles);
                 GpuChunk {
                     adaptive,
                     draw,
-                    styles: chunk.styles.clone(),
+                    styles,
                     comb: None,
+                    raster: None,
                 }
             })
             .collect();
@@ -792,8 +945,9 @@ impl Renderer {
                 .collect(),
             background: wgpu::Color { r, g, b, a },
             comb_scale: 0.0,
-            comb_layer: None,
-            comb_layer_allowed: true,
+            layer: None,
+            layer_allowed: true,
+            layer_styles,
             markers: Vec::new(),
         }
     }
@@ -903,23 +1057,19 @@ impl Renderer {
         for batch in &scene.lines {
             draw_lines(pass, batch);
         }
-        // The combs under the curves: the layer the comb pass rasterized, blended in one
-        // full-screen triangle; as line lists (hairs, then the envelope joining their
-        // tips) where no layer fits.
-        let shown = || {
-            scene
+        // The curves over their combs: the layer the compute pass rasterized them into,
+        // blended in one full-screen triangle; where no layer fits, the combs as line
+        // lists (hairs, then the envelope joining their tips) and the curves as quads.
+        if let Some(layer) = &scene.layer {
+            pass.set_pipeline(&self.comb_layer_pipeline);
+            pass.set_bind_group(1, &layer.bind_group, &[]);
+            pass.draw(0..3, 0..1);
+        } else {
+            let shown = scene
                 .chunks
                 .iter()
-                .filter_map(|c| c.comb.as_ref().filter(|comb| comb.shown()))
-        };
-        if let Some(layer) = &scene.comb_layer {
-            if shown().next().is_some() {
-                pass.set_pipeline(&self.comb_layer_pipeline);
-                pass.set_bind_group(1, &layer.bind_group, &[]);
-                pass.draw(0..3, 0..1);
-            }
-        } else {
-            for comb in shown() {
+                .filter_map(|c| c.comb.as_ref().filter(|comb| comb.shown()));
+            for comb in shown {
                 pass.set_pipeline(&self.hair_pipeline);
                 pass.set_bind_group(1, &comb.hairs.bind_group, &[]);
                 pass.draw_indirect(&comb.buffers.args, 0);
@@ -927,12 +1077,12 @@ impl Renderer {
                 pass.set_bind_group(1, &comb.envelope.bind_group, &[]);
                 pass.draw_indirect(&comb.buffers.args, 16);
             }
-        }
-        pass.set_pipeline(&self.line_pipeline);
-        for chunk in &scene.chunks {
-            // As many pieces as the adaptive passes wrote samples, less one.
-            pass.set_bind_group(1, &chunk.draw.bind_group, &[]);
-            pass.draw_indirect(&chunk.adaptive.work, 0);
+            pass.set_pipeline(&self.line_pipeline);
+            for chunk in &scene.chunks {
+                // As many pieces as the adaptive passes wrote samples, less one.
+                pass.set_bind_group(1, &chunk.draw.bind_group, &[]);
+                pass.draw_indirect(&chunk.adaptive.work, 0);
+            }
         }
         pass.set_pipeline(&self.point_pipeline);
         for batch in scene.points.iter().chain(&scene.markers) {

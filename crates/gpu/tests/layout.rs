@@ -137,7 +137,7 @@ fn gpu_structs_match_their_wgsl_twins() {
             m,
             "LineStyle",
             GpuLineStyle,
-            [color, width_px, dash_px, _padding0, _padding1]
+            [color, width_px, dash_px, order, _padding1]
         );
         assert_eq!(constant_u32(m, "MAX_DEGREE") as usize, MAX_GPU_DEGREE);
         assert_eq!(
@@ -338,7 +338,7 @@ fn bind_group_layouts_match_the_shaders() {
     );
     assert_eq!(from_shader(&shaders::ADAPTIVE).len(), 10);
     assert_eq!(from_layouts(&bindings::comb()), from_shader(&shaders::COMB));
-    assert_eq!(from_shader(&shaders::COMB).len(), 8);
+    assert_eq!(from_shader(&shaders::COMB).len(), 12);
 }
 
 #[test]

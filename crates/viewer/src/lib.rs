@@ -495,7 +495,7 @@ impl Running {
             &self.ctx,
             &mut encoder,
             &settings,
-            timed.map(|t| (t.compute_writes(), t.comb_span())),
+            timed.map(|t| (t.compute_writes(), t.comb_span(), t.raster_span())),
         );
         {
             let mut pass = self

@@ -286,17 +286,19 @@ impl SceneView {
         timestamps: Option<(
             [Option<wgpu::ComputePassTimestampWrites<'_>>; 3],
             crate::gpu::renderer::PassSpan<'_>,
+            crate::gpu::renderer::PassSpan<'_>,
         )>,
     ) -> bool {
         self.gpu.prepare_frame(ctx, &self.renderer, settings);
         match timestamps {
-            Some((writes, comb)) => {
+            Some((writes, comb, raster)) => {
                 let chunks: Vec<_> = self.gpu.chunks.iter().map(|c| &c.adaptive).collect();
                 self.renderer
                     .adaptive()
                     .encode_staged(encoder, &chunks, writes);
                 self.gpu
                     .encode_comb_timed(&self.renderer, encoder, Some(comb));
+                self.gpu.encode_layer(&self.renderer, encoder, Some(raster));
             }
             None => self.gpu.encode_tessellation(&self.renderer, encoder, None),
         }

@@ -1,13 +1,15 @@
-//! Per-stage GPU times of the viewer's frames (count, scan, tessellate, draw, comb) from
+//! Per-stage GPU times of the viewer's frames (count, scan, tessellate, draw, comb,
+//! raster) from
 //! timestamp queries, where the adapter has them; read back a few frames late without
 //! waiting, like the frame statistics.
 
 use super::readback::Readback;
 use crate::gpu::GpuContext;
 
-/// The stages timed, in the order of their timestamp pairs (the comb's: its comb pass and
-/// layer, or an empty pass when no comb is drawn).
-pub(crate) const STAGES: [&str; 5] = ["count", "scan", "tessellate", "draw", "comb"];
+/// The stages timed, in the order of their timestamp pairs (the comb's: its comb pass, or
+/// an empty pass when no comb is drawn; the raster's: curves and combs into the layer, or
+/// an empty pass where there is none).
+pub(crate) const STAGES: [&str; 6] = ["count", "scan", "tessellate", "draw", "comb", "raster"];
 
 /// Milliseconds per stage, in the order of [`STAGES`].
 pub(crate) type StageMs = [f64; STAGES.len()];
@@ -82,12 +84,21 @@ impl StageTimer {
         }
     }
 
-    /// The comb's timestamps (the start of its first pass, the end of its last).
+    /// The comb pass's timestamps.
     pub fn comb_span(&self) -> crate::gpu::renderer::PassSpan<'_> {
         crate::gpu::renderer::PassSpan {
             query_set: &self.set,
             begin: 8,
             end: 9,
+        }
+    }
+
+    /// The layer pass's timestamps.
+    pub fn raster_span(&self) -> crate::gpu::renderer::PassSpan<'_> {
+        crate::gpu::renderer::PassSpan {
+            query_set: &self.set,
+            begin: 10,
+            end: 11,
         }
     }
 

@@ -135,7 +135,7 @@ fn header(ui: &mut egui::Ui, info: &PanelInfo<'_>, scene: &crate::scene::Scene) 
         );
     }
     ui.small(info.adapter);
-    if let Some([count, scan, tessellate, draw, comb]) = info.stage_ms {
+    if let Some([count, scan, tessellate, draw, comb, raster]) = info.stage_ms {
         // The comb's stage is an empty pass while no comb is drawn.
         let comb = if comb >= 0.005 {
             format!(" · comb {comb:.2}")
@@ -143,7 +143,7 @@ fn header(ui: &mut egui::Ui, info: &PanelInfo<'_>, scene: &crate::scene::Scene) 
             String::new()
         };
         ui.small(format!(
-            "GPU ms: count {count:.2} · scan {scan:.2} · tessellate {tessellate:.2}{comb} · draw {draw:.2}"
+            "GPU ms: count {count:.2} · scan {scan:.2} · tessellate {tessellate:.2}{comb} · raster {raster:.2} · draw {draw:.2}"
         ));
     }
     if let Some((curves, ms)) = info.solving {
