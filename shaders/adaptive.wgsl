@@ -528,15 +528,15 @@ fn curvature_from(h: vec4<f32>, h1: vec4<f32>, h2: vec4<f32>) -> array<vec3<f32>
 // The segment of comb invocation `slot`, and (from the range's first invocation) the
 // comb's arguments: 2 vertices per hair, then 2 per envelope piece (the layer's
 // rasterizer reads both), then the rasterizer's workgroups (one sample's hair and
-// envelope piece an invocation, the rest by stride past COMB_RASTER_GROUPS).
+// envelope piece an invocation, the rest by stride past LAYER_GROUPS).
 fn comb_work(slot: u32, first_lane: u32) -> AdaptiveWork {
     if (slot == 0u && first_lane == 0u) {
         let drawn = work[STAT_DRAWN];
         let pieces = max(drawn, 1u) - 1u;
         comb_args[0] = 2u * drawn;
         comb_args[4] = 2u * pieces;
-        comb_args[8] = min((drawn + COMB_RASTER_WORKGROUP - 1u) / COMB_RASTER_WORKGROUP,
-                           COMB_RASTER_GROUPS);
+        comb_args[8] = min((drawn + LAYER_WORKGROUP - 1u) / LAYER_WORKGROUP,
+                           LAYER_GROUPS);
     }
     return adaptive_work(slot);
 }

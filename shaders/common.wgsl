@@ -7,12 +7,12 @@
 const MAX_DEGREE: u32 = 31u;
 // Twin: TESSELLATE_WORKGROUP_SIZE in src/gpu/layout.rs.
 const TESSELLATE_WORKGROUP_SIZE: u32 = 64u;
-// Twins: COMB_RASTER_WORKGROUP and COMB_RASTER_GROUPS in src/gpu/layout.rs. The layer's
+// Twins: LAYER_WORKGROUP and LAYER_GROUPS in src/gpu/layout.rs. The layer's
 // rasterizers: invocations per workgroup, and the most workgroups one dispatches (the
 // rest by stride: idle workgroups are not free on a CPU rasterizer, and 16,384
 // invocations keep a GPU busy).
-const COMB_RASTER_WORKGROUP: u32 = 64u;
-const COMB_RASTER_GROUPS: u32 = 256u;
+const LAYER_WORKGROUP: u32 = 64u;
+const LAYER_GROUPS: u32 = 256u;
 
 // Twin: GpuVertex. A point with a tag (curve index for samples, style index for overlays).
 struct Vertex {

@@ -364,7 +364,7 @@ fn read_back<T: bytemuck::Pod>(
     read_buffer(&ctx.device, &ctx.queue, &mut encoder, buffer).expect("read back")
 }
 
-/// The layer (`raster_comb` and `raster_curves` in `shaders/comb.wgsl`) against its CPU
+/// The layer (`raster_comb` and `raster_curves` in `shaders/layer.wgsl`) against its CPU
 /// twin run on the samples, hairs and envelope the GPU wrote, on every backend: the same
 /// pixels lit with the same colours (a coverage within one step of 63), but for pixels
 /// where the `f32` position of a line rounds to the neighbouring row or column (at most
@@ -372,37 +372,34 @@ fn read_back<T: bytemuck::Pod>(
 /// every curve's comb, and for one curve's (the others' hidden hairs and envelope draw
 /// nothing: a small part of the pixels).
 #[test]
-fn the_comb_layer_holds_the_lines_its_twin_rasterizes() {
-    common::on_each_gpu(
-        "the_comb_layer_holds_the_lines_its_twin_rasterizes",
-        |backend| {
-            let ctx = &backend.ctx;
-            let scene = scene_of(families());
-            let prepared = prepare(
-                &encode(&scene),
-                ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
-            )
-            .expect("pack");
-            let renderer = Renderer::new(&ctx.device, &backend.pipelines, OFFSCREEN_FORMAT);
-            // Every curve's comb, then curve 3's alone (the others' hairs hidden).
-            let mut lit_all = 0;
-            for only in [None, Some(curve_tags(&prepared, 3))] {
-                let one = only.is_some();
-                let lit = layer_against_twin(backend, &scene, &prepared, &renderer, only);
-                if one {
-                    // The curves are drawn either way; the other combs are not.
-                    assert!(
-                        lit > 3000 && lit + 2000 < lit_all,
-                        "{}: with one curve's comb {lit} pixels lit, with every curve's {lit_all}",
-                        backend.name
-                    );
-                } else {
-                    assert!(lit > 3000, "{}: {lit} pixels lit", backend.name);
-                    lit_all = lit;
-                }
+fn the_layer_holds_what_its_twin_rasterizes() {
+    common::on_each_gpu("the_layer_holds_what_its_twin_rasterizes", |backend| {
+        let ctx = &backend.ctx;
+        let scene = scene_of(families());
+        let prepared = prepare(
+            &encode(&scene),
+            ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
+        )
+        .expect("pack");
+        let renderer = Renderer::new(&ctx.device, &backend.pipelines, OFFSCREEN_FORMAT);
+        // Every curve's comb, then curve 3's alone (the others' hairs hidden).
+        let mut lit_all = 0;
+        for only in [None, Some(curve_tags(&prepared, 3))] {
+            let one = only.is_some();
+            let lit = layer_against_twin(backend, &scene, &prepared, &renderer, only);
+            if one {
+                // The curves are drawn either way; the other combs are not.
+                assert!(
+                    lit > 3000 && lit + 2000 < lit_all,
+                    "{}: with one curve's comb {lit} pixels lit, with every curve's {lit_all}",
+                    backend.name
+                );
+            } else {
+                assert!(lit > 3000, "{}: {lit} pixels lit", backend.name);
+                lit_all = lit;
             }
-        },
-    );
+        }
+    });
 }
 
 /// Runs the comb pass and its layer for `only` and compares the layer with the twin's
@@ -414,7 +411,7 @@ fn layer_against_twin(
     renderer: &Renderer,
     only: Option<Vec<(usize, u32)>>,
 ) -> usize {
-    use splinescope::gpu::comb_twin::{CombLines, layer_size, raster_comb, raster_curves};
+    use splinescope::gpu::layer_twin::{CombLines, layer_size, raster_comb, raster_curves};
     use splinescope::gpu::renderer::comb_styles;
     let ctx = &backend.ctx;
     let mut gpu: GpuScene = renderer.upload(ctx, prepared);
@@ -462,7 +459,7 @@ fn layer_against_twin(
     // The same kind and curve, the alpha within one step and the core bit free (a
     // coverage computed in f32 on either side of a rounding boundary).
     let same = |a: u32, b: u32| {
-        let rest = !(0x3f | splinescope::gpu::comb_twin::CORE_BIT);
+        let rest = !(0x3f | splinescope::gpu::layer_twin::CORE_BIT);
         a == b || ((a & rest) == (b & rest) && (a & 0x3f).abs_diff(b & 0x3f) <= 1)
     };
     let near = |layer: &[u32], i: usize, key: u32| {

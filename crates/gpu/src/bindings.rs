@@ -91,21 +91,22 @@ pub fn draw() -> Vec<Vec<wgpu::BindGroupLayoutEntry>> {
     ]
 }
 
-/// `shaders/comb.wgsl` (the layer): group 0 the camera; group 1 split among its entry
+/// `shaders/layer.wgsl` (the layer): group 0 the camera; group 1 split among its entry
 /// points — the comb rasterizer's hairs, envelope, their two style tables and the comb's
 /// arguments (read) and the layer (read-write; bindings 0–5, [`comb_raster`]), the
-/// full-screen pass's layer (read; binding 6, [`comb_layer`]) and the curve rasterizer's
+/// full-screen pass's layer and the scene's curve styles (read; bindings 6 and 10,
+/// [`layer_blend`]) and the curve rasterizer's
 /// layer, samples, styles and work buffer (5 and 7–9, [`curve_raster`]). This is their
 /// union, as the shader declares them.
 #[must_use]
-pub fn comb() -> Vec<Vec<wgpu::BindGroupLayoutEntry>> {
+pub fn layer() -> Vec<Vec<wgpu::BindGroupLayoutEntry>> {
     let mut group = comb_raster();
-    group.extend(comb_layer());
+    group.extend(layer_blend());
     group.extend(curve_raster().into_iter().filter(|e| e.binding != 5));
     vec![vec![uniform(0, CAMERA_STAGES)], group]
 }
 
-/// Group 1 of `raster_comb` in `shaders/comb.wgsl`.
+/// Group 1 of `raster_comb` in `shaders/layer.wgsl`.
 #[must_use]
 pub fn comb_raster() -> Vec<wgpu::BindGroupLayoutEntry> {
     let c = wgpu::ShaderStages::COMPUTE;
@@ -114,14 +115,14 @@ pub fn comb_raster() -> Vec<wgpu::BindGroupLayoutEntry> {
     group
 }
 
-/// Group 1 of `vs_layer`/`fs_layer` in `shaders/comb.wgsl`.
+/// Group 1 of `vs_layer`/`fs_layer` in `shaders/layer.wgsl`.
 #[must_use]
-pub fn comb_layer() -> Vec<wgpu::BindGroupLayoutEntry> {
+pub fn layer_blend() -> Vec<wgpu::BindGroupLayoutEntry> {
     let f = wgpu::ShaderStages::FRAGMENT;
     vec![storage(6, true, f), storage(10, true, f)]
 }
 
-/// Group 1 of `raster_curves` in `shaders/comb.wgsl`: the layer (read-write), then a
+/// Group 1 of `raster_curves` in `shaders/layer.wgsl`: the layer (read-write), then a
 /// chunk's samples, styles and work buffer (read).
 #[must_use]
 pub fn curve_raster() -> Vec<wgpu::BindGroupLayoutEntry> {

@@ -142,8 +142,8 @@ pub const COMB_NONE: u32 = u32::MAX - 1;
 pub const COMB_HIDDEN: u32 = 0x8000_0000;
 
 /// Invocations per workgroup of the layer's rasterizers. Twin:
-/// `COMB_RASTER_WORKGROUP` in `shaders/common.wgsl`.
-pub const COMB_RASTER_WORKGROUP: u32 = 64;
+/// `LAYER_WORKGROUP` in `shaders/common.wgsl`.
+pub const LAYER_WORKGROUP: u32 = 64;
 
 /// Byte offset of the comb layer rasterizer's indirect dispatch arguments in a comb's
 /// argument buffer ([`crate::adaptive::CombChunk::args`]).
@@ -151,8 +151,8 @@ pub const COMB_RASTER_ARGS_OFFSET: u64 = 32;
 
 /// The most workgroups one of the layer's rasterizers dispatches (each invocation then
 /// takes every line or piece a stride apart: idle workgroups are not free on a CPU
-/// rasterizer). Twin: `COMB_RASTER_GROUPS` in `shaders/common.wgsl`.
-pub const COMB_RASTER_GROUPS: u32 = 256;
+/// rasterizer). Twin: `LAYER_GROUPS` in `shaders/common.wgsl`.
+pub const LAYER_GROUPS: u32 = 256;
 
 /// The per-frame uniform of adaptive tessellation, one per chunk. Twin: `Frame` in
 /// `shaders/common.wgsl`.

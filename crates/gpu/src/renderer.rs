@@ -1,5 +1,5 @@
 //! The render pipelines (`shaders/lines.wgsl`, `shaders/points.wgsl`, the layer's of
-//! `shaders/comb.wgsl`) and a scene as it lives on the GPU. Curves are drawn straight from
+//! `shaders/layer.wgsl`) and a scene as it lives on the GPU. Curves are drawn straight from
 //! the tessellator's sample buffers — rasterized into the layer by a compute pass, or as
 //! quads where no layer fits — and no sample comes back to the CPU in a frame.
 
@@ -11,8 +11,8 @@ use super::adaptive::{
 };
 use super::context::GpuContext;
 use super::layout::{
-    COMB_ALL, COMB_NONE, COMB_RASTER_ARGS_OFFSET, COMB_RASTER_GROUPS, COMB_RASTER_WORKGROUP,
-    FrameStats, GpuCamera, GpuControlPoint, GpuLineStyle, GpuVertex,
+    COMB_ALL, COMB_NONE, COMB_RASTER_ARGS_OFFSET, FrameStats, GpuCamera, GpuControlPoint,
+    GpuLineStyle, GpuVertex, LAYER_GROUPS, LAYER_WORKGROUP,
 };
 use super::pack::{LineBatch, PreparedScene};
 use super::pipelines::Pipelines;
@@ -40,16 +40,16 @@ pub struct Renderer {
     comb_raster_layout: wgpu::BindGroupLayout,
     curve_raster: wgpu::ComputePipeline,
     curve_raster_layout: wgpu::BindGroupLayout,
-    comb_layer_pipeline: wgpu::RenderPipeline,
-    comb_layer_layout: wgpu::BindGroupLayout,
+    layer_pipeline: wgpu::RenderPipeline,
+    layer_layout: wgpu::BindGroupLayout,
     format: wgpu::TextureFormat,
 }
 
-/// The layer: one `u32` per pixel of the target (`shaders/comb.wgsl`), cleared and
+/// The layer: one `u32` per pixel of the target (`shaders/layer.wgsl`), cleared and
 /// rasterized into each frame (the curves and their combs), then blended over the target
 /// in the draw pass.
 #[derive(Debug)]
-struct CombLayer {
+struct Layer {
     buffer: wgpu::Buffer,
     /// Width and height in pixels.
     size: [u32; 2],
@@ -163,7 +163,7 @@ pub struct GpuScene {
     pub background: wgpu::Color,
     comb_scale: f32,
     /// The layer, where it fits in one binding and is allowed.
-    layer: Option<CombLayer>,
+    layer: Option<Layer>,
     /// Whether curves and combs may be drawn through the layer (else as quads and line
     /// lists).
     layer_allowed: bool,
@@ -328,13 +328,13 @@ impl GpuScene {
         pass.set_pipeline(&renderer.curve_raster);
         for chunk in &self.chunks {
             if let Some(group) = &chunk.raster {
-                // Pieces by stride over at most COMB_RASTER_GROUPS workgroups (the pieces
+                // Pieces by stride over at most LAYER_GROUPS workgroups (the pieces
                 // drawn are known only on the GPU).
                 let groups = chunk
                     .adaptive
                     .capacity
-                    .div_ceil(COMB_RASTER_WORKGROUP)
-                    .clamp(1, COMB_RASTER_GROUPS);
+                    .div_ceil(LAYER_WORKGROUP)
+                    .clamp(1, LAYER_GROUPS);
                 pass.set_bind_group(1, group, &[]);
                 pass.dispatch_workgroups(groups, 1, 1);
             }
@@ -433,7 +433,7 @@ impl GpuScene {
         self.layer_allowed = allowed;
     }
 
-    /// The layer (`shaders/comb.wgsl`: one `u32` per pixel, row by row) and its width and
+    /// The layer (`shaders/layer.wgsl`: one `u32` per pixel, row by row) and its width and
     /// height, where it is allowed and fits in one binding (after a
     /// [`GpuScene::prepare_frame`]).
     #[must_use]
@@ -605,11 +605,11 @@ impl Renderer {
                 label: Some("comb raster"),
                 entries: &super::bindings::comb_raster(),
             });
-        let comb_layer_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let layer_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("comb layer"),
-            entries: &super::bindings::comb_layer(),
+            entries: &super::bindings::layer_blend(),
         });
-        let comb_module = shaders::COMB.module(device);
+        let comb_module = shaders::LAYER.module(device);
         let curve_raster_layout =
             device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("curve raster"),
@@ -643,12 +643,12 @@ impl Renderer {
             compilation_options: wgpu::PipelineCompilationOptions::default(),
             cache: None,
         });
-        let comb_layer_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        let layer_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("comb layer"),
             layout: Some(
                 &device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                     label: Some("comb layer"),
-                    bind_group_layouts: &[Some(&camera_layout), Some(&comb_layer_layout)],
+                    bind_group_layouts: &[Some(&camera_layout), Some(&layer_layout)],
                     immediate_size: 0,
                 }),
             ),
@@ -687,8 +687,8 @@ impl Renderer {
             comb_raster_layout,
             curve_raster,
             curve_raster_layout,
-            comb_layer_pipeline,
-            comb_layer_layout,
+            layer_pipeline,
+            layer_layout,
             format,
         }
     }
@@ -728,7 +728,7 @@ impl Renderer {
 
     /// A layer of `size` pixels, or `None` where it would not fit in one storage binding
     /// (curves and combs are then drawn as quads and line lists).
-    fn layer(&self, ctx: &GpuContext, size: [u32; 2], styles: &wgpu::Buffer) -> Option<CombLayer> {
+    fn layer(&self, ctx: &GpuContext, size: [u32; 2], styles: &wgpu::Buffer) -> Option<Layer> {
         let bytes = u64::from(size[0]) * u64::from(size[1]) * 4;
         if bytes > ctx.max_binding_bytes() {
             return None;
@@ -744,7 +744,7 @@ impl Renderer {
         });
         let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("comb layer"),
-            layout: &self.comb_layer_layout,
+            layout: &self.layer_layout,
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: 6,
@@ -756,7 +756,7 @@ impl Renderer {
                 },
             ],
         });
-        Some(CombLayer {
+        Some(Layer {
             buffer,
             size,
             bind_group,
@@ -768,7 +768,7 @@ impl Renderer {
         &self,
         device: &wgpu::Device,
         chunk: &GpuChunk,
-        layer: &CombLayer,
+        layer: &Layer,
     ) -> wgpu::BindGroup {
         let buffers = [
             (5, &layer.buffer),
@@ -795,7 +795,7 @@ impl Renderer {
         &self,
         device: &wgpu::Device,
         comb: &CombDraw,
-        layer: &CombLayer,
+        layer: &Layer,
     ) -> wgpu::BindGroup {
         let buffers = [
             &comb.buffers.hairs,
@@ -1061,7 +1061,7 @@ impl Renderer {
         // blended in one full-screen triangle; where no layer fits, the combs as line
         // lists (hairs, then the envelope joining their tips) and the curves as quads.
         if let Some(layer) = &scene.layer {
-            pass.set_pipeline(&self.comb_layer_pipeline);
+            pass.set_pipeline(&self.layer_pipeline);
             pass.set_bind_group(1, &layer.bind_group, &[]);
             pass.draw(0..3, 0..1);
         } else {

@@ -53,16 +53,16 @@ pub const POINTS: ShaderSource = ShaderSource {
     evaluates: false,
 };
 
-/// `shaders/comb.wgsl`: the curvature comb rasterized into a layer, and the pass
-/// blending the layer over the target.
-pub const COMB: ShaderSource = ShaderSource {
-    file: "comb.wgsl",
-    body: include_str!("../../../shaders/comb.wgsl"),
+/// `shaders/layer.wgsl`: curves and curvature combs rasterized into the layer, and the
+/// pass blending the layer over the target.
+pub const LAYER: ShaderSource = ShaderSource {
+    file: "layer.wgsl",
+    body: include_str!("../../../shaders/layer.wgsl"),
     evaluates: false,
 };
 
 /// Every pipeline shader.
-pub const ALL: [ShaderSource; 5] = [TESSELLATE, ADAPTIVE, LINES, POINTS, COMB];
+pub const ALL: [ShaderSource; 5] = [TESSELLATE, ADAPTIVE, LINES, POINTS, LAYER];
 
 /// A shader that naga rejects, with the message and source span it printed.
 #[derive(Debug, Clone, Error)]

@@ -145,12 +145,12 @@ fn gpu_structs_match_their_wgsl_twins() {
             TESSELLATE_WORKGROUP_SIZE
         );
         assert_eq!(
-            constant_u32(m, "COMB_RASTER_WORKGROUP"),
-            splinescope_gpu::layout::COMB_RASTER_WORKGROUP
+            constant_u32(m, "LAYER_WORKGROUP"),
+            splinescope_gpu::layout::LAYER_WORKGROUP
         );
         assert_eq!(
-            constant_u32(m, "COMB_RASTER_GROUPS"),
-            splinescope_gpu::layout::COMB_RASTER_GROUPS
+            constant_u32(m, "LAYER_GROUPS"),
+            splinescope_gpu::layout::LAYER_GROUPS
         );
     }
 }
@@ -337,13 +337,16 @@ fn bind_group_layouts_match_the_shaders() {
         from_shader(&shaders::ADAPTIVE)
     );
     assert_eq!(from_shader(&shaders::ADAPTIVE).len(), 10);
-    assert_eq!(from_layouts(&bindings::comb()), from_shader(&shaders::COMB));
-    assert_eq!(from_shader(&shaders::COMB).len(), 12);
+    assert_eq!(
+        from_layouts(&bindings::layer()),
+        from_shader(&shaders::LAYER)
+    );
+    assert_eq!(from_shader(&shaders::LAYER).len(), 12);
 }
 
 #[test]
 fn comb_rasterizer_workgroup_matches_its_rust_twin() {
-    let (module, _) = shaders::COMB.validate().expect("valid");
+    let (module, _) = shaders::LAYER.validate().expect("valid");
     let ep = module
         .entry_points
         .iter()
@@ -351,6 +354,6 @@ fn comb_rasterizer_workgroup_matches_its_rust_twin() {
         .expect("raster_comb");
     assert_eq!(
         ep.workgroup_size,
-        [splinescope_gpu::layout::COMB_RASTER_WORKGROUP, 1, 1]
+        [splinescope_gpu::layout::LAYER_WORKGROUP, 1, 1]
     );
 }

@@ -1,4 +1,4 @@
-//! The CPU twin of `shaders/comb.wgsl`'s rasterizers: the curves' pieces and the comb's
+//! The CPU twin of `shaders/layer.wgsl`'s rasterizers: the curves' pieces and the comb's
 //! hairs and envelope pieces into a layer of one `u32` per pixel, with the same operations
 //! in `f32`. Tests compare the GPU's layer with it (pixels where a line's position rounds
 //! differently may move by one, and a coverage by one step).

@@ -1,7 +1,7 @@
 // The layer: curves and their curvature combs drawn without primitives. A buffer of one
 // u32 per pixel; `raster_curves` writes each curve piece's anti-aliased pixels into it,
 // `raster_comb` each comb hair and envelope piece (one-pixel lines), both by atomicMax of
-// a packed colour; `vs_layer`/`fs_layer` then blend the layer over the target in one
+// a packed value; `vs_layer`/`fs_layer` then blend the layer over the target in one
 // full-screen triangle, where the line pipelines drew curves and combs before. A CPU
 // rasterizer pays per primitive (a curve piece's quad, a comb line); this pays per pixel
 // covered — on llvmpipe the 10,000-curve stress view went from 21 to 47 fps.
@@ -53,7 +53,7 @@ fn layer_size() -> vec2<u32> {
 
 // A pixel's value: bits 31–30 its kind, bit 29 set for a core, 28–6 its curve's place in
 // the scene's style table (23 bits), 5–0 the alpha; 0 for an alpha that would not show.
-// Twin: comb_twin.rs.
+// Twin: layer_twin.rs.
 const ORDER_MASK: u32 = 0x7fffffu;
 const CORE_BIT: u32 = 0x20000000u;
 
@@ -190,14 +190,14 @@ fn raster_line(a: Vertex, b: Vertex, key: u32) {
 
 // Sample p's hair and the envelope piece from its tip to the next sample's, for p = the
 // invocation's index, then every stride after it.
-@compute @workgroup_size(COMB_RASTER_WORKGROUP)
+@compute @workgroup_size(LAYER_WORKGROUP)
 fn raster_comb(
     @builtin(global_invocation_id) id: vec3<u32>,
     @builtin(num_workgroups) groups: vec3<u32>,
 ) {
     let hair_count = comb_args[0] / 2u;
     let piece_count = comb_args[4] / 2u;
-    let stride = groups.x * COMB_RASTER_WORKGROUP;
+    let stride = groups.x * LAYER_WORKGROUP;
     for (var p = id.x; p < hair_count; p += stride) {
         let foot = hairs[2u * p];
         let tip = hairs[2u * p + 1u];
@@ -218,13 +218,13 @@ fn raster_comb(
 
 // Curve piece p (samples p and p + 1 of the chunk, when their tags agree), for p = the
 // invocation's index, then every stride after it.
-@compute @workgroup_size(COMB_RASTER_WORKGROUP)
+@compute @workgroup_size(LAYER_WORKGROUP)
 fn raster_curves(
     @builtin(global_invocation_id) id: vec3<u32>,
     @builtin(num_workgroups) groups: vec3<u32>,
 ) {
     let pieces = min(curve_work[PIECES_WORD], max(arrayLength(&curve_samples), 1u) - 1u);
-    let stride = groups.x * COMB_RASTER_WORKGROUP;
+    let stride = groups.x * LAYER_WORKGROUP;
     for (var p = id.x; p < pieces; p += stride) {
         let a = curve_samples[p];
         let b = curve_samples[p + 1u];
