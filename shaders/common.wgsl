@@ -89,3 +89,30 @@ struct LineStyle {
     order: u32,
     _padding1: u32,
 }
+
+// Twin: EYE_W in src/gpu/layer_twin.rs. Clip-space w below which a drawn point counts as
+// behind the eye (the line pipelines and the layer; adaptive.wgsl's bound has its own).
+const EYE_W: f32 = 1e-6;
+
+// Whether the piece from clip-space ca to cb lies wholly behind the eye.
+fn behind_eye(ca: vec4<f32>, cb: vec4<f32>) -> bool {
+    return ca.w < EYE_W && cb.w < EYE_W;
+}
+
+// The piece from ca to cb cut at the plane w = EYE_W in front of the eye (3D only; w = 1
+// in 2D): an end behind it moved onto it. A piece wholly behind is the caller's to drop.
+fn clip_to_eye(ca: vec4<f32>, cb: vec4<f32>) -> array<vec4<f32>, 2> {
+    if (ca.w < EYE_W) {
+        return array<vec4<f32>, 2>(mix(ca, cb, (EYE_W - ca.w) / (cb.w - ca.w)), cb);
+    }
+    if (cb.w < EYE_W) {
+        return array<vec4<f32>, 2>(ca, mix(cb, ca, (EYE_W - cb.w) / (ca.w - cb.w)));
+    }
+    return array<vec4<f32>, 2>(ca, cb);
+}
+
+// A clip-space point's pixel on a viewport of `viewport_px` (y down).
+fn pixel_from_clip(c: vec4<f32>, viewport_px: vec2<f32>) -> vec2<f32> {
+    let ndc = c.xy / c.w;
+    return vec2<f32>((ndc.x * 0.5 + 0.5) * viewport_px.x, (0.5 - ndc.y * 0.5) * viewport_px.y);
+}

@@ -43,8 +43,6 @@ const KIND_ENVELOPE: u32 = 2u;
 const KIND_CURVE: u32 = 3u;
 // Twin: STAT_INSTANCES in adaptive.wgsl (the work buffer's piece count).
 const PIECES_WORD: u32 = 1u;
-// Clip-space w below which a point counts as behind the eye (as lines.wgsl).
-const NEAR_W: f32 = 1e-6;
 
 // The layer's width and height in pixels.
 fn layer_size() -> vec2<u32> {
@@ -68,12 +66,6 @@ fn packed(style: LineStyle, alpha_scale: f32, kind: u32) -> u32 {
         return 0u;
     }
     return key_of(kind, true, style.order, alpha);
-}
-
-fn pixel_from_clip(c: vec4<f32>) -> vec2<f32> {
-    let ndc = c.xy / c.w;
-    return vec2<f32>((ndc.x * 0.5 + 0.5) * camera.viewport_px.x,
-                     (0.5 - ndc.y * 0.5) * camera.viewport_px.y);
 }
 
 // Narrows `range` (of t along p + t d) to where p_k t ≤ q: one side of the layer, in
@@ -116,18 +108,14 @@ struct PixelEnds {
 fn pixel_ends(a: Vertex, b: Vertex) -> PixelEnds {
     var out: PixelEnds;
     out.ok = false;
-    var ca = camera.clip_from_world * vec4<f32>(a.position, 1.0);
-    var cb = camera.clip_from_world * vec4<f32>(b.position, 1.0);
-    if (ca.w < NEAR_W && cb.w < NEAR_W) {
+    let ca = camera.clip_from_world * vec4<f32>(a.position, 1.0);
+    let cb = camera.clip_from_world * vec4<f32>(b.position, 1.0);
+    if (behind_eye(ca, cb)) {
         return out;
     }
-    if (ca.w < NEAR_W) {
-        ca = mix(ca, cb, (NEAR_W - ca.w) / (cb.w - ca.w));
-    } else if (cb.w < NEAR_W) {
-        cb = mix(cb, ca, (NEAR_W - cb.w) / (ca.w - cb.w));
-    }
-    out.p = pixel_from_clip(ca);
-    out.q = pixel_from_clip(cb);
+    let c = clip_to_eye(ca, cb);
+    out.p = pixel_from_clip(c[0], camera.viewport_px);
+    out.q = pixel_from_clip(c[1], camera.viewport_px);
     // Not finite (x − x is NaN for ±∞ and NaN): nothing to draw.
     out.ok = all((out.p - out.p) == vec2<f32>(0.0)) && all((out.q - out.q) == vec2<f32>(0.0));
     return out;

@@ -19,14 +19,6 @@ struct LineOut {
     @location(4) @interpolate(flat) dash_px: f32,
 }
 
-// Clip-space w below which a point counts as behind the eye.
-const NEAR_W: f32 = 1e-6;
-
-fn pixel_from_clip(c: vec4<f32>) -> vec2<f32> {
-    let ndc = c.xy / c.w;
-    return vec2<f32>((ndc.x * 0.5 + 0.5) * camera.viewport_px.x,
-                     (0.5 - ndc.y * 0.5) * camera.viewport_px.y);
-}
 
 fn clip_from_pixel(p: vec2<f32>) -> vec4<f32> {
     let ndc = vec2<f32>(p.x / camera.viewport_px.x * 2.0 - 1.0,
@@ -50,20 +42,15 @@ fn piece_corner(a: Vertex, b: Vertex, corner: u32) -> LineOut {
     if (a.id != b.id) {
         return culled();
     }
-    var ca = camera.clip_from_world * vec4<f32>(a.position, 1.0);
-    var cb = camera.clip_from_world * vec4<f32>(b.position, 1.0);
-    // Clip the piece against the plane in front of the eye (3D only; w = 1 in 2D).
-    if (ca.w < NEAR_W && cb.w < NEAR_W) {
+    let ca = camera.clip_from_world * vec4<f32>(a.position, 1.0);
+    let cb = camera.clip_from_world * vec4<f32>(b.position, 1.0);
+    if (behind_eye(ca, cb)) {
         return culled();
     }
-    if (ca.w < NEAR_W) {
-        ca = mix(ca, cb, (NEAR_W - ca.w) / (cb.w - ca.w));
-    } else if (cb.w < NEAR_W) {
-        cb = mix(cb, ca, (NEAR_W - cb.w) / (ca.w - cb.w));
-    }
+    let c = clip_to_eye(ca, cb);
     let style = styles[a.id];
-    let pa = pixel_from_clip(ca);
-    let pb = pixel_from_clip(cb);
+    let pa = pixel_from_clip(c[0], camera.viewport_px);
+    let pb = pixel_from_clip(c[1], camera.viewport_px);
     let delta = pb - pa;
     let len = length(delta);
     var dir = vec2<f32>(1.0, 0.0);
@@ -121,20 +108,12 @@ fn flat_end(a: Vertex, b: Vertex, end: u32) -> FlatOut {
     if (a.id != b.id) {
         return out;
     }
-    var ca = camera.clip_from_world * vec4<f32>(a.position, 1.0);
-    var cb = camera.clip_from_world * vec4<f32>(b.position, 1.0);
-    if (ca.w < NEAR_W && cb.w < NEAR_W) {
+    let ca = camera.clip_from_world * vec4<f32>(a.position, 1.0);
+    let cb = camera.clip_from_world * vec4<f32>(b.position, 1.0);
+    if (behind_eye(ca, cb)) {
         return out;
     }
-    if (ca.w < NEAR_W) {
-        ca = mix(ca, cb, (NEAR_W - ca.w) / (cb.w - ca.w));
-    } else if (cb.w < NEAR_W) {
-        cb = mix(cb, ca, (NEAR_W - cb.w) / (ca.w - cb.w));
-    }
-    var c = ca;
-    if (end == 1u) {
-        c = cb;
-    }
+    let c = clip_to_eye(ca, cb)[min(end, 1u)];
     out.position = vec4<f32>(c.xy / c.w, 0.5, 1.0);
     out.color = styles[a.id].color;
     return out;

@@ -13,6 +13,7 @@ pub const KIND_HAIR: u32 = 1;
 pub const KIND_ENVELOPE: u32 = 2;
 /// A curve.
 pub const KIND_CURVE: u32 = 3;
+/// Twin: `EYE_W` in `shaders/common.wgsl`.
 const NEAR_W: f32 = 1e-6;
 
 /// The lines of one chunk's comb as the comb pass left them.

@@ -537,21 +537,30 @@ impl Renderer {
                 resource: camera_buffer.as_entire_binding(),
             }],
         });
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("draw"),
-            bind_group_layouts: &[Some(&camera_layout), Some(&batch_layout)],
-            immediate_size: 0,
-        });
-        let pipeline = |source: shaders::ShaderSource,
-                        vs: &str,
-                        fs: &str,
+        // Every draw and layer pipeline: the camera, then its own group 1.
+        let layout_with = |label: &str, group: &wgpu::BindGroupLayout| {
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some(label),
+                bind_group_layouts: &[Some(&camera_layout), Some(group)],
+                immediate_size: 0,
+            })
+        };
+        let group_layout = |label: &str, entries: &[wgpu::BindGroupLayoutEntry]| {
+            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some(label),
+                entries,
+            })
+        };
+        let layout = layout_with("draw", &batch_layout);
+        let pipeline = |layout: &wgpu::PipelineLayout,
+                        module: &wgpu::ShaderModule,
+                        (vs, fs): (&str, &str),
                         topology: wgpu::PrimitiveTopology| {
-            let module = source.module(device);
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(source.file),
-                layout: Some(&layout),
+                label: Some(vs),
+                layout: Some(layout),
                 vertex: wgpu::VertexState {
-                    module: &module,
+                    module,
                     entry_point: Some(vs),
                     compilation_options: wgpu::PipelineCompilationOptions::default(),
                     buffers: &[],
@@ -563,7 +572,7 @@ impl Renderer {
                 depth_stencil: None,
                 multisample: wgpu::MultisampleState::default(),
                 fragment: Some(wgpu::FragmentState {
-                    module: &module,
+                    module,
                     entry_point: Some(fs),
                     compilation_options: wgpu::PipelineCompilationOptions::default(),
                     targets: &[Some(wgpu::ColorTargetState {
@@ -576,104 +585,36 @@ impl Renderer {
                 cache: None,
             })
         };
-        let line_pipeline = pipeline(
-            shaders::LINES,
-            "vs_line",
-            "fs_line",
-            wgpu::PrimitiveTopology::TriangleStrip,
+        let lines = shaders::LINES.module(device);
+        let points = shaders::POINTS.module(device);
+        let layer_module = shaders::LAYER.module(device);
+        use wgpu::PrimitiveTopology::{LineList, TriangleList, TriangleStrip};
+        let line_pipeline = pipeline(&layout, &lines, ("vs_line", "fs_line"), TriangleStrip);
+        let hair_pipeline = pipeline(&layout, &lines, ("vs_hair_line", "fs_flat"), LineList);
+        let envelope_pipeline =
+            pipeline(&layout, &lines, ("vs_envelope_line", "fs_flat"), LineList);
+        let point_pipeline = pipeline(&layout, &points, ("vs_point", "fs_point"), TriangleList);
+        let layer_layout = group_layout("layer", &super::bindings::layer_blend());
+        let layer_pipeline = pipeline(
+            &layout_with("layer", &layer_layout),
+            &layer_module,
+            ("vs_layer", "fs_layer"),
+            TriangleList,
         );
-        let hair_pipeline = pipeline(
-            shaders::LINES,
-            "vs_hair_line",
-            "fs_flat",
-            wgpu::PrimitiveTopology::LineList,
-        );
-        let envelope_pipeline = pipeline(
-            shaders::LINES,
-            "vs_envelope_line",
-            "fs_flat",
-            wgpu::PrimitiveTopology::LineList,
-        );
-        let point_pipeline = pipeline(
-            shaders::POINTS,
-            "vs_point",
-            "fs_point",
-            wgpu::PrimitiveTopology::TriangleList,
-        );
-        let comb_raster_layout =
-            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("comb raster"),
-                entries: &super::bindings::comb_raster(),
-            });
-        let layer_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("comb layer"),
-            entries: &super::bindings::layer_blend(),
-        });
-        let comb_module = shaders::LAYER.module(device);
-        let curve_raster_layout =
-            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("curve raster"),
-                entries: &super::bindings::curve_raster(),
-            });
-        let curve_raster = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("raster_curves"),
-            layout: Some(
-                &device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                    label: Some("curve raster"),
-                    bind_group_layouts: &[Some(&camera_layout), Some(&curve_raster_layout)],
-                    immediate_size: 0,
-                }),
-            ),
-            module: &comb_module,
-            entry_point: Some("raster_curves"),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
-            cache: None,
-        });
-        let comb_raster = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("raster_comb"),
-            layout: Some(
-                &device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                    label: Some("comb raster"),
-                    bind_group_layouts: &[Some(&camera_layout), Some(&comb_raster_layout)],
-                    immediate_size: 0,
-                }),
-            ),
-            module: &comb_module,
-            entry_point: Some("raster_comb"),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
-            cache: None,
-        });
-        let layer_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("comb layer"),
-            layout: Some(
-                &device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                    label: Some("comb layer"),
-                    bind_group_layouts: &[Some(&camera_layout), Some(&layer_layout)],
-                    immediate_size: 0,
-                }),
-            ),
-            vertex: wgpu::VertexState {
-                module: &comb_module,
-                entry_point: Some("vs_layer"),
+        let raster = |entry: &str, group: &wgpu::BindGroupLayout| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&layout_with(entry, group)),
+                module: &layer_module,
+                entry_point: Some(entry),
                 compilation_options: wgpu::PipelineCompilationOptions::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &comb_module,
-                entry_point: Some("fs_layer"),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format,
-                    blend: Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING),
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+                cache: None,
+            })
+        };
+        let comb_raster_layout = group_layout("comb raster", &super::bindings::comb_raster());
+        let curve_raster_layout = group_layout("curve raster", &super::bindings::curve_raster());
+        let comb_raster = raster("raster_comb", &comb_raster_layout);
+        let curve_raster = raster("raster_curves", &curve_raster_layout);
         Renderer {
             adaptive: pipelines.adaptive.clone(),
             camera_buffer,

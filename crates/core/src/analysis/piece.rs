@@ -99,8 +99,12 @@ pub fn planar_polynomial_speed(pts: &[DVec3]) -> Option<(PlanarSpeed, f64)> {
     }
     let (x, y) = (power_basis(&dx[..len]), power_basis(&dy[..len]));
     let speed = PlanarSpeed::new(x.as_slice(), y.as_slice())?;
-    let polygon = pts.windows(2).map(|w| (w[1] - w[0]).length()).sum();
-    Some((speed, polygon))
+    Some((speed, polygon_length(pts)))
+}
+
+/// The length of the control polygon through `pts`.
+fn polygon_length(pts: &[DVec3]) -> f64 {
+    pts.windows(2).map(|w| (w[1] - w[0]).length()).sum()
 }
 
 fn horner(a: &[f64], u: f64) -> f64 {
@@ -140,7 +144,7 @@ impl Piece {
                 power_basis(&da[2]),
             ]
         });
-        let polygon = pts.windows(2).map(|w| (w[1] - w[0]).length()).sum();
+        let polygon = polygon_length(pts);
         let planar_speed = match &power {
             Some([x, y, _]) if planar => PlanarSpeed::new(x.as_slice(), y.as_slice()),
             _ => None,
