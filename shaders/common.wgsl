@@ -7,12 +7,13 @@
 const MAX_DEGREE: u32 = 31u;
 // Twin: TESSELLATE_WORKGROUP_SIZE in src/gpu/layout.rs.
 const TESSELLATE_WORKGROUP_SIZE: u32 = 64u;
-// Twins: LAYER_WORKGROUP and LAYER_GROUPS in src/gpu/layout.rs. The layer's
-// rasterizers: invocations per workgroup, and the most workgroups one dispatches (the
-// rest by stride: idle workgroups are not free on a CPU rasterizer, and 16,384
-// invocations keep a GPU busy).
+// Twins: LAYER_WORKGROUP, LAYER_GROUPS and LAYER_RUN in src/gpu/layout.rs. The layer's
+// rasterizers: invocations per workgroup, the most workgroups one dispatches (the rest by
+// stride: idle workgroups are not free on a CPU rasterizer, and 16,384 invocations keep a
+// GPU busy), and the curve pieces one invocation draws in a row.
 const LAYER_WORKGROUP: u32 = 64u;
 const LAYER_GROUPS: u32 = 256u;
+const LAYER_RUN: u32 = 4u;
 
 // Twin: GpuVertex. A point with a tag (curve index for samples, style index for overlays).
 struct Vertex {
@@ -113,6 +114,10 @@ fn clip_to_eye(ca: vec4<f32>, cb: vec4<f32>) -> array<vec4<f32>, 2> {
 
 // A clip-space point's pixel on a viewport of `viewport_px` (y down).
 fn pixel_from_clip(c: vec4<f32>, viewport_px: vec2<f32>) -> vec2<f32> {
-    let ndc = c.xy / c.w;
+    return pixel_from_ndc(c.xy / c.w, viewport_px);
+}
+
+// A point's pixel from its normalized device coordinates.
+fn pixel_from_ndc(ndc: vec2<f32>, viewport_px: vec2<f32>) -> vec2<f32> {
     return vec2<f32>((ndc.x * 0.5 + 0.5) * viewport_px.x, (0.5 - ndc.y * 0.5) * viewport_px.y);
 }

@@ -106,16 +106,28 @@ struct PixelEnds {
 }
 
 fn pixel_ends(a: Vertex, b: Vertex) -> PixelEnds {
-    var out: PixelEnds;
-    out.ok = false;
     let ca = camera.clip_from_world * vec4<f32>(a.position, 1.0);
     let cb = camera.clip_from_world * vec4<f32>(b.position, 1.0);
-    if (behind_eye(ca, cb)) {
-        return out;
+    return clip_ends(ca, cb);
+}
+
+// `pixel_ends` of ends already in clip space.
+fn clip_ends(ca: vec4<f32>, cb: vec4<f32>) -> PixelEnds {
+    var out: PixelEnds;
+    out.ok = false;
+    if (ca.w == 1.0 && cb.w == 1.0) {
+        // In front of the eye with w = 1 (every 2D view): nothing to clip, and dividing
+        // by w would change nothing.
+        out.p = pixel_from_ndc(ca.xy, camera.viewport_px);
+        out.q = pixel_from_ndc(cb.xy, camera.viewport_px);
+    } else {
+        if (behind_eye(ca, cb)) {
+            return out;
+        }
+        let c = clip_to_eye(ca, cb);
+        out.p = pixel_from_clip(c[0], camera.viewport_px);
+        out.q = pixel_from_clip(c[1], camera.viewport_px);
     }
-    let c = clip_to_eye(ca, cb);
-    out.p = pixel_from_clip(c[0], camera.viewport_px);
-    out.q = pixel_from_clip(c[1], camera.viewport_px);
     // Not finite (x − x is NaN for ±∞ and NaN): nothing to draw.
     out.ok = all((out.p - out.p) == vec2<f32>(0.0)) && all((out.q - out.q) == vec2<f32>(0.0));
     return out;
@@ -204,28 +216,46 @@ fn raster_comb(
     }
 }
 
-// Curve piece p (samples p and p + 1 of the chunk, when their tags agree), for p = the
-// invocation's index, then every stride after it.
+// Pieces LAYER_RUN q … LAYER_RUN (q + 1) − 1 (piece p: samples p and p + 1 of the chunk,
+// when their tags agree), for q = the invocation's index, then every stride after it: a
+// run's samples are projected once each, its style read once per curve (with one piece
+// an invocation, the projections and reads were a third of the pass on llvmpipe).
+
 @compute @workgroup_size(LAYER_WORKGROUP)
 fn raster_curves(
     @builtin(global_invocation_id) id: vec3<u32>,
     @builtin(num_workgroups) groups: vec3<u32>,
 ) {
     let pieces = min(curve_work[PIECES_WORD], max(arrayLength(&curve_samples), 1u) - 1u);
+    let runs = (pieces + LAYER_RUN - 1u) / LAYER_RUN;
     let stride = groups.x * LAYER_WORKGROUP;
-    for (var p = id.x; p < pieces; p += stride) {
-        let a = curve_samples[p];
-        let b = curve_samples[p + 1u];
-        if (a.id == b.id) {
-            raster_piece(a, b, curve_styles[a.id]);
+    let styles = max(arrayLength(&curve_styles), 1u) - 1u;
+    for (var q = id.x; q < runs; q += stride) {
+        let first = q * LAYER_RUN;
+        let end = min(first + LAYER_RUN, pieces);
+        var a = curve_samples[first];
+        var ca = camera.clip_from_world * vec4<f32>(a.position, 1.0);
+        var style_id = a.id;
+        var style = curve_styles[min(a.id, styles)];
+        for (var p = first; p < end; p++) {
+            let b = curve_samples[p + 1u];
+            let cb = camera.clip_from_world * vec4<f32>(b.position, 1.0);
+            if (a.id == b.id) {
+                if (a.id != style_id) {
+                    style = curve_styles[min(a.id, styles)];
+                    style_id = a.id;
+                }
+                raster_piece(clip_ends(ca, cb), style);
+            }
+            a = b;
+            ca = cb;
         }
     }
 }
 
 // The anti-aliased pixels of one curve piece: along its major axis, the columns within
 // reach of its capsule, and in each the rows within reach of the piece there.
-fn raster_piece(a: Vertex, b: Vertex, style: LineStyle) {
-    let ends = pixel_ends(a, b);
+fn raster_piece(ends: PixelEnds, style: LineStyle) {
     if (!ends.ok) {
         return;
     }

@@ -20,7 +20,7 @@ use splinescope::gpu::pack::{ChunkLimits, PreparedScene, curve_tags, prepare};
 use splinescope::gpu::renderer::{CombRequest, GpuScene, Renderer, camera_uniform};
 use splinescope::gpu::tessellator::read_buffer;
 use splinescope::scene::encoding::encode;
-use splinescope::scene::{Scene, SceneCurve, Style};
+use splinescope::scene::{Scene, SceneCurve, Style, ViewSpec};
 
 const VIEWPORT: DVec2 = DVec2::new(640.0, 480.0);
 
@@ -399,6 +399,34 @@ fn the_layer_holds_what_its_twin_rasterizes() {
                 lit_all = lit;
             }
         }
+        // The same curves seen in perspective, one of them leaving the plane: clip-space
+        // `w` is not 1, so the pieces' ends are clipped and divided on both sides.
+        let mut curves = families();
+        curves.push(Curve::Bezier(Bezier::new(vec![
+            DVec3::new(-3.0, -1.0, 0.0),
+            DVec3::new(-1.0, 1.0, 2.0),
+            DVec3::new(1.0, -1.0, -1.5),
+            DVec3::new(3.0, 1.0, 0.5),
+        ])));
+        let mut scene = scene_of(curves);
+        scene.view = ViewSpec::ThreeD {
+            target: DVec3::ZERO,
+            distance: 12.0,
+            yaw_deg: 35.0,
+            pitch_deg: 25.0,
+            fov_deg: 45.0,
+        };
+        let prepared = prepare(
+            &encode(&scene),
+            ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
+        )
+        .expect("pack");
+        let lit = layer_against_twin(backend, &scene, &prepared, &renderer, None);
+        assert!(
+            lit > 2000,
+            "{} in perspective: {lit} pixels lit",
+            backend.name
+        );
     });
 }
 

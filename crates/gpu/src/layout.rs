@@ -154,6 +154,10 @@ pub const COMB_RASTER_ARGS_OFFSET: u64 = 32;
 /// rasterizer). Twin: `LAYER_GROUPS` in `shaders/common.wgsl`.
 pub const LAYER_GROUPS: u32 = 256;
 
+/// The curve pieces one invocation of the layer's curve rasterizer draws in a row (their
+/// shared ends projected once). Twin: `LAYER_RUN` in `shaders/common.wgsl`.
+pub const LAYER_RUN: u32 = 4;
+
 /// The per-frame uniform of adaptive tessellation, one per chunk. Twin: `Frame` in
 /// `shaders/common.wgsl`.
 #[repr(C)]

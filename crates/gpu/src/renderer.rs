@@ -12,7 +12,7 @@ use super::adaptive::{
 use super::context::GpuContext;
 use super::layout::{
     COMB_ALL, COMB_NONE, COMB_RASTER_ARGS_OFFSET, FrameStats, GpuCamera, GpuControlPoint,
-    GpuLineStyle, GpuVertex, LAYER_GROUPS, LAYER_WORKGROUP,
+    GpuLineStyle, GpuVertex, LAYER_GROUPS, LAYER_RUN, LAYER_WORKGROUP,
 };
 use super::pack::{LineBatch, PreparedScene};
 use super::pipelines::Pipelines;
@@ -328,12 +328,12 @@ impl GpuScene {
         pass.set_pipeline(&renderer.curve_raster);
         for chunk in &self.chunks {
             if let Some(group) = &chunk.raster {
-                // Pieces by stride over at most LAYER_GROUPS workgroups (the pieces
-                // drawn are known only on the GPU).
+                // Runs of LAYER_RUN pieces by stride over at most LAYER_GROUPS
+                // workgroups (the pieces drawn are known only on the GPU).
                 let groups = chunk
                     .adaptive
                     .capacity
-                    .div_ceil(LAYER_WORKGROUP)
+                    .div_ceil(LAYER_RUN * LAYER_WORKGROUP)
                     .clamp(1, LAYER_GROUPS);
                 pass.set_bind_group(1, group, &[]);
                 pass.dispatch_workgroups(groups, 1, 1);

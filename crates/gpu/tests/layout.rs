@@ -152,6 +152,10 @@ fn gpu_structs_match_their_wgsl_twins() {
             constant_u32(m, "LAYER_GROUPS"),
             splinescope_gpu::layout::LAYER_GROUPS
         );
+        assert_eq!(
+            constant_u32(m, "LAYER_RUN"),
+            splinescope_gpu::layout::LAYER_RUN
+        );
     }
 }
 
