@@ -30,7 +30,7 @@ mod refine;
 mod subdivide;
 
 use refine::{closest, crosses, refine, refine_tangent};
-use subdivide::{Sub, Subdivider, boxes_meet};
+use subdivide::{Sub, Subdivider, boxes_meet, surely_off};
 
 use super::bernstein_roots;
 use super::curve::{AnalysisError, CurveAnalysis, HitKind};
@@ -92,13 +92,20 @@ fn segment_overlaps(
     rb: (f64, f64),
     tol: f64,
 ) -> Vec<SpanPair> {
+    // An end far from the other piece's boxes is not on it: no closest point needed.
     let on_b = |u: f64| -> Option<(f64, f64)> {
         let q = a.point(u).truncate();
+        if surely_off(b, rb, q, tol) {
+            return None;
+        }
         let (v, d) = closest(b, rb, q);
         (d <= tol).then_some((u, v))
     };
     let on_a = |v: f64| -> Option<(f64, f64)> {
         let q = b.point(v).truncate();
+        if surely_off(a, ra, q, tol) {
+            return None;
+        }
         let (u, d) = closest(a, ra, q);
         (d <= tol).then_some((u, v))
     };

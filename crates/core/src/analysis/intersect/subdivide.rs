@@ -109,12 +109,11 @@ impl Sub {
         (lo, hi)
     }
 
-    /// The directions of the control polygon's legs as an angular interval `[θ₀, θ₁]`
-    /// (narrower than π/2), or `None` when they spread wider. The curve's tangent — for
-    /// positive weights a rational one's too — is a positive combination of the legs, so
-    /// it stays inside.
+    /// The directions of the control polygon's legs as an interval `[θ₀, θ₁]` of
+    /// [`pseudo_angle`]s (narrower than a quarter turn), or `None` when they spread wider.
+    /// The curve's tangent — for positive weights a rational one's too — is a positive
+    /// combination of the legs, so it stays inside.
     pub(super) fn cone(&self) -> Option<(f64, f64)> {
-        use std::f64::consts::{FRAC_PI_2, PI};
         let n = self.len() - 1;
         let mut first: Option<f64> = None;
         let (mut lo, mut hi) = (0.0_f64, 0.0_f64);
@@ -123,20 +122,20 @@ impl Sub {
             if e.x == 0.0 && e.y == 0.0 {
                 continue;
             }
-            let angle = e.y.atan2(e.x);
+            let angle = pseudo_angle(e);
             match first {
                 None => first = Some(angle),
                 Some(f) => {
-                    // Relative to the first leg, in (−π, π].
+                    // Relative to the first leg, within half a turn either way.
                     let mut d = angle - f;
-                    if d > PI {
-                        d -= 2.0 * PI;
-                    } else if d <= -PI {
-                        d += 2.0 * PI;
+                    if d > HALF_TURN {
+                        d -= 2.0 * HALF_TURN;
+                    } else if d <= -HALF_TURN {
+                        d += 2.0 * HALF_TURN;
                     }
                     lo = lo.min(d);
                     hi = hi.max(d);
-                    if hi - lo >= FRAC_PI_2 {
+                    if hi - lo >= QUARTER_TURN {
                         return None;
                     }
                 }
@@ -301,6 +300,30 @@ impl Sub {
     }
 }
 
+/// Whether `q` lies farther than `tol` from the piece on `[u0, u1]`, shown by boxes: the
+/// sub-pieces' control boxes (which hold them, rational ones too) halved until every box
+/// near `q` is gone. `false` when a box within `tol` of `q` is no larger than `tol` or
+/// after 64 halvings — then only the closest point can tell.
+pub(super) fn surely_off(p: &Piece, (u0, u1): (f64, f64), q: DVec2, tol: f64) -> bool {
+    let mut stack = vec![Sub::of(p, u0, u1)];
+    let mut halvings = 0;
+    while let Some(s) = stack.pop() {
+        let (lo, hi) = s.bounds();
+        let gap = (lo - q).max(q - hi).max(DVec2::ZERO).length();
+        if gap > tol {
+            continue;
+        }
+        if halvings == 64 || (hi - lo).max_element() <= tol {
+            return false;
+        }
+        halvings += 1;
+        let (l, r) = s.halves();
+        stack.push(l);
+        stack.push(r);
+    }
+    true
+}
+
 /// `x` held to `[0, 1]`; a NaN becomes ½ (never left to the optimiser's choice of
 /// `min`/`max`, which treat NaN differently).
 #[allow(clippy::manual_clamp)]
@@ -431,14 +454,44 @@ pub(super) fn nonnegative_range(y: &[f64]) -> Option<(f64, f64)> {
     (lo <= hi).then_some((lo.max(0.0), hi.min(1.0)))
 }
 
-/// Whether two angular intervals of line directions (`[θ₀, θ₁]` modulo π, each narrower
-/// than π/2) have no direction in common.
+/// A quarter turn in [`pseudo_angle`]'s units.
+const QUARTER_TURN: f64 = 1.0;
+
+/// Half a turn in [`pseudo_angle`]'s units.
+const HALF_TURN: f64 = 2.0;
+
+/// The direction of `e ≠ 0` as a number in `[0, 4)` that grows with its angle from the
+/// `+x` axis and grows by exactly 1 for each quarter turn (the "diamond angle": in each
+/// quadrant the share of the second coordinate in the sum of the two): every comparison of
+/// angles, and every shift by quarter and half turns, holds for it as for the angle,
+/// without a trigonometric function.
+fn pseudo_angle(e: DVec2) -> f64 {
+    let (x, y) = (e.x, e.y);
+    if y >= 0.0 {
+        if x >= 0.0 {
+            y / (x + y)
+        } else {
+            1.0 - x / (y - x)
+        }
+    } else if x < 0.0 {
+        2.0 - y / (-x - y)
+    } else {
+        3.0 + x / (x - y)
+    }
+}
+
+/// Whether two intervals of line directions (`[θ₀, θ₁]` in [`pseudo_angle`]'s units,
+/// modulo half a turn, each narrower than a quarter turn) have no direction in common.
 pub(super) fn cones_disjoint((a0, a1): (f64, f64), (b0, b1): (f64, f64)) -> bool {
-    use std::f64::consts::PI;
-    let shift = ((a0 - b0) / PI).floor() * PI;
-    [shift - PI, shift, shift + PI, shift + 2.0 * PI]
-        .iter()
-        .all(|k| b1 + k < a0 || b0 + k > a1)
+    let shift = ((a0 - b0) / HALF_TURN).floor() * HALF_TURN;
+    [
+        shift - HALF_TURN,
+        shift,
+        shift + HALF_TURN,
+        shift + 2.0 * HALF_TURN,
+    ]
+    .iter()
+    .all(|k| b1 + k < a0 || b0 + k > a1)
 }
 
 /// Where the chords of two flat sub-segments cross, as segment parameters (clamped to the
@@ -455,4 +508,95 @@ pub(super) fn chord_crossing(a: &Sub, b: &Sub) -> (f64, f64) {
         (0.5, 0.5)
     };
     (a.u0 + alpha * (a.u1 - a.u0), b.u0 + beta * (b.u1 - b.u0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::{Bezier, BezierSegment};
+    use crate::rng::Rng;
+    use glam::DVec3;
+
+    fn random_piece(rng: &mut Rng, degree: usize, rational: bool) -> Piece {
+        let points = (0..=degree)
+            .map(|_| DVec3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), 0.0))
+            .collect();
+        let weights = rational.then(|| (0..=degree).map(|_| rng.range(0.1, 10.0)).collect());
+        Piece::new(&BezierSegment {
+            bezier: Bezier::new(points),
+            weights,
+            t0: 0.0,
+            t1: 1.0,
+        })
+    }
+
+    #[test]
+    fn a_point_near_the_curve_is_never_surely_off_and_a_far_one_is() {
+        let mut rng = Rng::new(5);
+        for case in 0..400 {
+            let p = random_piece(&mut rng, 1 + case % 7, case % 2 == 1);
+            let tol = 10f64.powf(rng.range(-12.0, -2.0));
+            let (u0, u1) = if case % 3 == 0 {
+                (rng.range(0.0, 0.5), rng.range(0.5, 1.0))
+            } else {
+                (0.0, 1.0)
+            };
+            // On the curve, then moved by less than the tolerance in any direction.
+            let u = rng.range(u0, u1);
+            let angle = rng.range(0.0, std::f64::consts::TAU);
+            let near = p.point(u).truncate()
+                + 0.9 * tol * rng.unit() * DVec2::new(angle.cos(), angle.sin());
+            assert!(
+                !surely_off(&p, (u0, u1), near, tol),
+                "case {case}: a point within {tol} of the curve at u = {u} called off"
+            );
+            // Far outside the unit square the points lie in.
+            let far = DVec2::new(5.0 * angle.cos(), 5.0 * angle.sin());
+            assert!(surely_off(&p, (u0, u1), far, tol), "case {case}: {far}");
+        }
+    }
+
+    #[test]
+    fn pseudo_angles_order_directions_as_angles_and_turn_by_one_a_quarter() {
+        let mut rng = Rng::new(6);
+        let turn = |e: DVec2| {
+            let a = e.y.atan2(e.x);
+            if a < 0.0 {
+                a + std::f64::consts::TAU
+            } else {
+                a
+            }
+        };
+        for _ in 0..2000 {
+            let e = DVec2::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0));
+            let f = DVec2::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0));
+            let (pe, pf) = (pseudo_angle(e), pseudo_angle(f));
+            assert!((0.0..4.0).contains(&pe), "{e}: {pe}");
+            // Order as the angles in [0, 2π), unless the two are within rounding.
+            if (turn(e) - turn(f)).abs() > 1e-12 {
+                assert_eq!(pe < pf, turn(e) < turn(f), "{e} {f}: {pe} {pf}");
+            }
+            // A quarter turn adds exactly one (modulo four).
+            let quarter = pseudo_angle(e.perp());
+            let want = (pe + QUARTER_TURN) % 4.0;
+            assert!(
+                (quarter - want).abs() <= 4.0 * f64::EPSILON
+                    || (quarter - want).abs() >= 4.0 - 1e-15,
+                "{e}: {pe} then {quarter}"
+            );
+        }
+        // The axes and diagonals exactly.
+        for (e, want) in [
+            (DVec2::X, 0.0),
+            (DVec2::new(1.0, 1.0), 0.5),
+            (DVec2::Y, 1.0),
+            (DVec2::new(-1.0, 1.0), 1.5),
+            (-DVec2::X, 2.0),
+            (DVec2::new(-1.0, -1.0), 2.5),
+            (-DVec2::Y, 3.0),
+            (DVec2::new(1.0, -1.0), 3.5),
+        ] {
+            assert_eq!(pseudo_angle(e), want, "{e}");
+        }
+    }
 }
