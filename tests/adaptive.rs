@@ -14,11 +14,10 @@ use splinescope::camera::Camera;
 use splinescope::geom::{Bezier, BezierSegment, Curve, Lower};
 use splinescope::gpu::adaptive::{FrameSettings, Stage, read_work};
 use splinescope::gpu::layout::{GpuVertex, MAX_SAMPLES_PER_SEGMENT, WORK_HEADER};
-use splinescope::gpu::pack::{ChunkLimits, PreparedScene, prepare};
+use splinescope::gpu::pack::PreparedScene;
 use splinescope::gpu::renderer::camera_uniform;
 use splinescope::gpu::tessellator::read_buffer;
 use splinescope::gpu::twin;
-use splinescope::scene::encoding::encode;
 use splinescope::scene::generate::Rng;
 use splinescope::scene::{Scene, SceneCurve, Style};
 
@@ -137,11 +136,7 @@ fn exact_segments(scene: &Scene, prepared: &PreparedScene, c: usize) -> Vec<(u32
 /// Checks one scene under one camera: GPU against twins, and the tolerance.
 fn check(backend: &common::Backend, scene: &Scene, camera: &Camera, tolerance_px: f64, what: &str) {
     let ctx = &backend.ctx;
-    let prepared = prepare(
-        &encode(scene),
-        ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
-    )
-    .expect("pack");
+    let prepared = common::pack(ctx, scene);
     let gpu_camera = camera_uniform(camera, VIEWPORT, 1.0);
     let settings = FrameSettings {
         camera: gpu_camera,
@@ -333,11 +328,7 @@ fn a_full_buffer_coarsens_every_curve_in_proportion_and_writes_nothing_outside()
         |backend| {
             let ctx = &backend.ctx;
             let scene = random_scene(13, false);
-            let prepared = prepare(
-                &encode(&scene),
-                ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
-            )
-            .expect("pack");
+            let prepared = common::pack(ctx, &scene);
             let camera = zoomed(&scene.camera(VIEWPORT), 3.0, &scene);
             let settings = FrameSettings {
                 camera: camera_uniform(&camera, VIEWPORT, 1.0),
@@ -395,11 +386,7 @@ fn an_offscreen_render_grows_a_buffer_the_view_outgrew_and_draws_uncapped() {
         |backend| {
             let ctx = &backend.ctx;
             let scene = random_scene(14, false);
-            let prepared = prepare(
-                &encode(&scene),
-                ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
-            )
-            .expect("pack");
+            let prepared = common::pack(ctx, &scene);
             let renderer = Renderer::new(&ctx.device, &backend.pipelines, OFFSCREEN_FORMAT);
             let mut gpu = renderer.upload(ctx, &prepared);
             let before = gpu.capacity();

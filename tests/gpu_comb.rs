@@ -16,10 +16,9 @@ use splinescope::geom::{
 use splinescope::gpu::adaptive::{FrameSettings, read_work};
 use splinescope::gpu::capture::OFFSCREEN_FORMAT;
 use splinescope::gpu::layout::{COMB_HIDDEN, GpuVertex, WORK_HEADER};
-use splinescope::gpu::pack::{ChunkLimits, PreparedScene, curve_tags, prepare};
+use splinescope::gpu::pack::{PreparedScene, curve_tags};
 use splinescope::gpu::renderer::{CombRequest, GpuScene, Renderer, camera_uniform};
 use splinescope::gpu::tessellator::read_buffer;
-use splinescope::scene::encoding::encode;
 use splinescope::scene::{Scene, SceneCurve, Style, ViewSpec};
 
 const VIEWPORT: DVec2 = DVec2::new(640.0, 480.0);
@@ -99,11 +98,7 @@ struct Combed {
 
 fn comb_on_gpu(backend: &common::Backend, scene: &Scene, request: &CombRequest) -> Combed {
     let ctx = &backend.ctx;
-    let prepared = prepare(
-        &encode(scene),
-        ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
-    )
-    .expect("pack");
+    let prepared = common::pack(ctx, scene);
     let renderer = Renderer::new(&ctx.device, &backend.pipelines, OFFSCREEN_FORMAT);
     let mut gpu: GpuScene = renderer.upload(ctx, &prepared);
     gpu.set_comb(ctx, &renderer, Some(request));
@@ -260,11 +255,7 @@ fn a_comb_for_one_curve_hides_the_others() {
     common::on_each_gpu("a_comb_for_one_curve_hides_the_others", |backend| {
         let scene = scene_of(families());
         let ctx = &backend.ctx;
-        let prepared = prepare(
-            &encode(&scene),
-            ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
-        )
-        .expect("pack");
+        let prepared = common::pack(ctx, &scene);
         let only = 3;
         let request = CombRequest {
             scale: 0.5,
@@ -376,11 +367,7 @@ fn the_layer_holds_what_its_twin_rasterizes() {
     common::on_each_gpu("the_layer_holds_what_its_twin_rasterizes", |backend| {
         let ctx = &backend.ctx;
         let scene = scene_of(families());
-        let prepared = prepare(
-            &encode(&scene),
-            ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
-        )
-        .expect("pack");
+        let prepared = common::pack(ctx, &scene);
         let renderer = Renderer::new(&ctx.device, &backend.pipelines, OFFSCREEN_FORMAT);
         // Every curve's comb, then curve 3's alone (the others' hairs hidden).
         let mut lit_all = 0;
@@ -416,11 +403,7 @@ fn the_layer_holds_what_its_twin_rasterizes() {
             pitch_deg: 25.0,
             fov_deg: 45.0,
         };
-        let prepared = prepare(
-            &encode(&scene),
-            ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
-        )
-        .expect("pack");
+        let prepared = common::pack(ctx, &scene);
         let lit = layer_against_twin(backend, &scene, &prepared, &renderer, None);
         assert!(
             lit > 2000,
@@ -549,11 +532,7 @@ fn the_layer_draws_what_line_lists_and_quads_draw() {
         |backend| {
             let ctx = &backend.ctx;
             let scene = scene_of(families());
-            let prepared = prepare(
-                &encode(&scene),
-                ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
-            )
-            .expect("pack");
+            let prepared = common::pack(ctx, &scene);
             let renderer = Renderer::new(&ctx.device, &backend.pipelines, OFFSCREEN_FORMAT);
             let (w, h) = (VIEWPORT.x as u32, VIEWPORT.y as u32);
             let camera = scene.camera(VIEWPORT);

@@ -209,3 +209,15 @@ pub fn encode_png(
     }
     bytes
 }
+
+/// `scene` encoded and packed into chunks that fit `ctx`'s storage bindings.
+pub fn pack(
+    ctx: &GpuContext,
+    scene: &splinescope::scene::Scene,
+) -> splinescope::gpu::pack::PreparedScene {
+    splinescope::gpu::pack::prepare(
+        &splinescope::scene::encoding::encode(scene),
+        splinescope::gpu::pack::ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
+    )
+    .expect("pack")
+}
