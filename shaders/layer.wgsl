@@ -133,6 +133,18 @@ fn clip_ends(ca: vec4<f32>, cb: vec4<f32>) -> PixelEnds {
     return out;
 }
 
+// `a` and `b` with the major axis first (`x_major`: x), in order along it: the
+// rasterizers below step along the first coordinate and swap each pixel back.
+// Twin: along_major in layer_twin.rs.
+fn along_major(a: vec2<f32>, b: vec2<f32>, x_major: bool) -> array<vec2<f32>, 2> {
+    let s = select(a.yx, a, x_major);
+    let e = select(b.yx, b, x_major);
+    if (s.x > e.x) {
+        return array<vec2<f32>, 2>(e, s);
+    }
+    return array<vec2<f32>, 2>(s, e);
+}
+
 // The one-pixel line from a to b into the layer; nothing when both are behind the eye.
 fn raster_line(a: Vertex, b: Vertex, key: u32) {
     if (key == 0u) {
@@ -158,17 +170,9 @@ fn raster_line(a: Vertex, b: Vertex, key: u32) {
     }
     // Along the major axis (the first coordinate of s and e, swapped back in `plot`).
     let x_major = abs(d.x) >= abs(d.y);
-    var s = p + range.x * d;
-    var e = p + range.y * d;
-    if (!x_major) {
-        s = s.yx;
-        e = e.yx;
-    }
-    if (s.x > e.x) {
-        let t = s;
-        s = e;
-        e = t;
-    }
+    let major = along_major(p + range.x * d, p + range.y * d, x_major);
+    let s = major[0];
+    let e = major[1];
     // The columns whose centres the line crosses; the row where it crosses each.
     let first = i32(ceil(s.x - 0.5));
     let last = i32(floor(e.x - 0.5));
@@ -274,19 +278,10 @@ fn raster_piece(ends: PixelEnds, style: LineStyle) {
     let size = layer_size();
     // The major axis first (swapped back for the pixel).
     let x_major = abs(d.x) >= abs(d.y);
-    var s = pa;
-    var e = ends.q;
-    var extent = vec2<f32>(size);
-    if (!x_major) {
-        s = s.yx;
-        e = e.yx;
-        extent = extent.yx;
-    }
-    if (s.x > e.x) {
-        let t = s;
-        s = e;
-        e = t;
-    }
+    let major = along_major(pa, ends.q, x_major);
+    let s = major[0];
+    let e = major[1];
+    let extent = select(vec2<f32>(size).yx, vec2<f32>(size), x_major);
     let slope = (e.y - s.y) / max(e.x - s.x, 1e-30);
     // Across the piece, within reach: `reach √(1 + slope²)` rows either side of it.
     let across = reach * sqrt(1.0 + slope * slope);

@@ -157,6 +157,13 @@ pub fn raster_curves(
     }
 }
 
+/// `along_major` of the shader: `a` and `b` with the major axis first, in order along it.
+fn along_major(a: Vec2, b: Vec2, x_major: bool) -> (Vec2, Vec2) {
+    let swap = |v: Vec2| if x_major { v } else { Vec2::new(v.y, v.x) };
+    let (s, e) = (swap(a), swap(b));
+    if s.x > e.x { (e, s) } else { (s, e) }
+}
+
 /// `raster_piece` of the shader.
 fn raster_piece(
     camera: &GpuCamera,
@@ -178,11 +185,8 @@ fn raster_piece(
     let size = layer_size(camera);
     let x_major = d.x.abs() >= d.y.abs();
     let swap = |v: Vec2| if x_major { v } else { Vec2::new(v.y, v.x) };
-    let (mut s, mut e) = (swap(pa), swap(pb));
+    let (s, e) = along_major(pa, pb, x_major);
     let extent = swap(Vec2::new(size[0] as f32, size[1] as f32));
-    if s.x > e.x {
-        (s, e) = (e, s);
-    }
     let slope = (e.y - s.y) / (e.x - s.x).max(1e-30);
     let across = reach * (1.0 + slope * slope).sqrt();
     let first = (s.x - reach - 0.5).ceil().max(0.0);
@@ -234,13 +238,7 @@ fn raster_line(camera: &GpuCamera, a: GpuVertex, b: GpuVertex, key: u32, layer: 
         return;
     }
     let x_major = d.x.abs() >= d.y.abs();
-    let (mut s, mut e) = (p + range.x * d, p + range.y * d);
-    if !x_major {
-        (s, e) = (Vec2::new(s.y, s.x), Vec2::new(e.y, e.x));
-    }
-    if s.x > e.x {
-        (s, e) = (e, s);
-    }
+    let (s, e) = along_major(p + range.x * d, p + range.y * d, x_major);
     let first = (s.x - 0.5).ceil() as i32;
     let last = (e.x - 0.5).floor() as i32;
     if last < first {
