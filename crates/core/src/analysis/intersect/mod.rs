@@ -82,6 +82,17 @@ pub struct PairIntersections {
     pub found: Intersections,
 }
 
+/// The parameter of the point of `p` on `range` closest to `q`, when that point is within
+/// `tol` of `q`. A `q` that the piece's control boxes already show to be farther needs no
+/// closest point (its root finding is most of an overlap test).
+fn within(p: &Piece, range: (f64, f64), q: DVec2, tol: f64) -> Option<f64> {
+    if surely_off(p, range, q, tol) {
+        return None;
+    }
+    let (u, d) = closest(p, range, q);
+    (d <= tol).then_some(u)
+}
+
 /// Coincident stretches of two segments on their ranges: each end of one range whose
 /// point lies on the other, confirmed by seven points between two of them. In segment
 /// parameters.
@@ -92,23 +103,8 @@ fn segment_overlaps(
     rb: (f64, f64),
     tol: f64,
 ) -> Vec<SpanPair> {
-    // An end far from the other piece's boxes is not on it: no closest point needed.
-    let on_b = |u: f64| -> Option<(f64, f64)> {
-        let q = a.point(u).truncate();
-        if surely_off(b, rb, q, tol) {
-            return None;
-        }
-        let (v, d) = closest(b, rb, q);
-        (d <= tol).then_some((u, v))
-    };
-    let on_a = |v: f64| -> Option<(f64, f64)> {
-        let q = b.point(v).truncate();
-        if surely_off(a, ra, q, tol) {
-            return None;
-        }
-        let (u, d) = closest(a, ra, q);
-        (d <= tol).then_some((u, v))
-    };
+    let on_b = |u: f64| within(b, rb, a.point(u).truncate(), tol).map(|v| (u, v));
+    let on_a = |v: f64| within(a, ra, b.point(v).truncate(), tol).map(|u| (u, v));
     let mut ends: Vec<(f64, f64)> = [on_b(ra.0), on_b(ra.1), on_a(rb.0), on_a(rb.1)]
         .into_iter()
         .flatten()
@@ -124,7 +120,7 @@ fn segment_overlaps(
     }
     let coincide = (1..=7).all(|k| {
         let u = first.0 + (last.0 - first.0) * f64::from(k) / 8.0;
-        closest(b, rb, a.point(u).truncate()).1 <= tol
+        within(b, rb, a.point(u).truncate(), tol).is_some()
     });
     if coincide {
         vec![((first.0, last.0), (first.1, last.1))]
