@@ -8,7 +8,7 @@ use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::DVec3;
-use kurbo::{CubicBez, ParamCurveArclen, Point};
+use kurbo::{CubicBez, ParamCurveArclen, ParamCurveExtrema, Point};
 use splinescope::analysis::{CurveAnalysis, all_intersections, bezier_length};
 use splinescope::geom::Bezier;
 use splinescope::scene::generate::{Rng, StressOptions, random_bezier_scene};
@@ -81,6 +81,39 @@ fn bench(c: &mut Criterion) {
             b.iter(|| theirs.iter().map(|c| c.arclen(black_box(acc))).sum::<f64>());
         });
     }
+    g.finish();
+
+    // The tight box (end points and the derivative's roots) against kurbo's
+    // `bounding_box`, on the same cubics, with the analysis built and from the points.
+    let mut g = c.benchmark_group("tight box of 64 cubics");
+    g.bench_function("splinescope", |b| {
+        b.iter(|| {
+            ours.iter()
+                .map(|c| black_box(c).bounding_box().max.x)
+                .sum::<f64>()
+        });
+    });
+    g.bench_function("splinescope from points", |b| {
+        b.iter(|| {
+            cubics
+                .iter()
+                .map(|p| {
+                    CurveAnalysis::new(&Bezier::new(black_box(p).to_vec()))
+                        .bounding_box()
+                        .max
+                        .x
+                })
+                .sum::<f64>()
+        });
+    });
+    g.bench_function("kurbo", |b| {
+        b.iter(|| {
+            theirs
+                .iter()
+                .map(|c| black_box(c).bounding_box().x1)
+                .sum::<f64>()
+        });
+    });
     g.finish();
 
     let mut g = c.benchmark_group("intersect one pair");

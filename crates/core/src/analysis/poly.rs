@@ -171,7 +171,37 @@ pub fn eval_with_bound(c: &[f64], t: f64) -> (f64, f64) {
         }
         (v[0], gamma * a[0] + f64::MIN_POSITIVE)
     };
-    if len <= STACK {
+    // Degrees 1–3 written out (the same operations in the same order as `run`); as
+    // `in_buffer`, a small buffer up to degree 7.
+    let bound = |a: f64| gamma * a + f64::MIN_POSITIVE;
+    match *c {
+        [c0, c1] => return (s * c0 + t * c1, bound(s * c0.abs() + t * c1.abs())),
+        [c0, c1, c2] => {
+            let (p0, p1) = (s * c0 + t * c1, s * c1 + t * c2);
+            let (a0, a1) = (s * c0.abs() + t * c1.abs(), s * c1.abs() + t * c2.abs());
+            return (s * p0 + t * p1, bound(s * a0 + t * a1));
+        }
+        [c0, c1, c2, c3] => {
+            let (p0, p1, p2) = (s * c0 + t * c1, s * c1 + t * c2, s * c2 + t * c3);
+            let (p0, p1) = (s * p0 + t * p1, s * p1 + t * p2);
+            let (a0, a1, a2) = (
+                s * c0.abs() + t * c1.abs(),
+                s * c1.abs() + t * c2.abs(),
+                s * c2.abs() + t * c3.abs(),
+            );
+            let (a0, a1) = (s * a0 + t * a1, s * a1 + t * a2);
+            return (s * p0 + t * p1, bound(s * a0 + t * a1));
+        }
+        _ => {}
+    }
+    if len <= 8 {
+        let (mut v, mut a) = ([0.0; 8], [0.0; 8]);
+        v[..len].copy_from_slice(c);
+        for (x, y) in a.iter_mut().zip(c) {
+            *x = y.abs();
+        }
+        run(&mut v[..len], &mut a[..len])
+    } else if len <= STACK {
         let (mut v, mut a) = ([0.0; STACK], [0.0; STACK]);
         v[..len].copy_from_slice(c);
         for (x, y) in a.iter_mut().zip(c) {
@@ -369,6 +399,27 @@ pub fn split(c: &[f64], t: f64) -> (Vec<f64>, Vec<f64>) {
     (left, right)
 }
 
+/// [`split`] into `left` and `right` (each as long as `c`), without allocating: the same
+/// arithmetic, so the same coefficients to the bit.
+pub fn split_into(c: &[f64], t: f64, left: &mut [f64], right: &mut [f64]) {
+    let len = c.len();
+    if len == 0 {
+        return;
+    }
+    let n = len - 1;
+    let s = 1.0 - t;
+    // `right` is the working row: level `r` lives in `right[..=n − r]`, and the last entry
+    // of each level is `right[n − r]`, the one the right half keeps.
+    right.copy_from_slice(c);
+    left[0] = right[0];
+    for (r, slot) in left.iter_mut().enumerate().skip(1) {
+        for i in 0..=(n - r) {
+            right[i] = s * right[i] + t * right[i + 1];
+        }
+        *slot = right[0];
+    }
+}
+
 /// The coefficients of `p` on `[a, b] ⊆ [0, 1]`, reparametrised to `[0, 1]`.
 #[must_use]
 pub fn restrict(c: &[f64], a: f64, b: f64) -> Vec<f64> {
@@ -434,6 +485,65 @@ mod tests {
             .sum::<f64>()
             / 6000.0;
         assert!((integral(&a) - exact).abs() < 1e-12);
+    }
+
+    #[test]
+    fn low_degrees_written_out_evaluate_as_the_loop() {
+        // The loop of `eval_with_bound`, restated: degrees 1–3 must give the same bits.
+        fn looped(c: &[f64], t: f64) -> (f64, f64) {
+            let n = c.len() - 1;
+            let k = (2 * n + 2) as f64 * f64::EPSILON * 0.5;
+            let gamma = k / (1.0 - k);
+            let s = 1.0 - t;
+            let (mut v, mut a) = (c.to_vec(), c.iter().map(|x| x.abs()).collect::<Vec<_>>());
+            for r in 1..=n {
+                for i in 0..=(n - r) {
+                    v[i] = s * v[i] + t * v[i + 1];
+                    a[i] = s * a[i] + t * a[i + 1];
+                }
+            }
+            (v[0], gamma * a[0] + f64::MIN_POSITIVE)
+        }
+        for c in [
+            vec![0.3, -1.7],
+            vec![1e-300, -3.0, 2.5],
+            vec![1.0, -2.0, 0.5, 3.0],
+            vec![-1e10, 1.0, 1e-10, 7.0],
+        ] {
+            for k in 0..=64 {
+                let t = f64::from(k) / 64.0 + if k % 2 == 1 { 1e-3 } else { 0.0 };
+                let (v, b) = eval_with_bound(&c, t);
+                let (w, d) = looped(&c, t);
+                assert_eq!(
+                    (v.to_bits(), b.to_bits()),
+                    (w.to_bits(), d.to_bits()),
+                    "{c:?} at {t}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn splitting_in_place_gives_the_same_halves() {
+        let mut seed = 3_u64;
+        let mut rnd = || {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for len in 1..=8 {
+            for _ in 0..50 {
+                let c: Vec<f64> = (0..len).map(|_| 4.0 * rnd() - 2.0).collect();
+                let t = rnd();
+                let (l, r) = split(&c, t);
+                let (mut l2, mut r2) = (vec![f64::NAN; len], vec![f64::NAN; len]);
+                split_into(&c, t, &mut l2, &mut r2);
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&l), bits(&l2), "{c:?} at {t}");
+                assert_eq!(bits(&r), bits(&r2), "{c:?} at {t}");
+            }
+        }
     }
 
     #[test]

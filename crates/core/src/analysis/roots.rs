@@ -95,11 +95,17 @@ pub fn bernstein_roots_with_noise(c: &[f64], noise: f64) -> Roots {
             error: 0.0,
         });
     }
-    let inner = deflate(c, lead, trail);
+    let deflated;
+    let inner: &[f64] = if lead == 0 && trail == 0 {
+        c
+    } else {
+        deflated = deflate(c, lead, trail);
+        &deflated
+    };
     if inner.len() >= 2 {
-        let mut finder = Finder::new(&inner);
+        let mut finder = Finder::new(inner);
         finder.eta = finder.eta.max(noise);
-        finder.isolate(&inner, 0.0, 1.0, 0, &mut out);
+        finder.isolate(inner, 0.0, 1.0, 0, &mut out);
     }
     let _ = n;
     out.sort_by(|a, b| a.t.total_cmp(&b.t));
@@ -155,6 +161,32 @@ fn merge(sorted: Vec<Root>) -> Vec<Root> {
         }
     }
     out
+}
+
+/// For a polynomial of degree 2 (`c` its three Bernstein coefficients), the root of its
+/// power form `c₀ + 2 (c₁ − c₀) t + (c₀ − 2c₁ + c₂) t²` inside `(a, b)` by the quadratic
+/// formula without cancellation; `None` for other degrees or where no real root lies
+/// inside. Only a starting point: the polish checks it.
+fn quadratic_root_in(c: &[f64], a: f64, b: f64) -> Option<f64> {
+    let &[c0, c1, c2] = c else {
+        return None;
+    };
+    let (qa, qb, qc) = (c0 - 2.0 * c1 + c2, 2.0 * (c1 - c0), c0);
+    let inside = |t: f64| (t > a && t < b).then_some(t);
+    if qa == 0.0 {
+        return if qb == 0.0 { None } else { inside(-qc / qb) };
+    }
+    let disc = qb * qb - 4.0 * qa * qc;
+    // A negative or NaN discriminant: no real root to start from.
+    if disc.is_nan() || disc < 0.0 {
+        return None;
+    }
+    let q = -0.5 * (qb + disc.sqrt().copysign(qb));
+    let first = inside(q / qa);
+    if q == 0.0 {
+        return first;
+    }
+    first.or_else(|| inside(qc / q))
 }
 
 /// The isolation and polish of one polynomial.
@@ -213,9 +245,18 @@ impl<'a> Finder<'a> {
             return;
         };
         let m = a + u * (b - a);
-        let (left, right) = poly::split(lc, u);
-        self.isolate(&left, a, m, depth + 1, out);
-        self.isolate(&right, m, b, depth + 1, out);
+        let len = lc.len();
+        if len <= 8 {
+            // Low degrees split on the stack.
+            let (mut left, mut right) = ([0.0; 8], [0.0; 8]);
+            poly::split_into(lc, u, &mut left[..len], &mut right[..len]);
+            self.isolate(&left[..len], a, m, depth + 1, out);
+            self.isolate(&right[..len], m, b, depth + 1, out);
+        } else {
+            let (left, right) = poly::split(lc, u);
+            self.isolate(&left, a, m, depth + 1, out);
+            self.isolate(&right, m, b, depth + 1, out);
+        }
     }
 
     /// A split fraction of `[a, b]` at which `|p|` exceeds the noise `η` (and so its
@@ -248,13 +289,19 @@ impl<'a> Finder<'a> {
     /// The one root in `[a, b]`, where `p(a) < 0` when `negative_at_a` and `p(b)` has the
     /// other sign: Newton's method kept inside the bracket.
     fn polish(&self, mut a: f64, mut b: f64, negative_at_a: bool) -> Root {
-        // Regula falsi start from the end values.
-        let (fa, _) = poly::eval_with_bound(self.c, a);
-        let (fb, _) = poly::eval_with_bound(self.c, b);
-        let mut t = if fa != fb {
-            a - fa * (b - a) / (fb - fa)
-        } else {
-            0.5 * (a + b)
+        // A quadratic's root in closed form as the start (usually within the evaluation's
+        // rounding already), else regula falsi from the end values.
+        let mut t = match quadratic_root_in(self.c, a, b) {
+            Some(t) => t,
+            None => {
+                let (fa, _) = poly::eval_with_bound(self.c, a);
+                let (fb, _) = poly::eval_with_bound(self.c, b);
+                if fa != fb {
+                    a - fa * (b - a) / (fb - fa)
+                } else {
+                    0.5 * (a + b)
+                }
+            }
         };
         if !(t > a && t < b) {
             t = 0.5 * (a + b);
