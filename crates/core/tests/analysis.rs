@@ -518,6 +518,107 @@ fn extrema_and_the_tight_box() {
     assert_eq!((ab.min, ab.max), (p2(0.0, 0.0), p2(1.0, 1.0)));
 }
 
+/// The tight box of polynomial curves of degrees 1–3 (closed-form candidates) against an
+/// independent truth: each coordinate's extremes by dense sampling, refined by golden-
+/// section search around every sampled local extreme. Random 2D and 3D curves, and
+/// constructed hard ones: a coordinate whose derivative has a double root inside (no
+/// extremum there), two extrema 10⁻⁹ apart, a constant coordinate, a line that doubles
+/// back on itself, a point; and a cubic B-spline of several segments.
+#[test]
+fn tight_boxes_of_low_degrees_against_sampling() {
+    fn extremes(f: &dyn Fn(f64) -> f64) -> (f64, f64) {
+        let n = 2000;
+        let v: Vec<f64> = (0..=n).map(|k| f(f64::from(k) / f64::from(n))).collect();
+        let (mut lo, mut hi) = (v[0].min(v[n as usize]), v[0].max(v[n as usize]));
+        for k in 1..n as usize {
+            for sign in [1.0, -1.0] {
+                if sign * v[k] >= sign * v[k - 1] && sign * v[k] >= sign * v[k + 1] {
+                    // Golden-section search for the maximum of sign·f on the bracket.
+                    let (mut a, mut b) =
+                        ((k - 1) as f64 / f64::from(n), (k + 1) as f64 / f64::from(n));
+                    let g = (5f64.sqrt() - 1.0) / 2.0;
+                    for _ in 0..120 {
+                        let (c, d) = (b - g * (b - a), a + g * (b - a));
+                        if sign * f(c) >= sign * f(d) {
+                            b = d
+                        } else {
+                            a = c
+                        }
+                    }
+                    let m = f(0.5 * (a + b)).max(f(a)).max(f(b));
+                    let m2 = f(0.5 * (a + b)).min(f(a)).min(f(b));
+                    if sign > 0.0 {
+                        hi = hi.max(m)
+                    } else {
+                        lo = lo.min(m2)
+                    }
+                }
+            }
+        }
+        (lo, hi)
+    }
+    let check = |curve: &dyn ParamCurve, analysis: &CurveAnalysis, what: &str| {
+        let bb = analysis.bounding_box();
+        let size = (bb.max - bb.min).length().max(1e-300);
+        for axis in 0..3 {
+            let (lo, hi) = extremes(&|t| curve.eval(t)[axis]);
+            assert!(
+                (bb.min[axis] - lo).abs() <= 1e-14 * size
+                    && (bb.max[axis] - hi).abs() <= 1e-14 * size,
+                "{what}, axis {axis}: box [{}, {}] vs sampled [{lo}, {hi}]",
+                bb.min[axis],
+                bb.max[axis]
+            );
+        }
+    };
+    let mut seed = 21_u64;
+    let mut rnd = || {
+        seed = seed
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for count in 0..120 {
+        let n = 2 + count % 3;
+        let three_d = count % 4 == 0;
+        let b = Bezier::new(
+            (0..n)
+                .map(|_| DVec3::new(4.0 * rnd() - 2.0, rnd(), if three_d { rnd() } else { 0.0 }))
+                .collect(),
+        );
+        check(&b, &CurveAnalysis::new(&b), &format!("{:?}", b.points()));
+    }
+    let hard = [
+        // x(t) = (t − 0.4)³ scaled: x′ has a double root at 0.4.
+        vec![(-0.064, 0.0), (0.056, 1.0), (-0.024, 1.0), (0.216, 0.0)],
+        // x′ with two roots 10⁻⁹ apart around ½ (an extremum pair closer than the samples).
+        vec![(0.0, 0.0), (0.5 + 1e-9, 1.0), (0.5 - 1e-9, 1.0), (1.0, 0.0)],
+        // A constant coordinate, a line doubling back, a point.
+        vec![(0.0, 1.0), (1.0, 1.0), (2.0, 1.0), (3.0, 1.0)],
+        vec![(0.0, 0.0), (3.0, 3.0), (-1.0, -1.0), (1.0, 1.0)],
+        vec![(0.5, 0.5), (0.5, 0.5), (0.5, 0.5)],
+    ];
+    for pts in hard {
+        let b = bezier(&pts);
+        check(&b, &CurveAnalysis::new(&b), &format!("{pts:?}"));
+    }
+    let spline = BSpline::try_new(
+        vec![
+            p2(0.0, 0.0),
+            p2(1.0, 3.0),
+            p2(2.0, -1.0),
+            p2(3.0, 2.0),
+            p2(2.5, 4.0),
+            p2(4.0, 0.0),
+            p2(5.0, 1.0),
+        ],
+        [0.0, 0.0, 0.0, 0.0, 0.2, 0.5, 0.55, 1.0, 1.0, 1.0, 1.0].to_vec(),
+        4,
+    )
+    .expect("spline");
+    check(&spline, &CurveAnalysis::new(&spline), "cubic B-spline");
+}
+
 #[test]
 fn signed_areas() {
     for r in [1.0, 0.3, 5.0] {

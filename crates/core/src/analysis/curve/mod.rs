@@ -336,11 +336,24 @@ impl CurveAnalysis {
     #[must_use]
     pub fn bounding_box(&self) -> Aabb {
         let mut bbox = Aabb::EMPTY;
+        let mut rest = false;
         for p in &self.pieces {
             bbox = bbox.including(p.point(0.0)).including(p.point(1.0));
+            // Polynomial pieces of degree ≤ 3 in closed form; the others by the roots of
+            // their derivatives below.
+            match p.box_candidates() {
+                Some((us, count)) => {
+                    for &u in &us[..count] {
+                        bbox = bbox.including(p.point(u));
+                    }
+                }
+                None => rest = true,
+            }
         }
-        for e in self.extrema() {
-            bbox = bbox.including(e.point);
+        if rest {
+            for e in self.extrema() {
+                bbox = bbox.including(e.point);
+            }
         }
         bbox
     }
