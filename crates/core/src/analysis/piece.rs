@@ -333,9 +333,8 @@ impl Piece {
     }
 
     /// For a polynomial piece of degree ≤ 3, the parameters in `(0, 1)` where some
-    /// coordinate's derivative (a quadratic) may vanish: its real roots by the quadratic
-    /// formula without cancellation, and, where the discriminant is within its rounding of
-    /// 0 (two roots closer than rounding can tell apart, or none), the quadratic's vertex.
+    /// coordinate's derivative (a quadratic) may vanish: its real roots, and its vertex
+    /// where the discriminant is within rounding of 0 ([`poly::quadratic_roots`]).
     /// Every root of a derivative is among them up to rounding, which moves the value at
     /// an extremum only to second order; an extra one is still a point of the curve.
     /// `None` for rational pieces and higher degrees. At most 9 parameters.
@@ -357,25 +356,8 @@ impl Piece {
             match *d.as_slice() {
                 [d0, d1] if d0 != d1 => push(d0 / (d0 - d1)),
                 [d0, d1, d2] => {
-                    // d(u) = d0 + 2 (d1 − d0) u + (d0 − 2 d1 + d2) u².
-                    let (a, b, c) = (d0 - 2.0 * d1 + d2, 2.0 * (d1 - d0), d0);
-                    if a == 0.0 {
-                        if b != 0.0 {
-                            push(-c / b);
-                        }
-                        continue;
-                    }
-                    let disc = b * b - 4.0 * a * c;
-                    if disc.abs() <= 16.0 * f64::EPSILON * (b * b + 4.0 * (a * c).abs()) {
-                        push(-0.5 * b / a);
-                    }
-                    if disc > 0.0 {
-                        let q = -0.5 * (b + disc.sqrt().copysign(b));
-                        push(q / a);
-                        if q != 0.0 {
-                            push(c / q);
-                        }
-                    }
+                    let (roots, n, vertex) = poly::quadratic_roots(d0, d1, d2);
+                    roots[..n].iter().chain(&vertex).for_each(|&u| push(u));
                 }
                 _ => {}
             }

@@ -399,6 +399,36 @@ pub fn split(c: &[f64], t: f64) -> (Vec<f64>, Vec<f64>) {
     (left, right)
 }
 
+/// The real roots of the quadratic whose Bernstein coefficients are `c0, c1, c2` (power
+/// form `α u² + β u + γ`: `α = c0 − 2c1 + c2`, `β = 2 (c1 − c0)`, `γ = c0`), by the quadratic
+/// formula without cancellation (`q = −(β + sgn β √D)/2`, roots `q/α` and `γ/q`), unsorted
+/// and unfiltered; the one root `−γ/β` when `α = 0`. With them, the vertex `−β/(2α)` where
+/// the discriminant is within its rounding of 0 (`|D| ≤ 16 ε (β² + 4|αγ|)`): two roots
+/// that rounding may merge, or lose, lie within rounding of it.
+#[must_use]
+pub fn quadratic_roots(c0: f64, c1: f64, c2: f64) -> ([f64; 2], usize, Option<f64>) {
+    let (a, b, c) = (c0 - 2.0 * c1 + c2, 2.0 * (c1 - c0), c0);
+    if a == 0.0 {
+        return if b == 0.0 {
+            ([0.0; 2], 0, None)
+        } else {
+            ([-c / b, 0.0], 1, None)
+        };
+    }
+    let disc = b * b - 4.0 * a * c;
+    let vertex =
+        (disc.abs() <= 16.0 * f64::EPSILON * (b * b + 4.0 * (a * c).abs())).then(|| -0.5 * b / a);
+    // A negative or NaN discriminant: no real root.
+    if disc.is_nan() || disc < 0.0 {
+        return ([0.0; 2], 0, vertex);
+    }
+    let q = -0.5 * (b + disc.sqrt().copysign(b));
+    if q == 0.0 {
+        return ([q / a, 0.0], 1, vertex);
+    }
+    ([q / a, c / q], 2, vertex)
+}
+
 /// [`split`] into `left` and `right` (each as long as `c`), without allocating: the same
 /// arithmetic, so the same coefficients to the bit.
 pub fn split_into(c: &[f64], t: f64, left: &mut [f64], right: &mut [f64]) {
@@ -521,6 +551,37 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn quadratic_roots_in_closed_form() {
+        // Bernstein coefficients of a power-form quadratic a t² + b t + c.
+        let bern = |a: f64, b: f64, c: f64| (c, c + 0.5 * b, a + b + c);
+        let sorted = |(r, n, v): ([f64; 2], usize, Option<f64>)| {
+            let mut r = r[..n].to_vec();
+            r.sort_by(f64::total_cmp);
+            (r, v)
+        };
+        // (t − ¼)(t − ¾): exact roots, no vertex.
+        let (c0, c1, c2) = bern(1.0, -1.0, 0.1875);
+        assert_eq!(
+            sorted(quadratic_roots(c0, c1, c2)),
+            (vec![0.25, 0.75], None)
+        );
+        // A root at 0 (γ = 0) and one at 0.5: t² − t/2.
+        let (c0, c1, c2) = bern(1.0, -0.5, 0.0);
+        assert_eq!(sorted(quadratic_roots(c0, c1, c2)), (vec![0.0, 0.5], None));
+        // Linear (α = 0): 2t − 1.
+        let (c0, c1, c2) = bern(0.0, 2.0, -1.0);
+        assert_eq!(sorted(quadratic_roots(c0, c1, c2)), (vec![0.5], None));
+        // A double root at ⅜: the roots and the vertex there.
+        let (c0, c1, c2) = bern(1.0, -0.75, 0.140_625);
+        let (r, v) = sorted(quadratic_roots(c0, c1, c2));
+        assert_eq!(v, Some(0.375));
+        assert!(r.iter().all(|x| (x - 0.375).abs() < 1e-15), "{r:?}");
+        // No real root, far from a double one: nothing. A constant: nothing.
+        assert_eq!(sorted(quadratic_roots(1.0, 0.0, 1.0)), (vec![], None));
+        assert_eq!(sorted(quadratic_roots(2.0, 2.0, 2.0)), (vec![], None));
     }
 
     #[test]

@@ -163,30 +163,15 @@ fn merge(sorted: Vec<Root>) -> Vec<Root> {
     out
 }
 
-/// For a polynomial of degree 2 (`c` its three Bernstein coefficients), the root of its
-/// power form `c₀ + 2 (c₁ − c₀) t + (c₀ − 2c₁ + c₂) t²` inside `(a, b)` by the quadratic
-/// formula without cancellation; `None` for other degrees or where no real root lies
+/// For a polynomial of degree 2 (`c` its three Bernstein coefficients), its real root
+/// inside `(a, b)` ([`poly::quadratic_roots`]); `None` for other degrees or where none lies
 /// inside. Only a starting point: the polish checks it.
 fn quadratic_root_in(c: &[f64], a: f64, b: f64) -> Option<f64> {
     let &[c0, c1, c2] = c else {
         return None;
     };
-    let (qa, qb, qc) = (c0 - 2.0 * c1 + c2, 2.0 * (c1 - c0), c0);
-    let inside = |t: f64| (t > a && t < b).then_some(t);
-    if qa == 0.0 {
-        return if qb == 0.0 { None } else { inside(-qc / qb) };
-    }
-    let disc = qb * qb - 4.0 * qa * qc;
-    // A negative or NaN discriminant: no real root to start from.
-    if disc.is_nan() || disc < 0.0 {
-        return None;
-    }
-    let q = -0.5 * (qb + disc.sqrt().copysign(qb));
-    let first = inside(q / qa);
-    if q == 0.0 {
-        return first;
-    }
-    first.or_else(|| inside(qc / q))
+    let (roots, count, _) = poly::quadratic_roots(c0, c1, c2);
+    roots[..count].iter().copied().find(|t| *t > a && *t < b)
 }
 
 /// The isolation and polish of one polynomial.
