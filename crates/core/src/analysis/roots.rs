@@ -10,7 +10,9 @@
 //!
 //! **Polish**: a simple root is refined by Newton's method kept inside its bracket
 //! (bisection when a step leaves it) on the original coefficients, until the bracket is two
-//! floating-point numbers wide or `|p(t)|` is within its evaluation error.
+//! floating-point numbers wide or `|p(t)|` is within its evaluation error — from the
+//! quadratic formula's root for a quadratic (often within that error already), else from
+//! regula falsi on the bracket's ends.
 //!
 //! **Clusters and multiple roots**: an interval on which `p` is zero to within `η` (its
 //! coefficients all in the noise band) holds roots `p` cannot separate in `f64` — a double
