@@ -450,6 +450,28 @@ pub fn split_into(c: &[f64], t: f64, left: &mut [f64], right: &mut [f64]) {
     }
 }
 
+/// [`restrict`] into `out` (as long as `c`, at most 8), without allocating: the same
+/// arithmetic, so the same coefficients to the bit.
+///
+/// # Panics
+/// If `c` has more than 8 coefficients or `out` is not as long as `c`.
+pub fn restrict_into(c: &[f64], a: f64, b: f64, out: &mut [f64]) {
+    let len = c.len();
+    let mut scratch = [0.0; 8];
+    let mut right = [0.0; 8];
+    if a > 0.0 {
+        split_into(c, a, &mut scratch[..len], &mut right[..len]);
+    } else {
+        right[..len].copy_from_slice(c);
+    }
+    if b >= 1.0 {
+        out.copy_from_slice(&right[..len]);
+        return;
+    }
+    let u = (b - a) / (1.0 - a);
+    split_into(&right[..len], u.clamp(0.0, 1.0), out, &mut scratch[..len]);
+}
+
 /// The coefficients of `p` on `[a, b] ⊆ [0, 1]`, reparametrised to `[0, 1]`.
 #[must_use]
 pub fn restrict(c: &[f64], a: f64, b: f64) -> Vec<f64> {
@@ -582,6 +604,25 @@ mod tests {
         // No real root, far from a double one: nothing. A constant: nothing.
         assert_eq!(sorted(quadratic_roots(1.0, 0.0, 1.0)), (vec![], None));
         assert_eq!(sorted(quadratic_roots(2.0, 2.0, 2.0)), (vec![], None));
+    }
+
+    #[test]
+    fn restricting_in_place_gives_the_same_coefficients() {
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        for len in 1..=8 {
+            let c: Vec<f64> = (0..len).map(|i| (i as f64 * 0.37).sin() * 3.0).collect();
+            for (a, b) in [
+                (0.0, 1.0),
+                (0.0, 0.3),
+                (0.2, 1.0),
+                (0.25, 0.75),
+                (0.6, 0.61),
+            ] {
+                let mut out = vec![f64::NAN; len];
+                restrict_into(&c, a, b, &mut out);
+                assert_eq!(bits(&out), bits(&restrict(&c, a, b)), "{c:?} on [{a}, {b}]");
+            }
+        }
     }
 
     #[test]

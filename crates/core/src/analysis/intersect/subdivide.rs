@@ -57,7 +57,21 @@ impl Sub {
         let n = p.a[0].len();
         let mut h = Points::with_len(n);
         let slots = h.as_mut_slice();
-        if u0 > 0.0 || u1 < 1.0 {
+        if (u0 > 0.0 || u1 < 1.0) && n <= 8 {
+            // On the stack: the same coefficients as `restrict`'s.
+            let (mut x, mut y, mut w) = ([0.0; 8], [0.0; 8], [1.0; 8]);
+            poly::restrict_into(&p.a[0], u0, u1, &mut x[..n]);
+            poly::restrict_into(&p.a[1], u0, u1, &mut y[..n]);
+            if let Some(pw) = &p.w {
+                poly::restrict_into(pw, u0, u1, &mut w[..n]);
+            } else {
+                let ones = [1.0; 8];
+                poly::restrict_into(&ones[..n], u0, u1, &mut w[..n]);
+            }
+            for (i, slot) in slots.iter_mut().enumerate() {
+                *slot = [x[i], y[i], w[i]];
+            }
+        } else if u0 > 0.0 || u1 < 1.0 {
             let axis = |c: &[f64]| poly::restrict(c, u0, u1);
             let ones;
             let w = match &p.w {
