@@ -224,7 +224,6 @@ fn raster_comb(
 // when their tags agree), for q = the invocation's index, then every stride after it: a
 // run's samples are projected once each, its style read once per curve (with one piece
 // an invocation, the projections and reads were a third of the pass on llvmpipe).
-
 @compute @workgroup_size(LAYER_WORKGROUP)
 fn raster_curves(
     @builtin(global_invocation_id) id: vec3<u32>,

@@ -16,6 +16,7 @@ use splinescope_core::analysis::{
     bezier_length,
 };
 use splinescope_core::geom::{BSpline, Bezier, Curve, Lower, Nurbs, ParamCurve, RationalBezier};
+use splinescope_core::rng::Rng;
 
 fn p2(x: f64, y: f64) -> DVec3 {
     DVec3::new(x, y, 0.0)
@@ -571,13 +572,8 @@ fn tight_boxes_of_low_degrees_against_sampling() {
             );
         }
     };
-    let mut seed = 21_u64;
-    let mut rnd = || {
-        seed = seed
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = Rng::new(21);
+    let mut rnd = || rng.unit();
     for count in 0..120 {
         let n = 2 + count % 3;
         let three_d = count % 4 == 0;

@@ -171,8 +171,8 @@ pub fn eval_with_bound(c: &[f64], t: f64) -> (f64, f64) {
         }
         (v[0], gamma * a[0] + f64::MIN_POSITIVE)
     };
-    // Degrees 1–3 written out (the same operations in the same order as `run`); as
-    // `in_buffer`, a small buffer up to degree 7.
+    // Degrees 1–3 written out (the same operations in the same order as `run`); the others
+    // in `in_buffer`'s scratch copies.
     let bound = |a: f64| gamma * a + f64::MIN_POSITIVE;
     match *c {
         [c0, c1] => return (s * c0 + t * c1, bound(s * c0.abs() + t * c1.abs())),
@@ -194,29 +194,29 @@ pub fn eval_with_bound(c: &[f64], t: f64) -> (f64, f64) {
         }
         _ => {}
     }
-    if len <= 8 {
-        let (mut v, mut a) = ([0.0; 8], [0.0; 8]);
-        v[..len].copy_from_slice(c);
-        for (x, y) in a.iter_mut().zip(c) {
-            *x = y.abs();
-        }
-        run(&mut v[..len], &mut a[..len])
-    } else if len <= STACK {
-        let (mut v, mut a) = ([0.0; STACK], [0.0; STACK]);
-        v[..len].copy_from_slice(c);
-        for (x, y) in a.iter_mut().zip(c) {
-            *x = y.abs();
-        }
-        run(&mut v[..len], &mut a[..len])
-    } else {
-        let mut v = c.to_vec();
-        let mut a: Vec<f64> = c.iter().map(|x| x.abs()).collect();
-        run(&mut v, &mut a)
-    }
+    in_buffer(c, |v| {
+        in_buffer(c, |a| {
+            for x in a.iter_mut() {
+                *x = x.abs();
+            }
+            run(v, a)
+        })
+    })
 }
 
 /// Coefficients evaluated on the stack (more go to the heap).
 const STACK: usize = 32;
+
+/// `run` on two zeroed scratch rows of `len` numbers: on the stack up to degree 7, on the
+/// heap beyond.
+pub(crate) fn in_two_buffers<R>(len: usize, run: impl FnOnce(&mut [f64], &mut [f64]) -> R) -> R {
+    if len <= 8 {
+        let (mut a, mut b) = ([0.0; 8], [0.0; 8]);
+        run(&mut a[..len], &mut b[..len])
+    } else {
+        run(&mut vec![0.0; len], &mut vec![0.0; len])
+    }
+}
 
 /// `run` on a scratch copy of `c`: for degrees up to 7 a buffer of that size (clearing 32
 /// slots per call was a tenth of a degree-7 intersection's time), up to [`STACK`] on the
@@ -379,23 +379,8 @@ pub fn eval_with_derivative2(cx: &[f64], cy: &[f64], t: f64) -> ((f64, f64), (f6
 /// The coefficients of `p` on `[0, t]` and on `[t, 1]`, each reparametrised to `[0, 1]`.
 #[must_use]
 pub fn split(c: &[f64], t: f64) -> (Vec<f64>, Vec<f64>) {
-    let n = c.len().saturating_sub(1);
-    let mut work = c.to_vec();
-    let mut left = Vec::with_capacity(n + 1);
-    let mut right = vec![0.0; n + 1];
-    if c.is_empty() {
-        return (Vec::new(), Vec::new());
-    }
-    let s = 1.0 - t;
-    left.push(work[0]);
-    right[n] = work[n];
-    for r in 1..=n {
-        for i in 0..=(n - r) {
-            work[i] = s * work[i] + t * work[i + 1];
-        }
-        left.push(work[0]);
-        right[n - r] = work[n - r];
-    }
+    let (mut left, mut right) = (vec![0.0; c.len()], vec![0.0; c.len()]);
+    split_into(c, t, &mut left, &mut right);
     (left, right)
 }
 
@@ -450,40 +435,29 @@ pub fn split_into(c: &[f64], t: f64, left: &mut [f64], right: &mut [f64]) {
     }
 }
 
-/// [`restrict`] into `out` (as long as `c`, at most 8), without allocating: the same
-/// arithmetic, so the same coefficients to the bit.
-///
-/// # Panics
-/// If `c` has more than 8 coefficients or `out` is not as long as `c`.
+/// [`restrict`] into `out` (as long as `c`): scratch rows on the stack up to degree 7.
 pub fn restrict_into(c: &[f64], a: f64, b: f64, out: &mut [f64]) {
-    let len = c.len();
-    let mut scratch = [0.0; 8];
-    let mut right = [0.0; 8];
-    if a > 0.0 {
-        split_into(c, a, &mut scratch[..len], &mut right[..len]);
-    } else {
-        right[..len].copy_from_slice(c);
-    }
-    if b >= 1.0 {
-        out.copy_from_slice(&right[..len]);
-        return;
-    }
-    let u = (b - a) / (1.0 - a);
-    split_into(&right[..len], u.clamp(0.0, 1.0), out, &mut scratch[..len]);
+    in_two_buffers(c.len(), |scratch, right| {
+        if a > 0.0 {
+            split_into(c, a, scratch, right);
+        } else {
+            right.copy_from_slice(c);
+        }
+        if b >= 1.0 {
+            out.copy_from_slice(right);
+            return;
+        }
+        let u = (b - a) / (1.0 - a);
+        split_into(right, u.clamp(0.0, 1.0), out, scratch);
+    });
 }
 
 /// The coefficients of `p` on `[a, b] ⊆ [0, 1]`, reparametrised to `[0, 1]`.
 #[must_use]
 pub fn restrict(c: &[f64], a: f64, b: f64) -> Vec<f64> {
-    if a <= 0.0 && b >= 1.0 {
-        return c.to_vec();
-    }
-    let right = if a > 0.0 { split(c, a).1 } else { c.to_vec() };
-    if b >= 1.0 {
-        return right;
-    }
-    let u = (b - a) / (1.0 - a);
-    split(&right, u.clamp(0.0, 1.0)).0
+    let mut out = vec![0.0; c.len()];
+    restrict_into(c, a, b, &mut out);
+    out
 }
 
 #[cfg(test)]
@@ -606,10 +580,47 @@ mod tests {
         assert_eq!(sorted(quadratic_roots(2.0, 2.0, 2.0)), (vec![], None));
     }
 
+    /// The de Casteljau split as first written (allocating, the left half pushed and the
+    /// right half filled from the end): `split` and `split_into` must give its bits.
+    fn split_as_written(c: &[f64], t: f64) -> (Vec<f64>, Vec<f64>) {
+        if c.is_empty() {
+            return (Vec::new(), Vec::new());
+        }
+        let n = c.len() - 1;
+        let mut work = c.to_vec();
+        let mut left = vec![work[0]];
+        let mut right = vec![0.0; n + 1];
+        right[n] = work[n];
+        let s = 1.0 - t;
+        for r in 1..=n {
+            for i in 0..=(n - r) {
+                work[i] = s * work[i] + t * work[i + 1];
+            }
+            left.push(work[0]);
+            right[n - r] = work[n - r];
+        }
+        (left, right)
+    }
+
+    fn bits(v: &[f64]) -> Vec<u64> {
+        v.iter().map(|x| x.to_bits()).collect()
+    }
+
     #[test]
     fn restricting_in_place_gives_the_same_coefficients() {
-        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-        for len in 1..=8 {
+        // `restrict` as first written: the right half at `a`, then its left half.
+        let restrict_as_written = |c: &[f64], a: f64, b: f64| {
+            let right = if a > 0.0 {
+                split_as_written(c, a).1
+            } else {
+                c.to_vec()
+            };
+            if b >= 1.0 {
+                return right;
+            }
+            split_as_written(&right, ((b - a) / (1.0 - a)).clamp(0.0, 1.0)).0
+        };
+        for len in 1..=12 {
             let c: Vec<f64> = (0..len).map(|i| (i as f64 * 0.37).sin() * 3.0).collect();
             for (a, b) in [
                 (0.0, 1.0),
@@ -618,32 +629,28 @@ mod tests {
                 (0.25, 0.75),
                 (0.6, 0.61),
             ] {
+                let want = bits(&restrict_as_written(&c, a, b));
                 let mut out = vec![f64::NAN; len];
                 restrict_into(&c, a, b, &mut out);
-                assert_eq!(bits(&out), bits(&restrict(&c, a, b)), "{c:?} on [{a}, {b}]");
+                assert_eq!(bits(&out), want, "{c:?} on [{a}, {b}]");
+                assert_eq!(bits(&restrict(&c, a, b)), want, "{c:?} on [{a}, {b}]");
             }
         }
     }
 
     #[test]
     fn splitting_in_place_gives_the_same_halves() {
-        let mut seed = 3_u64;
-        let mut rnd = || {
-            seed = seed
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
-        for len in 1..=8 {
+        let mut rng = crate::rng::Rng::new(3);
+        for len in 0..=12 {
             for _ in 0..50 {
-                let c: Vec<f64> = (0..len).map(|_| 4.0 * rnd() - 2.0).collect();
-                let t = rnd();
-                let (l, r) = split(&c, t);
+                let c: Vec<f64> = (0..len).map(|_| rng.range(-2.0, 2.0)).collect();
+                let t = rng.unit();
+                let (l, r) = split_as_written(&c, t);
                 let (mut l2, mut r2) = (vec![f64::NAN; len], vec![f64::NAN; len]);
                 split_into(&c, t, &mut l2, &mut r2);
-                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-                assert_eq!(bits(&l), bits(&l2), "{c:?} at {t}");
-                assert_eq!(bits(&r), bits(&r2), "{c:?} at {t}");
+                assert_eq!((bits(&l), bits(&r)), (bits(&l2), bits(&r2)), "{c:?} at {t}");
+                let (l3, r3) = split(&c, t);
+                assert_eq!((bits(&l), bits(&r)), (bits(&l3), bits(&r3)), "{c:?} at {t}");
             }
         }
     }

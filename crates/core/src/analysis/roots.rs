@@ -232,18 +232,11 @@ impl<'a> Finder<'a> {
             return;
         };
         let m = a + u * (b - a);
-        let len = lc.len();
-        if len <= 8 {
-            // Low degrees split on the stack.
-            let (mut left, mut right) = ([0.0; 8], [0.0; 8]);
-            poly::split_into(lc, u, &mut left[..len], &mut right[..len]);
-            self.isolate(&left[..len], a, m, depth + 1, out);
-            self.isolate(&right[..len], m, b, depth + 1, out);
-        } else {
-            let (left, right) = poly::split(lc, u);
-            self.isolate(&left, a, m, depth + 1, out);
-            self.isolate(&right, m, b, depth + 1, out);
-        }
+        poly::in_two_buffers(lc.len(), |left, right| {
+            poly::split_into(lc, u, left, right);
+            self.isolate(left, a, m, depth + 1, out);
+            self.isolate(right, m, b, depth + 1, out);
+        });
     }
 
     /// A split fraction of `[a, b]` at which `|p|` exceeds the noise `η` (and so its

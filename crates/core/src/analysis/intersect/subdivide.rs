@@ -57,34 +57,22 @@ impl Sub {
         let n = p.a[0].len();
         let mut h = Points::with_len(n);
         let slots = h.as_mut_slice();
-        if (u0 > 0.0 || u1 < 1.0) && n <= 8 {
-            // On the stack: the same coefficients as `restrict`'s.
-            let (mut x, mut y, mut w) = ([0.0; 8], [0.0; 8], [1.0; 8]);
-            poly::restrict_into(&p.a[0], u0, u1, &mut x[..n]);
-            poly::restrict_into(&p.a[1], u0, u1, &mut y[..n]);
-            if let Some(pw) = &p.w {
-                poly::restrict_into(pw, u0, u1, &mut w[..n]);
-            } else {
-                let ones = [1.0; 8];
-                poly::restrict_into(&ones[..n], u0, u1, &mut w[..n]);
-            }
-            for (i, slot) in slots.iter_mut().enumerate() {
-                *slot = [x[i], y[i], w[i]];
-            }
-        } else if u0 > 0.0 || u1 < 1.0 {
-            let axis = |c: &[f64]| poly::restrict(c, u0, u1);
-            let ones;
-            let w = match &p.w {
-                Some(w) => w.as_slice(),
-                None => {
-                    ones = vec![1.0; n];
-                    ones.as_slice()
+        if u0 > 0.0 || u1 < 1.0 {
+            // Each coordinate restricted into one scratch row (a polynomial's weights as
+            // ones, restricted too), then laid into the points.
+            poly::in_two_buffers(n, |row, ones| {
+                ones.fill(1.0);
+                let w = p.w.as_deref().unwrap_or(ones);
+                for (k, c) in [p.a[0].as_slice(), p.a[1].as_slice(), w]
+                    .into_iter()
+                    .enumerate()
+                {
+                    poly::restrict_into(c, u0, u1, row);
+                    for (slot, v) in slots.iter_mut().zip(row.iter()) {
+                        slot[k] = *v;
+                    }
                 }
-            };
-            let (x, y, w) = (axis(&p.a[0]), axis(&p.a[1]), axis(w));
-            for (i, slot) in slots.iter_mut().enumerate() {
-                *slot = [x[i], y[i], w[i]];
-            }
+            });
         } else {
             for (i, slot) in slots.iter_mut().enumerate() {
                 let w = p.w.as_ref().map_or(1.0, |w| w[i]);
