@@ -81,6 +81,7 @@ impl PlanarSpeed {
     /// for a degree above 6 or where the roots cannot be found to full precision
     /// (coefficients whose products overflow, or a root iteration that does not settle).
     #[must_use]
+    #[inline]
     pub fn new(x: &[f64], y: &[f64]) -> Option<PlanarSpeed> {
         let mut len = x.len().min(y.len());
         while len > 0 && x[len - 1] == 0.0 && y[len - 1] == 0.0 {
@@ -287,6 +288,7 @@ impl PlanarSpeed {
 
 /// The roots of `a + b z + c z²` (`c ≠ 0`), without cancellation (divisions by `quotient`,
 /// which does not overflow).
+#[inline]
 fn quadratic_roots(a: C64, b: C64, c: C64) -> [C64; 2] {
     let mut s = complex_sqrt(b * b - a * c * 4.0);
     // The sign that adds to `b` rather than cancelling it.
@@ -302,6 +304,7 @@ fn quadratic_roots(a: C64, b: C64, c: C64) -> [C64; 2] {
 
 /// `|z|`: `√(x² + y²)` where the sum of squares is a normal number, `hypot` (which scales)
 /// only where it overflows or underflows.
+#[inline]
 fn modulus(z: C64) -> f64 {
     let s = z.re * z.re + z.im * z.im;
     if s.is_normal() { s.sqrt() } else { z.norm() }
@@ -309,6 +312,7 @@ fn modulus(z: C64) -> f64 {
 
 /// `a / b`: `a b̄ / |b|²` where `|b|²` is a normal number and the result finite, `fdiv`
 /// (which scales) otherwise.
+#[inline]
 fn quotient(a: C64, b: C64) -> C64 {
     let s = b.re * b.re + b.im * b.im;
     if s.is_normal() {
@@ -326,6 +330,7 @@ fn quotient(a: C64, b: C64) -> C64 {
 /// The principal square root of `z` in algebraic form (`num-complex`'s goes through
 /// `atan2` and `sin`/`cos`): `t = √((|Re z| + |z|) / 2)`, then the other part is
 /// `Im z / 2t` — no cancellation, both halves scaled by ½ first so that nothing overflows.
+#[inline]
 fn complex_sqrt(z: C64) -> C64 {
     if z.im == 0.0 {
         return if z.re >= 0.0 {
@@ -577,6 +582,11 @@ impl PlanarSpeed {
                     cusp_widths[j] = delta;
                     continue;
                 }
+            }
+            // `α ≥ |w|` (the mean of the distances to `±1` is at least the distance to 0):
+            // a root that far is not nearer than the nearest so far.
+            if dist[j] * inv_h > alpha_min * (1.0 + 1e-12) {
+                continue;
             }
             let (wr, wi) = ((x - c) * inv_h, delta * inv_h);
             let alpha = 0.5 * (norm(wr - 1.0, wi) + norm(wr + 1.0, wi));

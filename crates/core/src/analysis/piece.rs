@@ -57,38 +57,87 @@ impl Power {
 
 /// The power-basis coefficients (ascending) of `Σ c_i B_{i,m}` (`c.len() ≤ POWER_MAX`):
 /// `a_k = C(m, k) Δᵏ c_0`.
+#[inline(always)]
 fn power_basis(c: &[f64]) -> Power {
-    let len = c.len().min(POWER_MAX);
+    match c.len() {
+        0 => power_basis_of::<0>(c),
+        1 => power_basis_of::<1>(c),
+        2 => power_basis_of::<2>(c),
+        3 => power_basis_of::<3>(c),
+        4 => power_basis_of::<4>(c),
+        5 => power_basis_of::<5>(c),
+        6 => power_basis_of::<6>(c),
+        _ => power_basis_of::<POWER_MAX>(c),
+    }
+}
+
+/// [`power_basis`] of `L` coefficients (a constant, so that the loops unroll).
+#[inline(always)]
+fn power_basis_of<const L: usize>(c: &[f64]) -> Power {
     let mut diff = [0.0; POWER_MAX];
-    diff[..len].copy_from_slice(&c[..len]);
+    diff[..L].copy_from_slice(&c[..L]);
     let mut out = Power {
         c: [0.0; POWER_MAX],
-        len,
+        len: L,
     };
-    let m = len.saturating_sub(1);
-    // C(m, k) along the row: `C(m, k) (m − k)` is an integer below 2⁵³ for the degrees
-    // here, so the product and the division by `k + 1` are exact.
-    let mut binomial = 1.0;
-    for k in 0..len {
-        out.c[k] = binomial * diff[0];
-        binomial = binomial * (m - k) as f64 / (k + 1) as f64;
-        for i in 0..len.saturating_sub(1 + k) {
+    let row = &BINOMIALS[L.saturating_sub(1)];
+    let mut k = 0;
+    while k < L {
+        out.c[k] = row[k] * diff[0];
+        let mut i = 0;
+        while i + 1 + k < L {
             diff[i] = diff[i + 1] - diff[i];
+            i += 1;
         }
+        k += 1;
     }
     out
 }
+
+/// `C(m, k)` for `m < POWER_MAX`, exact.
+const BINOMIALS: [[f64; POWER_MAX]; POWER_MAX] = {
+    let mut rows = [[0.0; POWER_MAX]; POWER_MAX];
+    let mut m = 0;
+    while m < POWER_MAX {
+        rows[m][0] = 1.0;
+        let mut k = 1;
+        while k <= m {
+            rows[m][k] = rows[m - 1][k - 1] + if k < m { rows[m - 1][k] } else { 0.0 };
+            k += 1;
+        }
+        m += 1;
+    }
+    rows
+};
 
 /// The speed [`Piece::new`] keeps for a planar polynomial segment with control points
 /// `pts` (degree ≤ 7), with its control polygon's length — computed the same way, to the
 /// bit, but without the piece's other arrays; `None` where the piece would have none.
 #[must_use]
+#[inline]
 pub fn planar_polynomial_speed(pts: &[DVec3]) -> Option<(PlanarSpeed, f64)> {
-    if pts.is_empty() || pts.len() > POWER_MAX + 1 || pts.iter().any(|p| p.z != 0.0) {
+    if pts.iter().any(|p| p.z != 0.0) {
         return None;
     }
+    // The number of points a constant, so that the loops below unroll.
+    match pts.len() {
+        1 => planar_speed_of::<1>(pts),
+        2 => planar_speed_of::<2>(pts),
+        3 => planar_speed_of::<3>(pts),
+        4 => planar_speed_of::<4>(pts),
+        5 => planar_speed_of::<5>(pts),
+        6 => planar_speed_of::<6>(pts),
+        7 => planar_speed_of::<7>(pts),
+        8 => planar_speed_of::<8>(pts),
+        _ => None,
+    }
+}
+
+/// [`planar_polynomial_speed`] of `P = pts.len()` points (`1 ≤ P ≤ POWER_MAX + 1`).
+#[inline(always)]
+fn planar_speed_of<const P: usize>(pts: &[DVec3]) -> Option<(PlanarSpeed, f64)> {
     // `poly::derivative` of each coordinate, in place.
-    let n = pts.len() - 1;
+    let n = P - 1;
     let mut dx = [0.0; POWER_MAX];
     let mut dy = [0.0; POWER_MAX];
     let len = n.max(1);
@@ -99,7 +148,7 @@ pub fn planar_polynomial_speed(pts: &[DVec3]) -> Option<(PlanarSpeed, f64)> {
     }
     let (x, y) = (power_basis(&dx[..len]), power_basis(&dy[..len]));
     let speed = PlanarSpeed::new(x.as_slice(), y.as_slice())?;
-    Some((speed, polygon_length(pts)))
+    Some((speed, polygon_length(&pts[..P])))
 }
 
 /// The length of the control polygon through `pts`.
@@ -577,6 +626,22 @@ fn rounding(len: usize, size: f64) -> f64 {
 mod tests {
     use super::*;
     use crate::geom::{Bezier, RationalBezier};
+
+    /// The table is Pascal's triangle: `C(m, k) = m! / (k! (m − k)!)`, in integers.
+    #[test]
+    fn binomials_are_pascals_triangle() {
+        let factorial = |n: usize| (1..=n as u64).product::<u64>();
+        for (m, row) in BINOMIALS.iter().enumerate() {
+            for (k, &c) in row.iter().enumerate() {
+                let want = if k <= m {
+                    factorial(m) / (factorial(k) * factorial(m - k))
+                } else {
+                    0
+                };
+                assert_eq!(c, want as f64, "C({m}, {k})");
+            }
+        }
+    }
 
     #[test]
     fn derivatives_agree_with_the_curves() {
