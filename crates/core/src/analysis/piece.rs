@@ -59,33 +59,20 @@ impl Power {
 /// `a_k = C(m, k) Δᵏ c_0`.
 #[inline(always)]
 fn power_basis(c: &[f64]) -> Power {
-    match c.len() {
-        0 => power_basis_of::<0>(c),
-        1 => power_basis_of::<1>(c),
-        2 => power_basis_of::<2>(c),
-        3 => power_basis_of::<3>(c),
-        4 => power_basis_of::<4>(c),
-        5 => power_basis_of::<5>(c),
-        6 => power_basis_of::<6>(c),
-        _ => power_basis_of::<POWER_MAX>(c),
-    }
-}
-
-/// [`power_basis`] of `L` coefficients (a constant, so that the loops unroll).
-#[inline(always)]
-fn power_basis_of<const L: usize>(c: &[f64]) -> Power {
+    let len = c.len().min(POWER_MAX);
     let mut diff = [0.0; POWER_MAX];
-    diff[..L].copy_from_slice(&c[..L]);
+    diff[..len].copy_from_slice(&c[..len]);
     let mut out = Power {
         c: [0.0; POWER_MAX],
-        len: L,
+        len,
     };
-    let row = &BINOMIALS[L.saturating_sub(1)];
+    let row = &BINOMIALS[len.saturating_sub(1)];
+    // `while` loops, which unroll where `len` is a constant ([`planar_speed_of`]).
     let mut k = 0;
-    while k < L {
+    while k < len {
         out.c[k] = row[k] * diff[0];
         let mut i = 0;
-        while i + 1 + k < L {
+        while i + 1 + k < len {
             diff[i] = diff[i + 1] - diff[i];
             i += 1;
         }
