@@ -368,6 +368,23 @@ impl Piece {
         }
     }
 
+    /// A bound on the rounding error of [`Piece::point`] at `u` in `x`, `y` (the sum of
+    /// the two): de Casteljau's running bounds on the numerators, and for a rational
+    /// piece the weight's, carried through the division.
+    #[must_use]
+    pub fn point_error(&self, u: f64) -> f64 {
+        let (x, ex) = poly::eval_with_bound(&self.a[0], u);
+        let (y, ey) = poly::eval_with_bound(&self.a[1], u);
+        match &self.w {
+            None => ex + ey,
+            Some(w) => {
+                let (wv, ew) = poly::eval_with_bound(w, u);
+                let c = x.abs().max(y.abs()) / wv;
+                (ex + ey + 2.0 * c * ew) / wv + 2.0 * f64::EPSILON * c
+            }
+        }
+    }
+
     /// For a polynomial piece of degree ≤ 3, the parameters in `(0, 1)` where some
     /// coordinate's derivative (a quadratic) may vanish: its real roots, and its vertex
     /// where the discriminant is within rounding of 0 ([`poly::quadratic_roots`]).

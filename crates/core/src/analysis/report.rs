@@ -138,8 +138,11 @@ pub struct HitReport {
     pub point: Xyz,
     /// `crossing` or `tangent`.
     pub kind: &'static str,
-    /// A bound on the parameters' error.
-    pub error: f64,
+    /// A bound on the error of `s` (a crossing: the evaluations' rounding over the speed
+    /// and the sine of the crossing angle; a tangency: its band).
+    pub error_s: f64,
+    /// A bound on the error of `t`.
+    pub error_t: f64,
 }
 
 /// A coincident stretch.
@@ -176,7 +179,8 @@ impl From<&Intersections> for IntersectionsReport {
                     t: h.t,
                     point: h.point.to_array(),
                     kind: kind_name(h.kind),
-                    error: h.error,
+                    error_s: h.error_s,
+                    error_t: h.error_t,
                 })
                 .collect(),
             overlaps: found

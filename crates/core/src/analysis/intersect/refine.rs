@@ -6,29 +6,39 @@ use glam::DVec2;
 
 use super::subdivide::to_unit;
 use crate::analysis::piece::Piece;
-use crate::analysis::{bernstein_roots, poly};
 
-/// Newton's method on `C₁(u) − C₂(v) = 0` from a candidate, `u`, `v` kept in `[0, 1]`;
-/// where a step does not reduce the residual (a singular Jacobian at a tangency, a
-/// candidate far off), damped steps (Levenberg–Marquardt) take over. Returns the
-/// parameters and the residual.
-pub(super) fn refine(a: &Piece, b: &Piece, u: f64, v: f64) -> (f64, f64, f64) {
+/// Newton's method on `C₁(u) − C₂(v) = 0` from a candidate, `u`, `v` kept in `[0, 1]`:
+/// the 2×2 system solved directly (its conditioning is the crossing's, where the normal
+/// equations would square it), a step halved until the residual falls — which keeps it
+/// converging, linearly, at a tangency of any order; where no halving helps (a candidate
+/// far off), damped steps (Levenberg–Marquardt) take over. It stops early where
+/// `stop(u, v)` holds (inside a point already found, to which it is converging —
+/// linearly, at a contact of high order). Returns the parameters and the residual.
+pub(super) fn refine_until(
+    a: &Piece,
+    b: &Piece,
+    u: f64,
+    v: f64,
+    stop: impl Fn(f64, f64) -> bool,
+) -> (f64, f64, f64) {
     let mut state = Lm::at(a, b, u, v);
     let mut lambda = 0.0_f64;
-    for _ in 0..100 {
-        if state.norm == 0.0 {
+    for _ in 0..200 {
+        if state.norm == 0.0 || stop(state.u, state.v) {
             break;
         }
-        match state.step(a, b, &mut lambda) {
-            Some(next) => {
-                let tiny = (next.u - state.u).abs() <= f64::EPSILON
-                    && (next.v - state.v).abs() <= f64::EPSILON;
-                state = next;
-                if tiny {
-                    break;
-                }
-            }
-            None => break,
+        let next = match state.newton(a, b) {
+            Some(next) => next,
+            None => match state.step(a, b, &mut lambda) {
+                Some(next) => next,
+                None => break,
+            },
+        };
+        let tiny =
+            (next.u - state.u).abs() <= f64::EPSILON && (next.v - state.v).abs() <= f64::EPSILON;
+        state = next;
+        if tiny {
+            break;
         }
     }
     (state.u, state.v, state.norm)
@@ -58,6 +68,29 @@ impl Lm {
             ja: dp.truncate(),
             jb: -dq.truncate(),
         }
+    }
+
+    /// Newton's step `J Δ = −r` by Cramer's rule, halved up to eight times until the
+    /// residual falls; `None` when it never does or `J` is singular.
+    fn newton(&self, a: &Piece, b: &Piece) -> Option<Lm> {
+        let det = self.ja.perp_dot(self.jb);
+        if det == 0.0 || !det.is_finite() {
+            return None;
+        }
+        let mut du = -self.r.perp_dot(self.jb) / det;
+        let mut dv = -self.ja.perp_dot(self.r) / det;
+        for _ in 0..8 {
+            if !(du.is_finite() && dv.is_finite()) {
+                return None;
+            }
+            let next = Lm::at(a, b, to_unit(self.u + du), to_unit(self.v + dv));
+            if next.norm < self.norm {
+                return Some(next);
+            }
+            du *= 0.5;
+            dv *= 0.5;
+        }
+        None
     }
 
     /// The next point: `(JᵀJ + λ diag) Δ = −Jᵀ r` (λ = 0: Newton's step), λ raised until
@@ -92,33 +125,30 @@ impl Lm {
     }
 }
 
-/// Whether `a` passes from one side of `b`'s tangent line at `b(v)` to the other around
-/// `a(u)` (a crossing at a small angle, or an odd order of contact) rather than staying on
-/// one side (touching): the signed distances a step `δ` before and after, where they are
-/// far above rounding.
-pub(super) fn crosses(a: &Piece, b: &Piece, u: f64, v: f64, (a0, a1): (f64, f64)) -> bool {
-    let (q, dq) = b.point_and_deriv(v);
-    let (q, dq) = (q.truncate(), dq.truncate());
-    let side = |w: f64| (a.point(w).truncate() - q).perp_dot(dq);
-    let delta = 1e-4 * (a1 - a0);
-    let (before, after) = (side((u - delta).max(a0)), side((u + delta).min(a1)));
-    let noise = 1e-12 * (q.length() + 1.0) * dq.length();
-    before.abs() > noise && after.abs() > noise && (before < 0.0) != (after < 0.0)
-}
-
 /// Newton's method on the tangency conditions — `(C₁(u) − C₂(v)) · C₂′(v) = 0` (the foot
 /// of the perpendicular) and `C₁′(u) × C₂′(v) = 0` (parallel tangents) — which is regular
 /// at a simple tangency where `C₁ = C₂` is not: from a point where the curves touch, it
-/// finds the touching point to full precision. `None` when it does not converge inside
-/// the ranges.
+/// finds the touching point to full precision; at a contact of higher order it converges
+/// linearly, and a step that does not reduce the conditions is halved. `None` when it
+/// does not converge inside the segments to a point whose tangents are parallel to within
+/// `10⁻⁷` (about `√ε`: a contact of high order stops there).
 pub(super) fn refine_tangent(a: &Piece, b: &Piece, mut u: f64, mut v: f64) -> Option<(f64, f64)> {
-    for _ in 0..40 {
-        let (p, q) = (a.point(u).truncate(), b.point(v).truncate());
-        let (d1, e1) = (a.deriv(u).truncate(), b.deriv(v).truncate());
-        let (d2, e2) = (a.second_deriv(u).truncate(), b.second_deriv(v).truncate());
+    // The conditions, scaled to a length and a sine, and their Jacobian.
+    let eval = |u: f64, v: f64| {
+        let ((p, d1), (q, e1)) = (a.point_and_deriv(u), b.point_and_deriv(v));
+        let (p, d1, q, e1) = (p.truncate(), d1.truncate(), q.truncate(), e1.truncate());
         let r = p - q;
-        let f1 = r.dot(e1);
-        let f2 = d1.perp_dot(e1);
+        let (f1, f2) = (r.dot(e1), d1.perp_dot(e1));
+        let norm = f1.abs() / e1.length() + f2.abs() / (d1.length() * e1.length());
+        (r, d1, e1, f1, f2, norm)
+    };
+    let (mut r, mut d1, mut e1, mut f1, mut f2, mut norm) = eval(u, v);
+    let parallel = |d1: DVec2, e1: DVec2| d1.perp_dot(e1).abs() <= 1e-7 * d1.length() * e1.length();
+    for _ in 0..80 {
+        if norm == 0.0 {
+            return Some((u, v));
+        }
+        let (d2, e2) = (a.second_deriv(u).truncate(), b.second_deriv(v).truncate());
         let j11 = d1.dot(e1);
         let j12 = -e1.length_squared() + r.dot(e2);
         let j21 = d2.perp_dot(e1);
@@ -127,51 +157,90 @@ pub(super) fn refine_tangent(a: &Piece, b: &Piece, mut u: f64, mut v: f64) -> Op
         if det == 0.0 || !det.is_finite() {
             return None;
         }
-        let du = -(j22 * f1 - j12 * f2) / det;
-        let dv = -(j11 * f2 - j21 * f1) / det;
-        let (nu, nv) = (u + du, v + dv);
-        if !(nu.is_finite() && nv.is_finite()) {
+        let mut du = -(j22 * f1 - j12 * f2) / det;
+        let mut dv = -(j11 * f2 - j21 * f1) / det;
+        if !(du.is_finite() && dv.is_finite()) {
             return None;
         }
-        let (nu, nv) = (to_unit(nu), to_unit(nv));
+        // Halve the step until the conditions fall (a few times at most near a root).
+        let mut accepted = None;
+        for _ in 0..30 {
+            let (nu, nv) = (to_unit(u + du), to_unit(v + dv));
+            let next = eval(nu, nv);
+            if next.5 < norm || (nu == u && nv == v) {
+                accepted = Some((nu, nv, next));
+                break;
+            }
+            du *= 0.5;
+            dv *= 0.5;
+        }
+        let Some((nu, nv, next)) = accepted else {
+            // No step reduces them: as converged as f64 allows, if the tangents agree.
+            return parallel(d1, e1).then_some((u, v));
+        };
         let done = (nu - u).abs() <= 2.0 * f64::EPSILON && (nv - v).abs() <= 2.0 * f64::EPSILON;
-        u = nu;
-        v = nv;
+        (u, v) = (nu, nv);
+        (r, d1, e1, f1, f2, norm) = next;
         if done {
-            return Some((u, v));
+            return parallel(d1, e1).then_some((u, v));
         }
     }
     None
 }
 
-/// The closest point of piece `p` on its range `[u0, u1]` to `q` (2D): its parameter and
-/// distance, from the roots of `(C(u) − q) · C′(u)` (numerator) and the range's ends.
-pub(super) fn closest(p: &Piece, (u0, u1): (f64, f64), q: DVec2) -> (f64, f64) {
-    let w = p.w.as_deref();
-    // (A − qW) per axis, and the velocity numerator per axis.
-    let shifted = |k: usize, qk: f64| -> Vec<f64> {
-        match w {
-            Some(w) => p.a[k].iter().zip(w).map(|(a, w)| a - qk * w).collect(),
-            None => p.a[k].iter().map(|a| a - qk).collect(),
+/// The foot of the perpendicular from `q` on `p` near `v` (Newton's method on
+/// `(C(v) − q) · C′(v)`, kept in `range`): for points walking along a curve that stays
+/// close to `p`, and to polish a root of the product polynomial (whose coefficients lose
+/// digits when the weights lie far apart).
+pub(super) fn foot(p: &Piece, range: (f64, f64), q: DVec2, v: f64) -> f64 {
+    foot_converged(p, range, q, v).0
+}
+
+/// [`foot`], and whether it converged (to a local minimum of the distance, as far as
+/// `f64` can tell): each step — Newton's where the squared distance is convex, else
+/// Gauss–Newton's — halved until the distance does not grow.
+pub(super) fn foot_converged(p: &Piece, range: (f64, f64), q: DVec2, mut v: f64) -> (f64, bool) {
+    let dist = |v: f64| (p.point(v).truncate() - q).length_squared();
+    let mut here = dist(v);
+    for _ in 0..60 {
+        let (c, d) = p.point_and_deriv(v);
+        let (c, d) = (c.truncate(), d.truncate());
+        let dd = p.second_deriv(v).truncate();
+        let g = (c - q).dot(d);
+        let speed2 = d.length_squared();
+        let full = speed2 + (c - q).dot(dd);
+        // Newton's step where the squared distance is clearly convex, else Gauss–Newton's;
+        // never longer than the range.
+        let dg = if full > 0.1 * speed2 && full.is_finite() {
+            full
+        } else {
+            speed2
+        };
+        if dg.is_nan() || dg <= 0.0 || !dg.is_finite() || g == 0.0 {
+            return (v, g == 0.0 || here == 0.0);
         }
-    };
-    let dot = poly::sum(
-        &poly::product(&shifted(0, q.x), &p.deriv_numerator(0)),
-        &poly::product(&shifted(1, q.y), &p.deriv_numerator(1)),
-    );
-    let mut best = (0.0, f64::INFINITY);
-    let mut consider = |u: f64| {
-        let d = (p.point(u).truncate() - q).length();
-        if d < best.1 {
-            best = (u, d);
+        let width = range.1 - range.0;
+        let mut step = (-g / dg).clamp(-width, width);
+        let mut moved = None;
+        for _ in 0..40 {
+            let next = (v + step).clamp(range.0, range.1);
+            let there = dist(next);
+            if there <= here {
+                moved = Some((next, there));
+                break;
+            }
+            step *= 0.5;
         }
-    };
-    consider(u0);
-    consider(u1);
-    for r in bernstein_roots(&dot).roots {
-        if r.t >= u0 && r.t <= u1 {
-            consider(r.t);
+        let Some((next, there)) = moved else {
+            // No step helps: a minimum to rounding if the slope is at its rounding level.
+            let level = 8.0 * f64::EPSILON * d.length() * (c.length() + q.length());
+            return (v, g.abs() <= level);
+        };
+        let tiny = (next - v).abs() <= 2.0 * f64::EPSILON * v.abs().max(f64::MIN_POSITIVE);
+        (v, here) = (next, there);
+        if tiny || here == 0.0 {
+            return (v, true);
         }
     }
-    best
+    (v, false)
 }

@@ -87,6 +87,11 @@ impl Sub {
         }
     }
 
+    /// The range of the segment's own parameter this sub-segment covers.
+    pub(super) fn range(&self) -> (f64, f64) {
+        (self.u0, self.u1)
+    }
+
     pub(super) fn len(&self) -> usize {
         self.h.as_slice().len()
     }
@@ -151,7 +156,7 @@ impl Sub {
     /// points (so it holds `other`). For a rational piece the distances are weighed:
     /// `Σ w_i (d_i − d_min) B_i ≥ 0` and `Σ w_i (d_max − d_i) B_i ≥ 0`, with `W > 0`.
     /// `None` when no part can.
-    pub(super) fn clipped_by(&self, other: &Sub) -> Option<Sub> {
+    pub(super) fn clipped_by(&self, other: &Sub, margin: f64) -> Option<Sub> {
         let m = other.len() - 1;
         let origin = other.point(0);
         let mut dir = other.point(m) - origin;
@@ -171,7 +176,9 @@ impl Sub {
             dmin = dmin.min(d);
             dmax = dmax.max(d);
         }
-        let slack = 1e-12 * (dmax - dmin).max(dir.length());
+        // Widened by the resolution: the points' own rounding is relative to their
+        // coordinates, not to the strip.
+        let slack = (1e-12 * (dmax - dmin).max(dir.length())).max(margin);
         let (dmin, dmax) = (dmin - slack, dmax + slack);
         let h = self.h.as_slice();
         let mut below = [0.0; 16];
@@ -263,6 +270,69 @@ impl Sub {
             .fold(0.0, f64::max)
     }
 
+    /// The sub-segment's own parameter where its point lies at `alpha` of the way along
+    /// its chord: the fraction is `Σ wᵢ αᵢ Bᵢ / Σ wᵢ Bᵢ` (`αᵢ` the control points'
+    /// fractions), solved by bisection where the control points advance along the chord,
+    /// else `alpha` itself. (A parametrisation that runs unevenly — weights far apart,
+    /// points bunched — puts the chord's fraction far from the parameter, and Newton's
+    /// method far from its point.)
+    pub(super) fn parameter_of_fraction(&self, alpha: f64) -> f64 {
+        if !self.advances() {
+            return alpha;
+        }
+        let c = self.chord();
+        let len2 = c.length_squared();
+        if len2 == 0.0 {
+            return alpha;
+        }
+        let origin = self.point(0);
+        let h = self.h.as_slice();
+        let n = h.len();
+        let mut num = [0.0; 16];
+        let mut den = [0.0; 16];
+        if n > 16 {
+            return alpha;
+        }
+        for (i, v) in h.iter().enumerate() {
+            let w = if self.rational { v[2] } else { 1.0 };
+            num[i] = w * (self.point(i) - origin).dot(c) / len2;
+            den[i] = w;
+        }
+        let fraction = |t: f64| {
+            let (x, w) = (poly::eval(&num[..n], t), poly::eval(&den[..n], t));
+            x / w
+        };
+        let (mut lo, mut hi) = (0.0, 1.0);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if fraction(mid) < alpha {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+            if hi - lo <= f64::EPSILON {
+                break;
+            }
+        }
+        0.5 * (lo + hi)
+    }
+
+    /// Whether the control points advance along the chord (their projections on it in
+    /// order): then so does the curve, and a point near it has one foot there.
+    pub(super) fn advances(&self) -> bool {
+        let c = self.chord();
+        let origin = self.point(0);
+        let mut last = 0.0;
+        for i in 1..self.len() {
+            let t = (self.point(i) - origin).dot(c);
+            if t < last {
+                return false;
+            }
+            last = t;
+        }
+        true
+    }
+
     pub(super) fn halves(&self) -> (Sub, Sub) {
         let n = self.len() - 1;
         let mut left = Points::with_len(n + 1);
@@ -302,30 +372,6 @@ impl Sub {
     }
 }
 
-/// Whether `q` lies farther than `tol` from the piece on `[u0, u1]`, shown by boxes: the
-/// sub-pieces' control boxes (which hold them, rational ones too) halved until every box
-/// near `q` is gone. `false` when a box within `tol` of `q` is no larger than `tol` or
-/// after 64 halvings — then only the closest point can tell.
-pub(super) fn surely_off(p: &Piece, (u0, u1): (f64, f64), q: DVec2, tol: f64) -> bool {
-    let mut stack = vec![Sub::of(p, u0, u1)];
-    let mut halvings = 0;
-    while let Some(s) = stack.pop() {
-        let (lo, hi) = s.bounds();
-        let gap = (lo - q).max(q - hi).max(DVec2::ZERO).length();
-        if gap > tol {
-            continue;
-        }
-        if halvings == 64 || (hi - lo).max_element() <= tol {
-            return false;
-        }
-        halvings += 1;
-        let (l, r) = s.halves();
-        stack.push(l);
-        stack.push(r);
-    }
-    true
-}
-
 /// `x` held to `[0, 1]`; a NaN becomes ½ (never left to the optimiser's choice of
 /// `min`/`max`, which treat NaN differently).
 #[allow(clippy::manual_clamp)]
@@ -348,35 +394,79 @@ pub(super) fn boxes_meet(a: (DVec2, DVec2), b: (DVec2, DVec2), margin: f64) -> b
         && b.0.y <= a.1.y + margin
 }
 
-/// Candidate `(u, v)` pairs of two segments from subdivision: the crossing of the chords
-/// of two sub-segments flat to `flat`, or of two that meet at most once (flat to 5 % of
-/// their chords, their tangent cones disjoint).
-pub(super) struct Subdivider {
-    pub(super) flat: f64,
-    pub(super) margin: f64,
-    /// `(u, v)` to start from, and — for a pair that meets at most once — the sub-ranges
-    /// `(u0, u1, v0, v1)` that hold its one point.
-    pub(super) candidates: Vec<Candidate>,
+/// What the subdivision hands its leaves to: each leaf's start for Newton's method, and
+/// whether a pair of sub-ranges is already accounted for (inside a tangency's band).
+pub(super) trait Leaves {
+    /// A start `(u, v)` for Newton's method, the leaf's sub-ranges `[u0, u1, v0, v1]`, and
+    /// whether the pair meets at most once. Returns what is left to do there.
+    fn leaf(&mut self, start: (f64, f64), ranges: [f64; 4], single: bool) -> Rest;
+    /// Whether nothing is left to find where `u ∈ a` and `v ∈ b`.
+    fn covered(&self, a: (f64, f64), b: (f64, f64)) -> bool;
 }
 
-/// A start `(u, v)` for Newton's method, and for a pair meeting at most once the
-/// sub-ranges `[u0, u1, v0, v1]` holding its point.
-pub(super) type Candidate = ((f64, f64), Option<[f64; 4]>);
+/// What is left of a leaf once the visitor has seen it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Rest {
+    /// Nothing.
+    Done,
+    /// The leaf, subdivided further: a pair that meets at most once whose point was not
+    /// found inside it (its point may be far from the chords' crossing when the curves run
+    /// nearly parallel).
+    Deeper,
+    /// The leaf with `u` in `(lo, hi)` taken out (around the point found there): another
+    /// point may lie beside it in a leaf flat to the resolution.
+    Beside(f64, f64),
+}
 
-impl Subdivider {
+/// Two segments subdivided down to leaves: pairs of sub-segments flat to `flat` (then the
+/// crossing of their chords starts Newton's method), or that meet at most once (flat to
+/// 5 % of their chords, their tangent cones disjoint). Leaves go to the visitor as they
+/// are found, so that what it finds prunes the rest.
+pub(super) struct Subdivider<'v, V: Leaves> {
+    pub(super) flat: f64,
+    pub(super) margin: f64,
+    pub(super) visitor: &'v mut V,
+    /// Leaves handed over so far.
+    pub(super) leaves: usize,
+}
+
+/// More leaves than this for one pair of segments means stretches closer than the
+/// resolution that are not coincident: the subdivision stops.
+const MAX_LEAVES: usize = 1 << 16;
+
+impl<V: Leaves> Subdivider<'_, V> {
     pub(super) fn run(&mut self, a: &Sub, b: &Sub, depth: u32) {
         let (ba, bb) = (a.bounds(), b.bounds());
         if !boxes_meet(ba, bb, self.margin) {
             return;
         }
-        // Too many candidates means coincident stretches the overlap test did not catch:
-        // stop rather than multiply them.
-        if self.candidates.len() > 4096 {
+        if self.leaves > MAX_LEAVES || self.visitor.covered(a.range(), b.range()) {
             return;
         }
         let (fa, fb) = (a.flatness(), b.flatness());
-        if (fa <= self.flat && fb <= self.flat) || depth >= 64 {
-            self.candidates.push((chord_crossing(a, b), None));
+        if (fa <= self.flat && fb <= self.flat) || depth >= 96 {
+            // Flat pieces farther apart than their flatness (each outside the other's
+            // fat line) do not meet: no leaf.
+            if (fa > 0.0 || fb > 0.0)
+                && (b.clipped_by(a, self.margin).is_none()
+                    || a.clipped_by(b, self.margin).is_none())
+            {
+                return;
+            }
+            self.leaves += 1;
+            if let Rest::Beside(lo, hi) =
+                self.visitor
+                    .leaf(chord_crossing(a, b), [a.u0, a.u1, b.u0, b.u1], false)
+                && depth < 96
+            {
+                let span = a.u1 - a.u0;
+                for (x0, x1) in [(a.u0, lo), (hi, a.u1)] {
+                    if x1 > x0 && (x1 - x0) > 1e-9 * span {
+                        let part = a.restricted((x0 - a.u0) / span, (x1 - a.u0) / span);
+                        self.run(&part, b, depth + 1);
+                    }
+                }
+            }
             return;
         }
         // Two pieces each within 5 % of its chord's length of the chord, whose tangent
@@ -388,18 +478,23 @@ impl Subdivider {
             && let (Some(ka), Some(kb)) = (a.cone(), b.cone())
             && cones_disjoint(ka, kb)
         {
-            self.candidates
-                .push((chord_crossing(a, b), Some([a.u0, a.u1, b.u0, b.u1])));
-            return;
+            self.leaves += 1;
+            if self
+                .visitor
+                .leaf(chord_crossing(a, b), [a.u0, a.u1, b.u0, b.u1], true)
+                != Rest::Deeper
+            {
+                return;
+            }
         }
         // Fat-line clipping (Sederberg–Nishita): the part of `b` inside the strip around
         // `a`'s chord that holds `a`, then the part of `a` inside the strip around the
         // clipped `b`'s chord. Each clip keeps every point the two have in common.
-        if fa > 0.0 && fb > 0.0 {
-            let Some(b2) = b.clipped_by(a) else {
+        if fa > 0.0 || fb > 0.0 {
+            let Some(b2) = b.clipped_by(a, self.margin) else {
                 return;
             };
-            let Some(a2) = a.clipped_by(&b2) else {
+            let Some(a2) = a.clipped_by(&b2, self.margin) else {
                 return;
             };
             let shrink = ((a2.u1 - a2.u0) * (b2.u1 - b2.u0)) / ((a.u1 - a.u0) * (b.u1 - b.u0));
@@ -414,13 +509,14 @@ impl Subdivider {
     }
 
     /// Halves the larger of two pieces that clipping did not shrink enough (several points
-    /// in common, or a tangency) and examines both halves.
+    /// in common, or a tangency) and examines both halves. (The larger, flat or not: a
+    /// line's box holds much of the plane, and only halving it separates a curve that
+    /// passes near it.)
     pub(super) fn split(&mut self, a: &Sub, b: &Sub, depth: u32) {
         let (ba, bb) = (a.bounds(), b.bounds());
-        let (fa, fb) = (a.flatness(), b.flatness());
         let size_a = (ba.1 - ba.0).length();
         let size_b = (bb.1 - bb.0).length();
-        if (fa > self.flat && size_a >= size_b) || fb <= self.flat {
+        if size_a >= size_b {
             let (l, r) = a.halves();
             self.run(&l, b, depth + 1);
             self.run(&r, b, depth + 1);
@@ -509,54 +605,17 @@ pub(super) fn chord_crossing(a: &Sub, b: &Sub) -> (f64, f64) {
     } else {
         (0.5, 0.5)
     };
+    let (alpha, beta) = (
+        a.parameter_of_fraction(alpha),
+        b.parameter_of_fraction(beta),
+    );
     (a.u0 + alpha * (a.u1 - a.u0), b.u0 + beta * (b.u1 - b.u0))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::{Bezier, BezierSegment};
     use crate::rng::Rng;
-    use glam::DVec3;
-
-    fn random_piece(rng: &mut Rng, degree: usize, rational: bool) -> Piece {
-        let points = (0..=degree)
-            .map(|_| DVec3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), 0.0))
-            .collect();
-        let weights = rational.then(|| (0..=degree).map(|_| rng.range(0.1, 10.0)).collect());
-        Piece::new(&BezierSegment {
-            bezier: Bezier::new(points),
-            weights,
-            t0: 0.0,
-            t1: 1.0,
-        })
-    }
-
-    #[test]
-    fn a_point_near_the_curve_is_never_surely_off_and_a_far_one_is() {
-        let mut rng = Rng::new(5);
-        for case in 0..400 {
-            let p = random_piece(&mut rng, 1 + case % 7, case % 2 == 1);
-            let tol = 10f64.powf(rng.range(-12.0, -2.0));
-            let (u0, u1) = if case % 3 == 0 {
-                (rng.range(0.0, 0.5), rng.range(0.5, 1.0))
-            } else {
-                (0.0, 1.0)
-            };
-            // On the curve, then moved by less than the tolerance in any direction.
-            let u = rng.range(u0, u1);
-            let angle = rng.range(0.0, std::f64::consts::TAU);
-            let near = p.point(u).truncate()
-                + 0.9 * tol * rng.unit() * DVec2::new(angle.cos(), angle.sin());
-            assert!(
-                !surely_off(&p, (u0, u1), near, tol),
-                "case {case}: a point within {tol} of the curve at u = {u} called off"
-            );
-            // Far outside the unit square the points lie in.
-            let far = DVec2::new(5.0 * angle.cos(), 5.0 * angle.sin());
-            assert!(surely_off(&p, (u0, u1), far, tol), "case {case}: {far}");
-        }
-    }
 
     #[test]
     fn pseudo_angles_order_directions_as_angles_and_turn_by_one_a_quarter() {

@@ -1,0 +1,278 @@
+//! Intersections on the hard classes, in bulk: end points on interiors, joins, tangencies
+//! of the first and second order, coincident pieces (also of self-crossing curves), and
+//! near-parallel near-straight pairs, degrees 1–7, polynomial and rational — each case
+//! checked against its construction (exact), and those of degree ≤ 3 against the exact
+//! oracle (resultants, Sturm sequences) for everything the pair has in common.
+//!
+//! `SPLINESCOPE_CLASS_CASES` sets the cases per class (default 1,500; the bench script
+//! `scripts/bench-intersections` runs 100,000); `SPLINESCOPE_ORACLE_EVERY` runs the oracle
+//! on every k-th case of degree ≤ 3 (default 4).
+
+mod support;
+
+use glam::DVec3;
+use num_traits::ToPrimitive;
+use splinescope_core::analysis::{CurveAnalysis, HitKind, Intersections};
+use splinescope_core::geom::{Bezier, RationalBezier};
+
+use support::classes::{Case, Class, Gen, Seg};
+use support::exact::{self, Kind, Q};
+
+fn analysis(seg: &Seg) -> CurveAnalysis {
+    let pts: Vec<DVec3> = seg
+        .points
+        .iter()
+        .map(|&(x, y)| DVec3::new(x, y, 0.0))
+        .collect();
+    match &seg.weights {
+        None => CurveAnalysis::new(&Bezier::new(pts)),
+        Some(w) => CurveAnalysis::new(&RationalBezier::try_new(pts, w.clone()).expect("weights")),
+    }
+}
+
+fn f(x: &Q) -> f64 {
+    x.to_f64().expect("finite")
+}
+
+fn kind(k: Kind) -> HitKind {
+    match k {
+        Kind::Crossing => HitKind::Crossing,
+        Kind::Tangent => HitKind::Tangent,
+    }
+}
+
+/// The slack every comparison allows beyond a hit's stated error: the rounding of the
+/// parameter itself.
+const ULP: f64 = 2.0 * f64::EPSILON;
+
+/// Whether the float overlap matches `((s0, s1), (t0, t1))` to `1e−9`.
+fn overlap_matches(o: &splinescope_core::analysis::Overlap, s: (f64, f64), t: (f64, f64)) -> bool {
+    let near = |a: f64, b: f64| (a - b).abs() <= 1e-9;
+    let (fs, ft) = if (o.s.0 <= o.s.1) == (s.0 <= s.1) {
+        (o.s, o.t)
+    } else {
+        ((o.s.1, o.s.0), (o.t.1, o.t.0))
+    };
+    near(fs.0, s.0) && near(fs.1, s.1) && near(ft.0, t.0) && near(ft.1, t.1)
+}
+
+/// What the construction guarantees, against what was found.
+fn against_construction(case: &Case, found: &Intersections) -> Vec<String> {
+    let mut problems = Vec::new();
+    for (s, t, k) in &case.points {
+        let (s, t) = (f(s), f(t));
+        let hit = found
+            .hits
+            .iter()
+            .find(|h| (h.s - s).abs() <= h.error_s + ULP && (h.t - t).abs() <= h.error_t + ULP);
+        match hit {
+            None => problems.push(format!(
+                "missed the {:?} at (s, t) = ({s}, {t}); found {:?}",
+                k, found
+            )),
+            Some(h) if h.kind != kind(*k) => problems.push(format!(
+                "the point at ({s}, {t}) is a {k:?}, found as {:?}",
+                h.kind
+            )),
+            Some(_) => {}
+        }
+    }
+    for ((s0, s1), (t0, t1)) in &case.overlaps {
+        let (s, t) = ((f(s0), f(s1)), (f(t0), f(t1)));
+        if !found.overlaps.iter().any(|o| overlap_matches(o, s, t)) {
+            problems.push(format!(
+                "missed the overlap s {s:?} ↔ t {t:?}; found {found:?}"
+            ));
+        }
+    }
+    if !case.overlaps.is_empty() {
+        for h in &found.hits {
+            let inside = case.overlaps.iter().any(|((s0, s1), (t0, t1))| {
+                let within = |x: f64, a: f64, b: f64| x > a.min(b) + 1e-9 && x < a.max(b) - 1e-9;
+                within(h.s, f(s0), f(s1)) || within(h.t, f(t0), f(t1))
+            });
+            if inside {
+                problems.push(format!("a point reported inside the overlap: {h:?}"));
+            }
+        }
+    }
+    problems
+}
+
+/// Everything the pair has in common, exactly, against what was found: every exact point
+/// within the stated error of a found one of its kind, every found one holding an exact
+/// one, the overlaps alike. A found tangency's error is its band — where the curves stay
+/// within the resolution of each other — and an exact crossing inside the band of a
+/// tangency that holds an exact tangent point is part of that contact (f64 cannot tell
+/// the two apart); the count of those is returned.
+fn against_oracle(case: &Case, found: &Intersections) -> (Vec<String>, usize) {
+    let truth = exact::intersect(&case.a.exact(), &case.b.exact());
+    let mut problems = Vec::new();
+    let mut merged = 0;
+    let holds = |p: &exact::Point, h: &splinescope_core::analysis::Hit| {
+        p.s.holds(h.s, h.error_s + ULP) && p.t.holds(h.t, h.error_t + ULP)
+    };
+    let mut used = vec![false; found.hits.len()];
+    for p in &truth.points {
+        let same_kind = found
+            .hits
+            .iter()
+            .position(|h| holds(p, h) && h.kind == kind(p.kind));
+        if let Some(i) = same_kind {
+            used[i] = true;
+            continue;
+        }
+        // A crossing inside a tangency's band, the band holding an exact tangent point.
+        let contact = found.hits.iter().position(|h| {
+            h.kind == HitKind::Tangent
+                && holds(p, h)
+                && truth
+                    .points
+                    .iter()
+                    .any(|q| q.kind == Kind::Tangent && holds(q, h))
+        });
+        if p.kind == Kind::Crossing && contact.is_some() {
+            merged += 1;
+            continue;
+        }
+        match found.hits.iter().find(|h| holds(p, h)) {
+            None => problems.push(format!(
+                "oracle: missed the {:?} at ({}, {}); found {found:?}",
+                p.kind,
+                p.s.to_f64(),
+                p.t.to_f64()
+            )),
+            Some(h) => problems.push(format!(
+                "oracle: the point at ({}, {}) is a {:?}, found as {h:?}",
+                p.s.to_f64(),
+                p.t.to_f64(),
+                p.kind,
+            )),
+        }
+    }
+    for (h, u) in found.hits.iter().zip(&used) {
+        if !u {
+            problems.push(format!(
+                "oracle: a point that is not there: {h:?}; truth {truth:?}"
+            ));
+        }
+    }
+    for o in &truth.overlaps {
+        let s = (o.s.0.to_f64(), o.s.1.to_f64());
+        let t = (o.t.0.to_f64(), o.t.1.to_f64());
+        if !found.overlaps.iter().any(|x| overlap_matches(x, s, t)) {
+            problems.push(format!(
+                "oracle: missed the overlap s {s:?} ↔ t {t:?}; found {found:?}"
+            ));
+        }
+    }
+    if found.overlaps.len() != truth.overlaps.len() {
+        problems.push(format!(
+            "oracle: {} overlaps, found {}",
+            truth.overlaps.len(),
+            found.overlaps.len()
+        ));
+    }
+    (problems, merged)
+}
+
+fn cases_per_class() -> usize {
+    std::env::var("SPLINESCOPE_CLASS_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1500)
+}
+
+fn oracle_every() -> usize {
+    std::env::var("SPLINESCOPE_ORACLE_EVERY")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(4)
+        .max(1)
+}
+
+/// Per class: cases, cases against the oracle, exact crossings inside a contact's band,
+/// and the failures.
+fn run_class(class: Class, seed: u64) -> (usize, usize, usize, Vec<String>) {
+    let mut g = Gen::new(seed);
+    let n = cases_per_class();
+    let every = oracle_every();
+    let mut failures = Vec::new();
+    let mut oracle_runs = 0;
+    let mut merged = 0;
+    let (mut t_gen, mut t_float) = (0.0, 0.0);
+    for i in 0..n {
+        let clock = std::time::Instant::now();
+        let case = g.case(class);
+        let (a, b) = (
+            case.a.to_float().expect("representable"),
+            case.b.to_float().expect("representable"),
+        );
+        t_gen += clock.elapsed().as_secs_f64();
+        let clock = std::time::Instant::now();
+        let found = analysis(&a).intersect(&analysis(&b)).expect("planar");
+        t_float += clock.elapsed().as_secs_f64();
+        let mut problems = against_construction(&case, &found);
+        let (da, db) = case.degrees();
+        if problems.is_empty() && da <= 3 && db <= 3 && i % every == 0 {
+            oracle_runs += 1;
+            match std::panic::catch_unwind(|| against_oracle(&case, &found)) {
+                Ok((p, m)) => {
+                    problems.extend(p);
+                    merged += m;
+                }
+                Err(e) => problems.push(format!(
+                    "the oracle failed: {}",
+                    e.downcast_ref::<&str>()
+                        .map(|s| s.to_string())
+                        .or_else(|| e.downcast_ref::<String>().cloned())
+                        .unwrap_or_default()
+                )),
+            }
+        }
+        if !problems.is_empty() {
+            failures.push(format!(
+                "{} case {i} (degrees {da}/{db}): {}\n  a = {a:?}\n  b = {b:?}",
+                class.name(),
+                problems.join("; ")
+            ));
+        }
+    }
+    eprintln!(
+        "{}: generating {t_gen:.2} s, intersecting {t_float:.2} s",
+        class.name()
+    );
+    (n, oracle_runs, merged, failures)
+}
+
+#[test]
+fn constructed_classes_are_never_missed() {
+    let mut report = Vec::new();
+    let mut all = Vec::new();
+    // `SPLINESCOPE_CLASS` (part of a class's name) runs one class only.
+    let only = std::env::var("SPLINESCOPE_CLASS").unwrap_or_default();
+    let show: usize = std::env::var("SPLINESCOPE_SHOW")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(3);
+    for (k, class) in Class::ALL.iter().enumerate() {
+        if !class.name().contains(only.as_str()) {
+            continue;
+        }
+        let (n, oracle, merged, failures) = run_class(*class, 1000 + k as u64);
+        report.push(format!(
+            "{:<40} {n:>7} cases, {oracle:>6} against the oracle ({merged} crossings inside a \
+             contact's band), {:>5} failures",
+            class.name(),
+            failures.len()
+        ));
+        all.extend(failures.into_iter().take(show));
+    }
+    println!("{}", report.join("\n"));
+    assert!(
+        all.is_empty(),
+        "{}\n\n{}",
+        report.join("\n"),
+        all.join("\n\n")
+    );
+}
