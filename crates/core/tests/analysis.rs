@@ -984,7 +984,7 @@ fn many_curves_agree_with_every_pair() {
         })
         .collect();
     let analyses: Vec<CurveAnalysis> = curves.iter().map(CurveAnalysis::new).collect();
-    let all = all_intersections(&analyses).expect("planar");
+    let all = all_intersections(&analyses).expect("planar").pairs;
     let mut count = 0;
     for i in 0..curves.len() {
         for j in (i + 1)..curves.len() {

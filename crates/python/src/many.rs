@@ -3,33 +3,29 @@
 //! benchmark reads.
 
 use glam::DVec3;
+use pyo3::intern;
 use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList, PySlice};
 
 use splinescope_core::analysis::CurveAnalysis;
 use splinescope_core::geom::batch::{CurveSampler, sample_many};
 
 use crate::arrays;
 use crate::arrays::fill;
-use crate::curve::{PyCurve, analysis_error, check_sample_count, hits_out};
+use crate::curve::{PyCurve, analysis_error, check_sample_count};
 use crate::errors::{CurveError, raise};
 
-/// Every intersecting pair among `curves` (2D): a list of `(i, j, (s, t) pairs (K, 2),
-/// kinds, overlaps)`, `i < j`, on every core.
+/// Every intersecting pair among `curves` (2D), on every core, and the groups of copies:
+/// a list of dicts — `{"i", "j", "params": (K, 2) array of (s, t), "kinds", "overlaps"}`
+/// for each pair that meets, `i < j`, then `{"copies": [indices], "interval": (t0, t1)}`
+/// for each group of curves that coincide entirely (the same segments over the same
+/// domain), reported once rather than as pairs.
 #[pyfunction]
-#[allow(clippy::type_complexity)]
 pub fn intersections<'py>(
     py: Python<'py>,
     curves: Vec<PyRef<'py, PyCurve>>,
-) -> PyResult<
-    Vec<(
-        usize,
-        usize,
-        Bound<'py, PyAny>,
-        Vec<&'static str>,
-        Vec<((f64, f64), (f64, f64))>,
-    )>,
-> {
-    let analyses: Vec<CurveAnalysis> = curves.iter().map(|c| c.analysis().clone()).collect();
+) -> PyResult<Bound<'py, PyList>> {
+    let analyses: Vec<&CurveAnalysis> = curves.iter().map(|c| c.analysis()).collect();
     if let Some(k) = analyses.iter().position(|c| !c.is_planar()) {
         return Err(raise::<CurveError>(
             format!(
@@ -38,16 +34,56 @@ pub fn intersections<'py>(
             &format!("curves[{k}]"),
         ));
     }
-    let pairs = py
+    let all = py
         .detach(|| splinescope_core::analysis::all_intersections(&analyses))
         .map_err(|e| analysis_error(&e))?;
-    pairs
+    let out = PyList::empty(py);
+    let (i, j, params, kinds, overlaps) = (
+        intern!(py, "i"),
+        intern!(py, "j"),
+        intern!(py, "params"),
+        intern!(py, "kinds"),
+        intern!(py, "overlaps"),
+    );
+    let (crossing, tangent) = (intern!(py, "crossing"), intern!(py, "tangent"));
+    // Every pair's (s, t) in one (H, 2) array; each pair's params a view of its rows.
+    let flat: Vec<f64> = all
+        .pairs
         .iter()
-        .map(|p| {
-            let (st, kinds, overlaps) = hits_out(py, &p.found)?;
-            Ok((p.i, p.j, st, kinds, overlaps))
-        })
-        .collect()
+        .flat_map(|p| p.found.hits.iter().flat_map(|h| [h.s, h.t]))
+        .collect();
+    let total = flat.len() / 2;
+    let big = arrays::shaped(py, flat, &[total, 2])?;
+    let mut row = 0;
+    for p in &all.pairs {
+        let k = p.found.hits.len();
+        let rows = PySlice::new(py, row as isize, (row + k) as isize, 1);
+        row += k;
+        let d = PyDict::new(py);
+        d.set_item(i, p.i)?;
+        d.set_item(j, p.j)?;
+        d.set_item(params, big.get_item(rows)?)?;
+        let names = PyList::empty(py);
+        for h in &p.found.hits {
+            names.append(if h.kind == splinescope_core::analysis::HitKind::Crossing {
+                crossing
+            } else {
+                tangent
+            })?;
+        }
+        d.set_item(kinds, names)?;
+        let o: Vec<((f64, f64), (f64, f64))> =
+            p.found.overlaps.iter().map(|o| (o.s, o.t)).collect();
+        d.set_item(overlaps, o)?;
+        out.append(d)?;
+    }
+    for g in &all.copies {
+        let d = PyDict::new(py);
+        d.set_item(intern!(py, "copies"), &g.curves)?;
+        d.set_item(intern!(py, "interval"), g.domain)?;
+        out.append(d)?;
+    }
+    Ok(out)
 }
 
 /// `n ≥ 2` uniform samples of every curve, `(C, n, dim)`, spread over every core.

@@ -88,15 +88,17 @@ pub fn run(a: &AnalyzeArgs) -> Result<()> {
             .with_context(|| format!("curves[{i}]"))?,
         );
     }
-    let intersections = if a.intersections {
-        Some(pair_reports(&indices, &analyses)?)
+    let (intersections, copies) = if a.intersections {
+        let (pairs, copies) = pair_reports(&indices, &analyses)?;
+        (Some(pairs), Some(copies))
     } else {
-        None
+        (None, None)
     };
     let out = AnalyzeOutput {
         accuracy: a.accuracy,
         curves,
         intersections,
+        copies,
     };
     if a.json {
         let value = serde_json::to_value(&out)?;
@@ -224,6 +226,23 @@ fn text(out: &AnalyzeOutput) -> String {
                 p.curves[0],
                 p.curves[1],
                 hits(&p.found)
+            );
+        }
+    }
+    if let Some(groups) = out.copies.as_ref().filter(|g| !g.is_empty()) {
+        let _ = writeln!(
+            s,
+            "copies ({} group(s) of curves that coincide entirely)",
+            groups.len()
+        );
+        for g in groups {
+            let names: Vec<String> = g.curves.iter().map(|i| format!("curves[{i}]")).collect();
+            let _ = writeln!(
+                s,
+                "  {} over t ∈ [{}, {}]",
+                names.join(", "),
+                Num(g.t[0]),
+                Num(g.t[1])
             );
         }
     }

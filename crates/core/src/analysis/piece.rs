@@ -17,26 +17,28 @@ pub struct Piece {
     pub t0: f64,
     /// The curve parameter at `u = 1`.
     pub t1: f64,
-    /// `A_x`, `A_y`, `A_z`.
-    pub a: [Vec<f64>; 3],
-    /// `W`, or `None` for a polynomial segment.
-    pub w: Option<Vec<f64>>,
-    /// `A′` per coordinate.
-    da: [Vec<f64>; 3],
-    /// `W′`.
-    dw: Option<Vec<f64>>,
+    /// Every coefficient in one allocation (a piece is read far more than it is made, and
+    /// copied whole where many are read in turn): `A_x`, `A_y`, `A_z` (`n` each), `A′` per
+    /// coordinate (`m` each), then for a rational segment `W` (`n`) and `W′` (`m`).
+    coef: Box<[f64]>,
+    /// The number of control points.
+    n: usize,
+    /// The number of coefficients of a derivative.
+    m: usize,
+    /// Whether the segment is rational (has `W`).
+    rational: bool,
     /// The box of the control points in `x`, `y` (the segment lies in it).
     bounds: (DVec2, DVec2),
     /// Whether `z ≡ 0`.
     planar: bool,
     /// For a polynomial segment of degree ≤ 7: `A′` per coordinate in the power basis
     /// (ascending), for the arc length's many evaluations of `|C′|` by Horner's rule.
-    power: Option<[Power; 3]>,
+    power: Option<Box<[Power; 3]>>,
     /// The length of the control polygon (at least the segment's).
     polygon: f64,
     /// For a planar polynomial segment of degree ≤ 7: its speed as `|ℓ| Π |u − r_j|`,
     /// which bounds the Gauss rules' error in advance ([`super::gauss`]).
-    planar_speed: Option<PlanarSpeed>,
+    planar_speed: Option<Box<PlanarSpeed>>,
 }
 
 /// The most coefficients a hodograph kept in the power basis has (segments of degree ≤ 7).
@@ -182,29 +184,97 @@ impl Piece {
         });
         let polygon = polygon_length(pts);
         let planar_speed = match &power {
-            Some([x, y, _]) if planar => PlanarSpeed::new(x.as_slice(), y.as_slice()),
+            Some([x, y, _]) if planar => PlanarSpeed::new(x.as_slice(), y.as_slice()).map(Box::new),
             _ => None,
         };
+        let power = power.map(Box::new);
+        let (n, m) = (a[0].len(), da[0].len());
+        let mut coef: Vec<f64> = Vec::with_capacity(3 * n + 3 * m + 2 * (n + m));
+        for c in a.iter().chain(&da) {
+            coef.extend_from_slice(c);
+        }
+        if let (Some(w), Some(dw)) = (&w, &dw) {
+            coef.extend_from_slice(w);
+            coef.extend_from_slice(dw);
+        }
         Piece {
             planar_speed,
             polygon,
             t0: seg.t0,
             t1: seg.t1,
-            a,
-            w,
-            da,
-            dw,
+            coef: coef.into_boxed_slice(),
+            n,
+            m,
+            rational: w.is_some(),
             bounds,
             planar,
             power,
         }
     }
 
+    /// The piece without what only its arc length uses (the power-basis speed): a light
+    /// copy, for many pieces laid out anew in the order they will be read.
+    #[must_use]
+    pub fn geometry(&self) -> Piece {
+        Piece {
+            t0: self.t0,
+            t1: self.t1,
+            coef: self.coef.clone(),
+            n: self.n,
+            m: self.m,
+            rational: self.rational,
+            bounds: self.bounds,
+            planar: self.planar,
+            power: None,
+            polygon: self.polygon,
+            planar_speed: None,
+        }
+    }
+
+    /// `A_k`'s Bernstein coefficients (`k` = 0, 1, 2 for `x`, `y`, `z`).
+    #[must_use]
+    #[inline]
+    pub fn a(&self, k: usize) -> &[f64] {
+        &self.coef[k * self.n..(k + 1) * self.n]
+    }
+
+    /// `W`'s Bernstein coefficients, `None` for a polynomial segment.
+    #[must_use]
+    #[inline]
+    pub fn w(&self) -> Option<&[f64]> {
+        let start = 3 * (self.n + self.m);
+        self.rational.then(|| &self.coef[start..start + self.n])
+    }
+
+    /// `A_k′`.
+    #[inline]
+    fn da(&self, k: usize) -> &[f64] {
+        let start = 3 * self.n + k * self.m;
+        &self.coef[start..start + self.m]
+    }
+
+    /// `W′`.
+    #[inline]
+    fn dw(&self) -> Option<&[f64]> {
+        let start = 3 * (self.n + self.m) + self.n;
+        self.rational.then(|| &self.coef[start..start + self.m])
+    }
+
+    /// `A` per coordinate.
+    fn aa(&self) -> [&[f64]; 3] {
+        [self.a(0), self.a(1), self.a(2)]
+    }
+
+    /// `A′` per coordinate.
+    fn daa(&self) -> [&[f64]; 3] {
+        [self.da(0), self.da(1), self.da(2)]
+    }
+
     /// `|dC/du|`: Horner's rule on the power-basis hodograph for a polynomial segment of
     /// degree ≤ 7, [`Piece::deriv`] otherwise.
     #[must_use]
     pub fn speed(&self, u: f64) -> f64 {
-        match &self.power {
+        match self.power.as_deref() {
             Some([x, y, z]) => {
                 let (dx, dy) = (horner(x.as_slice(), u), horner(y.as_slice(), u));
                 let dz = if self.planar {
@@ -237,12 +307,12 @@ impl Piece {
             (1.0 / (1.0 + e), e / (1.0 + e))
         };
         let ev = |c: &[f64]| poly::eval_split(c, u, v);
-        let da = DVec3::new(ev(&self.da[0]), ev(&self.da[1]), ev(&self.da[2]));
+        let da = DVec3::new(ev(self.da(0)), ev(self.da(1)), ev(self.da(2)));
         // u·v before the division by W: the speed alone can overflow where u·v is tiny.
-        let d = match (&self.w, &self.dw) {
+        let d = match (self.w(), self.dw()) {
             (Some(w), Some(dw)) => {
                 let w0 = ev(w);
-                let c = DVec3::new(ev(&self.a[0]), ev(&self.a[1]), ev(&self.a[2])) / w0;
+                let c = DVec3::new(ev(self.a(0)), ev(self.a(1)), ev(self.a(2))) / w0;
                 (da - c * ev(dw)) * (u * v / w0)
             }
             _ => da * (u * v),
@@ -266,7 +336,7 @@ impl Piece {
     /// polynomial one).
     #[must_use]
     pub fn weight_spread(&self) -> f64 {
-        self.w.as_deref().map_or(1.0, |w| {
+        self.w().map_or(1.0, |w| {
             let (lo, hi) = w.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), &x| {
                 (lo.min(x), hi.max(x))
             });
@@ -279,7 +349,7 @@ impl Piece {
     /// apart moves from one control point's pull to another's.
     #[must_use]
     pub fn weight_transitions(&self) -> Vec<f64> {
-        let Some(w) = self.w.as_deref() else {
+        let Some(w) = self.w() else {
             return Vec::new();
         };
         let n = w.len() - 1;
@@ -305,7 +375,7 @@ impl Piece {
     /// for the others).
     #[must_use]
     pub fn planar_speed(&self) -> Option<&PlanarSpeed> {
-        self.planar_speed.as_ref()
+        self.planar_speed.as_deref()
     }
 
     /// The box of the control points in `x` and `y` (the segment lies in it).
@@ -317,7 +387,7 @@ impl Piece {
     /// The degree.
     #[must_use]
     pub fn degree(&self) -> usize {
-        self.a[0].len().saturating_sub(1)
+        self.a(0).len().saturating_sub(1)
     }
 
     /// The curve parameter of the segment's own `u`.
@@ -342,27 +412,27 @@ impl Piece {
         self.planar
     }
 
-    fn eval3(&self, c: &[Vec<f64>; 3], u: f64) -> DVec3 {
+    fn eval3(&self, c: [&[f64]; 3], u: f64) -> DVec3 {
         if self.planar {
-            let (x, y) = poly::eval2(&c[0], &c[1], u);
+            let (x, y) = poly::eval2(c[0], c[1], u);
             return DVec3::new(x, y, 0.0);
         }
         DVec3::new(
-            poly::eval(&c[0], u),
-            poly::eval(&c[1], u),
-            poly::eval(&c[2], u),
+            poly::eval(c[0], u),
+            poly::eval(c[1], u),
+            poly::eval(c[2], u),
         )
     }
 
     fn weight(&self, u: f64) -> f64 {
-        self.w.as_deref().map_or(1.0, |w| poly::eval(w, u))
+        self.w().map_or(1.0, |w| poly::eval(w, u))
     }
 
     /// `C(u)`.
     #[must_use]
     pub fn point(&self, u: f64) -> DVec3 {
-        let p = self.eval3(&self.a, u);
-        match &self.w {
+        let p = self.eval3(self.aa(), u);
+        match self.w() {
             Some(_) => p / self.weight(u),
             None => p,
         }
@@ -373,9 +443,9 @@ impl Piece {
     /// piece the weight's, carried through the division.
     #[must_use]
     pub fn point_error(&self, u: f64) -> f64 {
-        let (x, ex) = poly::eval_with_bound(&self.a[0], u);
-        let (y, ey) = poly::eval_with_bound(&self.a[1], u);
-        match &self.w {
+        let (x, ex) = poly::eval_with_bound(self.a(0), u);
+        let (y, ey) = poly::eval_with_bound(self.a(1), u);
+        match self.w() {
             None => ex + ey,
             Some(w) => {
                 let (wv, ew) = poly::eval_with_bound(w, u);
@@ -393,7 +463,7 @@ impl Piece {
     /// `None` for rational pieces and higher degrees. At most 9 parameters.
     #[must_use]
     pub fn box_candidates(&self) -> Option<([f64; 9], usize)> {
-        if self.w.is_some() || self.da.iter().any(|d| d.len() > 3) {
+        if self.rational || self.m > 3 {
             return None;
         }
         let mut out = [0.0; 9];
@@ -405,8 +475,8 @@ impl Piece {
             }
         };
         let axes = if self.planar { 2 } else { 3 };
-        for d in &self.da[..axes] {
-            match *d.as_slice() {
+        for d in &self.daa()[..axes] {
+            match **d {
                 [d0, d1] if d0 != d1 => push(d0 / (d0 - d1)),
                 [d0, d1, d2] => {
                     let (roots, n, vertex) = poly::quadratic_roots(d0, d1, d2);
@@ -421,14 +491,14 @@ impl Piece {
     /// `C(u)` and `dC/du` from one de Casteljau triangle per coordinate (and for `W`).
     #[must_use]
     pub fn point_and_deriv(&self, u: f64) -> (DVec3, DVec3) {
-        let ((x, dx), (y, dy)) = poly::eval_with_derivative2(&self.a[0], &self.a[1], u);
+        let ((x, dx), (y, dy)) = poly::eval_with_derivative2(self.a(0), self.a(1), u);
         let (z, dz) = if self.planar {
             (0.0, 0.0)
         } else {
-            poly::eval_with_derivative(&self.a[2], u)
+            poly::eval_with_derivative(self.a(2), u)
         };
         let (a, da) = (DVec3::new(x, y, z), DVec3::new(dx, dy, dz));
-        match &self.w {
+        match self.w() {
             Some(w) => {
                 let (w0, w1) = poly::eval_with_derivative(w, u);
                 let c = a / w0;
@@ -442,11 +512,11 @@ impl Piece {
     /// `(A′ − C W′) / W` so that `W²` cannot overflow where `W` itself does not).
     #[must_use]
     pub fn deriv(&self, u: f64) -> DVec3 {
-        let da = self.eval3(&self.da, u);
-        match (&self.w, &self.dw) {
+        let da = self.eval3(self.daa(), u);
+        match (self.w(), self.dw()) {
             (Some(w), Some(dw)) => {
                 let (w0, w1) = (poly::eval(w, u), poly::eval(dw, u));
-                let c = self.eval3(&self.a, u) / w0;
+                let c = self.eval3(self.aa(), u) / w0;
                 (da - c * w1) / w0
             }
             _ => da,
@@ -456,16 +526,17 @@ impl Piece {
     /// `d²C/du²`.
     #[must_use]
     pub fn second_deriv(&self, u: f64) -> DVec3 {
-        let dd = |c: &[f64]| poly::eval(&poly::derivative(c), u);
-        let dda = DVec3::new(dd(&self.da[0]), dd(&self.da[1]), dd(&self.da[2]));
-        match (&self.w, &self.dw) {
-            (Some(w), Some(dw)) => {
-                let (w0, w1, w2) = (poly::eval(w, u), poly::eval(dw, u), dd(dw));
-                let c = self.point(u);
-                let d1 = self.deriv(u);
+        let dd = poly::eval_second_derivative;
+        let z = if self.planar { 0.0 } else { dd(self.a(2), u) };
+        let dda = DVec3::new(dd(self.a(0), u), dd(self.a(1), u), z);
+        match self.w() {
+            Some(w) => {
+                let (w0, w1) = poly::eval_with_derivative(w, u);
+                let w2 = dd(w, u);
+                let (c, d1) = self.point_and_deriv(u);
                 (dda - 2.0 * w1 * d1 - w2 * c) / w0
             }
-            _ => dda,
+            None => dda,
         }
     }
 
@@ -501,12 +572,11 @@ impl Piece {
     /// `A_k′ W − A_k W′` (rational; `W² > 0` does not change its roots or sign).
     #[must_use]
     pub fn deriv_numerator(&self, k: usize) -> Vec<f64> {
-        match (&self.w, &self.dw) {
-            (Some(w), Some(dw)) => poly::difference(
-                &poly::product(&self.da[k], w),
-                &poly::product(&self.a[k], dw),
-            ),
-            _ => self.da[k].clone(),
+        match (self.w(), self.dw()) {
+            (Some(w), Some(dw)) => {
+                poly::difference(&poly::product(self.da(k), w), &poly::product(self.a(k), dw))
+            }
+            _ => self.da(k).to_vec(),
         }
     }
 
@@ -516,12 +586,12 @@ impl Piece {
     /// rounding its coefficients may carry (the cancellation of its terms).
     #[must_use]
     pub fn cross_numerator(&self) -> (Vec<f64>, f64) {
-        let (x1, y1) = (&self.da[0], &self.da[1]);
+        let (x1, y1) = (self.da(0), self.da(1));
         let (x2, y2) = (poly::derivative(x1), poly::derivative(y1));
-        match (&self.w, &self.dw) {
+        match (self.w(), self.dw()) {
             (Some(w), Some(w1)) => {
                 let w2 = poly::derivative(w1);
-                let (x, y) = (&self.a[0], &self.a[1]);
+                let (x, y) = (self.a(0), self.a(1));
                 // x (y′w″ − w′y″) − y (x′w″ − w′x″) + w (x′y″ − y′x″)
                 let t1 = poly::product(
                     x,
@@ -580,7 +650,7 @@ impl Piece {
     #[must_use]
     pub fn curvature_slope_numerator(&self) -> (Vec<f64>, f64) {
         let (cross, cross_noise) = self.cross_numerator();
-        let (f, f_noise) = match &self.w {
+        let (f, f_noise) = match self.w() {
             Some(w) => {
                 let w3 = poly::product(w, &poly::product(w, w));
                 let m = max_abs(&w3);
@@ -604,12 +674,12 @@ impl Piece {
     /// Bernstein coefficients (then `∫₀¹ = Σ c_i / (m + 1)` is exact but for rounding).
     #[must_use]
     pub fn area_integrand(&self) -> Option<Vec<f64>> {
-        if self.w.is_some() {
+        if self.rational {
             return None;
         }
         Some(poly::difference(
-            &poly::product(&self.a[0], &self.da[1]),
-            &poly::product(&self.a[1], &self.da[0]),
+            &poly::product(self.a(0), self.da(1)),
+            &poly::product(self.a(1), self.da(0)),
         ))
     }
 }
@@ -678,7 +748,7 @@ mod tests {
             let d1 = r.eval_deriv(u);
             let d2 = r.eval_second_deriv(u);
             let want = d1.x * d2.y - d1.y * d2.x;
-            let w = poly::eval(pr.w.as_deref().unwrap_or(&[1.0]), u);
+            let w = poly::eval(pr.w().unwrap_or(&[1.0]), u);
             assert!((cross / w.powi(3) - want).abs() < 1e-10 * (1.0 + want.abs()));
         }
     }

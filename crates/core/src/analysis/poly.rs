@@ -236,6 +236,29 @@ fn in_buffer<R>(c: &[f64], run: impl FnOnce(&mut [f64]) -> R) -> R {
     }
 }
 
+/// `p″(t)`: `n (n − 1) Σ Δ²c_i B_{i,n−2}(t)`, the second differences on the stack up to
+/// degree 33.
+#[must_use]
+pub fn eval_second_derivative(c: &[f64], t: f64) -> f64 {
+    let len = c.len();
+    if len < 3 {
+        return 0.0;
+    }
+    let n = (len - 1) as f64;
+    let run = |d: &mut [f64]| {
+        for (i, slot) in d.iter_mut().enumerate() {
+            *slot = c[i + 2] - 2.0 * c[i + 1] + c[i];
+        }
+        n * (n - 1.0) * eval(d, t)
+    };
+    if len - 2 <= STACK {
+        let mut d = [0.0; STACK];
+        run(&mut d[..len - 2])
+    } else {
+        run(&mut vec![0.0; len - 2])
+    }
+}
+
 /// `p(t)` by de Casteljau (written out for degrees up to 3).
 #[must_use]
 pub fn eval(c: &[f64], t: f64) -> f64 {

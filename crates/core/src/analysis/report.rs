@@ -25,6 +25,21 @@ pub struct AnalyzeOutput {
     /// (absent otherwise).
     #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub intersections: Option<Vec<PairReport>>,
+    /// With intersections asked for: the groups of selected curves that coincide entirely
+    /// (copies: the same segments over the same domain), reported once per group rather
+    /// than as pairs (absent otherwise).
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    pub copies: Option<Vec<CopiesReport>>,
+}
+
+/// Curves that coincide entirely.
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+pub struct CopiesReport {
+    /// The curves' indices in the scene, increasing.
+    pub curves: Vec<usize>,
+    /// The parameter interval they share (each curve's whole domain).
+    pub t: [f64; 2],
 }
 
 /// One curve's answers.
@@ -301,12 +316,23 @@ pub fn curve_analysis_report(
 pub fn pair_reports(
     indices: &[usize],
     curves: &[CurveAnalysis],
-) -> Result<Vec<PairReport>, AnalysisError> {
-    Ok(all_intersections(curves)?
+) -> Result<(Vec<PairReport>, Vec<CopiesReport>), AnalysisError> {
+    let all = all_intersections(curves)?;
+    let pairs = all
+        .pairs
         .iter()
         .map(|p| PairReport {
             curves: [indices[p.i], indices[p.j]],
             found: IntersectionsReport::from(&p.found),
         })
-        .collect())
+        .collect();
+    let copies = all
+        .copies
+        .iter()
+        .map(|g| CopiesReport {
+            curves: g.curves.iter().map(|&i| indices[i]).collect(),
+            t: [g.domain.0, g.domain.1],
+        })
+        .collect();
+    Ok((pairs, copies))
 }

@@ -1147,12 +1147,11 @@ def eval_many(curves: Sequence[Curve], n: int) -> np.ndarray:
 def intersections(curves: Sequence[Curve]) -> List[Dict[str, Any]]:
     """Every intersecting pair among ``curves`` (2D), on every core: a list of dicts
     ``{"i", "j", "params": (K, 2) array of (s, t), "kinds", "overlaps"}`` with ``i < j``
-    (a sweep over the segments' boxes finds the candidate pairs)."""
+    (a grid over the segments' boxes finds the candidate pairs), then, for each group of
+    curves that coincide entirely (copies: the same segments over the same domain), one
+    dict ``{"copies": [indices], "interval": (t0, t1)}`` in place of their pairs."""
     natives = [_curve(c, f"curves[{i}]") for i, c in enumerate(curves)]
-    return [
-        {"i": i, "j": j, "params": st, "kinds": kinds, "overlaps": overlaps}
-        for i, j, st, kinds, overlaps in _native.intersections(natives)
-    ]
+    return _native.intersections(natives)
 
 
 def compare_images(

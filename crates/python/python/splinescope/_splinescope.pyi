@@ -2,7 +2,7 @@
 which wraps it; these are its building blocks."""
 
 from os import PathLike
-from typing import Any, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -123,17 +123,7 @@ class _Scene:
 
 def eval_many(curves: Sequence[_Curve], n: int) -> npt.NDArray[np.float64]: ...
 def stress_scene(curves: int, family: str = "bezier", degree: int = 3, seed: int = 1) -> _Scene: ...
-def intersections(
-    curves: Sequence[_Curve],
-) -> List[
-    Tuple[
-        int,
-        int,
-        npt.NDArray[np.float64],
-        List[str],
-        List[Tuple[Tuple[float, float], Tuple[float, float]]],
-    ]
-]: ...
+def intersections(curves: Sequence[_Curve]) -> List[Dict[str, Any]]: ...
 def compare_images(
     actual: npt.NDArray[np.uint8],
     reference: npt.NDArray[np.uint8],

@@ -177,14 +177,15 @@ pub fn markers_of(analyses: &[CurveAnalysis], options: &ShapeOptions) -> Vec<Mar
         let planar: Vec<usize> = (0..analyses.len())
             .filter(|&i| analyses[i].is_planar())
             .collect();
-        // The planar curves alone (a copy only when some curve is 3D).
+        // The planar curves alone.
         let pairs = if planar.len() == analyses.len() {
             all_intersections(analyses)
         } else {
-            let subset: Vec<CurveAnalysis> = planar.iter().map(|&i| analyses[i].clone()).collect();
+            let subset: Vec<&CurveAnalysis> = planar.iter().map(|&i| &analyses[i]).collect();
             all_intersections(&subset)
         };
-        for pair in pairs.unwrap_or_default() {
+        let all = pairs.unwrap_or_default();
+        for pair in all.pairs {
             let (i, j) = (planar[pair.i], planar[pair.j]);
             for h in pair.found.hits {
                 out.push(Marker {
@@ -192,6 +193,15 @@ pub fn markers_of(analyses: &[CurveAnalysis], options: &ShapeOptions) -> Vec<Mar
                     ..at(MarkerKind::Intersection, i, h.s, h.point)
                 });
             }
+        }
+        // Copies coincide entirely: one marker per group, at the start of its first curve.
+        for g in all.copies {
+            let (i, j) = (planar[g.curves[0]], planar[g.curves[1]]);
+            let t = g.domain.0;
+            out.push(Marker {
+                other: Some((j, t)),
+                ..at(MarkerKind::Intersection, i, t, analyses[i].point(t))
+            });
         }
     }
     out.sort_by(|a, b| {

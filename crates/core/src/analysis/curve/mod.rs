@@ -372,9 +372,9 @@ impl CurveAnalysis {
     pub fn control_box(&self) -> Aabb {
         let mut bbox = Aabb::EMPTY;
         for p in &self.pieces {
-            for i in 0..p.a[0].len() {
-                let w = p.w.as_ref().map_or(1.0, |w| w[i]);
-                bbox = bbox.including(DVec3::new(p.a[0][i], p.a[1][i], p.a[2][i]) / w);
+            for i in 0..p.a(0).len() {
+                let w = p.w().map_or(1.0, |w| w[i]);
+                bbox = bbox.including(DVec3::new(p.a(0)[i], p.a(1)[i], p.a(2)[i]) / w);
             }
         }
         bbox
@@ -636,12 +636,12 @@ impl CurveAnalysis {
         let mut hits: Vec<LineHit> = Vec::new();
         let mut overlaps: Vec<(f64, f64)> = Vec::new();
         for piece in &self.pieces {
-            let n = piece.a[0].len();
+            let n = piece.a(0).len();
             let c: Vec<f64> = (0..n)
                 .map(|i| {
-                    let w = piece.w.as_ref().map_or(1.0, |w| w[i]);
-                    let x = piece.a[0][i] - p.x * w;
-                    let y = piece.a[1][i] - p.y * w;
+                    let w = piece.w().map_or(1.0, |w| w[i]);
+                    let x = piece.a(0)[i] - p.x * w;
+                    let y = piece.a(1)[i] - p.y * w;
                     x * d.y - y * d.x
                 })
                 .collect();

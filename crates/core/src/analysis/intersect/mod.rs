@@ -11,18 +11,18 @@
 //! intersected, leaving out the joint two neighbours share (and, for a closed curve, the
 //! start meeting the end).
 //!
-//! **Many curves.** Copies (curves whose segments are identical, or identical reversed)
-//! are grouped first; a sweep over the segments' boxes sorted by `x` pairs the boxes that
-//! overlap; the pairs are intersected on every core (rayon).
+//! **Many curves** ([`many`]): copies (curves with identical segments) grouped first, a
+//! grid over the segments' boxes pairs the boxes that overlap, and the pairs are
+//! intersected on every core (rayon).
 
 use glam::{DVec2, DVec3};
-use rayon::prelude::*;
 
+pub mod many;
 mod pair;
 mod refine;
 mod subdivide;
 
-use pair::{PairHit, PieceHits, Scale, SpanPair, piece_pair};
+use pair::{PairHit, Scale, SpanPair, piece_pair};
 use subdivide::{Sub, boxes_meet};
 
 use super::bernstein_roots;
@@ -153,6 +153,15 @@ fn tidy(mut found: Intersections) -> Intersections {
 
 /// A closed curve's start and end are one point: a hit found at both is kept once.
 fn settle(mut found: Intersections, a: &CurveAnalysis, b: &CurveAnalysis) -> Intersections {
+    // Only hits at a curve's end can be doubled.
+    let at_end = |x: f64, e: f64, (lo, hi): (f64, f64)| (x - lo).abs() <= e || (x - hi).abs() <= e;
+    if !found
+        .hits
+        .iter()
+        .any(|h| at_end(h.s, h.error_s, a.domain()) || at_end(h.t, h.error_t, b.domain()))
+    {
+        return found;
+    }
     let close = |c: &CurveAnalysis| c.is_closed().then(|| c.domain());
     if let Some((start, end)) = close(a) {
         let starts: Vec<(f64, f64)> = found
@@ -299,85 +308,4 @@ impl CurveAnalysis {
     }
 }
 
-/// Every intersecting pair among `curves` (2D; 3D curves are refused): a sweep over the
-/// segments' boxes finds the pairs of segments whose boxes overlap, and the pairs are
-/// intersected on every core. Pairs in `(i, j)` order with `i < j`; self-intersections
-/// are not included.
-///
-/// # Errors
-/// [`AnalysisError::NotPlanar`] naming the first 3D curve.
-pub fn all_intersections(
-    curves: &[CurveAnalysis],
-) -> Result<Vec<PairIntersections>, AnalysisError> {
-    if curves.iter().any(|c| !c.is_planar()) {
-        return Err(AnalysisError::NotPlanar {
-            what: "intersections",
-        });
-    }
-    // (min x, max x, min y, max y, curve, piece)
-    let mut items: Vec<(DVec2, DVec2, usize, usize)> = Vec::new();
-    for (ci, c) in curves.iter().enumerate() {
-        for (pi, p) in c.pieces().iter().enumerate() {
-            let (lo, hi) = piece_box(p);
-            // Widened by the resolution, so that an end on the other's boundary is paired.
-            let m = 64.0 * f64::EPSILON * lo.abs().max(hi.abs()).max_element();
-            items.push((lo - m, hi + m, ci, pi));
-        }
-    }
-    items.sort_by(|x, y| x.0.x.total_cmp(&y.0.x));
-    let mut pairs: Vec<(usize, usize, usize, usize)> = Vec::new();
-    for (k, a) in items.iter().enumerate() {
-        for b in &items[k + 1..] {
-            if b.0.x > a.1.x {
-                break;
-            }
-            if a.2 != b.2 && b.0.y <= a.1.y && a.0.y <= b.1.y {
-                let (first, second) = if a.2 < b.2 { (a, b) } else { (b, a) };
-                pairs.push((first.2, first.3, second.2, second.3));
-            }
-        }
-    }
-    // Grouped by pair of curves, then by their segments.
-    pairs.sort_unstable_by_key(|&(ci, pi, cj, pj)| (ci, cj, pi, pj));
-    let results: Vec<(usize, usize, PieceHits, usize, usize)> = pairs
-        .par_iter()
-        .map(|&(ci, pi, cj, pj)| {
-            let (a, b) = (&curves[ci].pieces()[pi], &curves[cj].pieces()[pj]);
-            (ci, cj, piece_pair(a, (0.0, 1.0), b, (0.0, 1.0)), pi, pj)
-        })
-        .collect();
-    let mut out: Vec<PairIntersections> = Vec::new();
-    for (ci, cj, ph, pi, pj) in results {
-        if ph.hits.is_empty() && ph.overlaps.is_empty() {
-            continue;
-        }
-        let (a, b) = (&curves[ci].pieces()[pi], &curves[cj].pieces()[pj]);
-        let entry = match out.last_mut() {
-            Some(e) if e.i == ci && e.j == cj => e,
-            _ => {
-                out.push(PairIntersections {
-                    i: ci,
-                    j: cj,
-                    found: Intersections::default(),
-                });
-                out.last_mut()
-                    .unwrap_or_else(|| unreachable!("just pushed"))
-            }
-        };
-        entry
-            .found
-            .hits
-            .extend(ph.hits.iter().map(|h| hit(a, b, h)));
-        entry
-            .found
-            .overlaps
-            .extend(ph.overlaps.into_iter().map(|o| overlap(a, b, o)));
-    }
-    Ok(out
-        .into_iter()
-        .map(|mut p| {
-            p.found = settle(tidy(p.found), &curves[p.i], &curves[p.j]);
-            p
-        })
-        .collect())
-}
+pub use many::{AllIntersections, Copies, all_intersections};

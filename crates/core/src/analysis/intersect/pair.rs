@@ -85,32 +85,38 @@ impl Scale {
 /// twice the degree is solved: with weights far apart its roots lose the digits the
 /// curve itself keeps.
 pub(super) fn within(p: &Piece, range: (f64, f64), q: DVec2, tol: f64) -> Option<f64> {
-    let mut stack: Vec<(Sub, u32)> = Vec::with_capacity(16);
-    stack.push((Sub::of(p, range.0, range.1), 0));
-    while let Some((s, depth)) = stack.pop() {
-        let (lo, hi) = s.bounds();
-        let gap = (lo - q).max(q - hi).max(DVec2::ZERO).length();
-        if gap > tol {
-            continue;
-        }
-        let small = (hi - lo).max_element() <= tol;
-        let flat = s.flatness() <= 1e-2 * s.chord().length() && s.advances();
-        if flat || small || depth >= 60 {
-            let (s0, s1) = s.range();
-            let (u, converged) = foot_converged(p, (s0, s1), q, 0.5 * (s0 + s1));
-            let d = (p.point(u).truncate() - q).length();
-            if d <= tol || d <= tol + slack(p, u) {
-                return Some(u);
-            }
-            if (flat && converged) || small || depth >= 60 {
-                continue;
-            }
-        }
-        let (l, r) = s.halves();
-        stack.push((r, depth + 1));
-        stack.push((l, depth + 1));
+    // Most points asked about are far from the whole segment's box.
+    let (lo, hi) = p.bounds();
+    if (lo - q).max(q - hi).max(DVec2::ZERO).length() > tol {
+        return None;
     }
-    None
+    near(p, &Sub::of(p, range.0, range.1), q, tol, 0)
+}
+
+/// [`within`] on a sub-segment (depth first, on the stack).
+fn near(p: &Piece, s: &Sub, q: DVec2, tol: f64, depth: u32) -> Option<f64> {
+    let (lo, hi) = s.bounds();
+    let gap = (lo - q).max(q - hi).max(DVec2::ZERO).length();
+    // The rounding of the oriented box's corners (relative to their coordinates) is
+    // within twice the resolution.
+    if gap > tol || s.oriented_gap(q) > 2.0 * tol {
+        return None;
+    }
+    let small = (hi - lo).max_element() <= tol;
+    let flat = s.flatness() <= 1e-2 * s.chord().length() && s.advances();
+    if flat || small || depth >= 60 {
+        let (s0, s1) = s.range();
+        let (u, converged) = foot_converged(p, (s0, s1), q, 0.5 * (s0 + s1));
+        let d = (p.point(u).truncate() - q).length();
+        if d <= tol || d <= tol + slack(p, u) {
+            return Some(u);
+        }
+        if (flat && converged) || small || depth >= 60 {
+            return None;
+        }
+    }
+    let (l, r) = s.halves();
+    near(p, &l, q, tol, depth + 1).or_else(|| near(p, &r, q, tol, depth + 1))
 }
 
 /// How far the point of `p` moves when `u` moves by a few units in its last place: where
@@ -373,13 +379,16 @@ fn classify(
         err_u: 2.0 * noise / (la * sin) + f64::EPSILON * u.abs(),
         err_v: 2.0 * noise / (lb * sin) + f64::EPSILON * v.abs(),
     };
-    let could_touch = sin.is_nan() || sin <= 1e-3 || {
-        // A tangency can hide near a crossing only within a few bands, where the curves'
-        // curvatures bring the tangents parallel: θ² ≲ 8 δ |Δκ|.
-        let (ka, kb) = (curvature(a, u), curvature(b, v));
-        let dk = if da.dot(db) >= 0.0 { ka - kb } else { ka + kb };
-        sin * sin <= 64.0 * tol * (dk.abs() + 1.0 / scale.size)
-    };
+    // A tangency can hide near a crossing only within a few bands, where the curves'
+    // curvatures bring the tangents parallel: θ² ≲ 8 δ |Δκ|. At an angle over 0.05 rad
+    // that needs a radius of curvature under `10⁻⁵ δ / ε`, a cusp to within rounding.
+    let could_touch = sin.is_nan()
+        || sin <= 1e-3
+        || sin <= 0.05 && {
+            let (ka, kb) = (curvature(a, u), curvature(b, v));
+            let dk = if da.dot(db) >= 0.0 { ka - kb } else { ka + kb };
+            sin * sin <= 64.0 * tol * (dk.abs() + 1.0 / scale.size)
+        };
     if !could_touch {
         return crossing;
     }
@@ -677,6 +686,11 @@ fn sign_changes(
 pub(super) fn piece_pair(a: &Piece, ra: (f64, f64), b: &Piece, rb: (f64, f64)) -> PieceHits {
     let scale = Scale::of(a, b);
     let tol = scale.tol;
+    // Most pairs whose boxes overlap lie on either side of a line: nothing to find.
+    let (sa, sb) = (Sub::of(a, ra.0, ra.1), Sub::of(b, rb.0, rb.1));
+    if sa.separated_from(&sb, tol) {
+        return PieceHits::default();
+    }
     let ends = ends_on(a, ra, b, rb, tol);
     let overlaps = if ends.len() >= 2 {
         stretches(a, b, &ends, tol)
@@ -740,10 +754,16 @@ pub(super) fn piece_pair(a: &Piece, ra: (f64, f64), b: &Piece, rb: (f64, f64)) -
         visitor: &mut points,
         leaves: 0,
     };
+    let whole = |r: (f64, f64), range: (f64, f64)| r == range;
     for &(b0, b1) in &b_parts {
-        let sb = Sub::of(b, b0, b1);
+        let part_b = (!whole((b0, b1), rb)).then(|| Sub::of(b, b0, b1));
         for &(a0, a1) in &a_parts {
-            sub.run(&Sub::of(a, a0, a1), &sb, 0);
+            let part_a = (!whole((a0, a1), ra)).then(|| Sub::of(a, a0, a1));
+            sub.run(
+                part_a.as_ref().unwrap_or(&sa),
+                part_b.as_ref().unwrap_or(&sb),
+                0,
+            );
         }
     }
     let mut hits = points.hits;

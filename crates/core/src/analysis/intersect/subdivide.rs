@@ -54,7 +54,7 @@ pub(super) struct Sub {
 
 impl Sub {
     pub(super) fn of(p: &Piece, u0: f64, u1: f64) -> Sub {
-        let n = p.a[0].len();
+        let n = p.a(0).len();
         let mut h = Points::with_len(n);
         let slots = h.as_mut_slice();
         if u0 > 0.0 || u1 < 1.0 {
@@ -62,11 +62,8 @@ impl Sub {
             // ones, restricted too), then laid into the points.
             poly::in_two_buffers(n, |row, ones| {
                 ones.fill(1.0);
-                let w = p.w.as_deref().unwrap_or(ones);
-                for (k, c) in [p.a[0].as_slice(), p.a[1].as_slice(), w]
-                    .into_iter()
-                    .enumerate()
-                {
+                let w = p.w().unwrap_or(ones);
+                for (k, c) in [p.a(0), p.a(1), w].into_iter().enumerate() {
                     poly::restrict_into(c, u0, u1, row);
                     for (slot, v) in slots.iter_mut().zip(row.iter()) {
                         slot[k] = *v;
@@ -75,16 +72,87 @@ impl Sub {
             });
         } else {
             for (i, slot) in slots.iter_mut().enumerate() {
-                let w = p.w.as_ref().map_or(1.0, |w| w[i]);
-                *slot = [p.a[0][i], p.a[1][i], w];
+                let w = p.w().map_or(1.0, |w| w[i]);
+                *slot = [p.a(0)[i], p.a(1)[i], w];
             }
         }
         Sub {
             h,
             u0,
             u1,
-            rational: p.w.is_some(),
+            rational: p.w().is_some(),
         }
+    }
+
+    /// How far `q` lies outside the box of the control points aligned with the chord
+    /// (their projections on the chord and on its normal): the sub-segment lies in that
+    /// box, which hugs it more closely than the axis-aligned one.
+    pub(super) fn oriented_gap(&self, q: DVec2) -> f64 {
+        let n = self.len();
+        let origin = self.point(0);
+        let c = self.point(n - 1) - origin;
+        let len = c.length();
+        if len == 0.0 || !len.is_finite() {
+            let (lo, hi) = self.bounds();
+            return (lo - q).max(q - hi).max(DVec2::ZERO).length();
+        }
+        let (along, across) = (c / len, c.perp() / len);
+        let (mut a0, mut a1, mut n0, mut n1) = (0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64);
+        for i in 1..n {
+            let p = self.point(i) - origin;
+            let (x, y) = (p.dot(along), p.dot(across));
+            a0 = a0.min(x);
+            a1 = a1.max(x);
+            n0 = n0.min(y);
+            n1 = n1.max(y);
+        }
+        let p = q - origin;
+        let (x, y) = (p.dot(along), p.dot(across));
+        let gx = (a0 - x).max(x - a1).max(0.0);
+        let gy = (n0 - y).max(y - n1).max(0.0);
+        gx.hypot(gy)
+    }
+
+    /// Whether a line separates the two (by more than `margin`): the sides of either's
+    /// box aligned with its chord (the hull of its control points lies within them) that
+    /// leave every control point of the other outside.
+    pub(super) fn separated_from(&self, other: &Sub, margin: f64) -> bool {
+        let outside = |s: &Sub, o: &Sub| -> bool {
+            let n = s.len();
+            let origin = s.point(0);
+            let c = s.point(n - 1) - origin;
+            let len = c.length();
+            if len == 0.0 || !len.is_finite() {
+                return false;
+            }
+            let (along, across) = (c / len, c.perp() / len);
+            let (mut a0, mut a1, mut n0, mut n1) = (0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64);
+            for i in 1..n {
+                let p = s.point(i) - origin;
+                let (x, y) = (p.dot(along), p.dot(across));
+                a0 = a0.min(x);
+                a1 = a1.max(x);
+                n0 = n0.min(y);
+                n1 = n1.max(y);
+            }
+            let (mut b0, mut b1, mut m0, mut m1) = (
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+            );
+            for i in 0..o.len() {
+                let p = o.point(i) - origin;
+                let (x, y) = (p.dot(along), p.dot(across));
+                b0 = b0.min(x);
+                b1 = b1.max(x);
+                m0 = m0.min(y);
+                m1 = m1.max(y);
+            }
+            let m = 2.0 * margin;
+            b0 > a1 + m || b1 < a0 - m || m0 > n1 + m || m1 < n0 - m
+        };
+        outside(self, other) || outside(other, self)
     }
 
     /// The range of the segment's own parameter this sub-segment covers.
@@ -277,41 +345,65 @@ impl Sub {
     /// points bunched — puts the chord's fraction far from the parameter, and Newton's
     /// method far from its point.)
     pub(super) fn parameter_of_fraction(&self, alpha: f64) -> f64 {
-        if !self.advances() {
-            return alpha;
-        }
         let c = self.chord();
         let len2 = c.length_squared();
-        if len2 == 0.0 {
+        let h = self.h.as_slice();
+        let n = h.len();
+        if len2 == 0.0 || n > 16 {
             return alpha;
         }
         let origin = self.point(0);
-        let h = self.h.as_slice();
-        let n = h.len();
         let mut num = [0.0; 16];
         let mut den = [0.0; 16];
-        if n > 16 {
-            return alpha;
-        }
+        // Points spread evenly along the chord (and no weights) make the fraction the
+        // parameter, to within what Newton's method needs.
+        let mut even = !self.rational;
+        let mut last = f64::NEG_INFINITY;
         for (i, v) in h.iter().enumerate() {
             let w = if self.rational { v[2] } else { 1.0 };
-            num[i] = w * (self.point(i) - origin).dot(c) / len2;
+            let f = (self.point(i) - origin).dot(c) / len2;
+            if f < last {
+                return alpha;
+            }
+            last = f;
+            even &= (f - i as f64 / (n - 1) as f64).abs() <= 0.05;
+            num[i] = w * f;
             den[i] = w;
         }
-        let fraction = |t: f64| {
-            let (x, w) = (poly::eval(&num[..n], t), poly::eval(&den[..n], t));
-            x / w
-        };
-        let (mut lo, mut hi) = (0.0, 1.0);
+        if even {
+            return alpha;
+        }
+        let fraction = |t: f64| poly::eval(&num[..n], t) / poly::eval(&den[..n], t);
+        // Regula falsi (Illinois) on the monotone fraction, to 1e−9: a start, not a root.
+        let (mut lo, mut flo, mut hi, mut fhi) =
+            (0.0, fraction(0.0) - alpha, 1.0, fraction(1.0) - alpha);
+        if flo >= 0.0 {
+            return 0.0;
+        }
+        if fhi <= 0.0 {
+            return 1.0;
+        }
+        let mut side = 0;
         for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if fraction(mid) < alpha {
-                lo = mid;
-            } else {
-                hi = mid;
+            let m = (lo - flo * (hi - lo) / (fhi - flo)).clamp(lo, hi);
+            let fm = fraction(m) - alpha;
+            if fm == 0.0 || hi - lo <= 1e-9 {
+                return m;
             }
-            if hi - lo <= f64::EPSILON {
-                break;
+            if fm < 0.0 {
+                lo = m;
+                flo = fm;
+                if side == -1 {
+                    fhi *= 0.5;
+                }
+                side = -1;
+            } else {
+                hi = m;
+                fhi = fm;
+                if side == 1 {
+                    flo *= 0.5;
+                }
+                side = 1;
             }
         }
         0.5 * (lo + hi)
