@@ -367,6 +367,8 @@ impl Case {
 /// A generator of cases, seeded.
 pub struct Gen {
     pub rng: Rng,
+    /// The highest degree generated (7 unless lowered).
+    pub max_degree: usize,
 }
 
 /// How a parameter moves when its curve is reparametrised.
@@ -394,6 +396,7 @@ impl Gen {
     pub fn new(seed: u64) -> Gen {
         Gen {
             rng: Rng::new(seed),
+            max_degree: 7,
         }
     }
 
@@ -454,6 +457,7 @@ impl Gen {
     }
 
     fn degree(&mut self, lo: usize, hi: usize) -> usize {
+        let hi = hi.min(self.max_degree).max(lo);
         lo + self.rng.int(0, hi - lo)
     }
 
