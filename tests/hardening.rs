@@ -754,3 +754,62 @@ fn a_solve_writes_only_scenes_that_check_passes() {
         }
     }
 }
+
+/// The findings of the analysis fuzzer at the command line: a `--compare` file with a key
+/// given twice is refused as every other file is; a command whose stderr is closed or full
+/// exits with its own code, not a panic's; copies of one curve are one group in
+/// `analyze --intersections`, found at once however many there are.
+#[test]
+fn compare_files_stderr_and_copies() {
+    let d = dir("findings");
+    let dup = write(
+        &d,
+        "dup.json",
+        r#"[{"family":"bezier","family":"nurbs","curves":1,"degree":3,"samples_per_curve":8}]"#,
+    );
+    fails_saying(
+        &["bench", "--compare", &dup, "--curves", "2"],
+        &["family", "more than once"],
+    );
+    // stderr closed (2>&-) and full (/dev/full): the exit code of the failure, 1.
+    let exe = env!("CARGO_BIN_EXE_splinescope");
+    for redirect in ["2>&-", "2>/dev/full"] {
+        let status = Command::new("sh")
+            .arg("-c")
+            .arg(format!(
+                "'{exe}' analyze /nonexistent/scene.json {redirect}"
+            ))
+            .status()
+            .expect("sh runs");
+        assert_eq!(status.code(), Some(1), "stderr {redirect}: {status:?}");
+    }
+    // 300 copies of a cubic and a line crossing them: one group, 300 pairs.
+    let cubic = r#"{"type": "bezier", "points": [[0, 0], [1, 2], [3, -1], [4, 1]]}"#;
+    let line = r#"{"type": "bezier", "points": [[-1, 0.5], [5, 0.5]]}"#;
+    let mut curves = vec![cubic; 300];
+    curves.push(line);
+    let scene = write(
+        &d,
+        "copies.json",
+        &format!(r#"{{"version": 1, "curves": [{}]}}"#, curves.join(", ")),
+    );
+    let out = run(&["analyze", &scene, "--intersections", "--json"]);
+    assert!(out.status.success(), "{}", text(&out));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let groups = v["copies"].as_array().expect("copies");
+    assert_eq!(groups.len(), 1, "{groups:?}");
+    assert_eq!(groups[0]["curves"].as_array().expect("curves").len(), 300);
+    let pairs = v["intersections"].as_array().expect("pairs");
+    assert_eq!(pairs.len(), 300);
+    assert!(
+        pairs.iter().all(|p| p["curves"][1] == 300),
+        "{:?}",
+        pairs[0]
+    );
+    let out = run(&["analyze", &scene, "--intersections"]);
+    assert!(
+        text(&out).contains("300 group") || text(&out).contains("copies (1 group"),
+        "{}",
+        text(&out)
+    );
+}

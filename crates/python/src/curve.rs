@@ -708,8 +708,8 @@ pub(crate) fn analysis_error(e: &AnalysisError) -> PyErr {
         AnalysisError::BeyondLength { .. } => "s",
         AnalysisError::Unresolved { .. } => "accuracy",
         AnalysisError::Overflow { .. } => "",
-        AnalysisError::DegenerateLine { .. } => "q",
-        AnalysisError::NotPlanar { .. } => "",
+        AnalysisError::DegenerateLine { .. } | AnalysisError::ShortLine { .. } => "q",
+        AnalysisError::NotPlanar { .. } | AnalysisError::TooLarge { .. } => "",
     };
     raise::<CurveError>(e.to_string(), path)
 }

@@ -264,6 +264,91 @@ class Fuzz:
                 )
                 self.call("to_json", lambda: ss.Scene.from_json(scene.to_json()))
 
+    def analysis_case(self) -> None:
+        """The analysis against what geometry guarantees, on curves at the extremes:
+        coordinates from 1e-300 to 1e300, weights as far apart as 1e600. A length (with
+        its stated error) lies between the chord and the control polygon; the box holds
+        dense samples of the curve and lies in the control points' box; a line's hits lie
+        on the line; a parameter at a length inside the curve is in the domain, one beyond
+        it is refused."""
+        rng = self.rng
+        degree = rng.choice([1, 2, 3, 3, 5, 7])
+        scale = rng.choice([1.0, 1.0, 1e-300, 1e-150, 1e150, 1e200, 1e300, 1e-10, 1e10])
+        pts = np.array([[rng.uniform(-4, 4), rng.uniform(-4, 4)] for _ in range(degree + 1)]) * scale
+        far = [1e-300, 1e-100, 1e-20, 1.0, 1e20, 1e100, 1e300]
+        rational = rng.random() < 0.6
+        # Weights far apart at moderate scales; at the ends of the double range, moderate
+        # weights (a weight times a coordinate must stay a normal double: the documented
+        # limit).
+        extreme_scale = not (1e-100 <= scale <= 1e100)
+        weights = [
+            rng.choice(far) if rng.random() < 0.5 and not extreme_scale else rng.uniform(0.1, 10)
+            for _ in pts
+        ]
+        label = f"degree {degree} ×{scale:g} weights {weights if rational else None}: {pts.tolist()}"
+        c = self.call(
+            f"curve {label}",
+            ss.RationalBezier if rational else ss.Bezier,
+            *((pts, weights) if rational else (pts,)),
+        )
+        if c is None:
+            return
+        report = self.call(f"analyze {label}", c.analyze)
+        if report is not None:
+            length, error = report["length"], report["length_error"]
+            chord = float(np.linalg.norm((pts[-1] - pts[0]) / scale)) * scale
+            polygon = float(np.sum(np.linalg.norm(np.diff(pts / scale, axis=0), axis=1))) * scale
+            slack = 1e-12 * polygon
+            if not (length + error >= chord - slack and length - error <= polygon + slack):
+                self.fail(
+                    f"length of {label}: {length} ± {error} outside [chord {chord}, polygon {polygon}]"
+                )
+        box = self.call(f"bbox {label}", c.bbox)
+        if box is not None:
+            box = np.asarray(box)
+            samples = np.asarray(c.eval(np.linspace(0.0, 1.0, 2001)))
+            span = float(np.abs(pts).max())
+            slack = 1e-9 * span
+            if np.any(samples < box[0] - slack) or np.any(samples > box[1] + slack):
+                self.fail(f"bbox of {label}: {box.tolist()} misses a sample of the curve")
+            if np.any(box[0] < pts.min(axis=0) - slack) or np.any(box[1] > pts.max(axis=0) + slack):
+                self.fail(f"bbox of {label}: {box.tolist()} leaves the control points' box")
+        p = np.array([rng.uniform(-4, 4), rng.uniform(-4, 4)]) * scale
+        q = p + np.array([rng.uniform(-1, 1), rng.uniform(-1, 1)]) * rng.choice([scale, 1e-300, 1e-200, 5e-324])
+        hits = self.call(f"intersect_line {p.tolist()} {q.tolist()} of {label}", c.intersect_line, p, q)
+        if hits is not None:
+            params = hits[0]
+            d = q - p
+            unit = d / np.abs(d).max()
+            for t, lam in np.asarray(params).reshape(-1, 2):
+                if not np.isfinite(lam):
+                    self.fail(f"intersect_line of {label}: λ = {lam} is not finite")
+                    continue
+                # The curve's point at the hit lies on the line (where its parameter is a
+                # double: rounding puts the rest between two doubles). With weights more
+                # than 2^40 apart, evaluation in t loses terms to underflow (u³ of a tiny
+                # u) that the analysis keeps (it works in the logistic parameter): no
+                # check there.
+                if rational and max(weights) / min(weights) > 2.0**40:
+                    continue
+                at = np.asarray(c.eval(t))
+                off = abs(float(np.cross(unit, (at - p)))) / float(np.linalg.norm(unit))
+                if 0.0 < t < 1.0 and off > 1e-6 * span:
+                    self.fail(f"intersect_line of {label}: the curve at the hit t = {t} is {off} off the line")
+        if report is not None and report["length"] > 0:
+            total = report["length"]
+            t = self.call(f"parameter_at_length of {label}", c.parameter_at_length, rng.uniform(0, total))
+            if t is not None and not (0.0 <= t <= 1.0):
+                self.fail(f"parameter_at_length of {label}: {t} outside the domain")
+            # Beyond the length by more than the (absolute) accuracy, 1e-12.
+            for beyond in (2 * total, 1e308, math.inf):
+                if beyond > total * (1 + 1e-9) + 1.1e-12:
+                    try:
+                        out = c.parameter_at_length(beyond)
+                        self.fail(f"parameter_at_length({beyond}) of {label} (length {total}): {out}, not refused")
+                    except ALLOWED:
+                        pass
+
     def solved(self, what: str, out, targets, original) -> None:
         """A returned solve meets each target within 1e-7 of the target's and the original
         curve's size (the module promises 1e-9 of the terms it sums), unless it says it
@@ -297,6 +382,7 @@ class Fuzz:
             if seconds <= 0 and self.cases >= cases:
                 break
             self.curve_case(docs)
+            self.analysis_case()
             self.cases += 1
             if len(self.failures) >= 10:
                 break

@@ -27,6 +27,15 @@
 
 pub mod format;
 mod jsonread;
+
+/// JSON read as the scene and request readers read it: a syntax error with its line and
+/// column, a key given twice in one object refused at its path.
+///
+/// # Errors
+/// [`format::SceneError`] naming the syntax error or the duplicated key.
+pub fn parse_json(text: &str) -> Result<serde_json::Value, format::SceneError> {
+    jsonread::parse_document(text)
+}
 pub mod request;
 pub mod text;
 

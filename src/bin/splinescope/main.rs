@@ -193,7 +193,9 @@ fn main() -> ExitCode {
         // The reader went away (`splinescope eval … | head`): nothing left to say.
         Err(e) if is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            // A closed or full stderr loses the message, not the exit code.
+            let _ =
+                std::io::Write::write_fmt(&mut std::io::stderr(), format_args!("error: {e:#}\n"));
             ExitCode::FAILURE
         }
     }

@@ -212,6 +212,13 @@ impl Piece {
         }
     }
 
+    /// The largest absolute coordinate of a control point.
+    #[must_use]
+    pub fn magnitude(&self) -> f64 {
+        let (lo, hi) = self.bounds;
+        lo.abs().max(hi.abs()).max_element()
+    }
+
     /// The piece without what only its arc length uses (the power-basis speed): a light
     /// copy, for many pieces laid out anew in the order they will be read.
     #[must_use]
@@ -293,36 +300,244 @@ impl Piece {
         }
     }
 
-    /// `|dC/du| · du/dσ` at `u = 1 / (1 + e^{−σ})` (the logistic parameter, in which a
+    /// `|dC/dσ|` in the logistic parameter `σ` (`u = 1 / (1 + e^{−σ})`), in which a
     /// rational segment with weights far apart changes on a scale of 1 wherever its
-    /// weights' terms trade dominance), with `u` and `1 − u` each computed to full relative
-    /// precision: `σ` covers `u` from the smallest positive double to within one of 1.
+    /// weights' terms trade dominance. Evaluated without `u`: the curve is the blend
+    /// `C = Σ ωᵢ Pᵢ` with `ωᵢ ∝ e^{ln wᵢ + ln C(n, i) + iσ}` (computed from the largest
+    /// exponent down, so any `σ` is representable — a transition at `1 − u ≈ 10⁻⁶⁰⁰`
+    /// sits at `σ ≈ 1380`), and `dC/dσ = Σ ωᵢ (i − ī)(Pᵢ − P_k)` (`ī` the mean index,
+    /// `P_k` the heaviest point). For a polynomial segment the weights are 1.
     #[must_use]
     pub fn speed_logistic(&self, sigma: f64) -> f64 {
-        let (u, v) = if sigma <= 0.0 {
-            let e = sigma.exp();
-            (e / (1.0 + e), 1.0 / (1.0 + e))
+        let n = self.n - 1;
+        let mut exps = [0.0_f64; 64];
+        let mut buf;
+        let exps: &mut [f64] = if self.n <= 64 {
+            &mut exps[..self.n]
         } else {
-            let e = (-sigma).exp();
-            (1.0 / (1.0 + e), e / (1.0 + e))
+            buf = vec![0.0; self.n];
+            &mut buf
         };
-        let ev = |c: &[f64]| poly::eval_split(c, u, v);
-        let da = DVec3::new(ev(self.da(0)), ev(self.da(1)), ev(self.da(2)));
-        // u·v before the division by W: the speed alone can overflow where u·v is tiny.
-        let d = match (self.w(), self.dw()) {
-            (Some(w), Some(dw)) => {
-                let w0 = ev(w);
-                let c = DVec3::new(ev(self.a(0)), ev(self.a(1)), ev(self.a(2))) / w0;
-                (da - c * ev(dw)) * (u * v / w0)
+        let ln_w = |i: usize| self.w().map_or(0.0, |w| w[i].ln());
+        let mut top = f64::NEG_INFINITY;
+        let mut heavy = 0;
+        for (i, e) in exps.iter_mut().enumerate() {
+            *e = ln_w(i) + poly::binomial(n, i).ln() + i as f64 * sigma;
+            if *e > top {
+                top = *e;
+                heavy = i;
             }
-            _ => da * (u * v),
+        }
+        let point = |i: usize| {
+            let w = self.w().map_or(1.0, |w| w[i]);
+            DVec3::new(self.a(0)[i], self.a(1)[i], self.a(2)[i]) / w
         };
+        let mut total = 0.0;
+        let mut mean = 0.0;
+        for (i, e) in exps.iter_mut().enumerate() {
+            *e = (*e - top).exp();
+            total += *e;
+            mean += *e * i as f64;
+        }
+        mean /= total;
+        let pk = point(heavy);
+        let mut d = DVec3::ZERO;
+        for (i, e) in exps.iter().enumerate() {
+            if *e > 0.0 && i != heavy {
+                d += (*e / total) * (i as f64 - mean) * (point(i) - pk);
+            }
+        }
         let m = d.abs().max_element();
         if m > 0.0 && m.is_finite() {
             m * (d / m).length()
         } else {
             m
         }
+    }
+
+    /// Whether the weights lie so far apart (more than `2⁴⁰`) that the segment's
+    /// polynomials in `u` lose its features to rounding: then its roots are found in the
+    /// logistic parameter ([`Piece::logistic_roots`]).
+    #[must_use]
+    pub fn weights_far_apart(&self) -> bool {
+        self.weight_spread() > 2f64.powi(40)
+    }
+
+    /// The blend `ωᵢ(σ)` (`Σ ωᵢ = 1`, `C = Σ ωᵢ Pᵢ`) at the logistic parameter `σ`, from
+    /// the largest exponent `ln wᵢ + ln C(n, i) + iσ` down; and the mean index `Σ i ωᵢ`.
+    fn blend(&self, sigma: f64, out: &mut [f64]) -> f64 {
+        let n = self.n - 1;
+        let mut top = f64::NEG_INFINITY;
+        for (i, e) in out.iter_mut().enumerate() {
+            let ln_w = self.w().map_or(0.0, |w| w[i].ln());
+            *e = ln_w + poly::binomial(n, i).ln() + i as f64 * sigma;
+            top = top.max(*e);
+        }
+        let mut total = 0.0;
+        for e in out.iter_mut() {
+            *e = (*e - top).exp();
+            total += *e;
+        }
+        let mut mean = 0.0;
+        for (i, e) in out.iter_mut().enumerate() {
+            *e /= total;
+            mean += *e * i as f64;
+        }
+        mean
+    }
+
+    /// The control point `Pᵢ`.
+    fn control_point(&self, i: usize) -> DVec3 {
+        let w = self.w().map_or(1.0, |w| w[i]);
+        DVec3::new(self.a(0)[i], self.a(1)[i], self.a(2)[i]) / w
+    }
+
+    /// `C` at the logistic parameter `σ` (any `σ`, also where `u` is not a double).
+    #[must_use]
+    pub fn point_logistic(&self, sigma: f64) -> DVec3 {
+        let mut om = vec![0.0; self.n];
+        self.blend(sigma, &mut om);
+        om.iter()
+            .enumerate()
+            .map(|(i, w)| *w * self.control_point(i))
+            .sum()
+    }
+
+    /// The logistic range that holds a segment's every feature: its outermost weight
+    /// transitions, `±40` beyond.
+    #[must_use]
+    pub fn logistic_span(&self) -> (f64, f64) {
+        let t = self.weight_transitions();
+        let lo = t.iter().copied().fold(0.0_f64, f64::min);
+        let hi = t.iter().copied().fold(0.0_f64, f64::max);
+        (lo - 40.0, hi + 40.0)
+    }
+
+    /// Where `F(σ) = Σ ωᵢ(σ) fᵢ` is largest and smallest across [`Piece::logistic_span`]
+    /// (sampled every `1/16`, then golden-section search around the best sample): the
+    /// extremes of a coordinate where it levels off within rounding (a stretch parked at
+    /// one control point), which no sign change of `F′` shows. `(σ_min, σ_max)`.
+    #[must_use]
+    pub fn logistic_extremes(&self, f: &[f64]) -> (f64, f64) {
+        let mut om = vec![0.0; self.n];
+        let mut value = |sigma: f64| -> f64 {
+            self.blend(sigma, &mut om);
+            om.iter().zip(f).map(|(w, x)| w * x).sum()
+        };
+        let (lo, hi) = self.logistic_span();
+        let steps = ((hi - lo) * 16.0).ceil().max(1.0) as usize;
+        let h = (hi - lo) / steps as f64;
+        let (mut best_lo, mut best_hi) = ((lo, f64::INFINITY), (lo, f64::NEG_INFINITY));
+        for k in 0..=steps {
+            let x = lo + h * k as f64;
+            let v = value(x);
+            if v < best_lo.1 {
+                best_lo = (x, v);
+            }
+            if v > best_hi.1 {
+                best_hi = (x, v);
+            }
+        }
+        let mut golden = |centre: f64, sign: f64| -> f64 {
+            let (mut a, mut b) = (centre - h, centre + h);
+            let r = 0.5 * (5f64.sqrt() - 1.0);
+            for _ in 0..60 {
+                let (c, d) = (b - r * (b - a), a + r * (b - a));
+                if sign * value(c) > sign * value(d) {
+                    b = d;
+                } else {
+                    a = c;
+                }
+            }
+            0.5 * (a + b)
+        };
+        (golden(best_lo.0, -1.0), golden(best_hi.0, 1.0))
+    }
+
+    /// The roots in the logistic parameter of `F(σ) = Σ ωᵢ(σ) fᵢ` (or, with `slope`, of
+    /// `F′(σ) = Σ ωᵢ (i − ī)(fᵢ − f_k)`), `fᵢ` given per control point: `F` sampled every
+    /// `1/16` across [`Piece::logistic_span`] (it changes on a scale of 1 there, however
+    /// far apart the weights), each sign change closed by the Illinois method, and each
+    /// local minimum of `|F|` within its rounding a touching root (`true`).
+    #[must_use]
+    pub fn logistic_roots(&self, f: &[f64], slope: bool) -> Vec<(f64, bool)> {
+        let mut om = vec![0.0; self.n];
+        let scale = f.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        let noise = 64.0 * f64::EPSILON * scale;
+        let mut value = |sigma: f64| -> f64 {
+            let mean = self.blend(sigma, &mut om);
+            if slope {
+                let k = om
+                    .iter()
+                    .enumerate()
+                    .fold((0, 0.0), |b, (i, &w)| if w > b.1 { (i, w) } else { b })
+                    .0;
+                om.iter()
+                    .enumerate()
+                    .map(|(i, w)| w * (i as f64 - mean) * (f[i] - f[k]))
+                    .sum()
+            } else {
+                om.iter().zip(f).map(|(w, x)| w * x).sum()
+            }
+        };
+        let (lo, hi) = self.logistic_span();
+        let steps = ((hi - lo) * 16.0).ceil().max(1.0) as usize;
+        let at = |k: usize| lo + (hi - lo) * k as f64 / steps as f64;
+        let mut out = Vec::new();
+        let mut prev: Option<(f64, f64)> = None;
+        let mut before: Option<f64> = None;
+        for k in 0..=steps {
+            let x = at(k);
+            let v = value(x);
+            if let Some((px, pv)) = prev {
+                // A sign change between values both within rounding of 0 is rounding (the
+                // tails, where every term but one has died away).
+                let above = pv.abs() > noise || v.abs() > noise;
+                if v == 0.0 && pv.abs() > noise {
+                    out.push((x, false));
+                } else if above && pv != 0.0 && v != 0.0 && (pv < 0.0) != (v < 0.0) {
+                    // Illinois on [px, x].
+                    let (mut a, mut fa, mut b, mut fb) = (px, pv, x, v);
+                    let mut side = 0;
+                    for _ in 0..100 {
+                        let m = (a - fa * (b - a) / (fb - fa)).max(a.min(b)).min(a.max(b));
+                        let fm = value(m);
+                        if fm == 0.0 || (b - a).abs() <= 4.0 * f64::EPSILON * m.abs().max(1.0) {
+                            a = m;
+                            b = m;
+                            break;
+                        }
+                        if (fm < 0.0) == (fa < 0.0) {
+                            a = m;
+                            fa = fm;
+                            if side == -1 {
+                                fb *= 0.5;
+                            }
+                            side = -1;
+                        } else {
+                            b = m;
+                            fb = fm;
+                            if side == 1 {
+                                fa *= 0.5;
+                            }
+                            side = 1;
+                        }
+                    }
+                    out.push((0.5 * (a + b), false));
+                } else if let Some(bv) = before
+                    && !slope
+                    && pv.abs() <= noise
+                    && pv.abs() < bv.abs()
+                    && pv.abs() < v.abs()
+                    && (bv < 0.0) == (v < 0.0)
+                {
+                    out.push((px, true));
+                }
+                before = Some(pv);
+            }
+            prev = Some((x, v));
+        }
+        out
     }
 
     /// The length of the control polygon: at least the segment's arc length (corner

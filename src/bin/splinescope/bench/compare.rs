@@ -17,8 +17,9 @@ use crate::say;
 pub fn read(path: &Path) -> Result<Vec<Value>> {
     let text = splinescope::limits::read_bounded(path)
         .with_context(|| format!("reading --compare {}", path.display()))?;
-    let value: Value = serde_json::from_str(&text)
-        .with_context(|| format!("--compare {}: not JSON", path.display()))?;
+    // As every file the program reads: a key given twice is refused, not last-wins.
+    let value: Value = splinescope_scene::parse_json(&text)
+        .with_context(|| format!("--compare {}", path.display()))?;
     let rows = match value {
         Value::Array(rows) => rows,
         one @ Value::Object(_) => vec![one],

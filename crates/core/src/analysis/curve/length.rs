@@ -16,8 +16,13 @@ const WEIGHT_SPREAD: f64 = 64.0;
 /// the tolerance no quadrature goes below.
 const ROUNDING: f64 = 64.0 * f64::EPSILON;
 
-/// The logistic parameter's range: `e^{−746}` is below the smallest positive double.
+/// The logistic parameter's range for a parameter `u` in `(0, 1)`: `e^{−746}` is below the
+/// smallest positive double.
 const LOGISTIC_END: f64 = 746.0;
+
+/// How far past a segment's outermost weight transition its length is integrated in the
+/// logistic parameter: the rest is within `e^{−40}` of its control polygon.
+const TAIL: f64 = 40.0;
 
 /// `σ = ln(u / (1 − u))`, kept within `±LOGISTIC_END`.
 fn logit(u: f64) -> f64 {
@@ -87,7 +92,29 @@ impl CurveAnalysis {
     /// geometrically (1, 4, 16, …) around each, so every feature sits at the end of short
     /// intervals.
     fn logistic_length(&self, k: usize, u0: f64, u1: f64, tolerance: f64) -> Quadrature {
-        self.logistic_range_length(k, logit(u0), logit(u1), tolerance)
+        // An end of the segment is σ = ∓∞: stop `TAIL` past the farthest transition, where
+        // every weight term but the end's is below `e^{−TAIL}` of it, and count the rest of
+        // the way (within that fraction of the control polygon, each of `n` terms) in the
+        // error.
+        let p = &self.pieces[k];
+        let transitions = p.weight_transitions();
+        let lowest = transitions.iter().copied().fold(0.0_f64, f64::min);
+        let highest = transitions.iter().copied().fold(0.0_f64, f64::max);
+        let tail = (-TAIL).exp() * p.degree().max(1) as f64 * p.polygon_length();
+        let (s0, mut extra) = if u0 <= 0.0 {
+            (lowest - TAIL, tail)
+        } else {
+            (logit(u0), 0.0)
+        };
+        let s1 = if u1 >= 1.0 {
+            extra += tail;
+            highest + TAIL
+        } else {
+            logit(u1)
+        };
+        let mut q = self.logistic_range_length(k, s0, s1, tolerance);
+        q.error += extra;
+        q
     }
 
     /// [`CurveAnalysis::logistic_length`] between two logistic parameters.
@@ -99,7 +126,7 @@ impl CurveAnalysis {
         for c in centres {
             cuts.push(c);
             let mut step = 1.0;
-            while step < 2.0 * LOGISTIC_END {
+            while step < (s1 - s0).abs() {
                 cuts.push(c - step);
                 cuts.push(c + step);
                 step *= 4.0;
@@ -137,6 +164,31 @@ impl CurveAnalysis {
         check_accuracy(accuracy)?;
         self.check_t("t0", t0)?;
         self.check_t("t1", t1)?;
+        // Coordinates near the ends of the double range: measured at a scale of 1 (by a
+        // power of two, exactly), then scaled back.
+        if let Some((e, scaled)) = self.rescaled() {
+            let back = |x: f64| crate::num::scale_by_power_of_two(x, -e);
+            let accuracy_there = crate::num::scale_by_power_of_two(accuracy, e);
+            if !(accuracy_there.is_finite() && accuracy_there > 0.0) {
+                return Err(AnalysisError::Accuracy(accuracy));
+            }
+            return scaled
+                .length(t0, t1, accuracy_there)
+                .map(|l| Length {
+                    value: back(l.value),
+                    error: back(l.error),
+                })
+                .map_err(|err| match err {
+                    AnalysisError::Unresolved { value, error, .. } => AnalysisError::Unresolved {
+                        t0,
+                        t1,
+                        accuracy,
+                        value: back(value),
+                        error: back(error),
+                    },
+                    other => other,
+                });
+        }
         let (lo, hi, sign) = if t0 <= t1 {
             (t0, t1, 1.0)
         } else {
@@ -167,6 +219,22 @@ impl CurveAnalysis {
     /// `[0, length]`.
     pub fn parameter_at_length(&self, s: f64, accuracy: f64) -> Result<f64, AnalysisError> {
         check_accuracy(accuracy)?;
+        if let Some((e, scaled)) = self.rescaled() {
+            let there = |x: f64| crate::num::scale_by_power_of_two(x, e);
+            let (s_there, accuracy_there) = (there(s), there(accuracy));
+            if !(accuracy_there.is_finite() && accuracy_there > 0.0) {
+                return Err(AnalysisError::Accuracy(accuracy));
+            }
+            return scaled
+                .parameter_at_length(s_there, accuracy_there)
+                .map_err(|err| match err {
+                    AnalysisError::BeyondLength { length, .. } => AnalysisError::BeyondLength {
+                        s,
+                        length: crate::num::scale_by_power_of_two(length, -e),
+                    },
+                    other => other,
+                });
+        }
         let n = self.pieces.len().max(1) as f64;
         let pieces: Vec<Quadrature> = (0..self.pieces.len())
             .map(|k| self.piece_length(k, 0.0, 1.0, 0.25 * accuracy / n))

@@ -12,7 +12,7 @@ use super::piece::Piece;
 use super::poly;
 use super::quadrature::integrate;
 use super::roots::{bernstein_roots, bernstein_roots_with_noise};
-use crate::geom::{Aabb, Lower};
+use crate::geom::{Aabb, BezierSegment, Lower};
 use crate::num::Num;
 
 /// Why a question cannot be answered.
@@ -85,6 +85,28 @@ pub enum AnalysisError {
         /// The point.
         point: DVec3,
     },
+    /// Coordinates too large for a question whose squared distances would overflow.
+    #[error(
+        "{what} are computed for coordinates below 2^400 (about 1e120); this curve reaches {}",
+        Num(*magnitude)
+    )]
+    TooLarge {
+        /// The question.
+        what: &'static str,
+        /// The largest coordinate.
+        magnitude: f64,
+    },
+    /// A line whose two points are so close that positions along it (multiples of
+    /// `q − p`) overflow.
+    #[error(
+        "the line's direction q − p = ({}, {}) is too short: a hit's position along it (λ in p + λ (q − p)) would exceed the largest double",
+        Num(direction.x),
+        Num(direction.y)
+    )]
+    ShortLine {
+        /// `q − p`.
+        direction: DVec3,
+    },
 }
 
 /// An arc length and the bound on its error kept by the quadrature.
@@ -132,9 +154,10 @@ pub struct CurvatureExtremum {
 /// How a curve meets a line or another curve at a point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum HitKind {
-    /// The curves cross (transversally, or with an odd order of contact).
+    /// The curves cross transversally: their tangents differ.
     Crossing,
-    /// The curves touch: tangent there (a double root, or parallel tangents).
+    /// The curves share a tangent line there: a contact of any order, whether they then
+    /// cross (odd order) or touch (even).
     Tangent,
 }
 
@@ -171,6 +194,11 @@ pub struct CurveAnalysis {
     /// Per piece, the local minima of its speed inside `(0, 1)` with the width `δ` of
     /// the dip (where the arc length's integrand is cut).
     speed_minima: Vec<Vec<(f64, f64)>>,
+    /// For a curve whose coordinates lie near the ends of the double range: the exponent
+    /// `e` and the curve scaled by `2^e` (built from its control points scaled exactly,
+    /// before any product with a weight could overflow or fall into the subnormals), at
+    /// which its lengths and box are measured.
+    rescaled: Option<(i32, Box<CurveAnalysis>)>,
 }
 
 /// The default accuracy of lengths: absolute, in the curve's units.
@@ -202,7 +230,47 @@ impl CurveAnalysis {
     /// The analysis of `curve` (its exact Bézier segments).
     #[must_use]
     pub fn new(curve: &impl Lower) -> CurveAnalysis {
-        let pieces: Vec<Piece> = curve.lower().iter().map(Piece::new).collect();
+        let segments = curve.lower();
+        let mut out = CurveAnalysis::of_segments(&segments, curve.domain());
+        // Coordinates near the ends of the double range (beyond 2^±400, where squares
+        // overflow or vanish): the same curve at a scale of 1, by a power of two.
+        let m = segments
+            .iter()
+            .flat_map(|s| s.points().iter())
+            .fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+        if m.is_finite() && m > 0.0 && (m >= 2f64.powi(400) || m <= 2f64.powi(-400)) {
+            let e = -(m.log2().floor() as i32);
+            let scaled: Vec<BezierSegment> = segments
+                .iter()
+                .map(|s| BezierSegment {
+                    bezier: crate::geom::Bezier::new(
+                        s.points()
+                            .iter()
+                            .map(|p| {
+                                DVec3::new(
+                                    crate::num::scale_by_power_of_two(p.x, e),
+                                    crate::num::scale_by_power_of_two(p.y, e),
+                                    crate::num::scale_by_power_of_two(p.z, e),
+                                )
+                            })
+                            .collect(),
+                    ),
+                    weights: s.weights.clone(),
+                    t0: s.t0,
+                    t1: s.t1,
+                })
+                .collect();
+            out.rescaled = Some((
+                e,
+                Box::new(CurveAnalysis::of_segments(&scaled, curve.domain())),
+            ));
+        }
+        out
+    }
+
+    /// The analysis of these segments over `domain`, as they are.
+    fn of_segments(segments: &[BezierSegment], domain: (f64, f64)) -> CurveAnalysis {
+        let pieces: Vec<Piece> = segments.iter().map(Piece::new).collect();
         let planar = pieces.iter().all(Piece::is_planar);
         // Pieces with an a-priori bound (planar polynomial ones) need no cuts.
         let speed_minima = pieces
@@ -217,9 +285,31 @@ impl CurveAnalysis {
             .collect();
         CurveAnalysis {
             pieces,
-            domain: curve.domain(),
+            domain,
             planar,
             speed_minima,
+            rescaled: None,
+        }
+    }
+
+    /// For a curve whose coordinates lie near the ends of the double range, the exponent
+    /// `e` and the curve scaled by `2^e` (coordinates about 1); `None` otherwise.
+    pub(crate) fn rescaled(&self) -> Option<(i32, &CurveAnalysis)> {
+        self.rescaled.as_ref().map(|(e, c)| (*e, c.as_ref()))
+    }
+
+    /// Refuses a curve whose coordinates reach beyond `2^400` (about `1e120`) for a
+    /// question whose squares of distances would overflow (intersections).
+    pub(crate) fn require_moderate(&self, what: &'static str) -> Result<(), AnalysisError> {
+        let m = self
+            .pieces
+            .iter()
+            .map(Piece::magnitude)
+            .fold(0.0_f64, f64::max);
+        if m.is_finite() && m < 2f64.powi(400) {
+            Ok(())
+        } else {
+            Err(AnalysisError::TooLarge { what, magnitude: m })
         }
     }
 
@@ -306,26 +396,67 @@ impl CurveAnalysis {
     /// then parameter; 2 axes for a planar curve, 3 otherwise.
     #[must_use]
     pub fn extrema(&self) -> Vec<Extremum> {
+        if let Some((e, scaled)) = self.rescaled() {
+            let back = |p: DVec3| p.map(|x| crate::num::scale_by_power_of_two(x, -e));
+            return scaled
+                .extrema()
+                .into_iter()
+                .map(|x| Extremum {
+                    point: back(x.point),
+                    ..x
+                })
+                .collect();
+        }
         let dims = if self.planar { 2 } else { 3 };
         let (a, b) = self.domain;
         let mut out: Vec<Extremum> = Vec::new();
         for axis in 0..dims {
-            let mut ts: Vec<f64> = Vec::new();
+            // (t, the point where it is known more closely than at t)
+            let mut ts: Vec<(f64, Option<DVec3>)> = Vec::new();
             for p in &self.pieces {
+                if p.weights_far_apart() {
+                    // In the logistic parameter: its polynomials in u have lost the roots
+                    // (and where u is not a double, the point stands at the nearest t).
+                    let f: Vec<f64> = (0..=p.degree())
+                        .map(|i| p.a(axis)[i] / p.w().map_or(1.0, |w| w[i]))
+                        .collect();
+                    let mut sigmas: Vec<f64> = p
+                        .logistic_roots(&f, true)
+                        .into_iter()
+                        .map(|r| r.0)
+                        .collect();
+                    // Extremes where the coordinate levels off (no sign change shows).
+                    let (end0, end1) = (f[0], f[f.len() - 1]);
+                    let (smin, smax) = p.logistic_extremes(&f);
+                    let at = |s: f64| p.point_logistic(s)[axis];
+                    if at(smin) < end0.min(end1) {
+                        sigmas.push(smin);
+                    }
+                    if at(smax) > end0.max(end1) {
+                        sigmas.push(smax);
+                    }
+                    for sigma in sigmas {
+                        let u = 1.0 / (1.0 + (-sigma).exp());
+                        ts.push((p.t_of(u), Some(p.point_logistic(sigma))));
+                    }
+                    continue;
+                }
                 let roots = bernstein_roots(&p.deriv_numerator(axis));
                 for r in roots.roots {
                     let t = p.t_of(r.t);
                     if t > a && t < b {
-                        ts.push(t);
+                        ts.push((t, None));
                     }
                 }
             }
-            ts.sort_by(f64::total_cmp);
-            ts.dedup_by(|x, y| (*x - *y).abs() <= 4.0 * f64::EPSILON * x.abs().max(1.0));
-            out.extend(ts.into_iter().map(|t| Extremum {
+            ts.sort_by(|x, y| x.0.total_cmp(&y.0));
+            ts.dedup_by(|x, y| {
+                (x.0 - y.0).abs() <= 4.0 * f64::EPSILON * x.0.abs().max(1.0) && x.1 == y.1
+            });
+            out.extend(ts.into_iter().map(|(t, point)| Extremum {
                 t,
                 axis,
-                point: self.point(t),
+                point: point.unwrap_or_else(|| self.point(t)),
             }));
         }
         out
@@ -335,6 +466,14 @@ impl CurveAnalysis {
     /// the points where a coordinate's derivative vanishes (not the control points' box).
     #[must_use]
     pub fn bounding_box(&self) -> Aabb {
+        if let Some((e, scaled)) = self.rescaled() {
+            let back = |p: DVec3| p.map(|x| crate::num::scale_by_power_of_two(x, -e));
+            let b = scaled.bounding_box();
+            return Aabb {
+                min: back(b.min),
+                max: back(b.max),
+            };
+        }
         let mut bbox = Aabb::EMPTY;
         let mut rest = false;
         for p in &self.pieces {
@@ -363,8 +502,12 @@ impl CurveAnalysis {
     pub fn is_closed(&self) -> bool {
         let (a, b) = self.domain;
         let (p, q) = (self.point(a), self.point(b));
-        let size = self.control_box().diagonal().max(f64::MIN_POSITIVE);
-        (p - q).length() <= 1e-12 * size
+        // Componentwise, in halves: nothing squared or summed can overflow, whatever the
+        // coordinates' size.
+        let bbox = self.control_box();
+        let half_extent = (0.5 * bbox.max - 0.5 * bbox.min).max_element();
+        let gap = (0.5 * p - 0.5 * q).abs().max_element();
+        gap <= 1e-12 * half_extent.max(f64::MIN_POSITIVE)
     }
 
     /// The box of every segment's control points (holds the curve).
@@ -633,16 +776,62 @@ impl CurveAnalysis {
         if d.x == 0.0 && d.y == 0.0 {
             return Err(AnalysisError::DegenerateLine { point: p });
         }
+        // The direction scaled to a largest component of 1 (exactly enough: the signed
+        // distances only need its direction), so that a tiny or huge `q − p` neither
+        // vanishes nor overflows in them; positions along the line divide by the scale.
+        let m = d.x.abs().max(d.y.abs());
+        let dn = DVec3::new(d.x / m, d.y / m, 0.0);
+        let lambda = |point: DVec3| -> Result<f64, AnalysisError> {
+            let l = (point - p).dot(dn) / dn.length_squared() / m;
+            if l.is_finite() {
+                Ok(l)
+            } else {
+                Err(AnalysisError::ShortLine { direction: d })
+            }
+        };
         let mut hits: Vec<LineHit> = Vec::new();
         let mut overlaps: Vec<(f64, f64)> = Vec::new();
         for piece in &self.pieces {
             let n = piece.a(0).len();
+            if piece.weights_far_apart() {
+                // In the logistic parameter (its polynomial in u has lost the roots).
+                let f: Vec<f64> = (0..n)
+                    .map(|i| {
+                        let w = piece.w().map_or(1.0, |w| w[i]);
+                        let (x, y) = (piece.a(0)[i] / w - p.x, piece.a(1)[i] / w - p.y);
+                        x * dn.y - y * dn.x
+                    })
+                    .collect();
+                if f.iter().all(|v| *v == 0.0) {
+                    match overlaps.last_mut() {
+                        Some(last) if last.1 == piece.t0 => last.1 = piece.t1,
+                        _ => overlaps.push((piece.t0, piece.t1)),
+                    }
+                    continue;
+                }
+                for (sigma, touches) in piece.logistic_roots(&f, false) {
+                    let u = 1.0 / (1.0 + (-sigma).exp());
+                    let point = piece.point_logistic(sigma);
+                    hits.push(LineHit {
+                        t: piece.t_of(u),
+                        lambda: lambda(point)?,
+                        point,
+                        kind: if touches {
+                            HitKind::Tangent
+                        } else {
+                            HitKind::Crossing
+                        },
+                        error: 4.0 * f64::EPSILON * (piece.t1 - piece.t0).abs(),
+                    });
+                }
+                continue;
+            }
             let c: Vec<f64> = (0..n)
                 .map(|i| {
                     let w = piece.w().map_or(1.0, |w| w[i]);
                     let x = piece.a(0)[i] - p.x * w;
                     let y = piece.a(1)[i] - p.y * w;
-                    x * d.y - y * d.x
+                    x * dn.y - y * dn.x
                 })
                 .collect();
             let roots = bernstein_roots(&c);
@@ -658,9 +847,10 @@ impl CurveAnalysis {
                 let point = piece.point(r.t);
                 hits.push(LineHit {
                     t,
-                    lambda: (point - p).dot(d) / d.length_squared(),
+                    lambda: lambda(point)?,
                     point,
-                    kind: if r.multiplicity % 2 == 0 {
+                    // A multiple root is a common tangent (a contact of any order).
+                    kind: if r.multiplicity >= 2 {
                         HitKind::Tangent
                     } else {
                         HitKind::Crossing

@@ -58,6 +58,9 @@ pub fn all_intersections<C: Borrow<CurveAnalysis> + Sync>(
             what: "intersections",
         });
     }
+    for c in &curves {
+        c.require_moderate("intersections")?;
+    }
     let (groups, first) = copies(&curves);
     // The groups' first curves (and every curve that has no copy), in the order of their
     // boxes along a Z curve, and their segments copied in that order: neighbours in the

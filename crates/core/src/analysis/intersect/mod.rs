@@ -211,6 +211,8 @@ impl CurveAnalysis {
                 what: "intersections",
             });
         }
+        self.require_moderate("intersections")?;
+        other.require_moderate("intersections")?;
         let mut found = Intersections::default();
         let boxes_b: Vec<(DVec2, DVec2)> = other.pieces().iter().map(piece_box).collect();
         for a in self.pieces() {
@@ -241,6 +243,7 @@ impl CurveAnalysis {
                 what: "self-intersections",
             });
         }
+        self.require_moderate("self-intersections")?;
         // Monotone pieces: (segment index, u0, u1).
         let mut parts: Vec<(usize, f64, f64)> = Vec::new();
         for (k, p) in self.pieces().iter().enumerate() {

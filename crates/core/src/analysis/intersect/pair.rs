@@ -322,7 +322,7 @@ fn band(
         let mut step = start.max(floor);
         // The first step inside the band (so that the exit step is at most twice its edge).
         while step > floor {
-            let x = (u + dir * step).clamp(xa.0, xa.1);
+            let x = (u + dir * step).max(xa.0).min(xa.1);
             if distance(x, v).2 <= tol {
                 break;
             }
@@ -330,7 +330,7 @@ fn band(
         }
         let mut fv = v;
         loop {
-            let x = (u + dir * step).clamp(xa.0, xa.1);
+            let x = (u + dir * step).max(xa.0).min(xa.1);
             let at_end = x == xa.0 || x == xa.1;
             let (nv, d, beyond) = distance(x, fv);
             fv = nv;
@@ -519,20 +519,37 @@ impl Leaves for Points<'_> {
         if meets(u, v, residual) {
             // A point, wherever it is; a pair meeting at most once whose Newton's method
             // went outside it (to a neighbour's point, or just past its edge) is examined
-            // further, and a flat leaf beside the point (another may lie there).
+            // further.
             self.seen.push((u, v));
+            let before = self.hits.len();
             let found = self.record(u, v, residual);
-            return match (single, inside(u, v)) {
-                (true, true) => Rest::Done,
-                (true, false) => Rest::Deeper,
-                (false, true) => match found {
-                    Some(h) => Rest::Beside(
-                        h.u - h.err_u - 4.0 * f64::EPSILON,
-                        h.u + h.err_u + 4.0 * f64::EPSILON,
-                    ),
-                    None => Rest::Done,
-                },
-                (false, false) => Rest::Done,
+            if single {
+                return if inside(u, v) {
+                    Rest::Done
+                } else {
+                    Rest::Deeper
+                };
+            }
+            // A flat leaf may hold more points than Newton's method reached (two crossings
+            // close together, one at the leaf's end): every sign change of the distance
+            // along it too; and a new point inside splits the leaf around it.
+            let ext = (
+                rb.0.max(lo_v - (hi_v - lo_v)),
+                rb.1.min(hi_v + (hi_v - lo_v)),
+            );
+            for (su, sv) in sign_changes(a, (lo_u, hi_u), b, ext, v) {
+                let r = (a.point(su) - b.point(sv)).truncate().length();
+                if meets(su, sv, r) {
+                    self.seen.push((su, sv));
+                    self.record(su, sv, r);
+                }
+            }
+            return match found {
+                Some(h) if self.hits.len() > before && inside(h.u, h.v) => Rest::Beside(
+                    h.u - h.err_u - 4.0 * f64::EPSILON,
+                    h.u + h.err_u + 4.0 * f64::EPSILON,
+                ),
+                _ => Rest::Done,
             };
         }
         // Newton's method went astray (curves nearly parallel, where the linear model's
@@ -646,7 +663,9 @@ fn sign_changes(
             let mut side = 0;
             for _ in 0..200 {
                 let m = if hhi != hlo {
-                    (lo - hlo * (hi - lo) / (hhi - hlo)).clamp(lo.min(hi), lo.max(hi))
+                    (lo - hlo * (hi - lo) / (hhi - hlo))
+                        .max(lo.min(hi))
+                        .min(lo.max(hi))
                 } else {
                     0.5 * (lo + hi)
                 };

@@ -220,10 +220,10 @@ pub(super) fn foot_converged(p: &Piece, range: (f64, f64), q: DVec2, mut v: f64)
             return (v, g == 0.0 || here == 0.0);
         }
         let width = range.1 - range.0;
-        let mut step = (-g / dg).clamp(-width, width);
+        let mut step = (-g / dg).max(-width).min(width);
         let mut moved = None;
         for _ in 0..40 {
-            let next = (v + step).clamp(range.0, range.1);
+            let next = (v + step).max(range.0).min(range.1);
             let there = dist(next);
             if there <= here {
                 moved = Some((next, there));

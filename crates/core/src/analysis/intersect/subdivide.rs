@@ -374,6 +374,9 @@ impl Sub {
             return alpha;
         }
         let fraction = |t: f64| poly::eval(&num[..n], t) / poly::eval(&den[..n], t);
+        if !(fraction(0.0).is_finite() && fraction(1.0).is_finite()) {
+            return alpha;
+        }
         // Regula falsi (Illinois) on the monotone fraction, to 1e−9: a start, not a root.
         let (mut lo, mut flo, mut hi, mut fhi) =
             (0.0, fraction(0.0) - alpha, 1.0, fraction(1.0) - alpha);
@@ -385,7 +388,7 @@ impl Sub {
         }
         let mut side = 0;
         for _ in 0..60 {
-            let m = (lo - flo * (hi - lo) / (fhi - flo)).clamp(lo, hi);
+            let m = (lo - flo * (hi - lo) / (fhi - flo)).max(lo).min(hi);
             let fm = fraction(m) - alpha;
             if fm == 0.0 || hi - lo <= 1e-9 {
                 return m;
