@@ -976,15 +976,36 @@ fn many_curves_agree_with_every_pair() {
             .wrapping_add(1_442_695_040_888_963_407);
         (seed >> 11) as f64 / (1u64 << 53) as f64
     };
+    // Half of them B-splines of three segments: a pair of curves is one entry, however
+    // many of their segments meet.
     let curves: Vec<Curve> = (0..40)
-        .map(|_| {
-            Curve::Bezier(Bezier::new(
-                (0..4).map(|_| p2(4.0 * rnd(), 4.0 * rnd())).collect(),
-            ))
+        .map(|k| {
+            if k % 2 == 0 {
+                Curve::Bezier(Bezier::new(
+                    (0..4).map(|_| p2(4.0 * rnd(), 4.0 * rnd())).collect(),
+                ))
+            } else {
+                Curve::BSpline(
+                    BSpline::try_new(
+                        (0..6).map(|_| p2(4.0 * rnd(), 4.0 * rnd())).collect(),
+                        vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.7, 1.0, 1.0, 1.0, 1.0],
+                        4,
+                    )
+                    .expect("cubic B-spline"),
+                )
+            }
         })
         .collect();
     let analyses: Vec<CurveAnalysis> = curves.iter().map(CurveAnalysis::new).collect();
     let all = all_intersections(&analyses).expect("planar").pairs;
+    for w in all.windows(2) {
+        assert!(
+            (w[0].i, w[0].j) < (w[1].i, w[1].j),
+            "pair ({}, {}) reported twice or out of order",
+            w[1].i,
+            w[1].j
+        );
+    }
     let mut count = 0;
     for i in 0..curves.len() {
         for j in (i + 1)..curves.len() {

@@ -115,8 +115,9 @@ pub fn all_intersections<C: Borrow<CurveAnalysis> + Sync>(
         }
     }
     let mut pairs = box_pairs(&items);
-    // By pair of curves (in Z order), then by their segments.
-    pairs.par_sort_unstable();
+    // By pair of curves (in Z order), then by their segments: every pair of curves is one
+    // run, however many segments each has.
+    pairs.par_sort_unstable_by_key(|&(ci, ka, cj, kb)| (ci, cj, ka, kb));
     let results: Vec<(usize, usize, PairIntersections)> = pairs
         .par_chunk_by(|x, y| x.0 == y.0 && x.2 == y.2)
         .filter_map(|run| {
