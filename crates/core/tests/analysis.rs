@@ -1049,3 +1049,77 @@ fn families_are_answered_through_their_segments() {
     let segments = m.lower().len();
     assert_eq!(segments, 2);
 }
+
+#[test]
+fn a_shared_end_where_a_speed_vanishes_is_one_point_with_a_finite_error() {
+    // A cubic whose first two control points coincide has zero speed at its start: the
+    // crossing's condition number is infinite there, yet the point is one point, and its
+    // error a number (measured from where the curves part), never NaN.
+    let a = bezier(&[(0.0, 0.0), (0.0, 0.0), (1.0, 2.0), (3.0, 0.0)]);
+    for (far, repeated) in [((3.0, 3.0), false), ((-2.0, 1.0), false), ((2.0, -1.0), true)] {
+        let b = if repeated {
+            bezier(&[(0.0, 0.0), (0.0, 0.0), far])
+        } else {
+            bezier(&[(0.0, 0.0), (1.0, 0.25), far])
+        };
+        let found = CurveAnalysis::new(&a)
+            .intersect(&CurveAnalysis::new(&b))
+            .expect("planar");
+        let at_start: Vec<_> = found
+            .hits
+            .iter()
+            .filter(|h| h.s.abs() < 1e-6 && h.t.abs() < 1e-6)
+            .collect();
+        assert_eq!(at_start.len(), 1, "{far:?}: {:?}", found.hits);
+        for h in &found.hits {
+            assert!(
+                h.error_s.is_finite() && h.error_t.is_finite(),
+                "{far:?}: {h:?}"
+            );
+        }
+    }
+    // Quartics from one start, one of them with its first two control points equal (as
+    // paper 001's Fig. 1 curves lower to).
+    let pts = [
+        (24.0, -19.35),
+        (24.75, -14.85),
+        (27.0, -13.65),
+        (28.5, -17.55),
+        (30.0, -13.65),
+    ];
+    let mut q = pts.to_vec();
+    q[1] = q[0];
+    let found = CurveAnalysis::new(&bezier(&pts))
+        .intersect(&CurveAnalysis::new(&bezier(&q)))
+        .expect("planar");
+    assert_eq!(
+        found.hits.iter().filter(|h| h.s == 0.0 && h.t == 0.0).count(),
+        1,
+        "{:?}",
+        found.hits
+    );
+    for h in &found.hits {
+        assert!(h.error_s.is_finite() && h.error_t.is_finite(), "{h:?}");
+    }
+    // Through a cusp (zero speed at t = ½, the point (½, ¾)), by lines at several slopes.
+    let cusp = bezier(&[(0.0, 0.0), (1.0, 1.0), (0.0, 1.0), (1.0, 0.0)]);
+    for (dx, dy) in [(1.0, 0.0), (1.0, 0.5), (0.25, 1.0), (0.0, 1.0), (1.0, -1.0)] {
+        let line = bezier(&[(0.5 - dx, 0.75 - dy), (0.5 + dx, 0.75 + dy)]);
+        let found = CurveAnalysis::new(&cusp)
+            .intersect(&CurveAnalysis::new(&line))
+            .expect("planar");
+        let at_cusp = found
+            .hits
+            .iter()
+            .filter(|h| (h.s - 0.5).abs() < 1e-4 && (h.t - 0.5).abs() < 1e-4)
+            .count();
+        assert_eq!(at_cusp, 1, "({dx}, {dy}): {:?}", found.hits);
+        for h in &found.hits {
+            assert!(
+                h.error_s.is_finite() && h.error_t.is_finite(),
+                "({dx}, {dy}): {h:?}"
+            );
+            assert!((h.s - 0.5).abs() > 1e-4 || (h.s - 0.5).abs() <= h.error_s.max(1e-8), "{h:?}");
+        }
+    }
+}

@@ -389,8 +389,19 @@ fn classify(
             let dk = if da.dot(db) >= 0.0 { ka - kb } else { ka + kb };
             sin * sin <= 64.0 * tol * (dk.abs() + 1.0 / scale.size)
         };
+    // Where the condition number is not finite (a speed of zero at the point: a cusp, or
+    // an end whose control points repeat), the parameters are known to the band in which
+    // the curves stay within the resolution of each other, measured.
+    let measured = |mut h: PairHit| {
+        if !(h.err_u.is_finite() && h.err_v.is_finite()) {
+            let found = band(a, ra, b, rb, (u, v), tol, 1e-9 * (ra.1 - ra.0));
+            h.err_u = found.u.max(f64::EPSILON * u.abs());
+            h.err_v = found.v.max(f64::EPSILON * v.abs());
+        }
+        h
+    };
     if !could_touch {
-        return crossing;
+        return measured(crossing);
     }
     // Where the tangents are parallel nearby and the curves still meet, that is the
     // candidate touching point; else the point itself.
@@ -423,7 +434,7 @@ fn classify(
         None => sin.is_nan() || sin <= 1e-7,
     };
     if !touches {
-        return crossing;
+        return measured(crossing);
     }
     PairHit {
         u: pu,
