@@ -45,6 +45,21 @@ pub enum EditError {
         /// What the family said.
         reason: crate::geom::GeomError,
     },
+    /// An edit that would leave a curve the renderer cannot draw (its degree over the
+    /// GPU's maximum): refused where it is made, the curve kept as it was.
+    #[error(
+        "curves[{index}]: {what} would raise its degree to {degree}, over the GPU maximum of {max} — the curve is kept as it was"
+    )]
+    Undrawable {
+        /// The curve.
+        index: usize,
+        /// The edit.
+        what: &'static str,
+        /// The degree it would have.
+        degree: usize,
+        /// The GPU's maximum.
+        max: usize,
+    },
     /// Pulling through a point modifies Bézier and rational curves only.
     #[error(
         "pulling a curve through a point modifies Bézier, rational Bézier and NURBS curves; curves[{index}] is {family} (drag its control points)"
@@ -183,6 +198,12 @@ pub struct Editor {
     /// The last value refused (typed or dragged), shown in the warning colour next to the
     /// field it was given in; cleared by the next accepted edit.
     pub refusal: Option<Refusal>,
+    /// A failure the user must not miss — a save that failed (and whether the recovery
+    /// file holds the edits), an edit the renderer could not take — shown in the warning
+    /// colour at the top of the panel until a save succeeds or it is dismissed.
+    pub warning: Option<String>,
+    /// Whether the last write of the recovery file failed.
+    recovery_failed: bool,
 }
 
 /// A value the editor refused: where it was given and why.
@@ -216,6 +237,8 @@ impl Editor {
             selected_point: None,
             message: None,
             refusal: None,
+            warning: None,
+            recovery_failed: false,
         }
     }
 
@@ -465,12 +488,28 @@ impl Editor {
             Some(source) => crate::scene::to_json_string_keeping(&self.scene, source),
             None => crate::scene::to_json_string(&self.scene),
         };
-        crate::file_output::write_atomic(&path, text.as_bytes()).map_err(|reason| {
-            EditError::Save {
+        if let Err(reason) = crate::file_output::write_atomic(&path, text.as_bytes()) {
+            // Said where it cannot be missed, with where the edits are kept.
+            let kept = match self.path.as_deref() {
+                None => " — the edits are kept in this window only (the scene has no file yet)"
+                    .to_owned(),
+                Some(_) if self.recovery_failed => {
+                    " — the edits are kept in this window only: the recovery file could not be written either".to_owned()
+                }
+                Some(own) if self.committed_dirty() => format!(
+                    " — the edits are kept in this window and in {}",
+                    recovery::recovery_path(own).display()
+                ),
+                Some(_) => " — the edits are kept in this window".to_owned(),
+            };
+            let e = EditError::Save {
                 path: path.clone(),
                 reason,
-            }
-        })?;
+            };
+            self.warning = Some(format!("{e}{kept}"));
+            return Err(e);
+        }
+        self.warning = None;
         self.source = Some(text);
         if self.path.as_deref() != Some(path.as_path()) {
             self.discard_recovery();

@@ -366,7 +366,16 @@ impl Interaction {
         let at = self.cursor_world();
         match self.editor.insert_point(index, at) {
             Ok(point) => self.editor.selected_point = Some(point),
-            Err(e) => self.editor.message = Some(e.to_string()),
+            Err(e) => {
+                // Shown as a refused value is: in the warning colour.
+                let text = e.to_string();
+                self.editor.refusal = Some(crate::edit::Refusal {
+                    curve: index,
+                    field: String::new(),
+                    text: text.clone(),
+                });
+                self.editor.message = Some(text);
+            }
         }
     }
 

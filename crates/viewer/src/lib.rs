@@ -449,12 +449,29 @@ impl Running {
             t.poll();
         }
         let changed = self.model.editor.take_changed();
-        self.view.sync(
+        if let Err(e) = self.view.sync(
             &self.ctx,
             self.model.editor.scene(),
             &changed,
             self.model.toggles,
-        )?;
+        ) {
+            // A scene the GPU cannot take (an edit no check refused where it was made):
+            // the edit is undone and said, never the end of the session.
+            let AppError::Gpu(GpuError::Pack(why)) = e else {
+                return Err(e);
+            };
+            if !self.model.editor.undo() {
+                return Err(AppError::Gpu(GpuError::Pack(why)));
+            }
+            self.model.editor.warning = Some(format!("{why} — the edit was undone"));
+            let changed = self.model.editor.take_changed();
+            self.view.sync(
+                &self.ctx,
+                self.model.editor.scene(),
+                &changed,
+                self.model.toggles,
+            )?;
+        }
         self.view.sync_shape(
             &self.ctx,
             self.model.editor.scene(),

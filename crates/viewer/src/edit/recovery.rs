@@ -26,11 +26,22 @@ impl Editor {
         };
         let recovery = recovery_path(path);
         if self.committed_dirty() {
-            if let Err(e) = self.scene.save(&recovery) {
-                self.message = Some(format!(
-                    "{}: cannot write the recovery file: {e}",
-                    recovery.display()
-                ));
+            match self.scene.save(&recovery) {
+                Err(e) => {
+                    let text = format!(
+                        "the unsaved edits are not kept on disk: the recovery file {} cannot be written ({e})",
+                        recovery.display()
+                    );
+                    self.message = Some(text.clone());
+                    self.warning = Some(text);
+                    self.recovery_failed = true;
+                }
+                Ok(()) => {
+                    // A warning about the recovery file is over once it is written.
+                    if std::mem::take(&mut self.recovery_failed) {
+                        self.warning = None;
+                    }
+                }
             }
         } else {
             self.remove_recovery(&recovery);

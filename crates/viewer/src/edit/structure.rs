@@ -108,6 +108,17 @@ impl Editor {
         } else {
             sc.curve.with_point_on_polygon(at).map_err(fail)?
         };
+        // A Bézier curve gains a degree with each point: past the GPU's maximum the
+        // renderer could not draw it, so the edit is refused here.
+        let degree = crate::geom::max_degree(&crate::geom::Lower::lower(&curve));
+        if degree > crate::gpu::layout::MAX_GPU_DEGREE {
+            return Err(EditError::Undrawable {
+                index,
+                what: "inserting a point",
+                degree,
+                max: crate::gpu::layout::MAX_GPU_DEGREE,
+            });
+        }
         self.edit_curve(index, curve);
         self.message = Some(format!("inserted point {point} into curves[{index}]"));
         Ok(point)

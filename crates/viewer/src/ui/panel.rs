@@ -294,6 +294,16 @@ pub(crate) fn edit_section(
             "add a curve of any family at the centre of the view (right-click the canvas: at the pointer)",
         );
     });
+    // A failure that must not be missed (a save that failed, an edit undone), in the
+    // warning colour until dismissed or a save succeeds.
+    if let Some(w) = editor.warning.clone() {
+        ui.horizontal_wrapped(|ui| {
+            ui.colored_label(WARNING, format!("⚠ {w}"));
+            if ui.small_button("dismiss").clicked() {
+                editor.warning = None;
+            }
+        });
+    }
     // The message keeps its line even when empty, so the layout does not jump; a refusal
     // is shown in the warning colour (and again next to its field below).
     match (&editor.message, &editor.refusal) {
