@@ -1056,7 +1056,11 @@ fn a_shared_end_where_a_speed_vanishes_is_one_point_with_a_finite_error() {
     // crossing's condition number is infinite there, yet the point is one point, and its
     // error a number (measured from where the curves part), never NaN.
     let a = bezier(&[(0.0, 0.0), (0.0, 0.0), (1.0, 2.0), (3.0, 0.0)]);
-    for (far, repeated) in [((3.0, 3.0), false), ((-2.0, 1.0), false), ((2.0, -1.0), true)] {
+    for (far, repeated) in [
+        ((3.0, 3.0), false),
+        ((-2.0, 1.0), false),
+        ((2.0, -1.0), true),
+    ] {
         let b = if repeated {
             bezier(&[(0.0, 0.0), (0.0, 0.0), far])
         } else {
@@ -1093,7 +1097,11 @@ fn a_shared_end_where_a_speed_vanishes_is_one_point_with_a_finite_error() {
         .intersect(&CurveAnalysis::new(&bezier(&q)))
         .expect("planar");
     assert_eq!(
-        found.hits.iter().filter(|h| h.s == 0.0 && h.t == 0.0).count(),
+        found
+            .hits
+            .iter()
+            .filter(|h| h.s == 0.0 && h.t == 0.0)
+            .count(),
         1,
         "{:?}",
         found.hits
@@ -1119,7 +1127,10 @@ fn a_shared_end_where_a_speed_vanishes_is_one_point_with_a_finite_error() {
                 h.error_s.is_finite() && h.error_t.is_finite(),
                 "({dx}, {dy}): {h:?}"
             );
-            assert!((h.s - 0.5).abs() > 1e-4 || (h.s - 0.5).abs() <= h.error_s.max(1e-8), "{h:?}");
+            assert!(
+                (h.s - 0.5).abs() > 1e-4 || (h.s - 0.5).abs() <= h.error_s.max(1e-8),
+                "{h:?}"
+            );
         }
     }
 }
