@@ -408,18 +408,69 @@ fn an_offscreen_render_grows_a_buffer_the_view_outgrew_and_draws_uncapped() {
             assert!(gpu.capacity() > before, "{what}: the buffer grew");
             assert_eq!(stats.capped, 0, "{what}: the final frame was not capped");
             assert_eq!(stats.drawn, stats.requested, "{what}");
-            // Back to the default tolerance and view: nothing shrinks or reallocates.
+            // Back to the default tolerance and view: the excess is given back (never below
+            // what the buffers started with), and the same view again reallocates nothing.
             let grown = gpu.capacity();
-            render_uploaded(
-                ctx,
-                &renderer,
-                &mut gpu,
-                &scene.camera(VIEWPORT),
-                (VIEWPORT.x as u32, VIEWPORT.y as u32),
-                DEFAULT_TOLERANCE_PX,
-            )
-            .expect("render");
-            assert_eq!(gpu.capacity(), grown, "{what}");
+            let small = |gpu: &mut splinescope::gpu::renderer::GpuScene| {
+                render_uploaded(
+                    ctx,
+                    &renderer,
+                    gpu,
+                    &scene.camera(VIEWPORT),
+                    (VIEWPORT.x as u32, VIEWPORT.y as u32),
+                    DEFAULT_TOLERANCE_PX,
+                )
+                .expect("render");
+            };
+            small(&mut gpu);
+            let shrunk = gpu.capacity();
+            assert!(shrunk < grown && shrunk >= before, "{what} → {shrunk}");
+            small(&mut gpu);
+            assert_eq!(gpu.capacity(), shrunk, "{what}");
+            let stats =
+                read_stats(&ctx.device, &ctx.queue, &gpu.chunks[0].adaptive).expect("stats");
+            assert_eq!(stats.capped, 0, "{what}: the small view fits what is left");
+        },
+    );
+}
+
+#[test]
+fn buffers_grow_within_the_scene_budget_and_past_it_the_frame_is_capped() {
+    use splinescope::gpu::adaptive::read_stats;
+    use splinescope::gpu::capture::{OFFSCREEN_FORMAT, render_uploaded};
+    use splinescope::gpu::renderer::{Renderer, SAMPLE_BUDGET};
+    // A zoom into the middle of many curves asks for ever more samples: however far, the
+    // buffers stop at the budget (the memory of a session is bounded), and the frames past
+    // it are drawn capped, within the buffers, saying so.
+    const { assert!(SAMPLE_BUDGET >= 1 << 22, "a 4K screen's worth") };
+    common::on_each_gpu(
+        "buffers_grow_within_the_scene_budget_and_past_it_the_frame_is_capped",
+        |backend| {
+            let ctx = &backend.ctx;
+            let scene = random_scene(14, false);
+            let prepared = common::pack(ctx, &scene);
+            let renderer = Renderer::new(&ctx.device, &backend.pipelines, OFFSCREEN_FORMAT);
+            let mut gpu = renderer.upload(ctx, &prepared);
+            let before = gpu.capacity();
+            let budget = before + 5000;
+            gpu.set_sample_budget(budget);
+            let size = DVec2::new(2048.0, 2048.0);
+            let mut capped = false;
+            for zoom in [1.0, 4.0, 16.0, 64.0] {
+                let camera = zoomed(&scene.camera(size), zoom, &scene);
+                render_uploaded(ctx, &renderer, &mut gpu, &camera, (2048, 2048), 0.01)
+                    .expect("render");
+                let what = format!("{}: zoom {zoom}: {}", backend.name, gpu.capacity());
+                assert!(gpu.capacity() <= budget, "{what} > {budget}");
+                let stats =
+                    read_stats(&ctx.device, &ctx.queue, &gpu.chunks[0].adaptive).expect("stats");
+                assert!(stats.drawn <= gpu.chunks[0].adaptive.capacity, "{what}");
+                if stats.requested > gpu.chunks[0].adaptive.capacity {
+                    assert_eq!(stats.capped, 1, "{what}: a capped frame says so");
+                    capped = true;
+                }
+            }
+            assert!(capped, "{}: the zoom outgrew the budget", backend.name);
         },
     );
 }

@@ -80,6 +80,8 @@ pub struct GpuChunk {
     /// The curve rasterizer's bind group over the samples, styles and work buffer and the
     /// scene's layer (made when the layer is, and again when the chunk grows).
     raster: Option<wgpu::BindGroup>,
+    /// The capacity the chunk started with: it never shrinks below it.
+    floor: u32,
 }
 
 /// A chunk's curvature comb on the GPU: the comb pass's buffers and the draws over them.
@@ -162,6 +164,9 @@ pub struct GpuScene {
     /// The clear colour.
     pub background: wgpu::Color,
     comb_scale: f32,
+    /// The most samples the chunks may grow to hold together ([`SAMPLE_BUDGET`] unless
+    /// set).
+    sample_budget: u64,
     /// The layer, where it fits in one binding and is allowed.
     layer: Option<Layer>,
     /// Whether curves and combs may be drawn through the layer (else as quads and line
@@ -220,6 +225,12 @@ impl GpuScene {
             "points outside the chunk"
         );
         queue.write_buffer(buffer, offset, bytemuck::cast_slice(points));
+    }
+
+    /// Sets the most samples the chunks may grow to hold together (see
+    /// [`GpuScene::grow`]); buffers already larger are kept until they shrink.
+    pub fn set_sample_budget(&mut self, samples: u64) {
+        self.sample_budget = samples;
     }
 
     /// Samples the chunks' buffers hold together.
@@ -447,46 +458,82 @@ impl GpuScene {
         self.chunks.get(chunk)?.comb.as_ref().map(|c| &c.buffers)
     }
 
-    /// Gives every chunk whose last frame asked for more samples than its buffer holds a
-    /// buffer for them (within the device's limit); whether any grew. `stats` are the
-    /// chunks' statistics of that frame, in order.
+    /// Fits every chunk's sample buffer to what its last frame asked for: a chunk that asked
+    /// for more than its buffer holds gets room for half as much again, within the
+    /// device's binding limit and within the scene's budget ([`SAMPLE_BUDGET`] unless set) for all its chunks (past it the
+    /// frame's counts are scaled down to fit, and the frame says it was capped); a chunk
+    /// that asked for under a quarter of a buffer larger than its first one is given back
+    /// the excess. Returns whether any chunk grew. `stats` are the chunks' statistics of
+    /// that frame, in order.
     pub fn grow(&mut self, ctx: &GpuContext, renderer: &Renderer, stats: &[FrameStats]) -> bool {
         let limit = (ctx.max_binding_bytes() / size_of::<GpuVertex>() as u64)
             .min(u64::from(u32::MAX)) as u32;
+        // Shrink first, so that the room given back is there for the chunks that grow.
+        for (chunk, s) in self.chunks.iter_mut().zip(stats) {
+            let capacity = chunk.adaptive.capacity;
+            if capacity > chunk.floor && u64::from(s.requested) * 4 < u64::from(capacity) {
+                let fit = (u64::from(s.requested) * 3 / 2).max(u64::from(chunk.floor)) as u32;
+                chunk.resize(ctx, renderer, fit, self.comb_scale);
+            }
+        }
+        let mut total: u64 = self
+            .chunks
+            .iter()
+            .map(|c| u64::from(c.adaptive.capacity))
+            .sum();
         let mut grew = false;
         for (chunk, s) in self.chunks.iter_mut().zip(stats) {
-            if s.requested <= chunk.adaptive.capacity || chunk.adaptive.capacity >= limit {
+            let capacity = chunk.adaptive.capacity;
+            let others = total - u64::from(capacity);
+            let room = self
+                .sample_budget
+                .saturating_sub(others)
+                .min(u64::from(limit))
+                .max(u64::from(capacity));
+            if u64::from(s.requested) <= u64::from(capacity) || u64::from(capacity) >= room {
                 continue;
             }
             // Headroom, so that zooming in does not reallocate every frame.
-            let capacity = (u64::from(s.requested) * 3 / 2).min(u64::from(limit)) as u32;
-            renderer.adaptive.grow(
-                &ctx.device,
-                &mut chunk.adaptive,
-                capacity,
-                wgpu::BufferUsages::COPY_SRC,
-            );
-            chunk.draw = renderer.batch(
-                &ctx.device,
-                chunk.adaptive.samples.clone(),
-                chunk.adaptive.capacity,
-                &chunk.styles,
-            );
-            // Over the old samples: made again at the next frame.
-            chunk.raster = None;
-            if let Some(old) = chunk.comb.take() {
-                let comb = renderer.comb_draw(ctx, &chunk.adaptive, &chunk.styles, old.curve);
-                renderer.adaptive.write_comb(
-                    &ctx.queue,
-                    &comb.buffers,
-                    self.comb_scale,
-                    comb.curve,
-                );
-                chunk.comb = Some(comb);
-            }
+            let fit = (u64::from(s.requested) * 3 / 2).min(room) as u32;
+            chunk.resize(ctx, renderer, fit, self.comb_scale);
+            total = others + u64::from(fit);
             grew = true;
         }
         grew
+    }
+}
+
+/// The most samples a scene's chunks hold together once grown (16 bytes each; a comb adds
+/// three more per sample): 2²³, some eight million — a sample for every pixel of a 4K
+/// screen. A scene whose first buffers (twice its object-space counts) are larger keeps
+/// them but never grows.
+pub const SAMPLE_BUDGET: u64 = 1 << 23;
+
+impl GpuChunk {
+    /// Replaces the chunk's sample buffer with one of `capacity` samples, and what is
+    /// bound over it (its draw, its comb, its raster bind group).
+    fn resize(&mut self, ctx: &GpuContext, renderer: &Renderer, capacity: u32, comb_scale: f32) {
+        renderer.adaptive.grow(
+            &ctx.device,
+            &mut self.adaptive,
+            capacity,
+            wgpu::BufferUsages::COPY_SRC,
+        );
+        self.draw = renderer.batch(
+            &ctx.device,
+            self.adaptive.samples.clone(),
+            self.adaptive.capacity,
+            &self.styles,
+        );
+        // Over the old samples: made again at the next frame.
+        self.raster = None;
+        if let Some(old) = self.comb.take() {
+            let comb = renderer.comb_draw(ctx, &self.adaptive, &self.styles, old.curve);
+            renderer
+                .adaptive
+                .write_comb(&ctx.queue, &comb.buffers, comb_scale, comb.curve);
+            self.comb = Some(comb);
+        }
     }
 }
 
@@ -862,12 +909,14 @@ impl Renderer {
                     wgpu::BufferUsages::COPY_SRC,
                 );
                 let draw = self.batch(device, adaptive.samples.clone(), adaptive.capacity, &styles);
+                let floor = adaptive.capacity;
                 GpuChunk {
                     adaptive,
                     draw,
                     styles,
                     comb: None,
                     raster: None,
+                    floor,
                 }
             })
             .collect();
@@ -886,6 +935,7 @@ impl Renderer {
                 .collect(),
             background: wgpu::Color { r, g, b, a },
             comb_scale: 0.0,
+            sample_budget: SAMPLE_BUDGET,
             layer: None,
             layer_allowed: true,
             layer_styles,
