@@ -609,8 +609,8 @@ impl PyCurve {
     }
 
     /// Where this curve and `other` meet (2D): the points' `(s, t)` as `(K, 2)`, sorted by
-    /// `s`, their kinds (`"crossing"`/`"tangent"`), and the overlaps
-    /// `((s0, s1), (t0, t1))`.
+    /// `s`, their kinds (`"crossing"`/`"tangent"`), the overlaps `((s0, s1), (t0, t1))`,
+    /// and the bounds on each point's parameter errors `(error_s, error_t)` as `(K, 2)`.
     #[allow(clippy::type_complexity)]
     fn intersect<'py>(
         &self,
@@ -620,6 +620,7 @@ impl PyCurve {
         Bound<'py, PyAny>,
         Vec<&'static str>,
         Vec<((f64, f64), (f64, f64))>,
+        Bound<'py, PyAny>,
     )> {
         let (a, b) = (self.analysis(), other.analysis());
         let found = py
@@ -637,6 +638,7 @@ impl PyCurve {
         Bound<'py, PyAny>,
         Vec<&'static str>,
         Vec<((f64, f64), (f64, f64))>,
+        Bound<'py, PyAny>,
     )> {
         let a = self.analysis();
         let found = py
@@ -723,6 +725,7 @@ pub(crate) fn hits_out<'py>(
     Bound<'py, PyAny>,
     Vec<&'static str>,
     Vec<((f64, f64), (f64, f64))>,
+    Bound<'py, PyAny>,
 )> {
     let kinds = found
         .hits
@@ -730,7 +733,13 @@ pub(crate) fn hits_out<'py>(
         .map(|h| splinescope_core::analysis::report::kind_name(h.kind))
         .collect();
     let overlaps = found.overlaps.iter().map(|o| (o.s, o.t)).collect();
-    Ok((PyCurve::pairs(py, found)?, kinds, overlaps))
+    let errors: Vec<f64> = found
+        .hits
+        .iter()
+        .flat_map(|h| [h.error_s, h.error_t])
+        .collect();
+    let errors = arrays::shaped(py, errors, &[found.hits.len(), 2])?;
+    Ok((PyCurve::pairs(py, found)?, kinds, overlaps, errors))
 }
 
 /// One point of `dim` coordinates.

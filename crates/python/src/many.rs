@@ -17,13 +17,16 @@ use crate::errors::{CurveError, raise};
 
 /// Every intersecting pair among `curves` (2D), on every core, and the groups of copies:
 /// a list of dicts — `{"i", "j", "params": (K, 2) array of (s, t), "kinds", "overlaps"}`
-/// for each pair that meets, `i < j`, then `{"copies": [indices], "interval": (t0, t1)}`
-/// for each group of curves that coincide entirely (the same segments over the same
-/// domain), reported once rather than as pairs.
+/// (and `"errors"`, `(K, 2)` bounds on the parameters' errors, when `errors` is true) for
+/// each pair that meets, `i < j`, then `{"copies": [indices], "interval": (t0, t1)}` for
+/// each group of curves that coincide entirely (the same segments over the same domain),
+/// reported once rather than as pairs.
 #[pyfunction]
+#[pyo3(signature = (curves, errors = false))]
 pub fn intersections<'py>(
     py: Python<'py>,
     curves: Vec<PyRef<'py, PyCurve>>,
+    errors: bool,
 ) -> PyResult<Bound<'py, PyList>> {
     let analyses: Vec<&CurveAnalysis> = curves.iter().map(|c| c.analysis()).collect();
     if let Some(k) = analyses.iter().position(|c| !c.is_planar()) {
@@ -54,6 +57,16 @@ pub fn intersections<'py>(
         .collect();
     let total = flat.len() / 2;
     let big = arrays::shaped(py, flat, &[total, 2])?;
+    let big_errors = if errors {
+        let flat: Vec<f64> = all
+            .pairs
+            .iter()
+            .flat_map(|p| p.found.hits.iter().flat_map(|h| [h.error_s, h.error_t]))
+            .collect();
+        Some(arrays::shaped(py, flat, &[total, 2])?)
+    } else {
+        None
+    };
     let mut row = 0;
     for p in &all.pairs {
         let k = p.found.hits.len();
@@ -62,6 +75,9 @@ pub fn intersections<'py>(
         let d = PyDict::new(py);
         d.set_item(i, p.i)?;
         d.set_item(j, p.j)?;
+        if let Some(e) = &big_errors {
+            d.set_item(intern!(py, "errors"), e.get_item(&rows)?)?;
+        }
         d.set_item(params, big.get_item(rows)?)?;
         let names = PyList::empty(py);
         for h in &p.found.hits {

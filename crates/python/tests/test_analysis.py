@@ -147,3 +147,44 @@ def test_bad_arguments_name_the_value():
         ss.intersections([c, space])
     with pytest.raises(ss.CurveError):
         c.extrema(axis=2)
+
+
+def test_each_point_carries_its_error_bound():
+    # Two lines crossing at (½, ½): parameters exactly ½; the bound is a few ulps.
+    a, b = ss.Bezier([[0, 0], [1, 1]]), ss.Bezier([[0, 1], [1, 0]])
+    st, kinds, errors = a.intersect(b, kinds=True, errors=True)
+    assert st.tolist() == [[0.5, 0.5]] and kinds == ["crossing"]
+    assert errors.shape == (1, 2) and np.all(errors > 0) and np.all(errors < 1e-14)
+    # At a small angle the bound grows with the crossing's condition number (1 / sin θ).
+    shallow = ss.Bezier([[0, 0.5 - 1e-6], [1, 0.5 + 1e-6]])
+    _, e_shallow = ss.Bezier([[0, 0.5], [1, 0.5]]).intersect(shallow, errors=True)
+    assert e_shallow.shape == (1, 2) and e_shallow[0, 0] > 1e4 * errors[0, 0]
+    # A tangency is known to its band, far wider than a crossing's ulps, and holds the
+    # exact touching point (t = ½ on both) within it.
+    p, line = ss.Bezier([[-1, 0], [0, -2], [1, 0]]), ss.Bezier([[-1, -1], [0, -1], [1, -1]])
+    st, kinds, errors = p.intersect(line, kinds=True, errors=True)
+    assert kinds == ["tangent"]
+    assert np.all(np.abs(st - 0.5) <= errors) and np.all(errors > 1e-12)
+    # The same bounds from the many-curve sweep, when asked for.
+    found = ss.intersections([a, b, p, line], errors=True)
+    pair = [f for f in found if (f["i"], f["j"]) == (0, 1)][0]
+    np.testing.assert_array_equal(pair["errors"], a.intersect(b, errors=True)[1])
+    assert "errors" not in ss.intersections([a, b])[0]
+    with pytest.raises(TypeError, match="errors"):
+        a.intersect(b, errors=1)
+
+
+def test_copies_are_one_group_not_pairs():
+    c = ss.Bezier([[0, 0], [1, 2], [2, -1], [3, 1]])
+    line = ss.Bezier([[0, 1], [3, 0]])
+    found = ss.intersections([c, line, c, c, line])
+    assert [g["copies"] for g in found if "copies" in g] == [[0, 2, 3], [1, 4]]
+    assert all(g["interval"] == (0.0, 1.0) for g in found if "copies" in g)
+    # Every member of one group meets every member of the other as the first curves do;
+    # no pair within a group.
+    want = c.intersect(line)
+    pairs = {(f["i"], f["j"]): f for f in found if "i" in f}
+    assert sorted(pairs) == [(0, 1), (0, 4), (1, 2), (1, 3), (2, 4), (3, 4)]
+    for (i, j), f in pairs.items():
+        got = f["params"] if i in (0, 2, 3) else f["params"][:, ::-1]
+        np.testing.assert_array_equal(got[np.argsort(got[:, 0])], want)

@@ -155,6 +155,12 @@ def _bool(x: Any, what: str, method: str = "") -> bool:
     raise TypeError(f"{where}{what} must be True or False, not {type(x).__name__} {x!r}")
 
 
+def _hits(st: Any, kinds: List[str], errors: Any, want_kinds: bool, want_errors: bool) -> Any:
+    """The pairs alone, or with the kinds and/or the error bounds asked for, in that order."""
+    extras = ([kinds] if want_kinds else []) + ([errors] if want_errors else [])
+    return tuple([st] + extras) if extras else st
+
+
 def _str(x: Any, what: str, method: str = "") -> str:
     """``x`` if it is a string; a :class:`TypeError` naming the argument otherwise."""
     if isinstance(x, str):
@@ -438,22 +444,32 @@ class Curve:
         """Whether the curve ends where it starts."""
         return self._c.is_closed()
 
-    def intersect(self, other: "Curve", kinds: bool = False) -> Any:
+    def intersect(self, other: "Curve", kinds: bool = False, errors: bool = False) -> Any:
         """Where this curve meets ``other`` (2D): a ``(K, 2)`` array of parameter pairs
         ``(s, t)`` sorted by ``s`` (``s`` this curve's). With ``kinds=True``, also the list
-        of ``"crossing"`` / ``"tangent"``. Coincident stretches: :meth:`overlaps`."""
-        st, k, _ = self._c.intersect(_curve(other, "other"))
-        return (st, k) if _bool(kinds, "kinds", "intersect") else st
+        of ``"crossing"`` / ``"tangent"``; with ``errors=True``, also a ``(K, 2)`` array of
+        bounds on each pair's errors ``(error_s, error_t)`` — for a crossing a few ε times
+        its condition number, for a tangency the band where the curves stay within the
+        resolution (docs/math.md §7). The extras follow the pairs in that order.
+        Coincident stretches: :meth:`overlaps`."""
+        want_kinds = _bool(kinds, "kinds", "intersect")
+        want_errors = _bool(errors, "errors", "intersect")
+        st, k, _, e = self._c.intersect(_curve(other, "other"))
+        return _hits(st, k, e, want_kinds, want_errors)
 
     def overlaps(self, other: "Curve") -> List[Tuple[Tuple[float, float], Tuple[float, float]]]:
         """The stretches where this curve and ``other`` coincide:
-        ``((s0, s1), (t0, t1))`` each."""
+        ``((s0, s1), (t0, t1))`` each, ``t0`` meeting ``s0`` (so ``t0 > t1`` where the
+        two run in opposite directions)."""
         return self._c.intersect(_curve(other, "other"))[2]
 
-    def self_intersections(self, kinds: bool = False) -> Any:
-        """Where the curve crosses or touches itself (2D): ``(K, 2)`` pairs ``s < t``."""
-        st, k, _ = self._c.self_intersections()
-        return (st, k) if _bool(kinds, "kinds", "self_intersections") else st
+    def self_intersections(self, kinds: bool = False, errors: bool = False) -> Any:
+        """Where the curve crosses or touches itself (2D): ``(K, 2)`` pairs ``s < t``, and
+        with ``kinds`` / ``errors`` as :meth:`intersect`."""
+        want_kinds = _bool(kinds, "kinds", "self_intersections")
+        want_errors = _bool(errors, "errors", "self_intersections")
+        st, k, _, e = self._c.self_intersections()
+        return _hits(st, k, e, want_kinds, want_errors)
 
     def intersect_line(self, p: ArrayLike, q: ArrayLike) -> Tuple[np.ndarray, List[str]]:
         """Where the curve meets the line through ``p`` and ``q`` (2D): ``(K, 2)`` pairs
@@ -1144,14 +1160,17 @@ def eval_many(curves: Sequence[Curve], n: int) -> np.ndarray:
     return _native.eval_many(natives, _int(n, "n", 2, 2**64 - 1, "eval_many"))
 
 
-def intersections(curves: Sequence[Curve]) -> List[Dict[str, Any]]:
+def intersections(curves: Sequence[Curve], errors: bool = False) -> List[Dict[str, Any]]:
     """Every intersecting pair among ``curves`` (2D), on every core: a list of dicts
     ``{"i", "j", "params": (K, 2) array of (s, t), "kinds", "overlaps"}`` with ``i < j``
-    (a grid over the segments' boxes finds the candidate pairs), then, for each group of
-    curves that coincide entirely (copies: the same segments over the same domain), one
-    dict ``{"copies": [indices], "interval": (t0, t1)}`` in place of their pairs."""
+    (a grid over the segments' boxes finds the candidate pairs; with ``errors=True`` each
+    dict also has ``"errors"``, the ``(K, 2)`` bounds on the parameters' errors), then,
+    for each group of curves that coincide entirely (copies: the same segments over the
+    same domain), one dict ``{"copies": [indices], "interval": (t0, t1)}`` in place of
+    their pairs."""
+    want_errors = _bool(errors, "errors", "intersections")
     natives = [_curve(c, f"curves[{i}]") for i, c in enumerate(curves)]
-    return _native.intersections(natives)
+    return _native.intersections(natives, want_errors)
 
 
 def compare_images(
