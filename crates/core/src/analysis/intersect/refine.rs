@@ -27,8 +27,12 @@ pub(super) fn refine_until(
         if state.norm == 0.0 || stop(state.u, state.v) {
             break;
         }
-        let next = match state.newton(a, b) {
+        // At the rounding floor of the residual no step can reduce it: the point is
+        // found (the damped steps would only spend evaluations on noise).
+        let floor = state.norm <= ROUNDING_FLOOR * f64::EPSILON * state.size;
+        let next = match state.newton(a, b, floor) {
             Some(next) => next,
+            None if floor => break,
             None => match state.step(a, b, &mut lambda) {
                 Some(next) => next,
                 None => break,
@@ -46,12 +50,19 @@ pub(super) fn refine_until(
 
 /// One point of the damped Newton iteration: the parameters, the residual
 /// `C₁(u) − C₂(v)`, its length and the Jacobian's columns.
+/// A residual within this many `ε` of the points' size is rounding: an evaluation of
+/// degree `n` errs by up to `γ_{2n}` times the size (about `2n ε`), each of the two.
+const ROUNDING_FLOOR: f64 = 8.0;
+
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Lm {
     u: f64,
     v: f64,
     r: DVec2,
     norm: f64,
+    /// The larger of the two points' distances from the origin (the residual's rounding
+    /// is relative to it).
+    size: f64,
     ja: DVec2,
     jb: DVec2,
 }
@@ -65,14 +76,16 @@ impl Lm {
             v,
             r,
             norm: r.length(),
+            size: p.truncate().length().max(q.truncate().length()),
             ja: dp.truncate(),
             jb: -dq.truncate(),
         }
     }
 
     /// Newton's step `J Δ = −r` by Cramer's rule, halved up to eight times until the
-    /// residual falls; `None` when it never does or `J` is singular.
-    fn newton(&self, a: &Piece, b: &Piece) -> Option<Lm> {
+    /// residual falls (not halved at the rounding floor, `floor`: there the full step
+    /// either helps or nothing does); `None` when it never does or `J` is singular.
+    fn newton(&self, a: &Piece, b: &Piece, floor: bool) -> Option<Lm> {
         let det = self.ja.perp_dot(self.jb);
         if det == 0.0 || !det.is_finite() {
             return None;
@@ -86,6 +99,9 @@ impl Lm {
             let next = Lm::at(a, b, to_unit(self.u + du), to_unit(self.v + dv));
             if next.norm < self.norm {
                 return Some(next);
+            }
+            if floor {
+                return None;
             }
             du *= 0.5;
             dv *= 0.5;

@@ -219,12 +219,12 @@ impl Sub {
         first.map(|f| (f + lo, f + hi))
     }
 
-    /// This piece cut to the part that can lie in the fat line of `other`: the strip
-    /// parallel to `other`'s chord between the extreme signed distances of `other`'s control
-    /// points (so it holds `other`). For a rational piece the distances are weighed:
-    /// `Σ w_i (d_i − d_min) B_i ≥ 0` and `Σ w_i (d_max − d_i) B_i ≥ 0`, with `W > 0`.
-    /// `None` when no part can.
-    pub(super) fn clipped_by(&self, other: &Sub, margin: f64) -> Option<Sub> {
+    /// The range, in this piece's own parameter `[0, 1]`, of the part that can lie in the
+    /// fat line of `other`: the strip parallel to `other`'s chord between the extreme
+    /// signed distances of `other`'s control points (so it holds `other`). For a rational
+    /// piece the distances are weighed: `Σ w_i (d_i − d_min) B_i ≥ 0` and
+    /// `Σ w_i (d_max − d_i) B_i ≥ 0`, with `W > 0`. `None` when no part can.
+    pub(super) fn clip_range(&self, other: &Sub, margin: f64) -> Option<(f64, f64)> {
         let m = other.len() - 1;
         let origin = other.point(0);
         let mut dir = other.point(m) - origin;
@@ -253,7 +253,7 @@ impl Sub {
         let mut above = [0.0; 16];
         let n = h.len();
         if n > 16 {
-            return Some(self.clone());
+            return Some((0.0, 1.0));
         }
         for (i, v) in h.iter().enumerate() {
             let w = v[2];
@@ -267,7 +267,7 @@ impl Sub {
         if lo > hi {
             return None;
         }
-        Some(self.restricted(lo, hi))
+        Some((lo, hi))
     }
 
     /// The piece on its own parameter range `[lo, hi] ⊆ [0, 1]`.
@@ -543,15 +543,19 @@ impl<V: Leaves> Subdivider<'_, V> {
             // Flat pieces farther apart than their flatness (each outside the other's
             // fat line) do not meet: no leaf.
             if (fa > 0.0 || fb > 0.0)
-                && (b.clipped_by(a, self.margin).is_none()
-                    || a.clipped_by(b, self.margin).is_none())
+                && (b.clip_range(a, self.margin).is_none()
+                    || a.clip_range(b, self.margin).is_none())
             {
                 return;
             }
             self.leaves += 1;
+            // Disjoint tangent cones: the two meet at most once (a chord between two
+            // common points would lie in both cones), so one point found is all of them.
+            let single =
+                matches!((a.cone(), b.cone()), (Some(ka), Some(kb)) if cones_disjoint(ka, kb));
             if let Rest::Beside(lo, hi) =
                 self.visitor
-                    .leaf(chord_crossing(a, b), [a.u0, a.u1, b.u0, b.u1], false)
+                    .leaf(chord_crossing(a, b), [a.u0, a.u1, b.u0, b.u1], single)
                 && depth < 96
             {
                 let span = a.u1 - a.u0;
@@ -586,18 +590,34 @@ impl<V: Leaves> Subdivider<'_, V> {
         // `a`'s chord that holds `a`, then the part of `a` inside the strip around the
         // clipped `b`'s chord. Each clip keeps every point the two have in common.
         if fa > 0.0 || fb > 0.0 {
-            let Some(b2) = b.clipped_by(a, self.margin) else {
+            // (Restricted only where the clip cut something: most clips of pieces with
+            // several points in common keep all of both.)
+            let Some((lo, hi)) = b.clip_range(a, self.margin) else {
                 return;
             };
-            let Some(a2) = a.clipped_by(&b2, self.margin) else {
+            let b_cut;
+            let b2 = if lo <= 0.0 && hi >= 1.0 {
+                b
+            } else {
+                b_cut = b.restricted(lo, hi);
+                &b_cut
+            };
+            let Some((lo, hi)) = a.clip_range(b2, self.margin) else {
                 return;
+            };
+            let a_cut;
+            let a2 = if lo <= 0.0 && hi >= 1.0 {
+                a
+            } else {
+                a_cut = a.restricted(lo, hi);
+                &a_cut
             };
             let shrink = ((a2.u1 - a2.u0) * (b2.u1 - b2.u0)) / ((a.u1 - a.u0) * (b.u1 - b.u0));
             if shrink <= 0.5 {
-                self.run(&a2, &b2, depth + 1);
+                self.run(a2, b2, depth + 1);
                 return;
             }
-            self.split(&a2, &b2, depth);
+            self.split(a2, b2, depth);
             return;
         }
         self.split(a, b, depth);
@@ -627,24 +647,32 @@ impl<V: Leaves> Subdivider<'_, V> {
 /// coefficients `y` can be ≥ 0: where the convex hull of the points `(i/n, y_i)` reaches
 /// `y ≥ 0`. `None` when it cannot anywhere.
 pub(super) fn nonnegative_range(y: &[f64]) -> Option<(f64, f64)> {
+    // The hull reaches `y ≥ 0` only if a point does; between the first and the last such
+    // point it does throughout. Beyond them, the hull's edges from the negative points
+    // outside to the nonnegative ones cross zero: the extreme crossings are the ends.
+    // (Edges between two points inside `[first, last]` cross there, and two negative
+    // points make no crossing.)
+    let first = y.iter().position(|&v| v >= 0.0)?;
+    let last = y.iter().rposition(|&v| v >= 0.0).unwrap_or(first);
     let n = (y.len() - 1) as f64;
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for (i, &yi) in y.iter().enumerate() {
-        let xi = i as f64 / n;
-        if yi >= 0.0 {
-            lo = lo.min(xi);
-            hi = hi.max(xi);
-        }
-        for (j, &yj) in y.iter().enumerate().skip(i + 1) {
-            if (yi < 0.0) != (yj < 0.0) {
-                let xj = j as f64 / n;
-                let x = xi + (xj - xi) * yi / (yi - yj);
-                lo = lo.min(x);
-                hi = hi.max(x);
+    let x = |i: usize| i as f64 / n;
+    let crossing = |i: usize, j: usize| x(i) + (x(j) - x(i)) * y[i] / (y[i] - y[j]);
+    let (mut lo, mut hi) = (x(first), x(last));
+    for i in 0..first {
+        for j in first..=last {
+            if y[j] >= 0.0 {
+                lo = lo.min(crossing(i, j));
             }
         }
     }
-    (lo <= hi).then_some((lo.max(0.0), hi.min(1.0)))
+    for j in (last + 1)..y.len() {
+        for i in first..=last {
+            if y[i] >= 0.0 {
+                hi = hi.max(crossing(i, j));
+            }
+        }
+    }
+    Some((lo.max(0.0), hi.min(1.0)))
 }
 
 /// A quarter turn in [`pseudo_angle`]'s units.
@@ -711,6 +739,57 @@ pub(super) fn chord_crossing(a: &Sub, b: &Sub) -> (f64, f64) {
 mod tests {
     use super::*;
     use crate::rng::Rng;
+
+    #[test]
+    fn the_nonnegative_range_is_where_the_hull_reaches_zero() {
+        // Against the hull taken whole: every nonnegative point and every zero crossing of
+        // every edge between two points of opposite signs — on coefficients with zeros,
+        // ties and every sign pattern.
+        let brute = |y: &[f64]| -> Option<(f64, f64)> {
+            let n = (y.len() - 1) as f64;
+            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for (i, &yi) in y.iter().enumerate() {
+                let xi = i as f64 / n;
+                if yi >= 0.0 {
+                    lo = lo.min(xi);
+                    hi = hi.max(xi);
+                }
+                for (j, &yj) in y.iter().enumerate().skip(i + 1) {
+                    if (yi < 0.0) != (yj < 0.0) {
+                        let x = xi + (j as f64 / n - xi) * yi / (yi - yj);
+                        lo = lo.min(x);
+                        hi = hi.max(x);
+                    }
+                }
+            }
+            (lo <= hi).then_some((lo.max(0.0), hi.min(1.0)))
+        };
+        let mut rng = Rng::new(11);
+        let values = [-2.0, -1.0, -1e-300, 0.0, 1e-300, 0.5, 1.0, 3.0];
+        for _ in 0..20_000 {
+            let len = 2 + (rng.range(0.0, 15.0) as usize);
+            let y: Vec<f64> = (0..len)
+                .map(|_| {
+                    if rng.range(0.0, 1.0) < 0.3 {
+                        values[rng.range(0.0, values.len() as f64) as usize % values.len()]
+                    } else {
+                        rng.range(-1.0, 1.0)
+                    }
+                })
+                .collect();
+            // The same to rounding (an edge's crossing computed from the far side may land
+            // an ulp beyond the point it meets).
+            match (nonnegative_range(&y), brute(&y)) {
+                (None, None) => {}
+                (Some(a), Some(b)) => assert!(
+                    (a.0 - b.0).abs() <= 4.0 * f64::EPSILON
+                        && (a.1 - b.1).abs() <= 4.0 * f64::EPSILON,
+                    "{y:?}: {a:?} vs {b:?}"
+                ),
+                (a, b) => panic!("{y:?}: {a:?} vs {b:?}"),
+            }
+        }
+    }
 
     #[test]
     fn pseudo_angles_order_directions_as_angles_and_turn_by_one_a_quarter() {
