@@ -20,7 +20,10 @@ Cases (array conversion included in every timing):
      curve and parameters);
   7. curve–curve intersection per pair, bezier's Curve.intersect vs Curve.intersect
      (cubics crossing three times, a tangency, degree 7 crossing), and arc length
-     (bezier's Curve.length vs Curve.length at 1e-12) on 200 random cubics.
+     (bezier's Curve.length vs Curve.length at 1e-12) on 200 random cubics;
+  9. every pair among 10,000 and 100,000 small cubics scattered in a square (about 1.5
+     crossing pairs per cubic): splinescope.intersections against the bezier package's
+     time per pair on 300 of the pairs that meet, times their number.
 Prints one JSON object; `--threads N` pins the module to N threads (RAYON_NUM_THREADS).
 """
 
@@ -42,6 +45,14 @@ def best(f, repeats=7):
         f()
         times.append(time.perf_counter() - t0)
     return min(times)
+
+
+def _try(ca, cb):
+    """The bezier package's intersection, or None where it gives up (tangencies)."""
+    try:
+        return ca.intersect(cb)
+    except (NotImplementedError, ValueError):
+        return None
 
 
 def measure():
@@ -141,6 +152,30 @@ def measure():
         out["length_200_cubics_splinescope_s"] = best(
             lambda: [m_.length(accuracy=1e-12) for m_ in mine], 5
         )
+        # 9. every pair among small cubics scattered in a square (so that they cross):
+        # splinescope.intersections on 10,000 and 100,000, against the bezier package's
+        # time per pair on a sample of the pairs that meet, times their number (what the
+        # peer's narrow phase alone would take, with no broad phase at all).
+        for n in (10_000, 100_000):
+            side = np.sqrt(n) * 0.35
+            pts = rng.uniform(0, side, (n, 1, 2)) + rng.uniform(-0.5, 0.5, (n, 4, 2))
+            curves = [ss.Bezier(p) for p in pts]
+            found = ss.intersections(curves)
+            pairs = [f for f in found if "i" in f]
+            out[f"scatter_{n}_pairs"] = len(pairs)
+            out[f"scatter_{n}_points"] = sum(len(f["kinds"]) for f in pairs)
+            out[f"scatter_{n}_splinescope_s"] = best(lambda: ss.intersections(curves), 3)
+            sample = [pairs[k] for k in rng.choice(len(pairs), 300, replace=False)]
+            peer_pairs = [(pkg(pts[f["i"]]), pkg(pts[f["j"]])) for f in sample]
+            # The two agree on how many points each sampled pair has (where the peer
+            # answers): a disagreement is counted and printed, not hidden.
+            out[f"scatter_{n}_count_disagreements"] = sum(
+                1
+                for f, (ca, cb) in zip(sample, peer_pairs)
+                if (r := _try(ca, cb)) is not None and np.asarray(r).shape[1] != len(f["kinds"])
+            )
+            per_pair = best(lambda: [_try(ca, cb) for ca, cb in peer_pairs], 3) / 300
+            out[f"scatter_{n}_peer_s"] = per_pair * len(pairs)
     except ImportError:
         out["bezier_missing"] = True
 
@@ -201,6 +236,12 @@ def main():
             ratios[f"intersect_{name}_vs_bezier_pkg"] = (
                 one[f"intersect_{name}_peer_s"] / one[f"intersect_{name}_splinescope_s"]
             )
+    for n in (10_000, 100_000):
+        for threads, run in runs.items():
+            if f"scatter_{n}_peer_s" in run:
+                ratios[f"scatter_{n}_vs_bezier_pkg_{threads}_threads"] = (
+                    run[f"scatter_{n}_peer_s"] / run[f"scatter_{n}_splinescope_s"]
+                )
     if "length_200_cubics_peer_s" in one:
         ratios["length_vs_bezier_pkg"] = (
             one["length_200_cubics_peer_s"] / one["length_200_cubics_splinescope_s"]

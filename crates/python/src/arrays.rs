@@ -4,9 +4,7 @@
 //! vector the work filled, handed to numpy without copying.
 
 use glam::DVec3;
-use numpy::{
-    IntoPyArray, PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods,
-};
+use numpy::{IntoPyArray, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyFloat;
@@ -143,8 +141,10 @@ pub fn shaped<'py>(
     flat: Vec<f64>,
     shape: &[usize],
 ) -> PyResult<Bound<'py, PyAny>> {
-    let a: Bound<'py, PyArray1<f64>> = flat.into_pyarray(py);
-    Ok(a.reshape(shape.to_vec())?.into_any())
+    // Made in its shape at once (a reshape would make a second array object).
+    let a = numpy::ndarray::ArrayD::from_shape_vec(numpy::ndarray::IxDyn(shape), flat)
+        .map_err(|e| PyValueError::new_err(format!("array of shape {shape:?}: {e}")))?;
+    Ok(a.into_pyarray(py).into_any())
 }
 
 /// `out=` (numpy's convention): a C-contiguous, writeable float64 array of exactly

@@ -611,40 +611,35 @@ impl PyCurve {
     /// Where this curve and `other` meet (2D): the points' `(s, t)` as `(K, 2)`, sorted by
     /// `s`, their kinds (`"crossing"`/`"tangent"`), the overlaps `((s0, s1), (t0, t1))`,
     /// and the bounds on each point's parameter errors `(error_s, error_t)` as `(K, 2)`.
-    #[allow(clippy::type_complexity)]
+    /// The kinds and the errors are made only when asked for (`None` otherwise).
+    #[pyo3(signature = (other, kinds = false, errors = false))]
     fn intersect<'py>(
         &self,
         py: Python<'py>,
         other: PyRef<'py, PyCurve>,
-    ) -> PyResult<(
-        Bound<'py, PyAny>,
-        Vec<&'static str>,
-        Vec<((f64, f64), (f64, f64))>,
-        Bound<'py, PyAny>,
-    )> {
+        kinds: bool,
+        errors: bool,
+    ) -> PyResult<Hits<'py>> {
         let (a, b) = (self.analysis(), other.analysis());
         let found = py
             .detach(|| a.intersect(b))
             .map_err(|e| analysis_error(&e))?;
-        hits_out(py, &found)
+        hits_out(py, &found, kinds, errors)
     }
 
     /// Where the curve meets itself (2D), as [`PyCurve::intersect`], `s < t`.
-    #[allow(clippy::type_complexity)]
+    #[pyo3(signature = (kinds = false, errors = false))]
     fn self_intersections<'py>(
         &self,
         py: Python<'py>,
-    ) -> PyResult<(
-        Bound<'py, PyAny>,
-        Vec<&'static str>,
-        Vec<((f64, f64), (f64, f64))>,
-        Bound<'py, PyAny>,
-    )> {
+        kinds: bool,
+        errors: bool,
+    ) -> PyResult<Hits<'py>> {
         let a = self.analysis();
         let found = py
             .detach(|| a.self_intersections())
             .map_err(|e| analysis_error(&e))?;
-        hits_out(py, &found)
+        hits_out(py, &found, kinds, errors)
     }
 
     /// Where the curve meets the line through `p` and `q` (2D): `(t, λ)` as `(K, 2)` (the
@@ -716,29 +711,40 @@ pub(crate) fn analysis_error(e: &AnalysisError) -> PyErr {
     raise::<CurveError>(e.to_string(), path)
 }
 
-/// Intersections as Python values: `(s, t)` pairs, kinds, overlaps.
-#[allow(clippy::type_complexity)]
+/// What `intersect` and `self_intersections` return: the `(K, 2)` parameter pairs, their
+/// kinds (when asked for), the overlaps, and the `(K, 2)` error bounds (when asked for).
+pub(crate) type Hits<'py> = (
+    Bound<'py, PyAny>,
+    Option<Vec<&'static str>>,
+    Vec<((f64, f64), (f64, f64))>,
+    Option<Bound<'py, PyAny>>,
+);
+
+/// [`Hits`] of `found`.
 pub(crate) fn hits_out<'py>(
     py: Python<'py>,
     found: &Intersections,
-) -> PyResult<(
-    Bound<'py, PyAny>,
-    Vec<&'static str>,
-    Vec<((f64, f64), (f64, f64))>,
-    Bound<'py, PyAny>,
-)> {
-    let kinds = found
-        .hits
-        .iter()
-        .map(|h| splinescope_core::analysis::report::kind_name(h.kind))
-        .collect();
+    kinds: bool,
+    errors: bool,
+) -> PyResult<Hits<'py>> {
+    let kinds = kinds.then(|| {
+        found
+            .hits
+            .iter()
+            .map(|h| splinescope_core::analysis::report::kind_name(h.kind))
+            .collect()
+    });
     let overlaps = found.overlaps.iter().map(|o| (o.s, o.t)).collect();
-    let errors: Vec<f64> = found
-        .hits
-        .iter()
-        .flat_map(|h| [h.error_s, h.error_t])
-        .collect();
-    let errors = arrays::shaped(py, errors, &[found.hits.len(), 2])?;
+    let errors = if errors {
+        let flat: Vec<f64> = found
+            .hits
+            .iter()
+            .flat_map(|h| [h.error_s, h.error_t])
+            .collect();
+        Some(arrays::shaped(py, flat, &[found.hits.len(), 2])?)
+    } else {
+        None
+    };
     Ok((PyCurve::pairs(py, found)?, kinds, overlaps, errors))
 }
 

@@ -155,10 +155,12 @@ def _bool(x: Any, what: str, method: str = "") -> bool:
     raise TypeError(f"{where}{what} must be True or False, not {type(x).__name__} {x!r}")
 
 
-def _hits(st: Any, kinds: List[str], errors: Any, want_kinds: bool, want_errors: bool) -> Any:
+def _hits(st: Any, kinds: Any, errors: Any, want_kinds: bool, want_errors: bool) -> Any:
     """The pairs alone, or with the kinds and/or the error bounds asked for, in that order."""
+    if not (want_kinds or want_errors):
+        return st
     extras = ([kinds] if want_kinds else []) + ([errors] if want_errors else [])
-    return tuple([st] + extras) if extras else st
+    return tuple([st] + extras)
 
 
 def _str(x: Any, what: str, method: str = "") -> str:
@@ -452,9 +454,11 @@ class Curve:
         its condition number, for a tangency the band where the curves stay within the
         resolution (docs/math.md §7). The extras follow the pairs in that order.
         Coincident stretches: :meth:`overlaps`."""
+        if kinds is False and errors is False:  # the common call, without the checks
+            return self._c.intersect(_curve(other, "other"))[0]
         want_kinds = _bool(kinds, "kinds", "intersect")
         want_errors = _bool(errors, "errors", "intersect")
-        st, k, _, e = self._c.intersect(_curve(other, "other"))
+        st, k, _, e = self._c.intersect(_curve(other, "other"), want_kinds, want_errors)
         return _hits(st, k, e, want_kinds, want_errors)
 
     def overlaps(self, other: "Curve") -> List[Tuple[Tuple[float, float], Tuple[float, float]]]:
@@ -468,7 +472,7 @@ class Curve:
         with ``kinds`` / ``errors`` as :meth:`intersect`."""
         want_kinds = _bool(kinds, "kinds", "self_intersections")
         want_errors = _bool(errors, "errors", "self_intersections")
-        st, k, _, e = self._c.self_intersections()
+        st, k, _, e = self._c.self_intersections(want_kinds, want_errors)
         return _hits(st, k, e, want_kinds, want_errors)
 
     def intersect_line(self, p: ArrayLike, q: ArrayLike) -> Tuple[np.ndarray, List[str]]:

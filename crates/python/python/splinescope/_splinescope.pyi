@@ -65,20 +65,20 @@ class _Curve:
     def signed_area(self) -> float: ...
     def is_closed(self) -> bool: ...
     def intersect(
-        self, other: _Curve
+        self, other: _Curve, kinds: bool = False, errors: bool = False
     ) -> Tuple[
         npt.NDArray[np.float64],
-        List[str],
+        Optional[List[str]],
         List[Tuple[Tuple[float, float], Tuple[float, float]]],
-        npt.NDArray[np.float64],
+        Optional[npt.NDArray[np.float64]],
     ]: ...
     def self_intersections(
-        self,
+        self, kinds: bool = False, errors: bool = False
     ) -> Tuple[
         npt.NDArray[np.float64],
-        List[str],
+        Optional[List[str]],
         List[Tuple[Tuple[float, float], Tuple[float, float]]],
-        npt.NDArray[np.float64],
+        Optional[npt.NDArray[np.float64]],
     ]: ...
     def intersect_line(
         self, p: npt.ArrayLike, q: npt.ArrayLike
