@@ -196,14 +196,18 @@ fn a_point_past_the_gpu_maximum_degree_is_refused_where_it_is_inserted() {
     let max = crate::gpu::layout::MAX_GPU_DEGREE;
     // Insert points until the cubic reaches the maximum: each is accepted.
     for _ in 3..max {
-        ed.insert_point(0, DVec3::new(2.0, 1.5, 0.0)).expect("under the maximum");
+        ed.insert_point(0, DVec3::new(2.0, 1.5, 0.0))
+            .expect("under the maximum");
     }
     let at_max = ed.scene().curves[0].clone();
     assert_eq!(at_max.curve.control_points().len(), max + 1);
     let undo_depth = ed.history.len();
     // One more would be undrawable: refused, the curve and the history as they were.
     let e = ed.insert_point(0, DVec3::new(2.0, 1.5, 0.0)).unwrap_err();
-    assert!(matches!(e, EditError::Undrawable { degree, .. } if degree == max + 1), "{e}");
+    assert!(
+        matches!(e, EditError::Undrawable { degree, .. } if degree == max + 1),
+        "{e}"
+    );
     assert!(e.to_string().contains("kept as it was"), "{e}");
     assert_eq!(ed.scene().curves[0], at_max);
     assert_eq!(ed.history.len(), undo_depth);
@@ -217,7 +221,10 @@ fn a_failed_save_is_a_warning_that_says_where_the_edits_are() {
     let nowhere = std::path::Path::new("/nonexistent-directory/scene.json");
     assert!(ed.save(Some(nowhere)).is_err());
     let w = ed.warning.clone().expect("a warning");
-    assert!(w.contains("nonexistent-directory") && w.contains("this window only"), "{w}");
+    assert!(
+        w.contains("nonexistent-directory") && w.contains("this window only"),
+        "{w}"
+    );
     // A scene with a file: its recovery file holds the edits when the save fails.
     let dir = std::env::temp_dir().join(format!("ed-warning-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
