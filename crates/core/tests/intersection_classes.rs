@@ -6,7 +6,8 @@
 //!
 //! `SPLINESCOPE_CLASS_CASES` sets the cases per class (default 1,500; the bench script
 //! `scripts/bench-intersections` runs 100,000); `SPLINESCOPE_ORACLE_EVERY` runs the oracle
-//! on every k-th case of degree ≤ 3 (default 4).
+//! on every k-th case of degree ≤ 3 (default 4); `SPLINESCOPE_LOW_CASES` the cases per
+//! class of the low-degree pass, each against the oracle (default a third of the cases).
 
 mod support;
 
@@ -183,6 +184,16 @@ fn cases_per_class() -> usize {
         .unwrap_or(1500)
 }
 
+/// Cases per class of the low-degree pass (every one against the oracle):
+/// `SPLINESCOPE_LOW_CASES`, else a third of [`cases_per_class`].
+fn low_cases_per_class() -> usize {
+    std::env::var("SPLINESCOPE_LOW_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(cases_per_class() / 3)
+        .max(1)
+}
+
 fn oracle_every() -> usize {
     std::env::var("SPLINESCOPE_ORACLE_EVERY")
         .ok()
@@ -198,7 +209,7 @@ fn run_class(class: Class, seed: u64, low: bool) -> (usize, usize, usize, Vec<St
     // The low-degree pass: every case of degree ≤ 3, every one against the oracle.
     let (n, every) = if low {
         g.max_degree = 3;
-        ((cases_per_class() / 3).max(1), 1)
+        (low_cases_per_class(), 1)
     } else {
         (cases_per_class(), oracle_every())
     };
