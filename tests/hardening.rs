@@ -559,6 +559,29 @@ fn schema_write_is_all_or_none() {
     }
 }
 
+#[test]
+fn schema_without_a_name_lists_every_schema() {
+    // The synopsis shows NAME as optional: without it, the list (exit 0), each named once
+    // with what it describes; a name not in it is still an error naming the choices.
+    let out = run(&["schema"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    for (name, _) in splinescope::schemas::all() {
+        let line = text
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(name))
+            .unwrap_or_else(|| panic!("{name} listed: {text}"));
+        assert!(line.len() > name.len() + 10, "{name} described: {line:?}");
+    }
+    let out = run(&["schema", "scenery"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("\"scenery\""));
+}
+
 /// The numbers of a JSON document that are `null` inside an array (where a number was
 /// due), with their paths.
 fn nulls_in_arrays(v: &serde_json::Value, at: &str, out: &mut Vec<String>) {

@@ -169,8 +169,7 @@ enum Command {
     /// Validate a scene and summarise it (families, segments, GPU compatibility).
     Check(check::CheckArgs),
     /// Print the JSON Schema of a format (scene, request, report, inspect, analyze, eval,
-    /// check), or
-    /// write them all with --write DIR.
+    /// check); without a name, list them; write them all with --write DIR.
     Schema(schema::SchemaArgs),
     /// Render every scene (*.json) of SCENES_DIR and compare it with REFS_DIR/<name>.png;
     /// exits 1 when any scene differs, has no reference or fails.

@@ -10,7 +10,7 @@ use crate::say;
 /// The arguments of `splinescope schema`.
 #[derive(Debug, clap::Args)]
 pub struct SchemaArgs {
-    /// Which schema.
+    /// Which schema (without one, the list of them).
     pub name: Option<String>,
     /// Write every schema as DIR/<name>.schema.json.
     #[arg(long, value_name = "DIR")]
@@ -25,7 +25,7 @@ pub fn run(a: &SchemaArgs) -> Result<()> {
     schema(a.name.as_deref(), a.write.as_deref())
 }
 
-/// Prints one schema, or writes every schema into `dir`.
+/// Prints one schema, lists them (no name), or writes every schema into `dir`.
 fn schema(name: Option<&str>, write: Option<&Path>) -> Result<()> {
     let all = splinescope::schemas::all();
     if let Some(dir) = write {
@@ -59,7 +59,20 @@ fn schema(name: Option<&str>, write: Option<&Path>) -> Result<()> {
     }
     let names: Vec<&str> = all.iter().map(|(n, _)| *n).collect();
     let Some(name) = name else {
-        bail!("name a schema ({}) or give --write DIR", names.join(", "));
+        // The list: each name with the first sentence its schema gives of itself.
+        let mut out = std::io::stdout().lock();
+        let width = names.iter().map(|n| n.len()).max().unwrap_or(0);
+        for (n, schema) in &all {
+            let about = schema["description"].as_str().unwrap_or_default();
+            let first = about.split(". ").next().unwrap_or_default();
+            let first = first.trim_end_matches('.');
+            let _ = writeln!(out, "{n:<width$}  {first}");
+        }
+        let _ = writeln!(
+            out,
+            "\nsplinescope schema NAME prints one; --write DIR writes them all"
+        );
+        return Ok(());
     };
     let Some((_, schema)) = all.iter().find(|(n, _)| *n == name) else {
         bail!(
