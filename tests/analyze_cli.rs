@@ -62,6 +62,9 @@ fn analyze_reports_the_closed_forms() {
     assert_eq!(vertex["kind"], "maximum");
     assert!((vertex["t"].as_f64().unwrap() - 0.5).abs() < 1e-12);
     assert!((vertex["curvature"].as_f64().unwrap() - 2.0).abs() < 1e-9);
+    // The extremum is of |κ|, with the signed κ and the side alongside.
+    assert!((vertex["abs_curvature"].as_f64().unwrap() - 2.0).abs() < 1e-9);
+    assert_eq!(vertex["side"], "left");
     // The line y = ½ meets the circle twice and the parabola y = x² twice.
     let pairs = v["intersections"].as_array().unwrap();
     let find = |i: u64, j: u64| {

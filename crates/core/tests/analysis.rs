@@ -792,6 +792,47 @@ fn curvature_extrema_at_known_vertices() {
             .expect("extrema")
             .is_empty()
     );
+    // Traversed the other way, each curve turns right (κ < 0): the sharpest point is still
+    // the maximum — the extrema are of |κ| — and the signed κ says which way it turns.
+    let down = CurveAnalysis::new(&bezier(&[(1.0, 1.0), (0.0, -1.0), (-1.0, 1.0)]));
+    let ex = down.curvature_extrema().expect("extrema");
+    assert_eq!(ex.len(), 1, "{ex:?}");
+    assert!((ex[0].curvature + 2.0).abs() < 1e-9, "{ex:?}");
+    assert_eq!(ex[0].kind, ExtremumKind::Maximum);
+    let reversed = Nurbs::try_new(
+        ellipse.points().iter().rev().copied().collect(),
+        ellipse.weights().iter().rev().copied().collect(),
+        ellipse
+            .knots()
+            .knots()
+            .iter()
+            .rev()
+            .map(|k| 1.0 - k)
+            .collect(),
+        3,
+    )
+    .expect("reversed ellipse");
+    let ex = CurveAnalysis::new(&reversed)
+        .curvature_extrema()
+        .expect("extrema");
+    let at = |x: f64, y: f64| ex.iter().find(|e| (e.point - p2(x, y)).length() < 1e-9);
+    let top = at(0.0, bb).expect("vertex (0, 2)");
+    assert!((top.curvature + bb / (a * a)).abs() < 1e-9 && top.kind == ExtremumKind::Minimum);
+    let left = at(-a, 0.0).expect("vertex (−3, 0)");
+    assert!((left.curvature + a / (bb * bb)).abs() < 1e-9 && left.kind == ExtremumKind::Maximum);
+    // An S curve: a bend each way, both sharpest points maxima, κ of opposite signs; the
+    // inflection between them is no minimum.
+    let s = CurveAnalysis::new(&bezier(&[(0.0, 0.0), (1.0, 2.0), (2.0, -2.0), (3.0, 0.0)]));
+    let ex = s.curvature_extrema().expect("extrema");
+    let maxima: Vec<f64> = ex
+        .iter()
+        .filter(|e| e.kind == ExtremumKind::Maximum)
+        .map(|e| e.curvature)
+        .collect();
+    assert_eq!(maxima.len(), 2, "{ex:?}");
+    assert!(maxima[0] * maxima[1] < 0.0, "{ex:?}");
+    let inflection = s.inflections().expect("inflections")[0];
+    assert!(ex.iter().all(|e| (e.t - inflection).abs() > 1e-6), "{ex:?}");
 }
 
 // ---------------------------------------------------------------------------------------

@@ -313,14 +313,22 @@ impl PyCurve {
     }
 
     /// The curvature `κ = |P′ × P″| / |P′|³` (NaN where `P′ = 0`): a number for a number,
-    /// `(N,)` for an array.
-    #[pyo3(signature = (t, out=None))]
+    /// `(N,)` for an array. With `signed` (planar curves), negative where the curve turns
+    /// right (`P′ × P″ < 0`).
+    #[pyo3(signature = (t, out=None, signed=false))]
     fn curvature<'py>(
         &self,
         py: Python<'py>,
         t: &Bound<'py, PyAny>,
         out: Option<&Bound<'py, PyAny>>,
+        signed: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
+        if signed && self.dim != 2 {
+            return Err(raise::<CurveError>(
+                "a signed curvature is defined for planar (2D) curves; this one is 3D".to_string(),
+                "signed",
+            ));
+        }
         let params = arrays::params(t, "t")?;
         let ts = params.as_slice()?;
         let scalar = matches!(params, Params::Scalar(_));
@@ -336,7 +344,12 @@ impl PyCurve {
                     // Derivatives that leave f64 give an infinite value, refused below;
                     // NaN only where P′ = 0 (the curvature is not defined there).
                     *o = if a.is_finite() && b.is_finite() {
-                        curvature(*a, *b).unwrap_or(f64::NAN)
+                        let k = curvature(*a, *b).unwrap_or(f64::NAN);
+                        if signed && a.x * b.y - a.y * b.x < 0.0 {
+                            -k
+                        } else {
+                            k
+                        }
                     } else {
                         f64::INFINITY
                     };
@@ -575,8 +588,8 @@ impl PyCurve {
         arrays::shaped(py, ts, &[n])
     }
 
-    /// The local extrema of the signed curvature (2D) as `(K, 3)`: `t`, `κ`, and `+1` for a
-    /// maximum or `−1` for a minimum.
+    /// The local extrema of the curvature's magnitude (2D) as `(K, 4)`: `t`, `|κ|`, the
+    /// signed `κ`, and `+1` for a maximum or `−1` for a minimum of `|κ|`.
     fn curvature_extrema<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let ex = self
             .analysis()
@@ -590,10 +603,10 @@ impl PyCurve {
                     splinescope_core::analysis::ExtremumKind::Maximum => 1.0,
                     splinescope_core::analysis::ExtremumKind::Minimum => -1.0,
                 };
-                [e.t, e.curvature, kind]
+                [e.t, e.curvature.abs(), e.curvature, kind]
             })
             .collect();
-        arrays::shaped(py, flat, &[n, 3])
+        arrays::shaped(py, flat, &[n, 4])
     }
 
     /// The signed area enclosed (2D; an open curve closed by its chord).

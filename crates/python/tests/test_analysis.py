@@ -103,8 +103,20 @@ def test_shape_answers():
     np.testing.assert_allclose(s_curve.inflections(), [0.5], atol=1e-15)
     parabola = ss.Bezier([[-1, 1], [0, -1], [1, 1]])
     ex = parabola.curvature_extrema()
-    assert ex.shape == (1, 3)
-    np.testing.assert_allclose(ex[0], [0.5, 2.0, 1.0], atol=1e-9)
+    assert ex.shape == (1, 4)
+    np.testing.assert_allclose(ex[0], [0.5, 2.0, 2.0, 1.0], atol=1e-9)
+    # Traversed turning right: the vertex is still the maximum of |κ|; the signed κ and
+    # curvature(t, signed=True) agree on its sign, the plain curvature is |κ|.
+    down = ss.Bezier([[1, 1], [0, -1], [-1, 1]])
+    ex = down.curvature_extrema()
+    np.testing.assert_allclose(ex[0], [0.5, 2.0, -2.0, 1.0], atol=1e-9)
+    assert down.curvature(0.5) == pytest.approx(2.0)
+    assert down.curvature(0.5, signed=True) == pytest.approx(-2.0)
+    np.testing.assert_allclose(
+        down.curvature(np.array([0.25, 0.5]), signed=True), -down.curvature(np.array([0.25, 0.5]))
+    )
+    with pytest.raises(TypeError, match="signed"):
+        down.curvature(0.5, signed="yes")
     cusp = ss.Bezier([[0, 0], [1, 1], [0, 1], [1, 0]])
     np.testing.assert_allclose(cusp.cusps(), [0.5], atol=1e-7)
     loop = ss.Bezier([[0, 0], [1.5, 1], [-0.5, 1], [1, 0]])

@@ -202,7 +202,15 @@ fn curve_text(out: &mut String, c: &CurveAnalysisReport) {
     if let Some(ex) = &c.curvature_extrema {
         let items: Vec<String> = ex
             .iter()
-            .map(|e| format!("{} κ = {} at t = {}", e.kind, Num(e.curvature), Num(e.t)))
+            .map(|e| {
+                format!(
+                    "{} |κ| = {} turning {} at t = {}",
+                    e.kind,
+                    Num(e.abs_curvature),
+                    e.side,
+                    Num(e.t)
+                )
+            })
             .collect();
         let _ = writeln!(out, "  curvature       {}", list(&items));
     }

@@ -77,7 +77,7 @@ pub struct CurveAnalysisReport {
     /// Planar curves: where `C′ = 0`.
     #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub cusps: Option<Vec<PointReport>>,
-    /// Planar curves: the local extrema of the signed curvature.
+    /// Planar curves: the local extrema of the curvature's magnitude `|κ|`.
     #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub curvature_extrema: Option<Vec<CurvatureReport>>,
     /// With intersections asked for, planar curves: where the curve meets itself.
@@ -123,9 +123,14 @@ pub struct ExtremumReport {
 pub struct CurvatureReport {
     /// The curve parameter.
     pub t: f64,
-    /// The signed curvature there.
+    /// The curvature's magnitude `|κ|` there (what `kind` is an extremum of).
+    pub abs_curvature: f64,
+    /// The signed curvature there (positive where the curve turns left).
     pub curvature: f64,
-    /// `maximum` or `minimum` (of the signed curvature).
+    /// Which way the curve turns there: `left` (`κ > 0`) or `right`.
+    pub side: &'static str,
+    /// `maximum` or `minimum` of `|κ|` (the sharpest point of a bend is a maximum,
+    /// whichever way it turns).
     pub kind: &'static str,
     /// The point.
     pub point: Xyz,
@@ -263,7 +268,9 @@ pub fn curve_analysis_report(
                     .into_iter()
                     .map(|e| CurvatureReport {
                         t: e.t,
+                        abs_curvature: e.curvature.abs(),
                         curvature: e.curvature,
+                        side: if e.curvature < 0.0 { "right" } else { "left" },
                         kind: extremum_name(e.kind),
                         point: e.point.to_array(),
                     })

@@ -373,11 +373,13 @@ class Curve:
         return self._c.derivative(t, _int(order, "order", 1, 2, "derivative"), out)
 
     def curvature(
-        self, t: ArrayLike, out: Optional[np.ndarray] = None
+        self, t: ArrayLike, out: Optional[np.ndarray] = None, signed: bool = False
     ) -> Union[float, np.ndarray]:
-        """``κ = |P′ × P″| / |P′|³``; NaN where ``P′ = 0``. ``out``: a float64 array of
-        shape ``(N,)`` (``()`` for a number), written in place and returned."""
-        return self._c.curvature(t, out)
+        """``κ = |P′ × P″| / |P′|³``; NaN where ``P′ = 0``. With ``signed=True`` (planar
+        curves), negative where the curve turns right — the convention of
+        :meth:`curvature_extrema`'s third column. ``out``: a float64 array of shape ``(N,)``
+        (``()`` for a number), written in place and returned."""
+        return self._c.curvature(t, out, _bool(signed, "signed", "curvature"))
 
     def sample(self, n: int) -> np.ndarray:
         """``n`` points at uniform parameters over the domain, ends included (``n`` at
@@ -433,8 +435,11 @@ class Curve:
         return self._c.cusps()
 
     def curvature_extrema(self) -> np.ndarray:
-        """The local extrema of the signed curvature (2D), ``(K, 3)``: the parameter,
-        ``κ`` there, and ``+1`` for a maximum or ``−1`` for a minimum."""
+        """The local extrema of the curvature's magnitude ``|κ|`` (2D), as designers name
+        them — the sharpest point of a bend is a maximum, whichever way it turns; the
+        zeros of ``κ`` are :meth:`inflections`, not minima. ``(K, 4)``: the parameter,
+        ``|κ|``, the signed ``κ`` (negative turning right, as ``curvature(t,
+        signed=True)``), and ``+1`` for a maximum or ``−1`` for a minimum of ``|κ|``."""
         return self._c.curvature_extrema()
 
     def signed_area(self) -> float:

@@ -204,11 +204,15 @@ pub(crate) fn canvas_shape(ui: &mut egui::Ui, info: &PanelInfo<'_>, model: &Inte
         .filter(|(d, _)| *d <= 8.0)
         .min_by(|a, b| a.0.total_cmp(&b.0));
     if let Some((_, m)) = near {
+        // The extremum is of |κ| (a bend's sharpest point is a maximum either way); the
+        // signed value says which way it turns.
         let k = m.curvature.unwrap_or_default();
         let text = format!(
-            "{} of curve {}: κ = {} at t = {}",
+            "{} of curve {}: |κ| = {}, turning {} (κ = {}) at t = {}",
             m.kind.label(),
             m.curve,
+            splinescope_core::num::fixed(k.abs(), 6),
+            if k < 0.0 { "right" } else { "left" },
             splinescope_core::num::fixed(k, 6),
             splinescope_core::num::fixed(m.t, 6)
         );

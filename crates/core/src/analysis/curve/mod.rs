@@ -143,9 +143,12 @@ pub enum ExtremumKind {
 pub struct CurvatureExtremum {
     /// The curve parameter.
     pub t: f64,
-    /// The signed curvature there (2D: positive turning left).
+    /// The signed curvature there (2D: positive where the curve turns left); its
+    /// magnitude `|κ|` is what [`CurvatureExtremum::kind`] is an extremum of.
     pub curvature: f64,
-    /// Maximum or minimum of the signed curvature.
+    /// Maximum or minimum of the curvature's magnitude `|κ|`, as a designer names them:
+    /// the sharpest point of a bend is a maximum, whichever way it turns. (The zeros of
+    /// `κ`, where it changes sign, are inflections, not minima.)
     pub kind: ExtremumKind,
     /// The point there.
     pub point: DVec3,
@@ -653,9 +656,11 @@ impl CurveAnalysis {
         })
     }
 
-    /// The local extrema of the signed curvature inside each segment (the stationary
-    /// points of `κ`, where `2F′G − 3FG′ = 0` with `κ = F/G^{3/2}`), cusps excluded, with
-    /// `κ` and whether it is a maximum or a minimum there. A segment of constant
+    /// The local extrema of the curvature's magnitude `|κ|` away from its zeros (the
+    /// stationary points of `κ`, where `2F′G − 3FG′ = 0` with `κ = F/G^{3/2}`, inside
+    /// segments and at joints where `κ` is continuous), cusps excluded, with the signed
+    /// `κ` and whether `|κ|` is a maximum or a minimum there: where the curve turns
+    /// right (`κ < 0`) a maximum of `κ` is a minimum of `|κ|`. A segment of constant
     /// curvature (a circular arc, a line) has none.
     ///
     /// # Errors
@@ -716,7 +721,7 @@ impl CurveAnalysis {
                 out.push(CurvatureExtremum {
                     t,
                     curvature,
-                    kind,
+                    kind: of_magnitude(kind, curvature),
                     point: self.point(t),
                 });
             }
@@ -755,7 +760,7 @@ impl CurveAnalysis {
             out.push(CurvatureExtremum {
                 t,
                 curvature: kr,
-                kind,
+                kind: of_magnitude(kind, kr),
                 point: self.point(t),
             });
         }
@@ -864,5 +869,21 @@ impl CurveAnalysis {
         hits.dedup_by(|x, y| (x.t - y.t).abs() <= x.error + y.error + 4.0 * f64::EPSILON);
         hits.retain(|h| !overlaps.iter().any(|(s, e)| h.t >= *s && h.t <= *e));
         Ok(LineIntersections { hits, overlaps })
+    }
+}
+
+/// An extremum of the signed curvature `κ` as an extremum of `|κ|`: the same where the
+/// curve turns left (`κ > 0`), the other where it turns right; where `κ = 0` (a flat
+/// point that is no inflection) `|κ|` is at its least.
+fn of_magnitude(kind: ExtremumKind, curvature: f64) -> ExtremumKind {
+    if curvature > 0.0 {
+        kind
+    } else if curvature < 0.0 {
+        match kind {
+            ExtremumKind::Maximum => ExtremumKind::Minimum,
+            ExtremumKind::Minimum => ExtremumKind::Maximum,
+        }
+    } else {
+        ExtremumKind::Minimum
     }
 }
