@@ -658,18 +658,15 @@ pub(super) fn nonnegative_range(y: &[f64]) -> Option<(f64, f64)> {
     let x = |i: usize| i as f64 / n;
     let crossing = |i: usize, j: usize| x(i) + (x(j) - x(i)) * y[i] / (y[i] - y[j]);
     let (mut lo, mut hi) = (x(first), x(last));
+    let inside = || (first..=last).filter(|&k| y[k] >= 0.0);
     for i in 0..first {
-        for j in first..=last {
-            if y[j] >= 0.0 {
-                lo = lo.min(crossing(i, j));
-            }
+        for j in inside() {
+            lo = lo.min(crossing(i, j));
         }
     }
     for j in (last + 1)..y.len() {
-        for i in first..=last {
-            if y[i] >= 0.0 {
-                hi = hi.max(crossing(i, j));
-            }
+        for i in inside() {
+            hi = hi.max(crossing(i, j));
         }
     }
     Some((lo.max(0.0), hi.min(1.0)))
