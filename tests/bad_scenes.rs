@@ -102,11 +102,11 @@ const EXPECTED: &[(&str, &str, &str)] = &[
         "curves[0].style.dashed",
         "unknown field",
     ),
-    ("samples-too-few", "samples", "1 is outside 2..=4096"),
+    ("samples-too-few", "samples", "1 is not between 2 and 4096"),
     (
         "samples-not-integer",
         "samples",
-        "expected an integer in 2..=4096, found the number 64.5",
+        "expected an integer between 2 and 4096, found the number 64.5",
     ),
     ("view-unknown-kind", "view.kind", "unknown view kind \"4d\""),
     (

@@ -495,7 +495,7 @@ fn diff_compares_two_images_and_writes_the_diff() {
         ),
         (
             vec!["diff", &s(&pa), &s(&pa), "--tolerance", "flip=3"],
-            "flip=3: outside 0..=1".to_owned(),
+            "flip=3: not between 0 and 1".to_owned(),
         ),
     ] {
         let out = run(&args);

@@ -43,7 +43,7 @@ const EXPECTED: &[(&str, &str, &str)] = &[
     (
         "window-out-of-range",
         "first",
-        "l = 2, m = 2: they must lie in 1..=2",
+        "l = 2, m = 2: they must lie between 1 and 2",
     ),
     ("window-first-zero", "first", "l = 0, m = 1"),
     ("window-count-missing", "count", "missing"),

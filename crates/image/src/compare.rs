@@ -141,10 +141,12 @@ impl std::str::FromStr for Tolerance {
             };
             match key_name {
                 "channel" => {
-                    tol.channel = value
-                        .trim()
-                        .parse::<u8>()
-                        .map_err(|_| bad("channel", "expected a whole number 0..=255".into()))?;
+                    tol.channel = value.trim().parse::<u8>().map_err(|_| {
+                        bad(
+                            "channel",
+                            "expected a whole number between 0 and 255".into(),
+                        )
+                    })?;
                 }
                 "pixels" => {
                     let fraction = match value.trim().strip_suffix('%') {
@@ -152,14 +154,14 @@ impl std::str::FromStr for Tolerance {
                         None => number("pixels", value)?,
                     };
                     if !(0.0..=1.0).contains(&fraction) {
-                        return Err(bad("pixels", "outside 0..=100 %".into()));
+                        return Err(bad("pixels", "not between 0 and 100 %".into()));
                     }
                     tol.max_differing_fraction = fraction;
                 }
                 "flip" => {
                     let flip = number("flip", value)?;
                     if !(0.0..=1.0).contains(&flip) {
-                        return Err(bad("flip", "outside 0..=1".into()));
+                        return Err(bad("flip", "not between 0 and 1".into()));
                     }
                     tol.max_flip_mean = Some(flip);
                 }

@@ -56,9 +56,34 @@ pub fn float_array<'py>(
     }
     let py = obj.py();
     let numpy = py.import("numpy")?;
+    // Numbers only: numpy would read "0.5" (or an array of strings, or `None` as NaN) as
+    // a number; a string where a number goes is a mistake, said as one.
+    let as_array = numpy.call_method1("asarray", (obj,)).map_err(|e| {
+        PyValueError::new_err(format!(
+            "{what} must be numbers (a float64 array or something numpy converts to one): {}",
+            e.value(py)
+        ))
+    })?;
+    let kind: String = as_array.getattr("dtype")?.getattr("kind")?.extract()?;
+    if !matches!(kind.as_str(), "b" | "i" | "u" | "f") {
+        let shown = obj
+            .repr()
+            .map_or_else(|_| "?".to_owned(), |r| r.to_string());
+        let shown: String = if shown.chars().count() > 60 {
+            shown.chars().take(57).chain("...".chars()).collect()
+        } else {
+            shown
+        };
+        return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+            "{what} must be numbers, not {} {shown}",
+            obj.get_type()
+                .name()
+                .map_or_else(|_| "?".to_owned(), |n| n.to_string())
+        )));
+    }
     let float64 = numpy.getattr("float64")?;
     let converted = numpy
-        .call_method1("require", (obj, float64, "CA"))
+        .call_method1("require", (as_array, float64, "CA"))
         .map_err(|e| {
             PyValueError::new_err(format!(
                 "{what} must be numbers (a float64 array or something numpy converts to one): {}",

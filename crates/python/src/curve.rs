@@ -554,7 +554,7 @@ impl PyCurve {
             && k >= self.dim
         {
             return Err(raise::<CurveError>(
-                format!("extrema: axis = {k} is outside 0..={}", self.dim - 1),
+                format!("extrema: axis = {k} is not between 0 and {}", self.dim - 1),
                 "axis",
             ));
         }

@@ -65,7 +65,7 @@ def test_curve_errors_name_the_value():
         b.eval(float("nan"))
     with pytest.raises(ValueError, match=r"shape \(2, 2\)"):
         b.eval(np.zeros((2, 2)))
-    with pytest.raises(ss.CurveError, match=r"derivative: order = 3 is outside 1..=2"):
+    with pytest.raises(ss.CurveError, match=r"derivative: order = 3 is not between 1 and 2"):
         b.derivative(0.5, 3)
     with pytest.raises(ss.CurveError, match="knot insertion|inserted on the control polygon"):
         b.insert_knot(0.5)

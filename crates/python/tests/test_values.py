@@ -223,3 +223,51 @@ def test_inputs_of_other_dtypes_and_orders_are_converted():
     np.testing.assert_array_equal(c.eval(t32), c.eval(t32.astype(np.float64)))
     np.testing.assert_array_equal(c.eval(strided), c.eval(np.ascontiguousarray(strided)))
     np.testing.assert_array_equal(c.eval([0.0, 0.5]), c.eval(np.array([0.0, 0.5])))
+
+
+def test_a_scene_is_a_sequence_of_curves():
+    a = ss.Curve.from_dict({"type": "bezier", "name": "arch", "points": [[0, 0], [1, 2], [2, 0]]})
+    b = ss.Bezier([[0, 1], [3, 1]])
+    c = ss.Nurbs.circle([0.0, 0.0], 1.0)
+    scene = ss.Scene([a, b, c], name="three")
+    assert len(scene) == 3
+    assert scene[0] == a and scene[-1] == c and scene[1] == b
+    assert scene[1:] == [b, c] and scene[::-1] == [c, b, a]
+    assert list(scene) == [a, b, c]
+    assert a in scene and ss.Bezier([[9, 9], [8, 8]]) not in scene and "arch" not in scene
+    with pytest.raises(IndexError, match="curve index 3 is out of range: the scene has 3"):
+        scene[3]
+    with pytest.raises(IndexError, match="-4"):
+        scene[-4]
+    with pytest.raises(TypeError, match="integers or slices"):
+        scene["0"]
+    assert len(ss.Scene()) == 0 and list(ss.Scene()) == []
+
+
+def test_reprs_show_family_name_and_numbers():
+    a = ss.Curve.from_dict({"type": "bezier", "name": "arch", "points": [[0, 0], [1, 2], [2, 0]]})
+    r = repr(a)
+    assert r.startswith("Bezier('arch', ") and "dim=2" in r, r
+    assert "points=[[0, 0], [1, 2], [2, 0]]" in r.replace(".", ""), r
+    # Long point lists elided, numpy-style, on one line.
+    long = ss.Bezier(np.column_stack([np.arange(12.0), np.zeros(12)]))
+    r = repr(long)
+    assert "..." in r and "\n" not in r and "[11, 0]" in r.replace(".", ""), r
+    scene = ss.Scene([a, a, ss.Nurbs.circle([0.0, 0.0], 1.0)], name="s")
+    assert repr(scene) == "Scene('s', 3 curves: bezier ×2, nurbs)"
+    assert repr(ss.Scene()) == "Scene(0 curves)"
+
+
+def test_strings_where_numbers_go_are_type_errors():
+    c = ss.Bezier([[0, 0], [1, 2], [2, 0]])
+    for bad in ("0.5", b"0.5", ["0.5"], np.array(["0.5"]), None, [None]):
+        with pytest.raises(TypeError, match="t must be numbers"):
+            c.eval(bad)
+    with pytest.raises(TypeError):
+        ss.Bezier([["0", "0"], ["1", "1"]])
+    # Numbers of every numeric dtype still go.
+    for good in (0.5, np.float32(0.5), np.array([0, 1], dtype=np.int8), [0.25, 1]):
+        c.eval(good)
+    # Ranges are said in words.
+    with pytest.raises(ss.CurveError, match="order = 3 is not between 1 and 2"):
+        c.derivative(0.5, order=3)

@@ -315,10 +315,10 @@ impl<'a> Node<'a> {
             return Err(self.wrong_type("an integer"));
         };
         let Some(v) = n.as_u64() else {
-            return Err(self.wrong_type(&format!("an integer in {lo}..={hi}")));
+            return Err(self.wrong_type(&format!("an integer between {lo} and {hi}")));
         };
         if v < u64::from(lo) || v > u64::from(hi) {
-            return Err(self.invalid(format!("{v} is outside {lo}..={hi}")));
+            return Err(self.invalid(format!("{v} is not between {lo} and {hi}")));
         }
         Ok(v as u32)
     }

@@ -288,7 +288,7 @@ impl BatchSingleTarget {
     pub fn new(degree: usize) -> Result<BatchSingleTarget, SolveError> {
         if !(2..=MAX_BATCH_DEGREE).contains(&degree) {
             return Err(SolveError::DegreeTooLow {
-                method: "batch single_target (degree 2..=63)",
+                method: "batch single_target (degree 2 to 63)",
                 degree,
                 min: 2,
             });

@@ -114,7 +114,7 @@ pub enum SolveError {
     },
     /// The window of moved points leaves the interior.
     #[error(
-        "moving P_l..P_(l+m-1) with l = {first}, m = {count}: they must lie in 1..={max} (the ends stay fixed)"
+        "moving P_l..P_(l+m-1) with l = {first}, m = {count}: they must lie between 1 and {max} (the ends stay fixed)"
     )]
     WindowOutOfRange {
         /// `l`.

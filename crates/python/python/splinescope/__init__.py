@@ -23,7 +23,8 @@ the mathematics in the repository's ``docs/math.md``).
 from __future__ import annotations
 
 import json
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+import re
+from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -86,9 +87,31 @@ def _error(cls: type, message: str, path: str) -> Exception:
     return e
 
 
+def _no_strings(value: Any, what: str) -> None:
+    """A :class:`TypeError` naming ``what`` where ``value`` holds text (numpy would read
+    ``"0.5"`` as a number)."""
+    if isinstance(value, (str, bytes)):
+        raise TypeError(f"{what} must be numbers, not {type(value).__name__} {value!r}")
+    if isinstance(value, (list, tuple, np.ndarray)):
+        try:
+            kind = np.asarray(value).dtype.kind
+        except (TypeError, ValueError):
+            return  # ragged: refused below as not numbers
+        if kind in "USO" and any(
+            isinstance(x, (str, bytes, np.str_, np.bytes_)) for x in np.asarray(value).flat
+        ):
+            raise TypeError(f"{what} must be numbers, not text ({_short(value)})")
+
+
+def _short(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
 def _array(value: ArrayLike, what: str, shape_ok: Any, expected: str) -> np.ndarray:
     """``value`` as a float64 array of an accepted shape with finite numbers, or a
     :class:`SceneError` naming ``what``."""
+    _no_strings(value, what)
     try:
         a = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError, OverflowError) as e:
@@ -143,7 +166,12 @@ def _int(x: Any, what: str, lo: int = 0, hi: int = 2**63 - 1, method: str = "") 
         )
     v = int(x)
     if v < lo or v > hi:
-        raise _error(CurveError, f"{where}{what} = {v} is outside {lo}..={hi}", what)
+        # In words; a bound only the machine sets (2⁶³ − 1 and above) is not worth saying.
+        if hi >= 2**63 - 1:
+            why = f"is below {lo}" if v < lo else "is too large"
+        else:
+            why = f"is not between {lo} and {hi}"
+        raise _error(CurveError, f"{where}{what} = {v} {why}", what)
     return v
 
 
@@ -181,6 +209,16 @@ def _float(x: Any, what: str, method: str = "") -> float:
         return float(x)
     except OverflowError:
         raise _error(CurveError, f"{method}: {what} = {x} is beyond float64", what) from None
+
+
+def _short_array(a: np.ndarray) -> str:
+    """An array on one line as numpy prints it, elided past four rows."""
+    text = np.array2string(
+        np.asarray(a), separator=", ", threshold=8, edgeitems=2, max_line_width=10**6,
+        precision=6, suppress_small=True,
+    )
+    # One line, without numpy's column padding.
+    return re.sub(r"\[\s+", "[", re.sub(r"\s+", " ", text))
 
 
 def _curve(c: Any, what: str) -> Any:
@@ -316,7 +354,11 @@ class Curve:
         return self._c.summary()
 
     def __repr__(self) -> str:
-        return f"{type(self).__name__}({self.summary()}, dim={self.dim})"
+        # Family, name, shape and a short view of the points, numpy-style (elided past a
+        # few rows): enough to tell two curves apart at a prompt.
+        name = f"{self.name!r}, " if self.name else ""
+        points = _short_array(self.control_points)
+        return f"{type(self).__name__}({name}{self.summary()}, dim={self.dim}, points={points})"
 
     def _repr_svg_(self) -> str:
         """A notebook's picture of the curve: an SVG figure of a scene of it alone,
@@ -1092,7 +1134,47 @@ class Scene:
         return self.svg()
 
     def __repr__(self) -> str:
-        return repr(self._s)
+        curves = self.curves
+        families: Dict[str, int] = {}
+        for c in curves:
+            families[c.family] = families.get(c.family, 0) + 1
+        kinds = ", ".join(
+            f"{f} ×{n}" if n > 1 else f for f, n in list(families.items())[:6]
+        ) + (", …" if len(families) > 6 else "")
+        name = f"{self.name!r}, " if self.name else ""
+        count = f"{len(curves)} curve" + ("" if len(curves) == 1 else "s")
+        return f"Scene({name}{count}" + (f": {kinds})" if curves else ")")
+
+    # -- a sequence of curves ---------------------------------------------------------
+
+    def __len__(self) -> int:
+        return len(self._s.curves)
+
+    def __getitem__(self, index: Any) -> Any:
+        """``scene[i]`` the ``i``-th curve (negative from the end), ``scene[a:b]`` a list of
+        curves; an index out of range is an :class:`IndexError` naming it."""
+        curves = self._s.curves
+        if isinstance(index, slice):
+            return [Curve._wrap(c) for c in curves[index]]
+        if isinstance(index, (bool, np.bool_)) or not isinstance(index, (int, np.integer)):
+            raise TypeError(
+                f"scene indices must be integers or slices, not {type(index).__name__} {index!r}"
+            )
+        n = len(curves)
+        if not -n <= int(index) < n:
+            raise IndexError(
+                f"curve index {int(index)} is out of range: the scene has {n} curve"
+                + ("" if n == 1 else "s")
+            )
+        return Curve._wrap(curves[int(index)])
+
+    def __iter__(self) -> Iterator[Curve]:
+        return iter(self.curves)
+
+    def __contains__(self, curve: object) -> bool:
+        """Whether a curve equal to ``curve`` (as :class:`Curve` compares them) is in
+        the scene."""
+        return isinstance(curve, Curve) and any(c == curve for c in self.curves)
 
 
 def stress_scene(curves: int, family: str = "bezier", degree: int = 3, seed: int = 1) -> Scene:
@@ -1154,7 +1236,7 @@ def _shape(
 
 
 def _size(width: Any, height: Any, method: str) -> Tuple[int, int]:
-    """A picture's size: whole numbers in 1..=16384, as the command line takes."""
+    """A picture's size: whole numbers from 1 to 16384, as the command line takes."""
     return (
         _int(width, "width", 1, 16384, method),
         _int(height, "height", 1, 16384, method),
