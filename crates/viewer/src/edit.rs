@@ -16,7 +16,7 @@ use splinescope_present::{Control, ControlValue, Present};
 mod gesture;
 mod recovery;
 mod structure;
-pub use recovery::recovery_path;
+pub use recovery::{legacy_recovery_path, recovery_dir, recovery_path};
 
 /// Why an edit, a pull or a save was refused; the scene is unchanged.
 #[derive(Debug, thiserror::Error)]

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use glam::{DVec2, DVec3};
 use splinescope_core::geom::{BSpline, Bezier, Curve, Nubmp, ParamCurve};
 use splinescope_scene::format::{Scene, to_json_string};
-use splinescope_viewer::edit::{Editor, Hit, recovery_path};
+use splinescope_viewer::edit::{Editor, Hit, legacy_recovery_path, recovery_dir, recovery_path};
 use splinescope_viewer::interaction::{
     Answer, Button, Input, Interaction, Key, Pending, Prompt, Response, Template,
 };
@@ -188,8 +188,19 @@ fn a_recovery_file_keeps_unsaved_edits_across_a_kill_and_is_offered_next_time() 
             Template::of_family("nubmp").expect("a NUBMP template"),
             DVec3::new(2.0, -2.0, 0.0),
         );
+        // Kept in the state directory, never beside the scene (a checkout stays clean).
         let r = recovery_path(&path);
-        assert_eq!(r, dir.join("scene.json.recovery"));
+        assert!(
+            r.starts_with(recovery_dir().expect("a state directory")),
+            "{r:?}"
+        );
+        assert!(!legacy_recovery_path(&path).exists());
+        assert!(
+            std::fs::read_dir(&dir)
+                .unwrap()
+                .all(|e| e.unwrap().file_name() == "scene.json"),
+            "nothing beside the scene"
+        );
         assert!(same_file(&Scene::load(&r).unwrap(), m.scene()));
         m.scene().clone()
         // Dropped without saving or answering: as if the process were killed.
@@ -571,4 +582,25 @@ fn the_exported_view_carries_the_comb_as_shown() {
     assert!(both > none + 100, "{none} → {both}");
     assert!(one > none && one < both, "{none} < {one} < {both}");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_recovery_file_beside_the_scene_from_earlier_versions_is_still_offered() {
+    let (dir, path, s) = saved_scene("legacy-recovery", &scene(vec![cubic(), bspline()]));
+    // Two scenes of one name in different folders keep their recovery files apart.
+    let other = dir.join("elsewhere").join("scene.json");
+    assert_ne!(recovery_path(&path), recovery_path(&other));
+    let mut edited = s.clone();
+    edited.curves.truncate(1);
+    edited.save(&legacy_recovery_path(&path)).unwrap();
+    let mut m = model(s.clone(), Some(path.clone()));
+    m.offer_recovery();
+    assert!(matches!(m.prompt, Some(Prompt::Recovery { .. })));
+    m.answer(Answer::Accept);
+    assert_eq!(m.scene().curves, edited.curves);
+    // Saving deals with the edits: neither file is left to be offered again.
+    m.editor.save(None).expect("saved");
+    assert!(!legacy_recovery_path(&path).exists());
+    assert!(!recovery_path(&path).exists());
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -1,6 +1,8 @@
-//! The recovery file: unsaved edits kept next to the scene file (`scene.json` →
-//! `scene.json.recovery`) until they are saved or discarded, found and restored when the
-//! file is opened again. Apart from the editing model so that undo and file I/O each have
+//! The recovery file: unsaved edits kept in the user's state directory
+//! (`$XDG_STATE_HOME/splinescope/recovery/`, named by the scene's file name and a hash of
+//! its absolute path) until they are saved or discarded, found and restored when the file
+//! is opened again — also from `scene.json.recovery` beside the scene, where earlier
+//! versions kept it. Apart from the editing model so that undo and file I/O each have
 //! their own file.
 
 use std::path::{Path, PathBuf};
@@ -8,13 +10,57 @@ use std::path::{Path, PathBuf};
 use super::Editor;
 use crate::scene::Scene;
 
-/// The recovery file kept next to a scene file while it has unsaved edits:
-/// `scene.json` → `scene.json.recovery`.
+/// Where recovery files are kept: `$SPLINESCOPE_STATE_DIR/recovery`, else
+/// `$XDG_STATE_HOME/splinescope/recovery`, else `$HOME/.local/state/splinescope/recovery`;
+/// `None` when none of them is set.
+#[must_use]
+pub fn recovery_dir() -> Option<PathBuf> {
+    let var = |k: &str| {
+        std::env::var_os(k)
+            .filter(|v| !v.is_empty())
+            .map(PathBuf::from)
+    };
+    let state = var("SPLINESCOPE_STATE_DIR")
+        .or_else(|| var("XDG_STATE_HOME").map(|d| d.join("splinescope")))
+        .or_else(|| var("HOME").map(|h| h.join(".local").join("state").join("splinescope")))?;
+    Some(state.join("recovery"))
+}
+
+/// The recovery file of the scene file `path`: in [`recovery_dir`], named by the file's
+/// name and a hash of its absolute path (`gallery.json` →
+/// `gallery.json-1f2e3d4c5b6a7988.json`), so that scenes of one name in different
+/// folders keep apart and nothing is written beside the scene; beside it
+/// ([`legacy_recovery_path`]) only when no state directory can be named.
 #[must_use]
 pub fn recovery_path(path: &Path) -> PathBuf {
+    let Some(dir) = recovery_dir() else {
+        return legacy_recovery_path(path);
+    };
+    let absolute = std::fs::canonicalize(path)
+        .or_else(|_| std::path::absolute(path))
+        .unwrap_or_else(|_| path.to_path_buf());
+    let name = path.file_name().unwrap_or_default().to_string_lossy();
+    dir.join(format!(
+        "{name}-{:016x}.json",
+        fnv1a(absolute.as_os_str().as_encoded_bytes())
+    ))
+}
+
+/// Where earlier versions kept the recovery file, beside the scene: `scene.json` →
+/// `scene.json.recovery` (still offered when found there).
+#[must_use]
+pub fn legacy_recovery_path(path: &Path) -> PathBuf {
     let mut name = path.file_name().unwrap_or_default().to_os_string();
     name.push(".recovery");
     path.with_file_name(name)
+}
+
+/// FNV-1a, 64 bits: a hash that is the same in every build and on every machine (the
+/// standard library's is not promised to be).
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    })
 }
 
 impl Editor {
@@ -24,9 +70,13 @@ impl Editor {
         let Some(path) = self.path.as_deref() else {
             return;
         };
-        let recovery = recovery_path(path);
+        let (recovery, legacy) = (recovery_path(path), legacy_recovery_path(path));
         if self.committed_dirty() {
-            match self.scene.save(&recovery) {
+            let made = recovery
+                .parent()
+                .map_or(Ok(()), std::fs::create_dir_all)
+                .map_err(|e| e.to_string());
+            match made.and_then(|()| self.scene.save(&recovery).map_err(|e| e.to_string())) {
                 Err(e) => {
                     let text = format!(
                         "the unsaved edits are not kept on disk: the recovery file {} cannot be written ({e})",
@@ -45,6 +95,7 @@ impl Editor {
             }
         } else {
             self.remove_recovery(&recovery);
+            self.remove_recovery(&legacy);
         }
     }
 
@@ -61,10 +112,10 @@ impl Editor {
     /// any: its path and the scene it holds, or why it cannot be read.
     #[must_use]
     pub fn find_recovery(&self) -> Option<(PathBuf, Result<Scene, crate::scene::SceneError>)> {
-        let recovery = recovery_path(self.path.as_deref()?);
-        if !recovery.exists() {
-            return None;
-        }
+        let path = self.path.as_deref()?;
+        let recovery = [recovery_path(path), legacy_recovery_path(path)]
+            .into_iter()
+            .find(|r| r.exists())?;
         let scene = Scene::load(&recovery);
         Some((recovery, scene))
     }
@@ -83,8 +134,9 @@ impl Editor {
     /// Removes the recovery file (the user discarded the unsaved edits).
     pub fn discard_recovery(&mut self) {
         if let Some(path) = self.path.as_deref() {
-            let recovery = recovery_path(path);
+            let (recovery, legacy) = (recovery_path(path), legacy_recovery_path(path));
             self.remove_recovery(&recovery);
+            self.remove_recovery(&legacy);
         }
     }
 }
