@@ -87,11 +87,23 @@ fn analyze_reports_the_closed_forms() {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{}", common::text(&out));
     assert!(text.contains("curves[0] \"circle\" (nurbs, 2D)"), "{text}");
-    assert!(
-        text.contains(&format!("length          {}", c["length"])),
-        "{text}"
+    // The text shows each value to what is known of it: the length within its stated
+    // error of the JSON's every digit, the box's corners without rounding noise.
+    let shown: f64 = text
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("length"))
+        .and_then(|rest| rest.split_whitespace().next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("a length line: {text}"));
+    let (full, error) = (
+        c["length"].as_f64().unwrap(),
+        c["length_error"].as_f64().unwrap(),
     );
-    assert!(text.contains("closed, signed area"), "{text}");
+    assert!((shown - full).abs() <= error, "{shown} vs {full} ± {error}");
+    assert!(text.contains("bounding box    (-2, -2) – (2, 2)"), "{text}");
+    assert!(text.contains("closed, signed area 12.566370614"), "{text}");
+    // Extrema with their points.
+    assert!(text.contains("x at t = 0.5 (-2, 0)"), "{text}");
     // Below the rounding of the value (about 50 ε · 4π), the error it reports says so
     // instead of claiming the accuracy asked for.
     let out = common::run(&[

@@ -22,6 +22,32 @@ impl fmt::Display for Num {
     }
 }
 
+/// The shortest decimal within `tol` of `x` (the fewest significant digits whose value
+/// differs from `x` by at most `tol`), in the shorter of its plain and exponent forms: the
+/// text of a computed value that shows what is known of it and no rounding noise —
+/// `shortest_within(-22.999999999999996, 1e-11)` is `-23`, `shortest_within(1.52e-15,
+/// 1e-12)` is `0`. A `tol` that is not a positive finite number gives every digit
+/// ([`Num`]), as does a non-finite `x`.
+#[must_use]
+pub fn shortest_within(x: f64, tol: f64) -> String {
+    if !x.is_finite() || !(tol > 0.0 && tol.is_finite()) {
+        return Num(x).to_string();
+    }
+    if x.abs() <= tol {
+        return "0".to_owned();
+    }
+    for digits in 1..=17 {
+        let text = format!("{:.*e}", digits - 1, x);
+        let Ok(v) = text.parse::<f64>() else {
+            continue;
+        };
+        if (v - x).abs() <= tol {
+            return Num(v).to_string();
+        }
+    }
+    Num(x).to_string()
+}
+
 /// `x` with at most `decimals` decimals, trailing zeros and a trailing point removed, and
 /// `-0` written `0`: the text of panel readouts, knot lists and figure coordinates
 /// (`fixed(0.25, 4)` is `0.25`, `fixed(-0.00001, 4)` is `0`, `fixed(100.0, 0)` is `100`).
@@ -74,7 +100,32 @@ pub fn scale_by_power_of_two(mut x: f64, mut e: i32) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{Num, fixed, scale_by_power_of_two, split_exponent, trim_zeros};
+    use super::{Num, fixed, scale_by_power_of_two, shortest_within, split_exponent, trim_zeros};
+
+    #[test]
+    fn shortest_within_keeps_what_is_known_and_no_noise() {
+        assert_eq!(shortest_within(-22.999999999999996, 1e-11), "-23");
+        assert_eq!(shortest_within(1.52e-15, 1e-12), "0");
+        assert_eq!(
+            shortest_within(22.44228559924098, 2.9e-13),
+            "22.442285599241"
+        );
+        assert_eq!(shortest_within(0.7200000000000003, 1e-12), "0.72");
+        assert_eq!(shortest_within(1234.5, 0.6), "1234");
+        assert_eq!(shortest_within(1.0e-300, 1e-310), "1e-300");
+        assert_eq!(shortest_within(0.1, 0.0), "0.1");
+        assert_eq!(shortest_within(f64::NAN, 1.0), "NaN");
+        // Always within the tolerance, and never longer than every digit.
+        let mut x = 0.123_456_789_f64;
+        for k in 0..2000 {
+            x = (x * 3.7 + 0.31).fract() * 10f64.powi(k % 19 - 9);
+            let tol = x.abs() * 10f64.powi(-(k % 16));
+            let text = shortest_within(x, tol);
+            let v: f64 = text.parse().unwrap();
+            assert!((v - x).abs() <= tol, "{x} {tol}: {text}");
+            assert!(text.len() <= Num(x).to_string().len(), "{x} {tol}: {text}");
+        }
+    }
 
     #[test]
     fn fixed_decimals_trimmed() {

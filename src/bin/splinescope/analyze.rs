@@ -12,7 +12,7 @@ use splinescope::analysis::CurveAnalysis;
 use splinescope::analysis::report::{
     AnalyzeOutput, CurveAnalysisReport, IntersectionsReport, curve_analysis_report, pair_reports,
 };
-use splinescope::num::Num;
+use splinescope::num::{Num, shortest_within};
 use splinescope::scene::Scene;
 
 use crate::{say, select_curves};
@@ -109,11 +109,59 @@ pub fn run(a: &AnalyzeArgs) -> Result<()> {
     Ok(())
 }
 
-fn point(p: [f64; 3], planar: bool) -> String {
-    if planar {
-        format!("({}, {})", Num(p[0]), Num(p[1]))
-    } else {
-        format!("({}, {}, {})", Num(p[0]), Num(p[1]), Num(p[2]))
+/// How many digits the text shows: each value as the shortest decimal within what is
+/// known of it — coordinates within `1e-12` of the curve's size (its box, or its largest
+/// coordinate far from the origin), parameters within `1e-12` of the domain, `κ` within
+/// `1e-12` of itself, lengths within their stated error — so rounding noise
+/// (`-22.999999999999996`, `1.5e-15` for 0) is not shown. `--json` keeps every digit.
+#[derive(Debug, Clone, Copy)]
+struct Digits {
+    /// The size coordinates are measured against.
+    size: f64,
+    /// The domain's width.
+    domain: f64,
+}
+
+impl Digits {
+    fn of(c: &CurveAnalysisReport) -> Digits {
+        let (lo, hi) = (c.bounding_box.min, c.bounding_box.max);
+        let diagonal = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
+        let far = (0..3)
+            .map(|k| lo[k].abs().max(hi[k].abs()))
+            .fold(0.0, f64::max);
+        Digits {
+            size: diagonal.max(far),
+            domain: c.domain[1] - c.domain[0],
+        }
+    }
+
+    /// Two curves' coordinates and parameters at once (an intersection's).
+    fn both(a: Digits, b: Digits) -> Digits {
+        Digits {
+            size: a.size.max(b.size),
+            domain: a.domain.min(b.domain),
+        }
+    }
+
+    fn coord(self, x: f64) -> String {
+        shortest_within(x, 1e-12 * self.size)
+    }
+
+    fn param(self, t: f64) -> String {
+        shortest_within(t, 1e-12 * self.domain)
+    }
+
+    fn point(self, p: [f64; 3], planar: bool) -> String {
+        if planar {
+            format!("({}, {})", self.coord(p[0]), self.coord(p[1]))
+        } else {
+            format!(
+                "({}, {}, {})",
+                self.coord(p[0]),
+                self.coord(p[1]),
+                self.coord(p[2])
+            )
+        }
     }
 }
 
@@ -125,7 +173,8 @@ fn list(items: &[String]) -> String {
     }
 }
 
-fn hits(found: &IntersectionsReport) -> String {
+/// Points and overlaps; each point's parameters within their stated errors.
+fn hits(found: &IntersectionsReport, d: Digits) -> String {
     let mut parts: Vec<String> = found
         .points
         .iter()
@@ -133,19 +182,19 @@ fn hits(found: &IntersectionsReport) -> String {
             format!(
                 "{} at (s, t) = ({}, {}) {}",
                 h.kind,
-                Num(h.s),
-                Num(h.t),
-                point(h.point, true)
+                shortest_within(h.s, h.error_s.max(1e-12 * d.domain * f64::EPSILON)),
+                shortest_within(h.t, h.error_t.max(1e-12 * d.domain * f64::EPSILON)),
+                d.point(h.point, true)
             )
         })
         .collect();
     parts.extend(found.overlaps.iter().map(|o| {
         format!(
             "overlap s ∈ [{}, {}] with t ∈ [{}, {}]",
-            Num(o.s[0]),
-            Num(o.s[1]),
-            Num(o.t[0]),
-            Num(o.t[1])
+            d.param(o.s[0]),
+            d.param(o.s[1]),
+            d.param(o.t[0]),
+            d.param(o.t[1])
         )
     }));
     list(&parts)
@@ -153,6 +202,7 @@ fn hits(found: &IntersectionsReport) -> String {
 
 fn curve_text(out: &mut String, c: &CurveAnalysisReport) {
     let planar = c.dimension == 2;
+    let d = Digits::of(c);
     let name = c
         .name
         .as_ref()
@@ -166,29 +216,40 @@ fn curve_text(out: &mut String, c: &CurveAnalysisReport) {
     let _ = writeln!(
         out,
         "  length          {} (error ≤ {:.1e})",
-        Num(c.length),
+        shortest_within(c.length, c.length_error),
         c.length_error
     );
     let _ = writeln!(
         out,
         "  bounding box    {} – {}",
-        point(c.bounding_box.min, planar),
-        point(c.bounding_box.max, planar)
+        d.point(c.bounding_box.min, planar),
+        d.point(c.bounding_box.max, planar)
     );
     let extrema: Vec<String> = c
         .extrema
         .iter()
-        .map(|e| format!("{} at t = {}", e.axis, Num(e.t)))
+        .map(|e| {
+            format!(
+                "{} at t = {} {}",
+                e.axis,
+                d.param(e.t),
+                d.point(e.point, planar)
+            )
+        })
         .collect();
     let _ = writeln!(out, "  extrema         {}", list(&extrema));
     if let Some(area) = c.signed_area {
-        let _ = writeln!(out, "  closed, signed area {}", Num(area));
+        let _ = writeln!(
+            out,
+            "  closed, signed area {}",
+            shortest_within(area, 1e-12 * d.size * d.size)
+        );
     }
     let at = |items: &Option<Vec<splinescope::analysis::report::PointReport>>| -> Option<String> {
         items.as_ref().map(|v| {
             list(
                 &v.iter()
-                    .map(|p| format!("t = {} {}", Num(p.t), point(p.point, planar)))
+                    .map(|p| format!("t = {} {}", d.param(p.t), d.point(p.point, planar)))
                     .collect::<Vec<_>>(),
             )
         })
@@ -204,18 +265,19 @@ fn curve_text(out: &mut String, c: &CurveAnalysisReport) {
             .iter()
             .map(|e| {
                 format!(
-                    "{} |κ| = {} turning {} at t = {}",
+                    "{} |κ| = {} turning {} at t = {} {}",
                     e.kind,
-                    Num(e.abs_curvature),
+                    shortest_within(e.abs_curvature, 1e-12 * e.abs_curvature),
                     e.side,
-                    Num(e.t)
+                    d.param(e.t),
+                    d.point(e.point, planar)
                 )
             })
             .collect();
         let _ = writeln!(out, "  curvature       {}", list(&items));
     }
     if let Some(s) = &c.self_intersections {
-        let _ = writeln!(out, "  self            {}", hits(s));
+        let _ = writeln!(out, "  self            {}", hits(s, d));
     }
 }
 
@@ -225,15 +287,25 @@ fn text(out: &AnalyzeOutput) -> String {
     for c in &out.curves {
         curve_text(&mut s, c);
     }
+    let digits = |i: usize| {
+        out.curves.iter().find(|c| c.index == i).map_or(
+            Digits {
+                size: 1.0,
+                domain: 1.0,
+            },
+            Digits::of,
+        )
+    };
     if let Some(pairs) = &out.intersections {
         let _ = writeln!(s, "intersections ({} pair(s))", pairs.len());
         for p in pairs {
+            let d = Digits::both(digits(p.curves[0]), digits(p.curves[1]));
             let _ = writeln!(
                 s,
                 "  curves[{}] × curves[{}]: {}",
                 p.curves[0],
                 p.curves[1],
-                hits(&p.found)
+                hits(&p.found, d)
             );
         }
     }
