@@ -30,7 +30,7 @@ impl fmt::Display for Num {
 /// ([`Num`]), as does a non-finite `x`.
 #[must_use]
 pub fn shortest_within(x: f64, tol: f64) -> String {
-    if !x.is_finite() || !(tol > 0.0 && tol.is_finite()) {
+    if !x.is_finite() || tol.is_nan() || tol <= 0.0 || tol.is_infinite() {
         return Num(x).to_string();
     }
     if x.abs() <= tol {
