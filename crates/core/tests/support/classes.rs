@@ -515,6 +515,7 @@ impl Gen {
                 && !c.b.folds()
                 && !c.a.closed()
                 && !c.b.closed()
+                && (!c.overlaps.is_empty() || !collinear_lines(&c.a, &c.b))
             {
                 return if self.coin() { c.swapped() } else { c };
             }
@@ -693,6 +694,10 @@ impl Gen {
         let e: Vec<(Q, Q)> = (0..=(n - order - 1))
             .map(|_| (self.coord(scale, 2), self.coord(scale, 2)))
             .collect();
+        // E = 0 would make A the very curve B (a coincidence, not a contact).
+        if e.iter().all(|(x, y)| x.is_zero() && y.is_zero()) {
+            return None;
+        }
         let a = b.plus_contact(&s0, order + 1, &e);
         // A line tangent to a curve: A of degree 1 through the point along the tangent.
         let (mut a, mut sa) = (a, s0.clone());
@@ -1089,4 +1094,15 @@ fn lcm(a: &BigInt, b: &BigInt) -> BigInt {
         return BigInt::one();
     }
     a * b / g
+}
+
+/// Two segments of one line (degree 1, all four points on it, exactly): they coincide
+/// where they overlap, so no class of isolated points can be built from them.
+fn collinear_lines(a: &H, b: &H) -> bool {
+    if a.degree() != 1 || b.degree() != 1 {
+        return false;
+    }
+    let (p, q) = (b.point(&Q::zero()), b.point(&Q::one()));
+    let cross = |r: &(Q, Q)| (&q.0 - &p.0) * (&r.1 - &p.1) - (&q.1 - &p.1) * (&r.0 - &p.0);
+    cross(&a.point(&Q::zero())).is_zero() && cross(&a.point(&Q::one())).is_zero()
 }

@@ -279,10 +279,10 @@ struct Band {
     u: f64,
     /// How far `v` moves with it.
     v: f64,
-    /// The smallest ratio, over the sides that leave the band inside the ranges, of the
-    /// distance at twice the exit step to the distance at it: about 2 where the distance
-    /// grows linearly (a crossing), `2^{k+1}` at a contact of order `k` (a tangency).
-    /// `None` when neither side leaves the band before its range ends.
+    /// The smallest ratio, over the sides that leave the band inside the ranges (with
+    /// perpendicular feet on `b`), of the distance at four times the exit step to the
+    /// distance at it: about 4 where the distance grows linearly (a crossing), `4^{k+1}`
+    /// at a contact of order `k` (a tangency). `None` when no side does.
     growth: Option<f64>,
 }
 
@@ -337,12 +337,21 @@ fn band(
             out.u = out.u.max((x - u).abs());
             out.v = out.v.max((fv - v).abs());
             if beyond > tol {
-                // How the distance grows: at twice the step (inside the range).
-                let x2 = u + dir * 2.0 * step;
-                if x2 >= xa.0 && x2 <= xa.1 {
-                    let (_, d2, _) = distance(x2, fv);
-                    let g = d2 / d;
-                    out.growth = Some(out.growth.map_or(g, |h: f64| h.min(g)));
+                // How the distance grows: at four times the step (inside the range; far
+                // enough past the band that the evaluations' rounding, of the order of
+                // the band's edge, cannot blur a linear growth into a quadratic one or
+                // back). Only where
+                // both feet are perpendicular ones, inside `b`: past `b`'s end the distance
+                // is to that end point and grows linearly whatever the contact (two curves
+                // joined end to start with a common tangent would read as a crossing).
+                let x2 = u + dir * 4.0 * step;
+                let inside = |f: f64| f > xb.0 && f < xb.1;
+                if x2 >= xa.0 && x2 <= xa.1 && inside(fv) {
+                    let (fv2, d2, _) = distance(x2, fv);
+                    if inside(fv2) {
+                        let g = d2 / d;
+                        out.growth = Some(out.growth.map_or(g, |h: f64| h.min(g)));
+                    }
                 }
                 break;
             }
@@ -429,7 +438,8 @@ fn classify(
     };
     let found = band(a, ra, b, rb, (pu, pv), tol, start);
     let touches = match found.growth {
-        Some(g) => g >= 3.0,
+        // Linear growth: 4 over four times the step; quadratic (a tangency): 16.
+        Some(g) => g >= 8.0,
         // The band fills both ranges: no way out to measure; parallel tangents decide.
         None => sin.is_nan() || sin <= 1e-7,
     };
