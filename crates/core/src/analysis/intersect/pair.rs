@@ -53,6 +53,10 @@ pub(super) struct PieceHits {
     pub(super) overlaps: Vec<SpanPair>,
 }
 
+/// Two ends meeting with tangents parallel to within this sine share their tangent line
+/// (a join's tangents computed from exactly collinear control points agree to a few ε).
+const JOIN_PARALLEL: f64 = 1e-12;
+
 /// The scale of a pair: its size, and `δ`, the distance within which two of its points
 /// are one point (`64 ε` — more for high degrees — times its largest coordinate or its
 /// size, whichever is larger: the rounding of an evaluation is relative to the
@@ -747,6 +751,27 @@ pub(super) fn piece_pair(a: &Piece, ra: (f64, f64), b: &Piece, rb: (f64, f64)) -
             continue;
         }
         let residual = (a.point(e.u) - b.point(e.v)).truncate().length();
+        // A join (an end of each) whose tangent lines are one, to rounding: the curves
+        // share their tangent there — a G1 join, or an S through it — whatever the
+        // distance does past it (each curve stops there; how they part is a matter of
+        // their higher terms, which the growth test would read through the rounding).
+        if e.u_end && e.v_end {
+            let (da, db) = (a.deriv(e.u).truncate(), b.deriv(e.v).truncate());
+            let sin = da.perp_dot(db).abs() / (da.length() * db.length());
+            if sin <= JOIN_PARALLEL {
+                let h = PairHit {
+                    u: e.u,
+                    v: e.v,
+                    kind: HitKind::Tangent,
+                    err_u: 0.0,
+                    err_v: 0.0,
+                };
+                if !hits.iter().any(|x| same(x, &h)) {
+                    hits.push(h);
+                }
+                continue;
+            }
+        }
         let mut h = classify(a, ra, b, rb, (e.u, e.v, residual), scale);
         // A crossing keeps the end's exact parameter; a tangency found at the end too.
         if h.kind == HitKind::Crossing || (h.u - e.u).abs() <= h.err_u {
