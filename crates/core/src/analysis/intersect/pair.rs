@@ -288,6 +288,10 @@ struct Band {
     /// distance at it: about 4 where the distance grows linearly (a crossing), `4^{k+1}`
     /// at a contact of order `k` (a tangency). `None` when no side does.
     growth: Option<f64>,
+    /// The side of `b` (the sign of the distance along `b`'s left normal) on which `a`
+    /// lies where it leaves the band, walking backwards and forwards (`0` where it does
+    /// not leave it with a perpendicular foot).
+    sides: [f64; 2],
 }
 
 /// Walks from `(u, v)` along `a` both ways, the step doubling from `start`, each point's
@@ -309,6 +313,7 @@ fn band(
         u: 4.0 * f64::EPSILON,
         v: 4.0 * f64::EPSILON,
         growth: None,
+        sides: [0.0; 2],
     };
     let grow = |r: (f64, f64)| {
         let e = 1e-3 * (r.1 - r.0);
@@ -350,6 +355,11 @@ fn band(
                 // joined end to start with a common tangent would read as a crossing).
                 let x2 = u + dir * 4.0 * step;
                 let inside = |f: f64| f > xb.0 && f < xb.1;
+                if inside(fv) {
+                    let (q, d) = b.point_and_deriv(fv);
+                    let gap = a.point(x).truncate() - q.truncate();
+                    out.sides[usize::from(dir > 0.0)] = d.truncate().perp_dot(gap).signum();
+                }
                 if x2 >= xa.0 && x2 <= xa.1 && inside(fv) {
                     let (fv2, d2, _) = distance(x2, fv);
                     if inside(fv2) {
@@ -442,8 +452,11 @@ fn classify(
     };
     let found = band(a, ra, b, rb, (pu, pv), tol, start);
     let touches = match found.growth {
-        // Linear growth: 4 over four times the step; quadratic (a tangency): 16.
-        Some(g) => g >= 8.0,
+        // Linear growth: 4 over four times the step; quadratic (a tangency): 16. Or `a`
+        // leaves the band on one side of `b` both ways — it touches `b` from that side
+        // (where it crosses, it leaves on opposite sides), though the growth on one
+        // side was slowed by the curves meeting again close by.
+        Some(g) => g >= 8.0 || (found.sides[0] != 0.0 && found.sides[0] == found.sides[1]),
         // The band fills both ranges: no way out to measure; parallel tangents decide.
         None => sin.is_nan() || sin <= 1e-7,
     };
