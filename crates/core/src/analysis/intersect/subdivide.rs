@@ -84,57 +84,50 @@ impl Sub {
         }
     }
 
-    /// How far `q` lies outside the box of the control points aligned with the chord
-    /// (their projections on the chord and on its normal): the sub-segment lies in that
-    /// box, which hugs it more closely than the axis-aligned one.
-    pub(super) fn oriented_gap(&self, q: DVec2) -> f64 {
+    /// The box of the control points aligned with the chord: the chord's start and unit
+    /// direction, and the points' extents along it and across it (`[a0, a1, n0, n1]`,
+    /// from the start); `None` for a closed or non-finite chord. The sub-segment lies in
+    /// it, which hugs it more closely than the axis-aligned box.
+    fn chord_box(&self) -> Option<(DVec2, DVec2, [f64; 4])> {
         let n = self.len();
         let origin = self.point(0);
         let c = self.point(n - 1) - origin;
         let len = c.length();
         if len == 0.0 || !len.is_finite() {
-            let (lo, hi) = self.bounds();
-            return (lo - q).max(q - hi).max(DVec2::ZERO).length();
+            return None;
         }
-        let (along, across) = (c / len, c.perp() / len);
-        let (mut a0, mut a1, mut n0, mut n1) = (0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64);
+        let along = c / len;
+        let mut ext = [0.0_f64; 4];
         for i in 1..n {
             let p = self.point(i) - origin;
-            let (x, y) = (p.dot(along), p.dot(across));
-            a0 = a0.min(x);
-            a1 = a1.max(x);
-            n0 = n0.min(y);
-            n1 = n1.max(y);
+            let (x, y) = (p.dot(along), along.perp_dot(p));
+            ext = [ext[0].min(x), ext[1].max(x), ext[2].min(y), ext[3].max(y)];
         }
+        Some((origin, along, ext))
+    }
+
+    /// How far `q` lies outside [`Sub::chord_box`] (outside the axis-aligned box where the
+    /// chord is closed).
+    pub(super) fn oriented_gap(&self, q: DVec2) -> f64 {
+        let Some((origin, along, [a0, a1, n0, n1])) = self.chord_box() else {
+            let (lo, hi) = self.bounds();
+            return (lo - q).max(q - hi).max(DVec2::ZERO).length();
+        };
         let p = q - origin;
-        let (x, y) = (p.dot(along), p.dot(across));
+        let (x, y) = (p.dot(along), along.perp_dot(p));
         let gx = (a0 - x).max(x - a1).max(0.0);
         let gy = (n0 - y).max(y - n1).max(0.0);
         gx.hypot(gy)
     }
 
     /// Whether a line separates the two (by more than `margin`): the sides of either's
-    /// box aligned with its chord (the hull of its control points lies within them) that
-    /// leave every control point of the other outside.
+    /// [`Sub::chord_box`] (the hull of its control points lies within them) that leave
+    /// every control point of the other outside.
     pub(super) fn separated_from(&self, other: &Sub, margin: f64) -> bool {
         let outside = |s: &Sub, o: &Sub| -> bool {
-            let n = s.len();
-            let origin = s.point(0);
-            let c = s.point(n - 1) - origin;
-            let len = c.length();
-            if len == 0.0 || !len.is_finite() {
+            let Some((origin, along, [a0, a1, n0, n1])) = s.chord_box() else {
                 return false;
-            }
-            let (along, across) = (c / len, c.perp() / len);
-            let (mut a0, mut a1, mut n0, mut n1) = (0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64);
-            for i in 1..n {
-                let p = s.point(i) - origin;
-                let (x, y) = (p.dot(along), p.dot(across));
-                a0 = a0.min(x);
-                a1 = a1.max(x);
-                n0 = n0.min(y);
-                n1 = n1.max(y);
-            }
+            };
             let (mut b0, mut b1, mut m0, mut m1) = (
                 f64::INFINITY,
                 f64::NEG_INFINITY,
@@ -143,7 +136,7 @@ impl Sub {
             );
             for i in 0..o.len() {
                 let p = o.point(i) - origin;
-                let (x, y) = (p.dot(along), p.dot(across));
+                let (x, y) = (p.dot(along), along.perp_dot(p));
                 b0 = b0.min(x);
                 b1 = b1.max(x);
                 m0 = m0.min(y);
