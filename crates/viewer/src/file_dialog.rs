@@ -245,15 +245,9 @@ impl RecentFiles {
     /// `$HOME/.config/splinescope/recent.txt`.
     #[must_use]
     pub fn default_store() -> Option<PathBuf> {
-        let var = |k: &str| {
-            std::env::var_os(k)
-                .filter(|v| !v.is_empty())
-                .map(PathBuf::from)
-        };
-        let dir = var("SPLINESCOPE_CONFIG_DIR")
-            .or_else(|| var("XDG_CONFIG_HOME").map(|d| d.join("splinescope")))
-            .or_else(|| var("HOME").map(|h| h.join(".config").join("splinescope")))?;
-        Some(dir.join("recent.txt"))
+        Some(
+            user_dir("SPLINESCOPE_CONFIG_DIR", "XDG_CONFIG_HOME", &[".config"])?.join("recent.txt"),
+        )
     }
 
     /// Puts `path` first (made absolute) and writes the list.
@@ -295,4 +289,23 @@ pub struct RecentError {
     pub store: std::path::PathBuf,
     /// The cause.
     pub reason: std::io::Error,
+}
+
+/// The user's splinescope directory of one kind: `$OWN` when set, else `$XDG/splinescope`,
+/// else `$HOME/<home…>/splinescope` (empty variables count as unset); `None` when none is.
+pub(crate) fn user_dir(own: &str, xdg: &str, home: &[&str]) -> Option<PathBuf> {
+    let var = |k: &str| {
+        std::env::var_os(k)
+            .filter(|v| !v.is_empty())
+            .map(PathBuf::from)
+    };
+    var(own)
+        .or_else(|| var(xdg).map(|d| d.join("splinescope")))
+        .or_else(|| {
+            var("HOME").map(|h| {
+                home.iter()
+                    .fold(h, |p, part| p.join(part))
+                    .join("splinescope")
+            })
+        })
 }

@@ -15,14 +15,11 @@ use crate::scene::Scene;
 /// `None` when none of them is set.
 #[must_use]
 pub fn recovery_dir() -> Option<PathBuf> {
-    let var = |k: &str| {
-        std::env::var_os(k)
-            .filter(|v| !v.is_empty())
-            .map(PathBuf::from)
-    };
-    let state = var("SPLINESCOPE_STATE_DIR")
-        .or_else(|| var("XDG_STATE_HOME").map(|d| d.join("splinescope")))
-        .or_else(|| var("HOME").map(|h| h.join(".local").join("state").join("splinescope")))?;
+    let state = crate::file_dialog::user_dir(
+        "SPLINESCOPE_STATE_DIR",
+        "XDG_STATE_HOME",
+        &[".local", "state"],
+    )?;
     Some(state.join("recovery"))
 }
 
