@@ -575,13 +575,7 @@ impl Leaves for Points<'_> {
                 rb.0.max(lo_v - (hi_v - lo_v)),
                 rb.1.min(hi_v + (hi_v - lo_v)),
             );
-            for (su, sv) in sign_changes(a, (lo_u, hi_u), b, ext, v) {
-                let r = (a.point(su) - b.point(sv)).truncate().length();
-                if meets(su, sv, r) {
-                    self.seen.push((su, sv));
-                    self.record(su, sv, r);
-                }
-            }
+            self.scan((lo_u, hi_u), ext, v);
             return match found {
                 Some(h) if self.hits.len() > before && inside(h.u, h.v) => Rest::Beside(
                     h.u - h.err_u - 4.0 * f64::EPSILON,
@@ -592,19 +586,11 @@ impl Leaves for Points<'_> {
         }
         // Newton's method went astray (curves nearly parallel, where the linear model's
         // crossing lies far off): the sign changes of the signed distance along `a`.
-        let mut found = false;
         let ext = (
             rb.0.max(lo_v - (hi_v - lo_v)),
             rb.1.min(hi_v + (hi_v - lo_v)),
         );
-        for (u, v) in sign_changes(a, (lo_u, hi_u), b, ext, 0.5 * (lo_v + hi_v)) {
-            let r = (a.point(u) - b.point(v)).truncate().length();
-            if meets(u, v, r) {
-                self.seen.push((u, v));
-                self.record(u, v, r);
-                found = true;
-            }
-        }
+        let found = self.scan((lo_u, hi_u), ext, 0.5 * (lo_v + hi_v));
         if found || !single {
             Rest::Done
         } else {
@@ -614,6 +600,39 @@ impl Leaves for Points<'_> {
 }
 
 impl Points<'_> {
+    /// The points of a flat leaf, `u` on `range_u`, that Newton's method from one start
+    /// does not reach: every sign change of the distance along it, and every touching
+    /// point where the distance dips to zero without changing sign (a tangency beside a
+    /// crossing, where Newton's method goes to the crossing). Whether any was kept.
+    fn scan(&mut self, range_u: (f64, f64), range_v: (f64, f64), v: f64) -> bool {
+        let (a, b, tol) = (self.a, self.b, self.scale.tol);
+        let meets = |u: f64, v: f64| {
+            let r = (a.point(u) - b.point(v)).truncate().length();
+            (r <= tol || r <= tol + slack(a, u) + slack(b, v)).then_some(r)
+        };
+        let gaps = sign_changes(a, range_u, b, range_v, v, tol);
+        let mut found = false;
+        for (u, v) in gaps.crossings {
+            if let Some(r) = meets(u, v) {
+                self.seen.push((u, v));
+                self.record(u, v, r);
+                found = true;
+            }
+        }
+        for (u, v) in gaps.touches {
+            if let Some((tu, tv)) = refine_tangent(a, b, u, v)
+                && tu >= range_u.0
+                && tu <= range_u.1
+                && let Some(r) = meets(tu, tv)
+            {
+                self.seen.push((tu, tv));
+                self.record(tu, tv, r);
+                found = true;
+            }
+        }
+        found
+    }
+
     /// Classifies a point where the curves meet and keeps it unless it is one already
     /// found (a tangency replaces a crossing it stands for); the point as kept.
     fn record(&mut self, u: f64, v: f64, residual: f64) -> Option<PairHit> {
@@ -671,24 +690,40 @@ fn signed_gap(a: &Piece, u: f64, b: &Piece, range: (f64, f64), v: f64) -> (f64, 
     (h, v)
 }
 
+/// What the signed distance from `a` to `b` shows along a leaf: where it changes sign,
+/// and where it comes close to zero without changing sign (a touching point may lie
+/// there).
+#[derive(Debug, Default)]
+struct Gaps {
+    /// Sign changes, each closed to the last bits: points `(u, v)`.
+    crossings: Vec<(f64, f64)>,
+    /// Samples `(u, v)` where `|h|` is smallest among its neighbours of the same sign and
+    /// the parabola through the three samples reaches within `tol` of zero, or past it.
+    touches: Vec<(f64, f64)>,
+}
+
 /// Where the signed distance from `a` to `b` changes sign on `(u0, u1)`: sampled at nine
-/// points, each change bracketed and closed by the Illinois method to the last bits.
-/// Points `(u, v)`.
+/// points, each change bracketed and closed by the Illinois method to the last bits; and
+/// where it dips towards zero between samples of one sign (see [`Gaps`]).
 fn sign_changes(
     a: &Piece,
     (u0, u1): (f64, f64),
     b: &Piece,
     range: (f64, f64),
     v_start: f64,
-) -> Vec<(f64, f64)> {
+    tol: f64,
+) -> Gaps {
     const SAMPLES: usize = 9;
-    let mut out = Vec::new();
+    let mut gaps = Gaps::default();
+    let out = &mut gaps.crossings;
+    let mut samples = [(0.0, 0.0, 0.0); SAMPLES];
     let mut v = v_start;
     let mut prev: Option<(f64, f64, f64)> = None;
     for k in 0..SAMPLES {
         let u = u0 + (u1 - u0) * k as f64 / (SAMPLES - 1) as f64;
         let (h, nv) = signed_gap(a, u, b, range, v);
         v = nv;
+        samples[k] = (u, h, v);
         if h == 0.0 {
             out.push((u, v));
         } else if let Some((pu, ph, pv)) = prev
@@ -736,7 +771,24 @@ fn sign_changes(
         }
         prev = Some((u, h, v));
     }
-    out
+    for w in samples.windows(3) {
+        let [(_, h0, _), (u, h, v), (_, h2, _)] = [w[0], w[1], w[2]];
+        let same = (h0 > 0.0 && h > 0.0 && h2 > 0.0) || (h0 < 0.0 && h < 0.0 && h2 < 0.0);
+        if !same || h.abs() > h0.abs() || h.abs() > h2.abs() {
+            continue;
+        }
+        // The parabola through the three: its extreme value.
+        let curl = h0 - 2.0 * h + h2;
+        let lowest = if curl != 0.0 {
+            h - (h2 - h0) * (h2 - h0) / (8.0 * curl)
+        } else {
+            h
+        };
+        if lowest.abs() <= tol || (lowest > 0.0) != (h > 0.0) {
+            gaps.touches.push((u, v));
+        }
+    }
+    gaps
 }
 
 /// The points and overlaps of two segments on the given ranges of their own parameters.
