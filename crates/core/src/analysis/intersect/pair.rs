@@ -719,11 +719,11 @@ fn sign_changes(
     let mut samples = [(0.0, 0.0, 0.0); SAMPLES];
     let mut v = v_start;
     let mut prev: Option<(f64, f64, f64)> = None;
-    for k in 0..SAMPLES {
+    for (k, sample) in samples.iter_mut().enumerate() {
         let u = u0 + (u1 - u0) * k as f64 / (SAMPLES - 1) as f64;
         let (h, nv) = signed_gap(a, u, b, range, v);
         v = nv;
-        samples[k] = (u, h, v);
+        *sample = (u, h, v);
         if h == 0.0 {
             out.push((u, v));
         } else if let Some((pu, ph, pv)) = prev
