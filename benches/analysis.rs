@@ -205,6 +205,7 @@ fn bench(c: &mut Criterion) {
     };
     let every = ShapeOptions {
         comb: None,
+        comb_cap: Default::default(),
         inflections: true,
         curvature_extrema: true,
         intersections: true,

@@ -128,7 +128,7 @@ fn wang_count(seg: Segment) -> u32 {
     if (!(intervals < f32(frame.max_count))) {
         return frame.max_count;
     }
-    return clamp(u32(intervals) + 1u, 2u, frame.max_count);
+    return clamp(max(u32(intervals) + 1u, frame.min_count), 2u, frame.max_count);
 }
 
 // Twin: WEIGHT_ROUNDING in src/gpu/twin.rs. Above (n + 3) · 2⁻²⁴ for every degree up to
@@ -418,15 +418,24 @@ fn tessellate_any(
 struct Comb {
     // World length of a hair per unit of curvature.
     scale: f32,
-    _padding0: u32,
+    // The longest hair (world units): a longer one is cut to it and drawn as capped.
+    cap: f32,
     // Chunk-local curve whose comb is drawn: COMB_ALL for every curve.
     curve: u32,
     _padding: u32,
 }
 
 const COMB_ALL: u32 = 0xffffffffu;
-// Tags that differ from each neighbour's: the line pipeline skips a piece between them.
+// Tags that differ from each neighbour's: the line pipeline skips a piece between them
+// (hidden envelope vertices carry COMB_HIDDEN, and COMB_PARITY on every other slot).
 const COMB_HIDDEN: u32 = 0x80000000u;
+const COMB_PARITY: u32 = 0x40000000u;
+// A capped hair's tip: drawn in the envelope's stroke (twin: COMB_CAPPED in layout.rs).
+const COMB_CAPPED: u32 = 0x20000000u;
+// Hairs per segment, uniform in its parameter, ends included; the segment's samples'
+// slots hold them (the count kernel gives each segment on screen at least this many
+// while a comb is drawn). Twin: COMB_HAIRS_PER_SEGMENT in the core's comb module.
+const COMB_HAIRS: u32 = 32u;
 
 @group(1) @binding(0) var<uniform> comb: Comb;
 // Two vertices per sample: the point on the curve, then the hair's tip. The samples'
@@ -541,24 +550,53 @@ fn comb_work(slot: u32, first_lane: u32) -> AdaptiveWork {
     return adaptive_work(slot);
 }
 
-// Writes the hair of sample j of the segment of `w`, from its point and curvature vector.
+// The hairs a segment of `count` sample slots gets: COMB_HAIRS, fewer only where the
+// sample budget cut its count.
+fn comb_hairs(count: u32) -> u32 {
+    return min(count, COMB_HAIRS);
+}
+
+// The tag of a hidden envelope vertex at slot `slot`: never equal to a neighbour's.
+fn hidden_tag(curve: u32, slot: u32) -> u32 {
+    return curve | COMB_HIDDEN | select(0u, COMB_PARITY, slot % 2u == 1u);
+}
+
+// Writes hair j of the segment of `w`, from its point and curvature vector: cut to the
+// cap (its tip then marked COMB_CAPPED and its envelope vertex hidden, so the envelope
+// breaks there).
 fn write_hair(w: AdaptiveWork, j: u32, pk: array<vec3<f32>, 2>) {
     let seg = w.seg;
+    let slot = w.first + j;
     let shown = comb.curve == COMB_ALL || comb.curve == seg.curve;
-    let tip = pk[0] - comb.scale * pk[1];
-    let tag = seg.curve;
-    var tip_tag = seg.curve;
+    var hair = -comb.scale * pk[1];
+    let length = sqrt(dot(hair, hair));
+    let capped = length > comb.cap;
+    if (capped) {
+        hair = hair * (comb.cap / length);
+    }
+    let tip = pk[0] + hair;
+    var tip_tag = seg.curve | select(0u, COMB_CAPPED, capped);
     var edge_tag = seg.curve;
     if (!shown) {
         tip_tag = seg.curve | COMB_HIDDEN;
-        edge_tag = seg.curve | select(0u, COMB_HIDDEN, (w.first + j) % 2u == 1u);
     }
-    hairs[2u * (w.first + j)] = Vertex(pk[0], tag);
-    hairs[2u * (w.first + j) + 1u] = Vertex(tip, tip_tag);
-    envelope[w.first + j] = Vertex(tip, edge_tag);
+    if (!shown || capped) {
+        edge_tag = hidden_tag(seg.curve, slot);
+    }
+    hairs[2u * slot] = Vertex(pk[0], seg.curve);
+    hairs[2u * slot + 1u] = Vertex(tip, tip_tag);
+    envelope[slot] = Vertex(tip, edge_tag);
 }
 
-// The hairs of samples j = first_lane, first_lane + stride, … of segment slot `slot` of
+// Slot j of the segment of `w` past its hairs: nothing drawn from it.
+fn write_no_hair(w: AdaptiveWork, j: u32) {
+    let slot = w.first + j;
+    hairs[2u * slot] = Vertex(vec3<f32>(0.0), w.seg.curve);
+    hairs[2u * slot + 1u] = Vertex(vec3<f32>(0.0), w.seg.curve | COMB_HIDDEN);
+    envelope[slot] = Vertex(vec3<f32>(0.0), hidden_tag(w.seg.curve, slot));
+}
+
+// The hairs of slots j = first_lane, first_lane + stride, … of segment slot `slot` of
 // the dispatch's range, any degree.
 fn comb_segment(slot: u32, first_lane: u32, stride: u32) {
     let w = comb_work(slot, first_lane);
@@ -566,8 +604,13 @@ fn comb_segment(slot: u32, first_lane: u32, stride: u32) {
         return;
     }
     let n = min(w.seg.degree, MAX_DEGREE);
+    let hairs = comb_hairs(w.count);
     for (var j = first_lane; j < w.count; j += stride) {
-        write_hair(w, j, point_and_curvature(w.seg.first_point, n, adaptive_param(j, w.count)));
+        if (j < hairs) {
+            write_hair(w, j, point_and_curvature(w.seg.first_point, n, adaptive_param(j, hairs)));
+        } else {
+            write_no_hair(w, j);
+        }
     }
 }
 
@@ -587,8 +630,13 @@ fn comb_cubic(
     for (var i = 0u; i < 4u; i++) {
         h[i] = control_point4(w.seg.first_point, i);
     }
+    let hairs = comb_hairs(w.count);
     for (var j = first_lane; j < w.count; j += SEGMENT_LANES) {
-        write_hair(w, j, cubic_point_and_curvature(h, adaptive_param(j, w.count)));
+        if (j < hairs) {
+            write_hair(w, j, cubic_point_and_curvature(h, adaptive_param(j, hairs)));
+        } else {
+            write_no_hair(w, j);
+        }
     }
 }
 

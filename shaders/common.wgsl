@@ -63,7 +63,8 @@ struct Frame {
     segment_count: u32,
     capacity: u32,
     max_count: u32,
-    _padding: u32,
+    // The fewest samples a segment on screen gets (the comb's hairs use their slots).
+    min_count: u32,
 }
 
 // Twin: GpuTessParams.

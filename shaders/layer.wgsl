@@ -39,6 +39,8 @@
 
 // What a pixel holds (bits 31–30): the highest wins.
 const KIND_HAIR: u32 = 1u;
+// A capped hair's tip tag bit (COMB_CAPPED in adaptive.wgsl).
+const COMB_CAPPED_TIP: u32 = 0x20000000u;
 const KIND_ENVELOPE: u32 = 2u;
 const KIND_CURVE: u32 = 3u;
 // Twin: STAT_INSTANCES in adaptive.wgsl (the work buffer's piece count).
@@ -209,6 +211,9 @@ fn raster_comb(
         // the style tables.
         if (foot.id == tip.id) {
             raster_line(foot, tip, packed(hair_styles[foot.id], 1.0, KIND_HAIR));
+        } else if (foot.id == (tip.id & ~COMB_CAPPED_TIP)) {
+            // A capped hair: in the envelope's stroke, so that it reads as cut.
+            raster_line(foot, tip, packed(envelope_styles[foot.id], 1.0, KIND_ENVELOPE));
         }
         if (p < piece_count) {
             let a = envelope[p];

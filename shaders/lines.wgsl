@@ -123,7 +123,10 @@ fn flat_end(a: Vertex, b: Vertex, end: u32) -> FlatOut {
 @vertex
 fn vs_hair_line(@builtin(vertex_index) v: u32) -> FlatOut {
     let h = v / 2u;
-    return flat_end(vertices[2u * h], vertices[2u * h + 1u], v % 2u);
+    // A capped hair (its tip tagged 0x20000000, COMB_CAPPED) is drawn like the others.
+    var tip = vertices[2u * h + 1u];
+    tip.id = tip.id & ~0x20000000u;
+    return flat_end(vertices[2u * h], tip, v % 2u);
 }
 
 // Piece v / 2 of a comb's envelope: vertices k and k + 1.

@@ -141,6 +141,7 @@ fn check(backend: &common::Backend, scene: &Scene, camera: &Camera, tolerance_px
     let settings = FrameSettings {
         camera: gpu_camera,
         tolerance_px: tolerance_px as f32,
+        min_count: 0,
     };
     let clip = camera.clip_from_world(VIEWPORT);
     let mut checked_pieces = 0usize;
@@ -333,6 +334,7 @@ fn a_full_buffer_coarsens_every_curve_in_proportion_and_writes_nothing_outside()
             let settings = FrameSettings {
                 camera: camera_uniform(&camera, VIEWPORT, 1.0),
                 tolerance_px: 0.1,
+                min_count: 0,
             };
             let chunk = &prepared.chunks[0];
             let s = chunk.segments.len() as u32;

@@ -1,7 +1,7 @@
-//! The curvature comb on the GPU (`comb_hairs` in `shaders/adaptive.wgsl`) against the
-//! exact `f64` curvature at the same parameters, on every backend: each hair starts at the
-//! curve's point and ends at `P − s K` (K the curvature vector) within the `f32` bound
-//! stated below, for every family (rational ones included) in 2D and 3D; a comb for one
+//! The curvature comb on the GPU (the `comb_*` kernels of `shaders/adaptive.wgsl`) against
+//! the exact `f64` curvature at the same parameters, on every backend: each hair starts at
+//! the curve's point and ends at `P − s K` (K the curvature vector), cut to the cap and
+//! marked where longer, within the `f32` bound stated below, for every family (rational ones included) in 2D and 3D; a comb for one
 //! curve hides every other curve's hairs and envelope; and a planar comb changes side
 //! exactly at the inflections the analysis finds.
 
@@ -15,7 +15,7 @@ use splinescope::geom::{
 };
 use splinescope::gpu::adaptive::{FrameSettings, read_work};
 use splinescope::gpu::capture::OFFSCREEN_FORMAT;
-use splinescope::gpu::layout::{COMB_HIDDEN, GpuVertex, WORK_HEADER};
+use splinescope::gpu::layout::{COMB_CAPPED, COMB_HAIRS, COMB_HIDDEN, GpuVertex, WORK_HEADER};
 use splinescope::gpu::pack::{PreparedScene, curve_tags};
 use splinescope::gpu::renderer::{CombRequest, GpuScene, Renderer, camera_uniform};
 use splinescope::gpu::tessellator::read_buffer;
@@ -107,6 +107,7 @@ fn comb_on_gpu(backend: &common::Backend, scene: &Scene, request: &CombRequest) 
     let settings = FrameSettings {
         camera: camera_uniform(&camera, VIEWPORT, 1.0),
         tolerance_px: 0.25,
+        min_count: gpu.min_count(),
     };
     gpu.prepare_frame(ctx, &renderer, &settings);
     let mut encoder = ctx.device.create_command_encoder(&Default::default());
@@ -179,13 +180,21 @@ fn each_hair(
                 .find(|(first, _, _)| *first == seg.first_point)
                 .expect("every segment has its exact twin");
             let count = counts[s];
-            for j in 0..count {
-                // The kernel's parameter: j / (count − 1) in f32.
-                let u = if count < 2 {
-                    0.0
-                } else {
-                    f64::from(j as f32 / (count - 1) as f32)
-                };
+            // The hairs: COMB_HAIRS of the segment's sample slots (the count kernel gives
+            // it at least that many while a comb is drawn); the rest draw nothing.
+            let n = count.min(COMB_HAIRS);
+            assert_eq!(n, COMB_HAIRS, "curve {curve}: {count} slots for the hairs");
+            for j in n..count {
+                let k = (offsets[s] + j) as usize;
+                assert_ne!(
+                    hairs[2 * k].id,
+                    hairs[2 * k + 1].id,
+                    "slot {j} of {count} drawn"
+                );
+            }
+            for j in 0..n {
+                // The kernel's parameter: j / (n − 1) in f32.
+                let u = f64::from(j as f32 / (n - 1) as f32);
                 let k = (offsets[s] + j) as usize;
                 f(
                     *curve,
@@ -214,12 +223,14 @@ fn gpu_hairs_match_the_exact_curvature_on_every_family() {
                 DVec3::new(3.0, -2.0, 0.5),
             ])));
             let scene = scene_of(curves);
-            let scale = 0.3_f64;
+            // Hairs longer than the cap are cut to it and their tips marked.
+            let (scale, cap) = (0.3_f64, 0.25_f64);
             let combed = comb_on_gpu(
                 backend,
                 &scene,
                 &CombRequest {
                     scale: scale as f32,
+                    cap: cap as f32,
                     only: None,
                 },
             );
@@ -229,10 +240,26 @@ fn gpu_hairs_match_the_exact_curvature_on_every_family() {
             // and a hair within 2e-4 of its own length plus 2e-5 of the extent.
             let extent = 8.0;
             let mut longest = 0.0_f64;
+            let (mut capped, mut uncapped) = (0, 0);
             let checked = each_hair(&scene, &combed, |curve, u, (gp, gt), (point, k)| {
-                assert_eq!(gp.id, gt.id, "curve {curve}: hair tags differ");
-                let hair = -scale * k;
+                let mut hair = -scale * k;
                 longest = longest.max(hair.length());
+                let marked = gt.id == gp.id | COMB_CAPPED;
+                assert!(marked || gt.id == gp.id, "curve {curve}: hair tags differ");
+                // Within f32 noise of the cap either is right.
+                if hair.length() > cap * (1.0 + 1e-4) {
+                    assert!(
+                        marked,
+                        "curve {curve} at u = {u}: {hair} past the cap, not marked"
+                    );
+                    hair *= cap / hair.length();
+                    capped += 1;
+                } else if hair.length() < cap * (1.0 - 1e-4) {
+                    assert!(!marked, "curve {curve} at u = {u}: {hair} marked as capped");
+                    uncapped += 1;
+                } else if marked {
+                    hair *= cap / hair.length();
+                }
                 let got_point = v3(gp);
                 let got_hair = v3(gt) - got_point;
                 assert!(
@@ -245,7 +272,11 @@ fn gpu_hairs_match_the_exact_curvature_on_every_family() {
                 );
             });
             assert!(checked > 100, "{checked} hairs checked");
-            assert!(longest > 0.1, "the combs have length: {longest}");
+            assert!(longest > 2.0 * cap, "the combs have length: {longest}");
+            assert!(
+                capped > 10 && uncapped > 100,
+                "{capped} capped, {uncapped} not"
+            );
         },
     );
 }
@@ -259,6 +290,7 @@ fn a_comb_for_one_curve_hides_the_others() {
         let only = 3;
         let request = CombRequest {
             scale: 0.5,
+            cap: f32::MAX,
             only: Some(curve_tags(&prepared, only)),
         };
         assert!(!request.only.as_ref().expect("tags").is_empty());
@@ -293,6 +325,7 @@ fn a_planar_comb_changes_side_exactly_at_the_inflections() {
                 &scene,
                 &CombRequest {
                     scale: 0.5,
+                    cap: f32::MAX,
                     only: None,
                 },
             );
@@ -311,8 +344,9 @@ fn a_planar_comb_changes_side_exactly_at_the_inflections() {
                         .iter()
                         .find(|(first, _, _)| *first == seg.first_point)
                         .expect("twin");
-                    for j in 0..counts[s] {
-                        let u = f64::from(j as f32 / (counts[s] - 1) as f32);
+                    let n = counts[s].min(COMB_HAIRS);
+                    for j in 0..n {
+                        let u = f64::from(j as f32 / (n - 1) as f32);
                         let t = exact_seg.t0 + u * (exact_seg.t1 - exact_seg.t0);
                         let k = (offsets[s] + j) as usize;
                         let hair = v3(&hairs[2 * k + 1]) - v3(&hairs[2 * k]);
@@ -426,12 +460,21 @@ fn layer_against_twin(
     use splinescope::gpu::renderer::comb_styles;
     let ctx = &backend.ctx;
     let mut gpu: GpuScene = renderer.upload(ctx, prepared);
-    gpu.set_comb(ctx, renderer, Some(&CombRequest { scale: 0.4, only }));
+    gpu.set_comb(
+        ctx,
+        renderer,
+        Some(&CombRequest {
+            scale: 0.4,
+            cap: 0.3,
+            only,
+        }),
+    );
     let camera = camera_uniform(&scene.camera(VIEWPORT), VIEWPORT, 1.0);
     renderer.set_camera(&ctx.queue, &camera);
     let settings = FrameSettings {
         camera,
         tolerance_px: 0.25,
+        min_count: gpu.min_count(),
     };
     gpu.prepare_frame(ctx, renderer, &settings);
     let mut encoder = ctx.device.create_command_encoder(&Default::default());
@@ -544,6 +587,7 @@ fn the_layer_draws_what_line_lists_and_quads_draw() {
                         &renderer,
                         Some(&CombRequest {
                             scale: 0.4,
+                            cap: 0.3,
                             only: None,
                         }),
                     );

@@ -253,6 +253,7 @@ fn saving_the_gallery_asks_where_and_never_replaces_a_file_unasked() {
         path: None,
         source: None,
         comb: None,
+        comb_cap: splinescope::scene::shape::CombCap::default(),
     };
     let editor = editor_for(&opts, gallery.clone());
     assert_eq!(editor.path(), None, "the gallery is no file's");

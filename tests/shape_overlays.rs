@@ -3,7 +3,9 @@
 //! values: a circle's hairs all end `s / r` beyond it on its radii; an S curve's inflection
 //! marker sits at its centre of symmetry and its crossings with a line where the line's
 //! equation says; a render with a comb is coloured where the hairs are and nowhere a
-//! render without one is not; bad `--comb` values are refused with their value named.
+//! render without one is not; the gallery's comb in the GPU's PNG and in the rasterised
+//! SVG covers the same pixels (≥ 80 % intersection over union) and no hair reaches past
+//! its cap; bad `--comb` and `--comb-cap` values are refused with their value named.
 
 mod common;
 
@@ -11,7 +13,7 @@ use glam::{DVec2, DVec3};
 use splinescope::geom::{Bezier, Curve, Nurbs};
 use splinescope::image::RgbaImage;
 use splinescope::scene::Scene;
-use splinescope::scene::shape::{CombScale, ShapeOptions};
+use splinescope::scene::shape::{CombCap, CombScale, ShapeOptions};
 use splinescope_figure::{FigureOptions, Item, build};
 
 fn p(x: f64, y: f64) -> DVec3 {
@@ -98,6 +100,7 @@ fn markers_sit_where_the_exact_answers_are() {
     let mut opts = FigureOptions::new(400, 300);
     opts.shape = ShapeOptions {
         comb: None,
+        comb_cap: CombCap::default(),
         inflections: true,
         curvature_extrema: false,
         intersections: true,
@@ -219,6 +222,25 @@ fn bad_comb_scales_are_refused_naming_the_value() {
         );
         assert!(text.contains("--comb"), "{text}");
     }
+    for bad in ["0", "-0.1", "nan", "inf", "tall"] {
+        for command in ["render", "export"] {
+            let run = common::run(&[
+                command,
+                "-o",
+                "/dev/null/never.png",
+                "--comb",
+                "--comb-cap",
+                bad,
+            ]);
+            assert!(!run.status.success(), "{command} --comb-cap {bad} accepted");
+            let text = common::text(&run);
+            assert!(
+                text.contains(bad) || text.contains("NaN") || text.contains("inf"),
+                "{text}"
+            );
+            assert!(text.contains("--comb-cap"), "{text}");
+        }
+    }
 }
 
 #[test]
@@ -255,4 +277,186 @@ fn the_legend_lists_the_markers_shown() {
         !rows.iter().any(|t| t.starts_with("inflection")),
         "{rows:?}"
     );
+}
+
+/// The pixels where `with` differs from `without` (what an overlay adds to a picture).
+fn added(with: &RgbaImage, without: &RgbaImage) -> Vec<bool> {
+    let (w, h) = (with.width, with.height);
+    let mut out = vec![false; (w * h) as usize];
+    for y in 0..h {
+        for x in 0..w {
+            let (a, b) = (with.pixel(x, y), without.pixel(x, y));
+            let d = a
+                .iter()
+                .zip(b.iter())
+                .map(|(p, q)| i32::from(*p).abs_diff(i32::from(*q)))
+                .max()
+                .unwrap_or(0);
+            out[(y * w + x) as usize] = d > 24;
+        }
+    }
+    out
+}
+
+/// `mask` grown by one pixel each way (rasterisers place a one-pixel line's coverage a
+/// pixel apart where it falls between two).
+fn dilated(mask: &[bool], w: u32, h: u32) -> Vec<bool> {
+    let mut out = vec![false; mask.len()];
+    for y in 0..h as i64 {
+        for x in 0..w as i64 {
+            if mask[(y * i64::from(w) + x) as usize] {
+                for dy in -1..=1 {
+                    for dx in -1..=1 {
+                        let (xx, yy) = (x + dx, y + dy);
+                        if xx >= 0 && yy >= 0 && xx < i64::from(w) && yy < i64::from(h) {
+                            out[(yy * i64::from(w) + xx) as usize] = true;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+fn rasterise_svg(text: &str, w: u32, h: u32) -> RgbaImage {
+    let tree = resvg::usvg::Tree::from_str(text, &resvg::usvg::Options::default())
+        .expect("the SVG parses");
+    let mut pixmap = resvg::tiny_skia::Pixmap::new(w, h).expect("pixmap");
+    resvg::render(
+        &tree,
+        resvg::tiny_skia::Transform::default(),
+        &mut pixmap.as_mut(),
+    );
+    // The background is opaque: premultiplied equals straight alpha.
+    RgbaImage {
+        width: w,
+        height: h,
+        data: pixmap.data().to_vec(),
+    }
+}
+
+/// The gallery with its automatic comb, as `render --comb` draws it on the GPU and as
+/// `export --comb` writes it to SVG: the comb's own pixels (what it adds to the plain
+/// picture) in the two overlap by at least 80 % (intersection over union, each mask grown
+/// by a pixel for the rasterisers' different coverage) — the same hairs at the same
+/// parameters, the same caps and breaks. And no comb pixel of the PNG lies farther from
+/// the plain picture's ink than the cap (a hair never crosses the view).
+#[test]
+fn the_galleries_comb_is_the_same_in_the_png_and_the_svg_and_stays_within_its_cap() {
+    let (w, h) = (1200_u32, 800_u32);
+    let scene = splinescope::scene::gallery::gallery();
+    let combed = ShapeOptions {
+        comb: Some(CombScale::Auto),
+        ..ShapeOptions::default()
+    };
+    let figure = |shape: ShapeOptions| {
+        let mut opts = FigureOptions::new(w, h);
+        opts.shape = shape;
+        rasterise_svg(
+            &splinescope_figure::svg::write(&build(&scene, &opts).expect("figure")),
+            w,
+            h,
+        )
+    };
+    let (svg_plain, svg_comb) = (figure(ShapeOptions::default()), figure(combed));
+    let svg_mask = dilated(&added(&svg_comb, &svg_plain), w, h);
+    let cap_px = CombCap::default().get() * f64::from(h);
+    common::on_each_gpu("the gallery's comb in the PNG and the SVG", |backend| {
+        let render = |shape: &ShapeOptions| {
+            splinescope::offscreen::render_scene_shaped(
+                &backend.ctx,
+                &backend.pipelines,
+                &scene,
+                None,
+                (w, h),
+                splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX,
+                shape,
+            )
+            .expect("render")
+        };
+        let (png_plain, png_comb) = (render(&ShapeOptions::default()), render(&combed));
+        let raw = added(&png_comb, &png_plain);
+        let png_mask = dilated(&raw, w, h);
+        let both = png_mask
+            .iter()
+            .zip(&svg_mask)
+            .filter(|(a, b)| **a && **b)
+            .count();
+        let either = png_mask
+            .iter()
+            .zip(&svg_mask)
+            .filter(|(a, b)| **a || **b)
+            .count();
+        let iou = both as f64 / either.max(1) as f64;
+        println!(
+            "{}: comb pixels IoU {iou:.3} ({either} in either)",
+            backend.name
+        );
+        let dir = common::out_dir("shape_overlays");
+        let save = |what: &str| {
+            png_comb
+                .write_png(&dir.join(format!("gallery-comb.{}.png", backend.name)))
+                .ok();
+            svg_comb
+                .write_png(&dir.join(format!("gallery-comb.{}.svg.png", backend.name)))
+                .ok();
+            format!("{what} (images in {})", dir.display())
+        };
+        assert!(
+            either > 20_000,
+            "{}",
+            save(&format!(
+                "{}: the comb adds only {either} pixels",
+                backend.name
+            ))
+        );
+        assert!(
+            iou >= 0.8,
+            "{}",
+            save(&format!(
+                "{}: the comb's pixels in the PNG and the SVG overlap {iou:.3} (IoU)",
+                backend.name
+            ))
+        );
+        // Every comb pixel within the cap (plus the line's pixel) of the plain ink.
+        let ink: Vec<DVec2> = (0..h)
+            .flat_map(|y| (0..w).map(move |x| (x, y)))
+            .filter(|&(x, y)| png_plain.pixel(x, y) != png_plain.pixel(0, 0))
+            .map(|(x, y)| DVec2::new(f64::from(x), f64::from(y)))
+            .collect();
+        let reach = cap_px + 2.0;
+        let mut grid: std::collections::HashMap<(i64, i64), Vec<DVec2>> = Default::default();
+        for q in &ink {
+            grid.entry(((q.x / reach) as i64, (q.y / reach) as i64))
+                .or_default()
+                .push(*q);
+        }
+        let mut far = 0;
+        for y in 0..h {
+            for x in 0..w {
+                if !raw[(y * w + x) as usize] {
+                    continue;
+                }
+                let q = DVec2::new(f64::from(x), f64::from(y));
+                let (cx, cy) = ((q.x / reach) as i64, (q.y / reach) as i64);
+                let near = (cx - 1..=cx + 1).any(|gx| {
+                    (cy - 1..=cy + 1).any(|gy| {
+                        grid.get(&(gx, gy))
+                            .is_some_and(|v| v.iter().any(|p| (*p - q).length() <= reach))
+                    })
+                });
+                far += usize::from(!near);
+            }
+        }
+        assert_eq!(
+            far,
+            0,
+            "{}",
+            save(&format!(
+                "{}: {far} comb pixels lie beyond the cap ({cap_px} px) from the curves",
+                backend.name
+            ))
+        );
+    });
 }

@@ -25,6 +25,7 @@
 //!     annotations: Vec::new(),
 //!     background: Color([0.0, 0.0, 0.0, 1.0]),
 //!     comb: None,
+//!     comb_cap: f64::INFINITY,
 //! };
 //! assert_eq!(encoding.curves.len(), 1);
 //! ```
@@ -113,4 +114,6 @@ pub struct Encoding {
     /// The curvature comb of every curve, when drawn: the world length of a hair per unit
     /// of curvature (the hairs and their envelope are computed by the GPU every frame).
     pub comb: Option<f64>,
+    /// The longest comb hair, in world units (`inf`: no cap); longer ones are cut to it.
+    pub comb_cap: f64,
 }

@@ -421,8 +421,10 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
     let behind = items.len();
     if opts.curves {
         if let Some(scale) = opts.shape.comb {
-            let scale = scale.resolve(scene, camera.view_height(size));
-            comb_items(scene, (scale, opts.comb_only), &proj, size, &mut items);
+            let view_height = camera.view_height(size);
+            let scale = scale.resolve(scene, view_height);
+            let cap = opts.shape.comb_cap.world(view_height);
+            comb_items(scene, (scale, cap, opts.comb_only), &proj, size, &mut items);
         }
         curve_items(&encoding, &proj, size, opts.tolerance, &mut items)?;
     }
@@ -449,15 +451,16 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
 }
 
 /// Hairs of a comb per lowered segment in a figure (uniform in the segment's parameter,
-/// ends included).
-pub const COMB_HAIRS_PER_SEGMENT: usize = 24;
+/// ends included): the GPU's.
+pub use splinescope_core::analysis::comb::COMB_HAIRS_PER_SEGMENT;
 
 /// Each curve's curvature comb ([`splinescope_core::analysis::comb::comb`]): its hairs as
 /// one path of straight runs, then its envelope, in the curve's colour
-/// ([`comb_strokes`]), at exact positions.
+/// ([`comb_strokes`]), at exact positions. A hair cut to the cap is drawn in the
+/// envelope's stroke and the envelope is broken there, as the GPU draws them.
 fn comb_items(
     scene: &Scene,
-    (scale, only): (f64, Option<usize>),
+    (scale, cap, only): (f64, f64, Option<usize>),
     proj: &Projection,
     size: DVec2,
     items: &mut Vec<Item>,
@@ -473,22 +476,31 @@ fn comb_items(
         }
         let analysis = splinescope_core::analysis::CurveAnalysis::new(&sc.curve);
         let hairs =
-            splinescope_core::analysis::comb::comb(&analysis, COMB_HAIRS_PER_SEGMENT, scale);
+            splinescope_core::analysis::comb::comb(&analysis, COMB_HAIRS_PER_SEGMENT, scale, cap);
         let (hair_stroke, envelope_stroke) = comb_strokes(sc.style.color);
-        let runs: Vec<SubPath> = hairs
-            .iter()
-            .filter(|h| h.tip != h.point)
-            .flat_map(|h| polyline_runs(&[h.point, h.tip], proj, &page))
-            .collect();
-        if !runs.is_empty() {
-            items.push(Item::Path {
-                runs,
-                stroke: hair_stroke,
-                curve: None,
-            });
+        for (capped, stroke) in [(false, hair_stroke), (true, envelope_stroke)] {
+            let runs: Vec<SubPath> = hairs
+                .iter()
+                .filter(|h| h.tip != h.point && h.capped == capped)
+                .flat_map(|h| polyline_runs(&[h.point, h.tip], proj, &page))
+                .collect();
+            if !runs.is_empty() {
+                items.push(Item::Path {
+                    runs,
+                    stroke,
+                    curve: None,
+                });
+            }
         }
-        let tips: Vec<DVec3> = hairs.iter().map(|h| h.tip).collect();
-        let runs = polyline_runs(&tips, proj, &page);
+        // The envelope: the tips between capped hairs, each stretch its own polyline.
+        let runs: Vec<SubPath> = hairs
+            .split(|h| h.capped)
+            .filter(|stretch| stretch.len() >= 2)
+            .flat_map(|stretch| {
+                let tips: Vec<DVec3> = stretch.iter().map(|h| h.tip).collect();
+                polyline_runs(&tips, proj, &page)
+            })
+            .collect();
         if !runs.is_empty() {
             items.push(Item::Path {
                 runs,

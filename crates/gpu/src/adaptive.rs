@@ -117,6 +117,8 @@ pub struct FrameSettings {
     pub camera: GpuCamera,
     /// The tolerance in pixels.
     pub tolerance_px: f32,
+    /// The fewest samples a segment on screen gets ([`GpuFrame::min_count`]).
+    pub min_count: u32,
 }
 
 /// Samples a chunk's buffer starts with: room for its segments' object-space automatic
@@ -470,13 +472,19 @@ impl AdaptiveTessellator {
         }
     }
 
-    /// Sets a comb's scale (world length of a hair per unit of curvature) and the curve it
-    /// is drawn for ([`super::layout::COMB_ALL`], [`super::layout::COMB_NONE`] or a
-    /// chunk-local tag).
-    pub fn write_comb(&self, queue: &wgpu::Queue, comb: &CombChunk, scale: f32, curve: u32) {
+    /// Sets a comb's scale (world length of a hair per unit of curvature), its cap (the
+    /// longest hair, world units) and the curve it is drawn for
+    /// ([`super::layout::COMB_ALL`], [`super::layout::COMB_NONE`] or a chunk-local tag).
+    pub fn write_comb(
+        &self,
+        queue: &wgpu::Queue,
+        comb: &CombChunk,
+        (scale, cap): (f32, f32),
+        curve: u32,
+    ) {
         let uniform = GpuComb {
             scale,
-            _padding0: 0,
+            cap,
             curve,
             _padding: 0,
         };
@@ -549,7 +557,7 @@ impl AdaptiveChunk {
             segment_count: self.segment_count,
             capacity: self.capacity,
             max_count: MAX_SAMPLES_PER_SEGMENT,
-            _padding: 0,
+            min_count: settings.min_count,
         }
     }
 

@@ -67,6 +67,7 @@ pub fn render_with(
             &renderer,
             Some(&super::renderer::CombRequest {
                 scale: scale as f32,
+                cap: (encoding.comb_cap as f32).min(f32::MAX),
                 only: None,
             }),
         );
@@ -150,6 +151,7 @@ fn render_once(
         &FrameSettings {
             camera,
             tolerance_px: tolerance_px as f32,
+            min_count: gpu_scene.min_count(),
         },
     );
 

@@ -75,6 +75,10 @@ pub fn raster_comb(camera: &GpuCamera, lines: &CombLines<'_>, layer: &mut [u32])
         if foot.id == tip.id {
             let key = packed(&lines.hair_styles[foot.id as usize], 1.0, KIND_HAIR);
             raster_line(camera, foot, tip, key, layer);
+        } else if foot.id == tip.id & !crate::layout::COMB_CAPPED {
+            // A capped hair: in the envelope's stroke.
+            let key = packed(&lines.envelope_styles[foot.id as usize], 1.0, KIND_ENVELOPE);
+            raster_line(camera, foot, tip, key, layer);
         }
         if p < lines.piece_count as usize {
             let (a, b) = (lines.envelope[p], lines.envelope[p + 1]);

@@ -121,8 +121,9 @@ pub struct GpuSegment {
 pub struct GpuComb {
     /// World length of a hair per unit of curvature.
     pub scale: f32,
-    /// Uniform structs are 16-byte aligned.
-    pub _padding0: u32,
+    /// The longest hair, in world units: a longer one is cut to it and drawn as capped
+    /// (`f32::MAX`: no cap).
+    pub cap: f32,
     /// The chunk-local curve whose comb is drawn, or [`COMB_ALL`].
     pub curve: u32,
     /// Uniform structs are 16-byte aligned.
@@ -140,6 +141,17 @@ pub const COMB_NONE: u32 = u32::MAX - 1;
 /// and the line pipeline skips the pieces around it. Twin: `COMB_HIDDEN` in
 /// `shaders/adaptive.wgsl`.
 pub const COMB_HIDDEN: u32 = 0x8000_0000;
+
+/// The bit a capped hair's tip carries (the hair drawn in the envelope's stroke, its
+/// envelope vertex hidden). Twin: `COMB_CAPPED` in `shaders/adaptive.wgsl`.
+pub const COMB_CAPPED: u32 = 0x2000_0000;
+
+/// The bit that alternates along hidden envelope vertices so that no two neighbours'
+/// tags agree. Twin: `COMB_PARITY` in `shaders/adaptive.wgsl`.
+pub const COMB_PARITY: u32 = 0x4000_0000;
+
+/// Hairs per segment. Twin: `COMB_HAIRS` in `shaders/adaptive.wgsl`.
+pub const COMB_HAIRS: u32 = splinescope_core::analysis::comb::COMB_HAIRS_PER_SEGMENT as u32;
 
 /// Invocations per workgroup of the layer's rasterizers. Twin:
 /// `LAYER_WORKGROUP` in `shaders/common.wgsl`.
@@ -178,8 +190,9 @@ pub struct GpuFrame {
     pub capacity: u32,
     /// The most samples one segment may get ([`MAX_SAMPLES_PER_SEGMENT`]).
     pub max_count: u32,
-    /// Uniform structs are 16-byte aligned.
-    pub _padding: u32,
+    /// The fewest samples a segment on screen gets: [`COMB_HAIRS`] while a comb is drawn
+    /// (its hairs use the samples' slots), else 0.
+    pub min_count: u32,
 }
 
 /// The most samples adaptive tessellation gives one segment (a scene's fixed counts have

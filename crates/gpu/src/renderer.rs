@@ -130,6 +130,8 @@ pub struct PassSpan<'a> {
 pub struct CombRequest {
     /// World length of a hair per unit of curvature.
     pub scale: f32,
+    /// The longest hair, in world units (`f32::MAX`: no cap).
+    pub cap: f32,
     /// `None`: every curve's comb; `Some(tags)`: only the curve with these
     /// `(chunk, tag)` pairs ([`super::pack::curve_tags`]).
     pub only: Option<Vec<(usize, u32)>>,
@@ -163,7 +165,8 @@ pub struct GpuScene {
     points: Vec<DrawBatch>,
     /// The clear colour.
     pub background: wgpu::Color,
-    comb_scale: f32,
+    /// The comb's scale and cap ([`CombRequest`]).
+    comb_scale: (f32, f32),
     /// The most samples the chunks may grow to hold together ([`SAMPLE_BUDGET`] unless
     /// set).
     sample_budget: u64,
@@ -405,7 +408,7 @@ impl GpuScene {
             }
             return;
         };
-        self.comb_scale = request.scale;
+        self.comb_scale = (request.scale, request.cap);
         for (index, chunk) in self.chunks.iter_mut().enumerate() {
             let curve = match &request.only {
                 None => COMB_ALL,
@@ -423,9 +426,12 @@ impl GpuScene {
             }
             if let Some(comb) = &mut chunk.comb {
                 comb.curve = curve;
-                renderer
-                    .adaptive
-                    .write_comb(&ctx.queue, &comb.buffers, request.scale, curve);
+                renderer.adaptive.write_comb(
+                    &ctx.queue,
+                    &comb.buffers,
+                    (request.scale, request.cap),
+                    curve,
+                );
             }
         }
     }
@@ -434,6 +440,18 @@ impl GpuScene {
     #[must_use]
     pub fn has_comb(&self) -> bool {
         self.chunks.iter().any(|c| c.comb.is_some())
+    }
+
+    /// The fewest samples a segment on screen gets this frame
+    /// ([`crate::adaptive::FrameSettings::min_count`]): room for the comb's hairs while a
+    /// comb is drawn.
+    #[must_use]
+    pub fn min_count(&self) -> u32 {
+        if self.has_comb() {
+            crate::layout::COMB_HAIRS
+        } else {
+            0
+        }
     }
 
     /// Whether curves and combs are drawn through the layer (`true`, the default: a
@@ -512,7 +530,13 @@ pub const SAMPLE_BUDGET: u64 = 1 << 23;
 impl GpuChunk {
     /// Replaces the chunk's sample buffer with one of `capacity` samples, and what is
     /// bound over it (its draw, its comb, its raster bind group).
-    fn resize(&mut self, ctx: &GpuContext, renderer: &Renderer, capacity: u32, comb_scale: f32) {
+    fn resize(
+        &mut self,
+        ctx: &GpuContext,
+        renderer: &Renderer,
+        capacity: u32,
+        comb_scale: (f32, f32),
+    ) {
         renderer.adaptive.grow(
             &ctx.device,
             &mut self.adaptive,
@@ -934,7 +958,7 @@ impl Renderer {
                 .map(|b| self.overlay_batch(device, b))
                 .collect(),
             background: wgpu::Color { r, g, b, a },
-            comb_scale: 0.0,
+            comb_scale: (0.0, f32::MAX),
             sample_budget: SAMPLE_BUDGET,
             layer: None,
             layer_allowed: true,

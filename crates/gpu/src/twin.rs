@@ -246,7 +246,9 @@ pub fn wang_count(frame: &GpuFrame, points: &[GpuControlPoint], seg: &GpuSegment
     if intervals.is_nan() || intervals >= frame.max_count as f32 {
         return frame.max_count;
     }
-    (intervals as u32 + 1).clamp(2, frame.max_count)
+    (intervals as u32 + 1)
+        .max(frame.min_count)
+        .clamp(2, frame.max_count)
 }
 
 /// A lower bound of the homogeneous `w` of `h[..=n]` (weights from `w_min` to `w_max`) on

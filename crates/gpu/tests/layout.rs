@@ -3,9 +3,10 @@
 
 use naga::{Module, TypeInner};
 use splinescope_gpu::layout::{
-    ADAPTIVE_SEGMENT_LANES, COMB_ALL, COMB_HIDDEN, GpuCamera, GpuComb, GpuControlPoint, GpuFrame,
-    GpuLineStyle, GpuRecord, GpuSegment, GpuTessParams, GpuVertex, MAX_GPU_DEGREE, SCAN_BLOCK,
-    TESSELLATE_KERNELS, TESSELLATE_WORKGROUP_SIZE, WORK_HEADER,
+    ADAPTIVE_SEGMENT_LANES, COMB_ALL, COMB_CAPPED, COMB_HAIRS, COMB_HIDDEN, COMB_PARITY, GpuCamera,
+    GpuComb, GpuControlPoint, GpuFrame, GpuLineStyle, GpuRecord, GpuSegment, GpuTessParams,
+    GpuVertex, MAX_GPU_DEGREE, SCAN_BLOCK, TESSELLATE_KERNELS, TESSELLATE_WORKGROUP_SIZE,
+    WORK_HEADER,
 };
 use splinescope_gpu::shaders::{self, ALL};
 
@@ -72,8 +73,11 @@ fn adaptive_constants_match_their_rust_twins() {
     assert_eq!(constant_u32(&module, "WORK_COUNTS") as usize, WORK_HEADER);
     assert_eq!(constant_u32(&module, "COMB_ALL"), COMB_ALL);
     assert_eq!(constant_u32(&module, "COMB_HIDDEN"), COMB_HIDDEN);
+    assert_eq!(constant_u32(&module, "COMB_CAPPED"), COMB_CAPPED);
+    assert_eq!(constant_u32(&module, "COMB_PARITY"), COMB_PARITY);
+    assert_eq!(constant_u32(&module, "COMB_HAIRS"), COMB_HAIRS);
     let m = &module;
-    assert_twin!(m, "Comb", GpuComb, [scale, _padding0, curve, _padding]);
+    assert_twin!(m, "Comb", GpuComb, [scale, cap, curve, _padding]);
 }
 
 #[test]
@@ -118,7 +122,7 @@ fn gpu_structs_match_their_wgsl_twins() {
                 segment_count,
                 capacity,
                 max_count,
-                _padding
+                min_count
             ]
         );
         assert_twin!(

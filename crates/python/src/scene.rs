@@ -11,7 +11,7 @@ use pyo3::prelude::*;
 
 use splinescope_gpu::{BackendChoice, ContextOptions, GpuContext, Pipelines};
 use splinescope_image::RgbaImage;
-use splinescope_scene::format::shape::{CombScale, ShapeOptions, encode_shaped};
+use splinescope_scene::format::shape::{CombCap, CombScale, ShapeOptions, encode_shaped};
 use splinescope_scene::format::{Scene, from_json_str, to_json_string};
 use splinescope_scene::request::apply_text;
 
@@ -144,10 +144,10 @@ impl PyScene {
     /// The scene drawn on the GPU (`width × height`, its own camera, the tolerance in
     /// pixels) as an `(height, width, 4)` uint8 RGBA array; the same image as
     /// `splinescope render` on the same adapter.
-    /// `shape`: `(comb, comb_scale, inflections, curvature_extrema, intersections)` — the
+    /// `shape`: `(comb, comb_scale, comb_cap, inflections, curvature_extrema, intersections)` — the
     /// curvature comb (its scale chosen for the view when `comb_scale` is `None`) and the
     /// markers, as `render --comb …` draws them.
-    #[pyo3(signature = (width, height, tolerance_px=0.25, backend="auto", shape=(false, None, false, false, false)))]
+    #[pyo3(signature = (width, height, tolerance_px=0.25, backend="auto", shape=(false, None, None, false, false, false)))]
     fn render<'py>(
         &self,
         py: Python<'py>,
@@ -163,7 +163,7 @@ impl PyScene {
     }
 
     /// The scene drawn as for `render`, encoded as a PNG file's bytes.
-    #[pyo3(signature = (width, height, tolerance_px=0.25, backend="auto", shape=(false, None, false, false, false)))]
+    #[pyo3(signature = (width, height, tolerance_px=0.25, backend="auto", shape=(false, None, None, false, false, false)))]
     fn png<'py>(
         &self,
         py: Python<'py>,
@@ -183,7 +183,7 @@ impl PyScene {
     /// Writes the scene as a figure, by `path`'s extension: `.svg` or `.pdf` (exact
     /// curves, pieces within `tolerance` points elsewhere) or `.png` (the GPU picture),
     /// with labels, legend, axes and grid as asked; atomically.
-    #[pyo3(signature = (path, width=800, height=500, tolerance=0.01, labels=false, legend=false, axes=false, grid=false, backend="auto", shape=(false, None, false, false, false)))]
+    #[pyo3(signature = (path, width=800, height=500, tolerance=0.01, labels=false, legend=false, axes=false, grid=false, backend="auto", shape=(false, None, None, false, false, false)))]
     #[allow(clippy::too_many_arguments)]
     fn export(
         &self,
@@ -327,13 +327,21 @@ impl PyScene {
 }
 
 /// The shape overlays as Python hands them: the comb on, its scale (`None`: chosen for
-/// the view), and the three marker switches.
-type ShapeArgs = (bool, Option<f64>, bool, bool, bool);
+/// the view), its cap (a fraction of the view's height; `None`: no cap), and the three
+/// marker switches.
+type ShapeArgs = (bool, Option<f64>, Option<f64>, bool, bool, bool);
 
-/// The shape options of `ShapeArgs`, the scale checked ([`SceneError`] naming `comb`).
+/// The shape options of `ShapeArgs`, the scale and cap checked ([`SceneError`] naming
+/// `comb` or `comb_cap`).
 fn shape_options(
-    (comb, scale, inflections, curvature_extrema, intersections): ShapeArgs,
+    (comb, scale, cap, inflections, curvature_extrema, intersections): ShapeArgs,
 ) -> PyResult<ShapeOptions> {
+    let comb_cap = match cap {
+        None => CombCap::NONE,
+        Some(f) => {
+            CombCap::fraction(f).map_err(|e| raise::<SceneError>(e.to_string(), "comb_cap"))?
+        }
+    };
     let comb = match (comb, scale) {
         (false, _) => None,
         (true, None) => Some(CombScale::Auto),
@@ -343,6 +351,7 @@ fn shape_options(
     };
     Ok(ShapeOptions {
         comb,
+        comb_cap,
         inflections,
         curvature_extrema,
         intersections,

@@ -111,3 +111,32 @@ def test_bad_comb_arguments_are_refused_naming_them(tmp_path, comb, error, words
     assert not (tmp_path / "x.svg").exists()
     with pytest.raises(TypeError, match="inflections"):
         scene.render(10, 10, inflections="yes")
+
+
+def test_a_comb_cap_cuts_every_longer_hair_to_it(tmp_path):
+    # r = 2, s = 0.4: every hair 0.2 long (inside the page). The view fits the circle
+    # (0.9 of the page: 2r / 0.9 units tall): a cap of 0.02 of it is ≈ 0.089 units.
+    r, s, size = 2.0, 0.4, 400
+    scene = circle_scene(r)
+    unit = 0.9 * size / (2 * r)
+    view = size / unit
+    c = size / 2
+    for cap, want in [(0.02, 0.02 * view), (0.9, s / r), (None, s / r)]:
+        path = tmp_path / f"cap-{cap}.svg"
+        scene.export(path, width=size, height=size, comb=s, comb_cap=cap)
+        hairs = segments_of(path.read_text())
+        assert len(hairs) >= 4 * 20, (cap, hairs[:3])
+        for x0, y0, x1, y1 in hairs:
+            length = math.hypot(x1 - x0, y1 - y0) / unit
+            assert abs(length - want) < 1e-2, (cap, length, want)
+            # Still outward along the radius.
+            assert math.hypot(x1 - c, y1 - c) > math.hypot(x0 - c, y0 - c)
+
+
+@pytest.mark.parametrize("cap", [0, -0.5, float("nan"), float("inf")])
+def test_bad_comb_caps_are_refused_naming_them(tmp_path, cap):
+    with pytest.raises(ss.SceneError, match="comb cap"):
+        circle_scene(1.0).export(tmp_path / "x.svg", comb=True, comb_cap=cap)
+    assert not (tmp_path / "x.svg").exists()
+    with pytest.raises(TypeError, match="comb_cap"):
+        circle_scene(1.0).render(10, 10, comb=True, comb_cap="wide")

@@ -94,6 +94,8 @@ pub struct ViewOptions {
     /// Start with every curve's curvature comb on (`K` turns it off), at the scale given
     /// (`None`: chosen for the view).
     pub comb: Option<Option<f64>>,
+    /// The longest comb hair, a fraction of the view's height.
+    pub comb_cap: crate::scene::shape::CombCap,
 }
 
 pub use file_dialog::DEFAULT_SAVE_NAME;
@@ -400,6 +402,7 @@ impl Running {
         }
         model.tolerance_px = opts.tolerance_px;
         model.toggles = toggles;
+        model.shape.comb_cap = opts.comb_cap;
         if let Some(scale) = opts.comb {
             if let Some(s) = scale {
                 model.shape.set_comb_scale(s).map_err(AppError::Surface)?;
@@ -472,11 +475,12 @@ impl Running {
                 self.model.toggles,
             )?;
         }
+        let view_height = self.model.camera.view_height(self.model.viewport);
         self.view.sync_shape(
             &self.ctx,
             self.model.editor.scene(),
             !changed.is_empty(),
-            &self.model.shape,
+            (&self.model.shape, view_height),
             self.model.editor.selected,
         );
         if let Some(s) = &mut self.stress {
@@ -506,6 +510,7 @@ impl Running {
         let settings = crate::gpu::adaptive::FrameSettings {
             camera,
             tolerance_px: self.model.tolerance_px as f32,
+            min_count: self.view.gpu_min_count(),
         };
         let timed = self.timer.as_ref().filter(|t| t.active());
         let copied_stats = self.view.encode_tessellation(

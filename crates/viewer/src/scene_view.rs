@@ -39,7 +39,7 @@ pub(crate) struct SceneView {
     /// What the GPU scene's comb was set from — on, selected only, scale, the selected
     /// curve — (`None`: not yet set on this upload), so that the request (and the selected
     /// curve's tags) is made again only when one of them changes, not every frame.
-    comb_applied: Option<(bool, bool, u64, Option<usize>)>,
+    comb_applied: Option<(bool, bool, u64, u64, Option<usize>)>,
     /// The shape markers, computed off the frame thread.
     pub markers: MarkerWorker,
     /// Whether the GPU scene holds the current markers.
@@ -124,25 +124,30 @@ impl SceneView {
     }
 
     /// Brings the comb and the markers up to date with the panel's shape switches
-    /// (`selected` for a comb on the selected curve alone); `changed` says the scene was
+    /// (`selected` for a comb on the selected curve alone, its cap a fraction of a view
+    /// `view_height` world units tall); `changed` says the scene was
     /// edited this frame (the markers are then recomputed, throttled, off this thread).
     pub fn sync_shape(
         &mut self,
         ctx: &GpuContext,
         scene: &Scene,
         changed: bool,
-        shape: &ShapeView,
+        (shape, view_height): (&ShapeView, f64),
         selected: Option<usize>,
     ) {
+        // The cap follows the view (a fraction of its height).
+        let cap = (shape.comb_cap.world(view_height) as f32).min(f32::MAX);
         let key = (
             shape.comb,
             shape.comb_selected_only,
             shape.comb_scale.to_bits(),
+            u64::from(cap.to_bits()),
             selected.filter(|_| shape.comb_selected_only),
         );
         if self.comb_applied != Some(key) {
             let request = shape.comb.then(|| CombRequest {
                 scale: shape.comb_scale as f32,
+                cap,
                 only: shape.comb_selected_only.then(|| {
                     selected
                         .map(|s| curve_tags(&self.prepared, s))
@@ -308,6 +313,11 @@ impl SceneView {
     /// After the frame was submitted: maps the statistics copied this frame.
     pub fn after_submit(&mut self) {
         self.stats.request();
+    }
+
+    /// The fewest samples a segment on screen gets this frame (room for the comb's hairs).
+    pub fn gpu_min_count(&self) -> u32 {
+        self.gpu.min_count()
     }
 
     /// Samples drawn per frame (recent statistics; the buffers' capacity before any).

@@ -11,7 +11,7 @@ use splinescope_core::analysis::{CurveAnalysis, DEFAULT_ACCURACY};
 use splinescope_core::geom::Aabb;
 
 use crate::scene::Scene;
-use crate::scene::shape::{CombScale, Marker, MarkerKind, ShapeOptions, markers};
+use crate::scene::shape::{CombCap, CombScale, Marker, MarkerKind, ShapeOptions, markers};
 
 /// The panel's shape switches and the comb's scale.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -24,6 +24,8 @@ pub struct ShapeView {
     pub comb_auto: bool,
     /// World length of a hair per unit of curvature.
     pub comb_scale: f64,
+    /// The longest hair, a fraction of the view's height.
+    pub comb_cap: CombCap,
     /// Inflection and cusp markers.
     pub inflections: bool,
     /// Curvature extremum markers.
@@ -41,6 +43,7 @@ impl Default for ShapeView {
             comb_selected_only: false,
             comb_auto: true,
             comb_scale: 1.0,
+            comb_cap: CombCap::default(),
             inflections: false,
             curvature_extrema: false,
             intersections: false,
@@ -55,6 +58,7 @@ impl ShapeView {
     pub fn marker_options(&self) -> ShapeOptions {
         ShapeOptions {
             comb: None,
+            comb_cap: self.comb_cap,
             inflections: self.inflections,
             curvature_extrema: self.curvature_extrema,
             intersections: self.intersections,
@@ -65,6 +69,16 @@ impl ShapeView {
     pub fn fit_comb(&mut self, scene: &Scene, view_height: f64) {
         self.comb_scale = CombScale::Auto.resolve(scene, view_height);
         self.comb_auto = true;
+    }
+
+    /// Sets the cap typed by the user (a fraction of the view's height: a finite number
+    /// above 0), else refused (the message names the value) and left as it was.
+    ///
+    /// # Errors
+    /// The comb cap error, naming the value.
+    pub fn set_comb_cap(&mut self, fraction: f64) -> Result<(), String> {
+        self.comb_cap = CombCap::fraction(fraction).map_err(|e| e.to_string())?;
+        Ok(())
     }
 
     /// Sets a scale typed or dragged by the user: a finite number above 0, else refused
@@ -238,6 +252,7 @@ mod tests {
         let mut w = MarkerWorker::default();
         let on = ShapeOptions {
             comb: None,
+            comb_cap: CombCap::default(),
             inflections: true,
             curvature_extrema: false,
             intersections: true,

@@ -299,7 +299,7 @@ fn escape_in_a_number_field_changes_nothing() {
 /// number is refused with its value named and changes nothing, and the marker switches
 /// show their legend.
 #[test]
-fn the_shape_section_turns_the_comb_on_scales_it_and_refuses_a_bad_scale() {
+fn the_shape_section_turns_the_comb_on_scales_it_caps_it_and_refuses_bad_values() {
     use crate::geom::Nurbs;
     let r = 2.0;
     let mut h = harness(
@@ -334,6 +334,22 @@ fn the_shape_section_turns_the_comb_on_scales_it_and_refuses_a_bad_scale() {
     h.get_by_label("auto").click();
     h.run();
     assert!((h.state().model.shape.comb_scale - want).abs() <= 1e-9 * want);
+    // The cap: typed as a fraction of the view, refused whole when not above 0, off.
+    use crate::scene::shape::CombCap;
+    assert_eq!(h.state().model.shape.comb_cap, CombCap::default());
+    type_into(&mut h, "0.050", "0");
+    assert_eq!(
+        h.state().model.shape.comb_cap,
+        CombCap::default(),
+        "refused"
+    );
+    let message = h.state().model.editor.message.clone().unwrap_or_default();
+    assert!(message.contains("comb cap 0"), "{message}");
+    type_into(&mut h, "0.050", "0.2");
+    assert_eq!(h.state().model.shape.comb_cap.get(), 0.2);
+    h.get_by_label("cap").click();
+    h.run();
+    assert_eq!(h.state().model.shape.comb_cap, CombCap::NONE);
     h.get_by_label("inflections and cusps").click();
     h.run();
     assert!(h.state().model.shape.inflections);

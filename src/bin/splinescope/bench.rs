@@ -677,6 +677,7 @@ fn draw_frames(
         &splinescope::gpu::adaptive::FrameSettings {
             camera,
             tolerance_px: splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX as f32,
+            min_count: gpu_scene.min_count(),
         },
     );
     let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {

@@ -79,6 +79,11 @@ struct ShapeArgs {
     /// units per unit of curvature (omit SCALE for one chosen for the view).
     #[arg(long, value_name = "SCALE", num_args = 0..=1, default_missing_value = "auto", value_parser = parse_comb, allow_negative_numbers = true)]
     comb: Option<splinescope::scene::shape::CombScale>,
+    /// The longest a comb hair is drawn, as a fraction of the view's height (default
+    /// 0.08), or `none`: a longer hair is cut to it, drawn in the envelope's stroke, and
+    /// the envelope is broken there.
+    #[arg(long, value_name = "FRACTION", value_parser = parse_comb_cap, allow_negative_numbers = true)]
+    comb_cap: Option<splinescope::scene::shape::CombCap>,
     /// Mark inflections and cusps (2D curves).
     #[arg(long)]
     inflections: bool,
@@ -94,6 +99,7 @@ impl ShapeArgs {
     fn options(self) -> splinescope::scene::shape::ShapeOptions {
         splinescope::scene::shape::ShapeOptions {
             comb: self.comb,
+            comb_cap: self.comb_cap.unwrap_or_default(),
             inflections: self.inflections,
             curvature_extrema: self.curvature_extrema,
             intersections: self.intersections,
@@ -112,6 +118,19 @@ fn parse_comb(s: &str) -> Result<splinescope::scene::shape::CombScale, String> {
         .parse()
         .map_err(|_| format!("{s:?} is neither a number nor `auto`"))?;
     CombScale::fixed(v).map_err(|e| e.to_string())
+}
+
+/// `--comb-cap`'s value: `none`, or a finite number above 0.
+fn parse_comb_cap(s: &str) -> Result<splinescope::scene::shape::CombCap, String> {
+    use splinescope::scene::shape::CombCap;
+    if s.trim() == "none" {
+        return Ok(CombCap::NONE);
+    }
+    let v: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("{s:?} is neither a number nor `none`"))?;
+    CombCap::fraction(v).map_err(|e| e.to_string())
 }
 
 #[derive(Debug, clap::Args)]

@@ -45,6 +45,10 @@ pub struct ViewArgs {
     /// units long per unit of curvature (omit SCALE for one chosen for the view).
     #[arg(long, value_name = "SCALE", num_args = 0..=1, default_missing_value = "auto", value_parser = crate::parse_comb, allow_negative_numbers = true)]
     pub comb: Option<splinescope::scene::shape::CombScale>,
+    /// The longest a comb hair is drawn, as a fraction of the view's height (default
+    /// 0.08), or `none` (the panel's "cap" field changes it).
+    #[arg(long, value_name = "FRACTION", value_parser = crate::parse_comb_cap, allow_negative_numbers = true)]
+    pub comb_cap: Option<splinescope::scene::shape::CombCap>,
     #[command(flatten)]
     pub gpu: GpuArgs,
 }
@@ -59,7 +63,7 @@ pub fn run(a: &ViewArgs) -> Result<()> {
         a.frames,
         (a.stress, a.degree, a.family),
         (a.solve, a.stats),
-        (a.tolerance_px, a.comb),
+        (a.tolerance_px, a.comb, a.comb_cap.unwrap_or_default()),
         &a.gpu,
     )
 }
@@ -70,7 +74,11 @@ fn view(
     frames: Option<u64>,
     (stress, degree, family): (Option<u64>, u64, splinescope::scene::generate::StressFamily),
     (solve, print_stats): (bool, bool),
-    (tolerance_px, comb): (f64, Option<splinescope::scene::shape::CombScale>),
+    (tolerance_px, comb, comb_cap): (
+        f64,
+        Option<splinescope::scene::shape::CombScale>,
+        splinescope::scene::shape::CombCap,
+    ),
     gpu: &GpuArgs,
 ) -> Result<()> {
     use splinescope::scene::shape::CombScale;
@@ -136,6 +144,7 @@ fn view(
         overlays_hidden: stress.is_some(),
         path: scene,
         comb,
+        comb_cap,
     })?;
     if print_stats {
         say!("{}", serde_json::to_string(&stats)?);
@@ -157,6 +166,7 @@ pub fn default_job() -> Result<()> {
             path: None,
             source: None,
             comb: None,
+            comb_cap: splinescope::scene::shape::CombCap::default(),
         })?;
         return Ok(());
     }

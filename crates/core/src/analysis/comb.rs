@@ -4,9 +4,19 @@
 //! centre of curvature; in the plane `κ` is signed, so the hairs change side at an
 //! inflection), and `s` the comb's scale — world length per unit of curvature. The tips
 //! joined in order are the comb's envelope. Hairs point away from the centre of
-//! curvature, as those tools draw them. The GPU computes the same hairs from the same
-//! segments every frame (`comb_hairs` in `shaders/adaptive.wgsl`); this is the exact
-//! `f64` version that figures draw and tests compare with (`docs/math.md` §8).
+//! curvature, as those tools draw them.
+//!
+//! A hair longer than the comb's cap is cut to the cap and marked `capped`: near a cusp
+//! the curvature grows without bound and an uncut hair would cross the whole view. The
+//! envelope is broken at a capped hair (drawn to and from it, it would be a long straight
+//! line saying nothing), and the capped hair itself is drawn in the envelope's stronger
+//! stroke, so that it reads as "sharper than the comb shows".
+//!
+//! Hairs sit at [`COMB_HAIRS_PER_SEGMENT`] uniform parameters of every lowered segment,
+//! ends included — in the window, in `render`'s PNG and in SVG/PDF figures alike. The GPU
+//! computes the same hairs from the same segments every frame (the `comb_*` kernels of
+//! `shaders/adaptive.wgsl`, in `f32`); this is the exact `f64` version that figures draw
+//! and tests compare with (`docs/math.md` §8).
 
 use glam::DVec3;
 
@@ -23,6 +33,11 @@ pub fn curvature_vector(d1: DVec3, d2: DVec3) -> Option<DVec3> {
     Some((d2 - (d2.dot(d1) / speed2) * d1) / speed2)
 }
 
+/// Hairs of a comb per lowered segment, uniform in the segment's parameter, ends
+/// included: the density the window, `render` and figures all draw. Twin: `COMB_HAIRS` in
+/// `shaders/adaptive.wgsl`.
+pub const COMB_HAIRS_PER_SEGMENT: usize = 32;
+
 /// One hair of a comb.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hair {
@@ -30,15 +45,17 @@ pub struct Hair {
     pub t: f64,
     /// The point on the curve.
     pub point: DVec3,
-    /// The hair's tip, `point − scale · K` (the point itself at a cusp).
+    /// The hair's tip, `point − scale · K` (the point itself at a cusp), cut to the cap.
     pub tip: DVec3,
+    /// Whether the hair was longer than the cap (its tip is then `cap` from the point).
+    pub capped: bool,
 }
 
 /// The comb of a curve: `per_segment` hairs (at least 2) at uniform parameters of each of
 /// its lowered segments, ends included, with hairs `scale` world units long per unit of
-/// curvature — what the GPU draws at its own sample parameters.
+/// curvature, none longer than `cap` world units (`f64::INFINITY`: no cap).
 #[must_use]
-pub fn comb(analysis: &CurveAnalysis, per_segment: usize, scale: f64) -> Vec<Hair> {
+pub fn comb(analysis: &CurveAnalysis, per_segment: usize, scale: f64, cap: f64) -> Vec<Hair> {
     let n = per_segment.max(2);
     let mut out = Vec::with_capacity(n * analysis.pieces().len());
     for piece in analysis.pieces() {
@@ -48,28 +65,42 @@ pub fn comb(analysis: &CurveAnalysis, per_segment: usize, scale: f64) -> Vec<Hai
             let h = piece.t1 - piece.t0;
             let point = piece.point(u);
             let k = curvature_vector(piece.deriv(u) / h, piece.second_deriv(u) / (h * h));
+            let hair = -scale * k.unwrap_or(DVec3::ZERO);
+            let length = hair.length();
+            let capped = length > cap;
+            let tip = if capped {
+                point + hair * (cap / length)
+            } else {
+                point + hair
+            };
             out.push(Hair {
                 t,
                 point,
-                tip: point - scale * k.unwrap_or(DVec3::ZERO),
+                tip,
+                capped,
             });
         }
     }
     out
 }
 
-/// The fraction of the view's height the automatic comb scale gives a typical long hair.
-pub const AUTO_COMB_FRACTION: f64 = 0.1;
+/// The default cap of a comb's hairs, as a fraction of the view's height.
+pub const DEFAULT_COMB_CAP: f64 = 0.05;
+
+/// The fraction of the view's height the automatic comb scale gives a hair at the reference
+/// curvature ([`reference_curvature`]): under the default cap ([`DEFAULT_COMB_CAP`]), so
+/// that the bulk of the hairs is drawn uncapped and only the sharpest tenth can reach it.
+pub const AUTO_COMB_FRACTION: f64 = 0.04;
 
 /// The most the automatic comb scale gives that hair, as a fraction of a typical curve's
 /// length ([`reference_length`]): on a scene of many small curves the combs stay the size
-/// of their curves instead of a tenth of the view each.
+/// of their curves instead of a fixed part of the view each.
 pub const AUTO_COMB_CURVE_FRACTION: f64 = 0.5;
 
 /// Samples per segment the automatic scale measures the curvature at.
 const REFERENCE_SAMPLES: usize = 16;
 
-/// The curvature an automatic comb scale is set against: the 98th percentile of `|κ|` at
+/// The curvature an automatic comb scale is set against: the 90th percentile of `|κ|` at
 /// 16 uniform parameters of every segment of every curve (robust to the unbounded
 /// curvature near a cusp, which a maximum is not); `None` when every sample is straight
 /// or at a cusp.
@@ -95,7 +126,7 @@ pub fn reference_curvature<'a>(curves: impl IntoIterator<Item = &'a CurveAnalysi
     if ks.is_empty() {
         return None;
     }
-    let rank = (ks.len() - 1) * 49 / 50;
+    let rank = (ks.len() - 1) * 9 / 10;
     let (_, k, _) = ks.select_nth_unstable_by(rank, f64::total_cmp);
     Some(*k)
 }
@@ -144,7 +175,7 @@ mod tests {
         // κ = 1/r along the whole circle, K towards the centre: tips at r + s/r.
         let r = 2.0;
         let circle = Nurbs::circle(DVec3::new(1.0, -1.0, 0.0), r).expect("circle");
-        let hairs = comb(&CurveAnalysis::new(&circle), 9, 0.5);
+        let hairs = comb(&CurveAnalysis::new(&circle), 9, 0.5, f64::INFINITY);
         assert!(hairs.len() >= 9);
         for h in hairs {
             let out = h.point - DVec3::new(1.0, -1.0, 0.0);
@@ -158,7 +189,7 @@ mod tests {
     #[test]
     fn a_line_has_no_hairs_and_a_cusp_none_either() {
         let line = Bezier::new(vec![DVec3::ZERO, DVec3::X, DVec3::new(2.0, 0.0, 0.0)]);
-        for h in comb(&CurveAnalysis::new(&line), 5, 3.0) {
+        for h in comb(&CurveAnalysis::new(&line), 5, 3.0, 1.0) {
             assert_eq!(h.tip, h.point);
         }
         assert_eq!(reference_curvature([&CurveAnalysis::new(&line)]), None);
@@ -169,9 +200,42 @@ mod tests {
             DVec3::new(0.0, 1.0, 0.0),
             DVec3::new(2.0, 0.0, 0.0),
         ]);
-        let hairs = comb(&CurveAnalysis::new(&cusp), 5, 1.0);
+        let hairs = comb(&CurveAnalysis::new(&cusp), 5, 1.0, f64::INFINITY);
         assert_eq!(hairs[2].tip, hairs[2].point);
         assert!(hairs.iter().all(|h| h.tip.is_finite()));
+    }
+
+    #[test]
+    fn hairs_past_the_cap_are_cut_to_it_and_marked() {
+        // A circle of radius 2 with s = 4: every hair 4 / 2 = 2 long, exactly.
+        let circle = Nurbs::circle(DVec3::ZERO, 2.0).expect("circle");
+        let a = CurveAnalysis::new(&circle);
+        for (cap, capped) in [(1.5, true), (2.5, false), (f64::INFINITY, false)] {
+            for h in comb(&a, 7, 4.0, cap) {
+                let length = (h.tip - h.point).length();
+                assert_eq!(h.capped, capped, "cap {cap}: {h:?}");
+                let want = if capped { cap } else { 2.0 };
+                assert!((length - want).abs() < 1e-12, "cap {cap}: {length} {h:?}");
+                // Still along the outward radius.
+                let (out, hair) = (h.point.normalize(), (h.tip - h.point).normalize());
+                assert!(out.dot(hair) > 1.0 - 1e-12, "{h:?}");
+            }
+        }
+        // Near a cusp the curvature runs away: with a cap, no hair is longer, whatever the
+        // scale.
+        let near_cusp = Bezier::new(vec![
+            DVec3::ZERO,
+            DVec3::new(2.0, 1.0, 0.0),
+            DVec3::new(0.0, 1.001, 0.0),
+            DVec3::new(2.0, 0.0, 0.0),
+        ]);
+        let hairs = comb(&CurveAnalysis::new(&near_cusp), 101, 1e6, 0.3);
+        assert!(hairs.iter().any(|h| h.capped));
+        assert!(
+            hairs
+                .iter()
+                .all(|h| (h.tip - h.point).length() <= 0.3 * (1.0 + 1e-12))
+        );
     }
 
     #[test]
@@ -189,8 +253,8 @@ mod tests {
     #[test]
     fn the_automatic_scale_keeps_small_curves_combs_their_size() {
         // Three cubics whose control polygons are 3, 5 and 7 long (legs 1, 1, 1 to 3, 3,
-        // 1 — right angles, lengths exact): the median is 5. In a view 1,000 tall a tenth
-        // of the view would be 100; half the typical curve, 2.5, is what the hair gets.
+        // 1 — right angles, lengths exact): the median is 5. In a view 1,000 tall the view's
+        // fraction would be 40; half the typical curve, 2.5, is what the hair gets.
         let cubic = |a: f64, b: f64| {
             Bezier::new(vec![
                 DVec3::ZERO,
@@ -205,9 +269,9 @@ mod tests {
         let k = reference_curvature(&analyses).expect("curved");
         let s = auto_scale(Some(k), reference_length(&analyses), 1000.0);
         assert!((s * k - 2.5).abs() < 1e-12, "{}", s * k);
-        // Zoomed in until a tenth of the view is shorter, the view decides again.
+        // Zoomed in until the view's fraction is shorter, the view decides again.
         let s = auto_scale(Some(k), Some(5.0), 10.0);
-        assert!((s * k - 1.0).abs() < 1e-12);
+        assert!((s * k - AUTO_COMB_FRACTION * 10.0).abs() < 1e-12);
         assert_eq!(reference_length(&[]), None);
     }
 }

@@ -1050,6 +1050,7 @@ class Scene:
         tolerance_px: float = 0.25,
         backend: str = "auto",
         comb: Union[None, bool, str, float] = None,
+        comb_cap: Optional[float] = 0.05,
         inflections: bool = False,
         curvature_extrema: bool = False,
         intersections: bool = False,
@@ -1060,10 +1061,13 @@ class Scene:
 
         ``comb``: each curve's curvature comb — ``True`` or ``"auto"`` for a scale chosen
         for the view, a number for the world length of a hair per unit of curvature;
+        ``comb_cap``: the longest hair, a fraction of the view's height (``None``: no cap)
+        — a longer one is cut to it, drawn in the envelope's stroke, the envelope broken
+        there;
         ``inflections``, ``curvature_extrema``, ``intersections``: the markers
         (``render --comb --inflections …``)."""
         w, h = _size(width, height, "render")
-        shape = _shape(comb, inflections, curvature_extrema, intersections, "render")
+        shape = _shape(comb, comb_cap, inflections, curvature_extrema, intersections, "render")
         return self._s.render(
             w, h, _number(tolerance_px, "tolerance_px"), _str(backend, "backend", "render"), shape
         )
@@ -1074,13 +1078,14 @@ class Scene:
         height: int = 500,
         backend: str = "auto",
         comb: Union[None, bool, str, float] = None,
+        comb_cap: Optional[float] = 0.05,
         inflections: bool = False,
         curvature_extrema: bool = False,
         intersections: bool = False,
     ) -> bytes:
         """The rendered scene as PNG file bytes (the shape overlays as for ``render``)."""
         w, h = _size(width, height, "png")
-        shape = _shape(comb, inflections, curvature_extrema, intersections, "png")
+        shape = _shape(comb, comb_cap, inflections, curvature_extrema, intersections, "png")
         return bytes(self._s.png(w, h, 0.25, _str(backend, "backend", "png"), shape))
 
     def export(
@@ -1095,6 +1100,7 @@ class Scene:
         grid: bool = False,
         backend: str = "auto",
         comb: Union[None, bool, str, float] = None,
+        comb_cap: Optional[float] = 0.05,
         inflections: bool = False,
         curvature_extrema: bool = False,
         intersections: bool = False,
@@ -1106,7 +1112,7 @@ class Scene:
         ``render`` (in SVG and PDF the comb's hairs are exact line segments and the
         markers circles at exact positions); atomically."""
         w, h = _size(width, height, "export")
-        shape = _shape(comb, inflections, curvature_extrema, intersections, "export")
+        shape = _shape(comb, comb_cap, inflections, curvature_extrema, intersections, "export")
         self._s.export(
             str(path),
             w,
@@ -1215,24 +1221,40 @@ def solve(
 
 
 def _shape(
-    comb: Any, inflections: Any, curvature_extrema: Any, intersections: Any, method: str
-) -> Tuple[bool, Optional[float], bool, bool, bool]:
+    comb: Any,
+    comb_cap: Any,
+    inflections: Any,
+    curvature_extrema: Any,
+    intersections: Any,
+    method: str,
+) -> Tuple[bool, Optional[float], Optional[float], bool, bool, bool]:
     """The shape overlays' arguments: ``comb`` ``None``/``False`` (off), ``True`` or
     ``"auto"`` (a scale chosen for the view), or a number (the scale: finite, above 0 —
-    else a :class:`SceneError` naming ``comb``)."""
+    else a :class:`SceneError` naming ``comb``); ``comb_cap`` ``None`` (no cap) or a
+    fraction of the view's height (finite, above 0 — else a :class:`SceneError` naming
+    ``comb_cap``)."""
+    cap = None
+    if comb_cap is not None:
+        cap = _float(comb_cap, "comb_cap", method)
+        if not (np.isfinite(cap) and cap > 0):
+            raise _error(
+                SceneError,
+                f"{method}: comb cap {cap}: must be a finite number above 0 (a fraction of the view's height), or None",
+                "comb_cap",
+            )
     flags = (
         _bool(inflections, "inflections", method),
         _bool(curvature_extrema, "curvature_extrema", method),
         _bool(intersections, "intersections", method),
     )
     if comb is None or comb is False:
-        return (False, None) + flags
+        return (False, None, cap) + flags
     if comb is True or (isinstance(comb, str) and comb == "auto"):
-        return (True, None) + flags
+        return (True, None, cap) + flags
     scale = _float(comb, "comb", method)
     if not (np.isfinite(scale) and scale > 0):
         raise _error(SceneError, f"{method}: comb scale {scale}: must be a finite number above 0", "comb")
-    return (True, scale) + flags
+    return (True, scale, cap) + flags
 
 
 def _size(width: Any, height: Any, method: str) -> Tuple[int, int]:

@@ -107,7 +107,7 @@ class _Scene:
         height: int,
         tolerance_px: float = 0.25,
         backend: str = "auto",
-        shape: Tuple[bool, Optional[float], bool, bool, bool] = ...,
+        shape: Tuple[bool, Optional[float], Optional[float], bool, bool, bool] = ...,
     ) -> npt.NDArray[np.uint8]: ...
     def export(
         self,
@@ -120,7 +120,7 @@ class _Scene:
         axes: bool = False,
         grid: bool = False,
         backend: str = "auto",
-        shape: Tuple[bool, Optional[float], bool, bool, bool] = ...,
+        shape: Tuple[bool, Optional[float], Optional[float], bool, bool, bool] = ...,
     ) -> None: ...
     def png(
         self,
@@ -128,7 +128,7 @@ class _Scene:
         height: int,
         tolerance_px: float = 0.25,
         backend: str = "auto",
-        shape: Tuple[bool, Optional[float], bool, bool, bool] = ...,
+        shape: Tuple[bool, Optional[float], Optional[float], bool, bool, bool] = ...,
     ) -> bytes: ...
 
 def eval_many(curves: Sequence[_Curve], n: int) -> npt.NDArray[np.float64]: ...

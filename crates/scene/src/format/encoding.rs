@@ -46,6 +46,7 @@ pub fn encode_with(scene: &Scene, switches: Switches) -> Encoding {
         annotations: annotation_points(scene),
         background: scene.background,
         comb: None,
+        comb_cap: f64::INFINITY,
     }
 }
 

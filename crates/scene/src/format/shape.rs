@@ -68,11 +68,66 @@ impl CombScale {
     }
 }
 
+/// The longest a comb's hair is drawn, as a fraction of the view's height (a finite
+/// number above 0, or no cap at all): a longer hair — near a cusp the curvature has no
+/// bound — is cut to it and drawn as capped, its envelope broken
+/// ([`splinescope_core::analysis::comb`]). The default is
+/// [`splinescope_core::analysis::comb::DEFAULT_COMB_CAP`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CombCap(f64);
+
+impl Default for CombCap {
+    fn default() -> CombCap {
+        CombCap(splinescope_core::analysis::comb::DEFAULT_COMB_CAP)
+    }
+}
+
+/// A comb cap that is not a finite number above 0.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[error(
+    "comb cap {}: must be a finite number above 0 (a fraction of the view's height), or none",
+    splinescope_core::num::Num(*.0)
+)]
+pub struct CombCapError(pub f64);
+
+impl CombCap {
+    /// No cap: every hair as long as the scale makes it.
+    pub const NONE: CombCap = CombCap(f64::INFINITY);
+
+    /// A cap of `fraction` of the view's height, checked.
+    ///
+    /// # Errors
+    /// [`CombCapError`] naming the value when it is not a finite number above 0.
+    pub fn fraction(fraction: f64) -> Result<CombCap, CombCapError> {
+        if fraction.is_finite() && fraction > 0.0 {
+            Ok(CombCap(fraction))
+        } else {
+            Err(CombCapError(fraction))
+        }
+    }
+
+    /// The fraction of the view's height (`inf` for no cap).
+    #[must_use]
+    pub fn get(self) -> f64 {
+        self.0
+    }
+
+    /// The longest hair in world units for a view `view_height` world units tall
+    /// (`inf` for no cap).
+    #[must_use]
+    pub fn world(self, view_height: f64) -> f64 {
+        let w = self.0 * view_height;
+        if w.is_nan() { f64::INFINITY } else { w }
+    }
+}
+
 /// Which shape overlays are shown.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ShapeOptions {
     /// The curvature comb of every curve, and its scale.
     pub comb: Option<CombScale>,
+    /// How long a comb's hair may be.
+    pub comb_cap: CombCap,
     /// Inflections (where `P′ × P″` changes sign) and cusps (`P′ = 0`).
     pub inflections: bool,
     /// The local extrema of the signed curvature.
@@ -223,6 +278,7 @@ pub fn encode_shaped(
 ) -> splinescope_encoding::Encoding {
     let mut encoding = super::encoding::encode(scene);
     encoding.comb = options.comb.map(|c| c.resolve(scene, view_height));
+    encoding.comb_cap = options.comb_cap.world(view_height);
     if options.any_marker() {
         let found = markers(scene, options);
         encoding
@@ -287,6 +343,7 @@ mod tests {
         let scene = scene_of(vec![s, line]);
         let all = ShapeOptions {
             comb: None,
+            comb_cap: CombCap::default(),
             inflections: true,
             curvature_extrema: true,
             intersections: true,
