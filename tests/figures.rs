@@ -692,3 +692,182 @@ fn pdf_path_data_keeps_the_tolerance() {
         }
     }
 }
+
+/// Word boxes `(xMin, yMin, xMax, yMax, word)` as `pdftotext -bbox` reads them from a PDF.
+fn pdf_words(bytes: &[u8], dir: &Path) -> Vec<(f64, f64, f64, f64, String)> {
+    let pdf = dir.join("words.pdf");
+    std::fs::write(&pdf, bytes).expect("write the PDF");
+    let out = Command::new("pdftotext")
+        .args(["-bbox"])
+        .arg(&pdf)
+        .arg("-")
+        .output()
+        .unwrap_or_else(|e| {
+            panic!(
+                "pdftotext is needed to read a PDF's text ({e}): sudo apt-get install poppler-utils"
+            )
+        });
+    assert!(
+        out.status.success(),
+        "pdftotext: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    let number = |tag: &str, key: &str| -> f64 {
+        let at = tag.find(&format!("{key}=\"")).expect("attribute") + key.len() + 2;
+        tag[at..at + tag[at..].find('"').expect("quote")]
+            .parse()
+            .expect("a number")
+    };
+    text.lines()
+        .filter_map(|l| {
+            let l = l.trim();
+            let body = l.strip_prefix("<word ")?;
+            let (tag, rest) = body.split_once('>')?;
+            let word = rest.strip_suffix("</word>")?.to_owned();
+            Some((
+                number(tag, "xMin"),
+                number(tag, "yMin"),
+                number(tag, "xMax"),
+                number(tag, "yMax"),
+                word,
+            ))
+        })
+        .collect()
+}
+
+/// Text boxes of an SVG's `<text>` elements from the font's metrics (advance widths, an
+/// ascent of one size and a descent of a quarter): `(min, max, text, size)`.
+fn svg_text_boxes(svg: &str) -> Vec<(DVec2, DVec2, String, f64)> {
+    let attr = |tag: &str, key: &str| -> Option<String> {
+        let at = tag.find(&format!(" {key}=\""))? + key.len() + 3;
+        Some(tag[at..at + tag[at..].find('"')?].to_owned())
+    };
+    let mut out = Vec::new();
+    let mut rest = svg;
+    while let Some(start) = rest.find("<text ") {
+        let after = &rest[start..];
+        let (tag, tail) = after.split_once('>').expect("a closed tag");
+        let (content, tail) = tail.split_once("</text>").expect("a closed text");
+        let x: f64 = attr(tag, "x").expect("x").parse().expect("x");
+        let y: f64 = attr(tag, "y").expect("y").parse().expect("y");
+        let size: f64 = attr(tag, "font-size").expect("size").parse().expect("size");
+        let content = content
+            .replace("&amp;", "&")
+            .replace("&lt;", "<")
+            .replace("&gt;", ">");
+        let w = splinescope_figure::text::width(&content, size);
+        let left = match attr(tag, "text-anchor").as_deref() {
+            Some("end") => x - w,
+            Some("middle") => x - 0.5 * w,
+            _ => x,
+        };
+        out.push((
+            DVec2::new(left, y - size),
+            DVec2::new(left + w, y + 0.25 * size),
+            content,
+            size,
+        ));
+        rest = tail;
+    }
+    out
+}
+
+/// The gallery and crowded generated scenes with every label and the legend, at several
+/// page sizes: read back from the written files — the PDF's words by `pdftotext -bbox`,
+/// the SVG's texts by the font's metrics — no text box overlaps another (beyond half a
+/// point of rounding), none leaves the page, and every curve's label is either on the
+/// page or counted in the legend's "N labels hidden".
+#[test]
+fn labels_never_overlap_on_the_written_page() {
+    use splinescope::scene::generate::{StressOptions, random_bezier_scene};
+    let dir = tempdir();
+    let mut cases = vec![
+        ("gallery", gallery::gallery(), 1200, 800),
+        ("gallery small", gallery::gallery(), 640, 400),
+    ];
+    for (curves, seed) in [(30, 1), (80, 2)] {
+        let mut scene = random_bezier_scene(StressOptions {
+            curves,
+            degree: 3,
+            seed,
+            ..Default::default()
+        });
+        for (i, c) in scene.curves.iter_mut().enumerate() {
+            c.name = Some(format!("curve {i} of the crowd"));
+        }
+        cases.push(("crowd", scene, 600, 400));
+    }
+    let apart = |a: (f64, f64, f64, f64), b: (f64, f64, f64, f64)| {
+        let e = 0.5;
+        a.2 - e <= b.0 || b.2 - e <= a.0 || a.3 - e <= b.1 || b.3 - e <= a.1
+    };
+    for (name, scene, w, h) in cases {
+        let mut opts = FigureOptions::new(w, h);
+        opts.labels = true;
+        opts.legend = true;
+        let fig = build(&scene, &opts).expect("figure");
+        let what = format!("{name} ({} curves, {w}×{h})", scene.curves.len());
+        // SVG: the font's metrics.
+        let boxes = svg_text_boxes(&svg::write(&fig));
+        assert!(!boxes.is_empty(), "{what}: no text");
+        for (i, a) in boxes.iter().enumerate() {
+            assert!(
+                a.0.x >= -0.5
+                    && a.0.y >= -0.5
+                    && a.1.x <= f64::from(w) + 0.5
+                    && a.1.y <= f64::from(h) + 0.5,
+                "{what}: {:?} leaves the page",
+                a.2
+            );
+            for b in &boxes[i + 1..] {
+                assert!(
+                    apart((a.0.x, a.0.y, a.1.x, a.1.y), (b.0.x, b.0.y, b.1.x, b.1.y)),
+                    "{what}: SVG texts {:?} and {:?} overlap",
+                    a.2,
+                    b.2
+                );
+            }
+        }
+        // Every label drawn (the canvas's labels are set at 12 points, the legend's rows
+        // at 11) or counted as hidden in the legend.
+        let hidden: usize = boxes
+            .iter()
+            .find_map(|b| {
+                b.2.strip_suffix(" labels hidden")
+                    .or_else(|| b.2.strip_suffix(" label hidden"))
+                    .map(|n| n.parse().expect("a count"))
+            })
+            .unwrap_or(0);
+        let labels: Vec<&String> = boxes.iter().filter(|b| b.3 == 12.0).map(|b| &b.2).collect();
+        assert_eq!(
+            labels.len() + hidden,
+            scene.curves.len(),
+            "{what}: {} labels drawn, {hidden} hidden",
+            labels.len()
+        );
+        for l in &labels {
+            assert!(
+                scene.curves.iter().any(|c| c.label() == **l),
+                "{what}: {l:?} is no curve's label"
+            );
+        }
+        // PDF: pdftotext's word boxes.
+        let words = pdf_words(&pdf::write(&fig), &dir);
+        assert!(!words.is_empty(), "{what}: no words in the PDF");
+        for (i, a) in words.iter().enumerate() {
+            for b in &words[i + 1..] {
+                assert!(
+                    apart((a.0, a.1, a.2, a.3), (b.0, b.1, b.2, b.3)),
+                    "{what}: PDF words {:?} and {:?} overlap",
+                    a.4,
+                    b.4
+                );
+            }
+        }
+        println!(
+            "{what}: {} texts, {hidden} labels hidden, no overlap",
+            boxes.len()
+        );
+    }
+}

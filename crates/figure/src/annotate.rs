@@ -6,7 +6,9 @@ use glam::DVec2;
 
 use splinescope_core::geom::ParamCurve;
 
+use splinescope_core::geom::Lower;
 use splinescope_scene::format::draw::{MarkerKind, Stroke, marker_style};
+use splinescope_scene::format::labels::{ANCHORS, Ink, LabelRequest, corner, place};
 use splinescope_scene::format::{Color, Scene};
 
 use super::fit::{Piece, Projection, Seg};
@@ -52,59 +54,95 @@ fn line(a: DVec2, b: DVec2, stroke: Stroke) -> Item {
     }
 }
 
-/// The labels: each curve's label beside its end point (inside the figure), moved a line
-/// down or up, then further, when it would cover a label placed before it.
-pub fn labels(scene: &Scene, proj: &Projection, size: DVec2, out: &mut Vec<Item>) {
-    let mut placed: Vec<(DVec2, DVec2)> = Vec::new();
-    let overlaps = |lo: DVec2, hi: DVec2, placed: &[(DVec2, DVec2)]| {
-        placed
-            .iter()
-            .any(|(a, b)| lo.x < b.x && a.x < hi.x && lo.y < b.y && a.y < hi.y)
-    };
+/// The ink the labels and the legend keep clear of: every curve (sampled densely and
+/// projected) and every control polygon shown.
+#[must_use]
+pub fn ink(scene: &Scene, proj: &Projection, size: DVec2) -> Ink {
+    let mut ink = Ink::new(size);
     for sc in &scene.curves {
-        let (_, b) = sc.curve.domain();
-        let Some(end) = proj.point(sc.curve.eval(b)) else {
+        let (a, b) = sc.curve.domain();
+        let n = 64 * sc.curve.lower().len().clamp(1, 64);
+        let points: Vec<DVec2> = (0..=n)
+            .filter_map(|k| proj.point(sc.curve.eval(a + (b - a) * k as f64 / n as f64)))
+            .collect();
+        ink.add_polyline(&points);
+        if sc.style.show_polygon || sc.style.show_points {
+            let polygon: Vec<DVec2> = sc
+                .curve
+                .control_points()
+                .iter()
+                .filter_map(|p| proj.point(*p))
+                .collect();
+            if sc.style.show_polygon {
+                ink.add_polyline(&polygon);
+            } else {
+                for p in polygon {
+                    ink.add_polyline(&[p]);
+                }
+            }
+        }
+    }
+    ink
+}
+
+/// The padding around a label's text inside its box.
+const LABEL_PAD: f64 = 2.0;
+
+/// The labels ([`splinescope_scene::format::labels`]): each curve's label placed by the
+/// search over positions along its curve, clear of the other labels and of `blocked`
+/// (the legend), off the curves where a free spot exists, inside the page, with a leader
+/// line where it stands off; the number hidden for want of room.
+pub fn labels(
+    scene: &Scene,
+    proj: &Projection,
+    size: DVec2,
+    ink: &Ink,
+    blocked: &[(DVec2, DVec2)],
+    out: &mut Vec<Item>,
+) -> usize {
+    let texts: Vec<String> = scene.curves.iter().map(|sc| sc.label()).collect();
+    let requests: Vec<LabelRequest> = scene
+        .curves
+        .iter()
+        .zip(&texts)
+        .map(|(sc, text)| {
+            let (a, b) = sc.curve.domain();
+            LabelRequest {
+                anchors: ANCHORS
+                    .iter()
+                    .map(|f| {
+                        proj.point(sc.curve.eval(a + f * (b - a)))
+                            .unwrap_or(DVec2::NAN)
+                    })
+                    .collect(),
+                size: DVec2::new(
+                    width(text, LABEL_SIZE) + 2.0 * LABEL_PAD,
+                    1.25 * LABEL_SIZE + 2.0 * LABEL_PAD,
+                ),
+            }
+        })
+        .collect();
+    let placed = place(&requests, ink, size, blocked, &[]);
+    let mut hidden = 0;
+    for ((sc, text), p) in scene.curves.iter().zip(texts).zip(placed) {
+        let Some(p) = p else {
+            hidden += 1;
             continue;
         };
-        let text = sc.label();
-        let w = width(&text, LABEL_SIZE);
-        let (x, anchor, left) = if end.x + 6.0 + w > size.x - 2.0 {
-            (end.x - 6.0, Anchor::End, end.x - 6.0 - w)
-        } else {
-            (end.x + 6.0, Anchor::Start, end.x + 6.0)
-        };
-        let line_h = LABEL_SIZE * 1.25;
-        let base = end.y - 6.0;
-        // Baselines from the first line's to the bottom margin's; a figure lower than one
-        // line keeps its labels on the first line (cut at the bottom edge).
-        let (top, bottom) = (LABEL_SIZE + 2.0, size.y - 4.0);
-        let inside = |y: f64| y.max(top).min(bottom.max(top));
-        let mut y = inside(base);
-        for k in 1..=40 {
-            let (lo, hi) = (
-                DVec2::new(left, y - LABEL_SIZE),
-                DVec2::new(left + w, y + 0.25 * LABEL_SIZE),
-            );
-            if !overlaps(lo, hi, &placed) {
-                break;
-            }
-            // Alternate below and above, one line further each time.
-            let step = f64::from((k + 1) / 2) * line_h;
-            let candidate = if k % 2 == 1 { base + step } else { base - step };
-            y = inside(candidate);
+        let color = darker(sc.style.color);
+        if let Some((a, b)) = p.leader {
+            let [r, g, bl, _] = color.0;
+            out.push(line(a, b, Stroke::solid(Color([r, g, bl, 0.6]), 0.75)));
         }
-        placed.push((
-            DVec2::new(left, y - LABEL_SIZE),
-            DVec2::new(left + w, y + 0.25 * LABEL_SIZE),
-        ));
         out.push(Item::Text {
-            at: DVec2::new(x, y),
+            at: DVec2::new(p.min.x + LABEL_PAD, p.min.y + LABEL_PAD + LABEL_SIZE),
             size: LABEL_SIZE,
             text,
-            color: darker(sc.style.color),
-            anchor,
+            color,
+            anchor: Anchor::Start,
         });
     }
+    hidden
 }
 
 /// Text in a curve's colour, darkened so that light colours stay readable on white.
@@ -113,39 +151,143 @@ fn darker(c: Color) -> Color {
     Color([r * 0.8, g * 0.8, b * 0.8, 1.0])
 }
 
-/// The legend: a box in the top right corner with a stroke sample and the label of each
-/// curve (the first [`LEGEND_ROWS`], then how many more).
-pub fn legend(scene: &Scene, size: DVec2, markers: &[MarkerKind], out: &mut Vec<Item>) {
+/// A legend laid out: its rows, its box and where it goes.
+pub struct Legend {
+    rows: Vec<(Mark, String)>,
+    text_w: f64,
+    min: DVec2,
+    /// Whether the box grows from the top (else from the bottom: a bottom corner).
+    top: bool,
+    /// Room for the row saying how many labels are hidden.
+    reserve: bool,
+}
+
+const LEGEND_LINE: f64 = LEGEND_SIZE * 1.5;
+const LEGEND_SAMPLE: f64 = 24.0;
+
+impl Legend {
+    fn box_size(&self, rows: usize) -> DVec2 {
+        DVec2::new(
+            8.0 + LEGEND_SAMPLE + 6.0 + self.text_w + 8.0,
+            6.0 + LEGEND_LINE * rows as f64 + 4.0,
+        )
+    }
+
+    /// The box the labels keep clear of (with the reserved row).
+    #[must_use]
+    pub fn area(&self) -> (DVec2, DVec2) {
+        let size = self.box_size(self.rows.len() + usize::from(self.reserve));
+        (self.min, self.min + size)
+    }
+}
+
+/// `text` shortened with an ellipsis to at most `max` points wide at `size`.
+fn shortened(text: &str, size: f64, max: f64) -> String {
+    if width(text, size) <= max {
+        return text.to_owned();
+    }
+    let mut chars: Vec<char> = text.chars().collect();
+    while !chars.is_empty() {
+        chars.pop();
+        let t: String = chars.iter().collect::<String>().trim_end().to_owned() + "…";
+        if width(&t, size) <= max {
+            return t;
+        }
+    }
+    "…".to_owned()
+}
+
+/// The legend's layout: a stroke sample and the label of each curve, then the marker
+/// kinds shown; as many rows as the page's height holds (then how many more), each text
+/// shortened with an ellipsis to fit the page's width; in the corner whose box covers
+/// the fewest curve pixels. `reserve`: room for a row saying how many labels are hidden.
+#[must_use]
+pub fn legend_layout(
+    scene: &Scene,
+    size: DVec2,
+    markers: &[MarkerKind],
+    ink: &Ink,
+    reserve: bool,
+) -> Option<Legend> {
+    let fixed = 8.0 + LEGEND_SAMPLE + 6.0 + 8.0;
+    let max_text = (size.x - 16.0 - fixed).max(LEGEND_SIZE);
+    let room = (((size.y - 16.0 - 10.0) / LEGEND_LINE).floor().max(1.0) as usize)
+        .saturating_sub(markers.len() + usize::from(reserve))
+        .max(1);
+    let curve_rows = scene.curves.len().min(LEGEND_ROWS).min(room);
+    let more = scene.curves.len() - curve_rows;
     let mut rows: Vec<(Mark, String)> = scene
         .curves
         .iter()
-        .take(LEGEND_ROWS)
+        .take(if more > 0 {
+            curve_rows.saturating_sub(1)
+        } else {
+            curve_rows
+        })
         .map(|sc| (Mark::Line(sc.style.color, sc.style.width), sc.label()))
         .collect();
-    if scene.curves.len() > LEGEND_ROWS {
-        rows.push((
-            Mark::None,
-            format!("… and {} more", scene.curves.len() - LEGEND_ROWS),
-        ));
+    if more > 0 {
+        let n = scene.curves.len() - rows.len();
+        rows.push((Mark::None, format!("… and {n} more")));
     }
-    // Each marker kind shown, in a neutral curve colour (each marker takes its curve's).
     rows.extend(
         markers
             .iter()
             .map(|&k| (Mark::Marker(k), k.label().to_owned())),
     );
     if rows.is_empty() {
-        return;
+        return None;
     }
-    let line_h = LEGEND_SIZE * 1.5;
-    let sample = 24.0;
+    for (_, t) in &mut rows {
+        *t = shortened(t, LEGEND_SIZE, max_text);
+    }
+    let hidden_row = if reserve {
+        width("999 labels hidden", LEGEND_SIZE).min(max_text)
+    } else {
+        0.0
+    };
     let text_w = rows
         .iter()
         .map(|(_, t)| width(t, LEGEND_SIZE))
-        .fold(0.0, f64::max);
-    let box_w = 8.0 + sample + 6.0 + text_w + 8.0;
-    let box_h = 6.0 + line_h * rows.len() as f64 + 4.0;
-    let min = DVec2::new((size.x - 8.0 - box_w).max(0.0), 8.0);
+        .fold(hidden_row, f64::max);
+    let mut legend = Legend {
+        rows,
+        text_w,
+        min: DVec2::ZERO,
+        top: true,
+        reserve,
+    };
+    let full = legend.box_size(legend.rows.len() + usize::from(reserve));
+    legend.min = corner(ink, size, full);
+    legend.top = legend.min.y + 0.5 * full.y <= 0.5 * size.y;
+    Some(legend)
+}
+
+/// Draws a legend laid out by [`legend_layout`], with a row saying how many labels are
+/// `hidden` when any are.
+pub fn legend(layout: Legend, hidden: usize, out: &mut Vec<Item>) {
+    let (area_min, area_max) = layout.area();
+    let mut rows = layout.rows;
+    if hidden > 0 {
+        let text = if hidden == 1 {
+            "1 label hidden".to_owned()
+        } else {
+            format!("{hidden} labels hidden")
+        };
+        rows.push((Mark::None, text));
+    }
+    let box_w = area_max.x - area_min.x;
+    let box_h = 6.0 + LEGEND_LINE * rows.len() as f64 + 4.0;
+    // Inside the area the labels kept clear of: grown from its top, or from its bottom in
+    // a bottom corner.
+    let min = DVec2::new(
+        area_min.x,
+        if layout.top {
+            area_min.y
+        } else {
+            area_max.y - box_h
+        },
+    );
     out.push(Item::Rect {
         min,
         max: min + DVec2::new(box_w, box_h),
@@ -153,18 +295,18 @@ pub fn legend(scene: &Scene, size: DVec2, markers: &[MarkerKind], out: &mut Vec<
         stroke: Some(Stroke::solid(Color([0.6, 0.6, 0.6, 1.0]), 0.75)),
     });
     for (i, (mark, text)) in rows.into_iter().enumerate() {
-        let mid = min.y + 6.0 + line_h * (i as f64 + 0.5);
+        let mid = min.y + 6.0 + LEGEND_LINE * (i as f64 + 0.5);
         match mark {
             Mark::Line(color, w) => out.push(line(
                 DVec2::new(min.x + 8.0, mid),
-                DVec2::new(min.x + 8.0 + sample, mid),
+                DVec2::new(min.x + 8.0 + LEGEND_SAMPLE, mid),
                 Stroke::solid(color, w),
             )),
             Mark::Marker(kind) => {
                 let (ring, core) = marker_style(kind, LEGEND_CURVE);
                 for s in [ring, core] {
                     out.push(Item::Disc {
-                        center: DVec2::new(min.x + 8.0 + 0.5 * sample, mid),
+                        center: DVec2::new(min.x + 8.0 + 0.5 * LEGEND_SAMPLE, mid),
                         radius: 0.5 * f64::from(s.width_px),
                         color: s.color,
                     });
@@ -173,7 +315,7 @@ pub fn legend(scene: &Scene, size: DVec2, markers: &[MarkerKind], out: &mut Vec<
             Mark::None => {}
         }
         out.push(Item::Text {
-            at: DVec2::new(min.x + 8.0 + sample + 6.0, mid + 0.35 * LEGEND_SIZE),
+            at: DVec2::new(min.x + 8.0 + LEGEND_SAMPLE + 6.0, mid + 0.35 * LEGEND_SIZE),
             size: LEGEND_SIZE,
             text,
             color: INK,

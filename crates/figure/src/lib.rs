@@ -430,11 +430,22 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
     }
     let front = items.len();
     items.extend(guides);
-    if opts.labels {
-        annotate::labels(scene, &proj, size, &mut items);
-    }
-    if opts.legend {
-        annotate::legend(scene, size, &opts.shape.marker_kinds(), &mut items);
+    if opts.labels || opts.legend {
+        let ink = annotate::ink(scene, &proj, size);
+        let legend = if opts.legend {
+            annotate::legend_layout(scene, size, &opts.shape.marker_kinds(), &ink, opts.labels)
+        } else {
+            None
+        };
+        let blocked: Vec<(DVec2, DVec2)> = legend.iter().map(annotate::Legend::area).collect();
+        let hidden = if opts.labels {
+            annotate::labels(scene, &proj, size, &ink, &blocked, &mut items)
+        } else {
+            0
+        };
+        if let Some(legend) = legend {
+            annotate::legend(legend, hidden, &mut items);
+        }
     }
     let fig = Figure {
         width: size.x,

@@ -11,6 +11,7 @@ pub mod encoding;
 pub mod gallery;
 pub mod generate;
 mod json;
+pub mod labels;
 pub mod point_doc;
 mod preserve;
 pub mod shape;

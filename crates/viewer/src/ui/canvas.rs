@@ -1,6 +1,6 @@
 //! The canvas: curve labels, the pointer's gestures and the context menu.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use crate::camera::Camera;
 use crate::digest::{CurveSummary, LISTED_CURVES, SceneDigest};
@@ -116,8 +116,11 @@ pub(crate) fn canvas(
     }
     if model.toggles.show_labels && scene.curves.len() <= LISTED_CURVES {
         let [r, g, b, _] = scene.background.0.map(|v| (v * 255.0).round() as u8);
+        // Right of the panel: the canvas the curves are seen in.
+        let mut area = ctx.content_rect();
+        area.min.x += (model.panel_width_px / ppp) as f32;
         curve_labels(
-            &painter,
+            &painter.with_clip_rect(area),
             scene,
             &digest.summaries,
             &pixel,
@@ -157,10 +160,12 @@ fn axis_labels(
     }
 }
 
-/// Each curve's name (and live parameters) beside its middle point, in its colour on a
-/// translucent plate of the scene's background, moved to another side of the point when it
-/// would cover a label already placed or leave the window (and left out when no side
-/// will do).
+/// Each curve's name (and live parameters) in its colour on a translucent plate of the
+/// scene's background, placed by the search figures use
+/// ([`crate::scene::labels`]): along its curve, clear of every other label, off the
+/// curves where a free spot exists, inside the canvas, with a leader line where it stands
+/// off; kept where it was last frame while that place stays good (no jumping during a
+/// drag); hidden, and counted in the canvas's corner, where no place is free.
 pub(crate) fn curve_labels(
     painter: &egui::Painter,
     scene: &Scene,
@@ -168,41 +173,111 @@ pub(crate) fn curve_labels(
     pixel: &dyn Fn(DVec3) -> Option<egui::Pos2>,
     plate: egui::Color32,
 ) {
-    let mut placed: Vec<egui::Rect> = Vec::new();
-    for (sc, summary) in scene.curves.iter().zip(summaries) {
+    use crate::scene::labels::{ANCHORS, Choice, Ink, LabelRequest, place};
+    use splinescope_core::geom::Lower;
+    let screen = painter.clip_rect();
+    let origin = screen.min;
+    let local = |p: egui::Pos2| DVec2::new(f64::from(p.x - origin.x), f64::from(p.y - origin.y));
+    let size = DVec2::new(f64::from(screen.width()), f64::from(screen.height()));
+    let mut ink = Ink::new(size);
+    for sc in &scene.curves {
         let (a, b) = sc.curve.domain();
-        let Some(at) = pixel(sc.curve.eval(0.5 * (a + b))) else {
-            continue;
-        };
-        let [r, g, bl, _] = sc.style.color.0.map(|v| (v * 255.0).round() as u8);
-        let galley = painter.layout_no_wrap(
-            summary.name.clone(),
-            egui::FontId::proportional(12.0),
-            egui::Color32::from_rgb(r, g, bl),
+        let n = 64 * sc.curve.lower().len().clamp(1, 64);
+        let points: Vec<DVec2> = (0..=n)
+            .filter_map(|k| pixel(sc.curve.eval(a + (b - a) * k as f64 / n as f64)))
+            .map(local)
+            .collect();
+        ink.add_polyline(&points);
+    }
+    let galleys: Vec<_> = scene
+        .curves
+        .iter()
+        .zip(summaries)
+        .map(|(sc, summary)| {
+            let [r, g, bl, _] = sc.style.color.0.map(|v| (v * 255.0).round() as u8);
+            painter.layout_no_wrap(
+                summary.name.clone(),
+                egui::FontId::proportional(12.0),
+                egui::Color32::from_rgb(r, g, bl),
+            )
+        })
+        .collect();
+    let requests: Vec<LabelRequest> = scene
+        .curves
+        .iter()
+        .zip(&galleys)
+        .map(|(sc, galley)| {
+            let (a, b) = sc.curve.domain();
+            let size = galley.size() + egui::vec2(4.0, 4.0);
+            LabelRequest {
+                anchors: ANCHORS
+                    .iter()
+                    .map(|f| pixel(sc.curve.eval(a + f * (b - a))).map_or(DVec2::NAN, local))
+                    .collect(),
+                size: DVec2::new(f64::from(size.x), f64::from(size.y)),
+            }
+        })
+        .collect();
+    let id = egui::Id::unique("splinescope-label-places");
+    let keep: Vec<Option<Choice>> = painter
+        .ctx()
+        .data(|d| d.get_temp::<Vec<Option<Choice>>>(id))
+        .filter(|k| k.len() == requests.len())
+        .unwrap_or_default();
+    let placed = place(&requests, &ink, size, &[], &keep);
+    painter.ctx().data_mut(|d| {
+        d.insert_temp(
+            id,
+            placed
+                .iter()
+                .map(|p| p.map(|p| p.choice))
+                .collect::<Vec<Option<Choice>>>(),
         );
-        let size = galley.size();
-        let sides = [
-            egui::vec2(8.0, -8.0 - size.y),
-            egui::vec2(8.0, 8.0),
-            egui::vec2(-8.0 - size.x, -8.0 - size.y),
-            egui::vec2(-8.0 - size.x, 8.0),
-        ];
-        let screen = painter.clip_rect();
-        let Some(rect) = sides
-            .iter()
-            .map(|d| egui::Rect::from_min_size(at + *d, size).expand(2.0))
-            .find(|r| screen.contains_rect(*r) && placed.iter().all(|p| !p.intersects(*r)))
-        else {
+    });
+    let to_pos = |p: DVec2| origin + egui::vec2(p.x as f32, p.y as f32);
+    let mut hidden = 0;
+    for (galley, p) in galleys.into_iter().zip(placed) {
+        let Some(p) = p else {
+            hidden += 1;
             continue;
         };
+        if let Some((a, b)) = p.leader {
+            painter.line_segment(
+                [to_pos(a), to_pos(b)],
+                egui::Stroke::new(1.0, galley_color(&galley).gamma_multiply(0.6)),
+            );
+        }
+        let rect = egui::Rect::from_min_max(to_pos(p.min), to_pos(p.max));
         painter.rect_filled(rect, 3.0, plate.gamma_multiply(0.75));
         painter.galley(
             rect.min + egui::vec2(2.0, 2.0),
             galley,
             egui::Color32::WHITE,
         );
-        placed.push(rect);
     }
+    if hidden > 0 {
+        let text = if hidden == 1 {
+            "1 label hidden".to_owned()
+        } else {
+            format!("{hidden} labels hidden")
+        };
+        painter.text(
+            screen.left_bottom() + egui::vec2(8.0, -6.0),
+            egui::Align2::LEFT_BOTTOM,
+            text,
+            egui::FontId::proportional(12.0),
+            egui::Color32::GRAY,
+        );
+    }
+}
+
+/// The colour a galley's text was laid out in.
+fn galley_color(galley: &egui::Galley) -> egui::Color32 {
+    galley
+        .job
+        .sections
+        .first()
+        .map_or(egui::Color32::GRAY, |s| s.format.color)
 }
 
 /// The right-click menu at `at` (points): add a curve there, insert or delete a point,
