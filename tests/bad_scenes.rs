@@ -6,17 +6,18 @@ use std::process::Command;
 
 use splinescope::scene::{Scene, SceneErrorKind};
 
-/// (file, path the error must name, fragment its message must contain).
+/// (file, path the error must name — empty for the document as a whole, which the message
+/// then names no path for — fragment its message must contain).
 const EXPECTED: &[(&str, &str, &str)] = &[
     (
         "not-json",
-        "(root)",
+        "",
         "invalid JSON at line 2, column 0: EOF while parsing a list",
     ),
-    ("empty-file", "(root)", "invalid JSON"),
+    ("empty-file", "", "invalid JSON"),
     (
         "root-is-array",
-        "(root)",
+        "",
         "expected an object, found an array of 2 items",
     ),
     ("missing-version", "version", "missing"),
@@ -364,6 +365,7 @@ fn the_cli_reports_each_bad_scene_and_exits_1_without_panicking() {
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(1), "{file}: {stderr}");
         assert!(stderr.contains(&format!("{path}: ")), "{file}: {stderr}");
+        assert!(!stderr.contains("(root)"), "{file}: {stderr}");
         assert!(stderr.contains(fragment), "{file}: {stderr}");
         assert!(!stderr.contains("panicked"), "{file}: {stderr}");
     }

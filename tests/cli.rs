@@ -199,11 +199,11 @@ fn bad_eval_arguments_name_the_offending_value() {
         (&["eval", &path], "give --samples N or --params"),
         (
             &["eval", &path, "--samples", "3", "--curve", "99"],
-            "--curve 99: the scene has 25 curve(s) (indices 0..24)",
+            "--curve 99: the scene has 25 curve(s) (indices 0 to 24)",
         ),
         (
             &["eval", "/nonexistent/scene.json", "--samples", "3"],
-            "/nonexistent/scene.json: (root): cannot read the file",
+            "/nonexistent/scene.json: cannot read the file",
         ),
     ];
     for (args, want) in cases {
@@ -959,4 +959,34 @@ fn inspect_reports_cubic_subtypes_and_interpolation_weights() {
         vec![[0.0, 6.0, 0.0], [6.0, 0.0, 0.0], [0.0, -6.0, 0.0]]
     );
     assert_eq!(c["parabola_weights"], serde_json::json!([0.5, 0.5]));
+}
+
+/// Whole numbers out of their range are refused with the range in words, never in Rust's
+/// range syntax.
+#[test]
+fn out_of_range_numbers_are_refused_in_words() {
+    let cases: [(&[&str], &str); 4] = [
+        (
+            &["render", "-o", "/dev/null/never.png", "--width", "0"],
+            "0 is not a whole number between 1 and 16384",
+        ),
+        (
+            &["view", "--stress", "5", "--degree", "40"],
+            "40 is not a whole number between 1 and 31",
+        ),
+        (
+            &["eval", "--samples", "1"],
+            "1 is not a whole number between 2 and 10000000",
+        ),
+        (
+            &["export", "-o", "/dev/null/never.svg", "--height", "wide"],
+            "wide is not a whole number between 1 and 16384",
+        ),
+    ];
+    for (args, want) in cases {
+        let (code, err) = stderr_of(args);
+        assert_eq!(code, Some(2), "{args:?}: {err}");
+        assert!(err.contains(want), "{args:?}: {err}");
+        assert!(!err.contains("..="), "{args:?}: {err}");
+    }
 }

@@ -83,9 +83,9 @@ fn pdf_reads(path: &Path) {
     );
 }
 
-/// Labels and a legend fit any figure size: a figure lower than one line of text keeps
-/// its labels on the first line instead of panicking in the placement (10×10, 50×10,
-/// 100×16, 1×1), for the library, `export` (SVG, PDF) and `render`.
+/// Labels and a legend fit any figure size: on a figure too small for them the labels are
+/// hidden (counted) instead of drawn past the page or panicking in the placement (10×10,
+/// 50×10, 100×16, 1×1), for the library, `export` (SVG, PDF) and `render`.
 #[test]
 fn labels_on_tiny_figures() {
     let scene = gallery::gallery();
@@ -94,12 +94,24 @@ fn labels_on_tiny_figures() {
         opts.labels = true;
         opts.legend = true;
         let fig = build(&scene, &opts).unwrap_or_else(|e| panic!("{w}×{h}: {e}"));
-        let texts = fig
+        // Labels with no room are hidden (and counted), never drawn past the page.
+        let labels: Vec<&Item> = fig
             .items
             .iter()
-            .filter(|i| matches!(i, Item::Text { .. }))
-            .count();
-        assert!(texts >= scene.curves.len(), "{w}×{h}: {texts} texts");
+            .filter(|i| matches!(i, Item::Text { size, .. } if *size == 12.0))
+            .collect();
+        for l in &labels {
+            if let Item::Text { at, text, .. } = l {
+                assert!(
+                    at.x >= 0.0 && at.y >= 0.0 && at.x <= f64::from(w) && at.y <= f64::from(h),
+                    "{w}×{h}: {text:?} at {at}"
+                );
+            }
+        }
+        assert!(
+            fig.items.iter().any(|i| matches!(i, Item::Text { .. })),
+            "{w}×{h}: no text at all (the legend's rows)"
+        );
         svg_numbers(&svg::write(&fig));
     }
     let dir = tempdir("tiny");

@@ -219,7 +219,7 @@ pub enum FigureError {
     )]
     AxesIn3d,
     /// A side of the output is zero or too large.
-    #[error("figure size {width}×{height}: each side must be 1..=100000 points")]
+    #[error("figure size {width}×{height}: each side must be between 1 and 100000 points")]
     Size {
         /// Width asked for.
         width: u32,

@@ -105,7 +105,9 @@ pub enum GpuError {
     #[error(transparent)]
     Pack(#[from] PackError),
     /// An image size the device cannot render.
-    #[error("image size {width}×{height} is not allowed (each side 1..={max} on this device)")]
+    #[error(
+        "image size {width}×{height} is not allowed (each side between 1 and {max} on this device)"
+    )]
     ImageSize {
         /// Requested width.
         width: u32,

@@ -41,7 +41,8 @@ pub(crate) fn describe_number(n: &Number) -> String {
 /// path.
 ///
 /// # Errors
-/// The syntax error, at `(root)`, with line and column; a duplicated key at its path.
+/// The syntax error (of the whole document), with line and column; a duplicated key at
+/// its path.
 pub(crate) fn parse_document(text: &str) -> Result<Value, SceneError> {
     let (value, parsed): (Value, std::borrow::Cow<'_, str>) = match serde_json::from_str(text) {
         Ok(v) => (v, text.into()),
@@ -151,7 +152,7 @@ fn syntax_error(e: &serde_json::Error) -> SceneError {
         None => full,
     };
     SceneError::new(
-        "(root)",
+        "",
         SceneErrorKind::Syntax {
             line: e.line(),
             column: e.column(),
@@ -227,12 +228,9 @@ impl<'a> Node<'a> {
         }
     }
 
+    /// The node's JSON path (empty for the document itself).
     pub(crate) fn display_path(&self) -> String {
-        if self.path.is_empty() {
-            "(root)".into()
-        } else {
-            self.path.clone()
-        }
+        self.path.clone()
     }
 
     pub(crate) fn err(&self, kind: SceneErrorKind) -> SceneError {

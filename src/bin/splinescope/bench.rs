@@ -32,7 +32,7 @@ pub struct BenchArgs {
     #[arg(long, value_delimiter = ',', default_value = "100000", value_parser = parse_count, allow_hyphen_values = true)]
     curves: Vec<u64>,
     /// Degrees, e.g. `3,5,12,31` (above the GPU's maximum of 31 only the CPU rows run).
-    #[arg(long = "degrees", visible_alias = "degree", value_delimiter = ',', default_value = "3", value_parser = clap::value_parser!(u64).range(1..=63), allow_hyphen_values = true)]
+    #[arg(long = "degrees", visible_alias = "degree", value_delimiter = ',', default_value = "3", value_parser = crate::words::between::<u64>(1, 63), allow_hyphen_values = true)]
     degrees: Vec<u64>,
     /// Families, any of the scene format's: `bezier`, `modified_bezier` (`t* = 1/2`),
     /// `interpolation` (degree + 1 points, cubic pieces), `bspline` (clamped uniform, four
@@ -41,10 +41,10 @@ pub struct BenchArgs {
     #[arg(long, value_delimiter = ',', default_value = "bezier", value_parser = parse_family)]
     families: Vec<StressFamily>,
     /// Samples per Bézier segment (per curve for Bézier curves), e.g. `16,64,256`.
-    #[arg(long, value_delimiter = ',', default_value = "64", value_parser = clap::value_parser!(u32).range(2..=4096), allow_hyphen_values = true)]
+    #[arg(long, value_delimiter = ',', default_value = "64", value_parser = crate::words::between::<u32>(2, 4096), allow_hyphen_values = true)]
     samples: Vec<u32>,
     /// Timed repetitions of each GPU measurement (after one warm-up).
-    #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=10_000), allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 10, value_parser = crate::words::between::<u32>(1, 10_000), allow_hyphen_values = true)]
     iterations: u32,
     /// Also draw this many whole frames offscreen (compute + lines) at 1920×1080; 0 skips.
     #[arg(long, default_value_t = 5, allow_hyphen_values = true)]

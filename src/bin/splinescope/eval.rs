@@ -18,7 +18,7 @@ pub struct EvalArgs {
     /// Scene file (JSON).
     pub scene: PathBuf,
     /// Number of uniform parameters over each curve's whole domain (ends included).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(2..=10_000_000), conflicts_with = "params", allow_hyphen_values = true)]
+    #[arg(long, value_parser = crate::words::between::<u32>(2, 10_000_000), conflicts_with = "params", allow_hyphen_values = true)]
     pub samples: Option<u32>,
     /// Comma-separated parameters, in each curve's own parameter.
     #[arg(long, value_name = "T0,T1,...", allow_hyphen_values = true)]
@@ -31,7 +31,7 @@ pub struct EvalArgs {
     pub curve: Option<usize>,
     /// Also print the first derivative P′ (`1`), or P′, P″ and the curvature (`2`), at
     /// each parameter.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=2), allow_hyphen_values = true)]
+    #[arg(long, value_parser = crate::words::between::<u32>(1, 2), allow_hyphen_values = true)]
     pub derivatives: Option<u32>,
     #[command(flatten)]
     pub gpu: GpuArgs,

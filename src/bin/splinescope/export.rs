@@ -19,10 +19,10 @@ pub struct ExportArgs {
     #[arg(short, long, value_name = "FIG")]
     pub output: PathBuf,
     /// Width in points (pixels for a PNG).
-    #[arg(long, default_value_t = 1200, value_parser = clap::value_parser!(u32).range(1..=16384), allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 1200, value_parser = crate::words::between::<u32>(1, 16384), allow_hyphen_values = true)]
     pub width: u32,
     /// Height in points (pixels for a PNG).
-    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(1..=16384), allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 800, value_parser = crate::words::between::<u32>(1, 16384), allow_hyphen_values = true)]
     pub height: u32,
     /// Largest distance, in output points, between a written piece and the exact curve
     /// (segments of degree ≤ 3 in a 2D view are written exactly).

@@ -25,6 +25,7 @@ mod render;
 mod schema;
 mod solve;
 mod view;
+mod words;
 
 /// `println!` that returns the I/O error instead of panicking (a closed pipe, say).
 macro_rules! say {
@@ -250,7 +251,7 @@ fn run(cli: Cli) -> Result<()> {
 fn select_curves(scene: &Scene, only: Option<usize>) -> Result<Vec<usize>> {
     match only {
         Some(i) if i >= scene.curves.len() => bail!(
-            "--curve {i}: the scene has {} curve(s) (indices 0..{})",
+            "--curve {i}: the scene has {} curve(s) (indices 0 to {})",
             scene.curves.len(),
             scene.curves.len().saturating_sub(1)
         ),

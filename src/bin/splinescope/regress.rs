@@ -18,10 +18,10 @@ pub struct RegressArgs {
     #[arg(long)]
     pub bless: bool,
     /// Render width in pixels.
-    #[arg(long, default_value_t = 640, value_parser = clap::value_parser!(u32).range(1..=16384), allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 640, value_parser = crate::words::between::<u32>(1, 16384), allow_hyphen_values = true)]
     pub width: u32,
     /// Render height in pixels.
-    #[arg(long, default_value_t = 480, value_parser = clap::value_parser!(u32).range(1..=16384), allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 480, value_parser = crate::words::between::<u32>(1, 16384), allow_hyphen_values = true)]
     pub height: u32,
     /// When images match: channel=N (largest per-channel difference that does not
     /// count), pixels=P% (largest share of differing pixels), flip=F (largest FLIP mean;

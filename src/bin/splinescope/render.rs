@@ -18,10 +18,10 @@ pub struct RenderArgs {
     #[arg(short, long, value_name = "PNG")]
     pub output: PathBuf,
     /// Image width in pixels.
-    #[arg(long, default_value_t = 1200, value_parser = clap::value_parser!(u32).range(1..=16384), allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 1200, value_parser = crate::words::between::<u32>(1, 16384), allow_hyphen_values = true)]
     pub width: u32,
     /// Image height in pixels.
-    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(1..=16384), allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 800, value_parser = crate::words::between::<u32>(1, 16384), allow_hyphen_values = true)]
     pub height: u32,
     /// How far, in pixels, a drawn polyline may stray from its curve.
     #[arg(long, default_value_t = splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX, value_parser = parse_tolerance_px, allow_hyphen_values = true)]

@@ -16,18 +16,18 @@ pub struct ViewArgs {
     /// Scene file (JSON); omit for the built-in gallery.
     pub scene: Option<PathBuf>,
     /// Exit after this many presented frames (smoke tests).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..), allow_hyphen_values = true)]
+    #[arg(long, value_parser = crate::words::at_least::<u64>(1), allow_hyphen_values = true)]
     pub frames: Option<u64>,
     /// Instead of a scene, show this many random curves (stress mode; Bézier unless
     /// --family says otherwise).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=10_000_000), conflicts_with = "scene", allow_hyphen_values = true)]
+    #[arg(long, value_parser = crate::words::between::<u64>(1, 10_000_000), conflicts_with = "scene", allow_hyphen_values = true)]
     pub stress: Option<u64>,
     /// Family of the stress curves (a name of the family table: bezier, modified_bezier,
     /// interpolation, bspline, nubmp, rational_bezier, nurbs).
     #[arg(long, default_value = "bezier", value_parser = crate::bench::parse_family, requires = "stress")]
     pub family: splinescope::scene::generate::StressFamily,
     /// Degree of the stress curves.
-    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=31), requires = "stress", allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 3, value_parser = crate::words::between::<u64>(1, 31), requires = "stress", allow_hyphen_values = true)]
     pub degree: u64,
     /// With --stress: re-solve every curve each frame (paper 000, one moving target
     /// per curve) and draw the result.

@@ -178,12 +178,22 @@ pub struct Annotation {
 
 /// Why a scene could not be read: the path of the offending value and what is wrong.
 #[derive(Debug, Clone, PartialEq, Error)]
-#[error("{path}: {kind}")]
+#[error("{}{kind}", at(path))]
 pub struct SceneError {
-    /// Where, as a JSON path from the document root (`curves[3].points[2]`), or `(root)`.
+    /// Where, as a JSON path from the document root (`curves[3].points[2]`); empty for the
+    /// document as a whole (the message then names no path).
     pub path: String,
     /// What.
     pub kind: SceneErrorKind,
+}
+
+/// `path: ` before a message, nothing for the whole document (an empty path).
+pub(crate) fn at(path: &str) -> String {
+    if path.is_empty() {
+        String::new()
+    } else {
+        format!("{path}: ")
+    }
 }
 
 /// What is wrong with a scene value.
@@ -284,7 +294,7 @@ impl Scene {
     /// A [`SceneError`] naming the offending value (or the I/O problem).
     pub fn read(path: &Path) -> Result<(Scene, String), SceneError> {
         let text = crate::limits::read_bounded(path)
-            .map_err(|e| SceneError::new("(root)", SceneErrorKind::Io(e.to_string())))?;
+            .map_err(|e| SceneError::new("", SceneErrorKind::Io(e.to_string())))?;
         let scene = from_json_str(&text)?;
         Ok((scene, text))
     }

@@ -10,9 +10,9 @@ use crate::solve::SolveError;
 /// Why a request could not be applied: the path of the offending value in the request
 /// document (`[1].target`, `first`) and what is wrong.
 #[derive(Debug, Clone, PartialEq, Error)]
-#[error("{path}: {message}")]
+#[error("{}{message}", crate::format::at(path))]
 pub struct RequestError {
-    /// Where, as a JSON path in the request document, or `(root)`.
+    /// Where, as a JSON path in the request document; empty for the document as a whole.
     pub path: String,
     /// What.
     pub message: String,
