@@ -785,6 +785,12 @@ fn labels_never_overlap_on_the_written_page() {
     let mut cases = vec![
         ("gallery", gallery::gallery(), 1200, 800),
         ("gallery small", gallery::gallery(), 640, 400),
+        (
+            "gallery with axes, combs and markers",
+            gallery::gallery(),
+            1000,
+            700,
+        ),
     ];
     for (curves, seed) in [(30, 1), (80, 2)] {
         let mut scene = random_bezier_scene(StressOptions {
@@ -806,6 +812,14 @@ fn labels_never_overlap_on_the_written_page() {
         let mut opts = FigureOptions::new(w, h);
         opts.labels = true;
         opts.legend = true;
+        if name.contains("axes") {
+            opts.axes = true;
+            opts.grid = true;
+            opts.shape.comb = Some(splinescope::scene::shape::CombScale::Auto);
+            opts.shape.inflections = true;
+            opts.shape.curvature_extrema = true;
+            opts.shape.intersections = true;
+        }
         let fig = build(&scene, &opts).expect("figure");
         let what = format!("{name} ({} curves, {w}×{h})", scene.curves.len());
         // SVG: the font's metrics.

@@ -6,7 +6,6 @@ use glam::DVec2;
 
 use splinescope_core::geom::ParamCurve;
 
-use splinescope_core::geom::Lower;
 use splinescope_scene::format::draw::{MarkerKind, Stroke, marker_style};
 use splinescope_scene::format::labels::{ANCHORS, Ink, LabelRequest, corner, place};
 use splinescope_scene::format::{Color, Scene};
@@ -54,35 +53,79 @@ fn line(a: DVec2, b: DVec2, stroke: Stroke) -> Item {
     }
 }
 
-/// The ink the labels and the legend keep clear of: every curve (sampled densely and
-/// projected) and every control polygon shown.
+/// The ink the labels and the legend keep clear of: everything `items` draws — curves,
+/// control polygons and points, combs, markers — its paths flattened (Bézier pieces at
+/// 16 points) and its discs as their boxes.
 #[must_use]
-pub fn ink(scene: &Scene, proj: &Projection, size: DVec2) -> Ink {
+pub fn ink(items: &[Item], size: DVec2) -> Ink {
     let mut ink = Ink::new(size);
-    for sc in &scene.curves {
-        let (a, b) = sc.curve.domain();
-        let n = 64 * sc.curve.lower().len().clamp(1, 64);
-        let points: Vec<DVec2> = (0..=n)
-            .filter_map(|k| proj.point(sc.curve.eval(a + (b - a) * k as f64 / n as f64)))
-            .collect();
-        ink.add_polyline(&points);
-        if sc.style.show_polygon || sc.style.show_points {
-            let polygon: Vec<DVec2> = sc
-                .curve
-                .control_points()
-                .iter()
-                .filter_map(|p| proj.point(*p))
-                .collect();
-            if sc.style.show_polygon {
-                ink.add_polyline(&polygon);
-            } else {
-                for p in polygon {
-                    ink.add_polyline(&[p]);
+    for item in items {
+        match item {
+            Item::Path { runs, .. } => {
+                for run in runs {
+                    let mut points = vec![run.start];
+                    let mut at = run.start;
+                    for piece in &run.pieces {
+                        match piece.seg {
+                            Seg::Line(b) => points.push(b),
+                            Seg::Quad(c, b) => {
+                                points.extend((1..=16).map(|k| {
+                                    let t = f64::from(k) / 16.0;
+                                    let u = 1.0 - t;
+                                    u * u * at + 2.0 * u * t * c + t * t * b
+                                }));
+                            }
+                            Seg::Cubic(c1, c2, b) => {
+                                points.extend((1..=16).map(|k| {
+                                    let t = f64::from(k) / 16.0;
+                                    let u = 1.0 - t;
+                                    u * u * u * at
+                                        + 3.0 * u * u * t * c1
+                                        + 3.0 * u * t * t * c2
+                                        + t * t * t * b
+                                }));
+                            }
+                        }
+                        at = piece.seg.end();
+                    }
+                    ink.add_polyline(&points);
                 }
             }
+            Item::Disc { center, radius, .. } => {
+                let r = DVec2::splat(*radius);
+                let (a, b) = (*center - r, *center + r);
+                ink.add_polyline(&[a, DVec2::new(b.x, a.y), b, DVec2::new(a.x, b.y), a]);
+            }
+            Item::Text { .. } | Item::Rect { .. } => {}
         }
     }
     ink
+}
+
+/// The box a text item covers (its advance widths, an ascent of one size and a descent
+/// of a quarter), `None` for another item.
+#[must_use]
+pub fn text_box(item: &Item) -> Option<(DVec2, DVec2)> {
+    let Item::Text {
+        at,
+        size,
+        text,
+        anchor,
+        ..
+    } = item
+    else {
+        return None;
+    };
+    let w = width(text, *size);
+    let left = match anchor {
+        Anchor::Start => at.x,
+        Anchor::Middle => at.x - 0.5 * w,
+        Anchor::End => at.x - w,
+    };
+    Some((
+        DVec2::new(left, at.y - size),
+        DVec2::new(left + w, at.y + 0.25 * size),
+    ))
 }
 
 /// The padding around a label's text inside its box.

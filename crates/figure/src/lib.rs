@@ -431,13 +431,20 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
     let front = items.len();
     items.extend(guides);
     if opts.labels || opts.legend {
-        let ink = annotate::ink(scene, &proj, size);
+        // Clear of everything drawn over the guides: curves, polygons, points, combs,
+        // markers.
+        let ink = annotate::ink(&items[behind..], size);
         let legend = if opts.legend {
             annotate::legend_layout(scene, size, &opts.shape.marker_kinds(), &ink, opts.labels)
         } else {
             None
         };
-        let blocked: Vec<(DVec2, DVec2)> = legend.iter().map(annotate::Legend::area).collect();
+        // The legend and the text already placed (tick labels).
+        let blocked: Vec<(DVec2, DVec2)> = legend
+            .iter()
+            .map(annotate::Legend::area)
+            .chain(items.iter().filter_map(annotate::text_box))
+            .collect();
         let hidden = if opts.labels {
             annotate::labels(scene, &proj, size, &ink, &blocked, &mut items)
         } else {
