@@ -121,7 +121,7 @@ pub(crate) fn canvas(
         area.min.x += (model.panel_width_px / ppp) as f32;
         curve_labels(
             &painter.with_clip_rect(area),
-            scene,
+            (scene, model.toggles),
             &digest.summaries,
             &pixel,
             egui::Color32::from_rgb(r, g, b),
@@ -168,7 +168,7 @@ fn axis_labels(
 /// drag); hidden, and counted in the canvas's corner, where no place is free.
 pub(crate) fn curve_labels(
     painter: &egui::Painter,
-    scene: &Scene,
+    (scene, toggles): (&Scene, crate::interaction::Toggles),
     summaries: &[CurveSummary],
     pixel: &dyn Fn(DVec3) -> Option<egui::Pos2>,
     plate: egui::Color32,
@@ -188,6 +188,21 @@ pub(crate) fn curve_labels(
             .map(local)
             .collect();
         ink.add_polyline(&points);
+        // The control polygon and points as shown.
+        let polygon: Vec<DVec2> = sc
+            .curve
+            .control_points()
+            .iter()
+            .filter_map(|p| pixel(*p))
+            .map(local)
+            .collect();
+        if toggles.show_polygons && sc.style.show_polygon {
+            ink.add_polyline(&polygon);
+        } else if toggles.show_points && sc.style.show_points {
+            for p in polygon {
+                ink.add_polyline(&[p]);
+            }
+        }
     }
     let galleys: Vec<_> = scene
         .curves
