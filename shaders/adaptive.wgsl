@@ -128,7 +128,43 @@ fn wang_count(seg: Segment) -> u32 {
     if (!(intervals < f32(frame.max_count))) {
         return frame.max_count;
     }
-    return clamp(max(u32(intervals) + 1u, frame.min_count), 2u, frame.max_count);
+    return clamp(max(u32(intervals) + 1u, comb_floor(seg)), 2u, frame.max_count);
+}
+
+// While a comb is drawn (frame.min_count > 0), a segment on screen gets at least as many
+// samples as its hairs: their slots hold them.
+fn comb_floor(seg: Segment) -> u32 {
+    if (frame.min_count == 0u) {
+        return 0u;
+    }
+    return min(comb_hairs_of(seg), frame.min_count);
+}
+
+// The hairs of a segment: one every COMB_SPACING_PX pixels of its projected control
+// polygon and one more, from 2 to COMB_HAIRS (the most when a point is at or behind the
+// eye, or the length is not finite). Twin: hairs_for in the core's comb module (figures)
+// and comb_hairs_of in src/gpu/twin.rs.
+fn comb_hairs_of(seg: Segment) -> u32 {
+    let n = min(seg.degree, MAX_DEGREE);
+    let half = 0.5 * frame.viewport_px;
+    var length = 0.0;
+    var previous = vec2<f32>(0.0);
+    for (var i = 0u; i <= n; i++) {
+        let q = points[seg.first_point + i];
+        let c = frame.clip_from_world * vec4<f32>(q.position, q.weight);
+        if (!(c.w > 0.0)) {
+            return COMB_HAIRS;
+        }
+        let p = vec2<f32>(c.x * half.x, -c.y * half.y) / c.w;
+        if (i > 0u) {
+            length += distance(p, previous);
+        }
+        previous = p;
+    }
+    if (!(length < 1e9)) {
+        return COMB_HAIRS;
+    }
+    return clamp(u32(ceil(length / COMB_SPACING_PX)) + 1u, 2u, COMB_HAIRS);
 }
 
 // Twin: WEIGHT_ROUNDING in src/gpu/twin.rs. Above (n + 3) · 2⁻²⁴ for every degree up to
@@ -432,10 +468,14 @@ const COMB_HIDDEN: u32 = 0x80000000u;
 const COMB_PARITY: u32 = 0x40000000u;
 // A capped hair's tip: drawn in the envelope's stroke (twin: COMB_CAPPED in layout.rs).
 const COMB_CAPPED: u32 = 0x20000000u;
-// Hairs per segment, uniform in its parameter, ends included; the segment's samples'
-// slots hold them (the count kernel gives each segment on screen at least this many
-// while a comb is drawn). Twin: COMB_HAIRS_PER_SEGMENT in the core's comb module.
+// The most hairs per segment, uniform in its parameter, ends included; the segment's
+// samples' slots hold them (the count kernel gives each segment on screen at least as
+// many samples as hairs while a comb is drawn). Twin: COMB_HAIRS_PER_SEGMENT in the
+// core's comb module.
 const COMB_HAIRS: u32 = 32u;
+// The hairs' spacing along a segment's projected control polygon, in pixels. Twin:
+// COMB_SPACING_PX in the core's comb module.
+const COMB_SPACING_PX: f32 = 4.0;
 
 @group(1) @binding(0) var<uniform> comb: Comb;
 // Two vertices per sample: the point on the curve, then the hair's tip. The samples'
@@ -550,10 +590,10 @@ fn comb_work(slot: u32, first_lane: u32) -> AdaptiveWork {
     return adaptive_work(slot);
 }
 
-// The hairs a segment of `count` sample slots gets: COMB_HAIRS, fewer only where the
-// sample budget cut its count.
-fn comb_hairs(count: u32) -> u32 {
-    return min(count, COMB_HAIRS);
+// The hairs segment `seg` of `count` sample slots gets: comb_hairs_of, fewer only where
+// the sample budget cut its count.
+fn comb_hairs(seg: Segment, count: u32) -> u32 {
+    return min(count, comb_hairs_of(seg));
 }
 
 // The tag of a hidden envelope vertex at slot `slot`: never equal to a neighbour's.
@@ -604,7 +644,7 @@ fn comb_segment(slot: u32, first_lane: u32, stride: u32) {
         return;
     }
     let n = min(w.seg.degree, MAX_DEGREE);
-    let hairs = comb_hairs(w.count);
+    let hairs = comb_hairs(w.seg, w.count);
     for (var j = first_lane; j < w.count; j += stride) {
         if (j < hairs) {
             write_hair(w, j, point_and_curvature(w.seg.first_point, n, adaptive_param(j, hairs)));
@@ -630,7 +670,7 @@ fn comb_cubic(
     for (var i = 0u; i < 4u; i++) {
         h[i] = control_point4(w.seg.first_point, i);
     }
-    let hairs = comb_hairs(w.count);
+    let hairs = comb_hairs(w.seg, w.count);
     for (var j = first_lane; j < w.count; j += SEGMENT_LANES) {
         if (j < hairs) {
             write_hair(w, j, cubic_point_and_curvature(h, adaptive_param(j, hairs)));

@@ -15,10 +15,13 @@ use splinescope::geom::{
 };
 use splinescope::gpu::adaptive::{FrameSettings, read_work};
 use splinescope::gpu::capture::OFFSCREEN_FORMAT;
-use splinescope::gpu::layout::{COMB_CAPPED, COMB_HAIRS, COMB_HIDDEN, GpuVertex, WORK_HEADER};
+use splinescope::gpu::layout::{
+    COMB_CAPPED, COMB_HAIRS, COMB_HIDDEN, GpuFrame, GpuVertex, WORK_HEADER,
+};
 use splinescope::gpu::pack::{PreparedScene, curve_tags};
 use splinescope::gpu::renderer::{CombRequest, GpuScene, Renderer, camera_uniform};
 use splinescope::gpu::tessellator::read_buffer;
+use splinescope::gpu::twin::comb_hairs_of;
 use splinescope::scene::{Scene, SceneCurve, Style, ViewSpec};
 
 const VIEWPORT: DVec2 = DVec2::new(640.0, 480.0);
@@ -94,6 +97,8 @@ struct Combed {
     prepared: PreparedScene,
     /// Per chunk: (counts, offsets, hairs).
     chunks: Vec<(Vec<u32>, Vec<u32>, Vec<GpuVertex>)>,
+    /// Per chunk: the frame uniform the comb was computed in.
+    frames: Vec<GpuFrame>,
 }
 
 fn comb_on_gpu(backend: &common::Backend, scene: &Scene, request: &CombRequest) -> Combed {
@@ -114,6 +119,11 @@ fn comb_on_gpu(backend: &common::Backend, scene: &Scene, request: &CombRequest) 
     gpu.encode_tessellation(&renderer, &mut encoder, None);
     ctx.queue.submit([encoder.finish()]);
     let mut chunks = Vec::new();
+    let frames = gpu
+        .chunks
+        .iter()
+        .map(|c| c.adaptive.frame_uniform(&settings))
+        .collect();
     for (c, chunk) in gpu.chunks.iter().enumerate() {
         let s = prepared.chunks[c].segments.len();
         let work = read_work(&ctx.device, &ctx.queue, &chunk.adaptive).expect("work");
@@ -126,7 +136,11 @@ fn comb_on_gpu(backend: &common::Backend, scene: &Scene, request: &CombRequest) 
         chunks.push((counts, offsets, hairs));
     }
     ctx.check_health().expect("healthy device");
-    Combed { prepared, chunks }
+    Combed {
+        prepared,
+        chunks,
+        frames,
+    }
 }
 
 /// The exact segment behind each adaptive segment of chunk `c`, with its curve's index.
@@ -180,10 +194,13 @@ fn each_hair(
                 .find(|(first, _, _)| *first == seg.first_point)
                 .expect("every segment has its exact twin");
             let count = counts[s];
-            // The hairs: COMB_HAIRS of the segment's sample slots (the count kernel gives
-            // it at least that many while a comb is drawn); the rest draw nothing.
-            let n = count.min(COMB_HAIRS);
-            assert_eq!(n, COMB_HAIRS, "curve {curve}: {count} slots for the hairs");
+            // The hairs: as many as the twin's rule gives (one every few pixels of the
+            // projected polygon), in the segment's sample slots (the count kernel gives it
+            // at least that many while a comb is drawn); the rest draw nothing.
+            let want = comb_hairs_of(&combed.frames[c], &combed.prepared.chunks[c].points, seg);
+            let n = count.min(want);
+            assert_eq!(n, want, "curve {curve}: {count} slots for {want} hairs");
+            assert!((2..=COMB_HAIRS).contains(&n));
             for j in n..count {
                 let k = (offsets[s] + j) as usize;
                 assert_ne!(
@@ -344,7 +361,11 @@ fn a_planar_comb_changes_side_exactly_at_the_inflections() {
                         .iter()
                         .find(|(first, _, _)| *first == seg.first_point)
                         .expect("twin");
-                    let n = counts[s].min(COMB_HAIRS);
+                    let n = counts[s].min(comb_hairs_of(
+                        &combed.frames[c],
+                        &combed.prepared.chunks[c].points,
+                        seg,
+                    ));
                     for j in 0..n {
                         let u = f64::from(j as f32 / (n - 1) as f32);
                         let t = exact_seg.t0 + u * (exact_seg.t1 - exact_seg.t0);

@@ -468,8 +468,7 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
     Ok(fig)
 }
 
-/// Hairs of a comb per lowered segment in a figure (uniform in the segment's parameter,
-/// ends included): the GPU's.
+/// The most hairs of a comb on one lowered segment (the GPU's; fewer on a short one).
 pub use splinescope_core::analysis::comb::COMB_HAIRS_PER_SEGMENT;
 
 /// Each curve's curvature comb ([`splinescope_core::analysis::comb::comb`]): its hairs as
@@ -493,8 +492,26 @@ fn comb_items(
             continue;
         }
         let analysis = splinescope_core::analysis::CurveAnalysis::new(&sc.curve);
-        let hairs =
-            splinescope_core::analysis::comb::comb(&analysis, COMB_HAIRS_PER_SEGMENT, scale, cap);
+        // The GPU's density: one hair every few pixels of each segment's projected control
+        // polygon.
+        let segments = splinescope_core::geom::Lower::lower(&sc.curve);
+        let hairs_of = |k: usize| {
+            segments.get(k).map_or(COMB_HAIRS_PER_SEGMENT, |seg| {
+                let pts: Vec<DVec2> = seg
+                    .bezier
+                    .points()
+                    .iter()
+                    .filter_map(|p| proj.point(*p))
+                    .collect();
+                if pts.len() != seg.bezier.points().len() {
+                    return COMB_HAIRS_PER_SEGMENT;
+                }
+                splinescope_core::analysis::comb::hairs_for(
+                    pts.windows(2).map(|w| (w[1] - w[0]).length()).sum(),
+                )
+            })
+        };
+        let hairs = splinescope_core::analysis::comb::comb(&analysis, &hairs_of, scale, cap);
         let (hair_stroke, envelope_stroke) = comb_strokes(sc.style.color);
         for (capped, stroke) in [(false, hair_stroke), (true, envelope_stroke)] {
             let runs: Vec<SubPath> = hairs

@@ -150,8 +150,12 @@ pub const COMB_CAPPED: u32 = 0x2000_0000;
 /// tags agree. Twin: `COMB_PARITY` in `shaders/adaptive.wgsl`.
 pub const COMB_PARITY: u32 = 0x4000_0000;
 
-/// Hairs per segment. Twin: `COMB_HAIRS` in `shaders/adaptive.wgsl`.
+/// The most hairs per segment. Twin: `COMB_HAIRS` in `shaders/adaptive.wgsl`.
 pub const COMB_HAIRS: u32 = splinescope_core::analysis::comb::COMB_HAIRS_PER_SEGMENT as u32;
+
+/// The hairs' spacing along a segment's projected control polygon, in pixels. Twin:
+/// `COMB_SPACING_PX` in `shaders/adaptive.wgsl`.
+pub const COMB_SPACING_PX: f32 = splinescope_core::analysis::comb::COMB_SPACING_PX as f32;
 
 /// Invocations per workgroup of the layer's rasterizers. Twin:
 /// `LAYER_WORKGROUP` in `shaders/common.wgsl`.
@@ -190,8 +194,9 @@ pub struct GpuFrame {
     pub capacity: u32,
     /// The most samples one segment may get ([`MAX_SAMPLES_PER_SEGMENT`]).
     pub max_count: u32,
-    /// The fewest samples a segment on screen gets: [`COMB_HAIRS`] while a comb is drawn
-    /// (its hairs use the samples' slots), else 0.
+    /// While a comb is drawn, the most hairs a segment gets ([`COMB_HAIRS`]): a segment on
+    /// screen then gets at least as many samples as its hairs (their slots hold them);
+    /// 0 without a comb.
     pub min_count: u32,
 }
 

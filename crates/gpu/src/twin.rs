@@ -246,9 +246,43 @@ pub fn wang_count(frame: &GpuFrame, points: &[GpuControlPoint], seg: &GpuSegment
     if intervals.is_nan() || intervals >= frame.max_count as f32 {
         return frame.max_count;
     }
-    (intervals as u32 + 1)
-        .max(frame.min_count)
-        .clamp(2, frame.max_count)
+    let floor = if frame.min_count == 0 {
+        0
+    } else {
+        comb_hairs_of(frame, points, seg).min(frame.min_count)
+    };
+    (intervals as u32 + 1).max(floor).clamp(2, frame.max_count)
+}
+
+/// The twin of `comb_hairs_of` in `shaders/adaptive.wgsl`: the hairs of segment `seg`'s
+/// comb in the frame `frame` — one every [`crate::layout::COMB_SPACING_PX`] pixels of its
+/// projected control polygon and one more, from 2 to [`crate::layout::COMB_HAIRS`] (the
+/// most with a point at or behind the eye, or a length that is not finite), in the
+/// shader's `f32` operations.
+#[must_use]
+pub fn comb_hairs_of(frame: &GpuFrame, points: &[GpuControlPoint], seg: &GpuSegment) -> u32 {
+    use crate::layout::{COMB_HAIRS, COMB_SPACING_PX};
+    let n = (seg.degree as usize).min(MAX_GPU_DEGREE);
+    let half = 0.5 * Vec2::from(frame.viewport_px);
+    let m = Mat4::from_cols_array_2d(&frame.clip_from_world);
+    let mut length = 0.0_f32;
+    let mut previous = Vec2::ZERO;
+    for i in 0..=n {
+        let q = points[seg.first_point as usize + i];
+        let c = m * Vec3::from(q.position).extend(q.weight);
+        if !(c.w > 0.0) {
+            return COMB_HAIRS;
+        }
+        let p = Vec2::new(c.x * half.x, -c.y * half.y) / c.w;
+        if i > 0 {
+            length += p.distance(previous);
+        }
+        previous = p;
+    }
+    if !(length < 1e9) {
+        return COMB_HAIRS;
+    }
+    ((length / COMB_SPACING_PX).ceil() as u32 + 1).clamp(2, COMB_HAIRS)
 }
 
 /// A lower bound of the homogeneous `w` of `h[..=n]` (weights from `w_min` to `w_max`) on

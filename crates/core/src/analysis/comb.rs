@@ -12,8 +12,10 @@
 //! line saying nothing), and the capped hair itself is drawn in the envelope's stronger
 //! stroke, so that it reads as "sharper than the comb shows".
 //!
-//! Hairs sit at [`COMB_HAIRS_PER_SEGMENT`] uniform parameters of every lowered segment,
-//! ends included — in the window, in `render`'s PNG and in SVG/PDF figures alike. The GPU
+//! Hairs sit at uniform parameters of every lowered segment, ends included, about
+//! [`COMB_SPACING_PX`] apart along its control polygon on screen ([`hairs_for`]; at most
+//! [`COMB_HAIRS_PER_SEGMENT`]) — in the window, in `render`'s PNG and in SVG/PDF figures
+//! alike. The GPU
 //! computes the same hairs from the same segments every frame (the `comb_*` kernels of
 //! `shaders/adaptive.wgsl`, in `f32`); this is the exact `f64` version that figures draw
 //! and tests compare with (`docs/math.md` §8).
@@ -33,10 +35,26 @@ pub fn curvature_vector(d1: DVec3, d2: DVec3) -> Option<DVec3> {
     Some((d2 - (d2.dot(d1) / speed2) * d1) / speed2)
 }
 
-/// Hairs of a comb per lowered segment, uniform in the segment's parameter, ends
-/// included: the density the window, `render` and figures all draw. Twin: `COMB_HAIRS` in
-/// `shaders/adaptive.wgsl`.
+/// The most hairs of a comb on one lowered segment, uniform in the segment's parameter,
+/// ends included. Twin: `COMB_HAIRS` in `shaders/adaptive.wgsl`.
 pub const COMB_HAIRS_PER_SEGMENT: usize = 32;
+
+/// The spacing of a comb's hairs, in pixels of the segment's projected control polygon.
+/// Twin: `COMB_SPACING_PX` in `shaders/adaptive.wgsl`.
+pub const COMB_SPACING_PX: f64 = 4.0;
+
+/// The hairs a lowered segment gets whose control polygon is `polygon_px` pixels long on
+/// screen: one every [`COMB_SPACING_PX`] and one more, from 2 to
+/// [`COMB_HAIRS_PER_SEGMENT`] (the most where the length is not finite) — the density
+/// the window, `render` and figures all draw. Twin: `comb_hairs_of` in
+/// `shaders/adaptive.wgsl`.
+#[must_use]
+pub fn hairs_for(polygon_px: f64) -> usize {
+    if !(polygon_px < 1e9) {
+        return COMB_HAIRS_PER_SEGMENT;
+    }
+    ((polygon_px / COMB_SPACING_PX).ceil().max(0.0) as usize + 1).clamp(2, COMB_HAIRS_PER_SEGMENT)
+}
 
 /// One hair of a comb.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,14 +69,19 @@ pub struct Hair {
     pub capped: bool,
 }
 
-/// The comb of a curve: `per_segment` hairs (at least 2) at uniform parameters of each of
-/// its lowered segments, ends included, with hairs `scale` world units long per unit of
+/// The comb of a curve: `per_segment(k)` hairs (at least 2) at uniform parameters of its
+/// lowered segment `k`, ends included, with hairs `scale` world units long per unit of
 /// curvature, none longer than `cap` world units (`f64::INFINITY`: no cap).
 #[must_use]
-pub fn comb(analysis: &CurveAnalysis, per_segment: usize, scale: f64, cap: f64) -> Vec<Hair> {
-    let n = per_segment.max(2);
-    let mut out = Vec::with_capacity(n * analysis.pieces().len());
-    for piece in analysis.pieces() {
+pub fn comb(
+    analysis: &CurveAnalysis,
+    per_segment: &dyn Fn(usize) -> usize,
+    scale: f64,
+    cap: f64,
+) -> Vec<Hair> {
+    let mut out = Vec::new();
+    for (k, piece) in analysis.pieces().iter().enumerate() {
+        let n = per_segment(k).max(2);
         for j in 0..n {
             let u = j as f64 / (n - 1) as f64;
             let t = piece.t0 + u * (piece.t1 - piece.t0);
@@ -175,7 +198,7 @@ mod tests {
         // κ = 1/r along the whole circle, K towards the centre: tips at r + s/r.
         let r = 2.0;
         let circle = Nurbs::circle(DVec3::new(1.0, -1.0, 0.0), r).expect("circle");
-        let hairs = comb(&CurveAnalysis::new(&circle), 9, 0.5, f64::INFINITY);
+        let hairs = comb(&CurveAnalysis::new(&circle), &|_| 9, 0.5, f64::INFINITY);
         assert!(hairs.len() >= 9);
         for h in hairs {
             let out = h.point - DVec3::new(1.0, -1.0, 0.0);
@@ -189,7 +212,7 @@ mod tests {
     #[test]
     fn a_line_has_no_hairs_and_a_cusp_none_either() {
         let line = Bezier::new(vec![DVec3::ZERO, DVec3::X, DVec3::new(2.0, 0.0, 0.0)]);
-        for h in comb(&CurveAnalysis::new(&line), 5, 3.0, 1.0) {
+        for h in comb(&CurveAnalysis::new(&line), &|_| 5, 3.0, 1.0) {
             assert_eq!(h.tip, h.point);
         }
         assert_eq!(reference_curvature([&CurveAnalysis::new(&line)]), None);
@@ -200,9 +223,20 @@ mod tests {
             DVec3::new(0.0, 1.0, 0.0),
             DVec3::new(2.0, 0.0, 0.0),
         ]);
-        let hairs = comb(&CurveAnalysis::new(&cusp), 5, 1.0, f64::INFINITY);
+        let hairs = comb(&CurveAnalysis::new(&cusp), &|_| 5, 1.0, f64::INFINITY);
         assert_eq!(hairs[2].tip, hairs[2].point);
         assert!(hairs.iter().all(|h| h.tip.is_finite()));
+    }
+
+    #[test]
+    fn hairs_follow_the_polygons_length_on_screen() {
+        assert_eq!(hairs_for(0.0), 2);
+        assert_eq!(hairs_for(4.0), 2);
+        assert_eq!(hairs_for(4.5), 3);
+        assert_eq!(hairs_for(40.0), 11);
+        assert_eq!(hairs_for(1e6), COMB_HAIRS_PER_SEGMENT);
+        assert_eq!(hairs_for(f64::NAN), COMB_HAIRS_PER_SEGMENT);
+        assert_eq!(hairs_for(f64::INFINITY), COMB_HAIRS_PER_SEGMENT);
     }
 
     #[test]
@@ -211,7 +245,7 @@ mod tests {
         let circle = Nurbs::circle(DVec3::ZERO, 2.0).expect("circle");
         let a = CurveAnalysis::new(&circle);
         for (cap, capped) in [(1.5, true), (2.5, false), (f64::INFINITY, false)] {
-            for h in comb(&a, 7, 4.0, cap) {
+            for h in comb(&a, &|_| 7, 4.0, cap) {
                 let length = (h.tip - h.point).length();
                 assert_eq!(h.capped, capped, "cap {cap}: {h:?}");
                 let want = if capped { cap } else { 2.0 };
@@ -229,7 +263,7 @@ mod tests {
             DVec3::new(0.0, 1.001, 0.0),
             DVec3::new(2.0, 0.0, 0.0),
         ]);
-        let hairs = comb(&CurveAnalysis::new(&near_cusp), 101, 1e6, 0.3);
+        let hairs = comb(&CurveAnalysis::new(&near_cusp), &|_| 101, 1e6, 0.3);
         assert!(hairs.iter().any(|h| h.capped));
         assert!(
             hairs
