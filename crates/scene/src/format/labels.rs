@@ -207,7 +207,7 @@ pub fn place(
             // Ink first, then a leader's length, then the order of preference.
             let cost = covered as f64 * 1e4
                 + leader.map_or(0.0, |(a, b)| 100.0 + (b - a).length())
-                + a as f64 * 4.0
+                + a as f64 * 8.0
                 + (p % 8) as f64;
             Some((
                 Placed {
@@ -222,6 +222,13 @@ pub fn place(
         };
         let mut best: Option<(Placed, f64)> = None;
         for a in 0..label.anchors.len() {
+            // A place free of ink and without a leader beats every later anchor's.
+            if best
+                .as_ref()
+                .is_some_and(|(b, _)| b.ink == 0 && b.leader.is_none())
+            {
+                break;
+            }
             for p in 0..POSITIONS {
                 if let Some((placed, cost)) = evaluate((a, p), &taken)
                     && best.as_ref().is_none_or(|(_, c)| cost < *c)
