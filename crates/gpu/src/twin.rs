@@ -270,7 +270,7 @@ pub fn comb_hairs_of(frame: &GpuFrame, points: &[GpuControlPoint], seg: &GpuSegm
     for i in 0..=n {
         let q = points[seg.first_point as usize + i];
         let c = m * Vec3::from(q.position).extend(q.weight);
-        if !(c.w > 0.0) {
+        if c.w.is_nan() || c.w <= 0.0 {
             return COMB_HAIRS;
         }
         let p = Vec2::new(c.x * half.x, -c.y * half.y) / c.w;
@@ -279,7 +279,7 @@ pub fn comb_hairs_of(frame: &GpuFrame, points: &[GpuControlPoint], seg: &GpuSegm
         }
         previous = p;
     }
-    if !(length < 1e9) {
+    if length.is_nan() || length >= 1e9 {
         return COMB_HAIRS;
     }
     ((length / COMB_SPACING_PX).ceil() as u32 + 1).clamp(2, COMB_HAIRS)

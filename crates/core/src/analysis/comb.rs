@@ -50,7 +50,7 @@ pub const COMB_SPACING_PX: f64 = 4.0;
 /// `shaders/adaptive.wgsl`.
 #[must_use]
 pub fn hairs_for(polygon_px: f64) -> usize {
-    if !(polygon_px < 1e9) {
+    if polygon_px.is_nan() || polygon_px >= 1e9 {
         return COMB_HAIRS_PER_SEGMENT;
     }
     ((polygon_px / COMB_SPACING_PX).ceil().max(0.0) as usize + 1).clamp(2, COMB_HAIRS_PER_SEGMENT)
