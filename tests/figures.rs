@@ -448,13 +448,29 @@ fn text_is_text_in_svg_and_embedded_in_pdf_and_both_agree() {
         opts.grid = planar;
         let fig = build(&scene, &opts).expect("figure");
         let text = svg::write(&fig);
-        for sc in &scene.curves {
-            let label = sc.label().replace('&', "&amp;").replace('<', "&lt;");
-            assert!(
-                text.contains(&format!(">{label}</text>")),
-                "{name}: SVG text {label:?}"
-            );
-        }
+        // Every label is text in the SVG, or counted among the hidden ones.
+        let hidden: usize = text
+            .split("</text>")
+            .find_map(|t| {
+                let t = t.rsplit('>').next()?;
+                t.strip_suffix(" labels hidden")
+                    .or_else(|| t.strip_suffix(" label hidden"))
+                    .and_then(|n| n.parse().ok())
+            })
+            .unwrap_or(0);
+        let shown = scene
+            .curves
+            .iter()
+            .filter(|sc| {
+                let label = sc.label().replace('&', "&amp;").replace('<', "&lt;");
+                text.contains(&format!(">{label}</text>"))
+            })
+            .count();
+        assert!(
+            shown + hidden >= scene.curves.len() && shown > 0,
+            "{name}: {shown} labels as SVG text, {hidden} hidden, of {}",
+            scene.curves.len()
+        );
         let bytes = pdf::write(&fig);
         let pdf_path = dir.join("text.pdf");
         std::fs::write(&pdf_path, &bytes).expect("write");
@@ -884,4 +900,141 @@ fn labels_never_overlap_on_the_written_page() {
             boxes.len()
         );
     }
+}
+
+/// The labels of a rendered PNG, measured from its pixels: a crowded scene whose curves
+/// each have their own colour (so each label's text has its own), drawn by `render`'s
+/// path (the GPU's picture, then the text); the pixels the labels change, attributed to
+/// the label whose colour they are nearest (within a margin that leaves out leader lines
+/// and anti-aliased edges), give each label's box — and no two boxes overlap.
+#[test]
+fn rendered_labels_never_overlap_in_the_png() {
+    use splinescope::scene::generate::{StressOptions, random_bezier_scene};
+    let (w, h) = (640, 420);
+    let mut scene = random_bezier_scene(StressOptions {
+        curves: 18,
+        degree: 3,
+        seed: 5,
+        ..Default::default()
+    });
+    for (i, c) in scene.curves.iter_mut().enumerate() {
+        c.name = Some(format!("curve number {i}"));
+        // Hues 20° apart, full saturation.
+        let hue = i as f32 * 20.0;
+        let f = |n: f32| {
+            let k = (n + hue / 60.0) % 6.0;
+            0.9 - 0.9 * k.min(4.0 - k).clamp(0.0, 1.0)
+        };
+        c.style.color = splinescope::scene::Color([f(5.0), f(3.0), f(1.0), 1.0]);
+        c.style.show_polygon = false;
+        c.style.show_points = false;
+    }
+    // The hue of each label's text (the curve's colour, darkened: the same hue).
+    let hue_of = |[r, g, b]: [f32; 3]| -> (f32, f32) {
+        let (max, min) = (r.max(g).max(b), r.min(g).min(b));
+        let s = if max > 0.0 { (max - min) / max } else { 0.0 };
+        if max == min {
+            return (0.0, s);
+        }
+        let h = if max == r {
+            60.0 * ((g - b) / (max - min)).rem_euclid(6.0)
+        } else if max == g {
+            60.0 * ((b - r) / (max - min) + 2.0)
+        } else {
+            60.0 * ((r - g) / (max - min) + 4.0)
+        };
+        (h, s)
+    };
+    let hues: Vec<f32> = scene
+        .curves
+        .iter()
+        .map(|c| {
+            let [r, g, b, _] = c.style.color.0;
+            hue_of([r, g, b]).0
+        })
+        .collect();
+    common::on_each_gpu("rendered labels never overlap", |backend| {
+        let plain = splinescope::offscreen::render_scene(
+            &backend.ctx,
+            &backend.pipelines,
+            &scene,
+            None,
+            w,
+            h,
+        )
+        .expect("render");
+        let mut labelled = plain.clone();
+        splinescope::offscreen::annotate(
+            &mut labelled,
+            &scene,
+            &splinescope::offscreen::TextOptions {
+                labels: true,
+                ..Default::default()
+            },
+        )
+        .expect("labels");
+        // Per label: the box of the changed pixels nearest its colour.
+        let mut boxes: Vec<Option<(u32, u32, u32, u32)>> = vec![None; hues.len()];
+        for y in 0..h {
+            for x in 0..w {
+                let p = labelled.pixel(x, y);
+                if p == plain.pixel(x, y) {
+                    continue;
+                }
+                // Text over white keeps its hue; a glyph's well-covered pixels keep most of
+                // its saturation, where a leader line (60 % opacity, thin) keeps at most
+                // about half of it.
+                let (h, sat) = hue_of([p[0], p[1], p[2]].map(|v| f32::from(v) / 255.0));
+                if sat < 0.6 {
+                    continue;
+                }
+                let (k, d) = hues
+                    .iter()
+                    .enumerate()
+                    .map(|(k, c)| {
+                        let d = (h - c).abs();
+                        (k, d.min(360.0 - d))
+                    })
+                    .fold((0, f32::MAX), |a, b| if b.1 < a.1 { b } else { a });
+                if d > 6.0 {
+                    continue;
+                }
+                let b = boxes[k].get_or_insert((x, y, x, y));
+                *b = (b.0.min(x), b.1.min(y), b.2.max(x), b.3.max(y));
+            }
+        }
+        let found: Vec<(usize, (u32, u32, u32, u32))> = boxes
+            .iter()
+            .enumerate()
+            .filter_map(|(k, b)| b.map(|b| (k, b)))
+            .collect();
+        assert!(
+            found.len() >= 10,
+            "{}: only {} labels measured",
+            backend.name,
+            found.len()
+        );
+        for (i, (ka, a)) in found.iter().enumerate() {
+            // One line of 12-pixel text: no taller than a line and a half.
+            assert!(
+                a.3 - a.1 <= 18,
+                "{}: label {ka} is {} px tall",
+                backend.name,
+                a.3 - a.1
+            );
+            for (kb, b) in &found[i + 1..] {
+                let apart = a.2 < b.0 || b.2 < a.0 || a.3 < b.1 || b.3 < a.1;
+                assert!(
+                    apart,
+                    "{}: labels {ka} {a:?} and {kb} {b:?} overlap in the PNG",
+                    backend.name
+                );
+            }
+        }
+        println!(
+            "{}: {} labels measured in the PNG, none overlapping",
+            backend.name,
+            found.len()
+        );
+    });
 }

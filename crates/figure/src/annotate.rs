@@ -53,12 +53,10 @@ fn line(a: DVec2, b: DVec2, stroke: Stroke) -> Item {
     }
 }
 
-/// The ink the labels and the legend keep clear of: everything `items` draws — curves,
-/// control polygons and points, combs, markers — its paths flattened (Bézier pieces at
-/// 16 points) and its discs as their boxes.
-#[must_use]
-pub fn ink(items: &[Item], size: DVec2) -> Ink {
-    let mut ink = Ink::new(size);
+/// Adds to the ink the labels and the legend keep clear of everything `items` draws —
+/// curves, control polygons and points, combs, markers, axes — its paths flattened (Bézier
+/// pieces at 16 points) and its discs as their boxes.
+pub fn add_ink(ink: &mut Ink, items: &[Item]) {
     for item in items {
         match item {
             Item::Path { runs, .. } => {
@@ -99,7 +97,6 @@ pub fn ink(items: &[Item], size: DVec2) -> Ink {
             Item::Text { .. } | Item::Rect { .. } => {}
         }
     }
-    ink
 }
 
 /// The box a text item covers (its advance widths, an ascent of one size and a descent

@@ -42,6 +42,7 @@ use thiserror::Error;
 use splinescope_scene::camera::Camera;
 use splinescope_scene::format::draw::{COMB_WIDTH_PX, Stroke, Switches, comb_strokes};
 use splinescope_scene::format::encoding::{Encoding, encode_with};
+use splinescope_scene::format::labels::Ink;
 use splinescope_scene::format::shape::{ShapeOptions, marker_points, markers};
 use splinescope_scene::format::{Color, Scene};
 
@@ -409,8 +410,11 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
     if (opts.axes || opts.grid) && !proj.affine {
         return Err(FigureError::AxesIn3d);
     }
+    // What the curves draw — also where only the text is asked for (over a GPU picture
+    // of the curves): labels and the legend keep clear of it.
+    let draw_curves = opts.curves || opts.labels || opts.legend;
     let mut encoding = encode_with(scene, opts.switches);
-    if opts.curves && opts.shape.any_marker() {
+    if draw_curves && opts.shape.any_marker() {
         let found = markers(scene, &opts.shape);
         encoding
             .overlays
@@ -419,21 +423,29 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
     }
     let (mut items, guides) = annotate::axes(&proj, size, opts.axes, opts.grid);
     let behind = items.len();
-    if opts.curves {
+    let mut drawn = Vec::new();
+    if draw_curves {
         if let Some(scale) = opts.shape.comb {
             let view_height = camera.view_height(size);
             let scale = scale.resolve(scene, view_height);
             let cap = opts.shape.comb_cap.world(view_height);
-            comb_items(scene, (scale, cap, opts.comb_only), &proj, size, &mut items);
+            comb_items(scene, (scale, cap, opts.comb_only), &proj, size, &mut drawn);
         }
-        curve_items(&encoding, &proj, size, opts.tolerance, &mut items)?;
+        curve_items(&encoding, &proj, size, opts.tolerance, &mut drawn)?;
+    }
+    // Clear of everything drawn over the guides: curves, polygons, points, combs,
+    // markers, the axes.
+    let mut ink = Ink::new(size);
+    if opts.labels || opts.legend {
+        annotate::add_ink(&mut ink, &drawn);
+        annotate::add_ink(&mut ink, &guides);
+    }
+    if opts.curves {
+        items.append(&mut drawn);
     }
     let front = items.len();
     items.extend(guides);
     if opts.labels || opts.legend {
-        // Clear of everything drawn over the guides: curves, polygons, points, combs,
-        // markers.
-        let ink = annotate::ink(&items[behind..], size);
         let legend = if opts.legend {
             annotate::legend_layout(scene, size, &opts.shape.marker_kinds(), &ink, opts.labels)
         } else {
