@@ -359,3 +359,76 @@ fn the_shape_section_turns_the_comb_on_scales_it_caps_it_and_refuses_bad_values(
     h.run();
     assert!(!h.state().model.shape.comb);
 }
+
+/// The text shapes a frame drew, with their bounds.
+fn drawn_texts(h: &Harness<'static, Viewer>) -> Vec<(String, egui::Rect)> {
+    fn collect(shape: &egui::Shape, out: &mut Vec<(String, egui::Rect)>) {
+        match shape {
+            egui::Shape::Text(t) => {
+                out.push((t.galley.text().to_owned(), t.visual_bounding_rect()))
+            }
+            egui::Shape::Vec(v) => v.iter().for_each(|s| collect(s, out)),
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    for clipped in &h.output().shapes {
+        collect(&clipped.shape, &mut out);
+    }
+    out
+}
+
+/// The window's curve labels as egui draws them (the text shapes of the frame's output, not
+/// the placement's own boxes): on the gallery none overlaps another, none reaches into the
+/// panel or off the window; and after a small edit of one curve the other labels stay
+/// where they were (no jumping while a point is dragged).
+#[test]
+fn window_labels_never_overlap_and_stay_put() {
+    let scene = crate::scene::gallery::gallery();
+    let names: Vec<String> = SceneDigest::of(&scene)
+        .summaries
+        .iter()
+        .map(|s| s.name.clone())
+        .collect();
+    let mut h = harness(scene, None);
+    h.run();
+    let labels = |h: &Harness<'static, Viewer>| -> Vec<(String, egui::Rect)> {
+        drawn_texts(h)
+            .into_iter()
+            .filter(|(t, _)| names.contains(t))
+            .collect()
+    };
+    let before = labels(&h);
+    assert!(before.len() >= 15, "{} labels drawn", before.len());
+    let panel = ui::PANEL_WIDTH_POINTS as f32;
+    for (i, (ta, a)) in before.iter().enumerate() {
+        assert!(
+            a.min.x >= panel && a.max.x <= 1200.0 && a.min.y >= 0.0 && a.max.y <= 800.0,
+            "{ta:?} at {a:?} leaves the canvas"
+        );
+        for (tb, b) in &before[i + 1..] {
+            assert!(!a.intersects(*b), "{ta:?} {a:?} overlaps {tb:?} {b:?}");
+        }
+    }
+    // Nudge a control point of the spiral (curve 7) by a hundredth of a unit.
+    let p = h.state().model.scene().curves[7].curve.control_points()[3];
+    h.state_mut()
+        .model
+        .editor
+        .set_point(7, 3, p + DVec3::new(0.01, 0.0, 0.0))
+        .expect("set");
+    h.run();
+    let after = labels(&h);
+    let mut moved = Vec::new();
+    for (t, a) in &before {
+        if let Some((_, b)) = after.iter().find(|(u, _)| u == t)
+            && (a.min - b.min).length() > 0.5
+        {
+            moved.push(t.clone());
+        }
+    }
+    assert!(
+        moved.len() <= 1,
+        "labels jumped after a small edit: {moved:?}"
+    );
+}
