@@ -36,7 +36,14 @@ def test_bad_scenes_fail_as_the_command_line_says(cli, path):
     with pytest.raises(ss.SceneError) as e:
         ss.load(path)
     assert out.stderr.strip() == f"error: {e.value}", (out.stderr, str(e.value))
-    assert e.value.path and e.value.path in str(e.value)
+    # The offending value's JSON path, named in the message; empty for the document as a
+    # whole (the message then names no path, and never "(root)").
+    assert e.value.path in str(e.value)
+    assert "(root)" not in str(e.value)
+    if path.stem in ("empty-file", "not-json", "root-is-array"):
+        assert e.value.path == ""
+    else:
+        assert e.value.path
     # The same text read from a string: the same error, without the file name.
     text = path.read_text(errors="replace")
     with pytest.raises(ss.SceneError) as e2:
