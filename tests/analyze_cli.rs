@@ -174,3 +174,49 @@ fn analyze_refuses_bad_arguments() {
     assert_eq!(v["curves"][0]["dimension"], 3);
     assert!(v["curves"][0].get("inflections").is_none());
 }
+
+/// Joints in the report: a cubic B-spline whose triple knot at 1 joins tangents built 90°
+/// apart (from (2, 1) to (3, 1), then towards (3, 2)) and whose double knot at 2 keeps the
+/// tangent but not the curvature; the circle's seam is G2.
+#[test]
+fn analyze_reports_the_joints() {
+    let path = scene(
+        "joints.json",
+        r#"{"version": 1, "curves": [
+  {"type": "bspline", "name": "kinked", "order": 4,
+   "knots": [0, 0, 0, 0, 1, 1, 1, 2, 2, 3, 3, 3, 3],
+   "points": [[0, 0], [1, 1.5], [2, 1], [3, 1], [3, 2], [3.5, 4], [5, 3], [6, 5], [7, 4]]},
+  {"type": "nurbs", "name": "circle", "order": 3,
+   "knots": [0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1],
+   "points": [[2, 0], [2, 2], [0, 2], [-2, 2], [-2, 0], [-2, -2], [0, -2], [2, -2], [2, 0]],
+   "weights": [1, 0.7071067811865476, 1, 0.7071067811865476, 1, 0.7071067811865476, 1, 0.7071067811865476, 1]}
+]}"#,
+    );
+    let out = common::run(&["analyze", &path, "--json"]);
+    assert!(out.status.success(), "{}", common::text(&out));
+    let v: Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let joints = v["curves"][0]["joints"].as_array().expect("joints");
+    let at = |t: f64| {
+        joints
+            .iter()
+            .find(|j| j["t"].as_f64() == Some(t))
+            .unwrap_or_else(|| panic!("no joint at {t}: {joints:?}"))
+    };
+    let kink = at(1.0);
+    assert_eq!(kink["class"], "G0", "{kink}");
+    assert!(
+        (kink["angle_deg"].as_f64().unwrap() - 90.0).abs() <= 1e-9,
+        "{kink}"
+    );
+    let jump = at(2.0);
+    assert_eq!(jump["class"], "G1", "{jump}");
+    assert!(jump["curvature_jump"].as_f64().unwrap() > 1e-3, "{jump}");
+    let circle = v["curves"][1]["joints"].as_array().expect("joints");
+    assert!(circle.iter().all(|j| j["class"] == "G2"), "{circle:?}");
+    assert_eq!(circle.iter().filter(|j| j["seam"] == true).count(), 1);
+    // The text names the kink and the jump.
+    let out = common::run(&["analyze", &path]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("G0 kink 90° at t = 1"), "{text}");
+    assert!(text.contains("G1 curvature jump"), "{text}");
+}

@@ -609,6 +609,19 @@ impl PyCurve {
         arrays::shaped(py, flat, &[n, 4])
     }
 
+    /// Continuity at every joint between lowered segments, then a closed curve's seam, as
+    /// `(K, 4)`: `t`, the position gap, the angle between the tangents (radians) and the
+    /// relative curvature jump (`inf` where a speed vanishes).
+    fn joints<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let joints = self.analysis().joints();
+        let n = joints.len();
+        let flat: Vec<f64> = joints
+            .iter()
+            .flat_map(|j| [j.t, j.gap, j.angle, j.curvature_jump])
+            .collect();
+        arrays::shaped(py, flat, &[n, 4])
+    }
+
     /// The signed area enclosed (2D; an open curve closed by its chord).
     fn signed_area(&self) -> PyResult<f64> {
         self.analysis()

@@ -200,3 +200,32 @@ def test_copies_are_one_group_not_pairs():
     for (i, j), f in pairs.items():
         got = f["params"] if i in (0, 2, 3) else f["params"][:, ::-1]
         np.testing.assert_array_equal(got[np.argsort(got[:, 0])], want)
+
+
+def test_joints_report_the_continuity_built_into_them():
+    import math
+
+    import numpy as np
+    import splinescope as ss
+
+    # A triple knot at 1 with the tangents built 60° apart: one kink of exactly 60°.
+    th = math.radians(60)
+    c = np.array([3.0, 1.0])
+    d = np.array([math.cos(th), math.sin(th)])
+    pts = [[0, 0], [1, 1.5], c - [1, 0], c, c + d, c + 2 * d + [0, 0.5], c + 3 * d]
+    kinked = ss.BSpline([0, 0, 0, 0, 1, 1, 1, 2, 2, 2, 2], pts, 4)
+    j = kinked.joints()
+    assert j.shape == (1, 4)
+    assert j[0, 0] == 1.0 and j[0, 1] <= 1e-12
+    assert abs(j[0, 2] - th) <= 1e-12
+    # Simple knots: C², every joint within rounding.
+    smooth = ss.BSpline([0, 0, 0, 0, 1, 2, 3, 3, 3, 3], [[0, 0], [1, 2], [2, -1], [3, 1], [4, 0], [5, 2]], 4)
+    j = smooth.joints()
+    assert j.shape == (2, 4)
+    assert (j[:, 1] <= 1e-12).all() and (j[:, 2] <= 1e-12).all() and (j[:, 3] <= 1e-9).all()
+    # A circle: its three inner joints and its seam, all G2; an open Bézier curve: none.
+    circle = ss.Nurbs.circle([0.0, 0.0], 2.0)
+    j = circle.joints()
+    assert len(j) >= 2 and j[-1, 0] == circle.domain()[1]
+    assert (j[:, 2] <= 1e-9).all() and (j[:, 3] <= 1e-8).all()
+    assert ss.Bezier([[0, 0], [1, 1], [2, 0]]).joints().shape == (0, 4)

@@ -279,6 +279,50 @@ fn curve_text(out: &mut String, c: &CurveAnalysisReport) {
     if let Some(s) = &c.self_intersections {
         let _ = writeln!(out, "  self            {}", hits(s, d));
     }
+    if !c.joints.is_empty() {
+        let count = |class: &str| c.joints.iter().filter(|j| j.class == class).count();
+        let mut summary: Vec<String> = ["G2", "G1", "G0", "gap"]
+            .iter()
+            .filter(|k| count(k) > 0)
+            .map(|k| format!("{} {k}", count(k)))
+            .collect();
+        if summary.len() > 1 {
+            summary.insert(0, format!("{} in all", c.joints.len()));
+        }
+        // The joints that are not G2, each with what breaks it.
+        let items: Vec<String> = c
+            .joints
+            .iter()
+            .filter(|j| j.class != "G2")
+            .map(|j| {
+                let what = match j.class {
+                    "gap" => format!("gap {}", shortest_within(j.gap, 1e-12 * d.size)),
+                    "G0" => format!("kink {}°", shortest_within(j.angle_deg, 1e-9)),
+                    _ => match j.curvature_jump {
+                        Some(k) => format!("curvature jump {} %", shortest_within(100.0 * k, 1e-6)),
+                        None => "unbounded curvature".to_owned(),
+                    },
+                };
+                format!(
+                    "{} {what}{} at t = {} {}",
+                    j.class,
+                    if j.seam { " (seam)" } else { "" },
+                    d.param(j.t),
+                    d.point(j.point, planar)
+                )
+            })
+            .collect();
+        let _ = writeln!(
+            out,
+            "  joints          {}{}",
+            summary.join(", "),
+            if items.is_empty() {
+                String::new()
+            } else {
+                format!(": {}", list(&items))
+            }
+        );
+    }
 }
 
 /// The report as text for people.

@@ -11,6 +11,7 @@ pub mod comb;
 pub mod curve;
 pub mod gauss;
 pub mod intersect;
+pub mod joints;
 pub mod piece;
 pub mod poly;
 pub mod quadrature;
@@ -22,4 +23,5 @@ pub use curve::{
     HitKind, Length, LineHit, LineIntersections, bezier_length,
 };
 pub use intersect::{Hit, Intersections, Overlap, PairIntersections, all_intersections};
+pub use joints::{Joint, JointClass};
 pub use roots::{Root, Roots, bernstein_roots, bernstein_roots_with_noise};

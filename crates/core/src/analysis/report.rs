@@ -83,6 +83,31 @@ pub struct CurveAnalysisReport {
     /// With intersections asked for, planar curves: where the curve meets itself.
     #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub self_intersections: Option<IntersectionsReport>,
+    /// The joints between its lowered segments, then a closed curve's seam: continuity
+    /// at each (`docs/math.md` §9).
+    pub joints: Vec<JointReport>,
+}
+
+/// Continuity at one joint ([`crate::analysis::joints`]).
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+pub struct JointReport {
+    /// The curve parameter.
+    pub t: f64,
+    /// The point.
+    pub point: Xyz,
+    /// `G2`, `G1`, `G0` (a kink) or `gap`.
+    pub class: &'static str,
+    /// The distance between the two ends that meet there.
+    pub gap: f64,
+    /// The angle between the tangents, in degrees (0 to 180).
+    pub angle_deg: f64,
+    /// The relative jump of the curvature vector, `|K⁻ − K⁺| / max(|K⁻|, |K⁺|)` (0 to
+    /// 2); absent where a speed vanishes (the curvature is unbounded there).
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    pub curvature_jump: Option<f64>,
+    /// Whether this is a closed curve's seam.
+    pub seam: bool,
 }
 
 /// An axis-aligned box.
@@ -313,6 +338,19 @@ pub fn curve_analysis_report(
         cusps,
         curvature_extrema,
         self_intersections,
+        joints: c
+            .joints()
+            .into_iter()
+            .map(|j| JointReport {
+                t: j.t,
+                point: j.point.to_array(),
+                class: j.class.name(),
+                gap: j.gap,
+                angle_deg: j.angle.to_degrees(),
+                curvature_jump: j.curvature_jump.is_finite().then_some(j.curvature_jump),
+                seam: j.seam,
+            })
+            .collect(),
     })
 }
 

@@ -484,6 +484,16 @@ class Curve:
         signed=True)``), and ``+1`` for a maximum or ``−1`` for a minimum of ``|κ|``."""
         return self._c.curvature_extrema()
 
+    def joints(self) -> np.ndarray:
+        """Continuity where one lowered segment meets the next (a B-spline's knots, a
+        bump's ends, an interpolation's data points), then a closed curve's seam: ``(K,
+        4)`` — the parameter, the gap between the two ends, the angle between the
+        tangents in radians, and the relative jump of the curvature vector
+        ``|K⁻ − K⁺| / max(|K⁻|, |K⁺|)`` (``inf`` where a speed vanishes). A joint is G2
+        when the gap, angle and jump are at rounding level (``1e-12`` of the size,
+        ``1e-9`` rad, ``1e-8``), G1 with a jump, G0 with an angle (docs/math.md §9)."""
+        return self._c.joints()
+
     def signed_area(self) -> float:
         """The signed area the curve encloses (2D, positive counter-clockwise); an open
         curve is closed by the chord from its end to its start."""
