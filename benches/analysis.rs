@@ -209,6 +209,7 @@ fn bench(c: &mut Criterion) {
         inflections: true,
         curvature_extrema: true,
         intersections: true,
+        joints: true,
     };
     g.bench_function("1,000 stress cubics: intersections", |b| {
         b.iter(|| markers(black_box(&thousand), &only_crossings).len())

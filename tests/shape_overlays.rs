@@ -104,6 +104,7 @@ fn markers_sit_where_the_exact_answers_are() {
         inflections: true,
         curvature_extrema: false,
         intersections: true,
+        joints: false,
     };
     let fig = build(&scene, &opts).expect("figure");
     let discs: Vec<DVec2> = fig
@@ -459,4 +460,76 @@ fn the_galleries_comb_is_the_same_in_the_png_and_the_svg_and_stays_within_its_ca
             ))
         );
     });
+}
+
+/// Joint markers where the analysis finds the joints that are not G2: on a cubic B-spline
+/// with a triple knot (a kink at (3, 1)) and a double knot (a curvature jump), a figure with
+/// `joints` on has a kink marker at the kink's exact point, a curvature-jump marker at the
+/// double knot's point and no other marker; the legend names both kinds.
+#[test]
+fn joint_markers_sit_at_the_kink_and_the_curvature_jump() {
+    let s = splinescope::geom::BSpline::try_new(
+        vec![
+            p(0.0, 0.0),
+            p(1.0, 1.5),
+            p(2.0, 1.0),
+            p(3.0, 1.0),
+            p(3.0, 2.0),
+            p(3.5, 4.0),
+            p(5.0, 3.0),
+            p(6.0, 5.0),
+            p(7.0, 4.0),
+        ],
+        vec![0., 0., 0., 0., 1., 1., 1., 2., 2., 3., 3., 3., 3.],
+        4,
+    )
+    .expect("spline");
+    let jump_at = s.eval(2.0);
+    let scene = bare(vec![Curve::BSpline(s)]);
+    let mut opts = FigureOptions::new(400, 300);
+    opts.legend = true;
+    opts.shape = ShapeOptions {
+        joints: true,
+        ..ShapeOptions::default()
+    };
+    let fig = build(&scene, &opts).expect("figure");
+    let discs: Vec<DVec2> = fig
+        .items
+        .iter()
+        .filter_map(|i| match i {
+            Item::Disc { center, .. } => Some(*center),
+            _ => None,
+        })
+        .collect();
+    let at = |q: DVec3| fig.projection.point(q).expect("in front");
+    for want in [p(3.0, 1.0), jump_at] {
+        assert!(
+            discs.iter().any(|d| (*d - at(want)).length() < 1e-6),
+            "no marker at {want}: {discs:?}"
+        );
+    }
+    let legend_discs = 2 * 2; // the legend's two kinds, ring and core each
+    let curve_markers = discs
+        .iter()
+        .filter(|d| {
+            [p(3.0, 1.0), jump_at]
+                .iter()
+                .any(|q| (at(*q) - **d).length() < 1e-6)
+        })
+        .count();
+    // Two markers; each a ring and a core, each drawn as a rim and its fill.
+    assert_eq!(curve_markers, 8, "{discs:?}");
+    assert_eq!(discs.len(), curve_markers + legend_discs, "{discs:?}");
+    let texts: Vec<&str> = fig
+        .items
+        .iter()
+        .filter_map(|i| match i {
+            Item::Text { text, .. } => Some(text.as_str()),
+            _ => None,
+        })
+        .collect();
+    assert!(
+        texts.contains(&"kink (G0 joint)") && texts.contains(&"curvature jump (G1 joint)"),
+        "{texts:?}"
+    );
 }

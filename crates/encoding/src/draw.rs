@@ -188,17 +188,23 @@ pub enum MarkerKind {
     Intersection,
     /// A curve meets itself.
     SelfIntersection,
+    /// A joint where the tangent turns (G0) or the ends part (a gap).
+    Kink,
+    /// A joint with one tangent where the curvature jumps (G1).
+    CurvatureJump,
 }
 
 impl MarkerKind {
     /// Every kind, in the legend's order.
-    pub const ALL: [MarkerKind; 6] = [
+    pub const ALL: [MarkerKind; 8] = [
         MarkerKind::Inflection,
         MarkerKind::Cusp,
         MarkerKind::CurvatureMax,
         MarkerKind::CurvatureMin,
         MarkerKind::Intersection,
         MarkerKind::SelfIntersection,
+        MarkerKind::Kink,
+        MarkerKind::CurvatureJump,
     ];
 
     /// The legend's words.
@@ -211,6 +217,8 @@ impl MarkerKind {
             MarkerKind::CurvatureMin => "curvature minimum",
             MarkerKind::Intersection => "intersection",
             MarkerKind::SelfIntersection => "self-intersection",
+            MarkerKind::Kink => "kink (G0 joint)",
+            MarkerKind::CurvatureJump => "curvature jump (G1 joint)",
         }
     }
 }
@@ -220,10 +228,12 @@ impl MarkerKind {
 /// markers match its stroke: inflection — the curve's colour on white; cusp — dark on the
 /// curve's colour; curvature maximum — the curve's colour on dark; minimum — white on the
 /// curve's colour; intersection — white on dark; self-intersection — white on the curve's
-/// colour, larger.
+/// colour, larger; kink — dark on orange; curvature jump — white on orange (the joints'
+/// own colour, whatever the curve's).
 #[must_use]
 pub fn marker_style(kind: MarkerKind, curve: Color) -> (Stroke, Stroke) {
     const DARK: Color = Color([0.08, 0.08, 0.1, 1.0]);
+    const JOINT: Color = Color([1.0, 0.55, 0.0, 1.0]);
     let (ring, core, outer, inner) = match kind {
         MarkerKind::Inflection => (Color::WHITE, curve, 11.0, 7.0),
         MarkerKind::Cusp => (curve, DARK, 11.0, 5.0),
@@ -231,6 +241,8 @@ pub fn marker_style(kind: MarkerKind, curve: Color) -> (Stroke, Stroke) {
         MarkerKind::CurvatureMin => (curve, Color::WHITE, 9.0, 4.0),
         MarkerKind::Intersection => (DARK, Color::WHITE, 10.0, 6.0),
         MarkerKind::SelfIntersection => (curve, Color::WHITE, 12.0, 6.0),
+        MarkerKind::Kink => (JOINT, DARK, 11.0, 5.0),
+        MarkerKind::CurvatureJump => (JOINT, Color::WHITE, 10.0, 5.0),
     };
     (Stroke::solid(ring, outer), Stroke::solid(core, inner))
 }

@@ -144,10 +144,11 @@ impl PyScene {
     /// The scene drawn on the GPU (`width × height`, its own camera, the tolerance in
     /// pixels) as an `(height, width, 4)` uint8 RGBA array; the same image as
     /// `splinescope render` on the same adapter.
-    /// `shape`: `(comb, comb_scale, comb_cap, inflections, curvature_extrema, intersections)` — the
+    /// `shape`: `(comb, comb_scale, comb_cap, inflections, curvature_extrema, intersections,
+    /// joints)` — the
     /// curvature comb (its scale chosen for the view when `comb_scale` is `None`) and the
     /// markers, as `render --comb …` draws them.
-    #[pyo3(signature = (width, height, tolerance_px=0.25, backend="auto", shape=(false, None, None, false, false, false)))]
+    #[pyo3(signature = (width, height, tolerance_px=0.25, backend="auto", shape=(false, None, None, false, false, false, false)))]
     fn render<'py>(
         &self,
         py: Python<'py>,
@@ -163,7 +164,7 @@ impl PyScene {
     }
 
     /// The scene drawn as for `render`, encoded as a PNG file's bytes.
-    #[pyo3(signature = (width, height, tolerance_px=0.25, backend="auto", shape=(false, None, None, false, false, false)))]
+    #[pyo3(signature = (width, height, tolerance_px=0.25, backend="auto", shape=(false, None, None, false, false, false, false)))]
     fn png<'py>(
         &self,
         py: Python<'py>,
@@ -183,7 +184,7 @@ impl PyScene {
     /// Writes the scene as a figure, by `path`'s extension: `.svg` or `.pdf` (exact
     /// curves, pieces within `tolerance` points elsewhere) or `.png` (the GPU picture),
     /// with labels, legend, axes and grid as asked; atomically.
-    #[pyo3(signature = (path, width=800, height=500, tolerance=0.01, labels=false, legend=false, axes=false, grid=false, backend="auto", shape=(false, None, None, false, false, false)))]
+    #[pyo3(signature = (path, width=800, height=500, tolerance=0.01, labels=false, legend=false, axes=false, grid=false, backend="auto", shape=(false, None, None, false, false, false, false)))]
     #[allow(clippy::too_many_arguments)]
     fn export(
         &self,
@@ -328,13 +329,13 @@ impl PyScene {
 
 /// The shape overlays as Python hands them: the comb on, its scale (`None`: chosen for
 /// the view), its cap (a fraction of the view's height; `None`: no cap), and the three
-/// marker switches.
-type ShapeArgs = (bool, Option<f64>, Option<f64>, bool, bool, bool);
+/// marker switches (inflections, curvature extrema, intersections, joints).
+type ShapeArgs = (bool, Option<f64>, Option<f64>, bool, bool, bool, bool);
 
 /// The shape options of `ShapeArgs`, the scale and cap checked ([`SceneError`] naming
 /// `comb` or `comb_cap`).
 fn shape_options(
-    (comb, scale, cap, inflections, curvature_extrema, intersections): ShapeArgs,
+    (comb, scale, cap, inflections, curvature_extrema, intersections, joints): ShapeArgs,
 ) -> PyResult<ShapeOptions> {
     let comb_cap = match cap {
         None => CombCap::NONE,
@@ -355,6 +356,7 @@ fn shape_options(
         inflections,
         curvature_extrema,
         intersections,
+        joints,
     })
 }
 

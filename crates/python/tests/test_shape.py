@@ -140,3 +140,22 @@ def test_bad_comb_caps_are_refused_naming_them(tmp_path, cap):
     assert not (tmp_path / "x.svg").exists()
     with pytest.raises(TypeError, match="comb_cap"):
         circle_scene(1.0).render(10, 10, comb=True, comb_cap="wide")
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_joint_markers_mark_the_kink(backend):
+    # A triple knot at 1: a kink at (3, 1), the view's centre; nothing else is marked.
+    s = ss.BSpline(
+        [0, 0, 0, 0, 1, 1, 1, 2, 2, 2, 2],
+        [[1, -1], [2, 0.5], [2, 1], [3, 1], [4, 1], [4, 1.5], [5, 3]],
+        4,
+    )
+    scene = bare([s])
+    plain = render_or_fail(scene, 300, 300, backend=backend)
+    marked = render_or_fail(scene, 300, 300, backend=backend, joints=True)
+    changed = np.argwhere((plain != marked).any(axis=2))
+    assert len(changed), "the kink is marked"
+    centre = np.array([150, 150])
+    assert np.abs(changed - centre).max() <= 8, changed.min(axis=0)
+    with pytest.raises(TypeError, match="joints"):
+        scene.render(10, 10, joints="yes")

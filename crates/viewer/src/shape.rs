@@ -32,6 +32,8 @@ pub struct ShapeView {
     pub curvature_extrema: bool,
     /// Intersection markers (between curves and of a curve with itself).
     pub intersections: bool,
+    /// Joint markers: kinks (G0) and curvature jumps (G1).
+    pub joints: bool,
     /// The selected curve's tight bounding box.
     pub bbox: bool,
 }
@@ -47,6 +49,7 @@ impl Default for ShapeView {
             inflections: false,
             curvature_extrema: false,
             intersections: false,
+            joints: false,
             bbox: false,
         }
     }
@@ -62,6 +65,7 @@ impl ShapeView {
             inflections: self.inflections,
             curvature_extrema: self.curvature_extrema,
             intersections: self.intersections,
+            joints: self.joints,
         }
     }
 
@@ -256,6 +260,7 @@ mod tests {
             inflections: true,
             curvature_extrema: false,
             intersections: true,
+            joints: false,
         };
         w.poll(&scene, true, on, Instant::now());
         assert!(w.busy());

@@ -353,6 +353,10 @@ fn the_shape_section_turns_the_comb_on_scales_it_caps_it_and_refuses_bad_values(
     h.get_by_label("inflections and cusps").click();
     h.run();
     assert!(h.state().model.shape.inflections);
+    h.get_by_label("joints (kinks, curvature jumps)").click();
+    h.run();
+    assert!(h.state().model.shape.joints);
+    assert!(h.state().model.shape.marker_options().joints);
     h.get_by_label("inflection (0)");
     h.get_by_label("cusp (0)");
     h.get_by_label("curvature comb (K)").click();

@@ -94,6 +94,9 @@ struct ShapeArgs {
     /// Mark where curves cross each other or themselves (2D curves).
     #[arg(long)]
     intersections: bool,
+    /// Mark the joints that are not G2: kinks (G0) and curvature jumps (G1) (2D curves).
+    #[arg(long)]
+    joints: bool,
 }
 
 impl ShapeArgs {
@@ -104,6 +107,7 @@ impl ShapeArgs {
             inflections: self.inflections,
             curvature_extrema: self.curvature_extrema,
             intersections: self.intersections,
+            joints: self.joints,
         }
     }
 }

@@ -1064,6 +1064,7 @@ class Scene:
         inflections: bool = False,
         curvature_extrema: bool = False,
         intersections: bool = False,
+        joints: bool = False,
     ) -> np.ndarray:
         """The scene drawn on the GPU (a software adapter works), as an
         ``(height, width, 4)`` uint8 RGBA array: the image ``splinescope render``
@@ -1074,10 +1075,11 @@ class Scene:
         ``comb_cap``: the longest hair, a fraction of the view's height (``None``: no cap)
         — a longer one is cut to it, drawn in the envelope's stroke, the envelope broken
         there;
-        ``inflections``, ``curvature_extrema``, ``intersections``: the markers
+        ``inflections``, ``curvature_extrema``, ``intersections``, ``joints`` (kinks and
+        curvature jumps where segments meet): the markers
         (``render --comb --inflections …``)."""
         w, h = _size(width, height, "render")
-        shape = _shape(comb, comb_cap, inflections, curvature_extrema, intersections, "render")
+        shape = _shape(comb, comb_cap, inflections, curvature_extrema, intersections, joints, "render")
         return self._s.render(
             w, h, _number(tolerance_px, "tolerance_px"), _str(backend, "backend", "render"), shape
         )
@@ -1092,10 +1094,11 @@ class Scene:
         inflections: bool = False,
         curvature_extrema: bool = False,
         intersections: bool = False,
+        joints: bool = False,
     ) -> bytes:
         """The rendered scene as PNG file bytes (the shape overlays as for ``render``)."""
         w, h = _size(width, height, "png")
-        shape = _shape(comb, comb_cap, inflections, curvature_extrema, intersections, "png")
+        shape = _shape(comb, comb_cap, inflections, curvature_extrema, intersections, joints, "png")
         return bytes(self._s.png(w, h, 0.25, _str(backend, "backend", "png"), shape))
 
     def export(
@@ -1114,6 +1117,7 @@ class Scene:
         inflections: bool = False,
         curvature_extrema: bool = False,
         intersections: bool = False,
+        joints: bool = False,
     ) -> None:
         """Writes the scene as a figure, by the extension: ``.svg`` or ``.pdf`` (curves
         of degree ≤ 3 in a 2D view exact, other pieces within ``tolerance`` points) or
@@ -1122,7 +1126,7 @@ class Scene:
         ``render`` (in SVG and PDF the comb's hairs are exact line segments and the
         markers circles at exact positions); atomically."""
         w, h = _size(width, height, "export")
-        shape = _shape(comb, comb_cap, inflections, curvature_extrema, intersections, "export")
+        shape = _shape(comb, comb_cap, inflections, curvature_extrema, intersections, joints, "export")
         self._s.export(
             str(path),
             w,
@@ -1236,8 +1240,9 @@ def _shape(
     inflections: Any,
     curvature_extrema: Any,
     intersections: Any,
+    joints: Any,
     method: str,
-) -> Tuple[bool, Optional[float], Optional[float], bool, bool, bool]:
+) -> Tuple[bool, Optional[float], Optional[float], bool, bool, bool, bool]:
     """The shape overlays' arguments: ``comb`` ``None``/``False`` (off), ``True`` or
     ``"auto"`` (a scale chosen for the view), or a number (the scale: finite, above 0 —
     else a :class:`SceneError` naming ``comb``); ``comb_cap`` ``None`` (no cap) or a
@@ -1256,6 +1261,7 @@ def _shape(
         _bool(inflections, "inflections", method),
         _bool(curvature_extrema, "curvature_extrema", method),
         _bool(intersections, "intersections", method),
+        _bool(joints, "joints", method),
     )
     if comb is None or comb is False:
         return (False, None, cap) + flags

@@ -108,7 +108,7 @@ class _Scene:
         height: int,
         tolerance_px: float = 0.25,
         backend: str = "auto",
-        shape: Tuple[bool, Optional[float], Optional[float], bool, bool, bool] = ...,
+        shape: Tuple[bool, Optional[float], Optional[float], bool, bool, bool, bool] = ...,
     ) -> npt.NDArray[np.uint8]: ...
     def export(
         self,
@@ -121,7 +121,7 @@ class _Scene:
         axes: bool = False,
         grid: bool = False,
         backend: str = "auto",
-        shape: Tuple[bool, Optional[float], Optional[float], bool, bool, bool] = ...,
+        shape: Tuple[bool, Optional[float], Optional[float], bool, bool, bool, bool] = ...,
     ) -> None: ...
     def png(
         self,
@@ -129,7 +129,7 @@ class _Scene:
         height: int,
         tolerance_px: float = 0.25,
         backend: str = "auto",
-        shape: Tuple[bool, Optional[float], Optional[float], bool, bool, bool] = ...,
+        shape: Tuple[bool, Optional[float], Optional[float], bool, bool, bool, bool] = ...,
     ) -> bytes: ...
 
 def eval_many(curves: Sequence[_Curve], n: int) -> npt.NDArray[np.float64]: ...

@@ -9,7 +9,7 @@
 use glam::DVec3;
 
 use splinescope_core::analysis::comb::{auto_scale, reference_curvature, reference_length};
-use splinescope_core::analysis::{CurveAnalysis, ExtremumKind, all_intersections};
+use splinescope_core::analysis::{CurveAnalysis, ExtremumKind, JointClass, all_intersections};
 
 use super::Color;
 use super::Scene;
@@ -134,6 +134,8 @@ pub struct ShapeOptions {
     pub curvature_extrema: bool,
     /// Where curves cross each other or themselves.
     pub intersections: bool,
+    /// The joints that are not G2: kinks (G0, gaps) and curvature jumps (G1).
+    pub joints: bool,
 }
 
 impl ShapeOptions {
@@ -146,6 +148,7 @@ impl ShapeOptions {
                 MarkerKind::Inflection | MarkerKind::Cusp => self.inflections,
                 MarkerKind::CurvatureMax | MarkerKind::CurvatureMin => self.curvature_extrema,
                 MarkerKind::Intersection | MarkerKind::SelfIntersection => self.intersections,
+                MarkerKind::Kink | MarkerKind::CurvatureJump => self.joints,
             })
             .collect()
     }
@@ -153,7 +156,7 @@ impl ShapeOptions {
     /// Whether any marker is asked for.
     #[must_use]
     pub fn any_marker(&self) -> bool {
-        self.inflections || self.curvature_extrema || self.intersections
+        self.inflections || self.curvature_extrema || self.intersections || self.joints
     }
 }
 
@@ -225,6 +228,16 @@ pub fn markers_of(analyses: &[CurveAnalysis], options: &ShapeOptions) -> Vec<Mar
                     other: Some((i, h.t)),
                     ..at(MarkerKind::SelfIntersection, i, h.s, h.point)
                 });
+            }
+        }
+        if options.joints {
+            for j in a.joints() {
+                let kind = match j.class {
+                    JointClass::G2 => continue,
+                    JointClass::G1 => MarkerKind::CurvatureJump,
+                    JointClass::G0 | JointClass::Gap => MarkerKind::Kink,
+                };
+                out.push(at(kind, i, j.t, j.point));
             }
         }
     }
@@ -347,6 +360,7 @@ mod tests {
             inflections: true,
             curvature_extrema: true,
             intersections: true,
+            joints: true,
         };
         let found = markers(&scene, &all);
         let of = |k: MarkerKind| found.iter().filter(|m| m.kind == k).collect::<Vec<_>>();

@@ -51,6 +51,8 @@ pub(crate) fn shape_section(
             ui.checkbox(&mut s.inflections, "inflections and cusps");
             ui.checkbox(&mut s.curvature_extrema, "curvature extrema");
             ui.checkbox(&mut s.intersections, "intersections");
+            ui.checkbox(&mut s.joints, "joints (kinks, curvature jumps)")
+                .on_hover_text("where segments meet: a kink (G0) or a curvature jump (G1)");
             ui.checkbox(&mut s.bbox, "selected curve's box");
             let kinds = s.marker_options().marker_kinds();
             for kind in kinds {
