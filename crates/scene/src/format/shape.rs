@@ -175,6 +175,8 @@ pub struct Marker {
     pub curvature: Option<f64>,
     /// The other curve and its parameter (intersections).
     pub other: Option<(usize, f64)>,
+    /// The angle between the tangents (radians) and the relative curvature jump (joints).
+    pub joint: Option<(f64, f64)>,
 }
 
 /// The markers `options` asks for on `scene`'s planar curves, by kind then curve then
@@ -200,6 +202,7 @@ pub fn markers_of(analyses: &[CurveAnalysis], options: &ShapeOptions) -> Vec<Mar
         point,
         curvature: None,
         other: None,
+        joint: None,
     };
     for (i, a) in analyses.iter().enumerate().filter(|(_, a)| a.is_planar()) {
         if options.inflections {
@@ -237,7 +240,10 @@ pub fn markers_of(analyses: &[CurveAnalysis], options: &ShapeOptions) -> Vec<Mar
                     JointClass::G1 => MarkerKind::CurvatureJump,
                     JointClass::G0 | JointClass::Gap => MarkerKind::Kink,
                 };
-                out.push(at(kind, i, j.t, j.point));
+                out.push(Marker {
+                    joint: Some((j.angle, j.curvature_jump)),
+                    ..at(kind, i, j.t, j.point)
+                });
             }
         }
     }

@@ -232,11 +232,40 @@ pub(crate) fn canvas_shape(ui: &mut egui::Ui, info: &PanelInfo<'_>, model: &Inte
     let near = info
         .markers
         .iter()
-        .filter(|m| m.curvature.is_some())
+        .filter(|m| m.curvature.is_some() || m.joint.is_some())
         .filter_map(|m| pixel(m.point).map(|p| (p.distance(pointer), m)))
         .filter(|(d, _)| *d <= 8.0)
         .min_by(|a, b| a.0.total_cmp(&b.0));
-    if let Some((_, m)) = near {
+    if let Some((_, m)) = near
+        && let Some((angle, jump)) = m.joint
+    {
+        let what = if m.kind == MarkerKind::Kink {
+            format!(
+                "the tangents {}° apart",
+                splinescope_core::num::fixed(angle.to_degrees(), 3)
+            )
+        } else if jump.is_finite() {
+            format!(
+                "the curvature jumps by {} %",
+                splinescope_core::num::fixed(100.0 * jump, 2)
+            )
+        } else {
+            "the curvature is unbounded there".to_owned()
+        };
+        let text = format!(
+            "{} of curve {} at t = {}: {what}",
+            m.kind.label(),
+            m.curve,
+            splinescope_core::num::fixed(m.t, 6)
+        );
+        egui::Tooltip::always_open(
+            ctx.clone(),
+            egui::LayerId::background(),
+            egui::Id::unique("splinescope-joint-hover"),
+            egui::PopupAnchor::Pointer,
+        )
+        .show(|ui| ui.label(text));
+    } else if let Some((_, m)) = near {
         // The extremum is of |κ| (a bend's sharpest point is a maximum either way); the
         // signed value says which way it turns.
         let k = m.curvature.unwrap_or_default();
