@@ -39,7 +39,7 @@ fn simple_knots_are_g2_and_a_double_knot_is_g1_with_its_jump() {
         pts.clone(),
         vec![0., 0., 0., 0., 1., 2., 3., 4., 4., 4., 4.],
     );
-    let joints = CurveAnalysis::new(&smooth).joints();
+    let joints = CurveAnalysis::new(&smooth).joints().expect("joints");
     assert_eq!(joints.len(), 3, "{joints:?}");
     for j in &joints {
         assert_eq!(j.class, JointClass::G2, "{j:?}");
@@ -54,7 +54,7 @@ fn simple_knots_are_g2_and_a_double_knot_is_g1_with_its_jump() {
     );
     // A double knot at 2: C¹ there, the curvature jumps.
     let kinked = cubic_spline(pts, vec![0., 0., 0., 0., 1., 2., 2., 3., 3., 3., 3.]);
-    let joints = CurveAnalysis::new(&kinked).joints();
+    let joints = CurveAnalysis::new(&kinked).joints().expect("joints");
     let j = joints
         .iter()
         .find(|j| j.t == 2.0)
@@ -95,7 +95,7 @@ fn a_triple_knot_is_a_kink_at_its_built_angle() {
             c + 3.0 * p(th.cos(), th.sin()),
         ];
         let s = cubic_spline(pts, vec![0., 0., 0., 0., 1., 1., 1., 2., 2., 2., 2.]);
-        let joints = CurveAnalysis::new(&s).joints();
+        let joints = CurveAnalysis::new(&s).joints().expect("joints");
         assert_eq!(joints.len(), 1, "{joints:?}");
         let j = joints[0];
         assert_eq!(j.class, JointClass::G0, "{deg}°: {j:?}");
@@ -108,7 +108,7 @@ fn a_triple_knot_is_a_kink_at_its_built_angle() {
 fn seams_of_closed_curves() {
     // A circle (a closed NURBS curve): every joint and its seam G2.
     let circle = Nurbs::circle(p(1.0, -2.0), 3.0).expect("circle");
-    let joints = CurveAnalysis::new(&circle).joints();
+    let joints = CurveAnalysis::new(&circle).joints().expect("joints");
     let seams: Vec<_> = joints.iter().filter(|j| j.seam).collect();
     assert_eq!(seams.len(), 1, "{joints:?}");
     for j in &joints {
@@ -117,7 +117,7 @@ fn seams_of_closed_curves() {
     // A closed cubic Bézier leaving its start at 90° to the way it arrives: the seam is a
     // kink of exactly 90°.
     let loop_ = Bezier::new(vec![p(0.0, 0.0), p(2.0, 0.0), p(0.0, 2.0), p(0.0, 0.0)]);
-    let joints = CurveAnalysis::new(&loop_).joints();
+    let joints = CurveAnalysis::new(&loop_).joints().expect("joints");
     assert_eq!(joints.len(), 1, "{joints:?}");
     let j = joints[0];
     assert!(j.seam && j.class == JointClass::G0, "{j:?}");
@@ -128,14 +128,19 @@ fn seams_of_closed_curves() {
     );
     // An open curve has no seam.
     let open = Bezier::new(vec![p(0.0, 0.0), p(1.0, 1.0), p(2.0, 0.0)]);
-    assert!(CurveAnalysis::new(&open).joints().is_empty());
+    assert!(
+        CurveAnalysis::new(&open)
+            .joints()
+            .expect("joints")
+            .is_empty()
+    );
 }
 
 #[test]
 fn a_modified_bezier_curves_bump_ends_are_g1() {
     let base = Bezier::new(vec![p(0.0, 0.0), p(1.0, 2.0), p(3.0, 2.0), p(4.0, 0.0)]);
     let m = ModifiedBezier::try_new(base, 0.4, p(0.0, 0.8)).expect("bump");
-    let joints = CurveAnalysis::new(&m).joints();
+    let joints = CurveAnalysis::new(&m).joints().expect("joints");
     assert!(!joints.is_empty(), "the bump's support ends are joints");
     for j in &joints {
         assert!(j.gap <= 1e-12 && j.angle <= 1e-9, "C¹: one tangent: {j:?}");
@@ -145,4 +150,44 @@ fn a_modified_bezier_curves_bump_ends_are_g1() {
         joints.iter().any(|j| j.class == JointClass::G1),
         "a C¹ bump jumps the curvature somewhere: {joints:?}"
     );
+}
+
+/// At the extremes of the coordinates (1e300, 1e-300) a joint is what it is at unit scale:
+/// the same angle and the same relative curvature jump, the same class.
+#[test]
+fn joints_do_not_depend_on_the_scale() {
+    let pts = vec![
+        p(0.0, 0.0),
+        p(1.0, 1.5),
+        p(2.0, 1.0),
+        p(3.0, 1.0),
+        p(3.0, 2.0),
+        p(3.5, 4.0),
+        p(5.0, 3.0),
+        p(6.0, 5.0),
+        p(7.0, 4.0),
+    ];
+    let knots = vec![0., 0., 0., 0., 1., 1., 1., 2., 2., 3., 3., 3., 3.];
+    let unit = CurveAnalysis::new(&cubic_spline(pts.clone(), knots.clone()))
+        .joints()
+        .expect("joints");
+    assert_eq!(unit.len(), 2, "a kink at 1, a curvature jump at 2");
+    for scale in [1e300, 1e-300, 1e150, 1e-150] {
+        let scaled: Vec<DVec3> = pts.iter().map(|q| *q * scale).collect();
+        let joints = CurveAnalysis::new(&cubic_spline(scaled, knots.clone()))
+            .joints()
+            .expect("joints");
+        assert_eq!(joints.len(), unit.len(), "{scale:e}");
+        for (j, u) in joints.iter().zip(&unit) {
+            assert_eq!(j.class, u.class, "{scale:e}: {j:?} vs {u:?}");
+            assert!(
+                (j.angle - u.angle).abs() <= 1e-12,
+                "{scale:e}: {j:?} vs {u:?}"
+            );
+            assert!(
+                (j.curvature_jump - u.curvature_jump).abs() <= 1e-9 * u.curvature_jump.max(1.0),
+                "{scale:e}: {j:?} vs {u:?}"
+            );
+        }
+    }
 }

@@ -613,7 +613,7 @@ impl PyCurve {
     /// `(K, 4)`: `t`, the position gap, the angle between the tangents (radians) and the
     /// relative curvature jump (`inf` where a speed vanishes).
     fn joints<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let joints = self.analysis().joints();
+        let joints = self.analysis().joints().map_err(|e| analysis_error(&e))?;
         let n = joints.len();
         let flat: Vec<f64> = joints
             .iter()

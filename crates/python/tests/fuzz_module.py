@@ -240,6 +240,17 @@ class Fuzz:
             out = self.call(f"{name} of {label}", getattr(c, name))
             if out is not None:
                 self.finite(f"{name} of {label}", out)
+        # Joints: finite parameters, gaps and angles (0 to π); a jump from 0 to 2, or inf
+        # where a speed vanishes, never NaN.
+        j = self.call(f"joints of {label}", c.joints)
+        if j is not None:
+            j = np.asarray(j, dtype=np.float64).reshape(-1, 4)
+            self.finite(f"joints of {label}", j[:, :3])
+            if ((j[:, 2] < 0) | (j[:, 2] > math.pi + 1e-12)).any():
+                self.fail(f"joints of {label}: an angle outside [0, π]: {j[:, 2]}")
+            jump = j[:, 3]
+            if np.isnan(jump).any() or ((jump < 0) | ((jump > 2 + 1e-9) & np.isfinite(jump))).any():
+                self.fail(f"joints of {label}: a curvature jump outside [0, 2]: {jump}")
         other = (self.call("other", ss.Curve.from_dict, rng.choice(docs)) if rng.random() < 0.5 else c) or c
         st = self.call(f"intersect of {label}", c.intersect, rng.choice([other, None, 3]))
         if st is not None:

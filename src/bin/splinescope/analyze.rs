@@ -279,19 +279,22 @@ fn curve_text(out: &mut String, c: &CurveAnalysisReport) {
     if let Some(s) = &c.self_intersections {
         let _ = writeln!(out, "  self            {}", hits(s, d));
     }
-    if !c.joints.is_empty() {
-        let count = |class: &str| c.joints.iter().filter(|j| j.class == class).count();
+    if let Some(why) = &c.joints_refused {
+        let _ = writeln!(out, "  joints          not measured: {why}");
+    }
+    let joints = c.joints.as_deref().unwrap_or_default();
+    if !joints.is_empty() {
+        let count = |class: &str| joints.iter().filter(|j| j.class == class).count();
         let mut summary: Vec<String> = ["G2", "G1", "G0", "gap"]
             .iter()
             .filter(|k| count(k) > 0)
             .map(|k| format!("{} {k}", count(k)))
             .collect();
         if summary.len() > 1 {
-            summary.insert(0, format!("{} in all", c.joints.len()));
+            summary.insert(0, format!("{} in all", joints.len()));
         }
         // The joints that are not G2, each with what breaks it.
-        let items: Vec<String> = c
-            .joints
+        let items: Vec<String> = joints
             .iter()
             .filter(|j| j.class != "G2")
             .map(|j| {

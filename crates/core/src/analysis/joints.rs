@@ -18,7 +18,7 @@
 use glam::DVec3;
 
 use super::comb::curvature_vector;
-use super::curve::CurveAnalysis;
+use super::curve::{AnalysisError, CurveAnalysis};
 use super::piece::Piece;
 
 /// Ends farther apart than this fraction of the curve's half-extent are a gap.
@@ -101,22 +101,48 @@ fn tangent(p: &Piece, u: f64) -> DVec3 {
     DVec3::ZERO
 }
 
-/// The curvature vector at the end `u` of a piece (`None` where the speed vanishes).
-fn curvature_at(p: &Piece, u: f64) -> Option<DVec3> {
+/// `scale` times the curvature vector at the end `u` of a piece (`None` where the speed
+/// vanishes): the derivatives divided by `scale` (of their own size) first, so that the
+/// product stays representable at coordinates near `1e300` or `1e-300`, where `K` itself
+/// would underflow or overflow; a ratio of two with one `scale` is the ratio of the
+/// curvatures.
+fn curvature_at(p: &Piece, u: f64, scale: f64) -> Option<DVec3> {
     let h = p.t1 - p.t0;
-    curvature_vector(p.deriv(u) / h, p.second_deriv(u) / (h * h))
+    curvature_vector(
+        p.deriv(u) / (h * scale),
+        p.second_deriv(u) / (h * h * scale),
+    )
 }
 
 fn joint(before: &Piece, after: &Piece, t: f64, half_extent: f64, seam: bool) -> Joint {
     let (p, q) = (before.point(1.0), after.point(0.0));
     let gap = (p - q).length();
-    let (a, b) = (tangent(before, 1.0), tangent(after, 0.0));
+    // Each tangent scaled by its largest component first: at coordinates near 1e300 a
+    // cross product would overflow, near 1e-300 underflow.
+    let unit = |v: DVec3| {
+        let m = v.abs().max_element();
+        if m > 0.0 && m.is_finite() { v / m } else { v }
+    };
+    let (a, b) = (unit(tangent(before, 1.0)), unit(tangent(after, 0.0)));
     let angle = if a.length_squared() > 0.0 && b.length_squared() > 0.0 {
         a.cross(b).length().atan2(a.dot(b))
     } else {
         0.0
     };
-    let curvature_jump = match (curvature_at(before, 1.0), curvature_at(after, 0.0)) {
+    // One scale for both sides (the jump is a ratio of the two): the larger component of
+    // the two first derivatives.
+    let scale = {
+        let m = before
+            .deriv(1.0)
+            .abs()
+            .max_element()
+            .max(after.deriv(0.0).abs().max_element());
+        if m > 0.0 && m.is_finite() { m } else { 1.0 }
+    };
+    let curvature_jump = match (
+        curvature_at(before, 1.0, scale),
+        curvature_at(after, 0.0, scale),
+    ) {
         (Some(k1), Some(k2)) => {
             let m = k1.length().max(k2.length());
             if m > 0.0 { (k1 - k2).length() / m } else { 0.0 }
@@ -147,8 +173,27 @@ fn joint(before: &Piece, after: &Piece, t: f64, half_extent: f64, seam: bool) ->
 impl CurveAnalysis {
     /// The joints between consecutive lowered segments, in order, then a closed curve's
     /// seam (see the module docs).
-    #[must_use]
-    pub fn joints(&self) -> Vec<Joint> {
+    ///
+    /// # Errors
+    /// [`AnalysisError::TooLarge`] for coordinates beyond `2^400` that are not all of one
+    /// scale (curvatures square the derivatives); [`AnalysisError::Overflow`] where a
+    /// tangent or a curvature at a joint is not a finite double (weights far apart).
+    pub fn joints(&self) -> Result<Vec<Joint>, AnalysisError> {
+        // Near the ends of the double range, measured on the curve scaled to about 1 (the
+        // angles and jumps do not change with the scale; points and gaps are scaled back).
+        if let Some((e, scaled)) = self.rescaled() {
+            let back = |x: f64| crate::num::scale_by_power_of_two(x, -e);
+            return Ok(scaled
+                .joints()?
+                .into_iter()
+                .map(|j| Joint {
+                    point: j.point.map(back),
+                    gap: back(j.gap),
+                    ..j
+                })
+                .collect());
+        }
+        self.require_moderate("joints")?;
         let pieces = self.pieces();
         let bbox = self.control_box();
         let half_extent = (0.5 * bbox.max - 0.5 * bbox.min).max_element();
@@ -161,6 +206,15 @@ impl CurveAnalysis {
         {
             out.push(joint(last, first, self.domain().1, half_extent, true));
         }
-        out
+        if out.iter().any(|j| {
+            !(j.point.is_finite() && j.gap.is_finite() && j.angle.is_finite())
+                || j.curvature_jump.is_nan()
+        }) {
+            return Err(AnalysisError::Overflow {
+                what: "joints' tangents or curvatures",
+                size: (bbox.max - bbox.min).length(),
+            });
+        }
+        Ok(out)
     }
 }

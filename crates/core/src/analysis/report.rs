@@ -84,8 +84,13 @@ pub struct CurveAnalysisReport {
     #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub self_intersections: Option<IntersectionsReport>,
     /// The joints between its lowered segments, then a closed curve's seam: continuity
-    /// at each (`docs/math.md` §9).
-    pub joints: Vec<JointReport>,
+    /// at each (`docs/math.md` §9); absent where they cannot be measured in doubles
+    /// (`joints_refused` says why).
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    pub joints: Option<Vec<JointReport>>,
+    /// Why the joints are absent.
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    pub joints_refused: Option<String>,
 }
 
 /// Continuity at one joint ([`crate::analysis::joints`]).
@@ -311,6 +316,7 @@ pub fn curve_analysis_report(
     } else {
         (None, None, None, None, None)
     };
+    let joints = c.joints();
     Ok(CurveAnalysisReport {
         index,
         family,
@@ -338,19 +344,21 @@ pub fn curve_analysis_report(
         cusps,
         curvature_extrema,
         self_intersections,
-        joints: c
-            .joints()
-            .into_iter()
-            .map(|j| JointReport {
-                t: j.t,
-                point: j.point.to_array(),
-                class: j.class.name(),
-                gap: j.gap,
-                angle_deg: j.angle.to_degrees(),
-                curvature_jump: j.curvature_jump.is_finite().then_some(j.curvature_jump),
-                seam: j.seam,
-            })
-            .collect(),
+        joints: joints.as_ref().ok().map(|joints| {
+            joints
+                .iter()
+                .map(|j| JointReport {
+                    t: j.t,
+                    point: j.point.to_array(),
+                    class: j.class.name(),
+                    gap: j.gap,
+                    angle_deg: j.angle.to_degrees(),
+                    curvature_jump: j.curvature_jump.is_finite().then_some(j.curvature_jump),
+                    seam: j.seam,
+                })
+                .collect()
+        }),
+        joints_refused: joints.err().map(|e| e.to_string()),
     })
 }
 

@@ -234,7 +234,7 @@ pub fn markers_of(analyses: &[CurveAnalysis], options: &ShapeOptions) -> Vec<Mar
             }
         }
         if options.joints {
-            for j in a.joints() {
+            for j in a.joints().unwrap_or_default() {
                 let kind = match j.class {
                     JointClass::G2 => continue,
                     JointClass::G1 => MarkerKind::CurvatureJump,
