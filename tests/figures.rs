@@ -43,23 +43,6 @@ fn scenes() -> Vec<(String, Scene)> {
     out
 }
 
-fn rasterise_svg(text: &str, w: u32, h: u32) -> RgbaImage {
-    let tree = resvg::usvg::Tree::from_str(text, &resvg::usvg::Options::default())
-        .expect("the SVG parses");
-    let mut pixmap = resvg::tiny_skia::Pixmap::new(w, h).expect("pixmap");
-    resvg::render(
-        &tree,
-        resvg::tiny_skia::Transform::default(),
-        &mut pixmap.as_mut(),
-    );
-    // The background is opaque: premultiplied equals straight alpha.
-    RgbaImage {
-        width: w,
-        height: h,
-        data: pixmap.data().to_vec(),
-    }
-}
-
 fn rasterise_pdf(bytes: &[u8], dir: &Path) -> RgbaImage {
     let pdf_path = dir.join("figure.pdf");
     std::fs::write(&pdf_path, bytes).expect("write the PDF");
@@ -134,7 +117,12 @@ fn svg_and_pdf_figures_look_like_the_rendered_png() {
             .expect("render");
             let fig = build(&scene, &FigureOptions::new(w, h)).expect("figure");
             let name = format!("{name}.{}", backend.name);
-            check_like(&name, "svg", &rasterise_svg(&svg::write(&fig), w, h), &png);
+            check_like(
+                &name,
+                "svg",
+                &common::rasterise_svg(&svg::write(&fig), w, h),
+                &png,
+            );
             check_like(&name, "pdf", &rasterise_pdf(&pdf::write(&fig), &dir), &png);
         }
     });

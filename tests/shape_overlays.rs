@@ -320,23 +320,6 @@ fn dilated(mask: &[bool], w: u32, h: u32) -> Vec<bool> {
     out
 }
 
-fn rasterise_svg(text: &str, w: u32, h: u32) -> RgbaImage {
-    let tree = resvg::usvg::Tree::from_str(text, &resvg::usvg::Options::default())
-        .expect("the SVG parses");
-    let mut pixmap = resvg::tiny_skia::Pixmap::new(w, h).expect("pixmap");
-    resvg::render(
-        &tree,
-        resvg::tiny_skia::Transform::default(),
-        &mut pixmap.as_mut(),
-    );
-    // The background is opaque: premultiplied equals straight alpha.
-    RgbaImage {
-        width: w,
-        height: h,
-        data: pixmap.data().to_vec(),
-    }
-}
-
 /// The gallery with its automatic comb, as `render --comb` draws it on the GPU and as
 /// `export --comb` writes it to SVG: the comb's own pixels (what it adds to the plain
 /// picture) in the two overlap by at least 80 % (intersection over union, each mask grown
@@ -354,7 +337,7 @@ fn the_galleries_comb_is_the_same_in_the_png_and_the_svg_and_stays_within_its_ca
     let figure = |shape: ShapeOptions| {
         let mut opts = FigureOptions::new(w, h);
         opts.shape = shape;
-        rasterise_svg(
+        common::rasterise_svg(
             &splinescope_figure::svg::write(&build(&scene, &opts).expect("figure")),
             w,
             h,

@@ -221,3 +221,21 @@ pub fn pack(
     )
     .expect("pack")
 }
+
+/// An SVG rasterised by resvg (the figures' independent renderer), `w × h` pixels.
+pub fn rasterise_svg(text: &str, w: u32, h: u32) -> splinescope::image::RgbaImage {
+    let tree = resvg::usvg::Tree::from_str(text, &resvg::usvg::Options::default())
+        .expect("the SVG parses");
+    let mut pixmap = resvg::tiny_skia::Pixmap::new(w, h).expect("pixmap");
+    resvg::render(
+        &tree,
+        resvg::tiny_skia::Transform::default(),
+        &mut pixmap.as_mut(),
+    );
+    // The background is opaque: premultiplied equals straight alpha.
+    splinescope::image::RgbaImage {
+        width: w,
+        height: h,
+        data: pixmap.data().to_vec(),
+    }
+}

@@ -7,7 +7,7 @@ use glam::DVec2;
 use splinescope_core::geom::ParamCurve;
 
 use splinescope_scene::format::draw::{MarkerKind, Stroke, marker_style};
-use splinescope_scene::format::labels::{ANCHORS, Ink, LabelRequest, corner, place};
+use splinescope_scene::format::labels::{ANCHORS, Ink, LabelRequest, corner, hidden_note, place};
 use splinescope_scene::format::{Color, Scene};
 
 use super::fit::{Piece, Projection, Seg};
@@ -308,12 +308,7 @@ pub fn legend_layout(
 pub fn legend(layout: Legend, hidden: usize, out: &mut Vec<Item>) {
     let (area_min, area_max) = layout.area();
     let mut rows = layout.rows;
-    if hidden > 0 {
-        let text = if hidden == 1 {
-            "1 label hidden".to_owned()
-        } else {
-            format!("{hidden} labels hidden")
-        };
+    if let Some(text) = hidden_note(hidden) {
         rows.push((Mark::None, text));
     }
     let box_w = area_max.x - area_min.x;

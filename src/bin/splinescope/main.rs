@@ -112,30 +112,33 @@ impl ShapeArgs {
     }
 }
 
+/// A value that is `keyword` (`None`) or a number (`Some`), else a message naming it.
+fn keyword_or_number(s: &str, keyword: &str) -> Result<Option<f64>, String> {
+    if s.trim() == keyword {
+        return Ok(None);
+    }
+    s.trim()
+        .parse()
+        .map(Some)
+        .map_err(|_| format!("{s:?} is neither a number nor `{keyword}`"))
+}
+
 /// `--comb`'s value: `auto`, or a finite number above 0.
 fn parse_comb(s: &str) -> Result<splinescope::scene::shape::CombScale, String> {
     use splinescope::scene::shape::CombScale;
-    if s.trim() == "auto" {
-        return Ok(CombScale::Auto);
+    match keyword_or_number(s, "auto")? {
+        None => Ok(CombScale::Auto),
+        Some(v) => CombScale::fixed(v).map_err(|e| e.to_string()),
     }
-    let v: f64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("{s:?} is neither a number nor `auto`"))?;
-    CombScale::fixed(v).map_err(|e| e.to_string())
 }
 
 /// `--comb-cap`'s value: `none`, or a finite number above 0.
 fn parse_comb_cap(s: &str) -> Result<splinescope::scene::shape::CombCap, String> {
     use splinescope::scene::shape::CombCap;
-    if s.trim() == "none" {
-        return Ok(CombCap::NONE);
+    match keyword_or_number(s, "none")? {
+        None => Ok(CombCap::NONE),
+        Some(v) => CombCap::fraction(v).map_err(|e| e.to_string()),
     }
-    let v: f64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("{s:?} is neither a number nor `none`"))?;
-    CombCap::fraction(v).map_err(|e| e.to_string())
 }
 
 #[derive(Debug, clap::Args)]

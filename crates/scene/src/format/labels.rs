@@ -262,6 +262,17 @@ pub fn place(
     out
 }
 
+/// What a picture says of `hidden` labels: `None` when none is, else "1 label hidden" or
+/// "N labels hidden".
+#[must_use]
+pub fn hidden_note(hidden: usize) -> Option<String> {
+    match hidden {
+        0 => None,
+        1 => Some("1 label hidden".to_owned()),
+        n => Some(format!("{n} labels hidden")),
+    }
+}
+
 /// Where a box of `size` goes in a page of `page` pixels: the corner (8 pixels in) whose
 /// box covers the fewest cells of `ink` — the top right first on a tie.
 #[must_use]

@@ -270,12 +270,7 @@ pub(crate) fn curve_labels(
             egui::Color32::WHITE,
         );
     }
-    if hidden > 0 {
-        let text = if hidden == 1 {
-            "1 label hidden".to_owned()
-        } else {
-            format!("{hidden} labels hidden")
-        };
+    if let Some(text) = crate::scene::labels::hidden_note(hidden) {
         painter.text(
             screen.left_bottom() + egui::vec2(8.0, -6.0),
             egui::Align2::LEFT_BOTTOM,

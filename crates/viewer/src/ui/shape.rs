@@ -258,13 +258,7 @@ pub(crate) fn canvas_shape(ui: &mut egui::Ui, info: &PanelInfo<'_>, model: &Inte
             m.curve,
             splinescope_core::num::fixed(m.t, 6)
         );
-        egui::Tooltip::always_open(
-            ctx.clone(),
-            egui::LayerId::background(),
-            egui::Id::unique("splinescope-joint-hover"),
-            egui::PopupAnchor::Pointer,
-        )
-        .show(|ui| ui.label(text));
+        marker_tip(&ctx, text);
     } else if let Some((_, m)) = near {
         // The extremum is of |κ| (a bend's sharpest point is a maximum either way); the
         // signed value says which way it turns.
@@ -278,12 +272,17 @@ pub(crate) fn canvas_shape(ui: &mut egui::Ui, info: &PanelInfo<'_>, model: &Inte
             splinescope_core::num::fixed(k, 6),
             splinescope_core::num::fixed(m.t, 6)
         );
-        egui::Tooltip::always_open(
-            ctx.clone(),
-            egui::LayerId::background(),
-            egui::Id::unique("splinescope-curvature-hover"),
-            egui::PopupAnchor::Pointer,
-        )
-        .show(|ui| ui.label(text));
+        marker_tip(&ctx, text);
     }
+}
+
+/// The tooltip at the pointer saying what the marker under it measures.
+fn marker_tip(ctx: &egui::Context, text: String) {
+    egui::Tooltip::always_open(
+        ctx.clone(),
+        egui::LayerId::background(),
+        egui::Id::unique("splinescope-marker-hover"),
+        egui::PopupAnchor::Pointer,
+    )
+    .show(|ui| ui.label(text));
 }
