@@ -733,6 +733,7 @@ pub(crate) fn analysis_error(e: &AnalysisError) -> PyErr {
         AnalysisError::Overflow { .. } => "",
         AnalysisError::DegenerateLine { .. } | AnalysisError::ShortLine { .. } => "q",
         AnalysisError::NotPlanar { .. } | AnalysisError::TooLarge { .. } => "",
+        AnalysisError::Crowded { .. } => "other",
     };
     raise::<CurveError>(e.to_string(), path)
 }

@@ -107,6 +107,36 @@ pub enum AnalysisError {
         /// `q − p`.
         direction: DVec3,
     },
+    /// Two curves running so close to each other, over a stretch, that the subdivision
+    /// cannot tell their points apart within its work bound: closer than its flatness
+    /// resolution, yet neither one tangency nor coincident within the point resolution.
+    /// What was found is not known to be all, so none of it is returned.
+    #[error(
+        "intersections: {}the curves run within the resolution of each other near s ∈ [{}, {}], t ∈ [{}, {}] without coinciding; their meeting points there cannot be separated within {leaves} subdivision leaves (nearly coincident curves: move one by more than about 1e-10 of their size, or compare them as overlapping)",
+        Pair(*pair), Num(s.0), Num(s.1), Num(t.0), Num(t.1)
+    )]
+    Crowded {
+        /// The two curves' indices, when the question was asked of many curves.
+        pair: Option<(usize, usize)>,
+        /// The first curve's parameter range where the subdivision stopped.
+        s: (f64, f64),
+        /// The second curve's.
+        t: (f64, f64),
+        /// The work bound reached.
+        leaves: usize,
+    },
+}
+
+/// "curves i and j: " where a pair of many is named, else nothing.
+struct Pair(Option<(usize, usize)>);
+
+impl std::fmt::Display for Pair {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.0 {
+            Some((i, j)) => write!(f, "curves {i} and {j}: "),
+            None => Ok(()),
+        }
+    }
 }
 
 /// An arc length and the bound on its error kept by the quadrature.

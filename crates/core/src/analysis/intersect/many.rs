@@ -19,7 +19,7 @@ use glam::DVec2;
 use rayon::prelude::*;
 
 use super::pair::piece_pair;
-use super::{Intersections, PairIntersections, hit, overlap, settle, tidy};
+use super::{Intersections, PairIntersections, hit, overlap, refuse_crowded, settle, tidy};
 use crate::analysis::curve::{AnalysisError, CurveAnalysis};
 use crate::analysis::piece::Piece;
 
@@ -127,6 +127,9 @@ pub fn all_intersections<C: Borrow<CurveAnalysis> + Sync>(
             for &(_, ka, _, kb) in run {
                 let (a, b) = (&local[ka], &local[kb]);
                 let ph = piece_pair(a, (0.0, 1.0), b, (0.0, 1.0));
+                if let Err(e) = refuse_crowded(a, b, &ph) {
+                    return Some(Err(named(e, ci, cj)));
+                }
                 found.hits.extend(ph.hits.iter().map(|h| hit(a, b, h)));
                 found
                     .overlaps
@@ -140,7 +143,7 @@ pub fn all_intersections<C: Borrow<CurveAnalysis> + Sync>(
                 return None;
             }
             // In the curves' own order.
-            Some(if ci < cj {
+            Some(Ok(if ci < cj {
                 (
                     ci,
                     cj,
@@ -161,9 +164,9 @@ pub fn all_intersections<C: Borrow<CurveAnalysis> + Sync>(
                         found,
                     },
                 )
-            })
+            }))
         })
-        .collect();
+        .collect::<Result<_, _>>()?;
     // Every member of two groups meets as their first curves do.
     let members = |c: usize| -> &[usize] {
         groups
@@ -201,6 +204,27 @@ pub fn all_intersections<C: Borrow<CurveAnalysis> + Sync>(
         pairs: out,
         copies: groups,
     })
+}
+
+/// A pair's refusal, naming the two curves (in the caller's indices, the smaller
+/// first, its parameters in the same order).
+fn named(e: AnalysisError, ci: usize, cj: usize) -> AnalysisError {
+    match e {
+        AnalysisError::Crowded { s, t, leaves, .. } => {
+            let (pair, s, t) = if ci < cj {
+                ((ci, cj), s, t)
+            } else {
+                ((cj, ci), t, s)
+            };
+            AnalysisError::Crowded {
+                pair: Some(pair),
+                s,
+                t,
+                leaves,
+            }
+        }
+        other => other,
+    }
 }
 
 /// The Morton code of `(x, y)` (16 bits each): their bits interleaved, an order in which

@@ -22,7 +22,7 @@ mod pair;
 mod refine;
 mod subdivide;
 
-use pair::{PairHit, Scale, SpanPair, piece_pair};
+use pair::{PairHit, PieceHits, Scale, SpanPair, piece_pair};
 use subdivide::{Sub, boxes_meet};
 
 use super::bernstein_roots;
@@ -195,6 +195,20 @@ fn settle(mut found: Intersections, a: &CurveAnalysis, b: &CurveAnalysis) -> Int
 }
 
 /// The control box of a piece, in 2D.
+/// [`AnalysisError::Crowded`] where the pair's subdivision reached its work bound, in
+/// the curves' parameters.
+fn refuse_crowded(a: &Piece, b: &Piece, ph: &PieceHits) -> Result<(), AnalysisError> {
+    match ph.crowded {
+        None => Ok(()),
+        Some([u0, u1, v0, v1]) => Err(AnalysisError::Crowded {
+            pair: None,
+            s: (a.t_of(u0), a.t_of(u1)),
+            t: (b.t_of(v0), b.t_of(v1)),
+            leaves: pair::max_leaves_of(a, b),
+        }),
+    }
+}
+
 fn piece_box(p: &Piece) -> (DVec2, DVec2) {
     p.bounds()
 }
@@ -222,6 +236,7 @@ impl CurveAnalysis {
                     continue;
                 }
                 let ph = piece_pair(a, (0.0, 1.0), b, (0.0, 1.0));
+                refuse_crowded(a, b, &ph)?;
                 found.hits.extend(ph.hits.iter().map(|h| hit(a, b, h)));
                 found
                     .overlaps
@@ -284,6 +299,7 @@ impl CurveAnalysis {
                     continue;
                 }
                 let ph = piece_pair(&pieces[ka], (pi.1, pi.2), &pieces[kb], (pj.1, pj.2));
+                refuse_crowded(&pieces[ka], &pieces[kb], &ph)?;
                 let ta = |u: f64| pieces[ka].t_of(u);
                 let tb = |v: f64| pieces[kb].t_of(v);
                 let shared = |s: f64, t: f64| {

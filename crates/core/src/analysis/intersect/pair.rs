@@ -26,7 +26,7 @@
 use glam::DVec2;
 
 use super::refine::{foot, foot_converged, refine_tangent, refine_until};
-use super::subdivide::{Leaves, Rest, Sub, Subdivider};
+use super::subdivide::{Leaves, Rest, Sub, Subdivider, max_leaves};
 use crate::analysis::curve::HitKind;
 use crate::analysis::piece::Piece;
 
@@ -51,7 +51,23 @@ pub(super) type SpanPair = ((f64, f64), (f64, f64));
 pub(super) struct PieceHits {
     pub(super) hits: Vec<PairHit>,
     pub(super) overlaps: Vec<SpanPair>,
+    /// Where the subdivision reached its work bound (`[u0, u1, v0, v1]`): the hits and
+    /// overlaps are then not known to be all, and the pair is refused.
+    pub(super) crowded: Option<[f64; 4]>,
 }
+
+/// A crossing whose parameter's error exceeds this fraction of the range is nearly
+/// parallel to the other curve: in a crowded pair its neighbourhood is scanned and
+/// skipped as a tangency's is (not before: the ordinary order finds each point by
+/// Newton's method, whose answers the stated errors are measured against).
+const WIDE: f64 = 1e-10;
+
+/// What classifying a point costs, in leaves' worth (two walks out of its band).
+const CLASSIFY_WORK: usize = 8;
+
+/// The subdivision's flatness, in multiples of the resolution `δ`: a pair of pieces this
+/// flat is a leaf.
+const FLAT: f64 = 64.0;
 
 /// Two ends meeting with tangents parallel to within this sine share their tangent line
 /// (a join's tangents computed from exactly collinear control points agree to a few ε).
@@ -501,6 +517,15 @@ struct Points<'p> {
     /// Converged points, to skip leaves that meet at most once and already hold one
     /// (neighbouring leaves share the point on their common edge).
     seen: Vec<(f64, f64)>,
+    /// Around each tangency, the stretch `[u0, u1, v0, v1]` where the curves stay within
+    /// the subdivision's flatness of each other (see [`Points::reach_out`]): scanned
+    /// once, then skipped.
+    reach: Vec<[f64; 4]>,
+    /// Work beyond the leaves, in leaves' worth (see [`Leaves::extra_work`]).
+    work: usize,
+    /// Whether the pair is crowded (see [`Leaves::crowding`]): then ill-conditioned
+    /// crossings reach out as tangencies do.
+    crowded: bool,
 }
 
 impl Points<'_> {
@@ -511,13 +536,30 @@ impl Points<'_> {
 
 impl Leaves for Points<'_> {
     fn covered(&self, (u0, u1): (f64, f64), (v0, v1): (f64, f64)) -> bool {
-        self.hits.iter().any(|h| {
-            h.kind == HitKind::Tangent
-                && u0 >= h.u - h.err_u
-                && u1 <= h.u + h.err_u
-                && v0 >= h.v - h.err_v
-                && v1 <= h.v + h.err_v
-        })
+        let reached = self
+            .reach
+            .iter()
+            .any(|r| u0 >= r[0] && u1 <= r[1] && v0 >= r[2] && v1 <= r[3]);
+        reached
+            || self.hits.iter().any(|h| {
+                h.kind == HitKind::Tangent
+                    && u0 >= h.u - h.err_u
+                    && u1 <= h.u + h.err_u
+                    && v0 >= h.v - h.err_v
+                    && v1 <= h.v + h.err_v
+            })
+    }
+
+    fn extra_work(&self) -> usize {
+        self.work
+    }
+
+    fn crowding(&mut self) {
+        self.crowded = true;
+        let wide: Vec<PairHit> = self.hits.iter().filter(|h| self.wide(h)).copied().collect();
+        for h in &wide {
+            self.reach_out(h);
+        }
     }
 
     fn leaf(&mut self, (u0, v0): (f64, f64), ranges: [f64; 4], single: bool) -> Rest {
@@ -611,6 +653,9 @@ impl Points<'_> {
             (r <= tol || r <= tol + slack(a, u) + slack(b, v)).then_some(r)
         };
         let gaps = sign_changes(a, range_u, b, range_v, v, tol);
+        // Nine feet, and a root closed for each sign change (where the curves run within
+        // the resolution of each other, rounding changes the sign often).
+        self.work += 1 + 4 * (gaps.crossings.len() + gaps.touches.len());
         let mut found = false;
         for (u, v) in gaps.crossings {
             if let Some(r) = meets(u, v) {
@@ -646,6 +691,7 @@ impl Points<'_> {
         }) {
             return Some(*h);
         }
+        self.work += CLASSIFY_WORK;
         let h = classify(a, ra, b, rb, (u, v, residual), self.scale);
         if self.on_stretch(h.u, h.v) {
             return None;
@@ -653,15 +699,24 @@ impl Points<'_> {
         let kept = match self.hits.iter_mut().find(|x| same(x, &h)) {
             Some(x) => {
                 if h.kind == HitKind::Tangent && x.kind == HitKind::Crossing {
-                    // The tangency stands for both; an end's exact parameter stays.
+                    // The tangency stands for both; an end's exact parameter stays, its
+                    // band widened to hold the tangency's.
                     let keep = *x;
                     *x = h;
                     if keep.err_u == 0.0 {
                         x.u = keep.u;
+                        x.err_u = (h.u - keep.u).abs() + h.err_u;
                     }
                     if keep.err_v == 0.0 {
                         x.v = keep.v;
+                        x.err_v = (h.v - keep.v).abs() + h.err_v;
                     }
+                } else if h.kind == HitKind::Tangent {
+                    // Two tangencies whose bands meet are one contact (of high order, or
+                    // a stretch where the curves stay within the resolution): its band
+                    // holds both, so that the subdivision skips all of it.
+                    x.err_u = x.err_u.max((h.u - x.u).abs() + h.err_u);
+                    x.err_v = x.err_v.max((h.v - x.v).abs() + h.err_v);
                 }
                 *x
             }
@@ -670,7 +725,77 @@ impl Points<'_> {
                 h
             }
         };
+        // A tangency, or a crossing so ill-conditioned that the curves run within the
+        // resolution of each other for a stretch around it (nearly parallel there).
+        if kept.kind == HitKind::Tangent || (self.crowded && self.wide(&kept)) {
+            self.reach_out(&kept);
+        }
         Some(kept)
+    }
+
+    /// Whether a hit is a crossing so ill-conditioned that the curves run within the
+    /// resolution of each other for a stretch around it.
+    fn wide(&self, h: &PairHit) -> bool {
+        h.kind == HitKind::Crossing && h.err_u > WIDE * (self.ra.1 - self.ra.0)
+    }
+
+    /// Past a tangency's band the curves may stay closer than the subdivision's flatness
+    /// for a long way (a contact of high order: two curves sharing their first control
+    /// points part like `s^k`), where fat lines cannot separate them and the leaves
+    /// would be counted in millions. That stretch, walked out to where the distance
+    /// passes the flatness, is scanned instead — the sign changes and dips of the signed
+    /// distance, in pieces no longer than a fraction of the stretch — and then skipped.
+    fn reach_out(&mut self, h: &PairHit) {
+        let (a, b, ra, rb, tol) = (self.a, self.b, self.ra, self.rb, self.scale.tol);
+        // Out to where flat pieces (their hulls within twice the flatness of the curve)
+        // part by more than the margin.
+        let flat = 4.0 * FLAT * tol;
+        let inside = |u0: f64, u1: f64, v0: f64, v1: f64| {
+            self.reach
+                .iter()
+                .any(|r| u0 >= r[0] && u1 <= r[1] && v0 >= r[2] && v1 <= r[3])
+        };
+        if inside(h.u, h.u, h.v, h.v) {
+            return;
+        }
+        let mut ends = [(h.u, h.v); 2];
+        for (side, dir) in [-1.0_f64, 1.0].into_iter().enumerate() {
+            let mut step = h.err_u.max(4.0 * f64::EPSILON * h.u.abs().max(1e-300));
+            let (mut last, mut fv) = (h.u, h.v);
+            loop {
+                let x = (h.u + dir * step).max(ra.0).min(ra.1);
+                let p = a.point(x).truncate();
+                let nv = foot(b, rb, p, fv);
+                let d = (p - b.point(nv).truncate()).length() - slack(a, x) - slack(b, nv);
+                if !(d <= flat) {
+                    break;
+                }
+                (last, fv) = (x, nv);
+                if x == ra.0 || x == ra.1 {
+                    break;
+                }
+                step *= 2.0;
+            }
+            ends[side] = (last, fv);
+        }
+        const PARTS: usize = 64;
+        let [(u0, v0), (u1, v1)] = ends;
+        let (v0, v1) = (v0.min(v1), v0.max(v1));
+        // Not worth it for a band that is a few leaves wide.
+        if u1 - u0 <= 64.0 * h.err_u.max(1e-12 * (ra.1 - ra.0)) || inside(u0, u1, v0, v1) {
+            return;
+        }
+        self.work += PARTS;
+        // Kept first: a tangency the scan finds inside it reaches no further.
+        self.reach.push([u0, u1, v0, v1]);
+        let width = (u1 - u0) / PARTS as f64;
+        let ext = (rb.0.max(v0 - (v1 - v0)), rb.1.min(v1 + (v1 - v0)));
+        for k in 0..PARTS {
+            let lo = u0 + width * k as f64;
+            let hi = if k + 1 == PARTS { u1 } else { lo + width };
+            let v = foot(b, ext, a.point(0.5 * (lo + hi)).truncate(), 0.5 * (v0 + v1));
+            self.scan((lo, hi), ext, v);
+        }
     }
 }
 
@@ -791,6 +916,11 @@ fn sign_changes(
     gaps
 }
 
+/// The subdivision's work bound for a pair of segments.
+pub(super) fn max_leaves_of(a: &Piece, b: &Piece) -> usize {
+    max_leaves(a.degree(), b.degree())
+}
+
 /// The points and overlaps of two segments on the given ranges of their own parameters.
 pub(super) fn piece_pair(a: &Piece, ra: (f64, f64), b: &Piece, rb: (f64, f64)) -> PieceHits {
     let scale = Scale::of(a, b);
@@ -877,12 +1007,28 @@ pub(super) fn piece_pair(a: &Piece, ra: (f64, f64), b: &Piece, rb: (f64, f64)) -
         overlaps: &overlaps,
         hits,
         seen: Vec::new(),
+        reach: Vec::new(),
+        work: 0,
+        crowded: false,
     };
+    // The ends' tangencies reach out before the subdivision starts.
+    let tangents: Vec<PairHit> = points
+        .hits
+        .iter()
+        .filter(|h| h.kind == HitKind::Tangent)
+        .copied()
+        .collect();
+    for h in &tangents {
+        points.reach_out(h);
+    }
     let mut sub = Subdivider {
-        flat: 64.0 * tol,
+        flat: FLAT * tol,
         margin: tol,
         visitor: &mut points,
         leaves: 0,
+        max_leaves: max_leaves_of(a, b),
+        crowded: None,
+        crowding: false,
     };
     let whole = |r: (f64, f64), range: (f64, f64)| r == range;
     for &(b0, b1) in &b_parts {
@@ -896,9 +1042,14 @@ pub(super) fn piece_pair(a: &Piece, ra: (f64, f64), b: &Piece, rb: (f64, f64)) -
             );
         }
     }
+    let crowded = sub.crowded;
     let mut hits = points.hits;
     hits.sort_by(|x, y| x.u.total_cmp(&y.u));
-    PieceHits { hits, overlaps }
+    PieceHits {
+        hits,
+        overlaps,
+        crowded,
+    }
 }
 
 #[cfg(test)]

@@ -148,6 +148,19 @@ impl Sub {
         outside(self, other) || outside(other, self)
     }
 
+    /// Whether the convex hulls of the two control polygons (which hold the pieces,
+    /// rational ones with positive weights too) lie more than `margin` apart: a side of
+    /// either hull with every point of the other beyond it. Two convex polygons that do
+    /// not meet always have such a side, so this separates what the boxes and fat lines
+    /// cannot — neighbouring pieces of two nearly coincident curves, one just past the
+    /// other's end, whose thin hulls bend past each other's lines.
+    pub(super) fn hulls_apart(&self, other: &Sub, margin: f64) -> bool {
+        let (mut ha, mut hb) = (Hull::default(), Hull::default());
+        ha.of(self);
+        hb.of(other);
+        ha.has_side_beyond(&hb, margin) || hb.has_side_beyond(&ha, margin)
+    }
+
     /// The range of the segment's own parameter this sub-segment covers.
     pub(super) fn range(&self) -> (f64, f64) {
         (self.u0, self.u1)
@@ -242,20 +255,25 @@ impl Sub {
         let slack = (1e-12 * (dmax - dmin).max(dir.length())).max(margin);
         let (dmin, dmax) = (dmin - slack, dmax + slack);
         let h = self.h.as_slice();
-        let mut below = [0.0; 16];
-        let mut above = [0.0; 16];
         let n = h.len();
-        if n > 16 {
-            return Some((0.0, 1.0));
-        }
+        // On the stack up to degree 31 (the GPU's maximum), else on the heap.
+        let (mut below_s, mut above_s) = ([0.0; 32], [0.0; 32]);
+        let (mut below_h, mut above_h) = (Vec::new(), Vec::new());
+        let (below, above): (&mut [f64], &mut [f64]) = if n <= 32 {
+            (&mut below_s[..n], &mut above_s[..n])
+        } else {
+            below_h.resize(n, 0.0);
+            above_h.resize(n, 0.0);
+            (&mut below_h, &mut above_h)
+        };
         for (i, v) in h.iter().enumerate() {
             let w = v[2];
             let d = (DVec2::new(v[0], v[1]) - origin * w).dot(normal);
             below[i] = d - dmin * w;
             above[i] = dmax * w - d;
         }
-        let (l1, h1) = nonnegative_range(&below[..n])?;
-        let (l2, h2) = nonnegative_range(&above[..n])?;
+        let (l1, h1) = nonnegative_range(below)?;
+        let (l2, h2) = nonnegative_range(above)?;
         let (lo, hi) = (l1.max(l2), h1.min(h2));
         if lo > hi {
             return None;
@@ -490,6 +508,13 @@ pub(super) trait Leaves {
     fn leaf(&mut self, start: (f64, f64), ranges: [f64; 4], single: bool) -> Rest;
     /// Whether nothing is left to find where `u ∈ a` and `v ∈ b`.
     fn covered(&self, a: (f64, f64), b: (f64, f64)) -> bool;
+    /// The work done so far beyond the leaves themselves, in leaves' worth (classifying
+    /// a point walks the curves out of its band: several leaves' worth).
+    fn extra_work(&self) -> usize;
+    /// Called once, when the work passes a quarter of the bound: the pair is crowded
+    /// (curves running within the resolution of each other), and the visitor may trade
+    /// the usual order of its work for cover.
+    fn crowding(&mut self);
 }
 
 /// What is left of a leaf once the visitor has seen it.
@@ -516,11 +541,25 @@ pub(super) struct Subdivider<'v, V: Leaves> {
     pub(super) visitor: &'v mut V,
     /// Leaves handed over so far.
     pub(super) leaves: usize,
+    /// The most leaves this pair may take (see [`max_leaves`]).
+    pub(super) max_leaves: usize,
+    /// Where the subdivision stopped at its limit: the sub-ranges `[u0, u1, v0, v1]` it
+    /// was examining then (nothing found there, or after it, is certain).
+    pub(super) crowded: Option<[f64; 4]>,
+    /// Whether the visitor was told that the work passed a quarter of the bound.
+    pub(super) crowding: bool,
 }
 
-/// More leaves than this for one pair of segments means stretches closer than the
-/// resolution that are not coincident: the subdivision stops.
-const MAX_LEAVES: usize = 1 << 16;
+/// The most leaves for a pair of segments of degrees `m` and `n`: a work bound (a leaf
+/// costs about `(m + 1)(n + 1)` evaluations' worth) that still leaves room for every
+/// point the pair can have (`m n`, four leaves each). More means stretches closer than
+/// the flatness resolution that are neither one tangency nor coincident: the
+/// subdivision stops, and the caller refuses the pair rather than return what it found
+/// so far as if it were all.
+pub(super) fn max_leaves(m: usize, n: usize) -> usize {
+    let work = (1usize << 20) / ((m + 1) * (n + 1)).max(1);
+    work.max(4096 + 4 * m * n)
+}
 
 impl<V: Leaves> Subdivider<'_, V> {
     pub(super) fn run(&mut self, a: &Sub, b: &Sub, depth: u32) {
@@ -528,7 +567,16 @@ impl<V: Leaves> Subdivider<'_, V> {
         if !boxes_meet(ba, bb, self.margin) {
             return;
         }
-        if self.leaves > MAX_LEAVES || self.visitor.covered(a.range(), b.range()) {
+        if self.visitor.covered(a.range(), b.range()) {
+            return;
+        }
+        let work = self.leaves + self.visitor.extra_work();
+        if !self.crowding && 4 * work >= self.max_leaves {
+            self.crowding = true;
+            self.visitor.crowding();
+        }
+        if work >= self.max_leaves {
+            self.crowded.get_or_insert([a.u0, a.u1, b.u0, b.u1]);
             return;
         }
         let (fa, fb) = (a.flatness(), b.flatness());
@@ -537,7 +585,8 @@ impl<V: Leaves> Subdivider<'_, V> {
             // fat line) do not meet: no leaf.
             if (fa > 0.0 || fb > 0.0)
                 && (b.clip_range(a, self.margin).is_none()
-                    || a.clip_range(b, self.margin).is_none())
+                    || a.clip_range(b, self.margin).is_none()
+                    || a.hulls_apart(b, self.margin))
             {
                 return;
             }
@@ -564,6 +613,11 @@ impl<V: Leaves> Subdivider<'_, V> {
         // Two pieces each within 5 % of its chord's length of the chord, whose tangent
         // cones (as lines, directions modulo π) are disjoint, meet at most once; Newton's
         // method from the chords' crossing finds that point.
+        // Deep down, pairs the boxes keep are mostly neighbours along two nearly
+        // coincident stretches: their hulls part where the boxes do not.
+        if depth >= 8 && a.hulls_apart(b, self.margin) {
+            return;
+        }
         let (ca, cb) = (a.chord(), b.chord());
         if fa <= 0.05 * ca.length()
             && fb <= 0.05 * cb.length()
@@ -633,6 +687,69 @@ impl<V: Leaves> Subdivider<'_, V> {
             self.run(a, &l, depth + 1);
             self.run(a, &r, depth + 1);
         }
+    }
+}
+
+/// The convex hull of a sub-segment's control points, counter-clockwise (Andrew's
+/// monotone chain), on the stack up to degree 31.
+#[derive(Default)]
+struct Hull {
+    stack: Vec<DVec2>,
+}
+
+impl Hull {
+    fn of(&mut self, s: &Sub) {
+        let mut pts: Vec<DVec2> = (0..s.len()).map(|i| s.point(i)).collect();
+        pts.sort_by(|p, q| p.x.total_cmp(&q.x).then(p.y.total_cmp(&q.y)));
+        pts.dedup();
+        let cross = |o: DVec2, a: DVec2, b: DVec2| (a - o).perp_dot(b - o);
+        let h = &mut self.stack;
+        h.clear();
+        if pts.len() < 3 {
+            h.extend_from_slice(&pts);
+            return;
+        }
+        for &p in &pts {
+            while h.len() >= 2 && cross(h[h.len() - 2], h[h.len() - 1], p) <= 0.0 {
+                h.pop();
+            }
+            h.push(p);
+        }
+        let lower = h.len() + 1;
+        for &p in pts.iter().rev().skip(1) {
+            while h.len() >= lower && cross(h[h.len() - 2], h[h.len() - 1], p) <= 0.0 {
+                h.pop();
+            }
+            h.push(p);
+        }
+        h.pop();
+    }
+
+    /// Whether a side of this hull has every point of `other` more than `margin` beyond
+    /// it (on its outer side).
+    fn has_side_beyond(&self, other: &Hull, margin: f64) -> bool {
+        let h = &self.stack;
+        let n = h.len();
+        if n < 2 || other.stack.is_empty() {
+            return false;
+        }
+        // A segment (two points) has both its sides as candidate lines.
+        let sides = if n == 2 { 2 } else { n };
+        (0..sides).any(|i| {
+            let (p, q) = if n == 2 && i == 1 {
+                (h[1], h[0])
+            } else {
+                (h[i], h[(i + 1) % n])
+            };
+            let e = q - p;
+            let len = e.length();
+            if len == 0.0 || !len.is_finite() {
+                return false;
+            }
+            // The outer normal of a counter-clockwise polygon's side points right.
+            let out = DVec2::new(e.y, -e.x) / len;
+            other.stack.iter().all(|&r| (r - p).dot(out) > margin)
+        })
     }
 }
 
