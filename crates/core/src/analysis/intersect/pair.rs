@@ -767,7 +767,7 @@ impl Points<'_> {
                 let p = a.point(x).truncate();
                 let nv = foot(b, rb, p, fv);
                 let d = (p - b.point(nv).truncate()).length() - slack(a, x) - slack(b, nv);
-                if !(d <= flat) {
+                if d.is_nan() || d > flat {
                     break;
                 }
                 (last, fv) = (x, nv);
