@@ -13,7 +13,7 @@ use std::path::Path;
 use glam::DVec3;
 use splinescope::geom::{
     Aabb, BSpline, Bezier, CubicInterpolation, Curve, Lower, Modification, ModifiedBezier, Nubmp,
-    Nurbs, ParamCurve, RationalBezier, Reading,
+    Nurbs, ParamCurve, PathSegment, RationalBezier, Reading,
 };
 use splinescope::gpu::GpuContext;
 use splinescope::gpu::eval::evaluate;
@@ -212,6 +212,37 @@ fn random_curves_of_every_family_match_up_to_the_maximum_degree() {
             curves.push((
                 format!("nurbs order {order}"),
                 Curve::Nurbs(Nurbs::try_new(pts, w, knots, order).expect("valid")),
+            ));
+        }
+    }
+    // Paths of segments of mixed degrees (up to the maximum), polynomial and rational,
+    // open and closed.
+    for three_d in [false, true] {
+        for (degrees, closed) in [
+            (vec![1usize, 2, 3, 5], false),
+            (vec![3, 3, 1], true),
+            (vec![2, 31, 1, 7], false),
+        ] {
+            let mut segments: Vec<PathSegment> = Vec::new();
+            let first = random_points(&mut rng, 1, three_d)[0];
+            let mut start = first;
+            for (k, &n) in degrees.iter().enumerate() {
+                let mut pts = vec![start];
+                pts.extend(random_points(&mut rng, n, three_d));
+                if closed && k + 1 == degrees.len() {
+                    *pts.last_mut().expect("points") = first;
+                }
+                start = *pts.last().expect("points");
+                let weights = (k % 2 == 1)
+                    .then(|| (0..=n).map(|_| 2f64.powf(rng.range(-2.0, 2.0))).collect());
+                segments.push(PathSegment {
+                    points: pts,
+                    weights,
+                });
+            }
+            curves.push((
+                format!("path of degrees {degrees:?}, closed {closed}"),
+                Curve::Path(splinescope::geom::Path::try_new(segments, closed).expect("valid")),
             ));
         }
     }

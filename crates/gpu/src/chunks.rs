@@ -394,11 +394,29 @@ impl ChunkBuilder {
                     ends[k] += ends[k - 1];
                 }
                 c.class_ends = ends;
-                c.segments
-                    .sort_by_key(|s| kernel_class(s.degree, s.rational != 0));
+                // Segments are laid out in this order (their samples follow one another
+                // along each curve), so a curve whose segments need different kernels (a
+                // path of lines, quadratics and cubics) keeps them together in the
+                // general kernel's class.
+                let mut classes: std::collections::HashMap<u32, Option<usize>> =
+                    std::collections::HashMap::new();
+                for s in &c.segments {
+                    let k = kernel_class(s.degree, s.rational != 0);
+                    classes
+                        .entry(s.curve)
+                        .and_modify(|e| {
+                            if *e != Some(k) {
+                                *e = None;
+                            }
+                        })
+                        .or_insert(Some(k));
+                }
+                let general = TESSELLATE_KERNELS.len() - 1;
+                let class_of = |s: &GpuSegment| classes[&s.curve].unwrap_or(general);
+                c.segments.sort_by_key(class_of);
                 let mut ends = [0u32; TESSELLATE_KERNELS.len()];
                 for s in &c.segments {
-                    ends[kernel_class(s.degree, s.rational != 0)] += 1;
+                    ends[class_of(s)] += 1;
                 }
                 for k in 1..ends.len() {
                     ends[k] += ends[k - 1];

@@ -326,6 +326,32 @@ mod tests {
         );
     }
 
+    /// A path's segments of different degrees stay in order, one after another, in the
+    /// general kernel's class (their samples are laid out in the segments' order, so a
+    /// curve split across classes would be drawn with its pieces out of order); a curve
+    /// whose segments share a class keeps it.
+    #[test]
+    fn a_curve_of_mixed_degrees_keeps_its_segments_together_and_in_order() {
+        let mut b = ChunkBuilder::new(ChunkLimits::for_binding_size(1 << 20));
+        // Curve 0: a line, a quadratic, a cubic and a quintic; curve 1: two cubics.
+        let curves: [&[usize]; 2] = [&[1, 2, 3, 5], &[3, 3]];
+        for (curve, degrees) in curves.into_iter().enumerate() {
+            for &degree in degrees {
+                b.begin_segment(curve, style(), &vec![DVec3::ZERO; degree + 1], None)
+                    .unwrap();
+                b.add_drawn_samples(8, false);
+            }
+        }
+        let chunks = b.finish();
+        let order: Vec<(u32, u32)> = chunks[0]
+            .segments
+            .iter()
+            .map(|s| (s.curve, s.degree))
+            .collect();
+        assert_eq!(order, vec![(1, 3), (1, 3), (0, 1), (0, 2), (0, 3), (0, 5)]);
+        assert_eq!(chunks[0].segment_class_ends, [2, 2, 2, 2, 6]);
+    }
+
     #[test]
     fn degree_over_the_gpu_maximum_is_an_error_not_a_clamp() {
         let b = Bezier::new(vec![DVec3::ZERO; MAX_GPU_DEGREE + 2]);

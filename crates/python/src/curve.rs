@@ -456,6 +456,18 @@ impl PyCurve {
         Ok((self.with_curve(c), i))
     }
 
+    /// The curve with control point `index` moved to `to` (every other property kept;
+    /// a point a path's segments share moves in both).
+    fn move_point(&self, index: usize, to: &Bound<'_, PyAny>) -> PyResult<PyCurve> {
+        let p = point(to, "to", self.dim)?;
+        let c = self
+            .curve
+            .curve
+            .with_control_point(index, p)
+            .map_err(|e| geom_error(&e))?;
+        Ok(self.with_curve(c))
+    }
+
     /// The curve without control point `index`.
     fn remove_point(&self, index: usize) -> PyResult<PyCurve> {
         let c = self

@@ -41,7 +41,7 @@ EXTREMES = [
     -sys.float_info.max, math.nan, math.inf, -math.inf,
 ]
 INTS = [0, 1, 2, 3, 5, -1, -2**31, 2**31, 2**40, 2**63, 2**64, 2**100, 7, 64, 65, 1000, 1001]
-FAMILIES = ["bezier", "modified_bezier", "interpolation", "bspline", "nubmp", "rational_bezier", "nurbs"]
+FAMILIES = ["bezier", "modified_bezier", "interpolation", "bspline", "nubmp", "rational_bezier", "nurbs", "path"]
 SLOW = 5.0  # seconds one call may take
 
 

@@ -35,6 +35,8 @@ macro_rules! family_table {
             RationalBezier($crate::geom::RationalBezier) = "rational_bezier",
             /// A NURBS curve, `Σ w_i P_i N_{i,k} / Σ w_i N_{i,k}`.
             Nurbs($crate::geom::Nurbs) = "nurbs",
+            /// Bézier segments of any degree (each may be rational) joined end to end.
+            Path($crate::geom::Path) = "path",
         }
     };
 }
@@ -124,6 +126,7 @@ macro_rules! each_family {
             $crate::geom::Curve::Nubmp($c) => $body,
             $crate::geom::Curve::RationalBezier($c) => $body,
             $crate::geom::Curve::Nurbs($c) => $body,
+            $crate::geom::Curve::Path($c) => $body,
         }
     };
 }

@@ -262,6 +262,31 @@ pub enum GeomError {
         /// The weight.
         value: f64,
     },
+    /// A path with no segment.
+    #[error("a path needs at least one segment")]
+    NoSegments,
+    /// A path's segment that breaks a segment's rules (too few points, a non-finite
+    /// coordinate, bad weights).
+    #[error("segment {segment}: {error}")]
+    InSegment {
+        /// The segment's index.
+        segment: usize,
+        /// What is wrong with it.
+        error: Box<GeomError>,
+    },
+    /// Consecutive segments of a path that do not share their end point (beyond rounding).
+    #[error(
+        "joint {joint} (the end of segment {joint}, the start of segment {next}): the two points are {} apart; consecutive segments must share their end point (a gap starts a new curve)",
+        crate::num::Num(*gap)
+    )]
+    PathGap {
+        /// The segment whose end does not meet the next one's start.
+        joint: usize,
+        /// The next segment (0 for a closed path's last joint).
+        next: usize,
+        /// The distance between the two points.
+        gap: f64,
+    },
     /// A panel control the curve does not have, or a value of the wrong kind for it.
     #[error("{family} curves have no control {control}")]
     UnknownControl {
@@ -314,6 +339,15 @@ impl GeomError {
             | GeomError::SameAbsorber { .. }
             | GeomError::AbsorberNegative { .. }
             | GeomError::GroupOutsideDomain { .. } => "shape".to_owned(),
+            GeomError::NoSegments | GeomError::PathGap { .. } => "segments".to_owned(),
+            GeomError::InSegment { segment, error } => {
+                let inner = error.field();
+                if inner.is_empty() {
+                    format!("segments[{segment}]")
+                } else {
+                    format!("segments[{segment}].{inner}")
+                }
+            }
             GeomError::ParameterOutsideDomain { .. }
             | GeomError::UnknownControl { .. }
             | GeomError::StructureRefused { .. } => String::new(),

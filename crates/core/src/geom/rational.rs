@@ -414,7 +414,7 @@ impl BezierSegment {
 /// equal (the rational curve is then its polynomial curve exactly), so a rational curve
 /// with unit weights draws exactly as its polynomial family; otherwise the weights scaled
 /// alike by a power of two so that they lie around 1 ([`normalised_weights`]).
-fn segment(points: &[DVec3], weights: &[f64], t0: f64, t1: f64) -> BezierSegment {
+pub(crate) fn segment(points: &[DVec3], weights: &[f64], t0: f64, t1: f64) -> BezierSegment {
     let equal = weights.iter().all(|w| *w == weights[0]);
     BezierSegment {
         bezier: Bezier::new(points.to_vec()),

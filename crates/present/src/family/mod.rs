@@ -6,4 +6,5 @@ pub mod bspline;
 pub mod interpolation;
 pub mod modified;
 pub mod nubmp;
+pub mod path;
 pub mod rational;

@@ -13,6 +13,7 @@ Families (each class's docstring states its formula and paper):
 * :class:`BSpline` — non-uniform B-splines (paper 001, §2), to and from scipy.
 * :class:`Nubmp` — B-splines with multiple shape parameters (paper 001, §3–5).
 * :class:`RationalBezier` — rational Bézier curves (conics exactly).
+* :class:`Path` — Bézier segments of any degree (each may be rational) joined end to end.
 * :class:`Nurbs` — NURBS curves (the exact circle: :meth:`Nurbs.circle`).
 
 Papers: 000 — least-squares shape modification of Bézier curves; 001 — NUBMP curves;
@@ -47,6 +48,7 @@ __all__ = [
     "Nubmp",
     "RationalBezier",
     "Nurbs",
+    "Path",
     "Scene",
     "load",
     "stress_scene",
@@ -561,6 +563,13 @@ class Curve:
         c, i = self._c.insert_point(np.asarray(_point(at, "at"), dtype=np.float64))
         return Curve._wrap(c), i
 
+    def move_point(self, index: int, to: ArrayLike) -> "Curve":
+        """The curve with control point ``index`` moved to ``to``, every other property
+        kept (a point where a path's segments meet moves in both), as the viewer's drag
+        does."""
+        index = _int(index, "index", 0, 2**63 - 1, "move_point")
+        return Curve._wrap(self._c.move_point(index, np.asarray(_point(to, "to"), dtype=np.float64)))
+
     def remove_point(self, index: int) -> "Curve":
         """The curve without control point ``index``."""
         return Curve._wrap(self._c.remove_point(_int(index, "index", 0, 2**63 - 1, "remove_point")))
@@ -958,6 +967,61 @@ class Nurbs(_Weighted):
         return int(self.to_dict()["order"])
 
 
+class Path(Curve):
+    """Bézier segments of any degree, each polynomial or rational, joined end to end:
+    segment ``k`` covers ``t ∈ [k, k + 1]``,
+    ``C(t) = S_k(t − k)``, ``S_k(u) = Σ w_i P_i B_{i,n}(u) / Σ w_i B_{i,n}(u)`` (``w_i = 1``
+    for a polynomial segment) — what an SVG subpath, a glyph contour, a DXF polyline and a
+    STEP composite curve are. Consecutive segments must share their end point (a gap
+    beyond rounding is refused naming the joint); ``closed``: the last ends where the
+    first starts. :meth:`Curve.segments` returns them exactly as given.
+
+    ``segments``: a sequence whose items are each an ``(n + 1, dim)`` array of control
+    points or a ``(points, weights)`` pair for a rational segment; every segment in the
+    same dimension (2 or 3).
+    """
+
+    __slots__ = ()
+
+    def __init__(self, segments: Sequence[Any], closed: bool = False) -> None:
+        try:
+            items = list(segments)
+        except TypeError:
+            raise TypeError(
+                f"Path: segments must be a sequence of arrays or (points, weights) pairs, "
+                f"not {type(segments).__name__}"
+            ) from None
+        docs: List[Dict[str, Any]] = []
+        dim = None
+        for k, item in enumerate(items):
+            what = f"segments[{k}]"
+            if isinstance(item, tuple) and len(item) == 2:
+                pts, d = _points(item[0], f"{what}.points")
+                doc: Dict[str, Any] = {"points": pts, "weights": _numbers(item[1], f"{what}.weights")}
+            else:
+                pts, d = _points(item, f"{what}.points")
+                doc = {"points": pts}
+            if dim is None:
+                dim = d
+            elif d != dim:
+                raise _error(
+                    SceneError,
+                    f"{what}: points of dimension {d} after segments of dimension {dim}: "
+                    "every segment has the same dimension",
+                    f"{what}.points",
+                )
+            docs.append(doc)
+        self._set(
+            {"type": "path", "segments": docs, "closed": _bool(closed, "closed", "Path")},
+            dim or 2,
+        )
+
+    @property
+    def closed(self) -> bool:
+        """Whether the last segment ends where the first starts."""
+        return bool(self.to_dict().get("closed", False))
+
+
 _CLASSES = {
     "bezier": Bezier,
     "modified_bezier": ModifiedBezier,
@@ -966,6 +1030,7 @@ _CLASSES = {
     "nubmp": Nubmp,
     "rational_bezier": RationalBezier,
     "nurbs": Nurbs,
+    "path": Path,
 }
 
 

@@ -9,6 +9,7 @@ mod bspline;
 mod interpolation;
 mod modified;
 mod nubmp;
+mod path;
 mod rational;
 
 pub use bezier::BezierDoc;
@@ -16,6 +17,7 @@ pub use bspline::BSplineDoc;
 pub use interpolation::{InterpolationDoc, ModificationDoc};
 pub use modified::ModifiedBezierDoc;
 pub use nubmp::{NubmpDoc, ShapeSettingDoc};
+pub use path::{PathDoc, PathSegmentDoc};
 pub use rational::{NurbsDoc, RationalBezierDoc};
 
 use crate::geom::{Curve, Family, GeomError};

@@ -1,0 +1,476 @@
+//! The path: Bézier segments of any degree, each polynomial or rational, joined end to
+//! end, open or closed — what an SVG subpath, a glyph contour, a DXF polyline and a STEP
+//! composite curve are.
+//!
+//! Segment `k` (of `K`) covers the parameters `[k, k + 1]`:
+//!
+//! `C(t) = S_k(t − k)`, `S_k(u) = Σ_i w_{k,i} P_{k,i} B_{i,n_k}(u) / Σ_i w_{k,i} B_{i,n_k}(u)`,
+//!
+//! with `w_{k,i} = 1` for a polynomial segment; the domain is `[0, K]`. Consecutive
+//! segments share their end point (`P_{k,n_k} = P_{k+1,0}`); a closed path's last
+//! segment ends where the first starts. A gap beyond rounding is refused, naming the
+//! joint. The segments are kept exactly as given ([`Path::segments`]: a quadratic stays a
+//! quadratic with its three points, its weights as given), and the path lowers to them
+//! one for one.
+//!
+//! Its control points ([`Family::control_points`]) list each shared end point once —
+//! segment 0's points, then each further segment's without its first (and a closed path
+//! without its last) — so moving a joint moves both segments that meet there.
+
+use glam::DVec3;
+
+use super::family::Family;
+use super::rational::normalised_weights;
+use super::{Bezier, BezierSegment, GeomError, Lower, ParamCurve, RationalBezier};
+
+/// One segment of a path: its control points `P_0 … P_n` (degree `n ≥ 1`) and, for a
+/// rational segment, one weight per point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathSegment {
+    /// The control points.
+    pub points: Vec<DVec3>,
+    /// The weights (each a finite number greater than 0) of a rational segment; `None`
+    /// for a polynomial one.
+    pub weights: Option<Vec<f64>>,
+}
+
+impl PathSegment {
+    /// A polynomial segment.
+    #[must_use]
+    pub fn polynomial(points: Vec<DVec3>) -> PathSegment {
+        PathSegment {
+            points,
+            weights: None,
+        }
+    }
+
+    /// A rational segment.
+    #[must_use]
+    pub fn rational(points: Vec<DVec3>, weights: Vec<f64>) -> PathSegment {
+        PathSegment {
+            points,
+            weights: Some(weights),
+        }
+    }
+
+    /// The degree (`points − 1`).
+    #[must_use]
+    pub fn degree(&self) -> usize {
+        self.points.len().saturating_sub(1)
+    }
+}
+
+/// A segment ready to evaluate.
+#[derive(Debug, Clone, PartialEq)]
+enum Piece {
+    Polynomial(Bezier),
+    Rational(RationalBezier),
+}
+
+impl Piece {
+    fn of(s: &PathSegment) -> Result<Piece, GeomError> {
+        if s.points.len() < 2 {
+            return Err(GeomError::TooFewPoints {
+                min: 2,
+                found: s.points.len(),
+            });
+        }
+        for (index, p) in s.points.iter().enumerate() {
+            if let Some(&value) = p.to_array().iter().find(|v| !v.is_finite()) {
+                return Err(GeomError::NonFinitePoint { index, value });
+            }
+        }
+        Ok(match &s.weights {
+            None => Piece::Polynomial(Bezier::new(s.points.clone())),
+            Some(w) => Piece::Rational(RationalBezier::try_new(s.points.clone(), w.clone())?),
+        })
+    }
+
+    fn curve(&self) -> &dyn ParamCurve {
+        match self {
+            Piece::Polynomial(b) => b,
+            Piece::Rational(r) => r,
+        }
+    }
+}
+
+/// A path: Bézier segments joined end to end (see the module docs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Path {
+    segments: Vec<PathSegment>,
+    pieces: Vec<Piece>,
+    points: Vec<DVec3>,
+    closed: bool,
+}
+
+/// Two end points closer than this, relative to the larger coordinate of the two
+/// segments, are one point: an importer's transforms round each end on its own.
+const JOIN_ROUNDING: f64 = 256.0 * f64::EPSILON;
+
+/// The gap between segment `k`'s end and `next`'s start, when it is beyond rounding.
+fn gap(a: &PathSegment, b: &PathSegment) -> Option<f64> {
+    let (p, q) = (a.points[a.points.len() - 1], b.points[0]);
+    let size = a
+        .points
+        .iter()
+        .chain(&b.points)
+        .map(|p| p.abs().max_element())
+        .fold(0.0, f64::max);
+    let d = (p - q).length();
+    (d > JOIN_ROUNDING * size).then_some(d)
+}
+
+impl Path {
+    /// A path of `segments` (at least one), open or `closed`.
+    ///
+    /// # Errors
+    /// [`GeomError::NoSegments`]; [`GeomError::InSegment`] for a segment with fewer than
+    /// two points, a non-finite coordinate or bad weights; [`GeomError::PathGap`] where
+    /// consecutive segments (or a closed path's last and first) do not share their end
+    /// point.
+    pub fn try_new(segments: Vec<PathSegment>, closed: bool) -> Result<Path, GeomError> {
+        if segments.is_empty() {
+            return Err(GeomError::NoSegments);
+        }
+        let pieces = segments
+            .iter()
+            .enumerate()
+            .map(|(segment, s)| {
+                Piece::of(s).map_err(|e| GeomError::InSegment {
+                    segment,
+                    error: Box::new(e),
+                })
+            })
+            .collect::<Result<Vec<Piece>, GeomError>>()?;
+        let k = segments.len();
+        let joints = if closed { k } else { k - 1 };
+        for joint in 0..joints {
+            let next = (joint + 1) % k;
+            if let Some(gap) = gap(&segments[joint], &segments[next]) {
+                return Err(GeomError::PathGap { joint, next, gap });
+            }
+        }
+        let mut points: Vec<DVec3> = segments[0].points.clone();
+        for s in &segments[1..] {
+            points.extend_from_slice(&s.points[1..]);
+        }
+        if closed {
+            points.pop();
+        }
+        Ok(Path {
+            segments,
+            pieces,
+            points,
+            closed,
+        })
+    }
+
+    /// The segments, exactly as given (or as the last edit of the control points left
+    /// them).
+    #[must_use]
+    pub fn segments(&self) -> &[PathSegment] {
+        &self.segments
+    }
+
+    /// Whether the last segment ends where the first starts.
+    #[must_use]
+    pub fn is_closed(&self) -> bool {
+        self.closed
+    }
+
+    /// The index, in [`Family::control_points`], of segment `k`'s first point.
+    fn start_of(&self, k: usize) -> usize {
+        self.segments[..k].iter().map(PathSegment::degree).sum()
+    }
+
+    /// The index in [`Family::control_points`] of point `i` of segment `k`.
+    fn flat_index(&self, k: usize, i: usize) -> usize {
+        let at = self.start_of(k) + i;
+        if self.closed && at == self.points.len() {
+            0
+        } else {
+            at
+        }
+    }
+
+    /// The segment holding `t` and the local parameter there: `t` on a joint belongs to
+    /// the later segment, the domain's end to the last; outside the domain the first or
+    /// last segment extrapolates.
+    fn locate(&self, t: f64) -> (usize, f64) {
+        let last = self.pieces.len() - 1;
+        let k = if t.is_nan() || t < 0.0 {
+            0
+        } else {
+            // `as` saturates: t beyond usize is the last segment.
+            (t.floor() as usize).min(last)
+        };
+        (k, t - k as f64)
+    }
+}
+
+impl ParamCurve for Path {
+    fn domain(&self) -> (f64, f64) {
+        (0.0, self.pieces.len() as f64)
+    }
+
+    fn eval(&self, t: f64) -> DVec3 {
+        let (k, u) = self.locate(t);
+        self.pieces[k].curve().eval(u)
+    }
+
+    fn eval_deriv(&self, t: f64) -> DVec3 {
+        let (k, u) = self.locate(t);
+        self.pieces[k].curve().eval_deriv(u)
+    }
+
+    fn eval_second_deriv(&self, t: f64) -> DVec3 {
+        let (k, u) = self.locate(t);
+        self.pieces[k].curve().eval_second_deriv(u)
+    }
+}
+
+impl Lower for Path {
+    /// One Bézier segment per path segment, as given, segment `k` on `[k, k + 1]`.
+    fn lower(&self) -> Vec<BezierSegment> {
+        self.segments
+            .iter()
+            .enumerate()
+            .map(|(k, s)| {
+                let (t0, t1) = (k as f64, (k + 1) as f64);
+                // The weights as given (scaled by a power of two only when they lie
+                // beyond 2^±100), also when they are all equal.
+                BezierSegment {
+                    bezier: Bezier::new(s.points.clone()),
+                    weights: s.weights.as_deref().map(normalised_weights),
+                    t0,
+                    t1,
+                }
+            })
+            .collect()
+    }
+}
+
+impl Family for Path {
+    const NAME: &'static str = "path";
+
+    fn control_points(&self) -> &[DVec3] {
+        &self.points
+    }
+
+    /// Each segment's points taken from `points` (a shared end point for both segments
+    /// that meet there); the weights kept.
+    fn with_control_points(&self, points: Vec<DVec3>) -> Result<Path, GeomError> {
+        if points.len() != self.points.len() {
+            return Err(GeomError::TooFewPoints {
+                min: self.points.len(),
+                found: points.len(),
+            });
+        }
+        let segments = self
+            .segments
+            .iter()
+            .enumerate()
+            .map(|(k, s)| PathSegment {
+                points: (0..s.points.len())
+                    .map(|i| points[self.flat_index(k, i)])
+                    .collect(),
+                weights: s.weights.clone(),
+            })
+            .collect();
+        Path::try_new(segments, self.closed)
+    }
+
+    /// On the control polygon's leg nearest to `at`, inside the segment that leg belongs
+    /// to (its degree rises by one; a rational segment's new weight interpolates its
+    /// neighbours').
+    fn with_point_on_polygon(&self, at: DVec3) -> Result<(Path, usize), GeomError> {
+        let mut best = (0, 0, 0.0, f64::INFINITY);
+        for (k, s) in self.segments.iter().enumerate() {
+            for (i, w) in s.points.windows(2).enumerate() {
+                let d = w[1] - w[0];
+                let len2 = d.length_squared();
+                let f = if len2 > 0.0 {
+                    ((at - w[0]).dot(d) / len2).clamp(0.0, 1.0)
+                } else {
+                    0.5
+                };
+                let dist = (w[0] + f * d - at).length_squared();
+                if dist < best.3 {
+                    best = (k, i, f, dist);
+                }
+            }
+        }
+        let (k, i, f, _) = best;
+        let mut segments = self.segments.clone();
+        let s = &mut segments[k];
+        s.points.insert(i + 1, at);
+        if let Some(w) = &mut s.weights {
+            let nw = w[i] + (w[i + 1] - w[i]) * f;
+            w.insert(i + 1, nw);
+        }
+        let index = self.start_of(k) + i + 1;
+        Ok((Path::try_new(segments, self.closed)?, index))
+    }
+
+    /// An inner point of a segment of degree 2 or more (the segment's degree falls by
+    /// one); a point where two segments meet is refused.
+    fn with_point_removed(&self, index: usize) -> Result<Path, GeomError> {
+        let count = self.points.len();
+        if index >= count {
+            return Err(GeomError::NoSuchPoint { index, count });
+        }
+        let mut start = 0;
+        for (k, s) in self.segments.iter().enumerate() {
+            let n = s.degree();
+            if index > start && index < start + n {
+                if n < 2 {
+                    break;
+                }
+                let mut segments = self.segments.clone();
+                let i = index - start;
+                segments[k].points.remove(i);
+                if let Some(w) = &mut segments[k].weights {
+                    w.remove(i);
+                }
+                return Path::try_new(segments, self.closed);
+            }
+            start += n;
+        }
+        Err(GeomError::refused(
+            Self::NAME,
+            format!(
+                "point {index} is where segments meet (or a line's end): remove an inner point of a segment"
+            ),
+        ))
+    }
+
+    /// Two segments of `degree`, the second starting where the first ends.
+    fn generated(degree: usize, point: &mut dyn FnMut() -> DVec3) -> Result<Path, GeomError> {
+        let degree = degree.max(1);
+        let first: Vec<DVec3> = (0..=degree).map(|_| point()).collect();
+        let mut second = vec![first[degree]];
+        second.extend((0..degree).map(|_| point()));
+        Path::try_new(
+            vec![
+                PathSegment::polynomial(first),
+                PathSegment::polynomial(second),
+            ],
+            false,
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn v(x: f64, y: f64) -> DVec3 {
+        DVec3::new(x, y, 0.0)
+    }
+
+    /// A line, a quadratic and a quarter circle (rational), closed.
+    fn sample() -> Path {
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        Path::try_new(
+            vec![
+                PathSegment::polynomial(vec![v(0.0, 0.0), v(1.0, 0.0)]),
+                PathSegment::rational(
+                    vec![v(1.0, 0.0), v(2.0, 0.0), v(2.0, 1.0)],
+                    vec![1.0, h, 1.0],
+                ),
+                PathSegment::polynomial(vec![v(2.0, 1.0), v(1.0, 2.0), v(0.0, 0.0)]),
+            ],
+            true,
+        )
+        .expect("a closed path")
+    }
+
+    #[test]
+    fn segment_k_covers_k_to_k_plus_one_and_the_shared_points_are_listed_once() {
+        let p = sample();
+        assert_eq!(p.domain(), (0.0, 3.0));
+        assert_eq!(p.control_points().len(), 5);
+        assert_eq!(p.eval(0.5), v(0.5, 0.0));
+        // The quarter circle about (1, 1): its middle at 45°.
+        let m = p.eval(1.5);
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        assert!((m - v(1.0 + h, 1.0 - h)).length() < 1e-15, "{m}");
+        // The quadratic at its middle: (P0 + 2 P1 + P2) / 4.
+        assert_eq!(p.eval(2.5), v((2.0 + 2.0) / 4.0, (1.0 + 4.0) / 4.0));
+        assert_eq!(p.eval(3.0), v(0.0, 0.0));
+        assert_eq!(p.lower().len(), 3);
+        assert_eq!(p.lower()[1].degree(), 2);
+    }
+
+    #[test]
+    fn moving_a_shared_point_moves_both_segments() {
+        let p = sample();
+        let mut pts = p.control_points().to_vec();
+        pts[1] = v(1.0, -1.0);
+        let q = p.with_control_points(pts.clone()).expect("moved");
+        assert_eq!(q.segments()[0].points[1], v(1.0, -1.0));
+        assert_eq!(q.segments()[1].points[0], v(1.0, -1.0));
+        // The closing point is point 0.
+        pts[0] = v(0.0, -0.5);
+        let q = p.with_control_points(pts).expect("moved");
+        assert_eq!(q.segments()[2].points[2], v(0.0, -0.5));
+        assert_eq!(q.segments()[0].points[0], v(0.0, -0.5));
+    }
+
+    #[test]
+    fn a_gap_is_refused_naming_the_joint() {
+        let e = Path::try_new(
+            vec![
+                PathSegment::polynomial(vec![v(0.0, 0.0), v(1.0, 0.0)]),
+                PathSegment::polynomial(vec![v(1.0, 1e-9), v(2.0, 0.0)]),
+            ],
+            false,
+        )
+        .expect_err("a gap");
+        assert!(
+            matches!(e, GeomError::PathGap { joint: 0, next: 1, gap } if (gap - 1e-9).abs() < 1e-20),
+            "{e}"
+        );
+        // Closing a path whose ends differ.
+        let e = Path::try_new(
+            vec![PathSegment::polynomial(vec![v(0.0, 0.0), v(1.0, 0.0)])],
+            true,
+        )
+        .expect_err("not closed");
+        assert!(
+            matches!(
+                e,
+                GeomError::PathGap {
+                    joint: 0,
+                    next: 0,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        // A segment's own error names the segment.
+        let e = Path::try_new(
+            vec![
+                PathSegment::polynomial(vec![v(0.0, 0.0), v(1.0, 0.0)]),
+                PathSegment::rational(vec![v(1.0, 0.0), v(2.0, 0.0)], vec![1.0, -1.0]),
+            ],
+            false,
+        )
+        .expect_err("a bad weight");
+        assert_eq!(e.field(), "segments[1].weights[1]", "{e}");
+        assert!(Path::try_new(vec![], false).is_err());
+    }
+
+    #[test]
+    fn structure_edits_stay_inside_a_segment() {
+        let p = sample();
+        // Point 4 is the last quadratic's middle point: removing it leaves a line.
+        let q = p.with_point_removed(4).expect("an inner point");
+        assert_eq!(q.segments()[2].degree(), 1);
+        assert!(p.with_point_removed(1).is_err(), "a joint");
+        let (q, i) = p.with_point_on_polygon(v(0.5, -0.1)).expect("inserted");
+        assert_eq!(i, 1);
+        assert_eq!(q.segments()[0].degree(), 2);
+        assert_eq!(q.control_points()[1], v(0.5, -0.1));
+    }
+}

@@ -1,0 +1,97 @@
+//! [`Path`]'s words: its summary (segments, degrees, rational, closed), one control
+//! polygon per segment, the template, and the `inspect` report (each segment's degree,
+//! parameter range and weights).
+
+use glam::DVec3;
+use schemars::JsonSchema;
+use serde::Serialize;
+use splinescope_core::geom::{Family, GeomError, Path, PathSegment};
+
+use crate::OverlayPolyline;
+use crate::Present;
+use crate::controls::{ControlId, ControlValue, unknown_control};
+
+impl Present for Path {
+    type Details = PathDetails;
+
+    fn overlays(&self) -> Vec<OverlayPolyline> {
+        self.segments()
+            .iter()
+            .map(|s| OverlayPolyline::control_polygon(&s.points))
+            .collect()
+    }
+
+    fn summary(&self) -> String {
+        let segs = self.segments();
+        let lo = segs.iter().map(PathSegment::degree).min().unwrap_or(0);
+        let hi = segs.iter().map(PathSegment::degree).max().unwrap_or(0);
+        let degrees = if lo == hi {
+            format!("degree {lo}")
+        } else {
+            format!("degrees {lo}–{hi}")
+        };
+        let count = segs.len();
+        let plural = if count == 1 { "" } else { "s" };
+        let rational = if segs.iter().any(|s| s.weights.is_some()) {
+            ", rational"
+        } else {
+            ""
+        };
+        let closed = if self.is_closed() { ", closed" } else { "" };
+        format!("{count} segment{plural}, {degrees}{rational}{closed}")
+    }
+
+    fn details(&self) -> Result<PathDetails, GeomError> {
+        Ok(PathDetails {
+            closed: self.is_closed(),
+            segments: self
+                .segments()
+                .iter()
+                .enumerate()
+                .map(|(k, s)| SegmentDetails {
+                    t: [k as f64, (k + 1) as f64],
+                    degree: s.degree(),
+                    weights: s.weights.clone(),
+                })
+                .collect(),
+        })
+    }
+
+    fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Path, GeomError> {
+        Err(unknown_control(Self::NAME, id, value))
+    }
+
+    /// A line, a quadratic and a cubic, joined.
+    fn templates(center: DVec3, size: f64) -> Vec<(&'static str, Path)> {
+        let p = |x: f64, y: f64| center + DVec3::new(x * size, y * size, 0.0);
+        let segments = vec![
+            PathSegment::polynomial(vec![p(-0.5, -0.2), p(-0.25, 0.2)]),
+            PathSegment::polynomial(vec![p(-0.25, 0.2), p(-0.05, 0.45), p(0.1, 0.1)]),
+            PathSegment::polynomial(vec![p(0.1, 0.1), p(0.2, -0.2), p(0.4, -0.3), p(0.5, 0.2)]),
+        ];
+        Path::try_new(segments, false)
+            .map(|c| vec![("path", c)])
+            .unwrap_or_default()
+    }
+}
+
+/// What `inspect` reports for a path.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct PathDetails {
+    /// Whether the last segment ends where the first starts.
+    pub closed: bool,
+    /// The segments, in order.
+    pub segments: Vec<SegmentDetails>,
+}
+
+/// One segment of a path, as `inspect` reports it.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct SegmentDetails {
+    /// The curve parameters it covers, `[k, k + 1]`.
+    pub t: [f64; 2],
+    /// Its degree.
+    pub degree: usize,
+    /// Its weights, for a rational segment.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub weights: Option<Vec<f64>>,
+}
