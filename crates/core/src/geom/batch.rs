@@ -155,7 +155,12 @@ fn general_lanes(
     for (ub, ob) in us.chunks(BLOCK).zip(out.chunks_mut(BLOCK)) {
         if fused && ub.iter().all(|u| (0.0..=1.0).contains(u)) {
             bernstein_horner_block(points, binomials, ub, planar, ob);
-            continue;
+            // Its partial sums weigh the points by `C(n, k) u^k`, which can pass 1:
+            // coordinates near the top of the double range overflow there while de
+            // Casteljau's convex combinations do not. Such a block is evaluated again.
+            if ob.iter().all(|p| p.is_finite()) || !points.iter().all(|p| p.is_finite()) {
+                continue;
+            }
         }
         let mut groups = ub.chunks_exact(LANES).zip(ob.chunks_exact_mut(LANES));
         for (u, o) in &mut groups {
@@ -756,6 +761,28 @@ mod tests {
                         "degree {degree}, planar {planar}, u = {u}"
                     );
                 }
+            }
+        }
+    }
+
+    /// Control points near the top of the double range: every point of the curve is a
+    /// convex combination of them, so finite, though Bernstein–Horner's partial sums
+    /// (weights `C(n, k) u^k` above 1) overflow — the batch gives de Casteljau's values
+    /// (the case a solve produced: paper 000's moves of 1.5e308 on a degree-7 curve).
+    #[test]
+    fn control_points_near_the_largest_double_evaluate_finite() {
+        let big = 1.4e308;
+        for degree in [4usize, 5, 7, 12, 20] {
+            let points: Vec<DVec3> = (0..=degree)
+                .map(|i| DVec3::new(if i % 2 == 0 { big } else { -0.5 * big }, big, 0.0))
+                .collect();
+            let us: Vec<f64> = (0..=64).map(|k| f64::from(k) / 64.0).collect();
+            let mut out = vec![DVec3::ZERO; us.len()];
+            bezier_into(&points, &us, &mut out);
+            for (o, &u) in out.iter().zip(&us) {
+                let want = super::super::bezier::de_casteljau(&points, u);
+                assert!(want.is_finite(), "de Casteljau at {u}");
+                assert_eq!(*o, want, "degree {degree}, u = {u}");
             }
         }
     }
