@@ -33,6 +33,7 @@
 
 pub use splinescope_core::{analysis, geom, num, solve};
 pub use splinescope_gpu as gpu;
+pub use splinescope_import as import;
 pub use splinescope_io::{files, limits};
 pub use splinescope_present as present;
 pub use splinescope_present::inspect;

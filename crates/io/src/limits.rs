@@ -81,8 +81,24 @@ pub const FIGURE_PIECES: Limit = Limit {
     default: 1 << 18,
 };
 
+/// Elements an imported file (SVG) is read as, counted after every `<use>` is expanded:
+/// a file of a few kilobytes can reference its own groups into billions of elements.
+pub const IMPORT_ELEMENTS: Limit = Limit {
+    what: "elements per imported file (after <use> expansion)",
+    var: "SPLINESCOPE_MAX_IMPORT_ELEMENTS",
+    default: 1_000_000,
+};
+
+/// Nesting of an imported file's groups and `<use>` references: the reader recurses
+/// through them.
+pub const IMPORT_DEPTH: Limit = Limit {
+    what: "for the nesting of groups and references in an imported file",
+    var: "SPLINESCOPE_MAX_IMPORT_DEPTH",
+    default: 256,
+};
+
 /// Every limit, for the documentation and `--help`.
-pub const ALL: [Limit; 8] = [
+pub const ALL: [Limit; 10] = [
     SCENE_BYTES,
     CURVES,
     POINTS,
@@ -91,6 +107,8 @@ pub const ALL: [Limit; 8] = [
     SAMPLES,
     IMAGE_PIXELS,
     FIGURE_PIECES,
+    IMPORT_ELEMENTS,
+    IMPORT_DEPTH,
 ];
 
 /// A value over its limit, or a limit's variable that does not hold a whole number.

@@ -13,14 +13,13 @@ use splinescope::analysis::report::{
     AnalyzeOutput, CurveAnalysisReport, IntersectionsReport, curve_analysis_report, pair_reports,
 };
 use splinescope::num::{Num, shortest_within};
-use splinescope::scene::Scene;
 
 use crate::{say, select_curves};
 
 /// The arguments of `splinescope analyze`.
 #[derive(Debug, clap::Args)]
 pub struct AnalyzeArgs {
-    /// Scene file (JSON).
+    /// Scene file (JSON), or an SVG file read as path curves.
     pub scene: PathBuf,
     /// Only this curve (index in the scene).
     #[arg(long, allow_hyphen_values = true)]
@@ -59,7 +58,7 @@ fn parse_accuracy(s: &str) -> Result<f64, String> {
 /// A scene that does not load, a curve index out of range, or intersections asked of 3D
 /// curves.
 pub fn run(a: &AnalyzeArgs) -> Result<()> {
-    let scene = Scene::load(&a.scene).with_context(|| format!("{}", a.scene.display()))?;
+    let scene = crate::load::scene(&a.scene)?;
     let indices = select_curves(&scene, a.curve)?;
     let analyses: Vec<CurveAnalysis> = indices
         .iter()

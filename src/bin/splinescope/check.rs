@@ -3,17 +3,16 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 
 use splinescope::num::Num;
-use splinescope::scene::Scene;
 
 use crate::say;
 
 /// The arguments of `splinescope check`.
 #[derive(Debug, clap::Args)]
 pub struct CheckArgs {
-    /// Scene file (JSON).
+    /// Scene file (JSON), or an SVG file read as path curves.
     pub scene: PathBuf,
     /// Print the description as JSON (docs/schemas/check.schema.json).
     #[arg(long)]
@@ -29,7 +28,7 @@ pub fn run(a: &CheckArgs) -> Result<()> {
 }
 
 fn check(path: &Path, json: bool) -> Result<()> {
-    let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
+    let scene = crate::load::scene(path)?;
     let report = splinescope::outputs::CheckOutput::of(&path.display().to_string(), &scene);
     if json {
         say!("{}", serde_json::to_string_pretty(&report)?);

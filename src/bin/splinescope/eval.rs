@@ -15,7 +15,7 @@ use crate::{GpuArgs, select_curves};
 /// The arguments of `splinescope eval`.
 #[derive(Debug, clap::Args)]
 pub struct EvalArgs {
-    /// Scene file (JSON).
+    /// Scene file (JSON), or an SVG file read as path curves.
     pub scene: PathBuf,
     /// Number of uniform parameters over each curve's whole domain (ends included).
     #[arg(long, value_parser = crate::words::between::<u32>(2, 10_000_000), conflicts_with = "params", allow_hyphen_values = true)]
@@ -89,7 +89,7 @@ struct EvalRequest<'a> {
 }
 
 fn eval(path: &Path, req: &EvalRequest<'_>, gpu: &GpuArgs) -> Result<()> {
-    let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
+    let scene = crate::load::scene(path)?;
     let indices = select_curves(&scene, req.only)?;
     let per_curve = parameters(&scene, &indices, req)?;
     // values[0]: the points; values[k]: the k-th derivative.

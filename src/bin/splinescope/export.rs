@@ -13,7 +13,7 @@ use crate::{GpuArgs, ShapeArgs, TextArgs, say};
 /// The arguments of `splinescope export`.
 #[derive(Debug, clap::Args)]
 pub struct ExportArgs {
-    /// Scene file (JSON); omit for the built-in gallery.
+    /// Scene file (JSON), or an SVG file read as path curves; omit for the built-in gallery.
     pub scene: Option<PathBuf>,
     /// Output figure: `.svg`, `.pdf` or `.png`.
     #[arg(short, long, value_name = "FIG")]
@@ -102,7 +102,7 @@ pub fn run(a: &ExportArgs) -> Result<()> {
     let format = format_of(&a.output)?;
     let mut scene = match &a.scene {
         None => gallery::gallery(),
-        Some(p) => Scene::load(p).with_context(|| format!("{}", p.display()))?,
+        Some(p) => crate::load::scene(p)?,
     };
     if let Some(view) = &a.view {
         scene = with_view(&scene, view)?;

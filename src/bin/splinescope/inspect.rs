@@ -7,14 +7,13 @@ use anyhow::{Context, Result, bail};
 
 use splinescope::geom::GeomError;
 use splinescope::num::Num;
-use splinescope::scene::Scene;
 
 use crate::select_curves;
 
 /// The arguments of `splinescope inspect`.
 #[derive(Debug, clap::Args)]
 pub struct InspectArgs {
-    /// Scene file (JSON).
+    /// Scene file (JSON), or an SVG file read as path curves.
     pub scene: PathBuf,
     /// Only this curve (index in the scene).
     #[arg(long, allow_hyphen_values = true)]
@@ -34,7 +33,7 @@ pub fn run(a: &InspectArgs) -> Result<()> {
 }
 
 fn inspect(path: &Path, only: Option<usize>, tau: Option<f64>) -> Result<()> {
-    let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
+    let scene = crate::load::scene(path)?;
     if let Some(t) = tau
         && !t.is_finite()
     {

@@ -19,7 +19,9 @@ mod check;
 mod diff;
 mod eval;
 mod export;
+mod import;
 mod inspect;
+mod load;
 mod regress;
 mod render;
 mod schema;
@@ -195,6 +197,9 @@ enum Command {
     Solve(solve::SolveArgs),
     /// Validate a scene and summarise it (families, segments, GPU compatibility).
     Check(check::CheckArgs),
+    /// Read a file of another format (SVG) and write it as a scene (JSON): each subpath
+    /// one path curve, arcs exact.
+    Import(import::ImportArgs),
     /// Print the JSON Schema of a format (scene, request, report, inspect, analyze, eval,
     /// check); without a name, list them; write them all with --write DIR.
     Schema(schema::SchemaArgs),
@@ -246,6 +251,7 @@ fn run(cli: Cli) -> Result<()> {
         Some(Command::Analyze(a)) => analyze::run(&a),
         Some(Command::Solve(a)) => solve::run(&a),
         Some(Command::Check(a)) => check::run(&a),
+        Some(Command::Import(a)) => import::run(&a),
         Some(Command::Schema(a)) => schema::run(&a),
         Some(Command::Regress(a)) => regress::run(&a),
         Some(Command::Diff(a)) => diff::run(&a),

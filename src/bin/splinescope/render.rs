@@ -3,7 +3,7 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 
 use splinescope::scene::{Scene, gallery};
 
@@ -12,7 +12,7 @@ use crate::{GpuArgs, ShapeArgs, TextArgs, parse_tolerance_px, say};
 /// The arguments of `splinescope render`.
 #[derive(Debug, clap::Args)]
 pub struct RenderArgs {
-    /// Scene file (JSON); omit for the built-in gallery.
+    /// Scene file (JSON), or an SVG file read as path curves; omit for the built-in gallery.
     pub scene: Option<PathBuf>,
     /// Output PNG.
     #[arg(short, long, value_name = "PNG")]
@@ -83,6 +83,6 @@ fn render(
 fn load_scene_or_gallery(path: Option<&Path>) -> Result<Scene> {
     match path {
         None => Ok(gallery::gallery()),
-        Some(p) => Scene::load(p).with_context(|| format!("{}", p.display())),
+        Some(p) => crate::load::scene(p),
     }
 }

@@ -5,14 +5,12 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 
-use splinescope::scene::Scene;
-
 use crate::say;
 
 /// The arguments of `splinescope solve`.
 #[derive(Debug, clap::Args)]
 pub struct SolveArgs {
-    /// Scene file (JSON).
+    /// Scene file (JSON), or an SVG file read as path curves.
     pub scene: PathBuf,
     /// Request file (JSON): one request or an array of them, applied in order.
     pub request: PathBuf,
@@ -38,7 +36,7 @@ pub fn run(a: &SolveArgs) -> Result<()> {
 }
 
 fn solve(path: &Path, request: &Path, output: Option<&Path>, report: Option<&Path>) -> Result<()> {
-    let scene = Scene::load(path).with_context(|| format!("{}", path.display()))?;
+    let scene = crate::load::scene(path)?;
     let text = splinescope::limits::read_bounded(request)
         .with_context(|| format!("{}: cannot read the request", request.display()))?;
     let outcome = splinescope::request::apply_text(&scene, &text)

@@ -13,7 +13,7 @@ use crate::{GpuArgs, parse_tolerance_px, say};
 /// The arguments of `splinescope view`.
 #[derive(Debug, clap::Args)]
 pub struct ViewArgs {
-    /// Scene file (JSON); omit for the built-in gallery.
+    /// Scene file (JSON), or an SVG file read as path curves; omit for the built-in gallery.
     pub scene: Option<PathBuf>,
     /// Exit after this many presented frames (smoke tests).
     #[arg(long, value_parser = crate::words::at_least::<u64>(1), allow_hyphen_values = true)]
@@ -101,6 +101,7 @@ fn view(
         bail!("--solve needs --degree 2 or more (a line has no interior control point to move)");
     }
     let mut source = None;
+    let mut save_to = scene.clone();
     let loaded = match stress {
         Some(n) => {
             splinescope::limits::SAMPLES
@@ -126,9 +127,17 @@ fn view(
             generated
         }
         None => match scene.as_deref() {
-            Some(p) => {
+            Some(p) if crate::load::is_scene_file(p) => {
                 let (read, text) = Scene::read(p).with_context(|| format!("{}", p.display()))?;
                 source = Some(text);
+                read
+            }
+            Some(p) => {
+                // Another format: saved as a scene beside it, never over it (and never over
+                // a scene already there).
+                let read = crate::load::scene(p)?;
+                let beside = p.with_extension("json");
+                save_to = (!beside.exists()).then_some(beside);
                 read
             }
             None => gallery::gallery(),
@@ -142,7 +151,7 @@ fn view(
         solve,
         tolerance_px,
         overlays_hidden: stress.is_some(),
-        path: scene,
+        path: save_to,
         comb,
         comb_cap,
     })?;

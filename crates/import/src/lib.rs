@@ -1,0 +1,122 @@
+//! Reading the curves people already have: files of other formats become scenes of
+//! [`splinescope_core::geom::Path`] curves (the family every format's curves are: Bézier
+//! segments of mixed degree, some rational, joined end to end), so that everything
+//! downstream — the GPU, the analysis, figures, Python — works on them unchanged.
+//!
+//! [`load`] reads a file by its extension: a splinescope scene (`.json`) as it is, SVG
+//! (`.svg`) through [`svg::read`]. Every reader checks the documented limits
+//! ([`splinescope_scene::limits`]) and names the file and the place (line, element) of
+//! what it refuses; what it leaves out it says in [`Imported::warnings`].
+
+#![forbid(unsafe_code)]
+
+pub mod svg;
+
+use std::path::Path;
+
+use splinescope_scene::format::{Scene, SceneError};
+use splinescope_scene::limits::{self, LimitError};
+use thiserror::Error;
+
+/// A scene read from a file, and what the reader left out (one line each).
+#[derive(Debug, Clone)]
+pub struct Imported {
+    /// The scene.
+    pub scene: Scene,
+    /// What was left out, for a person (stderr, `warnings.warn`).
+    pub warnings: Vec<String>,
+}
+
+/// Why a file could not be read.
+#[derive(Debug, Error)]
+pub enum ImportError {
+    /// The file could not be read (missing, unreadable, over the size limit, not UTF-8).
+    #[error("{file}: {message}")]
+    Io {
+        /// The file.
+        file: String,
+        /// What went wrong.
+        message: String,
+    },
+    /// The file's syntax (XML) is wrong, or it is not the format its extension says.
+    #[error("{file}:{line}:{column}: {message}")]
+    Syntax {
+        /// The file.
+        file: String,
+        /// The line (from 1).
+        line: u32,
+        /// The column (from 1).
+        column: u32,
+        /// What is wrong.
+        message: String,
+    },
+    /// An element whose geometry, reference or numbers are wrong, or past a limit.
+    #[error("{file}:{line}: <{element}>: {message}")]
+    Element {
+        /// The file.
+        file: String,
+        /// The element's line (from 1).
+        line: u32,
+        /// The element's name.
+        element: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A limit's environment variable that does not hold a whole number.
+    #[error("{file}: {source}")]
+    Limit {
+        /// The file.
+        file: String,
+        /// The limit's error.
+        source: LimitError,
+    },
+    /// An extension splinescope does not read.
+    #[error(
+        "{file}: .{extension} is not a format splinescope reads (it reads .json scenes and .svg files)"
+    )]
+    UnknownFormat {
+        /// The file.
+        file: String,
+        /// Its extension (empty when it has none).
+        extension: String,
+    },
+    /// A splinescope scene file's error.
+    #[error("{file}: {source}")]
+    Scene {
+        /// The file.
+        file: String,
+        /// The scene reader's error (it names the value).
+        source: SceneError,
+    },
+}
+
+/// The formats [`load`] reads, by extension (lower case).
+pub const EXTENSIONS: &[&str] = &["json", "svg"];
+
+/// Reads `path` by its extension: a scene (`.json`), or SVG (`.svg`) as path curves.
+///
+/// # Errors
+/// [`ImportError`] naming the file and where in it.
+pub fn load(path: &Path) -> Result<Imported, ImportError> {
+    let file = path.display().to_string();
+    let extension = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_lowercase())
+        .unwrap_or_default();
+    match extension.as_str() {
+        "svg" => {
+            let text = limits::read_bounded(path).map_err(|e| ImportError::Io {
+                file: file.clone(),
+                message: e.to_string(),
+            })?;
+            svg::read(&text, &file)
+        }
+        "json" => Scene::load(path)
+            .map(|scene| Imported {
+                scene,
+                warnings: Vec::new(),
+            })
+            .map_err(|source| ImportError::Scene { file, source }),
+        _ => Err(ImportError::UnknownFormat { file, extension }),
+    }
+}

@@ -1,0 +1,206 @@
+//! SVG files read as path curves and drawn on the GPU look as an independent renderer
+//! (resvg) draws the same file: every ink pixel of each picture lies within 2 pixels of ink
+//! in the other (99.5 % of them, the rest being anti-aliasing fringes). And the command
+//! line reads SVG wherever it reads a scene, `import` writes the scene, and a hostile file
+//! is an error naming the file and the line.
+
+mod common;
+
+use glam::DVec2;
+use splinescope::image::RgbaImage;
+use splinescope::scene::{Scene, ViewSpec};
+
+/// A file with every kind of element the reader takes: arcs (rotated, large, swept,
+/// relative), rounded rectangles, circles and ellipses under transforms, `<use>`, every
+/// path command. Uniform strokes (width 1 user unit), no fill, so that both pictures are
+/// outlines of one width.
+const FILE: &str = r##"<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" viewBox="0 0 240 160">
+  <style>path, rect, circle, ellipse, polyline, polygon, line { fill: none; stroke: black; stroke-width: 1 }</style>
+  <defs><path id="wave" d="M 0 0 q 10 -15 20 0 t 20 0 t 20 0"/></defs>
+  <rect x="8" y="8" width="224" height="144" rx="14" ry="9"/>
+  <circle cx="50" cy="50" r="28"/>
+  <ellipse cx="120" cy="45" rx="30" ry="12" transform="rotate(25 120 45)"/>
+  <path d="M 170 30 A 30 18 20 1 1 210 70 a 12 12 0 0 0 -10 20 Z"/>
+  <path d="M 20 120 C 30 90 60 90 70 120 S 110 150 120 120 H 140 v -20 L 150 130 z"/>
+  <g transform="translate(160 110) scale(1.2 0.8)"><use xlink:href="#wave"/><use href="#wave" y="20"/></g>
+  <polygon points="90,140 100,125 110,140"/>
+  <line x1="20" y1="145" x2="70" y2="140"/>
+</svg>"##;
+
+/// The picture's scale: pixels per user unit.
+const K: f64 = 4.0;
+
+fn rasterise(text: &str, w: u32, h: u32) -> RgbaImage {
+    let tree = resvg::usvg::Tree::from_str(text, &resvg::usvg::Options::default())
+        .expect("the SVG parses");
+    let mut pixmap = resvg::tiny_skia::Pixmap::new(w, h).expect("pixmap");
+    pixmap.fill(resvg::tiny_skia::Color::WHITE);
+    let scale = w as f32 / tree.size().width();
+    resvg::render(
+        &tree,
+        resvg::tiny_skia::Transform::from_scale(scale, scale),
+        &mut pixmap.as_mut(),
+    );
+    RgbaImage {
+        width: w,
+        height: h,
+        data: pixmap.data().to_vec(),
+    }
+}
+
+/// Pixels darker than mid-grey.
+fn ink(img: &RgbaImage) -> Vec<bool> {
+    img.data
+        .chunks_exact(4)
+        .map(|p| {
+            let l = 0.3 * f64::from(p[0]) + 0.59 * f64::from(p[1]) + 0.11 * f64::from(p[2]);
+            // Premultiplied or straight, an opaque background: alpha decides too.
+            p[3] > 128 && l < 128.0
+        })
+        .collect()
+}
+
+/// The share of `a`'s ink within `r` pixels of `b`'s.
+fn covered(a: &[bool], b: &[bool], w: usize, h: usize, r: i64) -> f64 {
+    let (mut inside, mut total) = (0usize, 0usize);
+    for y in 0..h as i64 {
+        for x in 0..w as i64 {
+            if !a[(y as usize) * w + x as usize] {
+                continue;
+            }
+            total += 1;
+            let near = (-r..=r).any(|dy| {
+                (-r..=r).any(|dx| {
+                    let (xx, yy) = (x + dx, y + dy);
+                    xx >= 0
+                        && yy >= 0
+                        && xx < w as i64
+                        && yy < h as i64
+                        && b[(yy as usize) * w + xx as usize]
+                })
+            });
+            inside += usize::from(near);
+        }
+    }
+    inside as f64 / total.max(1) as f64
+}
+
+#[test]
+fn an_svg_file_is_drawn_as_resvg_draws_it() {
+    let imported = splinescope::import::svg::read(FILE, "all.svg").expect("reads");
+    assert_eq!(imported.scene.curves.len(), 9, "{:?}", imported.warnings);
+    assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
+    let (w, h) = ((240.0 * K) as u32, (160.0 * K) as u32);
+    let mut scene: Scene = imported.scene;
+    // The viewBox exactly: its centre, flipped, and its height.
+    scene.view = ViewSpec::TwoD {
+        center: DVec2::new(120.0, 80.0),
+        height: 160.0,
+    };
+    for c in &mut scene.curves {
+        c.style.width = K as f32;
+    }
+    let reference = rasterise(FILE, w, h);
+    let theirs = ink(&reference);
+    common::on_each_gpu("svg import against resvg", |backend| {
+        let ours_img = splinescope::offscreen::render_scene(
+            &backend.ctx,
+            &backend.pipelines,
+            &scene,
+            None,
+            w,
+            h,
+        )
+        .expect("renders");
+        let ours = ink(&ours_img);
+        let (w, h) = (w as usize, h as usize);
+        let (a, b) = (
+            covered(&ours, &theirs, w, h, 2),
+            covered(&theirs, &ours, w, h, 2),
+        );
+        if a < 0.995 || b < 0.995 {
+            let dir = common::out_dir("svg_import");
+            ours_img.write_png(&dir.join("actual.png")).ok();
+            reference.write_png(&dir.join("resvg.png")).ok();
+            let mut diff = ours_img.clone();
+            for (i, p) in diff.data.chunks_exact_mut(4).enumerate() {
+                p.copy_from_slice(&match (ours[i], theirs[i]) {
+                    (true, false) => [255, 0, 0, 255],
+                    (false, true) => [0, 0, 255, 255],
+                    (true, true) => [0, 0, 0, 255],
+                    (false, false) => [255, 255, 255, 255],
+                });
+            }
+            diff.write_png(&dir.join("diff.png")).ok();
+            panic!(
+                "on {}: {:.4} of our ink near resvg's, {:.4} of resvg's near ours (want 0.995; images in {})",
+                backend.name,
+                a,
+                b,
+                dir.display()
+            );
+        }
+    });
+}
+
+#[test]
+fn the_command_line_reads_svg_where_it_reads_a_scene_and_import_writes_one() {
+    let dir = common::out_dir("svg_import_cli");
+    let svg = dir.join("all.svg");
+    std::fs::write(&svg, FILE.replace("</svg>", "<text>left out</text></svg>")).expect("write");
+    let out = common::run(&["check", svg.to_str().expect("utf-8")]);
+    assert!(out.status.success(), "{}", common::text(&out));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("9 curve(s)"), "{stdout}");
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("left out (not curves): 1 <text>"),
+        "{}",
+        common::text(&out)
+    );
+    let json = dir.join("all.json");
+    let out = common::run(&[
+        "import",
+        svg.to_str().expect("utf-8"),
+        "-o",
+        json.to_str().expect("utf-8"),
+    ]);
+    assert!(out.status.success(), "{}", common::text(&out));
+    let scene = Scene::load(&json).expect("the written scene reads");
+    let direct = splinescope::import::load(&svg).expect("reads").scene;
+    assert_eq!(scene.curves.len(), direct.curves.len());
+    for (a, b) in scene.curves.iter().zip(&direct.curves) {
+        assert_eq!(a.curve, b.curve, "written exactly");
+        assert_eq!(a.name, b.name);
+    }
+    // The input is never the output.
+    let out = common::run(&[
+        "import",
+        svg.to_str().expect("utf-8"),
+        "-o",
+        svg.to_str().expect("utf-8"),
+    ]);
+    assert!(!out.status.success());
+    assert!(
+        std::fs::read_to_string(&svg)
+            .expect("kept")
+            .contains("<svg")
+    );
+    // A hostile file: the file and the line.
+    let bad = dir.join("bad.svg");
+    std::fs::write(&bad, "<svg>\n<g>\n<path d=\"M 0 0 L\"/></g></svg>").expect("write");
+    let out = common::run(&["analyze", bad.to_str().expect("utf-8")]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("bad.svg:3: <path>: path data"), "{err}");
+    // An extension no reader takes.
+    let odd = dir.join("x.dwg");
+    std::fs::write(&odd, "x").expect("write");
+    let out = common::run(&[
+        "import",
+        odd.to_str().expect("utf-8"),
+        "-o",
+        json.to_str().expect("utf-8"),
+    ]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains(".dwg is not a format"));
+}
