@@ -1073,6 +1073,154 @@ impl Fuzz {
     }
 }
 
+/// The SVG files the import cases mutate (`tests/import_seeds/`).
+fn import_seeds() -> Vec<String> {
+    let dir = manifest("tests/import_seeds");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("tests/import_seeds")
+        .map(|e| e.expect("entry").path())
+        .collect();
+    files.sort();
+    files
+        .iter()
+        .map(|f| std::fs::read_to_string(f).expect("seed"))
+        .collect()
+}
+
+/// A textual mutation of an SVG file: cut short, a piece doubled or dropped, a number
+/// made extreme, an element nested a thousand deep or referenced many times over, an
+/// attribute value swapped for junk.
+fn mutate_svg(text: &str, rng: &mut Rng) -> String {
+    let mut t = text.to_owned();
+    for _ in 0..rng.int(1, 3) {
+        let n = t.len().max(1);
+        let at = |rng: &mut Rng| {
+            let mut i = rng.int(0, n - 1).min(t.len());
+            while !t.is_char_boundary(i) {
+                i -= 1;
+            }
+            i
+        };
+        match rng.int(0, 7) {
+            0 => {
+                let i = at(rng);
+                t.truncate(i);
+            }
+            1 => {
+                let (a, b) = (at(rng), at(rng));
+                let (a, b) = (a.min(b), a.max(b));
+                let piece = t[a..b].to_owned();
+                t.insert_str(b, &piece);
+            }
+            2 => {
+                let (a, b) = (at(rng), at(rng));
+                t.replace_range(a.min(b)..a.max(b), "");
+            }
+            3 => {
+                // A number made extreme.
+                let digits: Vec<usize> = t
+                    .char_indices()
+                    .filter(|(_, c)| c.is_ascii_digit())
+                    .map(|(i, _)| i)
+                    .collect();
+                if !digits.is_empty() {
+                    let i = digits[rng.int(0, digits.len() - 1)];
+                    let x = extreme(rng);
+                    t.replace_range(i..=i, &format!("{x:e}"));
+                }
+            }
+            4 => {
+                let depth = [10, 300, 3000][rng.int(0, 2)];
+                let inner = "<path d=\"M0 0 L1 1\" stroke=\"black\"/>";
+                let nest = format!("{}{inner}{}", "<g>".repeat(depth), "</g>".repeat(depth));
+                if let Some(i) = t.rfind("</svg>") {
+                    t.insert_str(i, &nest);
+                }
+            }
+            5 => {
+                // References that multiply: each level uses the one below ten times.
+                let mut bomb =
+                    String::from("<g id=\"z0\"><path d=\"M0 0 L1 1\" stroke=\"red\"/></g>");
+                for k in 1..=rng.int(1, 9) {
+                    bomb += &format!(
+                        "<g id=\"z{k}\">{}</g>",
+                        format!("<use href=\"#z{}\"/>", k - 1).repeat(10)
+                    );
+                }
+                if let Some(i) = t.rfind("</svg>") {
+                    t.insert_str(i, &bomb);
+                }
+            }
+            6 => {
+                let junk = [
+                    "\"NaN\"",
+                    "\"-1\"",
+                    "\"1e999\"",
+                    "\"url(#nothing)\"",
+                    "\"#z\"",
+                    "\"\"",
+                    "\"M\"",
+                ];
+                if let Some(i) = t.match_indices('"').map(|(i, _)| i).nth(rng.int(0, 40)) {
+                    let end = t[i + 1..].find('"').map_or(t.len(), |e| i + 2 + e);
+                    t.replace_range(i..end, junk[rng.int(0, junk.len() - 1)]);
+                }
+            }
+            _ => {
+                // A reference to itself.
+                if let Some(i) = t.rfind("</svg>") {
+                    t.insert_str(i, "<g id=\"loop\"><use href=\"#loop\"/></g>");
+                }
+            }
+        }
+    }
+    t
+}
+
+impl Fuzz {
+    /// One mutated SVG file: read by the library (no panic, within the time bound, every
+    /// curve finite) and by the command line (`check`, no panic or signal).
+    fn import_case(&mut self, seeds: &[String]) {
+        let seed = &seeds[self.rng.int(0, seeds.len() - 1)];
+        let text = mutate_svg(seed, &mut self.rng);
+        let start = Instant::now();
+        let result = std::panic::catch_unwind(|| -> Result<(), String> {
+            let Ok(imported) = splinescope::import::svg::read(&text, "fuzz.svg") else {
+                return Ok(());
+            };
+            for (i, c) in imported.scene.curves.iter().enumerate() {
+                let (a, b) = c.curve.domain();
+                for t in [a, 0.5 * (a + b), b] {
+                    if !c.curve.eval(t).is_finite() {
+                        return Err(format!("curves[{i}] at t = {t}: not finite"));
+                    }
+                }
+            }
+            Ok(())
+        });
+        let short: String = text.chars().take(600).collect();
+        match result {
+            Ok(Ok(())) => {}
+            Ok(Err(e)) => self.fail(format!("import: {e}\ninput: {short}")),
+            Err(_) => self.fail(format!("import: the reader panicked\ninput: {short}")),
+        }
+        if start.elapsed() > Duration::from_secs(10) {
+            self.fail(format!("import took {:?}\ninput: {short}", start.elapsed()));
+        }
+        if self.rng.unit() < 0.2 {
+            let file = self.dir.join("fuzz.svg");
+            if std::fs::write(&file, &text).is_ok() {
+                self.cli(
+                    vec!["check".into(), file.display().to_string()],
+                    None,
+                    "import check",
+                    &short,
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn fuzz_every_input_path() {
     let seconds: u64 = std::env::var("SPLINESCOPE_FUZZ_SECONDS")
@@ -1088,6 +1236,7 @@ fn fuzz_every_input_path() {
     let scenes = seeds("scenes");
     let requests = seeds("scenes/requests");
     let images = image_seeds();
+    let import_seeds = import_seeds();
     let bench_seed = json!({
         "family": "bezier", "curves": 10, "degree": 3, "samples_per_curve": 4,
         "cpu_f64_one_thread_samples_per_s": 1.5e8, "cpu_f64_all_cores_samples_per_s": 2.9e8,
@@ -1106,6 +1255,8 @@ fn fuzz_every_input_path() {
     };
     // `SPLINESCOPE_FUZZ_ONLY=figures` runs the figure cases alone (scripts/fuzz --only).
     let only_figures = std::env::var("SPLINESCOPE_FUZZ_ONLY").is_ok_and(|v| v == "figures");
+    // `import`: the import cases alone.
+    let only_import = std::env::var("SPLINESCOPE_FUZZ_ONLY").is_ok_and(|v| v == "import");
     let figure_seeds = figure_seeds();
     let mut figure_scenes = scenes.clone();
     figure_scenes.extend(figure_seeds);
@@ -1118,14 +1269,18 @@ fn fuzz_every_input_path() {
             break;
         }
         let pick = f.rng.unit();
-        if only_figures || pick < 0.3 {
+        if only_import {
+            f.import_case(&import_seeds);
+        } else if only_figures || pick < 0.3 {
             f.figure_case(&figure_scenes);
         } else if pick < 0.7 {
             f.scene_case(&scenes, &requests);
         } else if pick < 0.82 {
             f.argument_case();
-        } else if pick < 0.94 {
+        } else if pick < 0.88 {
             f.image_case(&images);
+        } else if pick < 0.94 {
+            f.import_case(&import_seeds);
         } else {
             f.output_case(&bench_seed);
         }
@@ -1146,7 +1301,10 @@ fn fuzz_every_input_path() {
     );
     // A fuzzer whose inputs all fail to parse tests nothing: both outcomes must occur.
     assert!(
-        f.cases < 50 || only_figures || (f.exits[0] * 10 > f.cases && f.exits[1] * 10 > f.cases),
+        f.cases < 50
+            || only_figures
+            || only_import
+            || (f.exits[0] * 10 > f.cases && f.exits[1] * 10 > f.cases),
         "the mutations must produce both valid and invalid inputs: {:?}",
         f.exits
     );
