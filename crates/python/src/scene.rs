@@ -42,6 +42,22 @@ impl PyScene {
         })
     }
 
+    /// Reads a file of another format (SVG) as a scene of path curves, with what the
+    /// reader left out (one line each).
+    #[staticmethod]
+    fn import_file(py: Python<'_>, path: PathBuf) -> PyResult<(PyScene, Vec<String>)> {
+        let imported = py
+            .detach(|| splinescope_import::load(&path))
+            .map_err(|e| raise::<SceneError>(e.to_string(), ""))?;
+        Ok((
+            PyScene {
+                scene: imported.scene,
+                original: None,
+            },
+            imported.warnings,
+        ))
+    }
+
     /// Reads and checks a scene from JSON text.
     #[staticmethod]
     fn from_json(text: &str) -> PyResult<PyScene> {

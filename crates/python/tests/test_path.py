@@ -86,3 +86,30 @@ def test_a_path_must_have_one_dimension():
     with pytest.raises(ss.SceneError) as e:
         ss.Path([[[0, 0], [1, 0]], [[1, 0, 0], [2, 0, 0]]])
     assert e.value.path == "segments[1].points"
+
+
+def test_load_reads_svg_as_paths_with_a_warning_for_what_it_leaves_out(tmp_path):
+    f = tmp_path / "logo.svg"
+    f.write_text(
+        '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">'
+        '<circle cx="50" cy="50" r="10" stroke="red" fill="none"/>'
+        '<path d="M 10 10 Q 20 0 30 10 T 50 10" stroke="blue"/>'
+        "<text>not a curve</text></svg>"
+    )
+    with pytest.warns(UserWarning, match=r"left out \(not curves\): 1 <text>"):
+        scene = ss.load(f)
+    assert len(scene.curves) == 2
+    circle = scene.curves[0]
+    assert isinstance(circle, ss.Path) and circle.closed
+    assert abs(circle.length() - 20 * math.pi) <= 1e-12
+    # The quadratics stay quadratics; T reflects the control point.
+    segs = scene.curves[1].segments()
+    assert [len(s[2]) for s in segs] == [3, 3]
+    assert np.allclose(segs[1][2][1], [40.0, 100.0 - 20.0])
+
+
+def test_a_bad_svg_file_is_a_scene_error_naming_the_file_and_the_line(tmp_path):
+    f = tmp_path / "bad.svg"
+    f.write_text("<svg>\n<path d='M 0 0 L'/></svg>")
+    with pytest.raises(ss.SceneError, match=r"bad\.svg:2: <path>: path data"):
+        ss.load(f)

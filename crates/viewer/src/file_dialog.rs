@@ -85,7 +85,9 @@ impl FileDialog {
             let is_dir = std::fs::metadata(entry.path()).is_ok_and(|m| m.is_dir());
             // Scene files to open or save over; figures where the view is exported.
             let wanted: &[&str] = match self.mode {
-                DialogMode::Open | DialogMode::SaveAs => &["json"],
+                // Other formats open as scenes of path curves (saved as NAME.json).
+                DialogMode::Open => splinescope_import::EXTENSIONS,
+                DialogMode::SaveAs => &["json"],
                 DialogMode::Export => &["svg", "pdf"],
             };
             let listed = Path::new(&name).extension().is_some_and(|e| {

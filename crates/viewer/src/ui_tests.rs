@@ -267,6 +267,64 @@ fn the_file_dialog_opens_a_clicked_file_and_the_file_menu_saves_as() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// The open dialog lists SVG files; one opens as path curves, saved beside it as
+/// NAME.json (never over the SVG), and the panel says so and what was left out. A file
+/// dropped on the window takes the same way; a bad one leaves the scene as it was.
+#[test]
+fn an_svg_file_opens_as_path_curves_and_saves_beside_it() {
+    let dir = std::env::temp_dir().join(format!("splinescope-ui-svg-{}", std::process::id()));
+    std::fs::remove_dir_all(&dir).ok();
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg = dir.join("logo.svg");
+    let text = r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10"><circle cx="5" cy="5" r="3" stroke="red" fill="none"/><path d="M 1 1 L 9 1" stroke="blue"/><text>t</text></svg>"#;
+    std::fs::write(&svg, text).unwrap();
+    let a = dir.join("a.json");
+    Scene::of_curves([cubic(0.0)]).save(&a).unwrap();
+    let mut h = harness(Scene::load(&a).unwrap(), Some(a.clone()));
+    h.get_by_label("file").click();
+    h.run();
+    h.get_by_label_contains("open…").click();
+    h.run();
+    h.get_by_label("logo.svg").click();
+    h.run();
+    h.get_by_label("open").click();
+    h.run();
+    let scene = h.state().model.scene().clone();
+    assert_eq!(scene.curves.len(), 2);
+    assert!(scene.curves.iter().all(|c| c.curve.family() == "path"));
+    let beside = dir.join("logo.json");
+    assert_eq!(h.state().model.editor.path(), Some(beside.as_path()));
+    let message = h.state().model.editor.message.clone().unwrap_or_default();
+    assert!(
+        message.contains("2 path curve(s)") && message.contains("1 <text>"),
+        "{message}"
+    );
+    // Saving writes the scene beside the file, which stays as it was.
+    h.state_mut().model.editor.save(None).unwrap();
+    assert_eq!(Scene::load(&beside).unwrap().curves.len(), 2);
+    assert_eq!(std::fs::read_to_string(&svg).unwrap(), text);
+    // With a scene of that name there, it is not the save target.
+    h.state_mut().model.open_path(&a);
+    h.run();
+    h.state_mut().model.open_path(&svg);
+    h.run();
+    assert_eq!(h.state().model.editor.path(), None);
+    // A bad file: a prompt naming the file and the line; the scene stays.
+    let bad = dir.join("bad.svg");
+    std::fs::write(&bad, "<svg>\n<path d='M 0 0 L'/></svg>").unwrap();
+    let before = h.state().model.scene().clone();
+    h.state_mut().model.open_path(&bad);
+    h.run();
+    assert_eq!(h.state().model.scene(), &before);
+    match &h.state().model.prompt {
+        Some(Prompt::Failed { message }) => {
+            assert!(message.contains("bad.svg:2: <path>"), "{message}");
+        }
+        other => panic!("expected a failure prompt, got {other:?}"),
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// Esc in a number field restores the field and changes nothing: no edit, no undo step,
 /// no unsaved mark (a point's coordinate and a family's typed parameter alike).
 #[test]

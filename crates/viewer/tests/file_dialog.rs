@@ -448,7 +448,8 @@ fn export_view_writes_the_figure_of_the_screen() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// The open and save-as dialogs list scene files; the export dialog lists figures.
+/// The open dialog lists scene files and the files it imports (SVG); save-as lists scene
+/// files alone; the export dialog lists figures.
 #[test]
 fn each_dialog_lists_the_files_it_is_for() {
     let dir = fresh_dir("listing-by-mode");
@@ -463,7 +464,7 @@ fn each_dialog_lists_the_files_it_is_for() {
             .map(|e| e.name.clone())
             .collect()
     };
-    assert_eq!(names(DialogMode::Open), ["sub", "a.json"]);
+    assert_eq!(names(DialogMode::Open), ["sub", "a.json", "b.svg"]);
     assert_eq!(names(DialogMode::SaveAs), ["sub", "a.json"]);
     assert_eq!(names(DialogMode::Export), ["sub", "b.svg", "c.PDF"]);
 }

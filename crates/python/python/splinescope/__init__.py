@@ -24,6 +24,7 @@ the mathematics in the repository's ``docs/math.md``).
 from __future__ import annotations
 
 import json
+import warnings
 import re
 from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
@@ -1277,8 +1278,18 @@ def stress_scene(curves: int, family: str = "bezier", degree: int = 3, seed: int
 
 
 def load(path: Any) -> Scene:
-    """Reads and checks a scene file (:class:`SceneError` naming the offending value)."""
-    return Scene.load(path)
+    """Reads a scene file (``.json``, checked: :class:`SceneError` naming the offending
+    value), or a file of another format as a scene of :class:`Path` curves: SVG
+    (``.svg``: every subpath one path, arcs exact; what is not a curve is left out with
+    one ``warnings.warn``; a bad file is a :class:`SceneError` naming the file and the
+    line)."""
+    p = str(path)
+    if p.lower().endswith(".json") or not p.lower().endswith(".svg"):
+        return Scene.load(path)
+    native, left_out = _native._Scene.import_file(p)
+    for w in left_out:
+        warnings.warn(w, stacklevel=2)
+    return Scene._wrap(native)
 
 
 def solve(

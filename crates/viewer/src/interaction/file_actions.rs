@@ -55,8 +55,25 @@ impl Interaction {
     /// file is removed once the scene is really closed or replaced (a file that fails to
     /// load keeps both the edits and their recovery file, and says why in a prompt).
     fn carry_out(&mut self, action: Pending, discard: bool) -> Response {
+        let mut imported_note: Option<Vec<String>> = None;
         let replacement = match &action {
             Pending::Close => None,
+            Pending::Open(path) if !is_scene_file(path) => match splinescope_import::load(path) {
+                Ok(imported) => {
+                    // Saved beside it as a scene, never over it (nor over a scene there).
+                    let beside = path.with_extension("json");
+                    let save_to = (!beside.exists()).then_some(beside);
+                    let editor = Editor::new(imported.scene, save_to);
+                    imported_note = Some(imported.warnings);
+                    Some(editor)
+                }
+                Err(e) => {
+                    self.prompt = Some(Prompt::Failed {
+                        message: format!("{e}. The scene shown is unchanged."),
+                    });
+                    return Response::default();
+                }
+            },
             Pending::Open(path) => match Scene::read(path) {
                 Ok((scene, text)) => Some(Editor::of_file(scene, path.clone(), text)),
                 Err(e) => {
@@ -81,7 +98,25 @@ impl Interaction {
         self.replace_editor(editor);
         match action {
             Pending::Open(path) => {
-                self.editor.message = Some(format!("opened {}", path.display()));
+                self.editor.message = Some(match imported_note {
+                    Some(left_out) => {
+                        let saves = self.editor.path().map_or_else(
+                            || "Save asks where (a scene of that name is there)".to_owned(),
+                            |p| format!("Save writes {}", p.display()),
+                        );
+                        let mut m = format!(
+                            "opened {} as {} path curve(s); {saves}",
+                            path.display(),
+                            self.editor.scene().curves.len()
+                        );
+                        for w in left_out {
+                            m.push_str("; ");
+                            m.push_str(&w);
+                        }
+                        m
+                    }
+                    None => format!("opened {}", path.display()),
+                });
                 self.remember(&path);
                 self.offer_recovery();
             }
@@ -338,4 +373,14 @@ impl Interaction {
             exit: self.exit_requested,
         }
     }
+}
+
+/// Whether `path` is opened as a splinescope scene (`.json`, or an extension no reader
+/// claims: the scene reader then says what is wrong) rather than imported.
+fn is_scene_file(path: &Path) -> bool {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_lowercase())
+        .unwrap_or_default();
+    ext == "json" || !splinescope_import::EXTENSIONS.contains(&ext.as_str())
 }

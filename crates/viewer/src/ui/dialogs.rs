@@ -169,7 +169,7 @@ pub(crate) fn file_dialog(ctx: &egui::Context, dialog: &mut FileDialog, actions:
             .auto_shrink([false, true])
             .show(ui, |ui| {
                 if dialog.entries.is_empty() {
-                    ui.small("no scene files (.json) or directories here");
+                    ui.small("no scene (.json) or SVG (.svg) files, or directories, here");
                 }
                 for (i, entry) in dialog.entries.iter().enumerate() {
                     let label = if entry.is_dir {
