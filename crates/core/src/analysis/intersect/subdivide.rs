@@ -155,9 +155,9 @@ impl Sub {
     /// cannot — neighbouring pieces of two nearly coincident curves, one just past the
     /// other's end, whose thin hulls bend past each other's lines.
     pub(super) fn hulls_apart(&self, other: &Sub, margin: f64) -> bool {
-        let (mut ha, mut hb) = (Hull::default(), Hull::default());
-        ha.of(self);
-        hb.of(other);
+        let (Some(ha), Some(hb)) = (Hull::of(self), Hull::of(other)) else {
+            return false;
+        };
         ha.has_side_beyond(&hb, margin) || hb.has_side_beyond(&ha, margin)
     }
 
@@ -690,47 +690,70 @@ impl<V: Leaves> Subdivider<'_, V> {
     }
 }
 
+/// Control points a [`Hull`] holds: up to degree 31 (the GPU's maximum); pieces of higher
+/// degree are not tested (the test only prunes: nothing depends on it).
+const HULL_POINTS: usize = 32;
+
 /// The convex hull of a sub-segment's control points, counter-clockwise (Andrew's
-/// monotone chain), on the stack up to degree 31.
-#[derive(Default)]
+/// monotone chain), on the stack.
 struct Hull {
-    stack: Vec<DVec2>,
+    points: [DVec2; 2 * HULL_POINTS + 1],
+    len: usize,
 }
 
 impl Hull {
-    fn of(&mut self, s: &Sub) {
-        let mut pts: Vec<DVec2> = (0..s.len()).map(|i| s.point(i)).collect();
-        pts.sort_by(|p, q| p.x.total_cmp(&q.x).then(p.y.total_cmp(&q.y)));
-        pts.dedup();
+    /// The hull of `s`'s control points; `None` past [`HULL_POINTS`] points.
+    fn of(s: &Sub) -> Option<Hull> {
+        let n = s.len();
+        if n > HULL_POINTS {
+            return None;
+        }
+        let mut pts = [DVec2::ZERO; HULL_POINTS];
+        for (i, p) in pts.iter_mut().enumerate().take(n) {
+            *p = s.point(i);
+        }
+        let pts = &mut pts[..n];
+        pts.sort_unstable_by(|p, q| p.x.total_cmp(&q.x).then(p.y.total_cmp(&q.y)));
+        let mut out = Hull {
+            points: [DVec2::ZERO; 2 * HULL_POINTS + 1],
+            len: 0,
+        };
         let cross = |o: DVec2, a: DVec2, b: DVec2| (a - o).perp_dot(b - o);
-        let h = &mut self.stack;
-        h.clear();
-        if pts.len() < 3 {
-            h.extend_from_slice(&pts);
-            return;
+        let (h, len) = (&mut out.points, &mut out.len);
+        if n < 3 {
+            h[..n].copy_from_slice(pts);
+            *len = n;
+            return Some(out);
         }
-        for &p in &pts {
-            while h.len() >= 2 && cross(h[h.len() - 2], h[h.len() - 1], p) <= 0.0 {
-                h.pop();
+        for &p in pts.iter() {
+            while *len >= 2 && cross(h[*len - 2], h[*len - 1], p) <= 0.0 {
+                *len -= 1;
             }
-            h.push(p);
+            h[*len] = p;
+            *len += 1;
         }
-        let lower = h.len() + 1;
+        let lower = *len + 1;
         for &p in pts.iter().rev().skip(1) {
-            while h.len() >= lower && cross(h[h.len() - 2], h[h.len() - 1], p) <= 0.0 {
-                h.pop();
+            while *len >= lower && cross(h[*len - 2], h[*len - 1], p) <= 0.0 {
+                *len -= 1;
             }
-            h.push(p);
+            h[*len] = p;
+            *len += 1;
         }
-        h.pop();
+        *len -= 1;
+        Some(out)
+    }
+
+    fn points(&self) -> &[DVec2] {
+        &self.points[..self.len]
     }
 
     /// Whether a side of this hull has every point of `other` more than `margin` beyond
     /// it (on its outer side).
     fn has_side_beyond(&self, other: &Hull, margin: f64) -> bool {
-        let h = &self.stack;
+        let h = self.points();
         let n = h.len();
-        if n < 2 || other.stack.is_empty() {
+        if n < 2 || other.len == 0 {
             return false;
         }
         // A segment (two points) has both its sides as candidate lines.
@@ -748,7 +771,7 @@ impl Hull {
             }
             // The outer normal of a counter-clockwise polygon's side points right.
             let out = DVec2::new(e.y, -e.x) / len;
-            other.stack.iter().all(|&r| (r - p).dot(out) > margin)
+            other.points().iter().all(|&r| (r - p).dot(out) > margin)
         })
     }
 }
