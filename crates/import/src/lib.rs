@@ -10,6 +10,7 @@
 
 #![forbid(unsafe_code)]
 
+pub mod font;
 pub mod svg;
 
 use std::path::Path;
@@ -62,6 +63,15 @@ pub enum ImportError {
         /// What is wrong.
         message: String,
     },
+    /// A font that cannot be read as asked: not a font, a glyph, character or axis it
+    /// does not have, an outline that cannot be drawn.
+    #[error("{file}: {message}")]
+    Font {
+        /// The file.
+        file: String,
+        /// What is wrong, naming the glyph, the character or the axis.
+        message: String,
+    },
     /// A limit's environment variable that does not hold a whole number.
     #[error("{file}: {source}")]
     Limit {
@@ -72,7 +82,7 @@ pub enum ImportError {
     },
     /// An extension splinescope does not read.
     #[error(
-        "{file}: .{extension} is not a format splinescope reads (it reads .json scenes and .svg files)"
+        "{file}: .{extension} is not a format splinescope reads (it reads .json scenes, .svg files and fonts: .ttf, .otf, .ttc, .otc)"
     )]
     UnknownFormat {
         /// The file.
@@ -91,13 +101,29 @@ pub enum ImportError {
 }
 
 /// The formats [`load`] reads, by extension (lower case).
-pub const EXTENSIONS: &[&str] = &["json", "svg"];
+pub const EXTENSIONS: &[&str] = &["json", "svg", "ttf", "otf", "ttc", "otc"];
 
-/// Reads `path` by its extension: a scene (`.json`), or SVG (`.svg`) as path curves.
+/// What to read of a file beyond its path (the font options; other formats have none).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Options {
+    /// Which glyphs, at which location, of which font in a collection.
+    pub font: font::FontOptions,
+}
+
+/// Reads `path` by its extension: a scene (`.json`), SVG (`.svg`) or a font (`.ttf`,
+/// `.otf`, `.ttc`, `.otc`: every glyph on a grid) as path curves.
 ///
 /// # Errors
 /// [`ImportError`] naming the file and where in it.
 pub fn load(path: &Path) -> Result<Imported, ImportError> {
+    load_with(path, &Options::default())
+}
+
+/// [`load`] with options (the font's glyphs, text, location and index).
+///
+/// # Errors
+/// [`ImportError`] naming the file and where in it.
+pub fn load_with(path: &Path, options: &Options) -> Result<Imported, ImportError> {
     let file = path.display().to_string();
     let extension = path
         .extension()
@@ -111,6 +137,13 @@ pub fn load(path: &Path) -> Result<Imported, ImportError> {
             })?;
             svg::read(&text, &file)
         }
+        "ttf" | "otf" | "ttc" | "otc" => {
+            let bytes = read_bytes(path).map_err(|message| ImportError::Io {
+                file: file.clone(),
+                message,
+            })?;
+            font::read(&bytes, &file, &options.font)
+        }
         "json" => Scene::load(path)
             .map(|scene| Imported {
                 scene,
@@ -119,4 +152,26 @@ pub fn load(path: &Path) -> Result<Imported, ImportError> {
             .map_err(|source| ImportError::Scene { file, source }),
         _ => Err(ImportError::UnknownFormat { file, extension }),
     }
+}
+
+/// A binary file's bytes, under the file size limit (checked before reading, and while
+/// reading a file whose size is not known).
+fn read_bytes(path: &Path) -> Result<Vec<u8>, String> {
+    use std::io::Read;
+    let limit = limits::SCENE_BYTES.value().map_err(|e| e.to_string())?;
+    if let Ok(meta) = std::fs::metadata(path)
+        && meta.is_file()
+    {
+        limits::SCENE_BYTES
+            .check(meta.len())
+            .map_err(|e| e.to_string())?;
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(limit.saturating_add(1)).read_to_end(&mut bytes))
+        .map_err(|e| e.to_string())?;
+    limits::SCENE_BYTES
+        .check(bytes.len() as u64)
+        .map_err(|e| e.to_string())?;
+    Ok(bytes)
 }

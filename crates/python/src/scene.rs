@@ -45,9 +45,25 @@ impl PyScene {
     /// Reads a file of another format (SVG) as a scene of path curves, with what the
     /// reader left out (one line each).
     #[staticmethod]
-    fn import_file(py: Python<'_>, path: PathBuf) -> PyResult<(PyScene, Vec<String>)> {
+    #[pyo3(signature = (path, glyphs=None, text=None, variations=None, index=0))]
+    fn import_file(
+        py: Python<'_>,
+        path: PathBuf,
+        glyphs: Option<Vec<String>>,
+        text: Option<String>,
+        variations: Option<Vec<(String, f32)>>,
+        index: u32,
+    ) -> PyResult<(PyScene, Vec<String>)> {
+        let options = splinescope_import::Options {
+            font: splinescope_import::font::FontOptions {
+                index,
+                glyphs,
+                text,
+                variations: variations.unwrap_or_default(),
+            },
+        };
         let imported = py
-            .detach(|| splinescope_import::load(&path))
+            .detach(|| splinescope_import::load_with(&path, &options))
             .map_err(|e| raise::<SceneError>(e.to_string(), ""))?;
         Ok((
             PyScene {

@@ -197,8 +197,8 @@ enum Command {
     Solve(solve::SolveArgs),
     /// Validate a scene and summarise it (families, segments, GPU compatibility).
     Check(check::CheckArgs),
-    /// Read a file of another format (SVG) and write it as a scene (JSON): each subpath
-    /// one path curve, arcs exact.
+    /// Read a file of another format (SVG, a font) and write it as a scene (JSON): each
+    /// subpath or glyph contour one path curve, arcs exact, quadratics kept.
     Import(import::ImportArgs),
     /// Print the JSON Schema of a format (scene, request, report, inspect, analyze, eval,
     /// check); without a name, list them; write them all with --write DIR.

@@ -1277,16 +1277,38 @@ def stress_scene(curves: int, family: str = "bezier", degree: int = 3, seed: int
     )
 
 
-def load(path: Any) -> Scene:
+_IMPORTED = (".svg", ".ttf", ".otf", ".ttc", ".otc")
+
+
+def load(
+    path: Any,
+    glyphs: Optional[Sequence[Union[str, int]]] = None,
+    text: Optional[str] = None,
+    variations: Optional[Dict[str, float]] = None,
+    index: int = 0,
+) -> Scene:
     """Reads a scene file (``.json``, checked: :class:`SceneError` naming the offending
-    value), or a file of another format as a scene of :class:`Path` curves: SVG
-    (``.svg``: every subpath one path, arcs exact; what is not a curve is left out with
-    one ``warnings.warn``; a bad file is a :class:`SceneError` naming the file and the
-    line)."""
+    value), or a file of another format as a scene of :class:`Path` curves (what is
+    left out is said with ``warnings.warn``; a bad file is a :class:`SceneError` naming
+    the file and the place):
+
+    * SVG (``.svg``): every subpath one path, arcs exact (``docs/formats.md``);
+    * fonts (``.ttf``, ``.otf``, ``.ttc``/``.otc`` with ``index``): every contour one
+      closed path in font units, TrueType quadratics and CFF cubics as they are; every
+      glyph on a grid, or ``glyphs`` (names or ids; one glyph at its own origin), or
+      ``text`` laid out by the advances (no shaping or kerning), at the ``variations``
+      location of a variable font (``{"wght": 700}``).
+    """
     p = str(path)
-    if p.lower().endswith(".json") or not p.lower().endswith(".svg"):
+    if not p.lower().endswith(_IMPORTED):
         return Scene.load(path)
-    native, left_out = _native._Scene.import_file(p)
+    native, left_out = _native._Scene.import_file(
+        p,
+        glyphs=None if glyphs is None else [str(g) for g in glyphs],
+        text=text,
+        variations=None if variations is None else [(str(k), float(v)) for k, v in variations.items()],
+        index=_int(index, "index", 0, 2**32 - 1, "load"),
+    )
     for w in left_out:
         warnings.warn(w, stacklevel=2)
     return Scene._wrap(native)

@@ -91,7 +91,13 @@ class _Scene:
     @staticmethod
     def load(path: Union[str, PathLike[str]]) -> _Scene: ...
     @staticmethod
-    def import_file(path: str) -> Tuple[_Scene, List[str]]: ...
+    def import_file(
+        path: str,
+        glyphs: Optional[List[str]] = None,
+        text: Optional[str] = None,
+        variations: Optional[List[Tuple[str, float]]] = None,
+        index: int = 0,
+    ) -> Tuple[_Scene, List[str]]: ...
     @staticmethod
     def from_json(text: str) -> _Scene: ...
     @staticmethod
