@@ -2,7 +2,7 @@
 //! name or id, text by the advances, and bad files or requests refused naming the file
 //! and what. (Every glyph against fontTools: `crates/python/tests/test_fonts.py`.)
 
-use splinescope_core::geom::{Curve, Family};
+use splinescope_core::geom::Curve;
 use splinescope_import::font::{FontOptions, read};
 
 const DEJAVU: &str = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";

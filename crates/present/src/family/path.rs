@@ -1,6 +1,6 @@
 //! [`Path`]'s words: its summary (segments, degrees, rational, closed), one control
-//! polygon per segment, the template, and the `inspect` report (each segment's degree,
-//! parameter range and weights).
+//! polygon per segment, the template, and the `inspect` report (closed, each segment's
+//! degree).
 
 use glam::DVec3;
 use schemars::JsonSchema;
@@ -44,16 +44,7 @@ impl Present for Path {
     fn details(&self) -> Result<PathDetails, GeomError> {
         Ok(PathDetails {
             closed: self.is_closed(),
-            segments: self
-                .segments()
-                .iter()
-                .enumerate()
-                .map(|(k, s)| SegmentDetails {
-                    t: [k as f64, (k + 1) as f64],
-                    degree: s.degree(),
-                    weights: s.weights.clone(),
-                })
-                .collect(),
+            degrees: self.segments().iter().map(PathSegment::degree).collect(),
         })
     }
 
@@ -75,23 +66,12 @@ impl Present for Path {
     }
 }
 
-/// What `inspect` reports for a path.
+/// What `inspect` reports for a path beyond its segments (which every report lists, with
+/// their parameter ranges, points and weights).
 #[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct PathDetails {
     /// Whether the last segment ends where the first starts.
     pub closed: bool,
-    /// The segments, in order.
-    pub segments: Vec<SegmentDetails>,
-}
-
-/// One segment of a path, as `inspect` reports it.
-#[derive(Debug, Clone, Serialize, JsonSchema)]
-pub struct SegmentDetails {
-    /// The curve parameters it covers, `[k, k + 1]`.
-    pub t: [f64; 2],
-    /// Its degree.
-    pub degree: usize,
-    /// Its weights, for a rational segment.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub weights: Option<Vec<f64>>,
+    /// Each segment's degree, in order (segment `k` covers `[k, k + 1]`).
+    pub degrees: Vec<usize>,
 }

@@ -431,6 +431,16 @@ class Curve:
         least 2 and within the sample limit, ``SPLINESCOPE_MAX_SAMPLES``)."""
         return self._c.sample(_int(n, "n", 2, 2**64 - 1, "sample"))
 
+    def draw(self, pen: Any) -> None:
+        """Draws the curve into a fontTools pen (any object with ``moveTo``, ``lineTo``,
+        ``qCurveTo``, ``curveTo``, ``closePath``, ``endPath``): its segments as they are —
+        lines, quadratics, cubics — closed with ``closePath`` for a closed path (its
+        closing line implied). A rational segment or one of degree above 3 is refused
+        naming it (:class:`splinescope.pens.PenError`)."""
+        from .pens import draw
+
+        draw(self, pen)
+
     def segments(self) -> List[Tuple[Any, ...]]:
         """The exact Bézier segments, ``(t0, t1, control points)`` each; a rational
         segment is ``(t0, t1, control points, weights)``."""

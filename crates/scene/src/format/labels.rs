@@ -323,7 +323,7 @@ mod tests {
             .collect();
         let placed = place(&labels, &ink, size, &[], &[]);
         let shown = placed.iter().flatten().count();
-        assert!(shown >= 4 && shown < 40, "{shown} shown");
+        assert!((4..40).contains(&shown), "{shown} shown");
         assert!(!boxes_overlap(&placed));
         for p in placed.iter().flatten() {
             assert!(p.min.x >= 2.0 && p.min.y >= 2.0 && p.max.x <= 198.0 && p.max.y <= 98.0);

@@ -18,7 +18,7 @@ pub struct PathDoc {
     #[schemars(length(min = 1))]
     pub segments: Vec<PathSegmentDoc>,
     /// Whether the last segment ends where the first starts (default `false`).
-    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub closed: bool,
 }
 
