@@ -152,12 +152,13 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
         }
     }
     let location = axes.location(opts.variations.iter().map(|(t, v)| (t.as_str(), *v)));
-    let names = font.glyph_names();
     let count = font.maxp().map(|m| u32::from(m.num_glyphs())).unwrap_or(0);
+    let names = glyph_names(&font, count);
     let glyph_name = |gid: GlyphId| {
         names
-            .get(gid)
-            .map_or_else(|| format!("gid{}", gid.to_u32()), |n| n.as_str().to_owned())
+            .get(gid.to_u32() as usize)
+            .cloned()
+            .unwrap_or_else(|| format!("gid{}", gid.to_u32()))
     };
     // The glyphs and where each sits.
     let mut warnings = Vec::new();
@@ -264,6 +265,43 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
         .map(|n| n.to_string_lossy().into_owned());
     scene.curves = curves;
     Ok(Imported { scene, warnings })
+}
+
+/// Every glyph's name, in one pass: a version-2 `post` table's strings read once (asking
+/// for each name on its own walks the strings from the start: quadratic in the glyphs),
+/// else the font's own names (CFF's charset, or synthesized ones).
+fn glyph_names(font: &FontRef<'_>, count: u32) -> Vec<String> {
+    use skrifa::raw::tables::post::DEFAULT_GLYPH_NAMES;
+    if let Ok(post) = font.post()
+        && let (Some(index), Some(strings)) = (post.glyph_name_index(), post.string_data())
+    {
+        let strings: Vec<String> = strings
+            .iter()
+            .map(|s| s.map(|s| s.to_string()).unwrap_or_default())
+            .collect();
+        return (0..count as usize)
+            .map(|g| {
+                let i = index.get(g).map_or(usize::MAX, |i| usize::from(i.get()));
+                if i < DEFAULT_GLYPH_NAMES.len() {
+                    DEFAULT_GLYPH_NAMES[i].to_owned()
+                } else {
+                    strings
+                        .get(i - DEFAULT_GLYPH_NAMES.len())
+                        .filter(|s| !s.is_empty())
+                        .cloned()
+                        .unwrap_or_else(|| format!("gid{g}"))
+                }
+            })
+            .collect();
+    }
+    let names = font.glyph_names();
+    (0..count)
+        .map(|g| {
+            names
+                .get(GlyphId::new(g))
+                .map_or_else(|| format!("gid{g}"), |n| n.as_str().to_owned())
+        })
+        .collect()
 }
 
 /// The glyph `wanted` names: a glyph name, `gidN` or a bare number below `count`.
