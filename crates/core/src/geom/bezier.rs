@@ -37,6 +37,49 @@ pub(crate) fn de_casteljau_in_place(p: &mut [DVec3], t: f64) -> DVec3 {
     p[0]
 }
 
+/// The first derivative at `t` of the Bézier curve with control points `points`:
+/// `P′(t) = n Σ (P_{i+1} − P_i) B_{i,n−1}(t)` (on the stack up to the usual degrees).
+pub(crate) fn deriv_at(points: &[DVec3], t: f64) -> DVec3 {
+    let n = points.len().saturating_sub(1);
+    if n == 0 {
+        return DVec3::ZERO;
+    }
+    let nf = n as f64;
+    if n < STACK_POINTS {
+        let mut buf = [DVec3::ZERO; STACK_POINTS];
+        for (slot, w) in buf.iter_mut().zip(points.windows(2)) {
+            *slot = nf * (w[1] - w[0]);
+        }
+        de_casteljau(&buf[..n], t)
+    } else {
+        let d: Vec<DVec3> = points.windows(2).map(|w| nf * (w[1] - w[0])).collect();
+        de_casteljau(&d, t)
+    }
+}
+
+/// The second derivative at `t`:
+/// `P″(t) = n(n−1) Σ (P_{i+2} − 2P_{i+1} + P_i) B_{i,n−2}(t)`.
+pub(crate) fn second_deriv_at(points: &[DVec3], t: f64) -> DVec3 {
+    let n = points.len().saturating_sub(1);
+    if n < 2 {
+        return DVec3::ZERO;
+    }
+    let c = (n * (n - 1)) as f64;
+    if n - 1 < STACK_POINTS {
+        let mut buf = [DVec3::ZERO; STACK_POINTS];
+        for (slot, w) in buf.iter_mut().zip(points.windows(3)) {
+            *slot = c * (w[2] - 2.0 * w[1] + w[0]);
+        }
+        de_casteljau(&buf[..n - 1], t)
+    } else {
+        let second: Vec<DVec3> = points
+            .windows(3)
+            .map(|w| c * (w[2] - 2.0 * w[1] + w[0]))
+            .collect();
+        de_casteljau(&second, t)
+    }
+}
+
 /// Runs de Casteljau on a scratch copy of `points` at `t` and returns `P_nⁿ` (on the stack
 /// for up to [`STACK_POINTS`] points).
 pub(crate) fn de_casteljau(points: &[DVec3], t: f64) -> DVec3 {
@@ -114,36 +157,13 @@ impl Bezier {
     /// `P′(t) = n Σ (P_{i+1} − P_i) B_{i,n−1}(t)`.
     #[must_use]
     pub fn eval_deriv(&self, t: f64) -> DVec3 {
-        let n = self.degree();
-        if n == 0 {
-            return DVec3::ZERO;
-        }
-        let nf = n as f64;
-        if n < STACK_POINTS {
-            let mut buf = [DVec3::ZERO; STACK_POINTS];
-            for (slot, w) in buf.iter_mut().zip(self.points.windows(2)) {
-                *slot = nf * (w[1] - w[0]);
-            }
-            de_casteljau(&buf[..n], t)
-        } else {
-            self.deriv().eval(t)
-        }
+        deriv_at(&self.points, t)
     }
 
     /// `P″(t) = n(n−1) Σ (P_{i+2} − 2P_{i+1} + P_i) B_{i,n−2}(t)`.
     #[must_use]
     pub fn eval_second_deriv(&self, t: f64) -> DVec3 {
-        let n = self.degree();
-        if n < 2 {
-            return DVec3::ZERO;
-        }
-        let c = (n * (n - 1)) as f64;
-        let second: Vec<DVec3> = self
-            .points
-            .windows(3)
-            .map(|w| c * (w[2] - 2.0 * w[1] + w[0]))
-            .collect();
-        de_casteljau(&second, t)
+        second_deriv_at(&self.points, t)
     }
 
     /// Splits at `t` into the curves on `[0, t]` and `[t, 1]`, each reparametrised to

@@ -19,6 +19,7 @@
 
 use glam::DVec3;
 
+use super::bezier::{de_casteljau, deriv_at, second_deriv_at};
 use super::family::Family;
 use super::rational::normalised_weights;
 use super::{Bezier, BezierSegment, GeomError, Lower, ParamCurve, RationalBezier};
@@ -60,45 +61,33 @@ impl PathSegment {
     }
 }
 
-/// A segment ready to evaluate.
-#[derive(Debug, Clone, PartialEq)]
-enum Piece {
-    Polynomial(Bezier),
-    Rational(RationalBezier),
-}
-
-impl Piece {
-    fn of(s: &PathSegment) -> Result<Piece, GeomError> {
-        if s.points.len() < 2 {
-            return Err(GeomError::TooFewPoints {
-                min: 2,
-                found: s.points.len(),
-            });
-        }
-        for (index, p) in s.points.iter().enumerate() {
-            if let Some(&value) = p.to_array().iter().find(|v| !v.is_finite()) {
-                return Err(GeomError::NonFinitePoint { index, value });
-            }
-        }
-        Ok(match &s.weights {
-            None => Piece::Polynomial(Bezier::new(s.points.clone())),
-            Some(w) => Piece::Rational(RationalBezier::try_new(s.points.clone(), w.clone())?),
-        })
+/// Checks a segment: at least two points, every coordinate finite, and for a rational
+/// one its weights; the rational curve it evaluates by (a polynomial segment evaluates
+/// from its own points, with no copy).
+fn checked(s: &PathSegment) -> Result<Option<RationalBezier>, GeomError> {
+    if s.points.len() < 2 {
+        return Err(GeomError::TooFewPoints {
+            min: 2,
+            found: s.points.len(),
+        });
     }
-
-    fn curve(&self) -> &dyn ParamCurve {
-        match self {
-            Piece::Polynomial(b) => b,
-            Piece::Rational(r) => r,
+    for (index, p) in s.points.iter().enumerate() {
+        if let Some(&value) = p.to_array().iter().find(|v| !v.is_finite()) {
+            return Err(GeomError::NonFinitePoint { index, value });
         }
     }
+    s.weights
+        .as_ref()
+        .map(|w| RationalBezier::try_new(s.points.clone(), w.clone()))
+        .transpose()
 }
 
 /// A path: Bézier segments joined end to end (see the module docs).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Path {
     segments: Vec<PathSegment>,
-    pieces: Vec<Piece>,
+    /// Per segment, the rational curve a rational one evaluates by.
+    rational: Vec<Option<RationalBezier>>,
     points: Vec<DVec3>,
     closed: bool,
 }
@@ -132,16 +121,16 @@ impl Path {
         if segments.is_empty() {
             return Err(GeomError::NoSegments);
         }
-        let pieces = segments
+        let rational = segments
             .iter()
             .enumerate()
             .map(|(segment, s)| {
-                Piece::of(s).map_err(|e| GeomError::InSegment {
+                checked(s).map_err(|e| GeomError::InSegment {
                     segment,
                     error: Box::new(e),
                 })
             })
-            .collect::<Result<Vec<Piece>, GeomError>>()?;
+            .collect::<Result<Vec<_>, GeomError>>()?;
         let k = segments.len();
         let joints = if closed { k } else { k - 1 };
         for joint in 0..joints {
@@ -159,7 +148,7 @@ impl Path {
         }
         Ok(Path {
             segments,
-            pieces,
+            rational,
             points,
             closed,
         })
@@ -197,7 +186,7 @@ impl Path {
     /// the later segment, the domain's end to the last; outside the domain the first or
     /// last segment extrapolates.
     fn locate(&self, t: f64) -> (usize, f64) {
-        let last = self.pieces.len() - 1;
+        let last = self.segments.len() - 1;
         let k = if t.is_nan() || t < 0.0 {
             0
         } else {
@@ -210,22 +199,31 @@ impl Path {
 
 impl ParamCurve for Path {
     fn domain(&self) -> (f64, f64) {
-        (0.0, self.pieces.len() as f64)
+        (0.0, self.segments.len() as f64)
     }
 
     fn eval(&self, t: f64) -> DVec3 {
         let (k, u) = self.locate(t);
-        self.pieces[k].curve().eval(u)
+        match &self.rational[k] {
+            Some(r) => r.eval(u),
+            None => de_casteljau(&self.segments[k].points, u),
+        }
     }
 
     fn eval_deriv(&self, t: f64) -> DVec3 {
         let (k, u) = self.locate(t);
-        self.pieces[k].curve().eval_deriv(u)
+        match &self.rational[k] {
+            Some(r) => r.eval_deriv(u),
+            None => deriv_at(&self.segments[k].points, u),
+        }
     }
 
     fn eval_second_deriv(&self, t: f64) -> DVec3 {
         let (k, u) = self.locate(t);
-        self.pieces[k].curve().eval_second_deriv(u)
+        match &self.rational[k] {
+            Some(r) => r.eval_second_deriv(u),
+            None => second_deriv_at(&self.segments[k].points, u),
+        }
     }
 }
 
