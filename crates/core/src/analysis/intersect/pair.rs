@@ -62,6 +62,11 @@ pub(super) struct PieceHits {
 /// Newton's method, whose answers the stated errors are measured against).
 const WIDE: f64 = 1e-10;
 
+/// A tangency's stretch within the flatness is scanned and skipped at once only when it
+/// is wider than this fraction of the range (a contact of high order, or curves nearly
+/// straight and nearly parallel there); in a crowded pair, always.
+const REACH_WORTH: f64 = 1e-3;
+
 /// What classifying a point costs, in leaves' worth (two walks out of its band).
 const CLASSIFY_WORK: usize = 8;
 
@@ -556,7 +561,12 @@ impl Leaves for Points<'_> {
 
     fn crowding(&mut self) {
         self.crowded = true;
-        let wide: Vec<PairHit> = self.hits.iter().filter(|h| self.wide(h)).copied().collect();
+        let wide: Vec<PairHit> = self
+            .hits
+            .iter()
+            .filter(|h| h.kind == HitKind::Tangent || self.wide(h))
+            .copied()
+            .collect();
         for h in &wide {
             self.reach_out(h);
         }
@@ -760,7 +770,9 @@ impl Points<'_> {
         }
         let mut ends = [(h.u, h.v); 2];
         for (side, dir) in [-1.0_f64, 1.0].into_iter().enumerate() {
-            let mut step = h.err_u.max(4.0 * f64::EPSILON * h.u.abs().max(1e-300));
+            // (From the rounding of the parameter, not of 0: a walk from a subnormal step
+            // would take a thousand doublings.)
+            let mut step = h.err_u.max(4.0 * f64::EPSILON * h.u.abs().max(ra.1 - ra.0));
             let (mut last, mut fv) = (h.u, h.v);
             loop {
                 let x = (h.u + dir * step).max(ra.0).min(ra.1);
@@ -781,8 +793,15 @@ impl Points<'_> {
         const PARTS: usize = 64;
         let [(u0, v0), (u1, v1)] = ends;
         let (v0, v1) = (v0.min(v1), v0.max(v1));
-        // Not worth it for a band that is a few leaves wide.
-        if u1 - u0 <= 64.0 * h.err_u.max(1e-12 * (ra.1 - ra.0)) || inside(u0, u1, v0, v1) {
+        // Not worth it for a stretch the subdivision crosses in a few leaves (an ordinary
+        // tangency or join, whose flat leaves are scanned for touching points anyway) —
+        // unless the pair is crowded already.
+        let worth = if self.crowded {
+            64.0 * h.err_u.max(1e-12 * (ra.1 - ra.0))
+        } else {
+            REACH_WORTH * (ra.1 - ra.0)
+        };
+        if u1 - u0 <= worth || inside(u0, u1, v0, v1) {
             return;
         }
         self.work += PARTS;

@@ -552,13 +552,13 @@ pub(super) struct Subdivider<'v, V: Leaves> {
 
 /// The most leaves for a pair of segments of degrees `m` and `n`: a work bound (a leaf
 /// costs about `(m + 1)(n + 1)` evaluations' worth) that still leaves room for every
-/// point the pair can have (`m n`, four leaves each). More means stretches closer than
+/// point the pair can have (`m n`, sixteen leaves each). More means stretches closer than
 /// the flatness resolution that are neither one tangency nor coincident: the
 /// subdivision stops, and the caller refuses the pair rather than return what it found
 /// so far as if it were all.
 pub(super) fn max_leaves(m: usize, n: usize) -> usize {
     let work = (1usize << 20) / ((m + 1) * (n + 1)).max(1);
-    work.max(4096 + 4 * m * n)
+    work.max(4096 + 16 * m * n)
 }
 
 impl<V: Leaves> Subdivider<'_, V> {
