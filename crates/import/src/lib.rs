@@ -103,6 +103,17 @@ pub enum ImportError {
 /// The formats [`load`] reads, by extension (lower case).
 pub const EXTENSIONS: &[&str] = &["json", "svg", "ttf", "otf", "ttc", "otc"];
 
+/// Whether `path` is read as a splinescope scene (`.json`, or an extension no reader
+/// claims: the scene reader then says what is wrong with it) rather than imported.
+#[must_use]
+pub fn is_scene_file(path: &Path) -> bool {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_lowercase())
+        .unwrap_or_default();
+    ext == "json" || !EXTENSIONS.contains(&ext.as_str())
+}
+
 /// What to read of a file beyond its path (the font options; other formats have none).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Options {
@@ -138,9 +149,9 @@ pub fn load_with(path: &Path, options: &Options) -> Result<Imported, ImportError
             svg::read(&text, &file)
         }
         "ttf" | "otf" | "ttc" | "otc" => {
-            let bytes = read_bytes(path).map_err(|message| ImportError::Io {
+            let bytes = limits::read_bounded_bytes(path).map_err(|e| ImportError::Io {
                 file: file.clone(),
-                message,
+                message: e.to_string(),
             })?;
             font::read(&bytes, &file, &options.font)
         }
@@ -152,26 +163,4 @@ pub fn load_with(path: &Path, options: &Options) -> Result<Imported, ImportError
             .map_err(|source| ImportError::Scene { file, source }),
         _ => Err(ImportError::UnknownFormat { file, extension }),
     }
-}
-
-/// A binary file's bytes, under the file size limit (checked before reading, and while
-/// reading a file whose size is not known).
-fn read_bytes(path: &Path) -> Result<Vec<u8>, String> {
-    use std::io::Read;
-    let limit = limits::SCENE_BYTES.value().map_err(|e| e.to_string())?;
-    if let Ok(meta) = std::fs::metadata(path)
-        && meta.is_file()
-    {
-        limits::SCENE_BYTES
-            .check(meta.len())
-            .map_err(|e| e.to_string())?;
-    }
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .and_then(|f| f.take(limit.saturating_add(1)).read_to_end(&mut bytes))
-        .map_err(|e| e.to_string())?;
-    limits::SCENE_BYTES
-        .check(bytes.len() as u64)
-        .map_err(|e| e.to_string())?;
-    Ok(bytes)
 }

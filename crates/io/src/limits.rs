@@ -199,23 +199,31 @@ pub enum ReadError {
     NotText(#[from] std::string::FromUtf8Error),
 }
 
-/// Reads a text file after checking its size against [`SCENE_BYTES`].
+/// Reads a file's bytes after checking its size against [`SCENE_BYTES`] (a FIFO or
+/// device, which has no size, is read to one byte past the limit).
 ///
 /// # Errors
-/// [`ReadError`]: the I/O error, the limit, or bytes that are not text.
-pub fn read_bounded(path: &std::path::Path) -> Result<String, ReadError> {
+/// [`ReadError`]: the I/O error or the limit.
+pub fn read_bounded_bytes(path: &std::path::Path) -> Result<Vec<u8>, ReadError> {
     let meta = std::fs::metadata(path)?;
     if meta.is_file() {
         SCENE_BYTES.check(meta.len())?;
     }
-    // A FIFO or device has no size: read at most one byte past the limit.
     use std::io::Read;
     let limit = SCENE_BYTES.value()?;
     let mut bytes = Vec::new();
     std::fs::File::open(path)
         .and_then(|f| f.take(limit.saturating_add(1)).read_to_end(&mut bytes))?;
     SCENE_BYTES.check(bytes.len() as u64)?;
-    Ok(String::from_utf8(bytes)?)
+    Ok(bytes)
+}
+
+/// Reads a text file after checking its size against [`SCENE_BYTES`].
+///
+/// # Errors
+/// [`ReadError`]: the I/O error, the limit, or bytes that are not text.
+pub fn read_bounded(path: &std::path::Path) -> Result<String, ReadError> {
+    Ok(String::from_utf8(read_bounded_bytes(path)?)?)
 }
 
 #[cfg(test)]

@@ -12,7 +12,7 @@ use splinescope::scene::Scene;
 /// # Errors
 /// The file does not read: the message names the file and the value or the place.
 pub fn scene(path: &Path) -> Result<Scene> {
-    if is_scene_file(path) {
+    if splinescope::import::is_scene_file(path) {
         return Scene::load(path).with_context(|| format!("{}", path.display()));
     }
     let imported = splinescope::import::load(path)?;
@@ -20,14 +20,4 @@ pub fn scene(path: &Path) -> Result<Scene> {
         eprintln!("warning: {w}");
     }
     Ok(imported.scene)
-}
-
-/// Whether `path` is a splinescope scene (`.json`, or an extension no reader claims: the
-/// scene reader's messages then say what is wrong with it).
-pub fn is_scene_file(path: &Path) -> bool {
-    let ext = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_lowercase())
-        .unwrap_or_default();
-    ext == "json" || !splinescope::import::EXTENSIONS.contains(&ext.as_str())
 }

@@ -127,7 +127,7 @@ fn view(
             generated
         }
         None => match scene.as_deref() {
-            Some(p) if crate::load::is_scene_file(p) => {
+            Some(p) if splinescope::import::is_scene_file(p) => {
                 let (read, text) = Scene::read(p).with_context(|| format!("{}", p.display()))?;
                 source = Some(text);
                 read

@@ -282,20 +282,14 @@ impl Family for Path {
     /// to (its degree rises by one; a rational segment's new weight interpolates its
     /// neighbours').
     fn with_point_on_polygon(&self, at: DVec3) -> Result<(Path, usize), GeomError> {
+        // The nearest leg of each segment's polygon, then the nearest of those.
         let mut best = (0, 0, 0.0, f64::INFINITY);
         for (k, s) in self.segments.iter().enumerate() {
-            for (i, w) in s.points.windows(2).enumerate() {
-                let d = w[1] - w[0];
-                let len2 = d.length_squared();
-                let f = if len2 > 0.0 {
-                    ((at - w[0]).dot(d) / len2).clamp(0.0, 1.0)
-                } else {
-                    0.5
-                };
-                let dist = (w[0] + f * d - at).length_squared();
-                if dist < best.3 {
-                    best = (k, i, f, dist);
-                }
+            let (i, f) = crate::geom::structure::nearest_leg(&s.points, at);
+            let (a, b) = (s.points[i], s.points[i + 1]);
+            let dist = (a + f * (b - a) - at).length_squared();
+            if dist < best.3 {
+                best = (k, i, f, dist);
             }
         }
         let (k, i, f, _) = best;

@@ -16,7 +16,7 @@ use super::{GeomError, KnotVector};
 
 /// The leg `(i, i + 1)` of `polygon` nearest to `at`, and where along it (`0..=1`) the
 /// nearest point lies.
-fn nearest_leg(polygon: &[DVec3], at: DVec3) -> (usize, f64) {
+pub(crate) fn nearest_leg(polygon: &[DVec3], at: DVec3) -> (usize, f64) {
     let mut best = (0, 0.5, f64::INFINITY);
     for (i, w) in polygon.windows(2).enumerate() {
         let d = w[1] - w[0];

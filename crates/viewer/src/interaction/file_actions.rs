@@ -58,22 +58,24 @@ impl Interaction {
         let mut imported_note: Option<Vec<String>> = None;
         let replacement = match &action {
             Pending::Close => None,
-            Pending::Open(path) if !is_scene_file(path) => match splinescope_import::load(path) {
-                Ok(imported) => {
-                    // Saved beside it as a scene, never over it (nor over a scene there).
-                    let beside = path.with_extension("json");
-                    let save_to = (!beside.exists()).then_some(beside);
-                    let editor = Editor::new(imported.scene, save_to);
-                    imported_note = Some(imported.warnings);
-                    Some(editor)
+            Pending::Open(path) if !splinescope_import::is_scene_file(path) => {
+                match splinescope_import::load(path) {
+                    Ok(imported) => {
+                        // Saved beside it as a scene, never over it (nor over a scene there).
+                        let beside = path.with_extension("json");
+                        let save_to = (!beside.exists()).then_some(beside);
+                        let editor = Editor::new(imported.scene, save_to);
+                        imported_note = Some(imported.warnings);
+                        Some(editor)
+                    }
+                    Err(e) => {
+                        self.prompt = Some(Prompt::Failed {
+                            message: format!("{e}. The scene shown is unchanged."),
+                        });
+                        return Response::default();
+                    }
                 }
-                Err(e) => {
-                    self.prompt = Some(Prompt::Failed {
-                        message: format!("{e}. The scene shown is unchanged."),
-                    });
-                    return Response::default();
-                }
-            },
+            }
             Pending::Open(path) => match Scene::read(path) {
                 Ok((scene, text)) => Some(Editor::of_file(scene, path.clone(), text)),
                 Err(e) => {
@@ -373,14 +375,4 @@ impl Interaction {
             exit: self.exit_requested,
         }
     }
-}
-
-/// Whether `path` is opened as a splinescope scene (`.json`, or an extension no reader
-/// claims: the scene reader then says what is wrong) rather than imported.
-fn is_scene_file(path: &Path) -> bool {
-    let ext = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_lowercase())
-        .unwrap_or_default();
-    ext == "json" || !splinescope_import::EXTENSIONS.contains(&ext.as_str())
 }
