@@ -1177,7 +1177,67 @@ fn mutate_svg(text: &str, rng: &mut Rng) -> String {
     t
 }
 
+/// The TrueType font the font cases mutate (Debian's fonts-dejavu-core, which
+/// scripts/test installs).
+fn font_seed() -> &'static [u8] {
+    static FONT: std::sync::OnceLock<Vec<u8>> = std::sync::OnceLock::new();
+    FONT.get_or_init(|| {
+        std::fs::read("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf").unwrap_or_else(|e| {
+            panic!("DejaVuSans.ttf: {e}; install fonts-dejavu-core (scripts/test does)")
+        })
+    })
+}
+
 impl Fuzz {
+    /// One mutated font: cut short, bytes flipped or a run of them set to 0xff (counts
+    /// and offsets made huge), read as a short text and as a few glyphs: a typed error or
+    /// finite outlines, never a panic, in bounded time.
+    fn font_case(&mut self) {
+        let mut b = font_seed().to_vec();
+        for _ in 0..self.rng.int(1, 8) {
+            let at = self.rng.int(0, b.len() - 1);
+            match self.rng.int(0, 2) {
+                0 => b.truncate(at.max(1)),
+                1 => b[at] ^= self.rng.int(1, 255) as u8,
+                _ => {
+                    let end = (at + self.rng.int(1, 8)).min(b.len());
+                    b[at..end].fill(0xff);
+                }
+            }
+        }
+        let opts = if self.rng.unit() < 0.5 {
+            splinescope::import::font::FontOptions {
+                text: Some("Ag&é".into()),
+                ..Default::default()
+            }
+        } else {
+            splinescope::import::font::FontOptions {
+                glyphs: Some(vec!["gid3".into(), "a".into(), "gid300".into()]),
+                ..Default::default()
+            }
+        };
+        let start = Instant::now();
+        let result = std::panic::catch_unwind(|| -> Result<(), String> {
+            let Ok(imported) = splinescope::import::font::read(&b, "fuzz.ttf", &opts) else {
+                return Ok(());
+            };
+            for (i, c) in imported.scene.curves.iter().enumerate() {
+                if !c.curve.control_points().iter().all(|p| p.is_finite()) {
+                    return Err(format!("curves[{i}]: a control point is not finite"));
+                }
+            }
+            Ok(())
+        });
+        match result {
+            Ok(Ok(())) => {}
+            Ok(Err(e)) => self.fail(format!("font import: {e}")),
+            Err(_) => self.fail("font import: the reader panicked".into()),
+        }
+        if start.elapsed() > Duration::from_secs(10) {
+            self.fail(format!("font import took {:?}", start.elapsed()));
+        }
+    }
+
     /// One mutated SVG file: read by the library (no panic, within the time bound, every
     /// curve finite) and by the command line (`check`, no panic or signal).
     fn import_case(&mut self, seeds: &[String]) {
@@ -1206,6 +1266,9 @@ impl Fuzz {
         }
         if start.elapsed() > Duration::from_secs(10) {
             self.fail(format!("import took {:?}\ninput: {short}", start.elapsed()));
+        }
+        if self.rng.unit() < 0.15 {
+            self.font_case();
         }
         if self.rng.unit() < 0.2 {
             let file = self.dir.join("fuzz.svg");
