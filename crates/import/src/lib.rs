@@ -4,13 +4,16 @@
 //! downstream — the GPU, the analysis, figures, Python — works on them unchanged.
 //!
 //! [`load`] reads a file by its extension: a splinescope scene (`.json`) as it is, SVG
-//! (`.svg`) through [`svg::read`]. Every reader checks the documented limits
+//! (`.svg`) through [`svg::read`], fonts through [`font::read`], DXF through
+//! [`dxf::read`] and STEP through [`step::read`]; [`dxf::write`] writes a scene as DXF. Every reader checks the documented limits
 //! ([`splinescope_scene::limits`]) and names the file and the place (line, element) of
 //! what it refuses; what it leaves out it says in [`Imported::warnings`].
 
 #![forbid(unsafe_code)]
 
+pub mod dxf;
 pub mod font;
+pub mod step;
 pub mod svg;
 
 use std::path::Path;
@@ -72,6 +75,17 @@ pub enum ImportError {
         /// What is wrong, naming the glyph, the character or the axis.
         message: String,
     },
+    /// An entity of a DXF or STEP file whose numbers or references are wrong, or past a
+    /// limit: `at` names its type and handle (DXF) or its `#id` and line (STEP).
+    #[error("{file}: {at}: {message}")]
+    Entity {
+        /// The file.
+        file: String,
+        /// The entity: its type and handle, or its `#id`, type and line.
+        at: String,
+        /// What is wrong.
+        message: String,
+    },
     /// A limit's environment variable that does not hold a whole number.
     #[error("{file}: {source}")]
     Limit {
@@ -82,7 +96,7 @@ pub enum ImportError {
     },
     /// An extension splinescope does not read.
     #[error(
-        "{file}: .{extension} is not a format splinescope reads (it reads .json scenes, .svg files and fonts: .ttf, .otf, .ttc, .otc)"
+        "{file}: .{extension} is not a format splinescope reads (it reads .json scenes, .svg, .dxf, .step/.stp files and fonts: .ttf, .otf, .ttc, .otc)"
     )]
     UnknownFormat {
         /// The file.
@@ -101,7 +115,7 @@ pub enum ImportError {
 }
 
 /// The formats [`load`] reads, by extension (lower case).
-pub const EXTENSIONS: &[&str] = &["json", "svg", "ttf", "otf", "ttc", "otc"];
+pub const EXTENSIONS: &[&str] = &["json", "svg", "dxf", "step", "stp", "ttf", "otf", "ttc", "otc"];
 
 /// Whether `path` is read as a splinescope scene (`.json`, or an extension no reader
 /// claims: the scene reader then says what is wrong with it) rather than imported.
@@ -147,6 +161,20 @@ pub fn load_with(path: &Path, options: &Options) -> Result<Imported, ImportError
                 message: e.to_string(),
             })?;
             svg::read(&text, &file)
+        }
+        "step" | "stp" => {
+            let text = limits::read_bounded(path).map_err(|e| ImportError::Io {
+                file: file.clone(),
+                message: e.to_string(),
+            })?;
+            step::read(&text, &file)
+        }
+        "dxf" => {
+            let bytes = limits::read_bounded_bytes(path).map_err(|e| ImportError::Io {
+                file: file.clone(),
+                message: e.to_string(),
+            })?;
+            dxf::read(&bytes, &file)
         }
         "ttf" | "otf" | "ttc" | "otc" => {
             let bytes = limits::read_bounded_bytes(path).map_err(|e| ImportError::Io {

@@ -132,8 +132,16 @@ impl PyScene {
     /// Writes the scene to `path` atomically (a temporary file renamed over it: a crash
     /// never leaves half a file), keeping the form of the text it was read from.
     fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
-        let text = self.to_json();
-        py.detach(|| splinescope_scene::files::write_atomic(&path, text.as_bytes()))
+        let dxf = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("dxf"));
+        let bytes = if dxf {
+            splinescope_import::dxf::write(&self.scene)
+                .map_err(|e| raise::<SceneError>(format!("{}: {e}", path.display()), ""))?
+        } else {
+            self.to_json().into_bytes()
+        };
+        py.detach(|| splinescope_scene::files::write_atomic(&path, &bytes))
             .map_err(|e| raise::<SceneError>(format!("cannot write {}: {e}", path.display()), ""))
     }
 

@@ -1,5 +1,6 @@
 //! `splinescope export`: a scene (default: the built-in gallery) as a figure — SVG or PDF
-//! with exact curves (splinescope-figure), or the PNG `render` draws.
+//! with exact curves (splinescope-figure), the PNG `render` draws, or DXF (every curve an
+//! exact `SPLINE`).
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -15,7 +16,8 @@ use crate::{GpuArgs, ShapeArgs, TextArgs, say};
 pub struct ExportArgs {
     /// Scene file (JSON), or an SVG file read as path curves; omit for the built-in gallery.
     pub scene: Option<PathBuf>,
-    /// Output figure: `.svg`, `.pdf` or `.png`.
+    /// Output: a figure (`.svg`, `.pdf`, `.png`) or the curves as DXF (`.dxf`: binary,
+    /// every number exact, unless `--ascii`).
     #[arg(short, long, value_name = "FIG")]
     pub output: PathBuf,
     /// Width in points (pixels for a PNG).
@@ -33,6 +35,10 @@ pub struct ExportArgs {
     /// "target": [x, y, z], "distance": d, "yaw_deg": …, "pitch_deg": …}`.
     #[arg(long, value_name = "JSON")]
     pub view: Option<String>,
+    /// Write DXF as ASCII (the `dxf` crate writes numbers to 12 decimals, so a curve read
+    /// back is not bit for bit the same) instead of binary.
+    #[arg(long)]
+    pub ascii: bool,
     #[command(flatten)]
     pub text: TextArgs,
     #[command(flatten)]
@@ -74,6 +80,7 @@ enum Format {
     Svg,
     Pdf,
     Png,
+    Dxf,
 }
 
 fn format_of(path: &Path) -> Result<Format> {
@@ -85,8 +92,9 @@ fn format_of(path: &Path) -> Result<Format> {
         Some("svg") => Ok(Format::Svg),
         Some("pdf") => Ok(Format::Pdf),
         Some("png") => Ok(Format::Png),
+        Some("dxf") => Ok(Format::Dxf),
         other => bail!(
-            "{}: unknown figure format {} (expected .svg, .pdf or .png)",
+            "{}: unknown output format {} (expected .svg, .pdf, .png or .dxf)",
             path.display(),
             other.map_or_else(|| "(no extension)".to_owned(), |e| format!(".{e}"))
         ),
@@ -100,6 +108,12 @@ fn format_of(path: &Path) -> Result<Format> {
 /// cannot be written (nothing partial is left).
 pub fn run(a: &ExportArgs) -> Result<()> {
     let format = format_of(&a.output)?;
+    if a.ascii && format != Format::Dxf {
+        bail!(
+            "--ascii is for DXF output; {} is not a .dxf file",
+            a.output.display()
+        );
+    }
     let mut scene = match &a.scene {
         None => gallery::gallery(),
         Some(p) => crate::load::scene(p)?,
@@ -108,6 +122,8 @@ pub fn run(a: &ExportArgs) -> Result<()> {
         scene = with_view(&scene, view)?;
     }
     let bytes = match format {
+        Format::Dxf if a.ascii => splinescope::import::dxf::write_ascii(&scene)?,
+        Format::Dxf => splinescope::import::dxf::write(&scene)?,
         Format::Png => {
             let (ctx, pipelines) = a.gpu.context()?;
             let mut image = splinescope::offscreen::render_scene_shaped(
@@ -142,12 +158,21 @@ pub fn run(a: &ExportArgs) -> Result<()> {
     };
     splinescope::files::write_atomic(&a.output, &bytes)
         .with_context(|| format!("cannot write {}", a.output.display()))?;
-    say!(
-        "exported {} curve(s) to {} ({}×{})",
-        scene.curves.len(),
-        a.output.display(),
-        a.width,
-        a.height
-    );
+    if format == Format::Dxf {
+        say!(
+            "exported {} curve(s) to {} as exact SPLINE entities ({} DXF)",
+            scene.curves.len(),
+            a.output.display(),
+            if a.ascii { "ASCII" } else { "binary" }
+        );
+    } else {
+        say!(
+            "exported {} curve(s) to {} ({}×{})",
+            scene.curves.len(),
+            a.output.display(),
+            a.width,
+            a.height
+        );
+    }
     Ok(())
 }

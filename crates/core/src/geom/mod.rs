@@ -21,6 +21,7 @@ pub mod knots;
 pub mod lowering;
 pub mod modified;
 pub mod nubmp;
+pub mod nurbs_form;
 pub mod path;
 pub mod rational;
 pub mod structure;
@@ -36,6 +37,7 @@ pub use knots::KnotVector;
 pub use lowering::{BezierSegment, Lower, locate, max_degree};
 pub use modified::ModifiedBezier;
 pub use nubmp::Nubmp;
+pub use nurbs_form::NurbsForm;
 pub use path::{Path, PathSegment};
 pub use rational::{Conic, Nurbs, RationalBezier};
 

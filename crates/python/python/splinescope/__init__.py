@@ -1122,7 +1122,9 @@ class Scene:
         return hash(self._s.canonical_json())
 
     def save(self, path: Any) -> None:
-        """Writes the scene atomically; an unedited scene keeps the file's bytes."""
+        """Writes the scene atomically: a ``.dxf`` path as binary DXF (every curve an
+        exact ``SPLINE``, ``docs/formats.md``), any other as the scene's JSON (an unedited
+        scene keeps the file's bytes)."""
         self._s.save(str(path))
 
     def solve(self, request: Union[Dict[str, Any], List[Dict[str, Any]], str]) -> Tuple["Scene", Any]:
@@ -1287,7 +1289,7 @@ def stress_scene(curves: int, family: str = "bezier", degree: int = 3, seed: int
     )
 
 
-_IMPORTED = (".svg", ".ttf", ".otf", ".ttc", ".otc")
+_IMPORTED = (".svg", ".dxf", ".step", ".stp", ".ttf", ".otf", ".ttc", ".otc")
 
 
 def load(
@@ -1303,6 +1305,11 @@ def load(
     the file and the place):
 
     * SVG (``.svg``): every subpath one path, arcs exact (``docs/formats.md``);
+    * DXF (``.dxf``, ASCII or binary): splines as B-spline or NURBS curves with their
+      own knots and weights, lines, arcs, circles, ellipses and polylines as paths
+      (arcs exact), blocks inserted;
+    * STEP (``.step``, ``.stp``): B-spline, Bézier, line, circle, ellipse, trimmed and
+      composite curves and B-rep edges as 3D curves in the file's length unit;
     * fonts (``.ttf``, ``.otf``, ``.ttc``/``.otc`` with ``index``): every contour one
       closed path in font units, TrueType quadratics and CFF cubics as they are; every
       glyph on a grid, or ``glyphs`` (names or ids; one glyph at its own origin), or

@@ -22,6 +22,10 @@ pub struct SceneDoc {
     /// The title (window title, panel).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
+    /// The unit of length the coordinates are in, when known (`"millimetre"`, `"inch"`:
+    /// what an imported STEP file names); absent: unitless.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unit: Option<String>,
     /// The background colour (default white).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub background: Option<ColorDoc>,

@@ -157,6 +157,7 @@ pub fn random_bezier_scene(opts: StressOptions) -> Scene {
             "{} random curves of degree {}",
             opts.curves, opts.degree
         )),
+        unit: None,
         background: Color::WHITE,
         samples_per_segment: Some(opts.samples),
         view: ViewSpec::Auto,

@@ -29,6 +29,7 @@ fn decode_scene(root: &Node<'_>) -> Result<Scene, SceneError> {
     let obj = root.object(&[
         "version",
         "name",
+        "unit",
         "background",
         "samples",
         "view",
@@ -47,6 +48,10 @@ fn decode_scene(root: &Node<'_>) -> Result<Scene, SceneError> {
     }
     let name = obj
         .get("name")
+        .map(|n| n.text().map(str::to_owned))
+        .transpose()?;
+    let unit = obj
+        .get("unit")
         .map(|n| n.text().map(str::to_owned))
         .transpose()?;
     let background = obj.get("background").map(|n| n.color()).transpose()?;
@@ -78,6 +83,7 @@ fn decode_scene(root: &Node<'_>) -> Result<Scene, SceneError> {
     };
     Ok(Scene {
         name,
+        unit,
         background: background.unwrap_or(Color::WHITE),
         samples_per_segment: samples,
         view: view.unwrap_or(ViewSpec::Auto),
@@ -280,6 +286,7 @@ pub fn to_doc(scene: &Scene) -> SceneDoc {
     SceneDoc {
         version: FORMAT_VERSION,
         name: scene.name.clone(),
+        unit: scene.unit.clone(),
         background: Some(ColorDoc::Hex(scene.background.to_hex())),
         samples: Some(
             scene

@@ -140,6 +140,9 @@ pub enum ViewSpec {
 pub struct Scene {
     /// An optional title.
     pub name: Option<String>,
+    /// The unit of length its coordinates are in, when the file it came from names one
+    /// (a STEP file's `millimetre`); `None`: unitless.
+    pub unit: Option<String>,
     /// The background colour.
     pub background: Color,
     /// Samples per Bézier segment for curves that do not say; `None`: automatic (see
@@ -263,6 +266,7 @@ impl Scene {
     pub fn of_curves(curves: impl IntoIterator<Item = crate::geom::Curve>) -> Scene {
         Scene {
             name: None,
+            unit: None,
             background: Color::WHITE,
             samples_per_segment: None,
             view: ViewSpec::Auto,
