@@ -126,6 +126,7 @@ fn nubmp_scene_matches_its_golden_image() {
 fn single(curve: Bezier, width: f32, samples: u32) -> Scene {
     Scene {
         name: None,
+        unit: None,
         background: Color::WHITE,
         samples_per_segment: Some(samples),
         view: ViewSpec::TwoD {

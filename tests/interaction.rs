@@ -15,6 +15,7 @@ const VIEWPORT: DVec2 = DVec2::new(1000.0, 700.0);
 fn scene(z: f64) -> Scene {
     Scene {
         name: None,
+        unit: None,
         background: Color::WHITE,
         samples_per_segment: None,
         view: ViewSpec::Auto,

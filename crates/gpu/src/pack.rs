@@ -449,6 +449,7 @@ mod tests {
         let nub = Nubmp::try_new(pts.clone(), knots, 4).unwrap();
         let scene = |n: &Nubmp| Scene {
             name: None,
+            unit: None,
             background: Color::WHITE,
             samples_per_segment: Some(40),
             view: ViewSpec::Auto,

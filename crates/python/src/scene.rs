@@ -103,6 +103,7 @@ impl PyScene {
         Ok(PyScene {
             scene: Scene {
                 name,
+                unit: None,
                 background: splinescope_scene::format::Color::WHITE,
                 samples_per_segment: None,
                 view: splinescope_scene::format::ViewSpec::Auto,
@@ -149,6 +150,12 @@ impl PyScene {
     #[getter]
     fn name(&self) -> Option<String> {
         self.scene.name.clone()
+    }
+
+    /// The unit of length the coordinates are in, when the file named one (STEP).
+    #[getter]
+    fn unit(&self) -> Option<String> {
+        self.scene.unit.clone()
     }
 
     /// The curves, in order.

@@ -558,7 +558,7 @@ impl<'a> Model<'a> {
                 .ok_or_else(|| self.error(id, "a complex B-spline without B_SPLINE_CURVE"))?;
             (&b.params[..], 0)
         } else {
-            (&r.params[1..], 5)
+            (&r.params[1..], 6)
         };
         let degree = self.degree(id, head.first())?;
         let points = self.control_points(id, head.get(1))?;

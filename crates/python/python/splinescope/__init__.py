@@ -1089,6 +1089,12 @@ class Scene:
         return self._s.name
 
     @property
+    def unit(self) -> Optional[str]:
+        """The unit of length of the coordinates when the file named one (a STEP file's
+        ``"millimetre"`` or ``"inch"``); ``None``: unitless."""
+        return self._s.unit
+
+    @property
     def curves(self) -> List[Curve]:
         """The curves, in order (2-D results for a planar scene, 3-D otherwise)."""
         return [Curve._wrap(c) for c in self._s.curves]

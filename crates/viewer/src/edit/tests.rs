@@ -20,6 +20,7 @@ fn scene() -> Scene {
     let nub = Nubmp::try_new(pts, vec![0., 0., 0., 0., 0.3, 0.5, 0.89, 1., 1., 1., 1.], 4).unwrap();
     Scene {
         name: None,
+        unit: None,
         background: Color::WHITE,
         samples_per_segment: Some(64),
         view: ViewSpec::Auto,
