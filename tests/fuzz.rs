@@ -1073,8 +1073,9 @@ impl Fuzz {
     }
 }
 
-/// The SVG files the import cases mutate (`tests/import_seeds/`).
-fn import_seeds() -> Vec<String> {
+/// The files the import cases mutate (`tests/import_seeds/`: SVG, ASCII and binary DXF,
+/// STEP), each with its extension.
+fn import_seeds() -> Vec<(String, Vec<u8>)> {
     let dir = manifest("tests/import_seeds");
     let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("tests/import_seeds")
@@ -1083,7 +1084,10 @@ fn import_seeds() -> Vec<String> {
     files.sort();
     files
         .iter()
-        .map(|f| std::fs::read_to_string(f).expect("seed"))
+        .map(|f| {
+            let ext = f.extension().map(|e| e.to_string_lossy().into_owned()).unwrap_or_default();
+            (ext, std::fs::read(f).expect("seed"))
+        })
         .collect()
 }
 
@@ -1238,14 +1242,39 @@ impl Fuzz {
         }
     }
 
-    /// One mutated SVG file: read by the library (no panic, within the time bound, every
-    /// curve finite) and by the command line (`check`, no panic or signal).
-    fn import_case(&mut self, seeds: &[String]) {
-        let seed = &seeds[self.rng.int(0, seeds.len() - 1)];
-        let text = mutate_svg(seed, &mut self.rng);
+    /// One mutated file of an imported format (SVG, DXF in ASCII and binary, STEP): read
+    /// by the library (no panic, within the time bound, every curve finite) and by the
+    /// command line (`check`, no panic or signal).
+    fn import_case(&mut self, seeds: &[(String, Vec<u8>)]) {
+        let (ext, seed) = &seeds[self.rng.int(0, seeds.len() - 1)];
+        let binary = std::str::from_utf8(seed).is_err();
+        let bytes: Vec<u8> = if binary {
+            let mut b = seed.clone();
+            for _ in 0..self.rng.int(1, 8) {
+                let at = self.rng.int(0, b.len() - 1);
+                match self.rng.int(0, 2) {
+                    0 => b.truncate(at.max(1)),
+                    1 => b[at] ^= self.rng.int(1, 255) as u8,
+                    _ => {
+                        let end = (at + self.rng.int(1, 8)).min(b.len());
+                        b[at..end].fill(0xff);
+                    }
+                }
+            }
+            b
+        } else {
+            mutate_svg(&String::from_utf8_lossy(seed), &mut self.rng).into_bytes()
+        };
+        let text = String::from_utf8_lossy(&bytes).into_owned();
         let start = Instant::now();
         let result = std::panic::catch_unwind(|| -> Result<(), String> {
-            let Ok(imported) = splinescope::import::svg::read(&text, "fuzz.svg") else {
+            let file = format!("fuzz.{ext}");
+            let read = match ext.as_str() {
+                "dxf" => splinescope::import::dxf::read(&bytes, &file),
+                "step" => splinescope::import::step::read(&text, &file),
+                _ => splinescope::import::svg::read(&text, &file),
+            };
+            let Ok(imported) = read else {
                 return Ok(());
             };
             for (i, c) in imported.scene.curves.iter().enumerate() {
@@ -1271,8 +1300,8 @@ impl Fuzz {
             self.font_case();
         }
         if self.rng.unit() < 0.2 {
-            let file = self.dir.join("fuzz.svg");
-            if std::fs::write(&file, &text).is_ok() {
+            let file = self.dir.join(format!("fuzz.{ext}"));
+            if std::fs::write(&file, &bytes).is_ok() {
                 self.cli(
                     vec!["check".into(), file.display().to_string()],
                     None,

@@ -45,11 +45,11 @@ pub fn read(bytes: &[u8], file: &str) -> Result<Imported, ImportError> {
     };
     // The `dxf` crate is not written for hostile input: a panic inside it is this file's
     // syntax error, not the program's end.
-    let loaded = std::panic::catch_unwind(|| Drawing::load(&mut &bytes[..]));
+    let loaded = crate::guarded(|| Drawing::load(&mut &bytes[..]));
     let drawing = match loaded {
-        Ok(Ok(d)) => d,
-        Ok(Err(e)) => return Err(syntax(file, e.to_string())),
-        Err(_) => return Err(syntax(file, "the DXF reader failed on this file".to_owned())),
+        Some(Ok(d)) => d,
+        Some(Err(e)) => return Err(syntax(file, e.to_string())),
+        None => return Err(syntax(file, "the DXF reader failed on this file".to_owned())),
     };
     let mut reader = Reader {
         file,

@@ -114,6 +114,32 @@ pub enum ImportError {
     },
 }
 
+thread_local! {
+    /// Whether this thread is inside [`guarded`]: its panics are the reader's, said as a
+    /// typed error, not on stderr.
+    static GUARDED: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Runs a third-party reader that is not written for hostile input (the `dxf` crate
+/// panics on some malformed files): a panic inside it is `None` — the caller's typed
+/// error — and is not printed. The panic hook this installs (once) stays quiet only on a
+/// thread inside this function and hands every other panic to the hook before it.
+pub(crate) fn guarded<T>(f: impl FnOnce() -> T + std::panic::UnwindSafe) -> Option<T> {
+    static HOOK: std::sync::Once = std::sync::Once::new();
+    HOOK.call_once(|| {
+        let before = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !GUARDED.with(std::cell::Cell::get) {
+                before(info);
+            }
+        }));
+    });
+    let was = GUARDED.with(|g| g.replace(true));
+    let out = std::panic::catch_unwind(f).ok();
+    GUARDED.with(|g| g.set(was));
+    out
+}
+
 /// The formats [`load`] reads, by extension (lower case).
 pub const EXTENSIONS: &[&str] = &["json", "svg", "dxf", "step", "stp", "ttf", "otf", "ttc", "otc"];
 

@@ -383,6 +383,17 @@ fn hostile_files_are_refused_naming_the_entity() {
     };
     let m = refused(&drawing_of(vec![Entity::new(EntityType::Insert(missing))]));
     assert!(m.contains("\"nowhere\" is not in the file"), "{m}");
+    // A header date far past the calendar: the `dxf` crate panics on it; that is this
+    // file's error, said once, with no panic on stderr (the CLI test below checks that).
+    let text = String::from_utf8(bytes(&drawing_of(vec![]))).unwrap();
+    let at = text.find("$TDCREATE").expect("a creation date");
+    let value = text[at..].match_indices('\n').nth(1).map(|(i, _)| at + i + 1).unwrap();
+    let end = value + text[value..].find('\n').unwrap();
+    let bad = format!("{}1e300{}", &text[..value], &text[end..]);
+    match sdxf::read(bad.as_bytes(), "bad.dxf") {
+        Err(ImportError::Syntax { message, .. }) => assert!(message.contains("failed"), "{message}"),
+        other => panic!("{other:?}"),
+    }
     // Not a DXF file, and one cut short.
     for junk in [&b"hello"[..], &bytes(&drawing_of(vec![]))[..200]] {
         match sdxf::read(junk, "bad.dxf") {
