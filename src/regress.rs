@@ -192,7 +192,8 @@ pub enum RegressError {
     },
 }
 
-/// The `*.json` files directly in `dir`, sorted by name.
+/// The scene files directly in `dir` (`*.json`, and every format splinescope imports:
+/// SVG, DXF, STEP, fonts), sorted by name.
 fn scene_files(dir: &Path) -> Result<Vec<PathBuf>, RegressError> {
     let read = std::fs::read_dir(dir).map_err(|source| RegressError::ScenesDir {
         path: dir.to_path_buf(),
@@ -205,7 +206,10 @@ fn scene_files(dir: &Path) -> Result<Vec<PathBuf>, RegressError> {
             source,
         })?;
         let path = entry.path();
-        if path.extension().is_some_and(|e| e == "json") && path.is_file() {
+        let readable = path.extension().is_some_and(|e| {
+            splinescope_import::EXTENSIONS.contains(&e.to_string_lossy().to_lowercase().as_str())
+        });
+        if readable && path.is_file() {
             files.push(path);
         }
     }
@@ -305,7 +309,14 @@ fn compare_one(
     let stem = path
         .file_stem()
         .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-    let reference_path = refs.join(format!("{stem}.png"));
+    // A scene file's reference is `NAME.png`; an imported file's keeps its extension
+    // (`logo.svg.png`), so that `logo.json` and `logo.svg` side by side do not share one.
+    let imported = !splinescope_import::is_scene_file(path);
+    let reference_path = refs.join(if imported {
+        format!("{name}.png")
+    } else {
+        format!("{stem}.png")
+    });
     let mut out = Compared {
         result: SceneResult {
             scene: name,
@@ -319,12 +330,17 @@ fn compare_one(
         reference: None,
         pictures: None,
     };
-    let rendered = Scene::load(path)
-        .map_err(|e| format!("{}: {e}", path.display()))
-        .and_then(|scene| {
-            crate::offscreen::render_scene(ctx, pipelines, &scene, None, opts.width, opts.height)
-                .map_err(|e| format!("{}: {e}", path.display()))
-        });
+    let loaded = if imported {
+        splinescope_import::load(path)
+            .map(|i| i.scene)
+            .map_err(|e| e.to_string())
+    } else {
+        Scene::load(path).map_err(|e| format!("{}: {e}", path.display()))
+    };
+    let rendered = loaded.and_then(|scene| {
+        crate::offscreen::render_scene(ctx, pipelines, &scene, None, opts.width, opts.height)
+            .map_err(|e| format!("{}: {e}", path.display()))
+    });
     let actual = match rendered {
         Ok(image) => image,
         Err(message) => {

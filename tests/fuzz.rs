@@ -1085,7 +1085,10 @@ fn import_seeds() -> Vec<(String, Vec<u8>)> {
     files
         .iter()
         .map(|f| {
-            let ext = f.extension().map(|e| e.to_string_lossy().into_owned()).unwrap_or_default();
+            let ext = f
+                .extension()
+                .map(|e| e.to_string_lossy().into_owned())
+                .unwrap_or_default();
             (ext, std::fs::read(f).expect("seed"))
         })
         .collect()

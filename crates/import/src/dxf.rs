@@ -33,7 +33,7 @@ use crate::{ImportError, Imported};
 /// Reads DXF `bytes` (ASCII or binary) as a scene.
 ///
 /// # Errors
-/// [`ImportError::Syntax`] for a file the `dxf` crate cannot read, [`ImportError::Entity`]
+/// [`ImportError::Io`] for a file the `dxf` crate cannot read, [`ImportError::Entity`]
 /// for an entity whose numbers are wrong (naming its type and handle), and
 /// [`ImportError::Limit`] past a documented limit.
 pub fn read(bytes: &[u8], file: &str) -> Result<Imported, ImportError> {
@@ -49,7 +49,12 @@ pub fn read(bytes: &[u8], file: &str) -> Result<Imported, ImportError> {
     let drawing = match loaded {
         Some(Ok(d)) => d,
         Some(Err(e)) => return Err(syntax(file, e.to_string())),
-        None => return Err(syntax(file, "the DXF reader failed on this file".to_owned())),
+        None => {
+            return Err(syntax(
+                file,
+                "the DXF reader failed on this file".to_owned(),
+            ));
+        }
     };
     let mut reader = Reader {
         file,
@@ -58,7 +63,10 @@ pub fn read(bytes: &[u8], file: &str) -> Result<Imported, ImportError> {
             .layers()
             .map(|l| (l.name.to_lowercase(), l.color.index()))
             .collect(),
-        blocks: drawing.blocks().map(|b| (b.name.to_lowercase(), b)).collect(),
+        blocks: drawing
+            .blocks()
+            .map(|b| (b.name.to_lowercase(), b))
+            .collect(),
         curves: Vec::new(),
         left_out: BTreeMap::new(),
         visited: 0,
@@ -71,7 +79,10 @@ pub fn read(bytes: &[u8], file: &str) -> Result<Imported, ImportError> {
     };
     for e in drawing.entities() {
         if e.common.is_in_paper_space {
-            *reader.left_out.entry("in paper space".to_owned()).or_default() += 1;
+            *reader
+                .left_out
+                .entry("in paper space".to_owned())
+                .or_default() += 1;
             continue;
         }
         reader.entity(e, DAffine3::IDENTITY, None, 0)?;
@@ -96,11 +107,10 @@ pub fn read(bytes: &[u8], file: &str) -> Result<Imported, ImportError> {
     Ok(Imported { scene, warnings })
 }
 
+/// The `dxf` crate's errors carry their own place ("at line/offset N").
 fn syntax(file: &str, message: String) -> ImportError {
-    ImportError::Syntax {
+    ImportError::Io {
         file: file.to_owned(),
-        line: 0,
-        column: 0,
         message: format!("not a DXF file this reader can read: {message}"),
     }
 }
@@ -180,14 +190,24 @@ fn bulge_arc(a: DVec2, b: DVec2, bulge: f64) -> Vec<Seg> {
     let theta = 4.0 * bulge.atan();
     let half = 0.5 * (b - a).length();
     let r = half / (0.5 * theta).sin().abs();
-    svg_arc(a, b, r, r, 0.0, theta.abs() > std::f64::consts::PI, theta > 0.0)
+    svg_arc(
+        a,
+        b,
+        r,
+        r,
+        0.0,
+        theta.abs() > std::f64::consts::PI,
+        theta > 0.0,
+    )
 }
 
 /// The unit circle's arc from angle `a0` counter-clockwise over `sweep` radians
 /// (`0 < sweep ≤ 2π`) as exact rational quadratics; `full` closes it on its start point.
 pub(crate) fn unit_arc_pieces(a0: f64, sweep: f64) -> Vec<Seg> {
     let at = |a: f64| DVec2::new(a.cos(), a.sin());
-    let n = ((sweep / std::f64::consts::FRAC_PI_2) - 1e-9).ceil().max(1.0) as usize;
+    let n = ((sweep / std::f64::consts::FRAC_PI_2) - 1e-9)
+        .ceil()
+        .max(1.0) as usize;
     let step = sweep / n as f64;
     let h = 0.5 * step;
     let mut out = Vec::with_capacity(n);
@@ -195,7 +215,11 @@ pub(crate) fn unit_arc_pieces(a0: f64, sweep: f64) -> Vec<Seg> {
     let full = sweep >= std::f64::consts::TAU;
     for i in 0..n {
         let a = a0 + step * i as f64;
-        let p2 = if full && i + 1 == n { at(a0) } else { at(a + step) };
+        let p2 = if full && i + 1 == n {
+            at(a0)
+        } else {
+            at(a + step)
+        };
         out.push(Seg {
             points: vec![p0, at(a + h) / h.cos(), p2],
             weights: Some(vec![1.0, h.cos(), 1.0]),
@@ -491,7 +515,9 @@ impl<'a> Reader<'a> {
                     ),
                 ));
             }
-            BSpline::try_new(points, knots, order).map(Curve::BSpline).map_err(wrap)
+            BSpline::try_new(points, knots, order)
+                .map(Curve::BSpline)
+                .map_err(wrap)
         } else {
             Nurbs::try_new(points, s.weight_values.clone(), knots, order)
                 .map(Curve::Nurbs)
@@ -688,7 +714,13 @@ fn layer_name(name: Option<&str>, index: usize) -> String {
     let base = name.map_or_else(|| format!("curve {index}"), str::to_owned);
     let clean: String = base
         .chars()
-        .map(|c| if "<>/\\\":;?*|=,`".contains(c) || c.is_control() { '_' } else { c })
+        .map(|c| {
+            if "<>/\\\":;?*|=,`".contains(c) || c.is_control() {
+                '_'
+            } else {
+                c
+            }
+        })
         .collect();
     format!("{index:04} {clean}")
 }

@@ -141,7 +141,9 @@ pub(crate) fn guarded<T>(f: impl FnOnce() -> T + std::panic::UnwindSafe) -> Opti
 }
 
 /// The formats [`load`] reads, by extension (lower case).
-pub const EXTENSIONS: &[&str] = &["json", "svg", "dxf", "step", "stp", "ttf", "otf", "ttc", "otc"];
+pub const EXTENSIONS: &[&str] = &[
+    "json", "svg", "dxf", "step", "stp", "ttf", "otf", "ttc", "otc",
+];
 
 /// Whether `path` is read as a splinescope scene (`.json`, or an extension no reader
 /// claims: the scene reader then says what is wrong with it) rather than imported.

@@ -67,7 +67,9 @@ impl Rng {
 /// The curve a form reads back as: a B-spline, or a NURBS curve when it has weights.
 fn curve_of(f: &NurbsForm) -> Curve {
     match &f.weights {
-        None => Curve::BSpline(BSpline::try_new(f.points.clone(), f.knots.clone(), f.degree + 1).unwrap()),
+        None => Curve::BSpline(
+            BSpline::try_new(f.points.clone(), f.knots.clone(), f.degree + 1).unwrap(),
+        ),
         Some(w) => Curve::Nurbs(
             Nurbs::try_new(f.points.clone(), w.clone(), f.knots.clone(), f.degree + 1).unwrap(),
         ),
@@ -126,18 +128,29 @@ fn every_family_written_and_read_back_evaluates_to_the_same_points_bit_for_bit()
             for k in 0..=64 {
                 let t = t0 + (t1 - t0) * f64::from(k) / 64.0;
                 let (e, g) = (expected.eval(t), b.curve.eval(t));
-                assert_eq!(e.to_array().map(f64::to_bits), g.to_array().map(f64::to_bits), "{} at {t}", c.curve.family());
+                assert_eq!(
+                    e.to_array().map(f64::to_bits),
+                    g.to_array().map(f64::to_bits),
+                    "{} at {t}",
+                    c.curve.family()
+                );
                 // The form is the curve (an independent evaluation: the family's own).
                 let o = c.curve.eval(t);
-                let scale = 1.0 + c.curve.control_points().iter().map(|p| p.abs().max_element()).fold(0.0, f64::max);
-                assert!((o - e).length() <= 1e-11 * scale, "{}: {o} vs the form's {e} at {t}", c.curve.family());
+                let scale = 1.0
+                    + c.curve
+                        .control_points()
+                        .iter()
+                        .map(|p| p.abs().max_element())
+                        .fold(0.0, f64::max);
+                assert!(
+                    (o - e).length() <= 1e-11 * scale,
+                    "{}: {o} vs the form's {e} at {t}",
+                    c.curve.family()
+                );
                 checked += 1;
             }
             // Its colour rides along as the entity's true colour.
-            assert_eq!(
-                b.style.color.to_rgba8()[..3],
-                c.style.color.to_rgba8()[..3]
-            );
+            assert_eq!(b.style.color.to_rgba8()[..3], c.style.color.to_rgba8()[..3]);
         }
     }
     assert_eq!(families.len(), Curve::FAMILY_NAMES.len(), "{families:?}");
@@ -148,7 +161,11 @@ fn every_family_written_and_read_back_evaluates_to_the_same_points_bit_for_bit()
 fn the_ascii_writer_keeps_twelve_decimals() {
     let scene = Scene::of_curves([Curve::BSpline(
         BSpline::try_new(
-            vec![DVec3::new(0.1, 1.0 / 3.0, 0.0), DVec3::new(2.0, 0.7, 0.0), DVec3::new(3.0, -1.0, 0.0)],
+            vec![
+                DVec3::new(0.1, 1.0 / 3.0, 0.0),
+                DVec3::new(2.0, 0.7, 0.0),
+                DVec3::new(3.0, -1.0, 0.0),
+            ],
             vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
             3,
         )
@@ -185,8 +202,16 @@ fn arcs_circles_and_ellipses_are_exact() {
     let a = path(&i, 0);
     assert!((length(a) - 3.0 * 1.5 * PI).abs() <= 1e-12, "{}", length(a));
     let (s, e) = a.domain();
-    let start = DVec3::new(1.0 + 3.0 * 30f64.to_radians().cos(), 2.0 + 3.0 * 30f64.to_radians().sin(), 0.0);
-    let end = DVec3::new(1.0 + 3.0 * 300f64.to_radians().cos(), 2.0 + 3.0 * 300f64.to_radians().sin(), 0.0);
+    let start = DVec3::new(
+        1.0 + 3.0 * 30f64.to_radians().cos(),
+        2.0 + 3.0 * 30f64.to_radians().sin(),
+        0.0,
+    );
+    let end = DVec3::new(
+        1.0 + 3.0 * 300f64.to_radians().cos(),
+        2.0 + 3.0 * 300f64.to_radians().sin(),
+        0.0,
+    );
     assert!((a.eval(s) - start).length() <= 1e-14);
     assert!((a.eval(e) - end).length() <= 1e-14);
     // The circle: 2πr, closed, every point at r.
@@ -218,8 +243,18 @@ fn arcs_circles_and_ellipses_are_exact() {
 fn bulges_are_exact_arcs_and_ocs_maps_to_the_world() {
     // A slot: two half circles (bulge 1) joined by straight legs, closed.
     let mut p = dxf::entities::LwPolyline::default();
-    for (x, y, b) in [(0.0, 0.0, 0.0), (10.0, 0.0, 1.0), (10.0, 4.0, 0.0), (0.0, 4.0, 1.0)] {
-        p.vertices.push(dxf::LwPolylineVertex { x, y, bulge: b, ..Default::default() });
+    for (x, y, b) in [
+        (0.0, 0.0, 0.0),
+        (10.0, 0.0, 1.0),
+        (10.0, 4.0, 0.0),
+        (0.0, 4.0, 1.0),
+    ] {
+        p.vertices.push(dxf::LwPolylineVertex {
+            x,
+            y,
+            bulge: b,
+            ..Default::default()
+        });
     }
     p.set_is_closed(true);
     // A circle whose extrusion is −z: the OCS x axis is −x, so its centre (3, 0) is at
@@ -232,7 +267,11 @@ fn bulges_are_exact_arcs_and_ocs_maps_to_the_world() {
     ]));
     let slot = path(&i, 0);
     assert!(slot.is_closed());
-    assert!((length(slot) - (20.0 + 4.0 * PI)).abs() <= 1e-12, "{}", length(slot));
+    assert!(
+        (length(slot) - (20.0 + 4.0 * PI)).abs() <= 1e-12,
+        "{}",
+        length(slot)
+    );
     // The right half circle bulges to x = 12.
     let far = (0..=400)
         .map(|k| slot.eval(slot.domain().1 * f64::from(k) / 400.0).x)
@@ -241,7 +280,10 @@ fn bulges_are_exact_arcs_and_ocs_maps_to_the_world() {
     let c = path(&i, 1);
     let (s, e) = c.domain();
     let centre = (c.eval(s) + c.eval(s + 0.5 * (e - s))) / 2.0;
-    assert!((centre - DVec3::new(-3.0, 0.0, 0.0)).length() <= 1e-12, "{centre}");
+    assert!(
+        (centre - DVec3::new(-3.0, 0.0, 0.0)).length() <= 1e-12,
+        "{centre}"
+    );
 }
 
 #[test]
@@ -333,12 +375,19 @@ fn hostile_files_are_refused_naming_the_entity() {
         ..Default::default()
     };
     let m = refused(&drawing_of(vec![Entity::new(EntityType::Spline(s))]));
-    assert!(m.contains("SPLINE (handle") && m.contains("fit points"), "{m}");
+    assert!(
+        m.contains("SPLINE (handle") && m.contains("fit points"),
+        "{m}"
+    );
     // Decreasing knots, a zero weight, a NaN point, a degree past the limit.
     let base = || dxf::entities::Spline {
         degree_of_curve: 2,
         knot_values: vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-        control_points: vec![Point::new(0.0, 0.0, 0.0), Point::new(1.0, 1.0, 0.0), Point::new(2.0, 0.0, 0.0)],
+        control_points: vec![
+            Point::new(0.0, 0.0, 0.0),
+            Point::new(1.0, 1.0, 0.0),
+            Point::new(2.0, 0.0, 0.0),
+        ],
         ..Default::default()
     };
     let mut s = base();
@@ -369,7 +418,8 @@ fn hostile_files_are_refused_naming_the_entity() {
         z_scale_factor: 1.0,
         ..Default::default()
     };
-    b.entities.push(Entity::new(EntityType::Insert(ins.clone())));
+    b.entities
+        .push(Entity::new(EntityType::Insert(ins.clone())));
     d.add_block(b);
     d.add_entity(Entity::new(EntityType::Insert(ins)));
     let m = refused(&d);
@@ -387,17 +437,21 @@ fn hostile_files_are_refused_naming_the_entity() {
     // file's error, said once, with no panic on stderr (the CLI test below checks that).
     let text = String::from_utf8(bytes(&drawing_of(vec![]))).unwrap();
     let at = text.find("$TDCREATE").expect("a creation date");
-    let value = text[at..].match_indices('\n').nth(1).map(|(i, _)| at + i + 1).unwrap();
+    let value = text[at..]
+        .match_indices('\n')
+        .nth(1)
+        .map(|(i, _)| at + i + 1)
+        .unwrap();
     let end = value + text[value..].find('\n').unwrap();
     let bad = format!("{}1e300{}", &text[..value], &text[end..]);
     match sdxf::read(bad.as_bytes(), "bad.dxf") {
-        Err(ImportError::Syntax { message, .. }) => assert!(message.contains("failed"), "{message}"),
+        Err(ImportError::Io { message, .. }) => assert!(message.contains("failed"), "{message}"),
         other => panic!("{other:?}"),
     }
     // Not a DXF file, and one cut short.
     for junk in [&b"hello"[..], &bytes(&drawing_of(vec![]))[..200]] {
         match sdxf::read(junk, "bad.dxf") {
-            Err(ImportError::Syntax { file, .. }) => assert_eq!(file, "bad.dxf"),
+            Err(ImportError::Io { file, .. }) => assert_eq!(file, "bad.dxf"),
             Err(e) => panic!("{e}"),
             Ok(i) => assert!(i.scene.curves.is_empty()),
         }
@@ -415,5 +469,9 @@ fn text_and_paper_space_are_left_out_with_one_warning() {
     let i = read(&drawing_of(vec![line, text.clone(), text]));
     assert!(i.scene.curves.is_empty());
     assert_eq!(i.warnings.len(), 1, "{:?}", i.warnings);
-    assert!(i.warnings[0].contains("2 texts") && i.warnings[0].contains("1 in paper space"), "{:?}", i.warnings);
+    assert!(
+        i.warnings[0].contains("2 texts") && i.warnings[0].contains("1 in paper space"),
+        "{:?}",
+        i.warnings
+    );
 }

@@ -34,7 +34,10 @@ fn refused(data: &str) -> String {
 
 fn length(c: &Curve) -> f64 {
     let (a, b) = c.domain();
-    CurveAnalysis::new(c).length(a, b, 1e-13).expect("length").value
+    CurveAnalysis::new(c)
+        .length(a, b, 1e-13)
+        .expect("length")
+        .value
 }
 
 /// A circle of radius 2 about (1, 2, 3) in the plane x + z = const: axis (1, 0, 1)/√2,
@@ -57,7 +60,13 @@ fn a_free_circle_is_closed_exact_and_in_the_files_unit() {
     }
     // It starts on the reference direction.
     assert!((c.eval(a) - DVec3::new(1.0, 4.0, 3.0)).length() <= 1e-13);
-    assert!(i.scene.curves[0].name.as_deref().unwrap().contains("#5 CIRCLE c"));
+    assert!(
+        i.scene.curves[0]
+            .name
+            .as_deref()
+            .unwrap()
+            .contains("#5 CIRCLE c")
+    );
 }
 
 #[test]
@@ -68,7 +77,11 @@ fn trims_by_parameter_in_degrees_and_by_point_in_either_sense() {
         "{CIRCLE}{DEG}#10 = TRIMMED_CURVE('',#5,(PARAMETER_VALUE(90.)),(PARAMETER_VALUE(180.)),.T.,.PARAMETER.);\n#11 = CARTESIAN_POINT('',(-0.41421356237309515,2.,4.414213562373095));\n#12 = TRIMMED_CURVE('',#5,(#11),(#13),.F.,.CARTESIAN.);\n#13 = CARTESIAN_POINT('',(1.,0.,3.));\n"
     );
     let i = read(&data);
-    assert_eq!(i.scene.curves.len(), 2, "the basis circle is drawn only trimmed");
+    assert_eq!(
+        i.scene.curves.len(),
+        2,
+        "the basis circle is drawn only trimmed"
+    );
     let quarter = &i.scene.curves[0].curve;
     assert!((length(quarter) - PI).abs() <= 1e-12, "{}", length(quarter));
     let long = &i.scene.curves[1].curve;
@@ -93,7 +106,9 @@ fn composite_curves_join_their_segments_each_in_its_sense() {
     let i = read(data);
     assert_eq!(i.scene.curves.len(), 2);
     let c = &i.scene.curves[0].curve;
-    let Curve::Path(p) = c else { panic!("{}", c.family()) };
+    let Curve::Path(p) = c else {
+        panic!("{}", c.family())
+    };
     assert_eq!(p.segments().len(), 2);
     let (a, b) = c.domain();
     assert!((c.eval(a) - DVec3::ZERO).length() <= 1e-15);
@@ -117,16 +132,32 @@ fn b_splines_keep_the_files_knots_and_weights_and_bezier_curves_their_pieces() {
     );
     let i = read(&data);
     assert_eq!(i.scene.curves.len(), 3);
-    let Curve::BSpline(b) = &i.scene.curves[0].curve else { panic!() };
-    assert_eq!(b.knots().knots(), &[0.0, 0.0, 0.0, 0.25, 0.5, 2.0, 2.0, 2.0]);
-    let Curve::Nurbs(n) = &i.scene.curves[1].curve else { panic!() };
+    let Curve::BSpline(b) = &i.scene.curves[0].curve else {
+        panic!()
+    };
+    assert_eq!(
+        b.knots().knots(),
+        &[0.0, 0.0, 0.0, 0.25, 0.5, 2.0, 2.0, 2.0]
+    );
+    let Curve::Nurbs(n) = &i.scene.curves[1].curve else {
+        panic!()
+    };
     assert_eq!(n.weights(), &[1.0, 0.5, 2.0]);
     // The rational quadratic at t: Σ wᵢPᵢBᵢ / Σ wᵢBᵢ, by hand.
-    let (p, w) = ([DVec3::ZERO, DVec3::new(1.0, 2.0, 0.0), DVec3::new(3.0, 2.0, 1.0)], [1.0, 0.5, 2.0]);
+    let (p, w) = (
+        [
+            DVec3::ZERO,
+            DVec3::new(1.0, 2.0, 0.0),
+            DVec3::new(3.0, 2.0, 1.0),
+        ],
+        [1.0, 0.5, 2.0],
+    );
     for k in 0..=20 {
         let t = f64::from(k) / 20.0;
         let b = [(1.0 - t) * (1.0 - t), 2.0 * t * (1.0 - t), t * t];
-        let num = (0..3).map(|j| p[j] * w[j] * b[j]).fold(DVec3::ZERO, |a, x| a + x);
+        let num = (0..3)
+            .map(|j| p[j] * w[j] * b[j])
+            .fold(DVec3::ZERO, |a, x| a + x);
         let den: f64 = (0..3).map(|j| w[j] * b[j]).sum();
         assert!((n.eval(t) - num / den).length() <= 1e-14);
     }
@@ -143,7 +174,11 @@ fn edges_are_trimmed_at_their_vertices() {
         "{CIRCLE}#20 = CARTESIAN_POINT('',(1.,4.,3.));\n#21 = VERTEX_POINT('',#20);\n#22 = CARTESIAN_POINT('',(1.,0.,3.));\n#23 = VERTEX_POINT('',#22);\n#24 = EDGE_CURVE('',#21,#23,#5,.T.);\n#25 = EDGE_CURVE('',#21,#21,#5,.F.);\n"
     );
     let i = read(&data);
-    assert_eq!(i.scene.curves.len(), 2, "the circle is the edges' geometry, not drawn alone");
+    assert_eq!(
+        i.scene.curves.len(),
+        2,
+        "the circle is the edges' geometry, not drawn alone"
+    );
     assert!((length(&i.scene.curves[0].curve) - 2.0 * PI).abs() <= 1e-12);
     assert!((length(&i.scene.curves[1].curve) - 4.0 * PI).abs() <= 1e-12);
 }
@@ -152,22 +187,37 @@ fn edges_are_trimmed_at_their_vertices() {
 fn hostile_files_are_refused_naming_the_entity_and_its_line() {
     // Missing and cyclic references.
     let m = refused("#5 = CIRCLE('',#4,2.);\n");
-    assert!(m.contains("#5 CIRCLE (line 8)") && m.contains("#4, which is not in the file"), "{m}");
-    let m = refused("#1 = TRIMMED_CURVE('',#2,(PARAMETER_VALUE(0.)),(PARAMETER_VALUE(1.)),.T.,.PARAMETER.);\n#2 = TRIMMED_CURVE('',#1,(PARAMETER_VALUE(0.)),(PARAMETER_VALUE(1.)),.T.,.PARAMETER.);\n#3 = COMPOSITE_CURVE_SEGMENT(.CONTINUOUS.,.T.,#1);\n#4 = COMPOSITE_CURVE('',(#3),.F.);\n");
+    assert!(
+        m.contains("#5 CIRCLE (line 8)") && m.contains("#4, which is not in the file"),
+        "{m}"
+    );
+    let m = refused(
+        "#1 = TRIMMED_CURVE('',#2,(PARAMETER_VALUE(0.)),(PARAMETER_VALUE(1.)),.T.,.PARAMETER.);\n#2 = TRIMMED_CURVE('',#1,(PARAMETER_VALUE(0.)),(PARAMETER_VALUE(1.)),.T.,.PARAMETER.);\n#3 = COMPOSITE_CURVE_SEGMENT(.CONTINUOUS.,.T.,#1);\n#4 = COMPOSITE_CURVE('',(#3),.F.);\n",
+    );
     assert!(m.contains("refers to itself"), "{m}");
     // Decreasing knots, zero weights, a degree past the limit, multiplicities that
     // claim a billion knots.
     let pts = "#1 = CARTESIAN_POINT('',(0.,0.,0.));\n#2 = CARTESIAN_POINT('',(1.,2.,0.));\n#3 = CARTESIAN_POINT('',(3.,2.,1.));\n";
-    let m = refused(&format!("{pts}#10 = B_SPLINE_CURVE_WITH_KNOTS('',2,(#1,#2,#3),.UNSPECIFIED.,.F.,.F.,(3,3),(1.,0.),.UNSPECIFIED.);\n"));
+    let m = refused(&format!(
+        "{pts}#10 = B_SPLINE_CURVE_WITH_KNOTS('',2,(#1,#2,#3),.UNSPECIFIED.,.F.,.F.,(3,3),(1.,0.),.UNSPECIFIED.);\n"
+    ));
     assert!(m.contains("#10 B_SPLINE_CURVE_WITH_KNOTS"), "{m}");
-    let m = refused(&format!("{pts}#11 = ( BOUNDED_CURVE() B_SPLINE_CURVE(2,(#1,#2,#3),.UNSPECIFIED.,.F.,.F.) B_SPLINE_CURVE_WITH_KNOTS((3,3),(0.,1.),.UNSPECIFIED.) CURVE() GEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_CURVE((1.,0.,2.)) REPRESENTATION_ITEM('') );\n"));
+    let m = refused(&format!(
+        "{pts}#11 = ( BOUNDED_CURVE() B_SPLINE_CURVE(2,(#1,#2,#3),.UNSPECIFIED.,.F.,.F.) B_SPLINE_CURVE_WITH_KNOTS((3,3),(0.,1.),.UNSPECIFIED.) CURVE() GEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_CURVE((1.,0.,2.)) REPRESENTATION_ITEM('') );\n"
+    ));
     assert!(m.contains("weight"), "{m}");
-    let m = refused(&format!("{pts}#10 = B_SPLINE_CURVE_WITH_KNOTS('',100000,(#1,#2,#3),.UNSPECIFIED.,.F.,.F.,(3,3),(0.,1.),.UNSPECIFIED.);\n"));
+    let m = refused(&format!(
+        "{pts}#10 = B_SPLINE_CURVE_WITH_KNOTS('',100000,(#1,#2,#3),.UNSPECIFIED.,.F.,.F.,(3,3),(0.,1.),.UNSPECIFIED.);\n"
+    ));
     assert!(m.contains("SPLINESCOPE_MAX_ORDER"), "{m}");
-    let m = refused(&format!("{pts}#10 = B_SPLINE_CURVE_WITH_KNOTS('',2,(#1,#2,#3),.UNSPECIFIED.,.F.,.F.,(1000000000,3),(0.,1.),.UNSPECIFIED.);\n"));
+    let m = refused(&format!(
+        "{pts}#10 = B_SPLINE_CURVE_WITH_KNOTS('',2,(#1,#2,#3),.UNSPECIFIED.,.F.,.F.,(1000000000,3),(0.,1.),.UNSPECIFIED.);\n"
+    ));
     assert!(m.contains("multiplicit"), "{m}");
     // A coordinate that overflows to infinity, and a point that is not a point.
-    let m = refused("#1 = CARTESIAN_POINT('',(1.E999,0.,0.));\n#2 = DIRECTION('',(0.,0.,1.));\n#3 = AXIS2_PLACEMENT_3D('',#1,#2,$);\n#4 = CIRCLE('',#3,1.);\n");
+    let m = refused(
+        "#1 = CARTESIAN_POINT('',(1.E999,0.,0.));\n#2 = DIRECTION('',(0.,0.,1.));\n#3 = AXIS2_PLACEMENT_3D('',#1,#2,$);\n#4 = CIRCLE('',#3,1.);\n",
+    );
     assert!(m.contains("#1 CARTESIAN_POINT") && m.contains("inf"), "{m}");
     // Syntax: truncated, wrong magic, a repeated id, lists nested past the limit.
     let text = file(CIRCLE);
@@ -180,10 +230,20 @@ fn hostile_files_are_refused_naming_the_entity_and_its_line() {
             other => panic!("{cut}: {other:?}"),
         }
     }
-    assert!(matches!(step::read("hello", "t.step"), Err(ImportError::Syntax { .. })));
+    assert!(matches!(
+        step::read("hello", "t.step"),
+        Err(ImportError::Syntax { .. })
+    ));
     let m = refused("#1 = CARTESIAN_POINT('',(0.,0.,0.));\n#1 = CARTESIAN_POINT('',(0.,0.,0.));\n");
-    assert!(m.contains("#1 is defined twice") && m.contains(":9:"), "{m}");
-    let deep = format!("#1 = CARTESIAN_POINT('',{}0.{});\n", "(".repeat(100_000), ")".repeat(100_000));
+    assert!(
+        m.contains("#1 is defined twice") && m.contains(":9:"),
+        "{m}"
+    );
+    let deep = format!(
+        "#1 = CARTESIAN_POINT('',{}0.{});\n",
+        "(".repeat(100_000),
+        ")".repeat(100_000)
+    );
     let m = refused(&deep);
     assert!(m.contains("nested past the limit"), "{m}");
 }

@@ -1,5 +1,5 @@
-//! `splinescope import`: a file of another format (SVG, a font) written as a splinescope
-//! scene.
+//! `splinescope import`: a file of another format (SVG, DXF, STEP, a font) written as a
+//! splinescope scene.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -11,38 +11,37 @@ use crate::say;
 /// The arguments of `splinescope import`.
 #[derive(Debug, clap::Args)]
 pub struct ImportArgs {
-    /// The file to read: SVG (`.svg`), a font (`.ttf`, `.otf`, `.ttc`, `.otc`), or a scene
-    /// (`.json`).
+    /// The file to read: SVG (`.svg`), DXF (`.dxf`), STEP (`.step`, `.stp`), a font
+    /// (`.ttf`, `.otf`, `.ttc`, `.otc`), or a scene (`.json`).
     pub file: PathBuf,
     /// Where to write the scene (JSON); the file is replaced atomically.
     #[arg(short, long, value_name = "SCENE.json")]
     pub output: PathBuf,
-    #[command(flatten)]
-    pub font: FontArgs,
 }
 
 /// What to read of a font (`.ttf`, `.otf`, `.ttc`, `.otc`): by default every glyph, on a
-/// grid in glyph order.
+/// grid in glyph order. Global: every command that reads a scene file takes them.
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct FontArgs {
     /// These glyphs only, by name or id (`A,uni00E9,gid36`); one glyph sits at its own
     /// origin.
     #[arg(
         long,
+        global = true,
         value_delimiter = ',',
         value_name = "NAMES",
         conflicts_with = "text"
     )]
     pub glyphs: Option<Vec<String>>,
     /// This text, laid out by the glyphs' advances (no shaping, no kerning).
-    #[arg(long)]
+    #[arg(long, global = true)]
     pub text: Option<String>,
     /// A variable font's location, as AXIS=VALUE pairs (`wght=700,wdth=75`); the default
     /// location otherwise. An axis the font lacks or a value outside its range is refused.
-    #[arg(long, value_delimiter = ',', value_name = "AXIS=VALUE", value_parser = parse_variation)]
+    #[arg(long, global = true, value_delimiter = ',', value_name = "AXIS=VALUE", value_parser = parse_variation)]
     pub variations: Vec<(String, f32)>,
     /// The font's index in a collection (`.ttc`, `.otc`).
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, global = true, default_value_t = 0)]
     pub font_index: u32,
 }
 
@@ -89,7 +88,7 @@ fn parse_variation(s: &str) -> Result<(String, f32), String> {
 /// The file does not read (naming it and where), the output is the input, or it cannot
 /// be written.
 pub fn run(a: &ImportArgs) -> Result<()> {
-    import(&a.file, &a.output, &a.font.options())
+    import(&a.file, &a.output, &crate::load::options())
 }
 
 fn import(file: &Path, output: &Path, options: &splinescope::import::Options) -> Result<()> {

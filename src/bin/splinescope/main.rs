@@ -44,6 +44,9 @@ pub(crate) use say;
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
+    /// What to read of a font file (any command that reads a scene file).
+    #[command(flatten)]
+    font: import::FontArgs,
 }
 
 /// The text a picture carries besides the curves (`render`, `export`).
@@ -203,7 +206,8 @@ enum Command {
     /// Print the JSON Schema of a format (scene, request, report, inspect, analyze, eval,
     /// check); without a name, list them; write them all with --write DIR.
     Schema(schema::SchemaArgs),
-    /// Render every scene (*.json) of SCENES_DIR and compare it with REFS_DIR/<name>.png;
+    /// Render every scene of SCENES_DIR (*.json, and the files splinescope imports: an
+    /// imported file's reference is REFS_DIR/<file name>.png) and compare it with REFS_DIR/<name>.png;
     /// exits 1 when any scene differs, has no reference or fails.
     Regress(regress::RegressArgs),
     /// Compare two PNG images (per-channel and NVIDIA FLIP); exits 1 when they differ
@@ -241,6 +245,7 @@ fn is_broken_pipe(e: &anyhow::Error) -> bool {
 }
 
 fn run(cli: Cli) -> Result<()> {
+    load::set_options(cli.font.options());
     match cli.command {
         None => view::default_job(),
         Some(Command::View(a)) => view::run(&a),

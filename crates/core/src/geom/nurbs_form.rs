@@ -130,7 +130,10 @@ fn raised(s: &BezierSegment, p: usize, rational: bool) -> (Vec<DVec3>, Vec<f64>)
         None => {
             let b: Bezier = s.bezier.elevated_to(p);
             let n = b.points().len();
-            (b.points().to_vec(), if rational { vec![1.0; n] } else { Vec::new() })
+            (
+                b.points().to_vec(),
+                if rational { vec![1.0; n] } else { Vec::new() },
+            )
         }
     }
 }

@@ -26,9 +26,7 @@ pub mod part21;
 use std::collections::{BTreeMap, HashMap, HashSet};
 
 use glam::{DVec2, DVec3};
-use splinescope_core::geom::{
-    BSpline, Curve, Lower, Nurbs, ParamCurve, Path, PathSegment,
-};
+use splinescope_core::geom::{BSpline, Curve, Lower, Nurbs, ParamCurve, Path, PathSegment};
 use splinescope_scene::format::{Scene, SceneCurve, Style};
 use splinescope_scene::limits;
 
@@ -113,7 +111,9 @@ pub fn read(text: &str, file: &str) -> Result<Imported, ImportError> {
         }
         let pieces = if edge { m.edge(id)? } else { m.whole(id)? };
         let Some(pieces) = pieces else {
-            *left_out.entry(format!("unbounded {}", name.to_lowercase())).or_default() += 1;
+            *left_out
+                .entry(format!("unbounded {}", name.to_lowercase()))
+                .or_default() += 1;
             continue;
         };
         for (k, p) in pieces.into_iter().enumerate() {
@@ -129,7 +129,11 @@ pub fn read(text: &str, file: &str) -> Result<Imported, ImportError> {
             style.show_polygon = matches!(p, Curve::BSpline(_) | Curve::Nurbs(_));
             style.show_points = style.show_polygon;
             curves.push(SceneCurve {
-                name: Some(if k == 0 { label } else { format!("{label}, part {k}") }),
+                name: Some(if k == 0 {
+                    label
+                } else {
+                    format!("{label}, part {k}")
+                }),
                 curve: p,
                 style,
             });
@@ -182,7 +186,9 @@ const CURVES: &[&str] = &[
 ];
 
 fn is_curve(inst: &Instance) -> bool {
-    inst.records.iter().any(|r| CURVES.contains(&r.name.as_str()))
+    inst.records
+        .iter()
+        .any(|r| CURVES.contains(&r.name.as_str()))
 }
 
 /// Byte offsets of line starts, for a line and column from an offset.
@@ -191,7 +197,12 @@ struct LineIndex(Vec<usize>);
 impl LineIndex {
     fn new(text: &str) -> LineIndex {
         let mut starts = vec![0];
-        starts.extend(text.bytes().enumerate().filter(|(_, b)| *b == b'\n').map(|(i, _)| i + 1));
+        starts.extend(
+            text.bytes()
+                .enumerate()
+                .filter(|(_, b)| *b == b'\n')
+                .map(|(i, _)| i + 1),
+        );
         LineIndex(starts)
     }
 
@@ -211,7 +222,13 @@ enum Basis {
     /// `P(t) = p + t·d`.
     Line { p: DVec3, d: DVec3 },
     /// `P(t) = c + a·cos t·x + b·sin t·y` (x, y unit and orthogonal; t in radians).
-    Conic { c: DVec3, x: DVec3, y: DVec3, a: f64, b: f64 },
+    Conic {
+        c: DVec3,
+        x: DVec3,
+        y: DVec3,
+        a: f64,
+        b: f64,
+    },
     /// A B-spline or NURBS curve with its own parameters.
     Spline(Curve),
     /// Pieces already joined (a trimmed or composite curve): only used whole.
@@ -238,7 +255,11 @@ impl<'a> Model<'a> {
         let at = match self.instances.get(&id) {
             Some(inst) => {
                 let names: Vec<&str> = inst.records.iter().map(|r| r.name.as_str()).collect();
-                format!("#{id} {} (line {})", names.join(" "), self.lines.at(inst.offset).0)
+                format!(
+                    "#{id} {} (line {})",
+                    names.join(" "),
+                    self.lines.at(inst.offset).0
+                )
             }
             None => format!("#{id}"),
         };
@@ -267,7 +288,10 @@ impl<'a> Model<'a> {
     fn enter(&mut self, id: u64) -> R<()> {
         if self.resolving.contains(&id) {
             let chain: Vec<String> = self.resolving.iter().map(|i| format!("#{i}")).collect();
-            return Err(self.error(id, format!("refers to itself ({} → #{id})", chain.join(" → "))));
+            return Err(self.error(
+                id,
+                format!("refers to itself ({} → #{id})", chain.join(" → ")),
+            ));
         }
         if self.resolving.len() as u64 >= self.max_depth {
             return Err(self.error(
@@ -293,7 +317,9 @@ impl<'a> Model<'a> {
             Some(Value::Typed(_, inner)) if inner.len() == 1 => {
                 return self.real(id, inner.first(), what);
             }
-            other => return Err(self.error(id, format!("{what}: a number expected, found {other:?}"))),
+            other => {
+                return Err(self.error(id, format!("{what}: a number expected, found {other:?}")));
+            }
         };
         if x.is_finite() {
             Ok(x)
@@ -435,7 +461,10 @@ impl<'a> Model<'a> {
                 (DVec3::Z, x)
             }
             other => {
-                return Err(self.error(id, format!("an AXIS2_PLACEMENT expected, found {other} (used by #{from})")));
+                return Err(self.error(
+                    id,
+                    format!("an AXIS2_PLACEMENT expected, found {other} (used by #{from})"),
+                ));
             }
         };
         let z = z
@@ -472,7 +501,8 @@ impl<'a> Model<'a> {
                 if v.name != "VECTOR" {
                     return Err(self.error(vid, "a VECTOR expected"));
                 }
-                let d = self.direction(vid, self.reference(vid, v.params.get(1), "orientation")?)?;
+                let d =
+                    self.direction(vid, self.reference(vid, v.params.get(1), "orientation")?)?;
                 let mag = self.real(vid, v.params.get(2), "magnitude")?;
                 let d = d
                     .try_normalize()
@@ -567,7 +597,11 @@ impl<'a> Model<'a> {
         if mults.len() != values.len() {
             return Err(self.error(
                 id,
-                format!("{} knot multiplicities for {} knots", mults.len(), values.len()),
+                format!(
+                    "{} knot multiplicities for {} knots",
+                    mults.len(),
+                    values.len()
+                ),
             ));
         }
         let mut knots = Vec::new();
@@ -652,7 +686,9 @@ impl<'a> Model<'a> {
                 for s in segs {
                     let sid = self.reference(id, Some(s), "a segment")?;
                     let seg = &self.inst(id, sid)?.records[0];
-                    if seg.name != "COMPOSITE_CURVE_SEGMENT" && seg.name != "REPARAMETRISED_COMPOSITE_CURVE_SEGMENT" {
+                    if seg.name != "COMPOSITE_CURVE_SEGMENT"
+                        && seg.name != "REPARAMETRISED_COMPOSITE_CURVE_SEGMENT"
+                    {
                         return Err(self.error(sid, "a COMPOSITE_CURVE_SEGMENT expected"));
                     }
                     let same = self.boolean(sid, seg.params.get(1), "same_sense")?;
@@ -697,11 +733,26 @@ impl<'a> Model<'a> {
 
     /// A path of `segs`, closed when its ends meet.
     fn path(&self, id: u64, segs: Vec<PathSegment>) -> R<Curve> {
-        let (a, b) = (segs[0].points[0], *segs[segs.len() - 1].points.last().unwrap_or(&DVec3::ZERO));
-        let closed = segs.len() > 1 && Path::try_new(vec![
-            PathSegment { points: vec![b, b + DVec3::X], weights: None },
-            PathSegment { points: vec![a, a + DVec3::X], weights: None },
-        ], false).is_ok() && a.distance(b) <= 1e-12 * (1.0 + a.abs().max_element());
+        let (a, b) = (
+            segs[0].points[0],
+            *segs[segs.len() - 1].points.last().unwrap_or(&DVec3::ZERO),
+        );
+        let closed = segs.len() > 1
+            && Path::try_new(
+                vec![
+                    PathSegment {
+                        points: vec![b, b + DVec3::X],
+                        weights: None,
+                    },
+                    PathSegment {
+                        points: vec![a, a + DVec3::X],
+                        weights: None,
+                    },
+                ],
+                false,
+            )
+            .is_ok()
+            && a.distance(b) <= 1e-12 * (1.0 + a.abs().max_element());
         Path::try_new(segs, closed)
             .map(Curve::Path)
             .map_err(|e| self.error(id, e.to_string()))
@@ -751,7 +802,10 @@ impl<'a> Model<'a> {
         match basis {
             Basis::Line { p, d } => Ok(vec![self.path(
                 id,
-                vec![PathSegment { points: vec![*p + *d * t1, *p + *d * t2], weights: None }],
+                vec![PathSegment {
+                    points: vec![*p + *d * t1, *p + *d * t2],
+                    weights: None,
+                }],
             )?]),
             Basis::Conic { c, x, y, a, b } => {
                 let tau = std::f64::consts::TAU;
@@ -763,7 +817,11 @@ impl<'a> Model<'a> {
                     -(if s == 0.0 { tau } else { s })
                 };
                 let full = sweep.abs() >= tau;
-                let (start, sweep_pos) = if sweep > 0.0 { (t1, sweep) } else { (t1 + sweep, -sweep) };
+                let (start, sweep_pos) = if sweep > 0.0 {
+                    (t1, sweep)
+                } else {
+                    (t1 + sweep, -sweep)
+                };
                 let map = |u: DVec2| *c + *x * (a * u.x) + *y * (b * u.y);
                 let mut segs: Vec<PathSegment> = crate::dxf::unit_arc_pieces(start, sweep_pos)
                     .into_iter()
@@ -823,7 +881,10 @@ impl<'a> Model<'a> {
         self.leave();
         let basis = basis?;
         let closed_loop = a.distance(b) <= 1e-9 * (1.0 + a.abs().max_element());
-        let (ta, tb) = (self.parameter_of(id, &basis, a)?, self.parameter_of(id, &basis, b)?);
+        let (ta, tb) = (
+            self.parameter_of(id, &basis, a)?,
+            self.parameter_of(id, &basis, b)?,
+        );
         let curves = match &basis {
             Basis::Conic { .. } if closed_loop => {
                 self.trimmed(id, &basis, ta, ta + std::f64::consts::TAU, same)?
@@ -864,15 +925,31 @@ fn piece(curve: &Curve, t1: f64, t2: f64) -> Vec<PathSegment> {
         let (u0, u1) = (u0.clamp(0.0, 1.0), u1.clamp(0.0, 1.0));
         match &s.weights {
             None => {
-                let sub = if (u0, u1) == (0.0, 1.0) { s.bezier.clone() } else { s.bezier.subsegment(u0, u1) };
-                out.push(PathSegment { points: sub.points().to_vec(), weights: None });
+                let sub = if (u0, u1) == (0.0, 1.0) {
+                    s.bezier.clone()
+                } else {
+                    s.bezier.subsegment(u0, u1)
+                };
+                out.push(PathSegment {
+                    points: sub.points().to_vec(),
+                    weights: None,
+                });
             }
             Some(w) => {
-                let Ok(r) = splinescope_core::geom::RationalBezier::try_new(s.points().to_vec(), w.clone()) else {
+                let Ok(r) =
+                    splinescope_core::geom::RationalBezier::try_new(s.points().to_vec(), w.clone())
+                else {
                     continue;
                 };
-                let sub = if (u0, u1) == (0.0, 1.0) { r } else { r.subsegment(u0, u1) };
-                out.push(PathSegment { points: sub.points().to_vec(), weights: Some(sub.weights().to_vec()) });
+                let sub = if (u0, u1) == (0.0, 1.0) {
+                    r
+                } else {
+                    r.subsegment(u0, u1)
+                };
+                out.push(PathSegment {
+                    points: sub.points().to_vec(),
+                    weights: Some(sub.weights().to_vec()),
+                });
             }
         }
     }
@@ -910,7 +987,11 @@ fn nearest(curve: &Curve, q: DVec3) -> f64 {
     let (a, b) = (at(best_k.saturating_sub(1)), at((best_k + 1).min(n)));
     let mut t = best;
     for _ in 0..50 {
-        let (p, d1, d2) = (curve.eval(t), curve.eval_deriv(t), curve.eval_second_deriv(t));
+        let (p, d1, d2) = (
+            curve.eval(t),
+            curve.eval_deriv(t),
+            curve.eval_second_deriv(t),
+        );
         let f = (p - q).dot(d1);
         let df = d1.dot(d1) + (p - q).dot(d2);
         if df <= 0.0 || !df.is_finite() {
@@ -923,5 +1004,9 @@ fn nearest(curve: &Curve, q: DVec3) -> f64 {
         }
         t = next;
     }
-    if curve.eval(t).distance_squared(q) <= dist { t } else { best }
+    if curve.eval(t).distance_squared(q) <= dist {
+        t
+    } else {
+        best
+    }
 }

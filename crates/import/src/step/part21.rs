@@ -89,7 +89,9 @@ fn ws(i: &mut &str) -> ModalResult<()> {
 fn keyword<'i>(i: &mut &'i str) -> ModalResult<&'i str> {
     (
         one_of(|c: char| c.is_ascii_alphabetic() || c == '!' || c == '_'),
-        take_while(0.., |c: char| c.is_ascii_alphanumeric() || c == '_' || c == '-'),
+        take_while(0.., |c: char| {
+            c.is_ascii_alphanumeric() || c == '_' || c == '-'
+        }),
     )
         .take()
         .parse_next(i)
@@ -114,18 +116,15 @@ fn number(i: &mut &str) -> ModalResult<Value> {
             .map_err(|_| ErrMode::Cut(ContextError::new()))
     } else {
         // Integers past i64 are reals in all but name.
-        Ok(text
-            .parse::<i64>()
-            .map_or_else(|_| Value::Real(text.parse().unwrap_or(f64::NAN)), Value::Int))
+        Ok(text.parse::<i64>().map_or_else(
+            |_| Value::Real(text.parse().unwrap_or(f64::NAN)),
+            Value::Int,
+        ))
     }
 }
 
 fn string(i: &mut &str) -> ModalResult<Value> {
-    let parts: Vec<&str> = preceded(
-        '\'',
-        cut_err(terminated_string),
-    )
-    .parse_next(i)?;
+    let parts: Vec<&str> = preceded('\'', cut_err(terminated_string)).parse_next(i)?;
     Ok(Value::Str(parts.join("'")))
 }
 
@@ -143,9 +142,13 @@ fn terminated_string<'i>(i: &mut &'i str) -> ModalResult<Vec<&'i str>> {
 }
 
 fn enumeration(i: &mut &str) -> ModalResult<Value> {
-    delimited('.', take_while(1.., |c: char| c.is_ascii_alphanumeric() || c == '_'), '.')
-        .map(|s: &str| Value::Enum(s.to_owned()))
-        .parse_next(i)
+    delimited(
+        '.',
+        take_while(1.., |c: char| c.is_ascii_alphanumeric() || c == '_'),
+        '.',
+    )
+    .map(|s: &str| Value::Enum(s.to_owned()))
+    .parse_next(i)
 }
 
 fn reference(i: &mut &str) -> ModalResult<Value> {
@@ -234,7 +237,10 @@ pub fn parse(text: &str, bounds: Bounds) -> Result<HashMap<u64, Instance>, Synta
     let mut instances = HashMap::new();
     let head: ModalResult<_> = (ws, literal("ISO-10303-21"), ws, ';').parse_next(&mut i);
     if head.is_err() {
-        return Err(fail(i, "not a STEP file: it does not begin with ISO-10303-21;".to_owned()));
+        return Err(fail(
+            i,
+            "not a STEP file: it does not begin with ISO-10303-21;".to_owned(),
+        ));
     }
     loop {
         // Sections: HEADER (skipped record by record), DATA, ANCHOR/REFERENCE/SIGNATURE
@@ -246,7 +252,8 @@ pub fn parse(text: &str, bounds: Bounds) -> Result<HashMap<u64, Instance>, Synta
         if i.starts_with("END-ISO-10303-21") {
             return Ok(instances);
         }
-        let section = keyword(&mut i).map_err(|_| fail(i, "a section (HEADER; or DATA;) expected".to_owned()))?;
+        let section = keyword(&mut i)
+            .map_err(|_| fail(i, "a section (HEADER; or DATA;) expected".to_owned()))?;
         let section = section.to_ascii_uppercase();
         // DATA may carry a name and schema list: DATA('name', ('schema'));
         let _ = ws(&mut i);
@@ -256,7 +263,11 @@ pub fn parse(text: &str, bounds: Bounds) -> Result<HashMap<u64, Instance>, Synta
                 .map_err(|_| fail(i, format!("{section}'s parameters do not parse")))?;
         }
         let _ = ws(&mut i);
-        if ';'.parse_next(&mut i).map_err(|_: ErrMode<ContextError>| ()).is_err() {
+        if ';'
+            .parse_next(&mut i)
+            .map_err(|_: ErrMode<ContextError>| ())
+            .is_err()
+        {
             return Err(fail(i, format!("';' expected after {section}")));
         }
         loop {
@@ -264,13 +275,20 @@ pub fn parse(text: &str, bounds: Bounds) -> Result<HashMap<u64, Instance>, Synta
             if i.len() >= 6 && i[..6].eq_ignore_ascii_case("ENDSEC") {
                 i = &i[6..];
                 let _ = ws(&mut i);
-                if ';'.parse_next(&mut i).map_err(|_: ErrMode<ContextError>| ()).is_err() {
+                if ';'
+                    .parse_next(&mut i)
+                    .map_err(|_: ErrMode<ContextError>| ())
+                    .is_err()
+                {
                     return Err(fail(i, "';' expected after ENDSEC".to_owned()));
                 }
                 break;
             }
             if i.is_empty() {
-                return Err(fail(i, format!("the file ends inside the {section} section")));
+                return Err(fail(
+                    i,
+                    format!("the file ends inside the {section} section"),
+                ));
             }
             let offset = at(i);
             if section == "DATA" {
@@ -279,7 +297,11 @@ pub fn parse(text: &str, bounds: Bounds) -> Result<HashMap<u64, Instance>, Synta
                     _ => return Err(fail(i, "an instance (#id = …;) expected".to_owned())),
                 };
                 let _ = ws(&mut i);
-                if '='.parse_next(&mut i).map_err(|_: ErrMode<ContextError>| ()).is_err() {
+                if '='
+                    .parse_next(&mut i)
+                    .map_err(|_: ErrMode<ContextError>| ())
+                    .is_err()
+                {
                     return Err(fail(i, format!("'=' expected after #{id}")));
                 }
                 let _ = ws(&mut i);
@@ -288,24 +310,34 @@ pub fn parse(text: &str, bounds: Bounds) -> Result<HashMap<u64, Instance>, Synta
                     let rs: Result<Vec<Record>, _> =
                         repeat(1.., record(bounds.depth)).parse_next(&mut i);
                     let rs = rs.map_err(|e| syntax_at(i, total, id, &e))?;
-                    if ')'.parse_next(&mut i).map_err(|_: ErrMode<ContextError>| ()).is_err() {
-                        return Err(fail(i, format!("#{id}: ')' expected to close the complex instance")));
+                    if ')'
+                        .parse_next(&mut i)
+                        .map_err(|_: ErrMode<ContextError>| ())
+                        .is_err()
+                    {
+                        return Err(fail(
+                            i,
+                            format!("#{id}: ')' expected to close the complex instance"),
+                        ));
                     }
                     rs
                 } else {
-                    vec![record(bounds.depth)
-                        .parse_next(&mut i)
-                        .map_err(|e| syntax_at(i, total, id, &e))?]
+                    vec![
+                        record(bounds.depth)
+                            .parse_next(&mut i)
+                            .map_err(|e| syntax_at(i, total, id, &e))?,
+                    ]
                 };
                 let _ = ws(&mut i);
-                if ';'.parse_next(&mut i).map_err(|_: ErrMode<ContextError>| ()).is_err() {
+                if ';'
+                    .parse_next(&mut i)
+                    .map_err(|_: ErrMode<ContextError>| ())
+                    .is_err()
+                {
                     return Err(fail(i, format!("#{id}: ';' expected after the instance")));
                 }
                 if instances.len() as u64 >= bounds.instances {
-                    return Err(fail(
-                        i,
-                        format!("more than {} instances", bounds.instances),
-                    ));
+                    return Err(fail(i, format!("more than {} instances", bounds.instances)));
                 }
                 if instances.insert(id, Instance { records, offset }).is_some() {
                     return Err(SyntaxError {
@@ -318,7 +350,11 @@ pub fn parse(text: &str, bounds: Bounds) -> Result<HashMap<u64, Instance>, Synta
                     .parse_next(&mut i)
                     .map_err(|_| fail(i, format!("a record of the {section} section expected")))?;
                 let _ = ws(&mut i);
-                if ';'.parse_next(&mut i).map_err(|_: ErrMode<ContextError>| ()).is_err() {
+                if ';'
+                    .parse_next(&mut i)
+                    .map_err(|_: ErrMode<ContextError>| ())
+                    .is_err()
+                {
                     return Err(fail(i, format!("';' expected in the {section} section")));
                 }
             }
