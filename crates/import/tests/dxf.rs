@@ -81,10 +81,10 @@ fn scenes() -> Vec<Scene> {
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes");
     for entry in std::fs::read_dir(dir).expect("scenes/") {
         let p = entry.unwrap().path();
-        if p.extension().is_some_and(|e| e == "json") {
-            if let Ok(s) = Scene::load(&p) {
-                out.push(s);
-            }
+        if p.extension().is_some_and(|e| e == "json")
+            && let Ok(s) = Scene::load(&p)
+        {
+            out.push(s);
         }
     }
     // Random curves of every family and degree, 2D and 3D, at scales from 1e-6 to 1e6.

@@ -368,14 +368,12 @@ impl<'a> Model<'a> {
             if has("LENGTH_UNIT") && unit.is_none() {
                 unit = Some(self.unit_name(id, inst));
             }
-            if has("PLANE_ANGLE_UNIT") {
-                if let Some(r) = self.record(id, "CONVERSION_BASED_UNIT") {
-                    if let Some(Value::Str(n)) = r.params.first() {
-                        if n.eq_ignore_ascii_case("DEGREE") || n.eq_ignore_ascii_case("DEGREES") {
-                            self.angle = std::f64::consts::PI / 180.0;
-                        }
-                    }
-                }
+            if has("PLANE_ANGLE_UNIT")
+                && let Some(r) = self.record(id, "CONVERSION_BASED_UNIT")
+                && let Some(Value::Str(n)) = r.params.first()
+                && (n.eq_ignore_ascii_case("DEGREE") || n.eq_ignore_ascii_case("DEGREES"))
+            {
+                self.angle = std::f64::consts::PI / 180.0;
             }
         }
         Ok(unit.unwrap_or_else(|| "unitless (the file names no length unit)".to_owned()))
@@ -704,10 +702,10 @@ impl<'a> Model<'a> {
                         segs = reversed(segs);
                     }
                     // A joint that does not meet starts a new curve.
-                    if let (Some(last), Some(first)) = (out.last(), segs.first()) {
-                        if Path::try_new(vec![last.clone(), first.clone()], false).is_err() {
-                            curves.push(self.path(id, std::mem::take(&mut out))?);
-                        }
+                    if let (Some(last), Some(first)) = (out.last(), segs.first())
+                        && Path::try_new(vec![last.clone(), first.clone()], false).is_err()
+                    {
+                        curves.push(self.path(id, std::mem::take(&mut out))?);
                     }
                     out.extend(segs);
                 }
@@ -731,28 +729,16 @@ impl<'a> Model<'a> {
         }
     }
 
-    /// A path of `segs`, closed when its ends meet.
+    /// A path of `segs`, closed when its ends meet (to rounding).
     fn path(&self, id: u64, segs: Vec<PathSegment>) -> R<Curve> {
-        let (a, b) = (
-            segs[0].points[0],
-            *segs[segs.len() - 1].points.last().unwrap_or(&DVec3::ZERO),
-        );
-        let closed = segs.len() > 1
-            && Path::try_new(
-                vec![
-                    PathSegment {
-                        points: vec![b, b + DVec3::X],
-                        weights: None,
-                    },
-                    PathSegment {
-                        points: vec![a, a + DVec3::X],
-                        weights: None,
-                    },
-                ],
-                false,
-            )
-            .is_ok()
-            && a.distance(b) <= 1e-12 * (1.0 + a.abs().max_element());
+        let a = segs.first().and_then(|s| s.points.first()).copied();
+        let b = segs.last().and_then(|s| s.points.last()).copied();
+        let closed = match (a, b) {
+            (Some(a), Some(b)) => {
+                segs.len() > 1 && a.distance(b) <= 1e-12 * (1.0 + a.abs().max_element())
+            }
+            _ => false,
+        };
         Path::try_new(segs, closed)
             .map(Curve::Path)
             .map_err(|e| self.error(id, e.to_string()))
@@ -763,14 +749,14 @@ impl<'a> Model<'a> {
     fn trim_parameter(&self, id: u64, basis: &Basis, v: Option<&Value>, what: &str) -> R<f64> {
         let l = self.list(id, v, what)?;
         for x in l {
-            if let Value::Typed(n, inner) = x {
-                if n == "PARAMETER_VALUE" {
-                    let t = self.real(id, inner.first(), what)?;
-                    return Ok(match basis {
-                        Basis::Conic { .. } => t * self.angle,
-                        _ => t,
-                    });
-                }
+            if let Value::Typed(n, inner) = x
+                && n == "PARAMETER_VALUE"
+            {
+                let t = self.real(id, inner.first(), what)?;
+                return Ok(match basis {
+                    Basis::Conic { .. } => t * self.angle,
+                    _ => t,
+                });
             }
         }
         for x in l {
