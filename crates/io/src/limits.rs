@@ -81,18 +81,19 @@ pub const FIGURE_PIECES: Limit = Limit {
     default: 1 << 18,
 };
 
-/// Elements an imported file (SVG) is read as, counted after every `<use>` is expanded:
-/// a file of a few kilobytes can reference its own groups into billions of elements.
+/// Elements an imported file is read as: SVG elements counted after every `<use>` is
+/// expanded, DXF entities after every block is inserted, STEP instances. A file of a few
+/// kilobytes can reference its own groups into billions of elements.
 pub const IMPORT_ELEMENTS: Limit = Limit {
-    what: "elements per imported file (after <use> expansion)",
+    what: "elements per imported file (SVG after <use> expansion, DXF after block insertion, STEP instances)",
     var: "SPLINESCOPE_MAX_IMPORT_ELEMENTS",
     default: 1_000_000,
 };
 
-/// Nesting of an imported file's groups and `<use>` references: the reader recurses
-/// through them.
+/// Nesting of an imported file's groups and `<use>` references, DXF block inserts, STEP
+/// lists and chains of references: the readers recurse through them.
 pub const IMPORT_DEPTH: Limit = Limit {
-    what: "for the nesting of groups and references in an imported file",
+    what: "for the nesting of groups, inserts, lists and references in an imported file",
     var: "SPLINESCOPE_MAX_IMPORT_DEPTH",
     default: 256,
 };
