@@ -3,8 +3,12 @@
 //! TrueType outlines stay quadratic (an implied on-curve point is the exact midpoint of its
 //! two off-curve neighbours), CFF and CFF2 outlines cubic; a closing line only where the
 //! last point differs from the first; composite glyphs with their components' transforms;
-//! variable fonts at a location. Outlines are read by `skrifa` (Google's font reader),
-//! unhinted and unscaled.
+//! variable fonts at a location. TrueType outlines are read by `skrifa` (Google's font
+//! reader), unhinted and unscaled (their coordinates are integers, or at a variable font's
+//! location within `f32` of it); CFF and CFF2 charstrings are evaluated by `read-fonts`
+//! (under `skrifa`) into a sink that takes their 16.16 fixed-point values, so that every
+//! coordinate arrives exactly (skrifa's pen would round it to `f32`) and no segment is
+//! dropped (its pen leaves out lines of length zero that the font draws).
 //!
 //! What to open: every glyph on a grid in glyph order, some glyphs (names or ids), or a
 //! text laid out by the font's advances (no shaping, no kerning). One glyph sits at its
@@ -13,6 +17,9 @@
 use glam::DVec3;
 use skrifa::prelude::{LocationRef, Size};
 use skrifa::raw::TableProvider;
+use skrifa::raw::ps::cff::CffFontRef;
+use skrifa::raw::ps::cs::CommandSink;
+use skrifa::raw::types::{Fixed, Tag};
 use skrifa::{FontRef, GlyphId, MetadataProvider, outline::DrawSettings, outline::OutlinePen};
 use splinescope_core::geom::{Curve, Path, PathSegment};
 use splinescope_scene::format::{Color, Scene, SceneCurve, Style};
@@ -63,6 +70,44 @@ impl Contours {
         }
         let segs = std::mem::take(&mut self.current);
         self.done.push((segs, closed));
+    }
+}
+
+impl Contours {
+    fn fixed(&self, x: Fixed, y: Fixed) -> DVec3 {
+        // 16.16 values: `to_bits / 65536` is exact in `f64`.
+        DVec3::new(
+            f64::from(x.to_bits()) / 65536.0,
+            f64::from(y.to_bits()) / 65536.0,
+            0.0,
+        ) + self.offset
+    }
+}
+
+/// The CFF charstring evaluator's commands, exactly (a pen would take them as `f32`).
+struct Exact<'a>(&'a mut Contours);
+
+impl CommandSink for Exact<'_> {
+    fn move_to(&mut self, x: Fixed, y: Fixed) {
+        let c = &mut *self.0;
+        c.finish(false);
+        c.start = c.fixed(x, y);
+        c.at = c.start;
+    }
+
+    fn line_to(&mut self, x: Fixed, y: Fixed) {
+        let p = self.0.fixed(x, y);
+        self.0.push(vec![self.0.at, p]);
+    }
+
+    fn curve_to(&mut self, cx0: Fixed, cy0: Fixed, cx1: Fixed, cy1: Fixed, x: Fixed, y: Fixed) {
+        let c = &mut *self.0;
+        let (c0, c1, p) = (c.fixed(cx0, cy0), c.fixed(cx1, cy1), c.fixed(x, y));
+        c.push(vec![c.at, c0, c1, p]);
+    }
+
+    fn close(&mut self) {
+        self.0.finish(true);
     }
 }
 
@@ -208,6 +253,20 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
         }
     };
     let outlines = font.outline_glyphs();
+    // A CFF or CFF2 font (no glyf table) with the default font matrix: its charstrings
+    // evaluated exactly (a font matrix other than the default scales coordinates: such a
+    // font is drawn through skrifa's pen).
+    let cff_data = if font.table_data(Tag::new(b"glyf")).is_some() {
+        None
+    } else {
+        font.table_data(Tag::new(b"CFF "))
+            .or_else(|| font.table_data(Tag::new(b"CFF2")))
+    };
+    let cff = cff_data
+        .as_ref()
+        .and_then(|d| CffFontRef::new(d.as_bytes(), 0, Some(upem as i32)).ok())
+        .filter(|c| c.matrix().is_none());
+    let coords = location.coords();
     let max_curves = limits::CURVES
         .value()
         .map_err(|source| ImportError::Limit {
@@ -231,13 +290,38 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
             offset,
             ..Contours::default()
         };
-        let settings = DrawSettings::unhinted(Size::unscaled(), LocationRef::from(&location));
-        glyph.draw(settings, &mut pen).map_err(|e| {
-            font_error(
-                file,
-                format!("glyph {}: cannot be drawn: {e}", glyph_name(gid)),
-            )
-        })?;
+        let exact = cff.as_ref().map(|c| {
+            let index = c.subfont_index(gid).unwrap_or(0);
+            let subfont = c.subfont(index, coords)?;
+            if subfont.matrix().is_some() {
+                return Err(skrifa::raw::ps::error::Error::InvalidFontFormat);
+            }
+            c.evaluate_charstring(&subfont, gid, coords, &mut Exact(&mut pen))
+                .map(|_| ())
+        });
+        match exact {
+            Some(Ok(())) => {}
+            Some(Err(e)) if !matches!(e, skrifa::raw::ps::error::Error::InvalidFontFormat) => {
+                return Err(font_error(
+                    file,
+                    format!("glyph {}: cannot be drawn: {e}", glyph_name(gid)),
+                ));
+            }
+            _ => {
+                pen = Contours {
+                    offset,
+                    ..Contours::default()
+                };
+                let settings =
+                    DrawSettings::unhinted(Size::unscaled(), LocationRef::from(&location));
+                glyph.draw(settings, &mut pen).map_err(|e| {
+                    font_error(
+                        file,
+                        format!("glyph {}: cannot be drawn: {e}", glyph_name(gid)),
+                    )
+                })?;
+            }
+        }
         pen.finish(false);
         let name = glyph_name(gid);
         for (k, (segs, closed)) in pen.done.into_iter().enumerate() {
