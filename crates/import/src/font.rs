@@ -60,6 +60,15 @@ impl Contours {
         self.current.push(PathSegment::polynomial(points));
     }
 
+    /// Ready for the next glyph, placed at `offset`.
+    fn reset(&mut self, offset: DVec3) {
+        self.done.clear();
+        self.current.clear();
+        self.offset = offset;
+        self.start = offset;
+        self.at = offset;
+    }
+
     fn finish(&mut self, closed: bool) {
         if self.current.is_empty() {
             return;
@@ -68,7 +77,8 @@ impl Contours {
             let (a, b) = (self.at, self.start);
             self.current.push(PathSegment::polynomial(vec![a, b]));
         }
-        let segs = std::mem::take(&mut self.current);
+        // The scratch vector keeps its capacity; the contour gets one of its own size.
+        let segs: Vec<PathSegment> = self.current.drain(..).collect();
         self.done.push((segs, closed));
     }
 }
@@ -273,7 +283,8 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
             file: file.to_owned(),
             source,
         })?;
-    let mut curves = Vec::new();
+    // About two contours a glyph: one allocation for most fonts.
+    let mut curves = Vec::with_capacity(placed.len().saturating_mul(2).min(1 << 20));
     let style = {
         let mut s = Style::default_for(0);
         s.color = Color::from_rgba8([34, 34, 34, 255]);
@@ -282,14 +293,13 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
         s.show_points = false;
         s
     };
+    // One pen for every glyph: its scratch vectors keep their capacity.
+    let mut pen = Contours::default();
     for (gid, offset) in placed {
         let Some(glyph) = outlines.get(gid) else {
             continue;
         };
-        let mut pen = Contours {
-            offset,
-            ..Contours::default()
-        };
+        pen.reset(offset);
         let exact = cff.as_ref().map(|c| {
             let index = c.subfont_index(gid).unwrap_or(0);
             let subfont = c.subfont(index, coords)?;
@@ -308,10 +318,7 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
                 ));
             }
             _ => {
-                pen = Contours {
-                    offset,
-                    ..Contours::default()
-                };
+                pen.reset(offset);
                 let settings =
                     DrawSettings::unhinted(Size::unscaled(), LocationRef::from(&location));
                 glyph.draw(settings, &mut pen).map_err(|e| {
@@ -324,7 +331,7 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
         }
         pen.finish(false);
         let name = glyph_name(gid);
-        for (k, (segs, closed)) in pen.done.into_iter().enumerate() {
+        for (k, (segs, closed)) in pen.done.drain(..).enumerate() {
             if curves.len() as u64 >= max_curves {
                 return Err(font_error(
                     file,

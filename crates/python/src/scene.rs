@@ -158,6 +158,22 @@ impl PyScene {
         self.scene.unit.clone()
     }
 
+    /// How many curves (without copying them).
+    fn __len__(&self) -> usize {
+        self.scene.curves.len()
+    }
+
+    /// Curve `index` (from 0, in range: the Python layer checks it), alone.
+    fn curve_at(&self, index: usize) -> PyResult<PyCurve> {
+        let planar = self.scene.curves.iter().all(|c| c.curve.is_planar());
+        let dim = if planar { 2 } else { 3 };
+        self.scene
+            .curves
+            .get(index)
+            .map(|c| PyCurve::new(c.clone(), Some(dim)))
+            .ok_or_else(|| pyo3::exceptions::PyIndexError::new_err(format!("curve index {index}")))
+    }
+
     /// The curves, in order.
     #[getter]
     fn curves(&self) -> Vec<PyCurve> {

@@ -86,7 +86,8 @@ fn checked(s: &PathSegment) -> Result<Option<RationalBezier>, GeomError> {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Path {
     segments: Vec<PathSegment>,
-    /// Per segment, the rational curve a rational one evaluates by.
+    /// Per segment, the rational curve a rational one evaluates by; empty when no
+    /// segment is rational (a font's thousands of contours allocate nothing for it).
     rational: Vec<Option<RationalBezier>>,
     points: Vec<DVec3>,
     closed: bool,
@@ -121,16 +122,20 @@ impl Path {
         if segments.is_empty() {
             return Err(GeomError::NoSegments);
         }
-        let rational = segments
-            .iter()
-            .enumerate()
-            .map(|(segment, s)| {
-                checked(s).map_err(|e| GeomError::InSegment {
-                    segment,
-                    error: Box::new(e),
-                })
-            })
-            .collect::<Result<Vec<_>, GeomError>>()?;
+        let mut rational: Vec<Option<RationalBezier>> = Vec::new();
+        for (segment, s) in segments.iter().enumerate() {
+            let r = checked(s).map_err(|e| GeomError::InSegment {
+                segment,
+                error: Box::new(e),
+            })?;
+            if let Some(r) = r {
+                rational.resize_with(segment, || None);
+                rational.push(Some(r));
+            }
+        }
+        if !rational.is_empty() {
+            rational.resize_with(segments.len(), || None);
+        }
         let k = segments.len();
         let joints = if closed { k } else { k - 1 };
         for joint in 0..joints {
@@ -139,7 +144,9 @@ impl Path {
                 return Err(GeomError::PathGap { joint, next, gap });
             }
         }
-        let mut points: Vec<DVec3> = segments[0].points.clone();
+        let mut points: Vec<DVec3> =
+            Vec::with_capacity(segments.iter().map(|s| s.points.len()).sum::<usize>() + 1);
+        points.extend_from_slice(&segments[0].points);
         for s in &segments[1..] {
             points.extend_from_slice(&s.points[1..]);
         }
@@ -204,7 +211,7 @@ impl ParamCurve for Path {
 
     fn eval(&self, t: f64) -> DVec3 {
         let (k, u) = self.locate(t);
-        match &self.rational[k] {
+        match self.rational.get(k).and_then(Option::as_ref) {
             Some(r) => r.eval(u),
             None => de_casteljau(&self.segments[k].points, u),
         }
@@ -212,7 +219,7 @@ impl ParamCurve for Path {
 
     fn eval_deriv(&self, t: f64) -> DVec3 {
         let (k, u) = self.locate(t);
-        match &self.rational[k] {
+        match self.rational.get(k).and_then(Option::as_ref) {
             Some(r) => r.eval_deriv(u),
             None => deriv_at(&self.segments[k].points, u),
         }
@@ -220,7 +227,7 @@ impl ParamCurve for Path {
 
     fn eval_second_deriv(&self, t: f64) -> DVec3 {
         let (k, u) = self.locate(t);
-        match &self.rational[k] {
+        match self.rational.get(k).and_then(Option::as_ref) {
             Some(r) => r.eval_second_deriv(u),
             None => second_deriv_at(&self.segments[k].points, u),
         }

@@ -1252,25 +1252,24 @@ class Scene:
     # -- a sequence of curves ---------------------------------------------------------
 
     def __len__(self) -> int:
-        return len(self._s.curves)
+        return len(self._s)
 
     def __getitem__(self, index: Any) -> Any:
         """``scene[i]`` the ``i``-th curve (negative from the end), ``scene[a:b]`` a list of
         curves; an index out of range is an :class:`IndexError` naming it."""
-        curves = self._s.curves
         if isinstance(index, slice):
-            return [Curve._wrap(c) for c in curves[index]]
+            return [Curve._wrap(c) for c in self._s.curves[index]]
         if isinstance(index, (bool, np.bool_)) or not isinstance(index, (int, np.integer)):
             raise TypeError(
                 f"scene indices must be integers or slices, not {type(index).__name__} {index!r}"
             )
-        n = len(curves)
+        n = len(self._s)
         if not -n <= int(index) < n:
             raise IndexError(
                 f"curve index {int(index)} is out of range: the scene has {n} curve"
                 + ("" if n == 1 else "s")
             )
-        return Curve._wrap(curves[int(index)])
+        return Curve._wrap(self._s.curve_at(int(index) % n))
 
     def __iter__(self) -> Iterator[Curve]:
         return iter(self.curves)
