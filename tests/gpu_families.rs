@@ -236,7 +236,7 @@ fn random_curves_of_every_family_match_up_to_the_maximum_degree() {
                 let weights = (k % 2 == 1)
                     .then(|| (0..=n).map(|_| 2f64.powf(rng.range(-2.0, 2.0))).collect());
                 segments.push(PathSegment {
-                    points: pts,
+                    points: pts.into(),
                     weights,
                 });
             }

@@ -349,7 +349,7 @@ impl<'a> Reader<'a> {
             }
             EntityType::Line(l) => vec![Pieces {
                 segments: vec![PathSegment {
-                    points: vec![v3(&l.p1), v3(&l.p2)],
+                    points: vec![v3(&l.p1), v3(&l.p2)].into(),
                     weights: None,
                 }],
                 closed: false,
@@ -627,7 +627,7 @@ fn polyline_3d(pts: &[DVec3], closed: bool) -> Pieces {
         let (a, b) = (pts[k], pts[(k + 1) % n]);
         if a != b {
             segments.push(PathSegment {
-                points: vec![a, b],
+                points: vec![a, b].into(),
                 weights: None,
             });
         }

@@ -114,7 +114,7 @@ fn every_path_command_gives_its_control_points() {
     assert_eq!(i.scene.curves.len(), 2, "two subpaths");
     let p = path(&i, 0);
     assert!(p.is_closed());
-    let pts: Vec<Vec<DVec3>> = p.segments().iter().map(|s| s.points.clone()).collect();
+    let pts: Vec<Vec<DVec3>> = p.segments().iter().map(|s| s.points.to_vec()).collect();
     let f = |x: f64, y: f64| flip(x, y);
     assert_eq!(
         pts,
@@ -135,7 +135,10 @@ fn every_path_command_gives_its_control_points() {
     );
     // After Z, m is relative to the subpath's start.
     let q = path(&i, 1);
-    assert_eq!(q.segments()[0].points, vec![f(15.0, 15.0), f(16.0, 15.0)]);
+    assert_eq!(
+        q.segments()[0].points.to_vec(),
+        vec![f(15.0, 15.0), f(16.0, 15.0)]
+    );
     assert!(!q.is_closed());
 }
 
@@ -150,14 +153,14 @@ fn transforms_groups_and_use_place_the_geometry() {
     assert_eq!(i.scene.curves.len(), 3);
     // translate(20, 30) · scale(2) · translate(1, 2): (0, 0) → (22, 34), (10, 0) → (42, 34).
     assert_eq!(
-        path(&i, 0).segments()[0].points,
+        path(&i, 0).segments()[0].points.to_vec(),
         vec![flip(22.0, 34.0), flip(42.0, 34.0)]
     );
     // rotate(90) takes (0, 5) to (−5, 0); then scale and translate: (10, 30).
     let l = &path(&i, 1).segments()[0].points;
     assert!((l[1] - flip(10.0, 30.0)).length() < 1e-12, "{l:?}");
     assert_eq!(
-        path(&i, 2).segments()[0].points,
+        path(&i, 2).segments()[0].points.to_vec(),
         vec![flip(5.0, 5.0), flip(15.0, 5.0)]
     );
 }

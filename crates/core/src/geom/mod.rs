@@ -38,7 +38,7 @@ pub use lowering::{BezierSegment, Lower, locate, max_degree};
 pub use modified::ModifiedBezier;
 pub use nubmp::Nubmp;
 pub use nurbs_form::NurbsForm;
-pub use path::{Path, PathSegment};
+pub use path::{Path, PathSegment, SegmentPoints};
 pub use rational::{Conic, Nurbs, RationalBezier};
 
 use glam::DVec3;

@@ -24,12 +24,17 @@ use super::family::Family;
 use super::rational::normalised_weights;
 use super::{Bezier, BezierSegment, GeomError, Lower, ParamCurve, RationalBezier};
 
+/// A segment's control points: up to a cubic's four held inline (a font or a drawing
+/// has hundreds of thousands of segments; one allocation each would cost most of reading
+/// it), more on the heap.
+pub type SegmentPoints = smallvec::SmallVec<[DVec3; 4]>;
+
 /// One segment of a path: its control points `P_0 … P_n` (degree `n ≥ 1`) and, for a
 /// rational segment, one weight per point.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PathSegment {
     /// The control points.
-    pub points: Vec<DVec3>,
+    pub points: SegmentPoints,
     /// The weights (each a finite number greater than 0) of a rational segment; `None`
     /// for a polynomial one.
     pub weights: Option<Vec<f64>>,
@@ -38,18 +43,18 @@ pub struct PathSegment {
 impl PathSegment {
     /// A polynomial segment.
     #[must_use]
-    pub fn polynomial(points: Vec<DVec3>) -> PathSegment {
+    pub fn polynomial(points: impl Into<SegmentPoints>) -> PathSegment {
         PathSegment {
-            points,
+            points: points.into(),
             weights: None,
         }
     }
 
     /// A rational segment.
     #[must_use]
-    pub fn rational(points: Vec<DVec3>, weights: Vec<f64>) -> PathSegment {
+    pub fn rational(points: impl Into<SegmentPoints>, weights: Vec<f64>) -> PathSegment {
         PathSegment {
-            points,
+            points: points.into(),
             weights: Some(weights),
         }
     }
@@ -78,7 +83,7 @@ fn checked(s: &PathSegment) -> Result<Option<RationalBezier>, GeomError> {
     }
     s.weights
         .as_ref()
-        .map(|w| RationalBezier::try_new(s.points.clone(), w.clone()))
+        .map(|w| RationalBezier::try_new(s.points.to_vec(), w.clone()))
         .transpose()
 }
 
@@ -245,7 +250,7 @@ impl Lower for Path {
                 // The weights as given (scaled by a power of two only when they lie
                 // beyond 2^±100), also when they are all equal.
                 BezierSegment {
-                    bezier: Bezier::new(s.points.clone()),
+                    bezier: Bezier::new(s.points.to_vec()),
                     weights: s.weights.as_deref().map(normalised_weights),
                     t0,
                     t1,

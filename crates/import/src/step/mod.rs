@@ -789,7 +789,7 @@ impl<'a> Model<'a> {
             Basis::Line { p, d } => Ok(vec![self.path(
                 id,
                 vec![PathSegment {
-                    points: vec![*p + *d * t1, *p + *d * t2],
+                    points: vec![*p + *d * t1, *p + *d * t2].into(),
                     weights: None,
                 }],
             )?]),
@@ -917,7 +917,7 @@ fn piece(curve: &Curve, t1: f64, t2: f64) -> Vec<PathSegment> {
                     s.bezier.subsegment(u0, u1)
                 };
                 out.push(PathSegment {
-                    points: sub.points().to_vec(),
+                    points: sub.points().to_vec().into(),
                     weights: None,
                 });
             }
@@ -933,7 +933,7 @@ fn piece(curve: &Curve, t1: f64, t2: f64) -> Vec<PathSegment> {
                     r.subsegment(u0, u1)
                 };
                 out.push(PathSegment {
-                    points: sub.points().to_vec(),
+                    points: sub.points().to_vec().into(),
                     weights: Some(sub.weights().to_vec()),
                 });
             }

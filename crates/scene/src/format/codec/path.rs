@@ -45,7 +45,10 @@ fn segment(node: &Node<'_>) -> Result<PathSegment, SceneError> {
         None => None,
         Some(w) => Some(w.numbers()?),
     };
-    Ok(PathSegment { points, weights })
+    Ok(PathSegment {
+        points: points.into(),
+        weights,
+    })
 }
 
 impl Codec for Path {
