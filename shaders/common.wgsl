@@ -89,7 +89,24 @@ struct LineStyle {
     width_px: f32,
     dash_px: f32,
     order: u32,
-    _padding1: u32,
+    flags: u32,
+}
+
+// Twin: LINE_WIDTH_IN_SCENE in crates/gpu/src/layout.rs.
+const LINE_WIDTH_IN_SCENE: u32 = 1u;
+
+// Twin: half_width_px in crates/gpu/src/layer_twin.rs. Half a style's line width in
+// pixels where the line is at clip-space `w`: its pixels times the display scale, or (a
+// width in scene units) its units times the pixels one unit spans there — the length of
+// the clip matrix's y row (the projection's scale, the view being rigid) times half the
+// viewport's height, over w. At most 16384: wider covers any viewport.
+fn half_width_px(style: LineStyle, cam: Camera, w: f32) -> f32 {
+    if ((style.flags & LINE_WIDTH_IN_SCENE) != 0u) {
+        let m = cam.clip_from_world;
+        let s = length(vec3<f32>(m[0][1], m[1][1], m[2][1]));
+        return min(0.25 * style.width_px * s * cam.viewport_px.y / max(w, 1e-6), 16384.0);
+    }
+    return 0.5 * style.width_px * cam.width_scale;
 }
 
 // Twin: EYE_W in src/gpu/layer_twin.rs. Clip-space w below which a drawn point counts as

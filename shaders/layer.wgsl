@@ -253,7 +253,7 @@ fn raster_curves(
                     style = curve_styles[min(a.id, styles)];
                     style_id = a.id;
                 }
-                raster_piece(clip_ends(ca, cb), style);
+                raster_piece(clip_ends(ca, cb), style, 0.5 * (ca.w + cb.w));
             }
             a = b;
             ca = cb;
@@ -263,12 +263,12 @@ fn raster_curves(
 
 // The anti-aliased pixels of one curve piece: along its major axis, the columns within
 // reach of its capsule, and in each the rows within reach of the piece there.
-fn raster_piece(ends: PixelEnds, style: LineStyle) {
+fn raster_piece(ends: PixelEnds, style: LineStyle, w: f32) {
     if (!ends.ok) {
         return;
     }
     let opacity = clamp(style.color.a, 0.0, 1.0) * 63.0;
-    let half_width = 0.5 * style.width_px * camera.width_scale;
+    let half_width = half_width_px(style, camera, w);
     let dash = style.dash_px * camera.width_scale;
     // Coverage is above 0 only within `reach` of the piece.
     let reach = half_width + 0.5;

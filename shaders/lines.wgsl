@@ -58,7 +58,7 @@ fn piece_corner(a: Vertex, b: Vertex, corner: u32) -> LineOut {
         dir = delta / len;
     }
     let normal = vec2<f32>(-dir.y, dir.x);
-    let half_width = 0.5 * style.width_px * camera.width_scale;
+    let half_width = half_width_px(style, camera, 0.5 * (ca.w + cb.w));
     // One pixel of margin for the anti-aliased edge.
     let r = half_width + 1.0;
     // A triangle strip of four corners: (start, -), (end, -), (start, +), (end, +).

@@ -507,3 +507,40 @@ fn negative_values_are_values() {
         assert!(!out.exists());
     }
 }
+
+/// A width in scene units is written in output points: the width times the points one
+/// unit spans in the figure's view (a 2D view of height 10 on a figure 800 high: 80).
+#[test]
+fn a_width_in_scene_units_scales_with_the_view() {
+    use splinescope::geom::Bezier;
+    let mut scene = scene_of(Curve::Bezier(Bezier::new(vec![
+        DVec3::new(-2.0, 0.0, 0.0),
+        DVec3::new(0.0, 2.0, 0.0),
+        DVec3::new(2.0, 0.0, 0.0),
+    ])));
+    scene.view = ViewSpec::TwoD {
+        center: DVec2::ZERO,
+        height: 10.0,
+    };
+    scene.curves[0].style.width = 0.25;
+    scene.curves[0].style.width_in_scene = true;
+    let fig = build(&scene, &FigureOptions::new(1200, 800)).expect("builds");
+    let widths: Vec<f32> = fig
+        .items
+        .iter()
+        .filter_map(|i| match i {
+            Item::Path {
+                stroke,
+                curve: Some(0),
+                ..
+            } => Some(stroke.width_px),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(widths.len(), 1, "{widths:?}");
+    assert!((widths[0] - 20.0).abs() <= 1e-4, "{widths:?}");
+    // In pixels, as it is.
+    scene.curves[0].style.width_in_scene = false;
+    let fig = build(&scene, &FigureOptions::new(1200, 800)).expect("builds");
+    assert!(fig.items.iter().any(|i| matches!(i, Item::Path { stroke, curve: Some(0), .. } if (stroke.width_px - 0.25).abs() < 1e-6)));
+}

@@ -465,6 +465,28 @@ fn the_layer_holds_what_its_twin_rasterizes() {
             "{} in perspective: {lit} pixels lit",
             backend.name
         );
+        // Every other curve's width in scene units (it zooms: its pixels follow the
+        // projection, in perspective varying with the depth), in 3D and in 2D.
+        for view in [scene.view, ViewSpec::Auto] {
+            let mut thin = scene.clone();
+            thin.view = view;
+            let prepared = common::pack(ctx, &thin);
+            let lit = layer_against_twin(backend, &thin, &prepared, &renderer, None);
+            let mut wide = thin.clone();
+            for (i, c) in wide.curves.iter_mut().enumerate() {
+                if i % 2 == 0 {
+                    c.style.width = 0.12;
+                    c.style.width_in_scene = true;
+                }
+            }
+            let prepared = common::pack(ctx, &wide);
+            let lit_wide = layer_against_twin(backend, &wide, &prepared, &renderer, None);
+            assert!(
+                lit_wide > lit,
+                "{} with widths in scene units ({view:?}): {lit_wide} pixels lit, {lit} at 2.5 px",
+                backend.name
+            );
+        }
     });
 }
 

@@ -139,6 +139,7 @@ fn single(curve: Bezier, width: f32, samples: u32) -> Scene {
             style: Style {
                 color: Color([0.0, 0.0, 0.0, 1.0]),
                 width,
+                width_in_scene: false,
                 show_polygon: false,
                 show_points: false,
                 samples: None,

@@ -85,10 +85,48 @@ fn covered(a: &[bool], b: &[bool], w: usize, h: usize, r: i64) -> f64 {
     inside as f64 / total.max(1) as f64
 }
 
+/// Strokes of several widths under transforms (uniform scales: a non-uniform one makes an
+/// SVG stroke's width depend on its direction, which one width per curve cannot draw),
+/// with round caps and joins (what the renderer draws).
+const WIDE: &str = r##"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 240 160">
+  <style>* { fill: none; stroke: black; stroke-linecap: round; stroke-linejoin: round }</style>
+  <circle cx="50" cy="50" r="28" stroke-width="6"/>
+  <g transform="scale(2)" stroke-width="3"><ellipse cx="60" cy="25" rx="12" ry="6"/></g>
+  <g transform="translate(150 100) rotate(20) scale(1.5)"><path d="M 0 0 C 10 -30 40 -30 50 0" stroke-width="4"/></g>
+  <polyline points="20,140 60,110 100,140" stroke-width="5"/>
+  <line x1="120" y1="150" x2="220" y2="150" stroke-width="0.5"/>
+</svg>"##;
+
 #[test]
 fn an_svg_file_is_drawn_as_resvg_draws_it() {
-    let imported = splinescope::import::svg::read(FILE, "all.svg").expect("reads");
-    assert_eq!(imported.scene.curves.len(), 9, "{:?}", imported.warnings);
+    drawn_as_resvg_draws(FILE, "all", 9);
+}
+
+#[test]
+fn strokes_keep_their_width_in_user_units_scaled_by_the_transform() {
+    let imported = splinescope::import::svg::read(WIDE, "wide.svg").expect("reads");
+    let widths: Vec<f32> = imported
+        .scene
+        .curves
+        .iter()
+        .map(|c| c.style.width)
+        .collect();
+    // 6; 3 × 2; 4 × 1.5; 5; 0.5 — in user units, the scene's.
+    assert_eq!(widths.len(), 5);
+    for (w, want) in widths.iter().zip([6.0, 6.0, 6.0, 5.0, 0.5]) {
+        assert!((w - want).abs() <= 1e-5, "{widths:?}");
+    }
+    drawn_as_resvg_draws(WIDE, "wide", 5);
+}
+
+fn drawn_as_resvg_draws(file: &str, name: &str, curves: usize) {
+    let imported = splinescope::import::svg::read(file, &format!("{name}.svg")).expect("reads");
+    assert_eq!(
+        imported.scene.curves.len(),
+        curves,
+        "{:?}",
+        imported.warnings
+    );
     assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
     let (w, h) = ((240.0 * K) as u32, (160.0 * K) as u32);
     let mut scene: Scene = imported.scene;
@@ -97,10 +135,12 @@ fn an_svg_file_is_drawn_as_resvg_draws_it() {
         center: DVec2::new(120.0, 80.0),
         height: 160.0,
     };
-    for c in &mut scene.curves {
-        c.style.width = K as f32;
+    // Strokes keep their width in user units (1 unit = K px here, as resvg draws
+    // them); nothing here is filled only.
+    for c in &scene.curves {
+        assert!(c.style.width_in_scene, "{:?}", c.name);
     }
-    let reference = rasterise(FILE, w, h);
+    let reference = rasterise(file, w, h);
     let theirs = ink(&reference);
     common::on_each_gpu("svg import against resvg", |backend| {
         let ours_img = splinescope::offscreen::render_scene(
@@ -119,7 +159,7 @@ fn an_svg_file_is_drawn_as_resvg_draws_it() {
             covered(&theirs, &ours, w, h, 2),
         );
         if a < 0.995 || b < 0.995 {
-            let dir = common::out_dir("svg_import");
+            let dir = common::out_dir(&format!("svg_import/{name}"));
             ours_img.write_png(&dir.join("actual.png")).ok();
             reference.write_png(&dir.join("resvg.png")).ok();
             let mut diff = ours_img.clone();

@@ -93,8 +93,10 @@ pub struct EncodedCurve {
     pub samples: Option<u32>,
     /// Its colour.
     pub color: Color,
-    /// Its line width in pixels.
+    /// Its line width: pixels, or scene units when `width_in_scene`.
     pub width: f32,
+    /// Whether `width` is in scene units.
+    pub width_in_scene: bool,
 }
 
 /// A scene as drawn (see the module doc).

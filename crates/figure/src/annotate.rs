@@ -264,7 +264,15 @@ pub fn legend_layout(
         } else {
             curve_rows
         })
-        .map(|sc| (Mark::Line(sc.style.color, sc.style.width), sc.label()))
+        .map(|sc| {
+            // A width in scene units has no one size in pixels: the legend shows the default.
+            let w = if sc.style.width_in_scene {
+                2.5
+            } else {
+                sc.style.width
+            };
+            (Mark::Line(sc.style.color, w), sc.label())
+        })
         .collect();
     if more > 0 {
         let n = scene.curves.len() - rows.len();

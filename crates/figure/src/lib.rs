@@ -584,8 +584,9 @@ fn curve_items(
         }
     }
     for (index, curve) in encoding.curves.iter().enumerate() {
+        let width = stroke_width(curve, proj);
         // Pieces beyond the page by more than the stroke cannot be seen.
-        let margin = DVec2::splat(f64::from(curve.width) + 2.0);
+        let margin = DVec2::splat(f64::from(width) + 2.0);
         let page = Page {
             min: -margin,
             max: size + margin,
@@ -631,7 +632,7 @@ fn curve_items(
         }
         items.push(Item::Path {
             runs,
-            stroke: Stroke::solid(curve.color, curve.width),
+            stroke: Stroke::solid(curve.color, width),
             curve: Some(index),
         });
     }
@@ -699,6 +700,33 @@ impl Figure {
         };
         Err(FigureError::NotFinite { what })
     }
+}
+
+/// A curve's stroke width in output points: its pixels as they are, or its width in
+/// scene units times the points one unit spans (the length of the projection's y row,
+/// over `W` at the curve's first point in a perspective view: a figure's stroke has one
+/// width).
+fn stroke_width(
+    curve: &splinescope_scene::format::encoding::EncodedCurve,
+    proj: &Projection,
+) -> f32 {
+    if !curve.width_in_scene {
+        return curve.width;
+    }
+    let r = proj.rows[1];
+    let scale = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
+    let w = if proj.affine {
+        1.0
+    } else {
+        curve
+            .segments
+            .first()
+            .and_then(|s| s.bezier.points().first())
+            .map_or(1.0, |&p| proj.homogeneous(p)[2])
+    };
+    let width = f64::from(curve.width) * scale / w.max(1e-12);
+    // At most the page's own size in any sensible figure; an f32 holds it.
+    width.min(1e7) as f32
 }
 
 /// A polyline's visible runs: points behind the eye break it, and so does the page —

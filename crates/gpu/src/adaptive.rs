@@ -91,6 +91,9 @@ pub struct AdaptiveChunk {
     pub capacity: u32,
     segment_count: u32,
     cull_margin_px: f32,
+    /// The widest line of the chunk whose width is in scene units (0 when none): its
+    /// pixels depend on the view, so the margin is found each frame.
+    widest_in_scene: f32,
     /// The pass for counting, scanning and placing (range unused), then one per kernel
     /// class: `(kernel, bind group, grid, range buffer)`.
     base: wgpu::BindGroup,
@@ -224,9 +227,17 @@ impl AdaptiveTessellator {
             mapped_at_creation: false,
         });
         let ranges = ranges(chunk);
+        let in_scene = |s: &&GpuLineStyle| s.flags & crate::layout::LINE_WIDTH_IN_SCENE != 0;
         let widest = chunk
             .styles
             .iter()
+            .filter(|s| !in_scene(s))
+            .map(|s: &GpuLineStyle| s.width_px)
+            .fold(0.0_f32, f32::max);
+        let widest_in_scene = chunk
+            .styles
+            .iter()
+            .filter(in_scene)
             .map(|s: &GpuLineStyle| s.width_px)
             .fold(0.0_f32, f32::max);
         let base_range = super::init_buffer(
@@ -256,6 +267,7 @@ impl AdaptiveTessellator {
             capacity,
             segment_count: n,
             cull_margin_px: 0.5 * widest + 1.0,
+            widest_in_scene,
             base,
             dispatches,
             ranges,
@@ -546,6 +558,30 @@ impl AdaptiveTessellator {
 }
 
 impl AdaptiveChunk {
+    /// How far outside the viewport, in pixels, a segment may lie and still be drawn: half
+    /// the widest line and a pixel. A width in scene units spans a fixed number of pixels
+    /// in a 2D view (`w = 1`); in a perspective view it grows without bound near the eye,
+    /// so nothing is culled for it there.
+    fn cull_margin(&self, camera: &crate::layout::GpuCamera) -> f32 {
+        let px = self.cull_margin_px * camera.width_scale;
+        if self.widest_in_scene == 0.0 {
+            return px;
+        }
+        let m = camera.clip_from_world;
+        let perspective = m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0;
+        if perspective {
+            return f32::MAX;
+        }
+        let style = GpuLineStyle {
+            color: [0.0; 4],
+            width_px: self.widest_in_scene,
+            dash_px: 0.0,
+            order: 0,
+            flags: crate::layout::LINE_WIDTH_IN_SCENE,
+        };
+        px.max(crate::layer_twin::half_width_px(&style, camera, 1.0) + 1.0)
+    }
+
     /// The frame uniform of this chunk for `settings`.
     #[must_use]
     pub fn frame_uniform(&self, settings: &FrameSettings) -> GpuFrame {
@@ -553,7 +589,7 @@ impl AdaptiveChunk {
             clip_from_world: settings.camera.clip_from_world,
             viewport_px: settings.camera.viewport_px,
             tolerance_px: settings.tolerance_px,
-            cull_margin_px: self.cull_margin_px * settings.camera.width_scale,
+            cull_margin_px: self.cull_margin(&settings.camera),
             segment_count: self.segment_count,
             capacity: self.capacity,
             max_count: MAX_SAMPLES_PER_SEGMENT,

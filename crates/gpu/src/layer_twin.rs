@@ -122,6 +122,27 @@ fn plot(x: i32, y: i32, size: [u32; 2], key: u32, layer: &mut [u32]) {
     }
 }
 
+/// `half_width_px` of the shader: half a style's line width in pixels where the line is
+/// at clip-space `w` (a width in scene units times the pixels one unit spans there).
+#[must_use]
+pub fn half_width_px(style: &GpuLineStyle, camera: &GpuCamera, w: f32) -> f32 {
+    if style.flags & crate::layout::LINE_WIDTH_IN_SCENE != 0 {
+        let m = camera.clip_from_world;
+        let s = glam::Vec3::new(m[0][1], m[1][1], m[2][1]).length();
+        return (0.25 * style.width_px * s * camera.viewport_px[1] / w.max(1e-6)).min(16384.0);
+    }
+    0.5 * style.width_px * camera.width_scale
+}
+
+/// The clip-space w of a piece's ends, averaged (where its width in scene units is
+/// measured).
+fn mean_w(camera: &GpuCamera, a: GpuVertex, b: GpuVertex) -> f32 {
+    let m = Mat4::from_cols_array_2d(&camera.clip_from_world);
+    let ca = m * glam::Vec3::from(a.position).extend(1.0);
+    let cb = m * glam::Vec3::from(b.position).extend(1.0);
+    0.5 * (ca.w + cb.w)
+}
+
 /// `pixel_ends` of the shader: the ends in pixels, clipped to the plane in front of the
 /// eye; `None` when both are behind it or an end is not finite.
 fn pixel_ends(camera: &GpuCamera, a: GpuVertex, b: GpuVertex) -> Option<(Vec2, Vec2)> {
@@ -180,7 +201,7 @@ fn raster_piece(
         return;
     };
     let opacity = style.color[3].clamp(0.0, 1.0) * 63.0;
-    let half_width = 0.5 * style.width_px * camera.width_scale;
+    let half_width = half_width_px(style, camera, mean_w(camera, a, b));
     let dash = style.dash_px * camera.width_scale;
     let reach = half_width + 0.5;
     let d = pb - pa;
@@ -294,7 +315,7 @@ mod tests {
             width_px: 1.0,
             dash_px: 0.0,
             order: 7,
-            _padding1: 0,
+            flags: 0,
         }
     }
 

@@ -301,9 +301,14 @@ pub struct GpuLineStyle {
     /// styles, which the layer's pixels name: a later curve over an earlier one); 0 for
     /// overlays.
     pub order: u32,
-    /// Keeps the size a multiple of 16 bytes.
-    pub _padding1: u32,
+    /// Bits: [`LINE_WIDTH_IN_SCENE`] (the width is in scene units).
+    pub flags: u32,
 }
+
+/// [`GpuLineStyle::flags`] bit: `width_px` holds a width in scene units (the line zooms
+/// with the view); pixels where the line is are `half_width_px` of the layer twin. Twin:
+/// `LINE_WIDTH_IN_SCENE` in `shaders/common.wgsl`.
+pub const LINE_WIDTH_IN_SCENE: u32 = 1;
 
 /// Vertices per line piece: a triangle strip around the piece's capsule
 /// (`shaders/lines.wgsl`); the adaptive kernel writes it into the draw arguments.

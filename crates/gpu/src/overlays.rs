@@ -23,7 +23,7 @@ impl From<Stroke> for GpuLineStyle {
             width_px: s.width_px,
             dash_px: s.dash_px,
             order: 0,
-            _padding1: 0,
+            flags: 0,
         }
     }
 }

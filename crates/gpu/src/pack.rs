@@ -177,7 +177,10 @@ pub fn prepare(encoding: &Encoding, limits: ChunkLimits) -> Result<PreparedScene
         .map_err(|e| PackError::TooManySamples(e.to_string()))?;
     let mut chunks = ChunkBuilder::new(limits);
     for (index, (curve, counts)) in encoding.curves.iter().zip(&counts_all).enumerate() {
-        let style = GpuLineStyle::solid(curve.color, curve.width);
+        let mut style = GpuLineStyle::solid(curve.color, curve.width);
+        if curve.width_in_scene {
+            style.flags |= crate::layout::LINE_WIDTH_IN_SCENE;
+        }
         let fixed = curve.samples.is_some();
         for (seg, &count) in curve.segments.iter().zip(counts) {
             chunks.begin_segment(index, style, seg.points(), seg.weights.as_deref())?;

@@ -141,7 +141,7 @@ fn gpu_structs_match_their_wgsl_twins() {
             m,
             "LineStyle",
             GpuLineStyle,
-            [color, width_px, dash_px, order, _padding1]
+            [color, width_px, dash_px, order, flags]
         );
         assert_eq!(constant_u32(m, "MAX_DEGREE") as usize, MAX_GPU_DEGREE);
         assert_eq!(

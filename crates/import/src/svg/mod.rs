@@ -45,6 +45,10 @@ struct Computed {
     /// The product of the ancestors' `opacity` (not inherited, but it multiplies).
     opacity: f64,
     hidden: bool,
+    /// `stroke-width` in user units (inherited; default 1).
+    stroke_width: f64,
+    /// `vector-effect: non-scaling-stroke` (not inherited): the width is in pixels.
+    non_scaling: bool,
 }
 
 impl Default for Computed {
@@ -57,6 +61,8 @@ impl Default for Computed {
             color: Rgba([0, 0, 0, 255]),
             opacity: 1.0,
             hidden: false,
+            stroke_width: 1.0,
+            non_scaling: false,
         }
     }
 }
@@ -331,6 +337,8 @@ impl<'a, 'i> Reader<'a, 'i> {
             "color",
             "display",
             "visibility",
+            "stroke-width",
+            "vector-effect",
         ];
         let mut out: Vec<(String, String)> = PROPS
             .iter()
@@ -410,6 +418,7 @@ impl<'a, 'i> Reader<'a, 'i> {
     fn computed(&self, n: Node<'a, 'i>, parent: Computed) -> Computed {
         let mut c = parent;
         c.hidden = false;
+        c.non_scaling = false;
         let decls = self.declarations(n);
         // `color` first: `currentColor` in the others refers to it.
         for (k, v) in &decls {
@@ -428,6 +437,21 @@ impl<'a, 'i> Reader<'a, 'i> {
                 "stroke-opacity" => c.stroke_opacity = num(v).unwrap_or(1.0).clamp(0.0, 1.0),
                 "fill-opacity" => c.fill_opacity = num(v).unwrap_or(1.0).clamp(0.0, 1.0),
                 "opacity" => c.opacity = parent.opacity * num(v).unwrap_or(1.0).clamp(0.0, 1.0),
+                "stroke-width" => {
+                    // A length in user units (px, or a plain number); a negative or
+                    // unreadable one is ignored, as CSS ignores an invalid declaration.
+                    if let Ok(l) = v.parse::<svgtypes::Length>()
+                        && matches!(
+                            l.unit,
+                            svgtypes::LengthUnit::None | svgtypes::LengthUnit::Px
+                        )
+                        && l.number.is_finite()
+                        && l.number >= 0.0
+                    {
+                        c.stroke_width = l.number;
+                    }
+                }
+                "vector-effect" => c.non_scaling = v == "non-scaling-stroke",
                 "display" => c.hidden |= v == "none",
                 "visibility" => c.hidden |= v == "hidden" || v == "collapse",
                 _ => {}
@@ -646,7 +670,14 @@ impl<'a, 'i> Reader<'a, 'i> {
         map: DAffine2,
         style: Computed,
     ) -> Result<(), ImportError> {
-        let color = match (style.stroke, style.fill) {
+        // A stroke of width 0 is not painted.
+        let stroke = if style.stroke_width > 0.0 {
+            style.stroke
+        } else {
+            Paint::None
+        };
+        let stroked = matches!(stroke, Paint::Color(_));
+        let color = match (stroke, style.fill) {
             (Paint::Color(c), _) => Some((c, style.stroke_opacity)),
             (Paint::None, Paint::Color(c)) => Some((c, style.fill_opacity)),
             (Paint::None, Paint::None) => None,
@@ -692,6 +723,30 @@ impl<'a, 'i> Reader<'a, 'i> {
             s.color = Color::from_rgba8(rgba);
             s.show_polygon = false;
             s.show_points = false;
+            if stroked {
+                // The stroke's width in user units, scaled by the transform as the
+                // geometry is (by the square root of its area scale), so that it zooms
+                // with the picture; with non-scaling-stroke, pixels.
+                let scale = map.matrix2.determinant().abs().sqrt();
+                let w = if style.non_scaling {
+                    style.stroke_width
+                } else {
+                    style.stroke_width * scale
+                };
+                if style.non_scaling && w > 1000.0 {
+                    return Err(self.element_error(
+                        n,
+                        format!("a non-scaling stroke-width of {w} px is over the maximum of 1000"),
+                    ));
+                }
+                if (w as f32).is_finite() && w as f32 > 0.0 {
+                    s.width = w as f32;
+                    s.width_in_scene = !style.non_scaling;
+                }
+            } else {
+                // A fill alone is drawn as its outline: a thin line in pixels.
+                s.width = 1.0;
+            }
             self.curves.push(SceneCurve {
                 name: Some(if many {
                     format!("{base}, subpath {k}")

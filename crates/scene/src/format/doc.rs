@@ -169,10 +169,15 @@ pub struct StyleDoc {
     /// The colour (default: a palette colour by index).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub color: Option<ColorDoc>,
-    /// Line width in pixels, in (0, 1000] (default 2.5).
+    /// Line width (default 2.5): in pixels, in (0, 1000]; or in scene units (any
+    /// positive number) with `width_units: "scene"`.
     #[serde(skip_serializing_if = "Option::is_none")]
-    #[schemars(range(min = 0.0, max = 1000.0))]
+    #[schemars(range(min = 0.0))]
     pub width: Option<f64>,
+    /// What `width` is measured in: `"px"` (the default) or `"scene"` (the line zooms
+    /// with the view, as an SVG stroke does).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub width_units: Option<WidthUnitsDoc>,
     /// Draw the control polygon and the family's explaining polylines (default true).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub polygon: Option<bool>,
@@ -183,6 +188,16 @@ pub struct StyleDoc {
     #[serde(skip_serializing_if = "Option::is_none")]
     #[schemars(range(min = 2, max = 4096))]
     pub samples: Option<u32>,
+}
+
+/// The unit of a style's width.
+#[derive(Debug, Clone, Copy, Serialize, JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum WidthUnitsDoc {
+    /// Pixels.
+    Px,
+    /// Scene units.
+    Scene,
 }
 
 /// A mark drawn over the curves: a polyline or points.

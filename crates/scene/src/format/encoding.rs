@@ -25,6 +25,7 @@ pub fn encode_curve(scene: &Scene, index: usize) -> EncodedCurve {
         samples: scene.samples_for(index),
         color: sc.style.color,
         width: sc.style.width,
+        width_in_scene: sc.style.width_in_scene,
     }
 }
 

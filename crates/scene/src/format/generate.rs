@@ -145,6 +145,7 @@ pub fn random_bezier_scene(opts: StressOptions) -> Scene {
                         Color([0.2 + 0.6 * hue, 0.3, 0.8 - 0.6 * hue, 1.0]).to_rgba8(),
                     ),
                     width: 1.0,
+                    width_in_scene: false,
                     show_polygon: false,
                     show_points: false,
                     samples: None,

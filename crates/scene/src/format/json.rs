@@ -9,7 +9,7 @@ use crate::jsonread::{Node, Obj, describe, parse_document};
 use super::codec::{self, geom_error};
 use super::doc::{
     AnnotationDoc, AnnotationShapeDoc, Auto, CameraDoc, ColorDoc, CurveDoc, PointDoc, SamplesDoc,
-    SceneDoc, StyleDoc, ViewDoc,
+    SceneDoc, StyleDoc, ViewDoc, WidthUnitsDoc,
 };
 use super::{
     Annotation, AnnotationShape, Color, FORMAT_VERSION, MAX_SAMPLES_PER_SEGMENT, Scene, SceneCurve,
@@ -256,15 +256,38 @@ pub(super) fn decode_curve(node: &Node<'_>, index: usize) -> Result<SceneCurve, 
 }
 
 fn decode_style(node: &Node<'_>, index: usize) -> Result<Style, SceneError> {
-    let obj = node.object(&["color", "width", "polygon", "points", "samples"])?;
+    let obj = node.object(&[
+        "color",
+        "width",
+        "width_units",
+        "polygon",
+        "points",
+        "samples",
+    ])?;
     let mut style = Style::default_for(index);
     if let Some(n) = obj.get("color") {
         style.color = n.color()?;
     }
+    if let Some(n) = obj.get("width_units") {
+        style.width_in_scene = match n.value.as_str() {
+            Some("px") => false,
+            Some("scene") => true,
+            _ => {
+                return Err(n.invalid(format!("width_units {}: \"px\" or \"scene\"", n.value)));
+            }
+        };
+    }
     if let Some(n) = obj.get("width") {
         let w = n.positive_f64()?;
-        if w > 1000.0 {
+        if !style.width_in_scene && w > 1000.0 {
             return Err(n.invalid(format!("width {w} px is over the maximum of 1000")));
+        }
+        // In scene units any positive width an f32 holds (the line is drawn at most
+        // the view's size).
+        if style.width_in_scene && !((w as f32).is_finite() && w as f32 > 0.0) {
+            return Err(n.invalid(format!(
+                "width {w} scene units: a positive number an f32 holds"
+            )));
         }
         style.width = w as f32;
     }
@@ -338,6 +361,7 @@ pub(super) fn curve_doc(c: &SceneCurve) -> CurveDoc {
         style: Some(StyleDoc {
             color: Some(ColorDoc::Hex(s.color.to_hex())),
             width: Some(f64::from(s.width)),
+            width_units: s.width_in_scene.then_some(WidthUnitsDoc::Scene),
             polygon: Some(s.show_polygon),
             points: Some(s.show_points),
             samples: s.samples,
@@ -424,6 +448,31 @@ fn write_scalar(v: &Value, out: &mut String) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_width_in_scene_units_reads_writes_back_and_bad_units_are_named() {
+        let doc = |style: &str| {
+            format!(
+                r#"{{"version":1,"curves":[{{"type":"bezier","points":[[0,0],[1,1]],"style":{style}}}]}}"#
+            )
+        };
+        let s = from_json_str(&doc(r#"{"width": 2000, "width_units": "scene"}"#)).unwrap();
+        assert!(s.curves[0].style.width_in_scene);
+        assert_eq!(s.curves[0].style.width, 2000.0);
+        let back = from_json_str(&to_json_string(&s)).unwrap();
+        assert_eq!(back.curves[0].style, s.curves[0].style);
+        let e = from_json_str(&doc(r#"{"width_units": "mm"}"#)).unwrap_err();
+        assert!(
+            e.to_string().contains("width_units") && e.to_string().contains("mm"),
+            "{e}"
+        );
+        let e = from_json_str(&doc(r#"{"width": 2000}"#)).unwrap_err();
+        assert!(e.to_string().contains("2000 px"), "{e}");
+        let e = from_json_str(&doc(r#"{"width": 1e300, "width_units": "scene"}"#)).unwrap_err();
+        assert!(e.to_string().contains("scene units"), "{e}");
+        let px = from_json_str(&doc(r#"{"width": 3, "width_units": "px"}"#)).unwrap();
+        assert!(!px.curves[0].style.width_in_scene);
+    }
     use glam::DVec3;
 
     fn err(text: &str) -> SceneError {

@@ -58,8 +58,11 @@ pub const PALETTE: [Color; 8] = [
 pub struct Style {
     /// The curve's colour.
     pub color: Color,
-    /// The curve's width in pixels (> 0).
+    /// The curve's width (> 0): pixels, or scene units when `width_in_scene`.
     pub width: f32,
+    /// Whether `width` is in scene units — the line then zooms with the view, as an SVG
+    /// stroke does — rather than pixels.
+    pub width_in_scene: bool,
     /// Whether to draw the control polygon (and, per family, the other explaining
     /// polylines).
     pub show_polygon: bool,
@@ -77,6 +80,7 @@ impl Style {
         Style {
             color: PALETTE[index % PALETTE.len()],
             width: 2.5,
+            width_in_scene: false,
             show_polygon: true,
             show_points: true,
             samples: None,

@@ -292,6 +292,7 @@ fn style_fields(style: &Style, defaults: &Style, full: &Value) -> Vec<(String, V
     let differs = |key: &str| match key {
         "color" => style.color.to_hex() != defaults.color.to_hex(),
         "width" => style.width != defaults.width,
+        "width_units" => style.width_in_scene != defaults.width_in_scene,
         "polygon" => style.show_polygon != defaults.show_polygon,
         "points" => style.show_points != defaults.show_points,
         "samples" => style.samples != defaults.samples,
