@@ -356,7 +356,7 @@ fn export_refuses_bad_arguments_and_writes_nothing() {
     assert_eq!(out.status.code(), Some(1));
     assert!(
         String::from_utf8_lossy(&out.stderr)
-            .contains("unknown figure format .txt (expected .svg, .pdf or .png)")
+            .contains("unknown output format .txt (expected .svg, .pdf, .png or .dxf)")
     );
     assert!(!txt.exists());
     for t in ["0", "-1", "nan", "inf"] {

@@ -19,7 +19,13 @@
 //! let samples = auto_samples(segments[0].points());
 //! assert!((2..=64).contains(&samples));
 //! let encoding = Encoding {
-//!     curves: vec![EncodedCurve { segments, samples: Some(samples), color: Color::WHITE, width: 2.0 }],
+//!     curves: vec![EncodedCurve {
+//!         segments,
+//!         samples: Some(samples),
+//!         color: Color::WHITE,
+//!         width: 2.0,
+//!         width_in_scene: false,
+//!     }],
 //!     overlays: Default::default(),
 //!     switches: splinescope_encoding::draw::Switches::ALL,
 //!     annotations: Vec::new(),
