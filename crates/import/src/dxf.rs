@@ -341,10 +341,27 @@ impl<'a> Reader<'a> {
         let ocs_of = |n: &dxf::Vector| {
             ocs(vec3(n)).ok_or_else(|| self.entity_error(e, "extrusion direction (0, 0, 0)"))
         };
+        // A radius, an axis ratio or an angle that is not a usable number is the entity's
+        // error, named, never a curve drawn from it.
+        let positive = |what: &str, x: f64| {
+            if x.is_finite() && x > 0.0 {
+                Ok(x)
+            } else {
+                Err(self.entity_error(e, format!("{what} {x}: a finite number greater than 0")))
+            }
+        };
+        let finite = |what: &str, x: f64| {
+            if x.is_finite() {
+                Ok(x)
+            } else {
+                Err(self.entity_error(e, format!("{what} {x}: not a finite number")))
+            }
+        };
         let pieces: Vec<Pieces> = match &e.specific {
             EntityType::Spline(s) => {
                 let curve = self.spline(e, s)?;
-                let curve = transformed(curve, m);
+                let curve = transformed(curve, m)
+                    .map_err(|x| self.entity_error(e, format!("placed by its inserts: {x}")))?;
                 return self.push(e, curve, color);
             }
             EntityType::Line(l) => vec![Pieces {
@@ -356,22 +373,19 @@ impl<'a> Reader<'a> {
             }],
             EntityType::Arc(a) => {
                 let frame = ocs_of(&a.normal)?;
-                let (s, t) = (a.start_angle.to_radians(), a.end_angle.to_radians());
+                let r = positive("radius", a.radius)?;
+                let s = finite("start angle", a.start_angle)?.to_radians();
+                let t = finite("end angle", a.end_angle)?.to_radians();
                 vec![Pieces {
-                    segments: circle_piece(frame, v3(&a.center), a.radius, s, ccw_sweep(s, t)),
+                    segments: circle_piece(frame, v3(&a.center), r, s, ccw_sweep(s, t)),
                     closed: false,
                 }]
             }
             EntityType::Circle(c) => {
                 let frame = ocs_of(&c.normal)?;
+                let r = positive("radius", c.radius)?;
                 vec![Pieces {
-                    segments: circle_piece(
-                        frame,
-                        v3(&c.center),
-                        c.radius,
-                        0.0,
-                        std::f64::consts::TAU,
-                    ),
+                    segments: circle_piece(frame, v3(&c.center), r, 0.0, std::f64::consts::TAU),
                     closed: true,
                 }]
             }
@@ -380,8 +394,13 @@ impl<'a> Reader<'a> {
                 let n = vec3(&el.normal)
                     .try_normalize()
                     .ok_or_else(|| self.entity_error(e, "extrusion direction (0, 0, 0)"))?;
-                let minor = n.cross(major) * el.minor_axis_ratio;
-                let sweep = ccw_sweep(el.start_parameter, el.end_parameter);
+                positive("major axis length", major.length())?;
+                let ratio = positive("minor axis ratio", el.minor_axis_ratio)?;
+                let minor = n.cross(major) * ratio;
+                let sweep = ccw_sweep(
+                    finite("start parameter", el.start_parameter)?,
+                    finite("end parameter", el.end_parameter)?,
+                );
                 let map = DAffine3::from_mat3_translation(
                     DMat3::from_cols(major, minor, n),
                     v3(&el.center),
@@ -399,6 +418,9 @@ impl<'a> Reader<'a> {
                     .map(|v| (DVec2::new(v.x, v.y), v.bulge))
                     .collect();
                 let map = DAffine3::from_mat3(frame);
+                if let Some(&(_, b)) = v.iter().find(|(_, b)| !b.is_finite()) {
+                    finite("bulge", b)?;
+                }
                 vec![polyline(&v, p.is_closed(), map, e.common.elevation)]
             }
             EntityType::Polyline(p) => {
@@ -419,6 +441,9 @@ impl<'a> Reader<'a> {
                         .iter()
                         .map(|v| (DVec2::new(v.location.x, v.location.y), v.bulge))
                         .collect();
+                    if let Some(&(_, b)) = v.iter().find(|(_, b)| !b.is_finite()) {
+                        finite("bulge", b)?;
+                    }
                     vec![polyline(
                         &v,
                         p.is_closed(),
@@ -561,6 +586,15 @@ impl<'a> Reader<'a> {
         if copies > self.max_visited {
             return Err(self.limit_error(e, limits::IMPORT_ELEMENTS, copies));
         }
+        if !(i.rotation.is_finite() && i.column_spacing.is_finite() && i.row_spacing.is_finite()) {
+            return Err(self.entity_error(
+                e,
+                format!(
+                    "rotation {}, column spacing {}, row spacing {}: finite numbers",
+                    i.rotation, i.column_spacing, i.row_spacing
+                ),
+            ));
+        }
         let rotation = DMat3::from_rotation_z(i.rotation.to_radians());
         self.inserting.push(name);
         for row in 0..i.row_count.max(1) {
@@ -609,7 +643,8 @@ fn polyline(v: &[(DVec2, f64)], closed: bool, map: DAffine3, z: f64) -> Pieces {
         if a == b {
             continue;
         }
-        segs.extend(bulge_arc(a, b, if bulge.is_finite() { bulge } else { 0.0 }));
+        // Bulges are checked finite by the caller.
+        segs.extend(bulge_arc(a, b, bulge));
     }
     // The last leg of a closed polyline ends exactly where it started.
     Pieces {
@@ -640,22 +675,19 @@ fn polyline_3d(pts: &[DVec3], closed: bool) -> Pieces {
 
 /// `curve` (a B-spline or NURBS curve) mapped by the affine `m` (its control points; the
 /// weights and knots do not change).
-fn transformed(curve: Curve, m: DAffine3) -> Curve {
+///
+/// # Errors
+/// The map sends a control point past the largest double (the curve's error says which).
+fn transformed(curve: Curve, m: DAffine3) -> Result<Curve, splinescope_core::geom::GeomError> {
     if m == DAffine3::IDENTITY {
-        return curve;
+        return Ok(curve);
     }
     let f = NurbsForm::of(&curve);
     let points = f.points.iter().map(|&p| m.transform_point3(p)).collect();
     let order = f.degree + 1;
-    // Affine images of finite points under a finite map are finite: the curve stays valid
-    // unless the map overflows, in which case it is kept where it was read.
     match f.weights {
-        Some(w) => Nurbs::try_new(points, w, f.knots, order)
-            .map(Curve::Nurbs)
-            .unwrap_or(curve),
-        None => BSpline::try_new(points, f.knots, order)
-            .map(Curve::BSpline)
-            .unwrap_or(curve),
+        Some(w) => Nurbs::try_new(points, w, f.knots, order).map(Curve::Nurbs),
+        None => BSpline::try_new(points, f.knots, order).map(Curve::BSpline),
     }
 }
 

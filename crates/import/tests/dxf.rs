@@ -433,6 +433,59 @@ fn hostile_files_are_refused_naming_the_entity() {
     };
     let m = refused(&drawing_of(vec![Entity::new(EntityType::Insert(missing))]));
     assert!(m.contains("\"nowhere\" is not in the file"), "{m}");
+    // Radii, ratios, bulges and angles that are not usable numbers, named.
+    let arc = |r: f64, a: f64| {
+        Entity::new(EntityType::Arc(dxf::entities::Arc::new(
+            Point::new(0.0, 0.0, 0.0),
+            r,
+            a,
+            90.0,
+        )))
+    };
+    for (e, want) in [
+        (arc(0.0, 0.0), "radius 0"),
+        (arc(-2.0, 0.0), "radius -2"),
+        (arc(f64::NAN, 0.0), "radius NaN"),
+        (arc(1.0, f64::INFINITY), "start angle inf"),
+        (
+            Entity::new(EntityType::Circle(dxf::entities::Circle::new(
+                Point::new(0.0, 0.0, 0.0),
+                f64::NEG_INFINITY,
+            ))),
+            "radius -inf",
+        ),
+        (
+            Entity::new(EntityType::Ellipse(dxf::entities::Ellipse {
+                major_axis: dxf::Vector::new(2.0, 0.0, 0.0),
+                normal: dxf::Vector::new(0.0, 0.0, 1.0),
+                minor_axis_ratio: 0.0,
+                end_parameter: 1.0,
+                ..Default::default()
+            })),
+            "minor axis ratio 0",
+        ),
+        (
+            Entity::new(EntityType::LwPolyline({
+                let mut p = dxf::entities::LwPolyline::default();
+                p.vertices.push(dxf::LwPolylineVertex {
+                    x: 0.0,
+                    y: 0.0,
+                    bulge: f64::NAN,
+                    ..Default::default()
+                });
+                p.vertices.push(dxf::LwPolylineVertex {
+                    x: 1.0,
+                    y: 0.0,
+                    ..Default::default()
+                });
+                p
+            })),
+            "bulge NaN",
+        ),
+    ] {
+        let m = refused(&drawing_of(vec![e]));
+        assert!(m.contains(want), "{want}: {m}");
+    }
     // A header date far past the calendar: the `dxf` crate panics on it; that is this
     // file's error, said once, with no panic on stderr (the CLI test below checks that).
     let text = String::from_utf8(bytes(&drawing_of(vec![]))).unwrap();

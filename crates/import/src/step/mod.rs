@@ -921,20 +921,25 @@ fn piece(curve: &Curve, t1: f64, t2: f64) -> Vec<PathSegment> {
                     weights: None,
                 });
             }
-            Some(w) => {
-                let Ok(r) =
-                    splinescope_core::geom::RationalBezier::try_new(s.points().to_vec(), w.clone())
-                else {
-                    continue;
-                };
-                let sub = if (u0, u1) == (0.0, 1.0) {
-                    r
-                } else {
-                    r.subsegment(u0, u1)
-                };
+            Some(weights) if (u0, u1) == (0.0, 1.0) => out.push(PathSegment {
+                points: s.points().into(),
+                weights: Some(weights.clone()),
+            }),
+            Some(_) => {
+                // The homogeneous parts (A = w·P, W = w) cut by de Casteljau, then
+                // divided: the weights of a piece of a curve with positive weights are
+                // positive (convex combinations of them).
+                let (h, w) = s.homogeneous();
+                let (h, w) = (h.subsegment(u0, u1), w.subsegment(u0, u1));
+                let weights: Vec<f64> = w.points().iter().map(|p| p.x).collect();
                 out.push(PathSegment {
-                    points: sub.points().to_vec().into(),
-                    weights: Some(sub.weights().to_vec()),
+                    points: h
+                        .points()
+                        .iter()
+                        .zip(&weights)
+                        .map(|(p, w)| *p / *w)
+                        .collect(),
+                    weights: Some(weights),
                 });
             }
         }
