@@ -43,6 +43,9 @@ pub struct CheckOutput {
     /// The scene's name.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
+    /// The unit of length of its coordinates, when the file names one (STEP).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unit: Option<String>,
     /// Each curve's structure.
     pub curves: Vec<CheckCurve>,
     /// Why the scene cannot be drawn on the GPU (empty: it can).
@@ -98,6 +101,7 @@ impl CheckOutput {
             gpu_problems.push(e.to_string());
         }
         CheckOutput {
+            unit: scene.unit.clone(),
             file: file.to_owned(),
             name: scene.name.clone(),
             curves,

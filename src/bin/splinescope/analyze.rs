@@ -94,6 +94,7 @@ pub fn run(a: &AnalyzeArgs) -> Result<()> {
         (None, None)
     };
     let out = AnalyzeOutput {
+        unit: scene.unit.clone(),
         accuracy: a.accuracy,
         curves,
         intersections,
@@ -330,6 +331,9 @@ fn curve_text(out: &mut String, c: &CurveAnalysisReport) {
 /// The report as text for people.
 fn text(out: &AnalyzeOutput) -> String {
     let mut s = String::new();
+    if let Some(u) = &out.unit {
+        let _ = writeln!(s, "lengths, coordinates and areas in {u}");
+    }
     for c in &out.curves {
         curve_text(&mut s, c);
     }

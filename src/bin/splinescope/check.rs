@@ -34,13 +34,18 @@ fn check(path: &Path, json: bool) -> Result<()> {
         say!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         say!(
-            "{}: valid scene, {} curve(s){}",
+            "{}: valid scene, {} curve(s){}{}",
             path.display(),
             report.curves.len(),
             report
                 .name
                 .as_ref()
                 .map(|n| format!(" ({n})"))
+                .unwrap_or_default(),
+            report
+                .unit
+                .as_ref()
+                .map(|u| format!(", lengths in {u}"))
                 .unwrap_or_default()
         );
         for c in &report.curves {

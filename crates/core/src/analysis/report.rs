@@ -17,6 +17,10 @@ use crate::geom::family::Xyz;
 #[derive(Debug, Clone)]
 #[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
 pub struct AnalyzeOutput {
+    /// The unit of length of the scene's coordinates, when its file names one (a STEP
+    /// file's `millimetre`): every length, coordinate and area of the report is in it.
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    pub unit: Option<String>,
     /// The accuracy lengths were computed to (absolute, scene units).
     pub accuracy: f64,
     /// One report per selected curve, in scene order.

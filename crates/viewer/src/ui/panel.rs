@@ -123,8 +123,13 @@ pub(crate) fn panel(
 fn header(ui: &mut egui::Ui, info: &PanelInfo<'_>, scene: &crate::scene::Scene) {
     ui.heading(scene.name.as_deref().unwrap_or("splinescope"));
     ui.label(format!(
-        "{} curve(s) · {} samples/frame · {:.1} fps",
+        "{} curve(s){} · {} samples/frame · {:.1} fps",
         scene.curves.len(),
+        scene
+            .unit
+            .as_deref()
+            .map(|u| format!(" in {u}"))
+            .unwrap_or_default(),
         info.samples_per_frame,
         info.fps
     ));
