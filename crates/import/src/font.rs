@@ -14,7 +14,7 @@
 //! text laid out by the font's advances (no shaping, no kerning). One glyph sits at its
 //! own origin.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use skrifa::prelude::{LocationRef, Size};
 use skrifa::raw::TableProvider;
 use skrifa::raw::ps::cff::CffFontRef;
@@ -27,6 +27,8 @@ use splinescope_scene::limits;
 
 use crate::{ImportError, Imported};
 
+mod variable;
+
 /// What to read of a font.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct FontOptions {
@@ -37,7 +39,7 @@ pub struct FontOptions {
     /// This text, laid out by the font's advances (no shaping or kerning).
     pub text: Option<String>,
     /// A location in a variable font's design space: `(axis tag, value)`.
-    pub variations: Vec<(String, f32)>,
+    pub variations: Vec<(String, f64)>,
 }
 
 /// The outline of one glyph as the pen receives it: closed contours of path segments.
@@ -91,6 +93,51 @@ impl Contours {
             f64::from(y.to_bits()) / 65536.0,
             0.0,
         ) + self.offset
+    }
+}
+
+/// A TrueType glyph's contours (points and on-curve flags, `f64`) drawn into `pen` as
+/// TrueType means them: quadratic splines, an implied on-curve point the exact midpoint of
+/// two off-curve neighbours, each contour closed (a closing line where its last point is
+/// not its first).
+fn draw_truetype(pen: &mut Contours, contours: &[variable::Contour]) {
+    for (pts, on) in contours {
+        let n = pts.len();
+        if n == 0 {
+            continue;
+        }
+        let offset = pen.offset;
+        let p3 = |p: DVec2| p.extend(0.0) + offset;
+        // Start at the first on-curve point, or (none) the midpoint of the last and the
+        // first; then walk the rest of the contour once round.
+        let (start, order): (DVec2, Vec<usize>) = match on.iter().position(|&o| o) {
+            Some(s) => (pts[s], (1..n).map(|k| (s + k) % n).collect()),
+            None => (0.5 * (pts[n - 1] + pts[0]), (0..n).collect()),
+        };
+        pen.finish(false);
+        pen.start = p3(start);
+        pen.at = pen.start;
+        let mut pending: Option<DVec2> = None;
+        for i in order {
+            let q = pts[i];
+            match (on[i], pending) {
+                (true, Some(c)) => {
+                    pen.push(vec![pen.at, p3(c), p3(q)]);
+                    pending = None;
+                }
+                (true, None) => pen.push(vec![pen.at, p3(q)]),
+                (false, Some(c)) => {
+                    let m = 0.5 * (c + q);
+                    pen.push(vec![pen.at, p3(c), p3(m)]);
+                    pending = Some(q);
+                }
+                (false, None) => pending = Some(q),
+            }
+        }
+        if let Some(c) = pending {
+            pen.push(vec![pen.at, p3(c), pen.start]);
+        }
+        pen.finish(true);
     }
 }
 
@@ -195,7 +242,10 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
                 ),
             ));
         };
-        if !(value.is_finite() && *value >= axis.min_value() && *value <= axis.max_value()) {
+        if !(value.is_finite()
+            && *value >= f64::from(axis.min_value())
+            && *value <= f64::from(axis.max_value()))
+        {
             return Err(font_error(
                 file,
                 format!(
@@ -206,7 +256,9 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
             ));
         }
     }
-    let location = axes.location(opts.variations.iter().map(|(t, v)| (t.as_str(), *v)));
+    // skrifa's location is in f32 (its readers compute in f32 and 16.16); the f64
+    // reader of variable TrueType outlines takes the values as given.
+    let location = axes.location(opts.variations.iter().map(|(t, v)| (t.as_str(), *v as f32)));
     let count = font.maxp().map(|m| u32::from(m.num_glyphs())).unwrap_or(0);
     let names = glyph_names(&font, count);
     let glyph_name = |gid: GlyphId| {
@@ -277,6 +329,13 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
         .and_then(|d| CffFontRef::new(d.as_bytes(), 0, Some(upem as i32)).ok())
         .filter(|c| c.matrix().is_none());
     let coords = location.coords();
+    // A variable TrueType font away from its default location: its deltas applied in
+    // f64 (skrifa's FreeType-compatible scaler rounds the outline to whole units).
+    let variable = if opts.variations.is_empty() || cff.is_some() {
+        None
+    } else {
+        variable::Variable::new(&font, &opts.variations)
+    };
     let max_curves = limits::CURVES
         .value()
         .map_err(|source| ImportError::Limit {
@@ -300,6 +359,32 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
             continue;
         };
         pen.reset(offset);
+        if let Some(v) = &variable
+            && let Ok(contours) = v.contours(gid)
+        {
+            draw_truetype(&mut pen, &contours);
+            pen.finish(false);
+            let name = glyph_name(gid);
+            for (k, (segs, closed)) in pen.done.drain(..).enumerate() {
+                if curves.len() as u64 >= max_curves {
+                    return Err(font_error(
+                        file,
+                        limits::CURVES
+                            .check(curves.len() as u64 + 1)
+                            .err()
+                            .map_or_else(String::new, |e| e.to_string()),
+                    ));
+                }
+                let path = Path::try_new(segs, closed)
+                    .map_err(|e| font_error(file, format!("glyph {name} contour {k}: {e}")))?;
+                curves.push(SceneCurve {
+                    name: Some(format!("{name} contour {k}")),
+                    curve: Curve::Path(path),
+                    style: style.clone(),
+                });
+            }
+            continue;
+        }
         let exact = cff.as_ref().map(|c| {
             let index = c.subfont_index(gid).unwrap_or(0);
             let subfont = c.subfont(index, coords)?;

@@ -51,7 +51,7 @@ impl PyScene {
         path: PathBuf,
         glyphs: Option<Vec<String>>,
         text: Option<String>,
-        variations: Option<Vec<(String, f32)>>,
+        variations: Option<Vec<(String, f64)>>,
         index: u32,
     ) -> PyResult<(PyScene, Vec<String>)> {
         let options = splinescope_import::Options {

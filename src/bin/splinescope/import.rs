@@ -39,7 +39,7 @@ pub struct FontArgs {
     /// A variable font's location, as AXIS=VALUE pairs (`wght=700,wdth=75`); the default
     /// location otherwise. An axis the font lacks or a value outside its range is refused.
     #[arg(long, global = true, value_delimiter = ',', value_name = "AXIS=VALUE", value_parser = parse_variation)]
-    pub variations: Vec<(String, f32)>,
+    pub variations: Vec<(String, f64)>,
     /// The font's index in a collection (`.ttc`, `.otc`).
     #[arg(long, global = true, default_value_t = 0)]
     pub font_index: u32,
@@ -60,7 +60,7 @@ impl FontArgs {
 }
 
 /// `AXIS=VALUE` with a four-character axis tag and a finite number.
-fn parse_variation(s: &str) -> Result<(String, f32), String> {
+fn parse_variation(s: &str) -> Result<(String, f64), String> {
     let (tag, value) = s
         .split_once('=')
         .ok_or_else(|| format!("{s:?}: an axis and a value, as wght=700"))?;
@@ -70,7 +70,7 @@ fn parse_variation(s: &str) -> Result<(String, f32), String> {
             "{tag:?}: an axis tag is one to four ASCII characters (wght, wdth, opsz)"
         ));
     }
-    let v: f32 = value
+    let v: f64 = value
         .trim()
         .parse()
         .map_err(|_| format!("{value:?}: not a number (the axis {tag}'s value)"))?;
