@@ -1198,6 +1198,23 @@ fn font_seed() -> &'static [u8] {
     })
 }
 
+/// A binary file mutated one to eight times: cut short, a byte flipped, or a run of
+/// bytes set to 0xff (counts and offsets made huge).
+fn mutate_bytes(mut b: Vec<u8>, rng: &mut Rng) -> Vec<u8> {
+    for _ in 0..rng.int(1, 8) {
+        let at = rng.int(0, b.len() - 1);
+        match rng.int(0, 2) {
+            0 => b.truncate(at.max(1)),
+            1 => b[at] ^= rng.int(1, 255) as u8,
+            _ => {
+                let end = (at + rng.int(1, 8)).min(b.len());
+                b[at..end].fill(0xff);
+            }
+        }
+    }
+    b
+}
+
 /// A small variable TrueType font (two axes, avar, sparse and intermediate gvar tuples, a
 /// composite with moving offsets: `crates/python/tests/test_fonts_variable.py` builds it).
 fn variable_font_seed() -> Vec<u8> {
@@ -1211,22 +1228,14 @@ impl Fuzz {
     /// outlines, never a panic, in bounded time.
     fn font_case(&mut self) {
         let variable = self.rng.unit() < 0.4;
-        let mut b = if variable {
-            variable_font_seed()
-        } else {
-            font_seed().to_vec()
-        };
-        for _ in 0..self.rng.int(1, 8) {
-            let at = self.rng.int(0, b.len() - 1);
-            match self.rng.int(0, 2) {
-                0 => b.truncate(at.max(1)),
-                1 => b[at] ^= self.rng.int(1, 255) as u8,
-                _ => {
-                    let end = (at + self.rng.int(1, 8)).min(b.len());
-                    b[at..end].fill(0xff);
-                }
-            }
-        }
+        let b = mutate_bytes(
+            if variable {
+                variable_font_seed()
+            } else {
+                font_seed().to_vec()
+            },
+            &mut self.rng,
+        );
         let opts = if variable {
             splinescope::import::font::FontOptions {
                 glyphs: Some(vec!["A".into(), "B".into(), "AB".into()]),
@@ -1276,19 +1285,7 @@ impl Fuzz {
         let (ext, seed) = &seeds[self.rng.int(0, seeds.len() - 1)];
         let binary = std::str::from_utf8(seed).is_err();
         let bytes: Vec<u8> = if binary {
-            let mut b = seed.clone();
-            for _ in 0..self.rng.int(1, 8) {
-                let at = self.rng.int(0, b.len() - 1);
-                match self.rng.int(0, 2) {
-                    0 => b.truncate(at.max(1)),
-                    1 => b[at] ^= self.rng.int(1, 255) as u8,
-                    _ => {
-                        let end = (at + self.rng.int(1, 8)).min(b.len());
-                        b[at..end].fill(0xff);
-                    }
-                }
-            }
-            b
+            mutate_bytes(seed.clone(), &mut self.rng)
         } else {
             mutate_svg(&String::from_utf8_lossy(seed), &mut self.rng).into_bytes()
         };

@@ -27,7 +27,7 @@ use splinescope_core::geom::{BSpline, Curve, Nurbs, NurbsForm, Path, PathSegment
 use splinescope_scene::format::{Color, Scene, SceneCurve, Style};
 use splinescope_scene::limits;
 
-use crate::svg::geometry::{Seg, svg_arc};
+use crate::svg::geometry::{Seg, svg_arc, unit_arc};
 use crate::{ImportError, Imported};
 
 /// Reads DXF `bytes` (ASCII or binary) as a scene.
@@ -58,7 +58,6 @@ pub fn read(bytes: &[u8], file: &str) -> Result<Imported, ImportError> {
     };
     let mut reader = Reader {
         file,
-        drawing: &drawing,
         layers: drawing
             .layers()
             .map(|l| (l.name.to_lowercase(), l.color.index()))
@@ -87,24 +86,7 @@ pub fn read(bytes: &[u8], file: &str) -> Result<Imported, ImportError> {
         }
         reader.entity(e, DAffine3::IDENTITY, None, 0)?;
     }
-    let mut warnings = Vec::new();
-    if !reader.left_out.is_empty() {
-        let what: Vec<String> = reader
-            .left_out
-            .iter()
-            .map(|(k, n)| format!("{n} {k}"))
-            .collect();
-        warnings.push(format!(
-            "{file}: left out (not curves): {}",
-            what.join(", ")
-        ));
-    }
-    let mut scene = Scene::of_curves(std::iter::empty());
-    scene.name = std::path::Path::new(file)
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned());
-    scene.curves = reader.curves;
-    Ok(Imported { scene, warnings })
+    Ok(Imported::of_file(file, reader.curves, &reader.left_out))
 }
 
 /// The `dxf` crate's errors carry their own place ("at line/offset N").
@@ -117,7 +99,6 @@ fn syntax(file: &str, message: String) -> ImportError {
 
 struct Reader<'a> {
     file: &'a str,
-    drawing: &'a Drawing,
     /// Layer name (lower case) → its colour index.
     layers: BTreeMap<String, Option<u8>>,
     /// Block name (lower case) → the block.
@@ -199,34 +180,6 @@ fn bulge_arc(a: DVec2, b: DVec2, bulge: f64) -> Vec<Seg> {
         theta.abs() > std::f64::consts::PI,
         theta > 0.0,
     )
-}
-
-/// The unit circle's arc from angle `a0` counter-clockwise over `sweep` radians
-/// (`0 < sweep ≤ 2π`) as exact rational quadratics; `full` closes it on its start point.
-pub(crate) fn unit_arc_pieces(a0: f64, sweep: f64) -> Vec<Seg> {
-    let at = |a: f64| DVec2::new(a.cos(), a.sin());
-    let n = ((sweep / std::f64::consts::FRAC_PI_2) - 1e-9)
-        .ceil()
-        .max(1.0) as usize;
-    let step = sweep / n as f64;
-    let h = 0.5 * step;
-    let mut out = Vec::with_capacity(n);
-    let mut p0 = at(a0);
-    let full = sweep >= std::f64::consts::TAU;
-    for i in 0..n {
-        let a = a0 + step * i as f64;
-        let p2 = if full && i + 1 == n {
-            at(a0)
-        } else {
-            at(a + step)
-        };
-        out.push(Seg {
-            points: vec![p0, at(a + h) / h.cos(), p2],
-            weights: Some(vec![1.0, h.cos(), 1.0]),
-        });
-        p0 = p2;
-    }
-    out
 }
 
 /// The counter-clockwise sweep from `start` to `end` (radians) in `(0, 2π]`: equal angles
@@ -406,7 +359,7 @@ impl<'a> Reader<'a> {
                     v3(&el.center),
                 );
                 vec![Pieces {
-                    segments: lifted(&unit_arc_pieces(el.start_parameter, sweep), map, 0.0),
+                    segments: lifted(&unit_arc(el.start_parameter, sweep), map, 0.0),
                     closed: sweep >= std::f64::consts::TAU,
                 }]
             }
@@ -618,7 +571,6 @@ impl<'a> Reader<'a> {
             }
         }
         self.inserting.pop();
-        let _ = self.drawing;
         Ok(())
     }
 }
@@ -629,7 +581,7 @@ fn circle_piece(frame: DMat3, c: DVec3, r: f64, a0: f64, sweep: f64) -> Vec<Path
     let map = DAffine3::from_mat3(frame)
         * DAffine3::from_translation(c)
         * DAffine3::from_scale(DVec3::new(r, r, 1.0));
-    lifted(&unit_arc_pieces(a0, sweep), map, 0.0)
+    lifted(&unit_arc(a0, sweep), map, 0.0)
 }
 
 /// A 2D polyline with bulges in the OCS `map`, at height `z`.
@@ -720,12 +672,7 @@ pub struct WriteError(String);
 /// # Errors
 /// [`WriteError`] when the `dxf` crate cannot write the drawing.
 pub fn write(scene: &Scene) -> Result<Vec<u8>, WriteError> {
-    let drawing = drawing(scene);
-    let mut out = Vec::new();
-    drawing
-        .save_binary(&mut out)
-        .map_err(|e| WriteError(e.to_string()))?;
-    Ok(out)
+    save(scene, false)
 }
 
 /// [`write`] as ASCII DXF (numbers to 12 decimals, so not bit for bit).
@@ -733,11 +680,18 @@ pub fn write(scene: &Scene) -> Result<Vec<u8>, WriteError> {
 /// # Errors
 /// [`WriteError`] when the `dxf` crate cannot write the drawing.
 pub fn write_ascii(scene: &Scene) -> Result<Vec<u8>, WriteError> {
+    save(scene, true)
+}
+
+fn save(scene: &Scene, ascii: bool) -> Result<Vec<u8>, WriteError> {
     let drawing = drawing(scene);
     let mut out = Vec::new();
-    drawing
-        .save(&mut out)
-        .map_err(|e| WriteError(e.to_string()))?;
+    let saved = if ascii {
+        drawing.save(&mut out)
+    } else {
+        drawing.save_binary(&mut out)
+    };
+    saved.map_err(|e| WriteError(e.to_string()))?;
     Ok(out)
 }
 

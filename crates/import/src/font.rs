@@ -22,7 +22,7 @@ use skrifa::raw::ps::cs::CommandSink;
 use skrifa::raw::types::{Fixed, Tag};
 use skrifa::{FontRef, GlyphId, MetadataProvider, outline::DrawSettings, outline::OutlinePen};
 use splinescope_core::geom::{Curve, Path, PathSegment};
-use splinescope_scene::format::{Color, Scene, SceneCurve, Style};
+use splinescope_scene::format::{Color, SceneCurve, Style};
 use splinescope_scene::limits;
 
 use crate::{ImportError, Imported};
@@ -359,41 +359,26 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
             continue;
         };
         pen.reset(offset);
-        if let Some(v) = &variable
-            && let Ok(contours) = v.contours(gid)
-        {
-            draw_truetype(&mut pen, &contours);
-            pen.finish(false);
-            let name = glyph_name(gid);
-            for (k, (segs, closed)) in pen.done.drain(..).enumerate() {
-                if curves.len() as u64 >= max_curves {
-                    return Err(font_error(
-                        file,
-                        limits::CURVES
-                            .check(curves.len() as u64 + 1)
-                            .err()
-                            .map_or_else(String::new, |e| e.to_string()),
-                    ));
+        // The drawing, by the first reader that takes the glyph: a variable TrueType
+        // outline in f64, a CFF charstring exactly, else skrifa's pen.
+        let drawn_in_f64 = variable
+            .as_ref()
+            .and_then(|v| v.contours(gid).ok())
+            .map(|contours| draw_truetype(&mut pen, &contours))
+            .is_some();
+        let exact = if drawn_in_f64 {
+            Some(Ok(()))
+        } else {
+            cff.as_ref().map(|c| {
+                let index = c.subfont_index(gid).unwrap_or(0);
+                let subfont = c.subfont(index, coords)?;
+                if subfont.matrix().is_some() {
+                    return Err(skrifa::raw::ps::error::Error::InvalidFontFormat);
                 }
-                let path = Path::try_new(segs, closed)
-                    .map_err(|e| font_error(file, format!("glyph {name} contour {k}: {e}")))?;
-                curves.push(SceneCurve {
-                    name: Some(format!("{name} contour {k}")),
-                    curve: Curve::Path(path),
-                    style: style.clone(),
-                });
-            }
-            continue;
-        }
-        let exact = cff.as_ref().map(|c| {
-            let index = c.subfont_index(gid).unwrap_or(0);
-            let subfont = c.subfont(index, coords)?;
-            if subfont.matrix().is_some() {
-                return Err(skrifa::raw::ps::error::Error::InvalidFontFormat);
-            }
-            c.evaluate_charstring(&subfont, gid, coords, &mut Exact(&mut pen))
-                .map(|_| ())
-        });
+                c.evaluate_charstring(&subfont, gid, coords, &mut Exact(&mut pen))
+                    .map(|_| ())
+            })
+        };
         match exact {
             Some(Ok(())) => {}
             Some(Err(e)) if !matches!(e, skrifa::raw::ps::error::Error::InvalidFontFormat) => {
@@ -435,12 +420,13 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
             });
         }
     }
-    let mut scene = Scene::of_curves(std::iter::empty());
-    scene.name = std::path::Path::new(file)
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned());
-    scene.curves = curves;
-    Ok(Imported { scene, warnings })
+    let mut imported = Imported::of_file(
+        file,
+        curves,
+        &std::collections::BTreeMap::<String, u64>::new(),
+    );
+    imported.warnings = warnings;
+    Ok(imported)
 }
 
 /// Every glyph's name, in one pass: a version-2 `post` table's strings read once (asking

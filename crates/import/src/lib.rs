@@ -31,6 +31,32 @@ pub struct Imported {
     pub warnings: Vec<String>,
 }
 
+impl Imported {
+    /// What a reader of `file` hands back: a scene of `curves` named after the file,
+    /// and one warning that counts what it left out (`kind → count`), if anything.
+    pub(crate) fn of_file<N: std::fmt::Display>(
+        file: &str,
+        curves: Vec<splinescope_scene::format::SceneCurve>,
+        left_out: &std::collections::BTreeMap<String, N>,
+    ) -> Imported {
+        let mut scene = Scene::of_curves(std::iter::empty());
+        scene.name = Path::new(file)
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned());
+        scene.curves = curves;
+        let warnings = if left_out.is_empty() {
+            Vec::new()
+        } else {
+            let what: Vec<String> = left_out.iter().map(|(k, n)| format!("{n} {k}")).collect();
+            vec![format!(
+                "{file}: left out (not curves): {}",
+                what.join(", ")
+            )]
+        };
+        Imported { scene, warnings }
+    }
+}
+
 /// Why a file could not be read.
 #[derive(Debug, Error)]
 pub enum ImportError {
@@ -149,11 +175,15 @@ pub const EXTENSIONS: &[&str] = &[
 /// claims: the scene reader then says what is wrong with it) rather than imported.
 #[must_use]
 pub fn is_scene_file(path: &Path) -> bool {
-    let ext = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_lowercase())
-        .unwrap_or_default();
+    let ext = extension(path);
     ext == "json" || !EXTENSIONS.contains(&ext.as_str())
+}
+
+/// A path's extension, lower case (empty when it has none).
+fn extension(path: &Path) -> String {
+    path.extension()
+        .map(|e| e.to_string_lossy().to_lowercase())
+        .unwrap_or_default()
 }
 
 /// What to read of a file beyond its path (the font options; other formats have none).
@@ -178,37 +208,26 @@ pub fn load(path: &Path) -> Result<Imported, ImportError> {
 /// [`ImportError`] naming the file and where in it.
 pub fn load_with(path: &Path, options: &Options) -> Result<Imported, ImportError> {
     let file = path.display().to_string();
-    let extension = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_lowercase())
-        .unwrap_or_default();
+    let extension = extension(path);
+    let io = |e: limits::ReadError| ImportError::Io {
+        file: file.clone(),
+        message: e.to_string(),
+    };
     match extension.as_str() {
         "svg" => {
-            let text = limits::read_bounded(path).map_err(|e| ImportError::Io {
-                file: file.clone(),
-                message: e.to_string(),
-            })?;
+            let text = limits::read_bounded(path).map_err(io)?;
             svg::read(&text, &file)
         }
         "step" | "stp" => {
-            let text = limits::read_bounded(path).map_err(|e| ImportError::Io {
-                file: file.clone(),
-                message: e.to_string(),
-            })?;
+            let text = limits::read_bounded(path).map_err(io)?;
             step::read(&text, &file)
         }
         "dxf" => {
-            let bytes = limits::read_bounded_bytes(path).map_err(|e| ImportError::Io {
-                file: file.clone(),
-                message: e.to_string(),
-            })?;
+            let bytes = limits::read_bounded_bytes(path).map_err(io)?;
             dxf::read(&bytes, &file)
         }
         "ttf" | "otf" | "ttc" | "otc" => {
-            let bytes = limits::read_bounded_bytes(path).map_err(|e| ImportError::Io {
-                file: file.clone(),
-                message: e.to_string(),
-            })?;
+            let bytes = limits::read_bounded_bytes(path).map_err(io)?;
             font::read(&bytes, &file, &options.font)
         }
         "json" => Scene::load(path)

@@ -27,7 +27,7 @@ use std::collections::{BTreeMap, HashMap, HashSet};
 
 use glam::{DVec2, DVec3};
 use splinescope_core::geom::{BSpline, Curve, Lower, Nurbs, ParamCurve, Path, PathSegment};
-use splinescope_scene::format::{Scene, SceneCurve, Style};
+use splinescope_scene::format::{SceneCurve, Style};
 use splinescope_scene::limits;
 
 use crate::{ImportError, Imported};
@@ -139,18 +139,9 @@ pub fn read(text: &str, file: &str) -> Result<Imported, ImportError> {
             });
         }
     }
-    let mut warnings = Vec::new();
-    if !left_out.is_empty() {
-        let what: Vec<String> = left_out.iter().map(|(k, n)| format!("{n} {k}")).collect();
-        warnings.push(format!("{file}: left out: {}", what.join(", ")));
-    }
-    let mut scene = Scene::of_curves(std::iter::empty());
-    scene.name = std::path::Path::new(file)
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned());
-    scene.unit = Some(unit);
-    scene.curves = curves;
-    Ok(Imported { scene, warnings })
+    let mut imported = Imported::of_file(file, curves, &left_out);
+    imported.scene.unit = Some(unit);
+    Ok(imported)
 }
 
 /// `#id NAME 'label'`, the label from the entity's name parameter when it has one.
@@ -366,7 +357,7 @@ impl<'a> Model<'a> {
             let inst = &self.instances[&id];
             let has = |n: &str| inst.records.iter().any(|r| r.name == n);
             if has("LENGTH_UNIT") && unit.is_none() {
-                unit = Some(self.unit_name(id, inst));
+                unit = Some(Self::unit_name(inst));
             }
             if has("PLANE_ANGLE_UNIT")
                 && let Some(r) = self.record(id, "CONVERSION_BASED_UNIT")
@@ -379,7 +370,7 @@ impl<'a> Model<'a> {
         Ok(unit.unwrap_or_else(|| "unitless (the file names no length unit)".to_owned()))
     }
 
-    fn unit_name(&self, _id: u64, inst: &Instance) -> String {
+    fn unit_name(inst: &Instance) -> String {
         for r in &inst.records {
             match r.name.as_str() {
                 "SI_UNIT" => {
@@ -809,7 +800,7 @@ impl<'a> Model<'a> {
                     (t1 + sweep, -sweep)
                 };
                 let map = |u: DVec2| *c + *x * (a * u.x) + *y * (b * u.y);
-                let mut segs: Vec<PathSegment> = crate::dxf::unit_arc_pieces(start, sweep_pos)
+                let mut segs: Vec<PathSegment> = crate::svg::geometry::unit_arc(start, sweep_pos)
                     .into_iter()
                     .map(|s| PathSegment {
                         points: s.points.iter().map(|&u| map(u)).collect(),

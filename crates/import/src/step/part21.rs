@@ -263,11 +263,7 @@ pub fn parse(text: &str, bounds: Bounds) -> Result<HashMap<u64, Instance>, Synta
                 .map_err(|_| fail(i, format!("{section}'s parameters do not parse")))?;
         }
         let _ = ws(&mut i);
-        if ';'
-            .parse_next(&mut i)
-            .map_err(|_: ErrMode<ContextError>| ())
-            .is_err()
-        {
+        if !eat(&mut i, ';') {
             return Err(fail(i, format!("';' expected after {section}")));
         }
         loop {
@@ -275,11 +271,7 @@ pub fn parse(text: &str, bounds: Bounds) -> Result<HashMap<u64, Instance>, Synta
             if i.len() >= 6 && i[..6].eq_ignore_ascii_case("ENDSEC") {
                 i = &i[6..];
                 let _ = ws(&mut i);
-                if ';'
-                    .parse_next(&mut i)
-                    .map_err(|_: ErrMode<ContextError>| ())
-                    .is_err()
-                {
+                if !eat(&mut i, ';') {
                     return Err(fail(i, "';' expected after ENDSEC".to_owned()));
                 }
                 break;
@@ -297,11 +289,7 @@ pub fn parse(text: &str, bounds: Bounds) -> Result<HashMap<u64, Instance>, Synta
                     _ => return Err(fail(i, "an instance (#id = …;) expected".to_owned())),
                 };
                 let _ = ws(&mut i);
-                if '='
-                    .parse_next(&mut i)
-                    .map_err(|_: ErrMode<ContextError>| ())
-                    .is_err()
-                {
+                if !eat(&mut i, '=') {
                     return Err(fail(i, format!("'=' expected after #{id}")));
                 }
                 let _ = ws(&mut i);
@@ -310,11 +298,7 @@ pub fn parse(text: &str, bounds: Bounds) -> Result<HashMap<u64, Instance>, Synta
                     let rs: Result<Vec<Record>, _> =
                         repeat(1.., record(bounds.depth)).parse_next(&mut i);
                     let rs = rs.map_err(|e| syntax_at(i, total, id, &e))?;
-                    if ')'
-                        .parse_next(&mut i)
-                        .map_err(|_: ErrMode<ContextError>| ())
-                        .is_err()
-                    {
+                    if !eat(&mut i, ')') {
                         return Err(fail(
                             i,
                             format!("#{id}: ')' expected to close the complex instance"),
@@ -329,11 +313,7 @@ pub fn parse(text: &str, bounds: Bounds) -> Result<HashMap<u64, Instance>, Synta
                     ]
                 };
                 let _ = ws(&mut i);
-                if ';'
-                    .parse_next(&mut i)
-                    .map_err(|_: ErrMode<ContextError>| ())
-                    .is_err()
-                {
+                if !eat(&mut i, ';') {
                     return Err(fail(i, format!("#{id}: ';' expected after the instance")));
                 }
                 if instances.len() as u64 >= bounds.instances {
@@ -350,16 +330,18 @@ pub fn parse(text: &str, bounds: Bounds) -> Result<HashMap<u64, Instance>, Synta
                     .parse_next(&mut i)
                     .map_err(|_| fail(i, format!("a record of the {section} section expected")))?;
                 let _ = ws(&mut i);
-                if ';'
-                    .parse_next(&mut i)
-                    .map_err(|_: ErrMode<ContextError>| ())
-                    .is_err()
-                {
+                if !eat(&mut i, ';') {
                     return Err(fail(i, format!("';' expected in the {section} section")));
                 }
             }
         }
     }
+}
+
+/// Whether the next character is `c` (taken when it is).
+fn eat(i: &mut &str, mut c: char) -> bool {
+    let taken: ModalResult<char> = c.parse_next(i);
+    taken.is_ok()
 }
 
 fn syntax_at(rest: &str, total: usize, id: u64, e: &ErrMode<ContextError>) -> SyntaxError {

@@ -95,6 +95,19 @@ fn arc_pieces(
     out
 }
 
+/// The unit circle's arc from angle `a0` counter-clockwise over `sweep` radians
+/// (`0 < sweep ≤ 2π`, a whole turn closing on its start point) as [`arc_pieces`] gives
+/// it: what DXF and STEP conics map onto their own axes.
+pub(crate) fn unit_arc(a0: f64, sweep: f64) -> Vec<Seg> {
+    let at = |a: f64| DVec2::new(a.cos(), a.sin());
+    let end = if sweep >= std::f64::consts::TAU {
+        at(a0)
+    } else {
+        at(a0 + sweep)
+    };
+    arc_pieces(DVec2::ZERO, DVec2::ONE, 0.0, a0, sweep, at(a0), end)
+}
+
 /// The angle from `u` to `v` (radians, in `(−π, π]`).
 fn angle(u: DVec2, v: DVec2) -> f64 {
     u.perp_dot(v).atan2(u.dot(v))

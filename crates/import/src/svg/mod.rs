@@ -16,7 +16,7 @@ use std::collections::{BTreeMap, HashMap};
 use glam::{DAffine2, DVec2};
 use roxmltree::{Document, Node};
 use splinescope_core::geom::{Curve, Path};
-use splinescope_scene::format::{Color, Scene, SceneCurve, Style};
+use splinescope_scene::format::{Color, SceneCurve, Style};
 use splinescope_scene::limits;
 
 use crate::{ImportError, Imported};
@@ -210,25 +210,7 @@ pub fn read(text: &str, file: &str) -> Result<Imported, ImportError> {
     reader.sheet.sort_by_key(|r| r.selector.specificity());
     let flip = root_flip(&reader, root)?;
     reader.walk(root, flip, Computed::default(), 0)?;
-    let mut warnings = Vec::new();
-    if !reader.left_out.is_empty() {
-        let what: Vec<String> = reader
-            .left_out
-            .iter()
-            .map(|(k, n)| format!("{n} {k}"))
-            .collect();
-        warnings.push(format!(
-            "{file}: left out (not curves): {}",
-            what.join(", ")
-        ));
-    }
-    let name = std::path::Path::new(file)
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned());
-    let mut scene = Scene::of_curves(std::iter::empty());
-    scene.name = name;
-    scene.curves = reader.curves;
-    Ok(Imported { scene, warnings })
+    Ok(Imported::of_file(file, reader.curves, &reader.left_out))
 }
 
 /// The map from the root's user units to the scene: y flipped about the viewBox (or the
