@@ -14,14 +14,17 @@
 //! text laid out by the font's advances (no shaping, no kerning). One glyph sits at its
 //! own origin.
 
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use glam::{DVec2, DVec3};
+use rayon::prelude::*;
 use skrifa::prelude::{LocationRef, Size};
 use skrifa::raw::TableProvider;
 use skrifa::raw::ps::cff::CffFontRef;
 use skrifa::raw::ps::cs::CommandSink;
 use skrifa::raw::types::{Fixed, Tag};
 use skrifa::{FontRef, GlyphId, MetadataProvider, outline::DrawSettings, outline::OutlinePen};
-use splinescope_core::geom::{Curve, Path, PathSegment};
+use splinescope_core::geom::{Curve, Path, PathSegment, SegmentPoints};
 use splinescope_scene::format::{Color, SceneCurve, Style};
 use splinescope_scene::limits;
 
@@ -57,8 +60,13 @@ impl Contours {
         DVec3::new(f64::from(x), f64::from(y), 0.0) + self.offset
     }
 
-    fn push(&mut self, points: Vec<DVec3>) {
-        self.at = points[points.len() - 1];
+    /// A segment from the pen's current point through `rest` (no heap: a segment's
+    /// points are held inline).
+    fn push(&mut self, rest: &[DVec3]) {
+        let mut points = SegmentPoints::new();
+        points.push(self.at);
+        points.extend_from_slice(rest);
+        self.at = rest[rest.len() - 1];
         self.current.push(PathSegment::polynomial(points));
     }
 
@@ -77,7 +85,8 @@ impl Contours {
         }
         if closed && self.at != self.start {
             let (a, b) = (self.at, self.start);
-            self.current.push(PathSegment::polynomial(vec![a, b]));
+            self.current
+                .push(PathSegment::polynomial(SegmentPoints::from_slice(&[a, b])));
         }
         // The scratch vector keeps its capacity; the contour gets one of its own size.
         let segs: Vec<PathSegment> = self.current.drain(..).collect();
@@ -110,32 +119,33 @@ fn draw_truetype(pen: &mut Contours, contours: &[variable::Contour]) {
         let p3 = |p: DVec2| p.extend(0.0) + offset;
         // Start at the first on-curve point, or (none) the midpoint of the last and the
         // first; then walk the rest of the contour once round.
-        let (start, order): (DVec2, Vec<usize>) = match on.iter().position(|&o| o) {
-            Some(s) => (pts[s], (1..n).map(|k| (s + k) % n).collect()),
-            None => (0.5 * (pts[n - 1] + pts[0]), (0..n).collect()),
+        let (start, first, count) = match on.iter().position(|&o| o) {
+            Some(s) => (pts[s], s + 1, n - 1),
+            None => (0.5 * (pts[n - 1] + pts[0]), 0, n),
         };
         pen.finish(false);
         pen.start = p3(start);
         pen.at = pen.start;
         let mut pending: Option<DVec2> = None;
-        for i in order {
+        for i in (first..first + count).map(|k| k % n) {
             let q = pts[i];
             match (on[i], pending) {
                 (true, Some(c)) => {
-                    pen.push(vec![pen.at, p3(c), p3(q)]);
+                    pen.push(&[p3(c), p3(q)]);
                     pending = None;
                 }
-                (true, None) => pen.push(vec![pen.at, p3(q)]),
+                (true, None) => pen.push(&[p3(q)]),
                 (false, Some(c)) => {
                     let m = 0.5 * (c + q);
-                    pen.push(vec![pen.at, p3(c), p3(m)]);
+                    pen.push(&[p3(c), p3(m)]);
                     pending = Some(q);
                 }
                 (false, None) => pending = Some(q),
             }
         }
         if let Some(c) = pending {
-            pen.push(vec![pen.at, p3(c), pen.start]);
+            let start = pen.start;
+            pen.push(&[p3(c), start]);
         }
         pen.finish(true);
     }
@@ -154,13 +164,13 @@ impl CommandSink for Exact<'_> {
 
     fn line_to(&mut self, x: Fixed, y: Fixed) {
         let p = self.0.fixed(x, y);
-        self.0.push(vec![self.0.at, p]);
+        self.0.push(&[p]);
     }
 
     fn curve_to(&mut self, cx0: Fixed, cy0: Fixed, cx1: Fixed, cy1: Fixed, x: Fixed, y: Fixed) {
         let c = &mut *self.0;
         let (c0, c1, p) = (c.fixed(cx0, cy0), c.fixed(cx1, cy1), c.fixed(x, y));
-        c.push(vec![c.at, c0, c1, p]);
+        c.push(&[c0, c1, p]);
     }
 
     fn close(&mut self) {
@@ -177,17 +187,17 @@ impl OutlinePen for Contours {
 
     fn line_to(&mut self, x: f32, y: f32) {
         let p = self.p(x, y);
-        self.push(vec![self.at, p]);
+        self.push(&[p]);
     }
 
     fn quad_to(&mut self, cx0: f32, cy0: f32, x: f32, y: f32) {
         let (c, p) = (self.p(cx0, cy0), self.p(x, y));
-        self.push(vec![self.at, c, p]);
+        self.push(&[c, p]);
     }
 
     fn curve_to(&mut self, cx0: f32, cy0: f32, cx1: f32, cy1: f32, x: f32, y: f32) {
         let (c0, c1, p) = (self.p(cx0, cy0), self.p(cx1, cy1), self.p(x, y));
-        self.push(vec![self.at, c0, c1, p]);
+        self.push(&[c0, c1, p]);
     }
 
     fn close(&mut self) {
@@ -314,7 +324,6 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
                 .collect()
         }
     };
-    let outlines = font.outline_glyphs();
     // A CFF or CFF2 font (no glyf table) with the default font matrix: its charstrings
     // evaluated exactly (a font matrix other than the default scales coordinates: such a
     // font is drawn through skrifa's pen).
@@ -328,7 +337,6 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
         .as_ref()
         .and_then(|d| CffFontRef::new(d.as_bytes(), 0, Some(upem as i32)).ok())
         .filter(|c| c.matrix().is_none());
-    let coords = location.coords();
     // A variable TrueType font away from its default location: its deltas applied in
     // f64 (skrifa's FreeType-compatible scaler rounds the outline to whole units).
     let variable = if opts.variations.is_empty() || cff.is_some() {
@@ -342,8 +350,6 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
             file: file.to_owned(),
             source,
         })?;
-    // About two contours a glyph: one allocation for most fonts.
-    let mut curves = Vec::with_capacity(placed.len().saturating_mul(2).min(1 << 20));
     let style = {
         let mut s = Style::default_for(0);
         s.color = Color::from_rgba8([34, 34, 34, 255]);
@@ -352,73 +358,28 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
         s.show_points = false;
         s
     };
-    // One pen for every glyph: its scratch vectors keep their capacity.
-    let mut pen = Contours::default();
-    for (gid, offset) in placed {
-        let Some(glyph) = outlines.get(gid) else {
-            continue;
-        };
-        pen.reset(offset);
-        // The drawing, by the first reader that takes the glyph: a variable TrueType
-        // outline in f64, a CFF charstring exactly, else skrifa's pen.
-        let drawn_in_f64 = variable
-            .as_ref()
-            .and_then(|v| v.contours(gid).ok())
-            .map(|contours| draw_truetype(&mut pen, &contours))
-            .is_some();
-        let exact = if drawn_in_f64 {
-            Some(Ok(()))
-        } else {
-            cff.as_ref().map(|c| {
-                let index = c.subfont_index(gid).unwrap_or(0);
-                let subfont = c.subfont(index, coords)?;
-                if subfont.matrix().is_some() {
-                    return Err(skrifa::raw::ps::error::Error::InvalidFontFormat);
-                }
-                c.evaluate_charstring(&subfont, gid, coords, &mut Exact(&mut pen))
-                    .map(|_| ())
-            })
-        };
-        match exact {
-            Some(Ok(())) => {}
-            Some(Err(e)) if !matches!(e, skrifa::raw::ps::error::Error::InvalidFontFormat) => {
-                return Err(font_error(
-                    file,
-                    format!("glyph {}: cannot be drawn: {e}", glyph_name(gid)),
-                ));
-            }
-            _ => {
-                pen.reset(offset);
-                let settings =
-                    DrawSettings::unhinted(Size::unscaled(), LocationRef::from(&location));
-                glyph.draw(settings, &mut pen).map_err(|e| {
-                    font_error(
-                        file,
-                        format!("glyph {}: cannot be drawn: {e}", glyph_name(gid)),
-                    )
-                })?;
-            }
-        }
-        pen.finish(false);
-        let name = glyph_name(gid);
-        for (k, (segs, closed)) in pen.done.drain(..).enumerate() {
-            if curves.len() as u64 >= max_curves {
-                return Err(font_error(
-                    file,
-                    limits::CURVES
-                        .check(curves.len() as u64 + 1)
-                        .err()
-                        .map_or_else(String::new, |e| e.to_string()),
-                ));
-            }
-            let path = Path::try_new(segs, closed)
-                .map_err(|e| font_error(file, format!("glyph {name} contour {k}: {e}")))?;
-            curves.push(SceneCurve {
-                name: Some(format!("{name} contour {k}")),
-                curve: Curve::Path(path),
-                style: style.clone(),
-            });
-        }
+    let reader = GlyphReader {
+        file,
+        outlines: &font.outline_glyphs(),
+        cff: cff.as_ref(),
+        variable: variable.as_ref(),
+        location: &location,
+        style: &style,
+        names: &glyph_name,
+        max_curves,
+        made: AtomicU64::new(0),
+    };
+    // The glyphs in chunks over every core (each chunk with its own pen, whose scratch
+    // vectors keep their capacity), then in order: the first error in glyph order is
+    // the one reported.
+    let chunks: Vec<Result<Vec<SceneCurve>, ImportError>> = placed
+        .par_chunks(64)
+        .map(|chunk| reader.read(chunk))
+        .collect();
+    let mut curves =
+        Vec::with_capacity(chunks.iter().map(|c| c.as_ref().map_or(0, Vec::len)).sum());
+    for chunk in chunks {
+        curves.extend(chunk?);
     }
     let mut imported = Imported::of_file(
         file,
@@ -427,6 +388,102 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
     );
     imported.warnings = warnings;
     Ok(imported)
+}
+
+/// What every chunk of glyphs is read with.
+struct GlyphReader<'a, 'f, N> {
+    file: &'a str,
+    outlines: &'a skrifa::outline::OutlineGlyphCollection<'f>,
+    cff: Option<&'a CffFontRef<'f>>,
+    variable: Option<&'a variable::Variable<'f>>,
+    location: &'a skrifa::instance::Location,
+    style: &'a Style,
+    names: &'a N,
+    max_curves: u64,
+    /// The curves made so far, by every chunk: past the limit, every chunk stops.
+    made: AtomicU64,
+}
+
+impl<N: Fn(GlyphId) -> String + Sync> GlyphReader<'_, '_, N> {
+    /// The curves of the glyphs of `chunk`, each at its place, in order.
+    fn read(&self, chunk: &[(GlyphId, DVec3)]) -> Result<Vec<SceneCurve>, ImportError> {
+        let file = self.file;
+        let coords = self.location.coords();
+        let mut curves = Vec::with_capacity(2 * chunk.len());
+        // One pen for the chunk: its scratch vectors keep their capacity.
+        let mut pen = Contours::default();
+        for &(gid, offset) in chunk {
+            let Some(glyph) = self.outlines.get(gid) else {
+                continue;
+            };
+            pen.reset(offset);
+            // The drawing, by the first reader that takes the glyph: a variable TrueType
+            // outline in f64, a CFF charstring exactly, else skrifa's pen.
+            let drawn_in_f64 = self
+                .variable
+                .and_then(|v| v.contours(gid).ok())
+                .map(|contours| draw_truetype(&mut pen, &contours))
+                .is_some();
+            let exact = if drawn_in_f64 {
+                Some(Ok(()))
+            } else {
+                self.cff.map(|c| {
+                    let index = c.subfont_index(gid).unwrap_or(0);
+                    let subfont = c.subfont(index, coords)?;
+                    if subfont.matrix().is_some() {
+                        return Err(skrifa::raw::ps::error::Error::InvalidFontFormat);
+                    }
+                    c.evaluate_charstring(&subfont, gid, coords, &mut Exact(&mut pen))
+                        .map(|_| ())
+                })
+            };
+            match exact {
+                Some(Ok(())) => {}
+                Some(Err(e)) if !matches!(e, skrifa::raw::ps::error::Error::InvalidFontFormat) => {
+                    return Err(font_error(
+                        file,
+                        format!("glyph {}: cannot be drawn: {e}", (self.names)(gid)),
+                    ));
+                }
+                _ => {
+                    pen.reset(offset);
+                    let settings =
+                        DrawSettings::unhinted(Size::unscaled(), LocationRef::from(self.location));
+                    glyph.draw(settings, &mut pen).map_err(|e| {
+                        font_error(
+                            file,
+                            format!("glyph {}: cannot be drawn: {e}", (self.names)(gid)),
+                        )
+                    })?;
+                }
+            }
+            pen.finish(false);
+            let made = self
+                .made
+                .fetch_add(pen.done.len() as u64, Ordering::Relaxed)
+                + pen.done.len() as u64;
+            if made > self.max_curves {
+                return Err(font_error(
+                    file,
+                    limits::CURVES
+                        .check(self.max_curves + 1)
+                        .err()
+                        .map_or_else(String::new, |e| e.to_string()),
+                ));
+            }
+            let name = (self.names)(gid);
+            for (k, (segs, closed)) in pen.done.drain(..).enumerate() {
+                let path = Path::try_new(segs, closed)
+                    .map_err(|e| font_error(file, format!("glyph {name} contour {k}: {e}")))?;
+                curves.push(SceneCurve {
+                    name: Some(format!("{name} contour {k}")),
+                    curve: Curve::Path(path),
+                    style: self.style.clone(),
+                });
+            }
+        }
+        Ok(curves)
+    }
 }
 
 /// Every glyph's name, in one pass: a version-2 `post` table's strings read once (asking

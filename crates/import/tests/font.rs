@@ -120,3 +120,96 @@ fn bad_files_and_requests_are_refused_naming_the_file_and_what() {
         }
     }
 }
+
+#[test]
+fn a_whole_font_read_over_every_core_keeps_glyph_order_and_each_glyph_alone() {
+    // The glyphs are read in chunks on every core: the scene must still be the font's
+    // glyph order, and each glyph's contours what it gives when read alone.
+    let font = dejavu();
+    let all = read(&font, "DejaVuSans.ttf", &FontOptions::default()).expect("reads");
+    let names: Vec<&str> = all
+        .scene
+        .curves
+        .iter()
+        .map(|c| c.name.as_deref().expect("named"))
+        .collect();
+    let glyph_of = |n: &str| {
+        n.rsplit_once(" contour ")
+            .expect("a contour name")
+            .0
+            .to_owned()
+    };
+    // Contour numbers restart at 0 for each glyph and count up within it.
+    for w in names.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let k = |n: &str| -> usize { n.rsplit_once(" contour ").unwrap().1.parse().unwrap() };
+        if glyph_of(a) == glyph_of(b) {
+            assert_eq!(k(b), k(a) + 1, "{a} then {b}");
+        } else {
+            assert_eq!(k(b), 0, "{a} then {b}");
+        }
+    }
+    // Three glyphs read alone: the whole font holds the same contours, under the same
+    // names, moved to the glyph's cell.
+    for (gid, name) in [(36, "A"), (82, "o"), (1000, "")] {
+        let wanted = if name.is_empty() {
+            format!("gid{gid}")
+        } else {
+            name.to_owned()
+        };
+        let alone = read(&font, "f", &glyphs(&[&wanted])).expect("reads");
+        let first = alone.scene.curves[0]
+            .name
+            .as_deref()
+            .expect("named")
+            .to_owned();
+        let at = names
+            .iter()
+            .position(|n| *n == first)
+            .expect("in the whole font");
+        for (k, c) in alone.scene.curves.iter().enumerate() {
+            let whole = &all.scene.curves[at + k];
+            assert_eq!(whole.name, c.name);
+            // The same outline, moved to its cell: the same differences between points.
+            let (p, q) = (c.curve.control_points(), whole.curve.control_points());
+            assert_eq!(p.len(), q.len());
+            let shift = q[0] - p[0];
+            for (a, b) in p.iter().zip(q) {
+                assert_eq!(*b - shift, *a, "{first}");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_font_past_the_curve_limit_is_refused_naming_the_limit() {
+    // Run in a child process: the limit is read from the environment.
+    if std::env::var_os("SPLINESCOPE_FONT_LIMIT_CHILD").is_none() {
+        let out = std::process::Command::new(std::env::current_exe().expect("the test binary"))
+            .args([
+                "a_font_past_the_curve_limit_is_refused_naming_the_limit",
+                "--exact",
+                "--nocapture",
+            ])
+            .env("SPLINESCOPE_FONT_LIMIT_CHILD", "1")
+            .env("SPLINESCOPE_MAX_CURVES", "1000")
+            .output()
+            .expect("runs");
+        assert!(
+            out.status.success(),
+            "{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        );
+        return;
+    }
+    let font = dejavu();
+    let e = read(&font, "DejaVuSans.ttf", &FontOptions::default()).expect_err("over the limit");
+    let m = e.to_string();
+    assert!(
+        m.starts_with("DejaVuSans.ttf: ") && m.contains("1001 is over the limit of 1000 curves"),
+        "{m}"
+    );
+    // Under the limit, a few glyphs read.
+    assert!(read(&font, "f", &glyphs(&["A", "o"])).is_ok());
+}

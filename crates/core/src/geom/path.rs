@@ -102,15 +102,17 @@ pub struct Path {
 /// segments, are one point: an importer's transforms round each end on its own.
 const JOIN_ROUNDING: f64 = 256.0 * f64::EPSILON;
 
-/// The gap between segment `k`'s end and `next`'s start, when it is beyond rounding.
-fn gap(a: &PathSegment, b: &PathSegment) -> Option<f64> {
-    let (p, q) = (a.points[a.points.len() - 1], b.points[0]);
-    let size = a
-        .points
+/// The largest absolute coordinate of a segment's points.
+fn size_of(s: &PathSegment) -> f64 {
+    s.points
         .iter()
-        .chain(&b.points)
         .map(|p| p.abs().max_element())
-        .fold(0.0, f64::max);
+        .fold(0.0, f64::max)
+}
+
+/// The gap between one segment's end `p` and the next's start `q`, when it is beyond
+/// rounding relative to `size`, the larger coordinate of the two segments.
+fn gap(p: DVec3, q: DVec3, size: f64) -> Option<f64> {
     let d = (p - q).length();
     (d > JOIN_ROUNDING * size).then_some(d)
 }
@@ -127,7 +129,12 @@ impl Path {
         if segments.is_empty() {
             return Err(GeomError::NoSegments);
         }
+        // One pass: each segment checked, its joint with the one before measured (each
+        // segment's size computed once), its points appended.
         let mut rational: Vec<Option<RationalBezier>> = Vec::new();
+        let mut points: Vec<DVec3> =
+            Vec::with_capacity(segments.iter().map(|s| s.points.len()).sum::<usize>() + 1);
+        let mut sizes = (0.0, 0.0);
         for (segment, s) in segments.iter().enumerate() {
             let r = checked(s).map_err(|e| GeomError::InSegment {
                 segment,
@@ -137,25 +144,36 @@ impl Path {
                 rational.resize_with(segment, || None);
                 rational.push(Some(r));
             }
+            let size = size_of(s);
+            if segment == 0 {
+                sizes = (size, size);
+                points.extend_from_slice(&s.points);
+                continue;
+            }
+            let joint = segment - 1;
+            if let Some(gap) = gap(points[points.len() - 1], s.points[0], sizes.1.max(size)) {
+                return Err(GeomError::PathGap {
+                    joint,
+                    next: segment,
+                    gap,
+                });
+            }
+            sizes.1 = size;
+            points.extend_from_slice(&s.points[1..]);
         }
         if !rational.is_empty() {
             rational.resize_with(segments.len(), || None);
         }
         let k = segments.len();
-        let joints = if closed { k } else { k - 1 };
-        for joint in 0..joints {
-            let next = (joint + 1) % k;
-            if let Some(gap) = gap(&segments[joint], &segments[next]) {
-                return Err(GeomError::PathGap { joint, next, gap });
-            }
-        }
-        let mut points: Vec<DVec3> =
-            Vec::with_capacity(segments.iter().map(|s| s.points.len()).sum::<usize>() + 1);
-        points.extend_from_slice(&segments[0].points);
-        for s in &segments[1..] {
-            points.extend_from_slice(&s.points[1..]);
-        }
         if closed {
+            // The last segment's end against the first's start.
+            if let Some(gap) = gap(points[points.len() - 1], points[0], sizes.0.max(sizes.1)) {
+                return Err(GeomError::PathGap {
+                    joint: k - 1,
+                    next: 0,
+                    gap,
+                });
+            }
             points.pop();
         }
         Ok(Path {

@@ -25,9 +25,6 @@ pub(super) struct Variable<'a> {
     hmtx: skrifa::raw::tables::hmtx::Hmtx<'a>,
     /// The normalised location, one value per axis.
     coords: Vec<f64>,
-    /// Glyph outlines one glyph may still load (its components': a composite that uses
-    /// itself twice over would double at every level).
-    budget: std::cell::Cell<u32>,
 }
 
 /// Outlines one glyph may load, components included.
@@ -93,7 +90,6 @@ impl<'a> Variable<'a> {
             gvar,
             hmtx,
             coords,
-            budget: std::cell::Cell::new(BUDGET),
         })
     }
 
@@ -106,8 +102,10 @@ impl<'a> Variable<'a> {
     /// A table that does not read, a component anchored by point numbers (left to the
     /// caller's other reader), or composites nested past [`MAX_DEPTH`].
     pub(super) fn contours(&self, gid: GlyphId) -> Result<Vec<Contour>, String> {
-        self.budget.set(BUDGET);
-        let (mut contours, left) = self.outline(gid, 0)?;
+        // Glyph outlines the glyph may still load (its components': a composite that
+        // uses itself twice over would double at every level).
+        let mut budget = BUDGET;
+        let (mut contours, left) = self.outline(gid, 0, &mut budget)?;
         let x_min = contours
             .iter()
             .flat_map(|(pts, _)| pts.iter().map(|p| p.x))
@@ -125,17 +123,21 @@ impl<'a> Variable<'a> {
     }
 
     /// The contours and the moved left phantom point's x.
-    fn outline(&self, gid: GlyphId, depth: usize) -> Result<(Vec<Contour>, f64), String> {
+    fn outline(
+        &self,
+        gid: GlyphId,
+        depth: usize,
+        budget: &mut u32,
+    ) -> Result<(Vec<Contour>, f64), String> {
         if depth > MAX_DEPTH {
             return Err(format!("composite glyphs nested deeper than {MAX_DEPTH}"));
         }
-        let left_over = self.budget.get();
-        if left_over == 0 {
+        if *budget == 0 {
             return Err(format!(
                 "more than {BUDGET} component outlines in one glyph"
             ));
         }
-        self.budget.set(left_over - 1);
+        *budget -= 1;
         let glyph = self
             .loca
             .get_glyf(gid, &self.glyf)
@@ -198,7 +200,7 @@ impl<'a> Variable<'a> {
                     } else {
                         offset
                     };
-                    let (child, _) = self.outline(comp.glyph.into(), depth + 1)?;
+                    let (child, _) = self.outline(comp.glyph.into(), depth + 1, budget)?;
                     for (pts, on) in child {
                         let moved = pts
                             .iter()
