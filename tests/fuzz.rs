@@ -1216,21 +1216,28 @@ fn mutate_bytes(mut b: Vec<u8>, rng: &mut Rng) -> Vec<u8> {
 }
 
 /// A small variable TrueType font (two axes, avar, sparse and intermediate gvar tuples, a
-/// composite with moving offsets: `crates/python/tests/test_fonts_variable.py` builds it).
-fn variable_font_seed() -> Vec<u8> {
-    std::fs::read(manifest("tests/fonts/variable.ttf")).expect("tests/fonts/variable.ttf")
+/// composite with moving offsets: `crates/python/tests/test_fonts_variable.py` builds it),
+/// or `cff2`, a small variable CFF2 font (two axes, avar, five regions: built by
+/// `crates/python/tests/test_fonts_cff2_variable.py`).
+fn variable_font_seed(cff2: bool) -> Vec<u8> {
+    let name = if cff2 {
+        "tests/fonts/variable-cff2.otf"
+    } else {
+        "tests/fonts/variable.ttf"
+    };
+    std::fs::read(manifest(name)).expect(name)
 }
 
 impl Fuzz {
     /// One mutated font: cut short, bytes flipped or a run of them set to 0xff (counts
     /// and offsets made huge), read as a short text and as a few glyphs — the variable
-    /// font also at a random location, through its f64 outlines: a typed error or finite
-    /// outlines, never a panic, in bounded time.
+    /// fonts (TrueType and CFF2) also at a random location, through their f64 outlines: a
+    /// typed error or finite outlines, never a panic, in bounded time.
     fn font_case(&mut self) {
         let variable = self.rng.unit() < 0.4;
         let b = mutate_bytes(
             if variable {
-                variable_font_seed()
+                variable_font_seed(self.rng.unit() < 0.5)
             } else {
                 font_seed().to_vec()
             },

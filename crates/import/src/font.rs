@@ -30,6 +30,7 @@ use splinescope_scene::limits;
 
 use crate::{ImportError, Imported};
 
+mod cff2;
 mod variable;
 
 /// What to read of a font.
@@ -53,6 +54,9 @@ struct Contours {
     start: DVec3,
     at: DVec3,
     offset: DVec3,
+    /// No closing lines: a closed contour's last point is left where the font puts it
+    /// (the CFF2 reader adds them once the points are summed).
+    no_closing_lines: bool,
 }
 
 impl Contours {
@@ -83,7 +87,7 @@ impl Contours {
         if self.current.is_empty() {
             return;
         }
-        if closed && self.at != self.start {
+        if closed && !self.no_closing_lines && self.at != self.start {
             let (a, b) = (self.at, self.start);
             self.current
                 .push(PathSegment::polynomial(SegmentPoints::from_slice(&[a, b])));
@@ -344,6 +348,19 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
     } else {
         variable::Variable::new(&font, &opts.variations)
     };
+    // A CFF2 font away from its default location: its blends summed in f64.
+    let cff2 = match cff.as_ref().filter(|c| c.version() == 2) {
+        Some(c) if !opts.variations.is_empty() => cff2::Cff2Blend::new(&font, c, &opts.variations)
+            .unwrap_or_else(|n| {
+                warnings.push(format!(
+                    "{file}: {n} variation regions count at this location (more than {}): \
+                     its blends are evaluated in 16.16 fixed point, within about 10⁻³ units",
+                    cff2::MAX_REGIONS
+                ));
+                None
+            }),
+        _ => None,
+    };
     let max_curves = limits::CURVES
         .value()
         .map_err(|source| ImportError::Limit {
@@ -363,6 +380,7 @@ pub fn read(data: &[u8], file: &str, opts: &FontOptions) -> Result<Imported, Imp
         outlines: &font.outline_glyphs(),
         cff: cff.as_ref(),
         variable: variable.as_ref(),
+        cff2: cff2.as_ref(),
         location: &location,
         style: &style,
         names: &glyph_name,
@@ -396,6 +414,7 @@ struct GlyphReader<'a, 'f, N> {
     outlines: &'a skrifa::outline::OutlineGlyphCollection<'f>,
     cff: Option<&'a CffFontRef<'f>>,
     variable: Option<&'a variable::Variable<'f>>,
+    cff2: Option<&'a cff2::Cff2Blend>,
     location: &'a skrifa::instance::Location,
     style: &'a Style,
     names: &'a N,
@@ -418,12 +437,22 @@ impl<N: Fn(GlyphId) -> String + Sync> GlyphReader<'_, '_, N> {
             };
             pen.reset(offset);
             // The drawing, by the first reader that takes the glyph: a variable TrueType
-            // outline in f64, a CFF charstring exactly, else skrifa's pen.
-            let drawn_in_f64 = self
+            // outline in f64, a CFF2 outline at a location in f64, a CFF charstring
+            // exactly, else skrifa's pen.
+            let mut drawn_in_f64 = self
                 .variable
                 .and_then(|v| v.contours(gid).ok())
                 .map(|contours| draw_truetype(&mut pen, &contours))
                 .is_some();
+            if let (false, Some(blend), Some(cff)) = (drawn_in_f64, self.cff2, self.cff) {
+                pen.done = blend.contours(cff, gid, offset).map_err(|m| {
+                    font_error(
+                        file,
+                        format!("glyph {}: cannot be drawn: {m}", (self.names)(gid)),
+                    )
+                })?;
+                drawn_in_f64 = true;
+            }
             let exact = if drawn_in_f64 {
                 Some(Ok(()))
             } else {

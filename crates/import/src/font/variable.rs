@@ -41,49 +41,7 @@ impl<'a> Variable<'a> {
         let loca = font.loca(None).ok()?;
         let gvar = font.gvar().ok()?;
         let hmtx = font.hmtx().ok()?;
-        let fvar = font.fvar().ok()?;
-        let axes = fvar.axes().ok()?;
-        let avar = font.avar().ok();
-        let mut coords = Vec::with_capacity(axes.len());
-        for (i, axis) in axes.iter().enumerate() {
-            let (min, default, max) = (
-                f64::from(axis.min_value().to_f32()),
-                f64::from(axis.default_value().to_f32()),
-                f64::from(axis.max_value().to_f32()),
-            );
-            let tag = axis.axis_tag().to_string();
-            let v = location
-                .iter()
-                .rev()
-                .find(|(t, _)| *t == tag)
-                .map_or(default, |(_, v)| *v)
-                .clamp(min, max);
-            let mut n = if v < default {
-                (v - default) / (default - min)
-            } else if v > default {
-                (v - default) / (max - default)
-            } else {
-                0.0
-            };
-            if let Some(map) = avar
-                .as_ref()
-                .and_then(|a| a.axis_segment_maps().iter().nth(i))
-                .and_then(Result::ok)
-            {
-                let pairs: Vec<(f64, f64)> = map
-                    .axis_value_maps()
-                    .iter()
-                    .map(|m| {
-                        (
-                            f64::from(m.from_coordinate().to_f32()),
-                            f64::from(m.to_coordinate().to_f32()),
-                        )
-                    })
-                    .collect();
-                n = piecewise_linear(n, &pairs);
-            }
-            coords.push(n);
-        }
+        let coords = normalized(font, location)?;
         Some(Variable {
             glyf,
             loca,
@@ -270,36 +228,97 @@ impl<'a> Variable<'a> {
         start: Option<&skrifa::raw::tables::variations::Tuple<'_>>,
         end: Option<&skrifa::raw::tables::variations::Tuple<'_>>,
     ) -> f64 {
-        let mut s = 1.0;
-        for (i, &v) in self.coords.iter().enumerate() {
-            let f = |t: Option<&skrifa::raw::tables::variations::Tuple<'_>>| {
-                t.and_then(|t| t.get(i)).map(|x| f64::from(x.to_f32()))
-            };
-            let Some(p) = f(Some(peak)) else { continue };
-            if p == 0.0 {
-                continue;
-            }
-            let (lo, hi) = match (f(start), f(end)) {
-                (Some(a), Some(b)) => (a, b),
-                _ => (p.min(0.0), p.max(0.0)),
-            };
-            if lo > p || p > hi || (lo < 0.0 && hi > 0.0) {
-                continue;
-            }
-            if v == p {
-                continue;
-            }
-            if v <= lo || hi <= v {
-                return 0.0;
-            }
-            s *= if v < p {
-                (v - lo) / (p - lo)
-            } else {
-                (v - hi) / (p - hi)
-            };
-        }
-        s
+        let f = |t: Option<&skrifa::raw::tables::variations::Tuple<'_>>, i: usize| {
+            t.and_then(|t| t.get(i)).map(|x| f64::from(x.to_f32()))
+        };
+        region_scalar(
+            &self.coords,
+            (0..self.coords.len()).filter_map(|i| {
+                let p = f(Some(peak), i)?;
+                let (lo, hi) = match (f(start, i), f(end, i)) {
+                    (Some(a), Some(b)) => (a, b),
+                    _ => (p.min(0.0), p.max(0.0)),
+                };
+                Some((i, lo, p, hi))
+            }),
+        )
     }
+}
+
+/// A region's scalar at the normalised location `coords` (fontTools' `supportScalar`,
+/// OpenType's rule), in `f64`: the product over its axes `(axis, start, peak, end)` of
+/// the tent's height; an axis with peak 0, or with an invalid or zero-straddling range,
+/// does not count; an axis past `coords` reads 0.
+pub(super) fn region_scalar(
+    coords: &[f64],
+    axes: impl Iterator<Item = (usize, f64, f64, f64)>,
+) -> f64 {
+    let mut s = 1.0;
+    for (i, lo, p, hi) in axes {
+        let v = coords.get(i).copied().unwrap_or(0.0);
+        if p == 0.0 || lo > p || p > hi || (lo < 0.0 && hi > 0.0) || v == p {
+            continue;
+        }
+        if v <= lo || hi <= v {
+            return 0.0;
+        }
+        s *= if v < p {
+            (v - lo) / (p - lo)
+        } else {
+            (v - hi) / (p - hi)
+        };
+    }
+    s
+}
+
+/// The location `location` (axis tag, user value; an axis not named at its default)
+/// normalised in `f64` as fontTools normalises it: by the axis's range, then through
+/// avar's map; `None` for a font without `fvar`.
+pub(super) fn normalized(font: &FontRef<'_>, location: &[(String, f64)]) -> Option<Vec<f64>> {
+    let fvar = font.fvar().ok()?;
+    let axes = fvar.axes().ok()?;
+    let avar = font.avar().ok();
+    let mut coords = Vec::with_capacity(axes.len());
+    for (i, axis) in axes.iter().enumerate() {
+        let (min, default, max) = (
+            f64::from(axis.min_value().to_f32()),
+            f64::from(axis.default_value().to_f32()),
+            f64::from(axis.max_value().to_f32()),
+        );
+        let tag = axis.axis_tag().to_string();
+        let v = location
+            .iter()
+            .rev()
+            .find(|(t, _)| *t == tag)
+            .map_or(default, |(_, v)| *v)
+            .clamp(min, max);
+        let mut n = if v < default {
+            (v - default) / (default - min)
+        } else if v > default {
+            (v - default) / (max - default)
+        } else {
+            0.0
+        };
+        if let Some(map) = avar
+            .as_ref()
+            .and_then(|a| a.axis_segment_maps().iter().nth(i))
+            .and_then(Result::ok)
+        {
+            let pairs: Vec<(f64, f64)> = map
+                .axis_value_maps()
+                .iter()
+                .map(|m| {
+                    (
+                        f64::from(m.from_coordinate().to_f32()),
+                        f64::from(m.to_coordinate().to_f32()),
+                    )
+                })
+                .collect();
+            n = piecewise_linear(n, &pairs);
+        }
+        coords.push(n);
+    }
+    Some(coords)
 }
 
 /// fontTools' `piecewiseLinearMap`: `v` through the map's pairs (from → to), linear
