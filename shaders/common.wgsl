@@ -94,6 +94,19 @@ struct LineStyle {
 
 // Twin: LINE_WIDTH_IN_SCENE in crates/gpu/src/layout.rs.
 const LINE_WIDTH_IN_SCENE: u32 = 1u;
+// A curve style's stroke (twins: the LINE_* constants in crates/gpu/src/layout.rs): its
+// cap in bits 1–2 (0 round, 1 butt, 2 square), its join in bits 3–4 (0 round, 1 miter,
+// 2 bevel), whether the curve's run in this chunk continues one in an earlier chunk
+// (its start is no end) or into a later one, whether the curve is closed (its run's
+// ends meet where the pack repeated its first segment), and the miter limit times 1024
+// in bits 8–31.
+const LINE_CAP_SHIFT: u32 = 1u;
+const LINE_JOIN_SHIFT: u32 = 3u;
+const LINE_SHAPE_MASK: u32 = 30u;
+const LINE_CONTINUES_BEFORE: u32 = 32u;
+const LINE_CONTINUES_AFTER: u32 = 64u;
+const LINE_CLOSED: u32 = 128u;
+const LINE_MITER_SHIFT: u32 = 8u;
 
 // Twin: half_width_px in crates/gpu/src/layer_twin.rs. Half a style's line width in
 // pixels where the line is at clip-space `w`: its pixels times the display scale, or (a

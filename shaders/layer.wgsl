@@ -253,7 +253,13 @@ fn raster_curves(
                     style = curve_styles[min(a.id, styles)];
                     style_id = a.id;
                 }
-                raster_piece(clip_ends(ca, cb), style, 0.5 * (ca.w + cb.w));
+                let ends = clip_ends(ca, cb);
+                let w = 0.5 * (ca.w + cb.w);
+                if ((style.flags & LINE_SHAPE_MASK) == 0u) {
+                    raster_piece(ends, style, w, END_ROUND, END_ROUND);
+                } else {
+                    raster_shaped(p, pieces, ends, style, w);
+                }
             }
             a = b;
             ca = cb;
@@ -261,9 +267,163 @@ fn raster_curves(
     }
 }
 
+// How a piece's end is drawn (twins: the END_* constants in layer_twin.rs): a half disc
+// (a round cap, and the round join of two pieces), cut at the end point with its edge
+// anti-aliased (a butt cap), cut half the width beyond it (a square cap), or cut at the
+// end point with a hard edge (where a miter or bevel join meets it: the pixels on
+// either side of the cut belong to one piece each, so no seam shows).
+const END_ROUND: u32 = 0u;
+const END_BUTT: u32 = 1u;
+const END_SQUARE: u32 = 2u;
+const END_HARD: u32 = 3u;
+const JOIN_ROUND: u32 = 0u;
+const JOIN_MITER: u32 = 1u;
+
+// The sample before sample `p` on its run at another place (where two segments meet
+// the sample is written twice: one repeat is passed over); `p` itself where the run
+// starts at p. Twin: before in layer_twin.rs.
+fn before(p: u32) -> u32 {
+    let s = curve_samples[p];
+    var i = p;
+    for (var k = 0u; k < 2u && i > 0u; k++) {
+        let q = curve_samples[i - 1u];
+        if (q.id != s.id) {
+            return p;
+        }
+        i -= 1u;
+        if (any(q.position != s.position)) {
+            return i;
+        }
+    }
+    return p;
+}
+
+// The sample after sample `p` (at most `last`) on its run at another place; `p` where
+// the run ends at p. Twin: after in layer_twin.rs.
+fn after(p: u32, last: u32) -> u32 {
+    let s = curve_samples[p];
+    var i = p;
+    for (var k = 0u; k < 2u && i < last; k++) {
+        let q = curve_samples[i + 1u];
+        if (q.id != s.id) {
+            return p;
+        }
+        i += 1u;
+        if (any(q.position != s.position)) {
+            return i;
+        }
+    }
+    return p;
+}
+
+// Piece p (samples p and p + 1 of `last` + 1) of a curve whose style has a cap or a join
+// other than round: each end a cap where its run ends (round where the run goes on in
+// another chunk, hard where a closed curve's run meets itself), a join where another
+// piece follows — the piece ending at a miter or bevel join also fills the join's wedge.
+fn raster_shaped(p: u32, last: u32, ends: PixelEnds, style: LineStyle, w: f32) {
+    let cap = (style.flags >> LINE_CAP_SHIFT) & 3u;
+    let join = (style.flags >> LINE_JOIN_SHIFT) & 3u;
+    let closed = (style.flags & LINE_CLOSED) != 0u;
+    let at_join = select(END_HARD, END_ROUND, join == JOIN_ROUND);
+    var start = cap;
+    if (before(p) != p) {
+        start = at_join;
+    } else if (closed) {
+        start = END_HARD;
+    } else if ((style.flags & LINE_CONTINUES_BEFORE) != 0u) {
+        start = END_ROUND;
+    }
+    var end = cap;
+    let next = after(p + 1u, last);
+    if (next != p + 1u) {
+        end = at_join;
+    } else if (closed) {
+        end = END_HARD;
+    } else if ((style.flags & LINE_CONTINUES_AFTER) != 0u) {
+        end = END_ROUND;
+    }
+    raster_piece(ends, style, w, start, end);
+    if (next != p + 1u && join != JOIN_ROUND && ends.ok) {
+        let following = pixel_ends(curve_samples[p + 1u], curve_samples[next]);
+        let d1 = ends.q - ends.p;
+        let d2 = following.q - following.p;
+        if (following.ok && length(d1) > 1e-6 && length(d2) > 1e-6) {
+            raster_join(ends.q, normalize(d1), normalize(d2), style, half_width_px(style, camera, w));
+        }
+    }
+}
+
+// The wedge of a miter or bevel join at `at` (pixels) between a piece going along `d1`
+// and the next going along `d2` (unit vectors): the pixels past the first piece's end
+// and before the next one's start (the two hard cuts: no pixel is in two), inside the
+// outer edges extended to their meeting point (a miter, when its length over the width,
+// 1 / cos(θ/2) for a turn θ, is within the limit) or the line joining the outer corners
+// (a bevel), that edge anti-aliased. Twin: raster_join in layer_twin.rs.
+fn raster_join(at: vec2<f32>, d1: vec2<f32>, d2: vec2<f32>, style: LineStyle, half_width: f32) {
+    let turn = d1.x * d2.y - d1.y * d2.x;
+    let cosine = dot(d1, d2);
+    if (abs(turn) < 1e-6 && cosine > 0.0) {
+        return;
+    }
+    // The outer side's normals: away from the turn.
+    var n1 = vec2<f32>(-d1.y, d1.x);
+    if (dot(n1, d2) > 0.0) {
+        n1 = -n1;
+    }
+    var n2 = vec2<f32>(-d2.y, d2.x);
+    if (dot(n2, d1) < 0.0) {
+        n2 = -n2;
+    }
+    let limit = f32(style.flags >> LINE_MITER_SHIFT) / 1024.0;
+    let miter = ((style.flags >> LINE_JOIN_SHIFT) & 3u) == JOIN_MITER
+        && 2.0 <= limit * limit * (1.0 + cosine);
+    let a = at + half_width * n1;
+    let b = at + half_width * n2;
+    var lo = min(at, min(a, b));
+    var hi = max(at, max(a, b));
+    var bevel = vec2<f32>(0.0);
+    if (miter) {
+        let tip = at + half_width * (n1 + n2) / (1.0 + cosine);
+        lo = min(lo, tip);
+        hi = max(hi, tip);
+    } else {
+        bevel = normalize(n1 + n2);
+    }
+    let size = vec2<f32>(layer_size());
+    let x0 = max(floor(lo.x - 1.0), 0.0);
+    let x1 = min(ceil(hi.x + 1.0), size.x - 1.0);
+    let y0 = max(floor(lo.y - 1.0), 0.0);
+    let y1 = min(ceil(hi.y + 1.0), size.y - 1.0);
+    let opacity = clamp(style.color.a, 0.0, 1.0) * 63.0;
+    for (var y = y0; y <= y1; y += 1.0) {
+        for (var x = x0; x <= x1; x += 1.0) {
+            let pixel = vec2<f32>(x + 0.5, y + 0.5);
+            let v = pixel - at;
+            if (dot(v, d1) < 0.0 || dot(v, d2) >= 0.0) {
+                continue;
+            }
+            var inside = 0.0;
+            if (miter) {
+                inside = min(half_width - dot(v, n1), half_width - dot(v, n2));
+            } else {
+                inside = half_width * dot(n1, bevel) - dot(v, bevel);
+            }
+            let coverage = clamp(0.5 + inside, 0.0, 1.0);
+            let alpha = u32(round(opacity * coverage));
+            if (alpha > 0u) {
+                let index = u32(y) * u32(size.x) + u32(x);
+                if (index < arrayLength(&layer_rw)) {
+                    atomicMax(&layer_rw[index], key_of(KIND_CURVE, coverage >= 0.5, style.order, alpha));
+                }
+            }
+        }
+    }
+}
+
 // The anti-aliased pixels of one curve piece: along its major axis, the columns within
-// reach of its capsule, and in each the rows within reach of the piece there.
-fn raster_piece(ends: PixelEnds, style: LineStyle, w: f32) {
+// reach of its capsule (or of its square ends), and in each the rows within reach of
+// the piece there; each end drawn as `start` and `end` (END_*).
+fn raster_piece(ends: PixelEnds, style: LineStyle, w: f32, start: u32, end: u32) {
     if (!ends.ok) {
         return;
     }
@@ -278,11 +438,17 @@ fn raster_piece(ends: PixelEnds, style: LineStyle, w: f32) {
     var dir = vec2<f32>(1.0, 0.0);
     if (len > 1e-6) {
         dir = d / len;
+    } else if (start != END_ROUND || end != END_ROUND) {
+        // A piece of no length has no direction to cut it square by.
+        return;
     }
+    // The pixels scanned: the piece, lengthened by half the width at a square end.
+    let sa = pa - select(0.0, half_width, start == END_SQUARE) * dir;
+    let sb = ends.q + select(0.0, half_width, end == END_SQUARE) * dir;
     let size = layer_size();
     // The major axis first (swapped back for the pixel).
     let x_major = abs(d.x) >= abs(d.y);
-    let major = along_major(pa, ends.q, x_major);
+    let major = along_major(sa, sb, x_major);
     let s = major[0];
     let e = major[1];
     let extent = select(vec2<f32>(size).yx, vec2<f32>(size), x_major);
@@ -304,9 +470,16 @@ fn raster_piece(ends: PixelEnds, style: LineStyle, w: f32) {
             if (!x_major) {
                 pixel = pixel.yx;
             }
-            let along = clamp(dot(pixel - pa, dir), 0.0, len);
+            let t = dot(pixel - pa, dir);
+            var along = clamp(t, 0.0, len);
+            // Past a cut end, the distance is to the piece's line.
+            if ((t < 0.0 && start != END_ROUND) || (t > len && end != END_ROUND)) {
+                along = t;
+            }
             let dist = length(pixel - (pa + along * dir));
             var coverage = clamp(half_width + 0.5 - dist, 0.0, 1.0);
+            coverage = min(coverage, end_coverage(t, start, half_width));
+            coverage = min(coverage, end_coverage(len - t, end, half_width));
             if (dash > 0.0 && fract(along / dash) >= 0.5) {
                 coverage = 0.0;
             }
@@ -321,6 +494,21 @@ fn raster_piece(ends: PixelEnds, style: LineStyle, w: f32) {
             }
         }
     }
+}
+
+// How much of a pixel `t` pixels inside a piece's end (negative: outside) an end drawn
+// as `mode` leaves (a round end is the capsule's: 1).
+fn end_coverage(t: f32, mode: u32, half_width: f32) -> f32 {
+    if (mode == END_BUTT) {
+        return clamp(0.5 + t, 0.0, 1.0);
+    }
+    if (mode == END_SQUARE) {
+        return clamp(0.5 + t + half_width, 0.0, 1.0);
+    }
+    if (mode == END_HARD) {
+        return select(0.0, 1.0, t >= 0.0);
+    }
+    return 1.0;
 }
 
 struct LayerOut {

@@ -22,7 +22,7 @@ use splinescope::gpu::pack::{PreparedScene, curve_tags};
 use splinescope::gpu::renderer::{CombRequest, GpuScene, Renderer, camera_uniform};
 use splinescope::gpu::tessellator::read_buffer;
 use splinescope::gpu::twin::comb_hairs_of;
-use splinescope::scene::{Scene, SceneCurve, Style, ViewSpec};
+use splinescope::scene::{Cap, Join, Scene, SceneCurve, StrokeShape, Style, ViewSpec};
 
 const VIEWPORT: DVec2 = DVec2::new(640.0, 480.0);
 
@@ -487,7 +487,68 @@ fn the_layer_holds_what_its_twin_rasterizes() {
                 backend.name
             );
         }
+        // Caps and joins other than round, on wide strokes: every curve with one of the
+        // cap and join pairs, and closed paths with corners (a triangle, a rectangle)
+        // whose seam is a join; in 2D and in perspective.
+        let mut shaped = scene_of(families());
+        shaped.curves.push(SceneCurve {
+            name: None,
+            curve: Curve::Path(polygon(&[p(-4.5, -4.5), p(-1.5, -4.0), p(-3.5, -2.2)])),
+            style: Style::default_for(1),
+        });
+        shaped.curves.push(SceneCurve {
+            name: None,
+            curve: Curve::Path(polygon(&[
+                p(1.0, 3.0),
+                p(4.0, 3.0),
+                p(4.0, 4.5),
+                p(1.0, 4.5),
+            ])),
+            style: Style::default_for(2),
+        });
+        let pairs = [
+            (Cap::Butt, Join::Miter),
+            (Cap::Square, Join::Bevel),
+            (Cap::Butt, Join::Bevel),
+            (Cap::Square, Join::Miter),
+            (Cap::Round, Join::Miter),
+            (Cap::Butt, Join::Round),
+        ];
+        for (i, c) in shaped.curves.iter_mut().enumerate() {
+            let (cap, join) = pairs[i % pairs.len()];
+            c.style.stroke = StrokeShape {
+                cap,
+                join,
+                miter_limit: if i % 3 == 0 { 1.5 } else { 4.0 },
+            };
+            c.style.width = 0.35;
+            c.style.width_in_scene = true;
+        }
+        for view in [ViewSpec::Auto, scene.view] {
+            shaped.view = view;
+            let prepared = common::pack(ctx, &shaped);
+            let lit = layer_against_twin(backend, &shaped, &prepared, &renderer, None);
+            assert!(
+                lit > 10_000,
+                "{} with caps and joins ({view:?}): {lit} pixels lit",
+                backend.name
+            );
+        }
     });
+}
+
+/// A closed path of straight segments through `corners`.
+fn polygon(corners: &[DVec3]) -> splinescope::geom::Path {
+    let n = corners.len();
+    splinescope::geom::Path::try_new(
+        (0..n)
+            .map(|i| {
+                splinescope::geom::PathSegment::polynomial(vec![corners[i], corners[(i + 1) % n]])
+            })
+            .collect(),
+        true,
+    )
+    .expect("a closed polygon")
 }
 
 /// Runs the comb pass and its layer for `only` and compares the layer with the twin's

@@ -143,6 +143,7 @@ fn single(curve: Bezier, width: f32, samples: u32) -> Scene {
                 show_polygon: false,
                 show_points: false,
                 samples: None,
+                stroke: Default::default(),
             },
         }],
         annotations: Vec::new(),

@@ -25,6 +25,8 @@
 //!         color: Color::WHITE,
 //!         width: 2.0,
 //!         width_in_scene: false,
+//!         stroke: Default::default(),
+//!         closed: false,
 //!     }],
 //!     overlays: Default::default(),
 //!     switches: splinescope_encoding::draw::Switches::ALL,
@@ -90,6 +92,67 @@ pub fn auto_samples(points: &[glam::DVec3]) -> u32 {
     rung.min(MAX_SAMPLES_PER_SEGMENT)
 }
 
+/// How an open stroke's two ends are drawn (SVG's `stroke-linecap`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Cap {
+    /// A half disc of the stroke's width beyond each end (the default).
+    #[default]
+    Round,
+    /// Cut square at the end point.
+    Butt,
+    /// Cut square half the width beyond the end point.
+    Square,
+}
+
+/// How a stroke turns where its direction changes (SVG's `stroke-linejoin`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Join {
+    /// A disc of the stroke's width at the corner (the default).
+    #[default]
+    Round,
+    /// The stroke's outer edges extended until they meet, unless the spike would be
+    /// longer than the miter limit times the width: then [`Join::Bevel`].
+    Miter,
+    /// The outer corners joined by a straight line.
+    Bevel,
+}
+
+/// The largest miter limit a stroke takes (a limit this long draws a spike 1,000 widths
+/// long only where the stroke turns back by less than 0.12°).
+pub const MAX_MITER_LIMIT: f64 = 1000.0;
+
+/// A stroke's ends and corners: SVG's `stroke-linecap`, `stroke-linejoin` and
+/// `stroke-miterlimit` (the ratio of a miter's length to the stroke's width past which
+/// the corner is bevelled; at least 1, at most [`MAX_MITER_LIMIT`]; SVG's default 4).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StrokeShape {
+    /// The ends of an open curve.
+    pub cap: Cap,
+    /// The corners.
+    pub join: Join,
+    /// The miter limit.
+    pub miter_limit: f64,
+}
+
+impl Default for StrokeShape {
+    /// Round ends and corners (what the renderer always drew), SVG's miter limit 4.
+    fn default() -> StrokeShape {
+        StrokeShape {
+            cap: Cap::Round,
+            join: Join::Round,
+            miter_limit: 4.0,
+        }
+    }
+}
+
+impl StrokeShape {
+    /// Whether this is the all-round shape (ends and corners drawn as discs).
+    #[must_use]
+    pub fn is_round(&self) -> bool {
+        self.cap == Cap::Round && self.join == Join::Round
+    }
+}
+
 /// One curve as drawn: its lowering and how it is stroked.
 #[derive(Debug, Clone, PartialEq)]
 pub struct EncodedCurve {
@@ -103,6 +166,11 @@ pub struct EncodedCurve {
     pub width: f32,
     /// Whether `width` is in scene units.
     pub width_in_scene: bool,
+    /// Its ends and corners.
+    pub stroke: StrokeShape,
+    /// Whether it ends where it starts as a closed curve (its ends then join, with no
+    /// caps: a closed path).
+    pub closed: bool,
 }
 
 /// A scene as drawn (see the module doc).

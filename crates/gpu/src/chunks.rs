@@ -125,6 +125,9 @@ pub struct ChunkBuilder {
     open: Option<OpenSegment>,
     /// Per curve, where its segments' points went.
     placements: Vec<Vec<Placement>>,
+    /// The last curve given samples and the chunk they went to (a curve whose samples
+    /// go on in a later chunk has its ends there drawn as joins, not caps).
+    last_drawn: Option<(usize, usize)>,
 }
 
 #[derive(Debug, Clone)]
@@ -149,6 +152,7 @@ impl ChunkBuilder {
             chunks: vec![TessChunk::default()],
             open: None,
             placements: Vec::new(),
+            last_drawn: None,
         }
     }
 
@@ -322,6 +326,21 @@ impl ChunkBuilder {
             } else {
                 (at(start), at(start + take - 1))
             };
+            let here = self.chunks.len() - 1;
+            let earlier = match self.last_drawn {
+                Some((curve, chunk)) if curve == open.curve && chunk != here => Some(chunk),
+                _ => None,
+            };
+            self.last_drawn = Some((open.curve, here));
+            if let Some(chunk) = earlier {
+                // The curve went on from that chunk into this one: its run there does not
+                // end, nor does this one start, where the chunks meet.
+                let c = &mut self.chunks[chunk];
+                let tag = open.curve - c.first_curve;
+                if let Some(style) = c.styles.get_mut(tag) {
+                    style.flags |= crate::layout::LINE_CONTINUES_AFTER;
+                }
+            }
             let c = self.current_mut();
             if c.styles.is_empty() {
                 c.first_curve = open.curve;
@@ -330,6 +349,9 @@ impl ChunkBuilder {
             if tag >= c.styles.len() {
                 // Tags stay dense: a curve that lowered to no segment keeps its slot.
                 c.styles.resize(tag + 1, open.style);
+            }
+            if earlier.is_some() {
+                c.styles[tag].flags |= crate::layout::LINE_CONTINUES_BEFORE;
             }
             if start == 0
                 && let Some(fixed) = open.drawn

@@ -5,7 +5,10 @@
 
 use glam::{Mat4, Vec2, Vec4};
 
-use super::layout::{GpuCamera, GpuLineStyle, GpuVertex};
+use super::layout::{
+    GpuCamera, GpuLineStyle, GpuVertex, LINE_CAP_SHIFT, LINE_CLOSED, LINE_CONTINUES_AFTER,
+    LINE_CONTINUES_BEFORE, LINE_JOIN_SHIFT, LINE_MITER_SHIFT, LINE_SHAPE_MASK,
+};
 
 /// What a pixel holds (bits 31–30 of its value): the highest wins. A comb's hair.
 pub const KIND_HAIR: u32 = 1;
@@ -177,8 +180,220 @@ pub fn raster_curves(
     for p in 0..pieces {
         let (a, b) = (samples[p], samples[p + 1]);
         if a.id == b.id {
-            raster_piece(camera, a, b, &styles[a.id as usize], layer);
+            let style = &styles[a.id as usize];
+            if style.flags & LINE_SHAPE_MASK == 0 {
+                raster_piece(camera, a, b, style, END_ROUND, END_ROUND, layer);
+            } else {
+                raster_shaped(camera, samples, p, pieces, style, layer);
+            }
         }
+    }
+}
+
+/// How a piece's end is drawn (`END_*` of the shader): a half disc, cut at the end point
+/// with an anti-aliased edge, cut half the width beyond it, cut with a hard edge.
+const END_ROUND: u32 = 0;
+const END_BUTT: u32 = 1;
+const END_SQUARE: u32 = 2;
+const END_HARD: u32 = 3;
+const JOIN_ROUND: u32 = 0;
+const JOIN_MITER: u32 = 1;
+
+/// `before` of the shader: the sample before `p` on its run at another place (one repeat
+/// passed over), or `p`.
+fn before(samples: &[GpuVertex], p: usize) -> usize {
+    let s = samples[p];
+    let mut i = p;
+    for _ in 0..2 {
+        if i == 0 {
+            break;
+        }
+        let q = samples[i - 1];
+        if q.id != s.id {
+            return p;
+        }
+        i -= 1;
+        if q.position != s.position {
+            return i;
+        }
+    }
+    p
+}
+
+/// `after` of the shader: the sample after `p` (at most `last`) on its run at another
+/// place, or `p`.
+fn after(samples: &[GpuVertex], p: usize, last: usize) -> usize {
+    let s = samples[p];
+    let mut i = p;
+    for _ in 0..2 {
+        if i >= last {
+            break;
+        }
+        let q = samples[i + 1];
+        if q.id != s.id {
+            return p;
+        }
+        i += 1;
+        if q.position != s.position {
+            return i;
+        }
+    }
+    p
+}
+
+/// `raster_shaped` of the shader: piece `p` (samples `p`, `p + 1` of `last + 1`) with caps
+/// where its run ends and joins where it goes on.
+fn raster_shaped(
+    camera: &GpuCamera,
+    samples: &[GpuVertex],
+    p: usize,
+    last: usize,
+    style: &GpuLineStyle,
+    layer: &mut [u32],
+) {
+    let cap = (style.flags >> LINE_CAP_SHIFT) & 3;
+    let join = (style.flags >> LINE_JOIN_SHIFT) & 3;
+    let closed = style.flags & LINE_CLOSED != 0;
+    let at_join = if join == JOIN_ROUND {
+        END_ROUND
+    } else {
+        END_HARD
+    };
+    let start = if before(samples, p) != p {
+        at_join
+    } else if closed {
+        END_HARD
+    } else if style.flags & LINE_CONTINUES_BEFORE != 0 {
+        END_ROUND
+    } else {
+        cap
+    };
+    let next = after(samples, p + 1, last);
+    let end = if next != p + 1 {
+        at_join
+    } else if closed {
+        END_HARD
+    } else if style.flags & LINE_CONTINUES_AFTER != 0 {
+        END_ROUND
+    } else {
+        cap
+    };
+    let (a, b) = (samples[p], samples[p + 1]);
+    raster_piece(camera, a, b, style, start, end, layer);
+    if next != p + 1
+        && join != JOIN_ROUND
+        && let (Some((pa, pb)), Some((qa, qb))) = (
+            pixel_ends(camera, a, b),
+            pixel_ends(camera, b, samples[next]),
+        )
+    {
+        let (d1, d2) = (pb - pa, qb - qa);
+        if d1.length() > 1e-6 && d2.length() > 1e-6 {
+            let half_width = half_width_px(style, camera, mean_w(camera, a, b));
+            raster_join(
+                camera,
+                pb,
+                d1.normalize(),
+                d2.normalize(),
+                style,
+                half_width,
+                layer,
+            );
+        }
+    }
+}
+
+/// `raster_join` of the shader: the wedge of a miter or bevel join at `at`.
+fn raster_join(
+    camera: &GpuCamera,
+    at: Vec2,
+    d1: Vec2,
+    d2: Vec2,
+    style: &GpuLineStyle,
+    half_width: f32,
+    layer: &mut [u32],
+) {
+    let turn = d1.x * d2.y - d1.y * d2.x;
+    let cosine = d1.dot(d2);
+    if turn.abs() < 1e-6 && cosine > 0.0 {
+        return;
+    }
+    let mut n1 = Vec2::new(-d1.y, d1.x);
+    if n1.dot(d2) > 0.0 {
+        n1 = -n1;
+    }
+    let mut n2 = Vec2::new(-d2.y, d2.x);
+    if n2.dot(d1) < 0.0 {
+        n2 = -n2;
+    }
+    let limit = (style.flags >> LINE_MITER_SHIFT) as f32 / 1024.0;
+    let miter =
+        (style.flags >> LINE_JOIN_SHIFT) & 3 == JOIN_MITER && 2.0 <= limit * limit * (1.0 + cosine);
+    let a = at + half_width * n1;
+    let b = at + half_width * n2;
+    let mut lo = at.min(a.min(b));
+    let mut hi = at.max(a.max(b));
+    let mut bevel = Vec2::ZERO;
+    if miter {
+        let tip = at + half_width * (n1 + n2) / (1.0 + cosine);
+        lo = lo.min(tip);
+        hi = hi.max(tip);
+    } else {
+        bevel = (n1 + n2).normalize();
+    }
+    let size = layer_size(camera);
+    let (w, h) = (size[0] as f32, size[1] as f32);
+    let (x0, x1) = (
+        (lo.x - 1.0).floor().max(0.0),
+        (hi.x + 1.0).ceil().min(w - 1.0),
+    );
+    let (y0, y1) = (
+        (lo.y - 1.0).floor().max(0.0),
+        (hi.y + 1.0).ceil().min(h - 1.0),
+    );
+    let opacity = style.color[3].clamp(0.0, 1.0) * 63.0;
+    let mut y = y0;
+    while y <= y1 {
+        let mut x = x0;
+        while x <= x1 {
+            let pixel = Vec2::new(x + 0.5, y + 0.5);
+            let v = pixel - at;
+            if v.dot(d1) >= 0.0 && v.dot(d2) < 0.0 {
+                let inside = if miter {
+                    (half_width - v.dot(n1)).min(half_width - v.dot(n2))
+                } else {
+                    half_width * n1.dot(bevel) - v.dot(bevel)
+                };
+                let coverage = (0.5 + inside).clamp(0.0, 1.0);
+                let alpha = (opacity * coverage).round_ties_even() as u32;
+                if alpha > 0 {
+                    let index = (y as u32 * size[0] + x as u32) as usize;
+                    if let Some(slot) = layer.get_mut(index) {
+                        *slot =
+                            (*slot).max(key_of(KIND_CURVE, coverage >= 0.5, style.order, alpha));
+                    }
+                }
+            }
+            x += 1.0;
+        }
+        y += 1.0;
+    }
+}
+
+/// `end_coverage` of the shader: how much of a pixel `t` inside an end drawn as `mode`
+/// leaves.
+fn end_coverage(t: f32, mode: u32, half_width: f32) -> f32 {
+    match mode {
+        END_BUTT => (0.5 + t).clamp(0.0, 1.0),
+        END_SQUARE => (0.5 + t + half_width).clamp(0.0, 1.0),
+        END_HARD => {
+            if t >= 0.0 {
+                1.0
+            } else {
+                0.0
+            }
+        }
+        _ => 1.0,
     }
 }
 
@@ -195,6 +410,8 @@ fn raster_piece(
     a: GpuVertex,
     b: GpuVertex,
     style: &GpuLineStyle,
+    start: u32,
+    end: u32,
     layer: &mut [u32],
 ) {
     let Some((pa, pb)) = pixel_ends(camera, a, b) else {
@@ -206,11 +423,19 @@ fn raster_piece(
     let reach = half_width + 0.5;
     let d = pb - pa;
     let len = d.length();
-    let dir = if len > 1e-6 { d / len } else { Vec2::X };
+    let dir = if len > 1e-6 {
+        d / len
+    } else if start != END_ROUND || end != END_ROUND {
+        return;
+    } else {
+        Vec2::X
+    };
+    let sa = pa - if start == END_SQUARE { half_width } else { 0.0 } * dir;
+    let sb = pb + if end == END_SQUARE { half_width } else { 0.0 } * dir;
     let size = layer_size(camera);
     let x_major = d.x.abs() >= d.y.abs();
     let swap = |v: Vec2| if x_major { v } else { Vec2::new(v.y, v.x) };
-    let (s, e) = along_major(pa, pb, x_major);
+    let (s, e) = along_major(sa, sb, x_major);
     let extent = swap(Vec2::new(size[0] as f32, size[1] as f32));
     let slope = (e.y - s.y) / (e.x - s.x).max(1e-30);
     let across = reach * (1.0 + slope * slope).sqrt();
@@ -225,9 +450,15 @@ fn raster_piece(
         let mut row = top;
         while row <= bottom {
             let pixel = swap(Vec2::new(xc, row + 0.5));
-            let along = (pixel - pa).dot(dir).clamp(0.0, len);
+            let t = (pixel - pa).dot(dir);
+            let mut along = t.clamp(0.0, len);
+            if (t < 0.0 && start != END_ROUND) || (t > len && end != END_ROUND) {
+                along = t;
+            }
             let dist = (pixel - (pa + along * dir)).length();
             let mut coverage = (half_width + 0.5 - dist).clamp(0.0, 1.0);
+            coverage = coverage.min(end_coverage(t, start, half_width));
+            coverage = coverage.min(end_coverage(len - t, end, half_width));
             if dash > 0.0 && (along / dash).fract() >= 0.5 {
                 coverage = 0.0;
             }

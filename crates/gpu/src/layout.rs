@@ -310,6 +310,52 @@ pub struct GpuLineStyle {
 /// `LINE_WIDTH_IN_SCENE` in `shaders/common.wgsl`.
 pub const LINE_WIDTH_IN_SCENE: u32 = 1;
 
+/// [`GpuLineStyle::flags`]: a curve's cap in bits 1–2 (0 round, 1 butt, 2 square). Twins:
+/// the `LINE_*` constants in `shaders/common.wgsl`, drawn by `shaders/layer.wgsl` (and
+/// `layer_twin`).
+pub const LINE_CAP_SHIFT: u32 = 1;
+/// A curve's join in bits 3–4 (0 round, 1 miter, 2 bevel).
+pub const LINE_JOIN_SHIFT: u32 = 3;
+/// The cap and join bits: 0 for the all-round stroke.
+pub const LINE_SHAPE_MASK: u32 = 0b11110;
+/// The curve's run in this chunk continues one in an earlier chunk (its start is drawn
+/// round, as a join).
+pub const LINE_CONTINUES_BEFORE: u32 = 1 << 5;
+/// The curve's run in this chunk continues in a later chunk.
+pub const LINE_CONTINUES_AFTER: u32 = 1 << 6;
+/// The curve is closed: its run's ends are cut hard (the pack repeats its first segment
+/// after its last, so the seam is a join like any other).
+pub const LINE_CLOSED: u32 = 1 << 7;
+/// The miter limit times 1024 (rounded) in bits 8–31.
+pub const LINE_MITER_SHIFT: u32 = 8;
+
+/// The stroke bits of a curve style: cap, join, miter limit and closedness (the
+/// continuation bits are the chunk builder's).
+#[must_use]
+pub fn stroke_flags(shape: &crate::encoding::StrokeShape, closed: bool) -> u32 {
+    use crate::encoding::{Cap, Join};
+    let cap = match shape.cap {
+        Cap::Round => 0,
+        Cap::Butt => 1,
+        Cap::Square => 2,
+    };
+    let join = match shape.join {
+        Join::Round => 0,
+        Join::Miter => 1,
+        Join::Bevel => 2,
+    };
+    // At most 1000 × 1024 < 2²⁴: the limit fits its 24 bits.
+    let limit = (shape
+        .miter_limit
+        .clamp(1.0, crate::encoding::MAX_MITER_LIMIT)
+        * 1024.0)
+        .round() as u32;
+    (cap << LINE_CAP_SHIFT)
+        | (join << LINE_JOIN_SHIFT)
+        | if closed { LINE_CLOSED } else { 0 }
+        | (limit << LINE_MITER_SHIFT)
+}
+
 /// Vertices per line piece: a triangle strip around the piece's capsule
 /// (`shaders/lines.wgsl`); the adaptive kernel writes it into the draw arguments.
 pub const LINE_CORNERS: u32 = 4;

@@ -147,6 +147,19 @@ pub fn repack_points(
         .collect()
 }
 
+/// The segments a curve is drawn with: its own, and for a closed curve with a cap or
+/// join other than round its first again after its last (so that where it closes is a
+/// join between two pieces, drawn like every other; the repeat covers pixels already
+/// covered, which the layer does not blend twice).
+fn drawn_segments(
+    curve: &crate::encoding::EncodedCurve,
+) -> impl Iterator<Item = &BezierSegment> + '_ {
+    let wrap = (curve.closed && !curve.stroke.is_round())
+        .then(|| curve.segments.first())
+        .flatten();
+    curve.segments.iter().chain(wrap)
+}
+
 /// Packs an [`Encoding`] for the GPU: every curve's segments into chunks (the sample
 /// total checked against [`crate::limits::SAMPLES`] before any buffer is built), the
 /// overlays into batches, with where everything went (for in-place updates).
@@ -160,9 +173,7 @@ pub fn prepare(encoding: &Encoding, limits: ChunkLimits) -> Result<PreparedScene
     let mut total = 0u64;
     for (index, curve) in encoding.curves.iter().enumerate() {
         check_gpu_fit(index, &curve.segments)?;
-        let counts: Vec<u32> = curve
-            .segments
-            .iter()
+        let counts: Vec<u32> = drawn_segments(curve)
             .map(|seg| {
                 curve
                     .samples
@@ -181,8 +192,11 @@ pub fn prepare(encoding: &Encoding, limits: ChunkLimits) -> Result<PreparedScene
         if curve.width_in_scene {
             style.flags |= crate::layout::LINE_WIDTH_IN_SCENE;
         }
+        if !curve.stroke.is_round() {
+            style.flags |= crate::layout::stroke_flags(&curve.stroke, curve.closed);
+        }
         let fixed = curve.samples.is_some();
-        for (seg, &count) in curve.segments.iter().zip(counts) {
+        for (seg, &count) in drawn_segments(curve).zip(counts) {
             chunks.begin_segment(index, style, seg.points(), seg.weights.as_deref())?;
             chunks.add_drawn_samples(count, fixed);
         }

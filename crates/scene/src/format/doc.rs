@@ -188,6 +188,41 @@ pub struct StyleDoc {
     #[serde(skip_serializing_if = "Option::is_none")]
     #[schemars(range(min = 2, max = 4096))]
     pub samples: Option<u32>,
+    /// How an open curve's ends are drawn (SVG's `stroke-linecap`; default `"round"`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cap: Option<CapDoc>,
+    /// How the stroke turns at corners (SVG's `stroke-linejoin`; default `"round"`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub join: Option<JoinDoc>,
+    /// The longest miter, over the width, before a corner is bevelled (SVG's
+    /// `stroke-miterlimit`; default 4).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 1.0, max = 1000.0))]
+    pub miter_limit: Option<f64>,
+}
+
+/// A stroke's ends.
+#[derive(Debug, Clone, Copy, Serialize, JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum CapDoc {
+    /// Half discs.
+    Round,
+    /// Cut at the end points.
+    Butt,
+    /// Cut half the width beyond them.
+    Square,
+}
+
+/// A stroke's corners.
+#[derive(Debug, Clone, Copy, Serialize, JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum JoinDoc {
+    /// Discs.
+    Round,
+    /// The outer edges met, within the miter limit.
+    Miter,
+    /// The outer corners joined straight.
+    Bevel,
 }
 
 /// The unit of a style's width.

@@ -26,6 +26,9 @@ pub fn encode_curve(scene: &Scene, index: usize) -> EncodedCurve {
         color: sc.style.color,
         width: sc.style.width,
         width_in_scene: sc.style.width_in_scene,
+        stroke: sc.style.stroke,
+        // A closed path's ends join; every other family's are its two ends.
+        closed: matches!(&sc.curve, crate::geom::Curve::Path(p) if p.is_closed()),
     }
 }
 

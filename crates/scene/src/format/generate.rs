@@ -149,6 +149,7 @@ pub fn random_bezier_scene(opts: StressOptions) -> Scene {
                     show_polygon: false,
                     show_points: false,
                     samples: None,
+                    stroke: Default::default(),
                 },
             }
         })

@@ -8,12 +8,13 @@ use crate::jsonread::{Node, Obj, describe, parse_document};
 
 use super::codec::{self, geom_error};
 use super::doc::{
-    AnnotationDoc, AnnotationShapeDoc, Auto, CameraDoc, ColorDoc, CurveDoc, PointDoc, SamplesDoc,
-    SceneDoc, StyleDoc, ViewDoc, WidthUnitsDoc,
+    AnnotationDoc, AnnotationShapeDoc, Auto, CameraDoc, CapDoc, ColorDoc, CurveDoc, JoinDoc,
+    PointDoc, SamplesDoc, SceneDoc, StyleDoc, ViewDoc, WidthUnitsDoc,
 };
 use super::{
-    Annotation, AnnotationShape, Color, FORMAT_VERSION, MAX_SAMPLES_PER_SEGMENT, Scene, SceneCurve,
-    SceneError, SceneErrorKind, Style, ViewSpec,
+    Annotation, AnnotationShape, Cap, Color, FORMAT_VERSION, Join, MAX_MITER_LIMIT,
+    MAX_SAMPLES_PER_SEGMENT, Scene, SceneCurve, SceneError, SceneErrorKind, StrokeShape, Style,
+    ViewSpec,
 };
 
 /// Parses and validates a scene from JSON text.
@@ -263,8 +264,46 @@ fn decode_style(node: &Node<'_>, index: usize) -> Result<Style, SceneError> {
         "polygon",
         "points",
         "samples",
+        "cap",
+        "join",
+        "miter_limit",
     ])?;
     let mut style = Style::default_for(index);
+    if let Some(n) = obj.get("cap") {
+        style.stroke.cap = match n.value.as_str() {
+            Some("round") => Cap::Round,
+            Some("butt") => Cap::Butt,
+            Some("square") => Cap::Square,
+            _ => {
+                return Err(n.invalid(format!(
+                    "cap {}: \"round\", \"butt\" or \"square\"",
+                    n.value
+                )));
+            }
+        };
+    }
+    if let Some(n) = obj.get("join") {
+        style.stroke.join = match n.value.as_str() {
+            Some("round") => Join::Round,
+            Some("miter") => Join::Miter,
+            Some("bevel") => Join::Bevel,
+            _ => {
+                return Err(n.invalid(format!(
+                    "join {}: \"round\", \"miter\" or \"bevel\"",
+                    n.value
+                )));
+            }
+        };
+    }
+    if let Some(n) = obj.get("miter_limit") {
+        let m = n.positive_f64()?;
+        if !(1.0..=MAX_MITER_LIMIT).contains(&m) {
+            return Err(n.invalid(format!(
+                "miter_limit {m}: from 1 to {MAX_MITER_LIMIT} (a miter's length over the width)"
+            )));
+        }
+        style.stroke.miter_limit = m;
+    }
     if let Some(n) = obj.get("color") {
         style.color = n.color()?;
     }
@@ -365,6 +404,18 @@ pub(super) fn curve_doc(c: &SceneCurve) -> CurveDoc {
             polygon: Some(s.show_polygon),
             points: Some(s.show_points),
             samples: s.samples,
+            cap: match s.stroke.cap {
+                Cap::Round => None,
+                Cap::Butt => Some(CapDoc::Butt),
+                Cap::Square => Some(CapDoc::Square),
+            },
+            join: match s.stroke.join {
+                Join::Round => None,
+                Join::Miter => Some(JoinDoc::Miter),
+                Join::Bevel => Some(JoinDoc::Bevel),
+            },
+            miter_limit: (s.stroke.miter_limit != StrokeShape::default().miter_limit)
+                .then_some(s.stroke.miter_limit),
         }),
     }
 }
@@ -472,6 +523,43 @@ mod tests {
         assert!(e.to_string().contains("scene units"), "{e}");
         let px = from_json_str(&doc(r#"{"width": 3, "width_units": "px"}"#)).unwrap();
         assert!(!px.curves[0].style.width_in_scene);
+    }
+
+    #[test]
+    fn caps_joins_and_miter_limits_read_write_back_and_bad_ones_are_named() {
+        let doc = |style: &str| {
+            format!(
+                r#"{{"version":1,"curves":[{{"type":"bezier","points":[[0,0],[1,1]],"style":{style}}}]}}"#
+            )
+        };
+        let s = from_json_str(&doc(
+            r#"{"cap": "square", "join": "bevel", "miter_limit": 7.5}"#,
+        ))
+        .unwrap();
+        let st = s.curves[0].style.stroke;
+        assert_eq!(
+            (st.cap, st.join, st.miter_limit),
+            (Cap::Square, Join::Bevel, 7.5)
+        );
+        let text = to_json_string(&s);
+        assert!(text.contains(r#""cap": "square""#) && text.contains(r#""miter_limit": 7.5"#));
+        assert_eq!(
+            from_json_str(&text).unwrap().curves[0].style,
+            s.curves[0].style
+        );
+        // The defaults are not written.
+        let plain = from_json_str(&doc("{}")).unwrap();
+        assert!(!to_json_string(&plain).contains("cap"));
+        assert_eq!(plain.curves[0].style.stroke, StrokeShape::default());
+        for (bad, words) in [
+            (r#"{"cap": "flat"}"#, ["cap", "flat"]),
+            (r#"{"join": "arcs"}"#, ["join", "arcs"]),
+            (r#"{"miter_limit": 0.5}"#, ["miter_limit", "0.5"]),
+            (r#"{"miter_limit": 5000}"#, ["miter_limit", "5000"]),
+        ] {
+            let e = from_json_str(&doc(bad)).unwrap_err().to_string();
+            assert!(words.iter().all(|w| e.contains(w)), "{bad}: {e}");
+        }
     }
     use glam::DVec3;
 

@@ -31,7 +31,8 @@ pub use preserve::to_json_string_keeping;
 
 /// The colour, the sample counts and their limit are the encoding's.
 pub use splinescope_encoding::{
-    AUTO_SAMPLES_TOLERANCE, Color, MAX_SAMPLES_PER_SEGMENT, auto_samples,
+    AUTO_SAMPLES_TOLERANCE, Cap, Color, Join, MAX_MITER_LIMIT, MAX_SAMPLES_PER_SEGMENT,
+    StrokeShape, auto_samples,
 };
 
 /// The scene format version this build reads and writes.
@@ -70,6 +71,8 @@ pub struct Style {
     pub show_points: bool,
     /// Samples per Bézier segment; `None` takes the scene's.
     pub samples: Option<u32>,
+    /// The stroke's ends and corners (round, unless a scene or an SVG says otherwise).
+    pub stroke: StrokeShape,
 }
 
 impl Style {
@@ -84,6 +87,7 @@ impl Style {
             show_polygon: true,
             show_points: true,
             samples: None,
+            stroke: StrokeShape::default(),
         }
     }
 }

@@ -296,6 +296,9 @@ fn style_fields(style: &Style, defaults: &Style, full: &Value) -> Vec<(String, V
         "polygon" => style.show_polygon != defaults.show_polygon,
         "points" => style.show_points != defaults.show_points,
         "samples" => style.samples != defaults.samples,
+        "cap" => style.stroke.cap != defaults.stroke.cap,
+        "join" => style.stroke.join != defaults.stroke.join,
+        "miter_limit" => style.stroke.miter_limit != defaults.stroke.miter_limit,
         _ => true,
     };
     match full {
