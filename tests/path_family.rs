@@ -138,3 +138,56 @@ fn moving_a_joint_moves_both_segments_and_keeps_the_path_joined() {
     assert_eq!(moved.eval(1.0), glam::DVec3::new(9.5, 2.0, 0.0));
     assert_eq!(moved.domain(), (0.0, 4.0));
 }
+
+#[test]
+fn a_piece_between_two_parameters_traces_the_same_points() {
+    // Every path of the scene (rational quarter arcs, mixed degrees): the piece from t0 to
+    // t1 is open and, at each of its segments' local parameters, the original's point at
+    // the matching parameter — the cut segments by de Casteljau, homogeneous for the
+    // rational ones; its length is the original's between t0 and t1.
+    let scene = paths();
+    for sc in &scene.curves {
+        let Curve::Path(p) = &sc.curve else {
+            continue;
+        };
+        let end = p.segments().len() as f64;
+        for (t0, t1) in [
+            (0.0, end),
+            (0.25, 0.75),
+            (0.3, end - 0.4),
+            (1.0, 2.0),
+            (0.5, 1.0),
+        ] {
+            if t1 > end {
+                continue;
+            }
+            let piece = p.between(t0, t1).expect("a piece");
+            assert!(!piece.is_closed());
+            let (k0, k1) = (t0.floor() as usize, (t1.ceil() as usize).max(1) - 1);
+            assert_eq!(piece.segments().len(), k1 - k0 + 1, "{t0}..{t1}");
+            for (j, _) in piece.segments().iter().enumerate() {
+                let k = k0 + j;
+                let a = if j == 0 { t0 - k as f64 } else { 0.0 };
+                let b = if k == k1 { t1 - k as f64 } else { 1.0 };
+                for u in [0.0_f64, 0.2, 0.5, 0.9, 1.0] {
+                    let got = piece.eval(j as f64 + u.min(0.999_999_999_999));
+                    let want = p.eval(k as f64 + a + (b - a) * u.min(0.999_999_999_999));
+                    assert!(
+                        (got - want).length() <= 1e-12 * (1.0 + want.length()),
+                        "{t0}..{t1}, segment {j} at {u}: {got} against {want}"
+                    );
+                }
+            }
+            let whole = CurveAnalysis::new(&sc.curve)
+                .length(t0, t1, 1e-12)
+                .expect("length");
+            let cut = CurveAnalysis::new(&piece)
+                .length(0.0, piece.segments().len() as f64, 1e-12)
+                .expect("length");
+            assert!((whole.value - cut.value).abs() <= 1e-10, "{t0}..{t1}");
+        }
+        // Outside the domain, or backwards: refused.
+        assert!(p.between(-0.5, 1.0).is_err());
+        assert!(p.between(0.6, 0.4).is_err());
+    }
+}

@@ -266,3 +266,126 @@ fn hostile_files_are_refused_with_the_file_and_the_line() {
     bomb += "</svg>";
     refused(&bomb, &["SPLINESCOPE_MAX_IMPORT_ELEMENTS"]);
 }
+
+/// A curve's arc length (every family; tight accuracy).
+fn length(c: &Curve) -> f64 {
+    let a = CurveAnalysis::new(c);
+    let (t0, t1) = c.domain();
+    a.length(t0, t1, 1e-12).expect("a length").value
+}
+
+#[test]
+fn caps_joins_and_miter_limits_are_the_strokes_with_svgs_defaults() {
+    use splinescope_scene::format::{Cap, Join};
+    let i = read(
+        r#"<g fill="none" stroke="black">
+        <line x1="0" y1="0" x2="10" y2="0"/>
+        <g stroke-linecap="square" stroke-linejoin="bevel" stroke-miterlimit="2.5">
+          <polyline points="0,0 5,5 10,0"/>
+          <polyline points="0,0 5,5 10,0" stroke-linejoin="arcs" stroke-miterlimit="5000"/>
+        </g>
+        <line x1="0" y1="0" x2="10" y2="0" style="stroke-linecap: round; stroke-linejoin: round"/>
+        <rect x="0" y="0" width="5" height="5" fill="red" stroke="none"/>
+        </g>"#,
+    );
+    let shapes: Vec<_> = i.scene.curves.iter().map(|c| c.style.stroke).collect();
+    // SVG's initial values: butt, miter, 4.
+    assert_eq!(
+        (shapes[0].cap, shapes[0].join, shapes[0].miter_limit),
+        (Cap::Butt, Join::Miter, 4.0)
+    );
+    assert_eq!(
+        (shapes[1].cap, shapes[1].join, shapes[1].miter_limit),
+        (Cap::Square, Join::Bevel, 2.5)
+    );
+    // `arcs` is not read (the inherited bevel stays); a limit past 1000 is drawn at 1000.
+    assert_eq!(
+        (shapes[2].join, shapes[2].miter_limit),
+        (Join::Bevel, 1000.0)
+    );
+    assert_eq!((shapes[3].cap, shapes[3].join), (Cap::Round, Join::Round));
+    // A fill alone is an outline: round, as every scene curve by default.
+    assert_eq!((shapes[4].cap, shapes[4].join), (Cap::Round, Join::Round));
+}
+
+#[test]
+fn a_dashed_stroke_is_its_dashes_cut_exactly_where_the_pattern_says() {
+    // A circle of circumference 20π ≈ 62.83 with dashes of 5 and gaps of 3 from offset 0:
+    // dashes start every 8 units; the last dash (at 56, on till 61) is whole, the pattern
+    // is in its gap at the end, so nothing joins across the start.
+    let i = read(
+        r#"<circle cx="50" cy="50" r="10" fill="none" stroke="black" stroke-dasharray="5 3"/>"#,
+    );
+    let n = i.scene.curves.len();
+    assert_eq!(
+        n,
+        8,
+        "{:?}",
+        i.scene.curves.iter().map(|c| &c.name).collect::<Vec<_>>()
+    );
+    for (k, c) in i.scene.curves.iter().enumerate() {
+        assert_eq!(
+            c.name.as_deref(),
+            Some(format!("circle (line 1), dash {k}").as_str())
+        );
+        let l = length(&c.curve);
+        assert!((l - 5.0).abs() <= 1e-9, "dash {k}: {l}");
+        // Each dash lies on the circle.
+        let Curve::Path(p) = &c.curve else {
+            panic!("a path")
+        };
+        assert!(!p.is_closed());
+        for t in [0.0, 0.3, 0.77] {
+            let q = c.curve.eval(t * p.segments().len() as f64);
+            assert!(
+                ((q - flip(50.0, 50.0)).length() - 10.0).abs() <= 1e-12,
+                "{q}"
+            );
+        }
+    }
+    // Offset 2: the path starts 2 into a dash (on till 3), dashes start at 6 + 8k, and the
+    // one at 62 is on at the end: it and the first are one dash across the start,
+    // 20π − 62 + 3 long; 7 more between.
+    let i = read(
+        r#"<circle cx="50" cy="50" r="10" fill="none" stroke="black" stroke-dasharray="5 3" stroke-dashoffset="2"/>"#,
+    );
+    let lengths: Vec<f64> = i.scene.curves.iter().map(|c| length(&c.curve)).collect();
+    assert_eq!(lengths.len(), 8, "{lengths:?}");
+    assert!(
+        (lengths[7] - (20.0 * PI - 59.0)).abs() <= 1e-9,
+        "{lengths:?}"
+    );
+    assert!(
+        lengths[..7].iter().all(|l| (l - 5.0).abs() <= 1e-9),
+        "{lengths:?}"
+    );
+    // Dashes are measured in the element's user units, before its transform: scaled by 2,
+    // each dash of a line is 8 long in the scene.
+    let i = read(
+        r#"<line x1="0" y1="0" x2="20" y2="0" transform="scale(2)" stroke="black" stroke-dasharray="4 1"/>"#,
+    );
+    let lengths: Vec<f64> = i.scene.curves.iter().map(|c| length(&c.curve)).collect();
+    assert_eq!(lengths.len(), 4);
+    assert!(
+        lengths.iter().all(|l| (l - 8.0).abs() <= 1e-12),
+        "{lengths:?}"
+    );
+    // A pattern in em is not read: the stroke is solid, and the warning says so.
+    let i = read(r#"<line x1="0" y1="0" x2="20" y2="0" stroke="black" stroke-dasharray="1em"/>"#);
+    assert_eq!(i.scene.curves.len(), 1);
+    assert!(
+        i.warnings
+            .iter()
+            .any(|w| w.contains("stroke-dasharray in em")),
+        "{:?}",
+        i.warnings
+    );
+    // A pattern that would make more dashes than the curve limit is refused naming the
+    // element.
+    let e = read_result(
+        r#"<line x1="0" y1="0" x2="1e9" y2="0" stroke="black" stroke-dasharray="0.001"/>"#,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("test.svg:1") && e.contains("dashes"), "{e}");
+}

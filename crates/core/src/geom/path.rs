@@ -64,6 +64,36 @@ impl PathSegment {
     pub fn degree(&self) -> usize {
         self.points.len().saturating_sub(1)
     }
+
+    /// The piece of the segment on `[u0, u1]` (within `[0, 1]`), reparametrised to
+    /// `[0, 1]`: de Casteljau's subdivision of its points (of a rational one, of its
+    /// homogeneous points `(w P, w)`, the weights then those of the piece). `u0 > u1`
+    /// gives the piece reversed.
+    #[must_use]
+    pub fn restricted(&self, u0: f64, u1: f64) -> PathSegment {
+        match &self.weights {
+            None => PathSegment::polynomial(
+                Bezier::new(self.points.to_vec())
+                    .subsegment(u0, u1)
+                    .points()
+                    .to_vec(),
+            ),
+            Some(w) => {
+                let hp: Vec<DVec3> = self.points.iter().zip(w).map(|(p, w)| *p * *w).collect();
+                let hw: Vec<DVec3> = w.iter().map(|w| DVec3::new(*w, 0.0, 0.0)).collect();
+                let hp = Bezier::new(hp).subsegment(u0, u1);
+                let hw = Bezier::new(hw).subsegment(u0, u1);
+                let weights: Vec<f64> = hw.points().iter().map(|v| v.x).collect();
+                let points: Vec<DVec3> = hp
+                    .points()
+                    .iter()
+                    .zip(&weights)
+                    .map(|(p, w)| *p / *w)
+                    .collect();
+                PathSegment::rational(points, weights)
+            }
+        }
+    }
 }
 
 /// Checks a segment: at least two points, every coordinate finite, and for a rational
@@ -195,6 +225,46 @@ impl Path {
     #[must_use]
     pub fn is_closed(&self) -> bool {
         self.closed
+    }
+
+    /// The open path from parameter `t0` to `t1` (`0 ≤ t0 < t1 ≤` the segment count):
+    /// the segments between, the first and last cut exactly ([`PathSegment::restricted`]),
+    /// so that it traces the same points with the same parametrisation shifted by `t0`
+    /// within each segment.
+    ///
+    /// # Errors
+    /// [`GeomError::ParameterOutsideDomain`] for `t0` or `t1` outside the domain or
+    /// `t0 ≥ t1`.
+    pub fn between(&self, t0: f64, t1: f64) -> Result<Path, GeomError> {
+        let end = self.segments.len() as f64;
+        for t in [t0, t1] {
+            if !(0.0..=end).contains(&t) || t0 >= t1 {
+                return Err(GeomError::ParameterOutsideDomain {
+                    value: t,
+                    start: 0.0,
+                    end,
+                });
+            }
+        }
+        let (k0, u0) = self.locate(t0);
+        // `t1` on a joint ends the segment before it.
+        let (k1, u1) = if t1.fract() == 0.0 && t1 > 0.0 {
+            (t1 as usize - 1, 1.0)
+        } else {
+            self.locate(t1)
+        };
+        let pieces: Vec<PathSegment> = (k0..=k1)
+            .map(|k| {
+                let a = if k == k0 { u0 } else { 0.0 };
+                let b = if k == k1 { u1 } else { 1.0 };
+                if a == 0.0 && b == 1.0 {
+                    self.segments[k].clone()
+                } else {
+                    self.segments[k].restricted(a, b)
+                }
+            })
+            .collect();
+        Path::try_new(pieces, false)
     }
 
     /// The index, in [`Family::control_points`], of segment `k`'s first point.

@@ -9,14 +9,17 @@
 //! XML is read by `roxmltree` (no DTD: no entity expansion), path data, transforms,
 //! lengths and colours by `svgtypes`, `<style>` sheets by `simplecss`.
 
+mod dash;
 pub mod geometry;
 
 use std::collections::{BTreeMap, HashMap};
 
 use glam::{DAffine2, DVec2};
 use roxmltree::{Document, Node};
-use splinescope_core::geom::{Curve, Path};
-use splinescope_scene::format::{Color, SceneCurve, Style};
+use splinescope_core::geom::{Curve, Path, PathSegment};
+use splinescope_scene::format::{
+    Cap, Color, Join, MAX_MITER_LIMIT, SceneCurve, StrokeShape, Style,
+};
 use splinescope_scene::limits;
 
 use crate::{ImportError, Imported};
@@ -34,7 +37,7 @@ enum Paint {
 }
 
 /// The properties inherited down the tree, as far as they matter here.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 struct Computed {
     stroke: Paint,
     fill: Paint,
@@ -49,6 +52,14 @@ struct Computed {
     stroke_width: f64,
     /// `vector-effect: non-scaling-stroke` (not inherited): the width is in pixels.
     non_scaling: bool,
+    /// `stroke-linecap`, `stroke-linejoin`, `stroke-miterlimit` (inherited).
+    stroke_shape: StrokeShape,
+    /// `stroke-dasharray` in user units (inherited): `None` for a solid stroke.
+    dasharray: Option<std::rc::Rc<[f64]>>,
+    /// A `stroke-dasharray` in relative units (not read: the stroke is drawn solid).
+    dash_relative: bool,
+    /// `stroke-dashoffset` in user units (inherited).
+    dash_offset: f64,
 }
 
 impl Default for Computed {
@@ -63,6 +74,15 @@ impl Default for Computed {
             hidden: false,
             stroke_width: 1.0,
             non_scaling: false,
+            // SVG's initial values: butt caps, miter joins, a miter limit of 4.
+            stroke_shape: StrokeShape {
+                cap: Cap::Butt,
+                join: Join::Miter,
+                miter_limit: 4.0,
+            },
+            dasharray: None,
+            dash_relative: false,
+            dash_offset: 0.0,
         }
     }
 }
@@ -321,6 +341,11 @@ impl<'a, 'i> Reader<'a, 'i> {
             "visibility",
             "stroke-width",
             "vector-effect",
+            "stroke-linecap",
+            "stroke-linejoin",
+            "stroke-miterlimit",
+            "stroke-dasharray",
+            "stroke-dashoffset",
         ];
         let mut out: Vec<(String, String)> = PROPS
             .iter()
@@ -397,8 +422,8 @@ impl<'a, 'i> Reader<'a, 'i> {
         None
     }
 
-    fn computed(&self, n: Node<'a, 'i>, parent: Computed) -> Computed {
-        let mut c = parent;
+    fn computed(&self, n: Node<'a, 'i>, parent: &Computed) -> Computed {
+        let mut c = parent.clone();
         c.hidden = false;
         c.non_scaling = false;
         let decls = self.declarations(n);
@@ -434,6 +459,54 @@ impl<'a, 'i> Reader<'a, 'i> {
                     }
                 }
                 "vector-effect" => c.non_scaling = v == "non-scaling-stroke",
+                "stroke-linecap" => match v {
+                    "butt" => c.stroke_shape.cap = Cap::Butt,
+                    "round" => c.stroke_shape.cap = Cap::Round,
+                    "square" => c.stroke_shape.cap = Cap::Square,
+                    _ => {}
+                },
+                // SVG 2's `miter-clip` and `arcs` are not read (as browsers that do not
+                // draw them): the declaration is ignored.
+                "stroke-linejoin" => match v {
+                    "miter" => c.stroke_shape.join = Join::Miter,
+                    "round" => c.stroke_shape.join = Join::Round,
+                    "bevel" => c.stroke_shape.join = Join::Bevel,
+                    _ => {}
+                },
+                "stroke-miterlimit" => {
+                    // At least 1 (a smaller one is invalid); past the drawable maximum
+                    // the spike differs only where the stroke turns back by less than
+                    // 0.12°, and is drawn at the maximum.
+                    if let Some(m) = num(v).filter(|m| *m >= 1.0) {
+                        c.stroke_shape.miter_limit = m.min(MAX_MITER_LIMIT);
+                    }
+                }
+                "stroke-dasharray" => match dash::parse_dasharray(v) {
+                    Some(dash::DashArray::Solid) => {
+                        c.dasharray = None;
+                        c.dash_relative = false;
+                    }
+                    Some(dash::DashArray::Lengths(l)) => {
+                        c.dasharray = Some(l.into());
+                        c.dash_relative = false;
+                    }
+                    Some(dash::DashArray::Relative) => {
+                        c.dasharray = None;
+                        c.dash_relative = true;
+                    }
+                    None => {}
+                },
+                "stroke-dashoffset" => {
+                    if let Ok(l) = v.parse::<svgtypes::Length>()
+                        && matches!(
+                            l.unit,
+                            svgtypes::LengthUnit::None | svgtypes::LengthUnit::Px
+                        )
+                        && l.number.is_finite()
+                    {
+                        c.dash_offset = l.number;
+                    }
+                }
                 "display" => c.hidden |= v == "none",
                 "visibility" => c.hidden |= v == "hidden" || v == "collapse",
                 _ => {}
@@ -479,7 +552,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             *self.left_out.entry(format!("<{tag}>")).or_default() += 1;
             return Ok(());
         }
-        let style = self.computed(n, parent);
+        let style = self.computed(n, &parent);
         if style.hidden {
             return Ok(());
         }
@@ -499,7 +572,7 @@ impl<'a, 'i> Reader<'a, 'i> {
                     map
                 };
                 for c in n.children().filter(Node::is_element) {
-                    self.walk(c, map, style, depth + 1)?;
+                    self.walk(c, map, style.clone(), depth + 1)?;
                 }
             }
             "use" => self.expand_use(n, map, style, depth)?,
@@ -548,7 +621,7 @@ impl<'a, 'i> Reader<'a, 'i> {
             target
                 .children()
                 .filter(Node::is_element)
-                .try_for_each(|c| self.walk(c, map, style, depth + 1))
+                .try_for_each(|c| self.walk(c, map, style.clone(), depth + 1))
         } else {
             self.walk(target, map, style, depth + 1)
         };
@@ -697,48 +770,109 @@ impl<'a, 'i> Reader<'a, 'i> {
                         .map_or_else(String::new, |e| e.to_string()),
                 ));
             }
-            let segments = sub.segments.iter().map(|s| s.mapped(map)).collect();
-            let path = Path::try_new(segments, sub.closed)
-                .map_err(|e| self.element_error(n, format!("subpath {k}: {e}")))?;
-            let index = self.curves.len();
-            let mut s = Style::default_for(index);
-            s.color = Color::from_rgba8(rgba);
-            s.show_polygon = false;
-            s.show_points = false;
-            if stroked {
-                // The stroke's width in user units, scaled by the transform as the
-                // geometry is (by the square root of its area scale), so that it zooms
-                // with the picture; with non-scaling-stroke, pixels.
-                let scale = map.matrix2.determinant().abs().sqrt();
-                let w = if style.non_scaling {
-                    style.stroke_width
-                } else {
-                    style.stroke_width * scale
-                };
-                if style.non_scaling && w > 1000.0 {
-                    return Err(self.element_error(
-                        n,
-                        format!("a non-scaling stroke-width of {w} px is over the maximum of 1000"),
-                    ));
+            // A dashed stroke is cut into its dashes in the element's user units (where
+            // SVG measures them), then each is mapped; a solid one is the subpath.
+            let dashes = match (&style.dasharray, stroked) {
+                (Some(lengths), true) => Some(dash::Dashes::new(lengths, style.dash_offset)),
+                _ => None,
+            };
+            let dashed = dashes.is_some();
+            let paths: Vec<Path> = match dashes {
+                None => {
+                    let segments = sub.segments.iter().map(|s| s.mapped(map)).collect();
+                    vec![
+                        Path::try_new(segments, sub.closed)
+                            .map_err(|e| self.element_error(n, format!("subpath {k}: {e}")))?,
+                    ]
                 }
-                if (w as f32).is_finite() && w as f32 > 0.0 {
-                    s.width = w as f32;
-                    s.width_in_scene = !style.non_scaling;
+                Some(dashes) => {
+                    let segments = sub
+                        .segments
+                        .iter()
+                        .map(|s| s.mapped(DAffine2::IDENTITY))
+                        .collect();
+                    let user = Path::try_new(segments, sub.closed)
+                        .map_err(|e| self.element_error(n, format!("subpath {k}: {e}")))?;
+                    let budget = self.max_curves - self.curves.len() as u64;
+                    let cut = dashes
+                        .cut(&user, budget)
+                        .map_err(|e| self.element_error(n, format!("subpath {k}: {e}")))?;
+                    cut.iter()
+                        .map(|d| {
+                            let mapped = d.segments().iter().map(|s| map_segment(s, map)).collect();
+                            Path::try_new(mapped, false)
+                                .map_err(|e| self.element_error(n, format!("subpath {k}: {e}")))
+                        })
+                        .collect::<Result<_, _>>()?
                 }
-            } else {
-                // A fill alone is drawn as its outline: a thin line in pixels.
-                s.width = 1.0;
+            };
+            if style.dash_relative && stroked {
+                *self
+                    .left_out
+                    .entry("stroke-dasharray in em, ex or % (drawn solid)".into())
+                    .or_default() += 1;
             }
-            self.curves.push(SceneCurve {
-                name: Some(if many {
+            for (j, path) in paths.into_iter().enumerate() {
+                let index = self.curves.len();
+                let mut s = Style::default_for(index);
+                s.color = Color::from_rgba8(rgba);
+                s.show_polygon = false;
+                s.show_points = false;
+                if stroked {
+                    s.stroke = style.stroke_shape;
+                    // The stroke's width in user units, scaled by the transform as the
+                    // geometry is (by the square root of its area scale), so that it zooms
+                    // with the picture; with non-scaling-stroke, pixels.
+                    let scale = map.matrix2.determinant().abs().sqrt();
+                    let w = if style.non_scaling {
+                        style.stroke_width
+                    } else {
+                        style.stroke_width * scale
+                    };
+                    if style.non_scaling && w > 1000.0 {
+                        return Err(self.element_error(
+                            n,
+                            format!(
+                                "a non-scaling stroke-width of {w} px is over the maximum of 1000"
+                            ),
+                        ));
+                    }
+                    if (w as f32).is_finite() && w as f32 > 0.0 {
+                        s.width = w as f32;
+                        s.width_in_scene = !style.non_scaling;
+                    }
+                } else {
+                    // A fill alone is drawn as its outline: a thin line in pixels.
+                    s.width = 1.0;
+                }
+                let name = if many {
                     format!("{base}, subpath {k}")
                 } else {
                     base.clone()
-                }),
-                curve: Curve::Path(path),
-                style: s,
-            });
+                };
+                self.curves.push(SceneCurve {
+                    name: Some(if dashed {
+                        format!("{name}, dash {j}")
+                    } else {
+                        name
+                    }),
+                    curve: Curve::Path(path),
+                    style: s,
+                });
+            }
         }
         Ok(())
+    }
+}
+
+/// A path segment in the plane `z = 0` mapped by `m`.
+fn map_segment(s: &PathSegment, m: DAffine2) -> PathSegment {
+    PathSegment {
+        points: s
+            .points
+            .iter()
+            .map(|p| m.transform_point2(p.truncate()).extend(0.0))
+            .collect(),
+        weights: s.weights.clone(),
     }
 }
