@@ -143,6 +143,9 @@ fn parse_path(d: &str) -> Vec<(char, Vec<f64>)> {
         if "MLQC".contains(ch) {
             flush(&mut number, &mut out);
             out.push((ch, Vec::new()));
+        } else if ch == 'Z' {
+            // A closed curve's close: its run already ends where it starts.
+            flush(&mut number, &mut out);
         } else if ch == ' ' {
             flush(&mut number, &mut out);
         } else {
@@ -1082,4 +1085,36 @@ fn largest_cluster(pixels: &[(u32, u32)]) -> Option<(u32, u32, u32, u32)> {
         }
     }
     best.map(|(_, b)| b)
+}
+
+#[test]
+fn figures_keep_each_curves_caps_joins_and_closed_seams() {
+    let scene = Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/strokes.json"))
+        .expect("scenes/strokes.json");
+    let fig = build(&scene, &FigureOptions::new(480, 320)).expect("figure");
+    let text = svg::write(&fig);
+    let attrs: Vec<&str> = text
+        .lines()
+        .filter(|l| l.contains("<path id=\"curve-"))
+        .collect();
+    assert_eq!(attrs.len(), 6);
+    for (line, want) in attrs.iter().zip([
+        r#"stroke-linecap="butt" stroke-linejoin="miter""#,
+        r#"stroke-linecap="square" stroke-linejoin="bevel""#,
+        r#"stroke-linecap="round" stroke-linejoin="round""#,
+        r#"stroke-linecap="butt" stroke-linejoin="miter""#,
+        r#"stroke-linecap="butt" stroke-linejoin="bevel""#,
+        r#"stroke-linecap="square" stroke-linejoin="miter""#,
+    ]) {
+        assert!(line.contains(want), "{line}");
+    }
+    // The closed rectangle and triangle are written closed (their seams are joins).
+    let closed: Vec<bool> = attrs.iter().map(|l| l.contains("Z\"")).collect();
+    assert_eq!(closed, [false, false, false, true, true, false]);
+    // The PDF sets each shaped path's cap, join and miter limit, and closes the closed.
+    let pdf = pdf::write(&fig);
+    let content = String::from_utf8_lossy(&pdf);
+    for op in ["0 J 0 j 4 M", "2 J 2 j 2 M", "0 J 2 j 4 M", "h S"] {
+        assert!(content.contains(op), "the PDF lacks {op:?}");
+    }
 }

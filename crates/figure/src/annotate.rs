@@ -3,6 +3,7 @@
 //! scene units, a grid at the ticks. Axes and grid need the 2D (affine) view.
 
 use glam::DVec2;
+use splinescope_scene::format::StrokeShape;
 
 use splinescope_core::geom::ParamCurve;
 
@@ -41,6 +42,8 @@ const GRID: Color = Color([0.85, 0.85, 0.85, 1.0]);
 
 fn line(a: DVec2, b: DVec2, stroke: Stroke) -> Item {
     Item::Path {
+        shape: StrokeShape::default(),
+        closed: false,
         runs: vec![SubPath {
             start: a,
             pieces: vec![Piece {

@@ -44,7 +44,7 @@ use splinescope_scene::format::draw::{COMB_WIDTH_PX, Stroke, Switches, comb_stro
 use splinescope_scene::format::encoding::{Encoding, encode_with};
 use splinescope_scene::format::labels::Ink;
 use splinescope_scene::format::shape::{ShapeOptions, marker_points, markers};
-use splinescope_scene::format::{Color, Scene};
+use splinescope_scene::format::{Cap, Color, Join, Scene, StrokeShape};
 
 use fit::{Budget, FitError, Page, Piece, Projection, segment_pieces};
 
@@ -247,6 +247,11 @@ pub enum Item {
         runs: Vec<SubPath>,
         /// How it is stroked.
         stroke: Stroke,
+        /// Its ends and corners (a curve's, as its style says; round for the overlays).
+        shape: StrokeShape,
+        /// Whether its one run ends where it starts as a closed curve (written closed:
+        /// where it closes is a join, not two caps).
+        closed: bool,
         /// The scene curve it draws, if it is one.
         curve: Option<usize>,
     },
@@ -535,6 +540,8 @@ fn comb_items(
                 items.push(Item::Path {
                     runs,
                     stroke,
+                    shape: StrokeShape::default(),
+                    closed: false,
                     curve: None,
                 });
             }
@@ -552,6 +559,8 @@ fn comb_items(
             items.push(Item::Path {
                 runs,
                 stroke: envelope_stroke,
+                shape: StrokeShape::default(),
+                closed: false,
                 curve: None,
             });
         }
@@ -579,6 +588,8 @@ fn curve_items(
             items.push(Item::Path {
                 runs,
                 stroke: *stroke,
+                shape: StrokeShape::default(),
+                closed: false,
                 curve: None,
             });
         }
@@ -630,9 +641,14 @@ fn curve_items(
                 _ => runs.push(SubPath { start, pieces }),
             }
         }
+        let closed = curve.closed
+            && runs.len() == 1
+            && runs[0].pieces.last().map(|p| p.seg.end()) == Some(runs[0].start);
         items.push(Item::Path {
             runs,
             stroke: Stroke::solid(curve.color, width),
+            shape: curve.stroke,
+            closed,
             curve: Some(index),
         });
     }

@@ -15,7 +15,7 @@ use splinescope_core::num::fixed as num;
 
 use super::fit::{Piece, Seg};
 use super::svg::step;
-use super::{Anchor, Figure, Item, SubPath};
+use super::{Anchor, Cap, Figure, Item, Join, SubPath};
 
 /// The magic of the four-arc circle: a cubic arc of a quarter circle has its control
 /// points at this fraction of the radius along the tangents.
@@ -97,7 +97,13 @@ impl Content {
 
     fn item(&mut self, item: &Item) {
         match item {
-            Item::Path { runs, stroke, .. } => {
+            Item::Path {
+                runs,
+                stroke,
+                shape,
+                closed,
+                ..
+            } => {
                 if runs.is_empty() {
                     return;
                 }
@@ -105,12 +111,29 @@ impl Content {
                 let [r, g, b, _] = Self::rgb(stroke.color);
                 let width = self.num(f64::from(stroke.width_px));
                 let _ = writeln!(self.text, "{r} {g} {b} RG {width} w");
+                if !shape.is_round() {
+                    // The page's default is round (set with the background); this path's
+                    // own, inside its q … Q.
+                    let cap = match shape.cap {
+                        Cap::Butt => 0,
+                        Cap::Round => 1,
+                        Cap::Square => 2,
+                    };
+                    let join = match shape.join {
+                        Join::Miter => 0,
+                        Join::Round => 1,
+                        Join::Bevel => 2,
+                    };
+                    let limit = self.num(shape.miter_limit);
+                    let _ = writeln!(self.text, "{cap} J {join} j {limit} M");
+                }
                 if stroke.dash_px > 0.0 {
                     let half = self.num(f64::from(stroke.dash_px) / 2.0);
                     let _ = writeln!(self.text, "[{half} {half}] 0 d");
                 }
                 path(&mut self.text, runs, self.approx, self.exact);
-                self.text.push_str("S\nQ\n");
+                self.text
+                    .push_str(if *closed { "h S\nQ\n" } else { "S\nQ\n" });
             }
             Item::Text {
                 at,

@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use splinescope_core::num::trim_zeros as trim;
 
 use super::fit::{Piece, Seg};
-use super::{Anchor, Figure, Item, SubPath, hex};
+use super::{Anchor, Cap, Figure, Item, Join, StrokeShape, SubPath, hex};
 
 /// The decimal step approximated pieces are rounded to: the largest power of ten at most
 /// a quarter of the tolerance (a point moves at most `step/√2` by it).
@@ -31,6 +31,27 @@ pub fn number(x: f64, exact: bool, step: f64) -> String {
     }
     let decimals = (-step.log10()).round().max(0.0) as usize;
     trim(format!("{:.*}", decimals, scaled.round() * step))
+}
+
+/// A path's `stroke-linecap`, `stroke-linejoin` and (for a miter join other than 4)
+/// `stroke-miterlimit` attributes.
+fn stroke_shape(shape: &StrokeShape) -> String {
+    let cap = match shape.cap {
+        Cap::Round => "round",
+        Cap::Butt => "butt",
+        Cap::Square => "square",
+    };
+    let join = match shape.join {
+        Join::Round => "round",
+        Join::Miter => "miter",
+        Join::Bevel => "bevel",
+    };
+    let limit = if shape.join == Join::Miter && shape.miter_limit != 4.0 {
+        format!(r#" stroke-miterlimit="{}""#, shape.miter_limit)
+    } else {
+        String::new()
+    };
+    format!(r#" stroke-linecap="{cap}" stroke-linejoin="{join}"{limit}"#)
 }
 
 /// The path data of `runs`.
@@ -99,6 +120,8 @@ pub fn write(fig: &Figure) -> String {
             Item::Path {
                 runs,
                 stroke,
+                shape,
+                closed,
                 curve,
             } => {
                 if runs.is_empty() {
@@ -116,10 +139,12 @@ pub fn write(fig: &Figure) -> String {
                     .unwrap_or_default();
                 let _ = writeln!(
                     s,
-                    r#"<path{id} d="{}" fill="none" stroke="{c}"{} stroke-width="{}" stroke-linecap="round" stroke-linejoin="round"{dash}/>"#,
+                    r#"<path{id} d="{}{}" fill="none" stroke="{c}"{} stroke-width="{}"{}{dash}/>"#,
                     path_data(runs, step),
+                    if *closed { "Z" } else { "" },
                     opacity("stroke-opacity", a),
                     number(f64::from(stroke.width_px), true, step),
+                    stroke_shape(shape),
                 );
             }
             Item::Text {
