@@ -228,17 +228,20 @@ impl AdaptiveTessellator {
         });
         let ranges = ranges(chunk);
         let in_scene = |s: &&GpuLineStyle| s.flags & crate::layout::LINE_WIDTH_IN_SCENE != 0;
+        // The widest reach of a line: its width, times how far its ends and corners
+        // reach past half of it (a square cap's corner √2, a miter's tip its limit).
+        let reach = |s: &GpuLineStyle| s.width_px * crate::layout::stroke_reach(s.flags);
         let widest = chunk
             .styles
             .iter()
             .filter(|s| !in_scene(s))
-            .map(|s: &GpuLineStyle| s.width_px)
+            .map(reach)
             .fold(0.0_f32, f32::max);
         let widest_in_scene = chunk
             .styles
             .iter()
             .filter(in_scene)
-            .map(|s: &GpuLineStyle| s.width_px)
+            .map(reach)
             .fold(0.0_f32, f32::max);
         let base_range = super::init_buffer(
             device,

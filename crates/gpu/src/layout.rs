@@ -329,6 +329,23 @@ pub const LINE_CLOSED: u32 = 1 << 7;
 /// The miter limit times 1024 (rounded) in bits 8–31.
 pub const LINE_MITER_SHIFT: u32 = 8;
 
+/// How far a style's ends and corners reach from the curve, in half widths: 1 for round
+/// ones and bevels, `√2` at a square cap's corners, the miter limit at a miter's tip.
+#[must_use]
+pub fn stroke_reach(flags: u32) -> f32 {
+    let cap = (flags >> LINE_CAP_SHIFT) & 3;
+    let join = (flags >> LINE_JOIN_SHIFT) & 3;
+    let mut reach: f32 = if cap == 2 {
+        std::f32::consts::SQRT_2
+    } else {
+        1.0
+    };
+    if join == 1 {
+        reach = reach.max((flags >> LINE_MITER_SHIFT) as f32 / 1024.0);
+    }
+    reach
+}
+
 /// The stroke bits of a curve style: cap, join, miter limit and closedness (the
 /// continuation bits are the chunk builder's).
 #[must_use]
