@@ -220,3 +220,69 @@ fn analyze_reports_the_joints() {
     assert!(text.contains("G0 kink 90° at t = 1"), "{text}");
     assert!(text.contains("G1 curvature jump"), "{text}");
 }
+
+#[test]
+fn analyze_finds_each_curves_nearest_point() {
+    let path = scene("nearest.json", CIRCLE);
+    // (3, 4) is 5 from the circle's centre: 3 from the circle, at (6/5, 8/5); the line
+    // y = 0.5 from x = −3 to 3 is nearest at its end (3, 0.5), 3.5 away.
+    let out = common::run(&["analyze", &path, "--json", "--nearest", "3,4"]);
+    assert!(out.status.success(), "{}", common::text(&out));
+    let v: Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let n = &v["curves"][0]["nearest"];
+    assert!(
+        (n["distance"].as_f64().unwrap() - 3.0).abs() <= 1e-13,
+        "{n}"
+    );
+    let point: Vec<f64> = n["point"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert!(
+        (point[0] - 1.2).abs() <= 1e-13 && (point[1] - 1.6).abs() <= 1e-13,
+        "{n}"
+    );
+    let line = &v["curves"][2]["nearest"];
+    assert!(
+        (line["distance"].as_f64().unwrap() - 3.5).abs() <= 1e-14,
+        "{line}"
+    );
+    // The line ends at x = 3: its nearest point is its end, t = 1.
+    assert_eq!(line["t"].as_f64(), Some(1.0));
+    // In 3D: the distance counts z.
+    let out = common::run(&[
+        "analyze",
+        &path,
+        "--json",
+        "--curve",
+        "2",
+        "--nearest",
+        "0,0.5,-2",
+    ]);
+    let v: Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert!((v["curves"][0]["nearest"]["distance"].as_f64().unwrap() - 2.0).abs() <= 1e-15);
+    // The text says it too.
+    let out = common::run(&["analyze", &path, "--curve", "0", "--nearest", "3,4"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("nearest to (3, 4)") && text.contains("distance 3"),
+        "{text}"
+    );
+    // Bad points are refused naming them.
+    for (bad, says) in [
+        ("3", "a point is X,Y or X,Y,Z"),
+        ("3,y", "\"y\" is not a number"),
+        ("3,NaN", "not a finite number"),
+        ("1,2,3,4", "a point is X,Y or X,Y,Z"),
+    ] {
+        let out = common::run(&["analyze", &path, "--nearest", bad]);
+        assert_eq!(out.status.code(), Some(2), "{}", common::text(&out));
+        assert!(
+            String::from_utf8_lossy(&out.stderr).contains(says),
+            "{}",
+            common::text(&out)
+        );
+    }
+}

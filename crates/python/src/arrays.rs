@@ -123,6 +123,15 @@ pub fn params<'py>(obj: &Bound<'py, PyAny>, what: &str) -> PyResult<Params<'py>>
     }
 }
 
+/// A point's coordinates as text: `(1, NaN)`.
+pub fn row_text(row: &[f64]) -> String {
+    let parts: Vec<String> = row
+        .iter()
+        .map(|x| splinescope_core::num::Num(*x).to_string())
+        .collect();
+    format!("({})", parts.join(", "))
+}
+
 /// `(3, 2)` as numpy writes a shape.
 pub fn shape_text(shape: &[usize]) -> String {
     match shape {

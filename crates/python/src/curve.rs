@@ -553,6 +553,65 @@ impl PyCurve {
             .map_err(|e| analysis_error(&e))
     }
 
+    /// The point of the curve nearest to `p` — the global minimum of the distance, never
+    /// a local one — as `(t, distance)`; for `(N, dim)` points, `(N,)` parameters and
+    /// `(N,)` distances, computed on every core.
+    fn nearest<'py>(&self, py: Python<'py>, p: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        let a = arrays::float_array(p, "p")?;
+        let shape = a.shape().to_vec();
+        let v = a
+            .as_slice()
+            .map_err(|e| raise::<CurveError>(format!("p: {e}"), "p"))?;
+        let (rows, dim, single) = match shape.as_slice() {
+            [d] if *d == 2 || *d == 3 => (1, *d, true),
+            [n, d] if *d == 2 || *d == 3 => (*n, *d, false),
+            _ => {
+                return Err(raise::<CurveError>(
+                    format!(
+                        "p must be a point of 2 or 3 coordinates or an array of shape (N, 2) or (N, 3); got shape {}",
+                        arrays::shape_text(&shape)
+                    ),
+                    "p",
+                ));
+            }
+        };
+        let points: Vec<DVec3> = (0..rows)
+            .map(|i| {
+                let r = &v[i * dim..(i + 1) * dim];
+                DVec3::new(r[0], r[1], if dim == 3 { r[2] } else { 0.0 })
+            })
+            .collect();
+        if let Some(i) = points.iter().position(|q| !q.is_finite()) {
+            let what = if single {
+                "p".to_owned()
+            } else {
+                format!("p[{i}]")
+            };
+            return Err(raise::<CurveError>(
+                format!(
+                    "{what} = {}: not a finite point",
+                    arrays::row_text(&v[i * dim..(i + 1) * dim])
+                ),
+                "p",
+            ));
+        }
+        let c = self.analysis();
+        let found = py.detach(|| c.nearest_many(&points));
+        let mut ts = Vec::with_capacity(rows);
+        let mut ds = Vec::with_capacity(rows);
+        for n in found {
+            let n = n.map_err(|e| analysis_error(&e))?;
+            ts.push(n.t);
+            ds.push(n.distance);
+        }
+        if single {
+            return Ok((ts[0], ds[0]).into_pyobject(py)?.into_any());
+        }
+        let t = arrays::shaped(py, ts, &[rows])?;
+        let d = arrays::shaped(py, ds, &[rows])?;
+        Ok((t, d).into_pyobject(py)?.into_any())
+    }
+
     /// The tight bounding box as `(2, dim)`: the smallest corner, then the largest.
     fn bbox<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let b = self.analysis().bounding_box();
@@ -746,6 +805,7 @@ pub(crate) fn analysis_error(e: &AnalysisError) -> PyErr {
         AnalysisError::DegenerateLine { .. } | AnalysisError::ShortLine { .. } => "q",
         AnalysisError::NotPlanar { .. } | AnalysisError::TooLarge { .. } => "",
         AnalysisError::Crowded { .. } => "other",
+        AnalysisError::NotFinitePoint { .. } => "p",
     };
     raise::<CurveError>(e.to_string(), path)
 }

@@ -10,7 +10,8 @@ use anyhow::{Context, Result};
 
 use splinescope::analysis::CurveAnalysis;
 use splinescope::analysis::report::{
-    AnalyzeOutput, CurveAnalysisReport, IntersectionsReport, curve_analysis_report, pair_reports,
+    AnalyzeOutput, CurveAnalysisReport, IntersectionsReport, NearestReport, curve_analysis_report,
+    pair_reports,
 };
 use splinescope::num::{Num, shortest_within};
 
@@ -31,9 +32,34 @@ pub struct AnalyzeArgs {
     /// Absolute accuracy of arc lengths, in scene units.
     #[arg(long, default_value_t = splinescope::analysis::DEFAULT_ACCURACY, value_parser = parse_accuracy, allow_hyphen_values = true)]
     pub accuracy: f64,
+    /// Also each curve's point nearest to this one (`X,Y` or `X,Y,Z`): the global
+    /// minimum of the distance, its parameter and a bound on the distance's error.
+    #[arg(long, value_name = "X,Y[,Z]", value_parser = parse_point, allow_hyphen_values = true)]
+    pub nearest: Option<glam::DVec3>,
     /// Print JSON (docs/schemas/analyze.schema.json) instead of text.
     #[arg(long)]
     pub json: bool,
+}
+
+/// A point: two or three finite numbers separated by commas.
+fn parse_point(s: &str) -> Result<glam::DVec3, String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    if !(2..=3).contains(&parts.len()) {
+        return Err(format!(
+            "{s:?}: a point is X,Y or X,Y,Z (two or three numbers separated by commas)"
+        ));
+    }
+    let mut xyz = [0.0; 3];
+    for (k, part) in parts.iter().enumerate() {
+        let v: f64 = part
+            .parse()
+            .map_err(|_| format!("{s:?}: {part:?} is not a number"))?;
+        if !v.is_finite() {
+            return Err(format!("{s:?}: {part} is not a finite number"));
+        }
+        xyz[k] = v;
+    }
+    Ok(glam::DVec3::from_array(xyz))
 }
 
 /// An accuracy: a finite number greater than 0.
@@ -75,17 +101,20 @@ pub fn run(a: &AnalyzeArgs) -> Result<()> {
     let mut curves = Vec::with_capacity(indices.len());
     for (&i, c) in indices.iter().zip(&analyses) {
         let sc = &scene.curves[i];
-        curves.push(
-            curve_analysis_report(
-                i,
-                sc.curve.family(),
-                sc.name.as_deref(),
-                c,
-                a.accuracy,
-                a.intersections,
-            )
-            .with_context(|| format!("curves[{i}]"))?,
-        );
+        let mut report = curve_analysis_report(
+            i,
+            sc.curve.family(),
+            sc.name.as_deref(),
+            c,
+            a.accuracy,
+            a.intersections,
+        )
+        .with_context(|| format!("curves[{i}]"))?;
+        if let Some(p) = a.nearest {
+            report.nearest =
+                Some(NearestReport::of(c, p).with_context(|| format!("curves[{i}]: --nearest"))?);
+        }
+        curves.push(report);
     }
     let (intersections, copies) = if a.intersections {
         let (pairs, copies) = pair_reports(&indices, &analyses)?;
@@ -278,6 +307,17 @@ fn curve_text(out: &mut String, c: &CurveAnalysisReport) {
     }
     if let Some(s) = &c.self_intersections {
         let _ = writeln!(out, "  self            {}", hits(s, d));
+    }
+    if let Some(n) = &c.nearest {
+        let _ = writeln!(
+            out,
+            "  nearest to {}  t = {} {}, distance {} (error ≤ {:.1e})",
+            d.point(n.to, planar && n.to[2] == 0.0),
+            d.param(n.t),
+            d.point(n.point, planar),
+            shortest_within(n.distance, n.error.max(1e-12 * d.size)),
+            n.error
+        );
     }
     if let Some(why) = &c.joints_refused {
         let _ = writeln!(out, "  joints          not measured: {why}");

@@ -20,7 +20,7 @@ pub mod roots;
 
 pub use curve::{
     AnalysisError, CurvatureExtremum, CurveAnalysis, DEFAULT_ACCURACY, Extremum, ExtremumKind,
-    HitKind, Length, LineHit, LineIntersections, bezier_length,
+    HitKind, Length, LineHit, LineIntersections, Nearest, bezier_length,
 };
 pub use intersect::{Hit, Intersections, Overlap, PairIntersections, all_intersections};
 pub use joints::{Joint, JointClass};

@@ -899,6 +899,66 @@ impl Piece {
     }
 }
 
+impl Piece {
+    /// `(C − p) · dC/du` up to a positive factor, in Bernstein form, over the first `dims`
+    /// coordinates: `Σ (A_k − p_k) A_k′` for a polynomial segment, `Σ (A_k − p_k W)(A_k′ W
+    /// − A_k W′)` for a rational one (the true value times `W³ > 0`). Its roots are where
+    /// the distance to `p` is stationary. With the rounding its coefficients may carry.
+    #[must_use]
+    pub fn nearest_numerator(&self, p: DVec3, dims: usize) -> (Vec<f64>, f64) {
+        let mut total: Vec<f64> = Vec::new();
+        let mut size = 0.0;
+        for k in 0..dims {
+            let (diff, deriv, span) = match self.w() {
+                Some(w) => {
+                    let d: Vec<f64> = self.a(k).iter().zip(w).map(|(a, w)| a - p[k] * w).collect();
+                    let span = max_abs(self.a(k)) + p[k].abs() * max_abs(w);
+                    (d, self.deriv_numerator(k), span)
+                }
+                None => {
+                    let d: Vec<f64> = self.a(k).iter().map(|a| a - p[k]).collect();
+                    let span = max_abs(self.a(k)) + p[k].abs();
+                    (d, self.da(k).to_vec(), span)
+                }
+            };
+            size += span * max_abs(&deriv);
+            let term = poly::product(&diff, &deriv);
+            total = if total.is_empty() {
+                term
+            } else {
+                poly::sum(&total, &term)
+            };
+        }
+        let noise = rounding(total.len(), size);
+        (total, noise)
+    }
+
+    /// A bound on the speed `|dC/du|` over the segment: `n max |P_{i+1} − P_i|` for a
+    /// polynomial one; for a rational one that times `(w_max / w_min)²` (Floater's bound
+    /// on the derivative of a rational Bézier curve).
+    #[must_use]
+    pub fn speed_bound(&self) -> f64 {
+        let degree = self.degree() as f64;
+        let point = |i: usize| {
+            let v = DVec3::new(self.a(0)[i], self.a(1)[i], self.a(2)[i]);
+            match self.w() {
+                Some(w) => v / w[i],
+                None => v,
+            }
+        };
+        let legs = (1..self.n)
+            .map(|i| (point(i) - point(i - 1)).length())
+            .fold(0.0, f64::max);
+        let ratio = self.w().map_or(1.0, |w| {
+            let (lo, hi) = w.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), &x| {
+                (lo.min(x), hi.max(x))
+            });
+            (hi / lo).powi(2)
+        });
+        degree * legs * ratio
+    }
+}
+
 /// The largest coefficient in absolute value.
 fn max_abs(c: &[f64]) -> f64 {
     c.iter().fold(0.0, |m, v| m.max(v.abs()))

@@ -12,6 +12,7 @@ use serde::Serialize;
 use super::curve::{AnalysisError, CurveAnalysis, ExtremumKind, HitKind};
 use super::intersect::{Intersections, all_intersections};
 use crate::geom::family::Xyz;
+use glam::DVec3;
 
 /// The whole output of `splinescope analyze`.
 #[derive(Debug, Clone)]
@@ -95,6 +96,42 @@ pub struct CurveAnalysisReport {
     /// Why the joints are absent.
     #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub joints_refused: Option<String>,
+    /// With a point asked about: the curve's point nearest to it.
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    pub nearest: Option<NearestReport>,
+}
+
+/// The point of a curve nearest to a given one ([`CurveAnalysis::nearest`]).
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(Serialize, JsonSchema))]
+pub struct NearestReport {
+    /// The point asked about.
+    pub to: Xyz,
+    /// The curve parameter of the nearest point (the smallest among equally near ones).
+    pub t: f64,
+    /// The nearest point.
+    pub point: Xyz,
+    /// Its distance.
+    pub distance: f64,
+    /// A bound on how far `distance` may exceed the true least distance.
+    pub error: f64,
+}
+
+impl NearestReport {
+    /// The report of the point of `c` nearest to `to`.
+    ///
+    /// # Errors
+    /// [`AnalysisError::NotFinitePoint`] for a point that is not finite.
+    pub fn of(c: &CurveAnalysis, to: DVec3) -> Result<NearestReport, AnalysisError> {
+        let n = c.nearest(to)?;
+        Ok(NearestReport {
+            to: to.to_array(),
+            t: n.t,
+            point: c.point(n.t).to_array(),
+            distance: n.distance,
+            error: n.error,
+        })
+    }
 }
 
 /// Continuity at one joint ([`crate::analysis::joints`]).
@@ -322,6 +359,7 @@ pub fn curve_analysis_report(
     };
     let joints = c.joints();
     Ok(CurveAnalysisReport {
+        nearest: None,
         index,
         family,
         name: name.map(str::to_owned),

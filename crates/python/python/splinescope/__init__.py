@@ -545,6 +545,15 @@ class Curve:
         st, k, _, e = self._c.self_intersections(want_kinds, want_errors)
         return _hits(st, k, e, want_kinds, want_errors)
 
+    def nearest(self, p: ArrayLike) -> Tuple[Any, Any]:
+        """The point of the curve nearest to ``p`` — the global minimum of the distance over
+        the whole curve (every root of ``(C(t) − p)·C′(t)`` on every segment, and the
+        ends), never a local one — as ``(t, distance)``; for ``(N, dim)`` points, ``(N,)``
+        parameters and ``(N,)`` distances, computed on every core. Points equally near: the
+        smaller ``t``. A 2-D curve and a 3-D point: the distance counts its ``z``.
+        ``docs/math.md`` states the bound on the distance's error."""
+        return self._c.nearest(p)
+
     def intersect_line(self, p: ArrayLike, q: ArrayLike) -> Tuple[np.ndarray, List[str]]:
         """Where the curve meets the line through ``p`` and ``q`` (2D): ``(K, 2)`` pairs
         ``(t, λ)`` (the point is ``p + λ (q − p)``) and their kinds."""

@@ -5,8 +5,10 @@ use glam::DVec3;
 use thiserror::Error;
 
 mod length;
+mod nearest;
 
 pub use length::bezier_length;
+pub use nearest::Nearest;
 
 use super::piece::Piece;
 use super::poly;
@@ -78,6 +80,12 @@ pub enum AnalysisError {
         what: &'static str,
         /// The diagonal of the control points' box.
         size: f64,
+    },
+    /// A point asked about that is not finite.
+    #[error("the point ({}, {}, {}) is not finite", Num(point.x), Num(point.y), Num(point.z))]
+    NotFinitePoint {
+        /// The point.
+        point: DVec3,
     },
     /// A line given by two equal points.
     #[error("the line's two points are equal ({point}): they give no direction")]
