@@ -37,5 +37,6 @@
 pub mod analysis;
 pub mod geom;
 pub mod num;
+pub mod ops;
 pub mod rng;
 pub mod solve;

@@ -82,6 +82,34 @@ impl PyCurve {
         )
     }
 
+    /// [`splinescope_core::ops::approx::approximate`] of this curve.
+    fn approximate(
+        &self,
+        py: Python<'_>,
+        tolerance: f64,
+        target: splinescope_core::ops::Target,
+    ) -> PyResult<(PyCurve, f64)> {
+        let curve = &self.curve.curve;
+        let closed = matches!(curve, Curve::Path(p) if p.is_closed());
+        let made = py
+            .detach(|| {
+                splinescope_core::ops::approx::approximate(
+                    &curve.lower(),
+                    closed,
+                    target,
+                    tolerance,
+                )
+            })
+            .map_err(|e| {
+                let what = match e {
+                    splinescope_core::ops::OpError::Geom(_) => "",
+                    _ => "tolerance",
+                };
+                raise::<CurveError>(e.to_string(), what)
+            })?;
+        Ok((self.with_curve(Curve::Path(made.path)), made.error))
+    }
+
     /// Refuses parameters outside the domain (or not numbers), naming the first.
     fn check_domain(&self, ts: &[f64], what: &str, scalar: bool) -> PyResult<()> {
         let (a, b) = self.curve.curve.domain();
@@ -610,6 +638,17 @@ impl PyCurve {
         let t = arrays::shaped(py, ts, &[rows])?;
         let d = arrays::shaped(py, ds, &[rows])?;
         Ok((t, d).into_pyobject(py)?.into_any())
+    }
+
+    /// The curve as a path of cubic segments within `tolerance` (Hausdorff, a proven
+    /// bound), with that bound.
+    fn to_cubics(&self, py: Python<'_>, tolerance: f64) -> PyResult<(PyCurve, f64)> {
+        self.approximate(py, tolerance, splinescope_core::ops::Target::Cubic)
+    }
+
+    /// The curve as a path of quadratic segments within `tolerance`, with the bound.
+    fn to_quadratics(&self, py: Python<'_>, tolerance: f64) -> PyResult<(PyCurve, f64)> {
+        self.approximate(py, tolerance, splinescope_core::ops::Target::Quadratic)
     }
 
     /// The tight bounding box as `(2, dim)`: the smallest corner, then the largest.

@@ -69,12 +69,32 @@ def test_a_curve_drawn_into_a_recording_pen_replays_into_a_scene_pen_unchanged()
         rec.replay(pen)
         back = pen.scene.curves[0]
         assert segments(back) == segments(c)
-    # Rational segments and degrees above 3 cannot be said.
-    arc = ss.Path([([[1, 0], [1, 1], [0, 1]], [1, h, 1])])
-    with pytest.raises(PenError, match="segment 0 is rational"):
-        arc.draw(RecordingPen())
-    with pytest.raises(PenError, match="segment 0 has degree 5"):
-        ss.Bezier([[0, 0], [1, 1], [2, 0], [3, 1], [4, 0], [5, 1]]).draw(RecordingPen())
+    # Rational segments and degrees above 3 cannot be said as they are: they go through
+    # to_cubics within the tolerance (checked against the closed form: the quarter arc's
+    # cubics stay within it of the unit circle), and the rest as they are.
+    arc = ss.Path([([[1, 0], [1, 1], [0, 1]], [1, h, 1]), [[0, 1], [-1, 1]]])
+    rec = RecordingPen()
+    arc.draw(rec, tolerance=1e-7)
+    ops = [op for op, _ in rec.value]
+    assert ops[0] == "moveTo" and ops[-2:] == ["lineTo", "endPath"]
+    assert set(ops[1:-2]) == {"curveTo"}
+    pen = ScenePen()
+    rec.replay(pen)
+    drawn = pen.scene.curves[0]
+    ts = np.linspace(0, len(drawn.segments()) - 1, 2000)
+    r = np.linalg.norm(np.asarray(drawn.eval(ts)), axis=1)
+    assert np.abs(r - 1).max() <= 1e-7
+    quintic = ss.Bezier([[0, 0], [1, 1], [2, 0], [3, 1], [4, 0], [5, 1]])
+    rec = RecordingPen()
+    quintic.draw(rec)
+    pen = ScenePen()
+    rec.replay(pen)
+    back = pen.scene.curves[0]
+    # Within the default tolerance, 1e-6 of the box's diagonal: sampled both ways.
+    diag = float(np.linalg.norm(np.subtract(*quintic.bbox()[::-1])))
+    pts = np.asarray(quintic.eval(np.linspace(0, 1, 500)))
+    _, d = back.nearest(pts)
+    assert d.max() <= 1e-6 * diag
 
 
 def test_a_scene_pen_takes_truetype_splines_and_refuses_what_is_out_of_order():

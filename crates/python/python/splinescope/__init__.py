@@ -431,15 +431,16 @@ class Curve:
         least 2 and within the sample limit, ``SPLINESCOPE_MAX_SAMPLES``)."""
         return self._c.sample(_int(n, "n", 2, 2**64 - 1, "sample"))
 
-    def draw(self, pen: Any) -> None:
+    def draw(self, pen: Any, tolerance: Optional[float] = None) -> None:
         """Draws the curve into a fontTools pen (any object with ``moveTo``, ``lineTo``,
         ``qCurveTo``, ``curveTo``, ``closePath``, ``endPath``): its segments as they are —
         lines, quadratics, cubics — closed with ``closePath`` for a closed path (its
-        closing line implied). A rational segment or one of degree above 3 is refused
-        naming it (:class:`splinescope.pens.PenError`)."""
+        closing line implied). A rational segment or one of degree above 3 goes through
+        :meth:`to_cubics` within ``tolerance`` (default: 10⁻⁶ of the curve's bounding box
+        diagonal)."""
         from .pens import draw
 
-        draw(self, pen)
+        draw(self, pen, tolerance)
 
     def segments(self) -> List[Tuple[Any, ...]]:
         """The exact Bézier segments, ``(t0, t1, control points)`` each; a rational
@@ -553,6 +554,23 @@ class Curve:
         smaller ``t``. A 2-D curve and a 3-D point: the distance counts its ``z``.
         ``docs/math.md`` states the bound on the distance's error."""
         return self._c.nearest(p)
+
+    def to_cubics(self, tolerance: float, with_error: bool = False) -> Any:
+        """The curve as a :class:`Path` of cubic segments within ``tolerance`` of it in the
+        Hausdorff sense — every point of each within ``tolerance`` of the other — shown by
+        a computed bound, not by sampling (``docs/math.md`` §11); rational curves and high
+        degrees included, segments already cubic (or lower, raised exactly) kept. With
+        ``with_error=True``, ``(path, bound)``."""
+        path, bound = self._c.to_cubics(_float(tolerance, "tolerance", "to_cubics"))
+        path = Curve._wrap(path)
+        return (path, bound) if with_error else path
+
+    def to_quadratics(self, tolerance: float, with_error: bool = False) -> Any:
+        """The curve as a :class:`Path` of quadratic segments within ``tolerance`` (what a
+        TrueType font stores), the bound proven as for :meth:`to_cubics`."""
+        path, bound = self._c.to_quadratics(_float(tolerance, "tolerance", "to_quadratics"))
+        path = Curve._wrap(path)
+        return (path, bound) if with_error else path
 
     def intersect_line(self, p: ArrayLike, q: ArrayLike) -> Tuple[np.ndarray, List[str]]:
         """Where the curve meets the line through ``p`` and ``q`` (2D): ``(K, 2)`` pairs

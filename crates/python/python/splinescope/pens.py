@@ -168,22 +168,25 @@ class ScenePen:
         return Scene(self.curves)
 
 
-def draw(curve: Any, pen: Any) -> None:
+def draw(curve: Any, pen: Any, tolerance: Any = None) -> None:
     """Draws `curve`'s segments into `pen` (see :meth:`splinescope.Curve.draw`)."""
     segs = curve.segments()
     if not segs:
         return
-    for k, s in enumerate(segs):
-        if len(s) > 3:
-            raise PenError(
-                f"segment {k} is rational: the pen protocol has no weights "
-                "(approximate it first)"
-            )
-        if len(s[2]) - 1 > 3:
-            raise PenError(
-                f"segment {k} has degree {len(s[2]) - 1}: the pen protocol goes up to cubics "
-                "(approximate it first)"
-            )
+    if any(len(s) > 3 or len(s[2]) - 1 > 3 for s in segs):
+        from . import Bezier, RationalBezier
+
+        if tolerance is None:
+            box = np.asarray(curve.bbox(), dtype=float)
+            tolerance = 1e-6 * max(float(np.linalg.norm(box[1] - box[0])), 1e-300)
+        drawn = []
+        for s in segs:
+            if len(s) <= 3 and len(s[2]) - 1 <= 3:
+                drawn.append(s)
+                continue
+            piece = RationalBezier(s[2], s[3]) if len(s) > 3 else Bezier(s[2])
+            drawn.extend(piece.to_cubics(tolerance).segments())
+        segs = drawn
     closed = bool(getattr(curve, "closed", False))
     pts = lambda s: [tuple(float(v) for v in p[:2]) for p in s[2]]  # noqa: E731
     first = pts(segs[0])

@@ -1,0 +1,57 @@
+//! Operations that make curves from curves: approximation by lower degree (cubics,
+//! quadratics) within a tolerance, each result with a proven bound on its distance from
+//! the curve it came from.
+
+use thiserror::Error;
+
+use crate::geom::{Curve, GeomError, Lower};
+use crate::num::Num;
+
+pub mod approx;
+
+pub use approx::{Approximation, Target};
+
+/// Why an operation cannot be done.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum OpError {
+    /// A tolerance that is not a finite number greater than 0.
+    #[error("tolerance {}: must be a finite number greater than 0", Num(*.0))]
+    Tolerance(f64),
+    /// A segment that would need more pieces than the limit at this tolerance.
+    #[error(
+        "a segment needs more than {limit} pieces within tolerance {}: ask for a larger tolerance",
+        Num(*tolerance)
+    )]
+    TooManyPieces {
+        /// The most pieces one segment may become.
+        limit: usize,
+        /// The tolerance asked for.
+        tolerance: f64,
+    },
+    /// The result is not a valid curve.
+    #[error("{0}")]
+    Geom(GeomError),
+}
+
+/// Whether a curve's stroke closes: a closed path.
+fn closed(curve: &Curve) -> bool {
+    matches!(curve, Curve::Path(p) if p.is_closed())
+}
+
+/// `curve` as a path of cubic segments within `tolerance` (Hausdorff distance, proven:
+/// [`approx`]).
+///
+/// # Errors
+/// See [`approx::approximate`].
+pub fn to_cubics(curve: &Curve, tolerance: f64) -> Result<Approximation, OpError> {
+    approx::approximate(&curve.lower(), closed(curve), Target::Cubic, tolerance)
+}
+
+/// `curve` as a path of quadratic segments within `tolerance` (what a TrueType font
+/// stores).
+///
+/// # Errors
+/// See [`approx::approximate`].
+pub fn to_quadratics(curve: &Curve, tolerance: f64) -> Result<Approximation, OpError> {
+    approx::approximate(&curve.lower(), closed(curve), Target::Quadratic, tolerance)
+}
