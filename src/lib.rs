@@ -31,7 +31,7 @@
 
 #![forbid(unsafe_code)]
 
-pub use splinescope_core::{analysis, geom, num, solve};
+pub use splinescope_core::{analysis, geom, num, ops, solve};
 pub use splinescope_gpu as gpu;
 pub use splinescope_import as import;
 pub use splinescope_io::{files, limits};

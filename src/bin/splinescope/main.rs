@@ -22,6 +22,7 @@ mod export;
 mod import;
 mod inspect;
 mod load;
+mod op;
 mod regress;
 mod render;
 mod schema;
@@ -203,6 +204,10 @@ enum Command {
     /// Read a file of another format (SVG, a font) and write it as a scene (JSON): each
     /// subpath or glyph contour one path curve, arcs exact, quadratics kept.
     Import(import::ImportArgs),
+    /// Make curves from a scene's curves — as cubics or quadratics within a tolerance (a
+    /// proven Hausdorff bound) — and write the scene with the results after their
+    /// originals (or in their place with --replace).
+    Op(op::OpArgs),
     /// Print the JSON Schema of a format (scene, request, report, inspect, analyze, eval,
     /// check); without a name, list them; write them all with --write DIR.
     Schema(schema::SchemaArgs),
@@ -257,6 +262,7 @@ fn run(cli: Cli) -> Result<()> {
         Some(Command::Solve(a)) => solve::run(&a),
         Some(Command::Check(a)) => check::run(&a),
         Some(Command::Import(a)) => import::run(&a),
+        Some(Command::Op(a)) => op::run(&a),
         Some(Command::Schema(a)) => schema::run(&a),
         Some(Command::Regress(a)) => regress::run(&a),
         Some(Command::Diff(a)) => diff::run(&a),

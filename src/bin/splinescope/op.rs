@@ -1,0 +1,129 @@
+//! `splinescope op`: operations that make curves from a scene's curves — approximation
+//! by cubics or quadratics within a tolerance (with a proven bound) — written as a scene:
+//! each result after its original, named after it and the operation, or in its place
+//! with `--replace`.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+
+use splinescope::geom::Curve;
+use splinescope::num::Num;
+use splinescope::ops::{Approximation, to_cubics, to_quadratics};
+use splinescope::scene::SceneCurve;
+
+use crate::{say, select_curves};
+
+/// The arguments of `splinescope op`.
+#[derive(Debug, clap::Args)]
+#[command(group(clap::ArgGroup::new("operation").required(true).args(["to_cubics", "to_quadratics"])))]
+pub struct OpArgs {
+    /// Scene file (JSON), or a file splinescope imports.
+    pub scene: PathBuf,
+    /// Only this curve (index in the scene); every curve otherwise.
+    #[arg(long, allow_hyphen_values = true)]
+    pub curve: Option<usize>,
+    /// Each curve as a path of cubic segments within this tolerance (scene units; the
+    /// Hausdorff distance, a proven bound).
+    #[arg(long, value_name = "T", value_parser = parse_tolerance, allow_hyphen_values = true)]
+    pub to_cubics: Option<f64>,
+    /// Each curve as a path of quadratic segments within this tolerance.
+    #[arg(long, value_name = "T", value_parser = parse_tolerance, allow_hyphen_values = true)]
+    pub to_quadratics: Option<f64>,
+    /// Put each result in its original's place (by default it is added after it).
+    #[arg(long)]
+    pub replace: bool,
+    /// Where to write the scene (JSON); replaced atomically.
+    #[arg(short, long, value_name = "OUT.json")]
+    pub output: PathBuf,
+}
+
+/// A tolerance: a finite number greater than 0.
+fn parse_tolerance(s: &str) -> Result<f64, String> {
+    let v: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("{s:?} is not a number"))?;
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!(
+            "tolerance {}: must be a finite number greater than 0",
+            Num(v)
+        ))
+    }
+}
+
+/// Runs `splinescope op`.
+///
+/// # Errors
+/// A scene that does not load, a curve index out of range, an operation that cannot be
+/// done on a curve (naming it), the output being the input, or a write that fails.
+pub fn run(a: &OpArgs) -> Result<()> {
+    if splinescope::files::resolved(&a.scene) == splinescope::files::resolved(&a.output) {
+        bail!(
+            "{}: the output is the scene being read; write the result to another file",
+            a.output.display()
+        );
+    }
+    let mut scene = crate::load::scene(&a.scene)?;
+    let indices = select_curves(&scene, a.curve)?;
+    type Op = fn(&Curve, f64) -> Result<Approximation, splinescope::ops::OpError>;
+    let (what, tolerance, op): (&str, f64, Op) = match (a.to_cubics, a.to_quadratics) {
+        (Some(t), _) => ("to cubics", t, to_cubics),
+        (_, Some(t)) => ("to quadratics", t, to_quadratics),
+        _ => unreachable!("clap requires one operation"),
+    };
+    let mut made: Vec<(usize, SceneCurve, f64)> = Vec::with_capacity(indices.len());
+    for &i in &indices {
+        let sc = &scene.curves[i];
+        let Approximation { path, error } = op(&sc.curve, tolerance)
+            .with_context(|| format!("curves[{i}]: --{}", what.replace(' ', "-")))?;
+        let base = sc
+            .name
+            .clone()
+            .unwrap_or_else(|| format!("{} {i}", sc.curve.family()));
+        let mut style = sc.style.clone();
+        style.show_polygon = false;
+        made.push((
+            i,
+            SceneCurve {
+                name: Some(format!("{base} · {what} {}", Num(tolerance))),
+                curve: Curve::Path(path),
+                style,
+            },
+            error,
+        ));
+    }
+    // Results in place or after their originals, from the last so indices hold.
+    for (i, curve, _) in made.iter().rev() {
+        if a.replace {
+            scene.curves[*i] = curve.clone();
+        } else {
+            scene.curves.insert(i + 1, curve.clone());
+        }
+    }
+    splinescope::limits::CURVES
+        .check(scene.curves.len() as u64)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", a.output.display()))?;
+    let text = splinescope::scene::to_json_string(&scene);
+    splinescope::files::write_atomic(&a.output, text.as_bytes())
+        .with_context(|| format!("{}: cannot write the scene", a.output.display()))?;
+    for (i, curve, error) in &made {
+        let segments = match &curve.curve {
+            Curve::Path(p) => p.segments().len(),
+            _ => 0,
+        };
+        say!(
+            "curves[{i}] {what}: {segments} segment(s), within {error:.3e} (tolerance {})",
+            Num(tolerance)
+        );
+    }
+    say!(
+        "{} curve(s) written to {}",
+        scene.curves.len(),
+        a.output.display()
+    );
+    Ok(())
+}

@@ -1,0 +1,111 @@
+//! `splinescope op`: each curve as cubics or quadratics within the tolerance, written
+//! after its original (or in its place with `--replace`), named after it and the
+//! operation; bad arguments refused naming them, and nothing written then.
+
+mod common;
+
+use splinescope::analysis::CurveAnalysis;
+use splinescope::geom::{Curve, ParamCurve};
+use splinescope::scene::Scene;
+
+fn paths() -> String {
+    format!("{}/scenes/paths.json", env!("CARGO_MANIFEST_DIR"))
+}
+
+#[test]
+fn op_writes_each_approximation_after_its_original_within_the_tolerance() {
+    let dir = common::out_dir("op_cli");
+    let out = dir.join("quadratics.json");
+    let run = common::run(&[
+        "op",
+        &paths(),
+        "--to-quadratics",
+        "0.01",
+        "-o",
+        out.to_str().expect("utf-8"),
+    ]);
+    assert!(run.status.success(), "{}", common::text(&run));
+    let original = Scene::load(std::path::Path::new(&paths())).expect("paths");
+    let made = Scene::load(&out).expect("written");
+    assert_eq!(made.curves.len(), 2 * original.curves.len());
+    for (k, o) in original.curves.iter().enumerate() {
+        let (a, b) = (&made.curves[2 * k], &made.curves[2 * k + 1]);
+        assert_eq!(a.curve, o.curve);
+        assert_eq!(
+            b.name.as_deref(),
+            Some(format!("{} · to quadratics 0.01", o.name.as_deref().expect("named")).as_str())
+        );
+        let Curve::Path(p) = &b.curve else {
+            panic!("a path")
+        };
+        assert!(p.segments().iter().all(|s| s.degree() == 2));
+        // Every sample of the result within the tolerance of the original (the nearest
+        // point, §10).
+        let ao = CurveAnalysis::new(&o.curve);
+        let (t0, t1) = b.curve.domain();
+        for i in 0..=300 {
+            let t = t0 + (t1 - t0) * f64::from(i) / 300.0;
+            let d = ao.nearest(b.curve.eval(t)).expect("nearest").distance;
+            assert!(d <= 0.01, "{:?} at {t}: {d}", b.name);
+        }
+    }
+    // --replace: the results in place; --curve: one curve only.
+    let out2 = dir.join("replaced.json");
+    let run = common::run(&[
+        "op",
+        &paths(),
+        "--curve",
+        "1",
+        "--to-cubics",
+        "0.001",
+        "--replace",
+        "-o",
+        out2.to_str().expect("utf-8"),
+    ]);
+    assert!(run.status.success(), "{}", common::text(&run));
+    let replaced = Scene::load(&out2).expect("written");
+    assert_eq!(replaced.curves.len(), original.curves.len());
+    assert_eq!(replaced.curves[0].curve, original.curves[0].curve);
+    let Curve::Path(p) = &replaced.curves[1].curve else {
+        panic!("a path")
+    };
+    assert!(p.segments().iter().all(|s| s.degree() == 3));
+}
+
+#[test]
+fn op_refuses_bad_arguments_and_writes_nothing() {
+    let dir = common::out_dir("op_cli");
+    let out = dir.join("never.json");
+    let o = out.to_str().expect("utf-8");
+    for (args, says) in [
+        (vec!["op", &paths(), "-o", o], "--to-cubics"),
+        (
+            vec!["op", &paths(), "--to-cubics", "0", "-o", o],
+            "tolerance 0",
+        ),
+        (
+            vec!["op", &paths(), "--to-quadratics", "nan", "-o", o],
+            "must be a finite number",
+        ),
+        (
+            vec!["op", &paths(), "--to-cubics", "1", "--curve", "9", "-o", o],
+            "--curve 9",
+        ),
+        (
+            vec!["op", &paths(), "--to-cubics", "1e-300", "-o", o],
+            "pieces within tolerance",
+        ),
+    ] {
+        let _ = std::fs::remove_file(&out);
+        let run = common::run(&args);
+        assert!(!run.status.success(), "{args:?}");
+        assert!(
+            String::from_utf8_lossy(&run.stderr).contains(says),
+            "{args:?}: {}",
+            common::text(&run)
+        );
+        assert!(!out.exists(), "{args:?} wrote a file");
+    }
+    let run = common::run(&["op", &paths(), "--to-cubics", "1", "-o", &paths()]);
+    assert!(String::from_utf8_lossy(&run.stderr).contains("the output is the scene being read"));
+}
