@@ -49,6 +49,7 @@ fn a_circles_figure_comb_ends_scale_over_radius_beyond_it() {
             runs,
             curve: None,
             stroke,
+            ..
         } = item
         else {
             continue;

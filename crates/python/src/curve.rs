@@ -651,6 +651,26 @@ impl PyCurve {
         self.approximate(py, tolerance, splinescope_core::ops::Target::Quadratic)
     }
 
+    /// The curve split at `t` into the curves before and after it (a Bézier or rational
+    /// Bézier curve into two of its family; others into two paths of their exact
+    /// segments).
+    fn split(&self, t: f64) -> PyResult<(PyCurve, PyCurve)> {
+        let (l, r) = splinescope_core::ops::split(&self.curve.curve, t).map_err(|e| {
+            raise::<CurveError>(
+                format!("split at t = {}: {e}", splinescope_core::num::Num(t)),
+                "t",
+            )
+        })?;
+        Ok((self.with_curve(l), self.with_curve(r)))
+    }
+
+    /// The curve traced the other way.
+    fn reverse(&self) -> PyResult<PyCurve> {
+        let r = splinescope_core::ops::reverse(&self.curve.curve)
+            .map_err(|e| raise::<CurveError>(e.to_string(), ""))?;
+        Ok(self.with_curve(r))
+    }
+
     /// The tight bounding box as `(2, dim)`: the smallest corner, then the largest.
     fn bbox<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let b = self.analysis().bounding_box();

@@ -25,6 +25,7 @@ fn _splinescope(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<curve::PyCurve>()?;
     m.add_class::<scene::PyScene>()?;
     m.add_function(wrap_pyfunction!(many::eval_many, m)?)?;
+    m.add_function(wrap_pyfunction!(many::join, m)?)?;
     m.add_function(wrap_pyfunction!(many::intersections, m)?)?;
     m.add_function(wrap_pyfunction!(regression::compare_images, m)?)?;
     m.add_function(wrap_pyfunction!(many::rust_eval_seconds, m)?)?;

@@ -102,6 +102,28 @@ pub fn intersections<'py>(
     Ok(out)
 }
 
+/// `curves` joined end to end into one path of their exact segments.
+#[pyfunction]
+#[pyo3(signature = (curves, closed=false))]
+pub fn join<'py>(curves: Vec<PyRef<'py, PyCurve>>, closed: bool) -> PyResult<PyCurve> {
+    let all: Vec<splinescope_core::geom::Curve> =
+        curves.iter().map(|c| c.curve.curve.clone()).collect();
+    let path = splinescope_core::ops::join(&all, closed)
+        .map_err(|e| raise::<CurveError>(format!("join: {e}"), "curves"))?;
+    let dim = curves.iter().map(|c| c.dim).max().unwrap_or(2);
+    Ok(PyCurve::new(
+        splinescope_scene::format::SceneCurve {
+            name: None,
+            curve: splinescope_core::geom::Curve::Path(path),
+            style: curves.first().map_or_else(
+                || splinescope_scene::format::Style::default_for(0),
+                |c| c.curve.style.clone(),
+            ),
+        },
+        Some(dim),
+    ))
+}
+
 /// `n ≥ 2` uniform samples of every curve, `(C, n, dim)`, spread over every core.
 #[pyfunction]
 pub fn eval_many<'py>(

@@ -1,6 +1,7 @@
 //! Operations that make curves from curves: approximation by lower degree (cubics,
 //! quadratics) within a tolerance, each result with a proven bound on its distance from
-//! the curve it came from.
+//! the curve it came from; and the exact small ones — a curve as a path of its segments,
+//! split, reversed, curves joined.
 
 use thiserror::Error;
 
@@ -8,8 +9,10 @@ use crate::geom::{Curve, GeomError, Lower};
 use crate::num::Num;
 
 pub mod approx;
+pub mod structure;
 
 pub use approx::{Approximation, Target};
+pub use structure::{as_path, join, reverse, split};
 
 /// Why an operation cannot be done.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -28,6 +31,9 @@ pub enum OpError {
         /// The tolerance asked for.
         tolerance: f64,
     },
+    /// A join of no curves.
+    #[error("nothing to join: give at least one curve")]
+    NothingToJoin,
     /// The result is not a valid curve.
     #[error("{0}")]
     Geom(GeomError),

@@ -56,6 +56,7 @@ __all__ = [
     "solve",
     "eval_many",
     "intersections",
+    "join",
     "compare_images",
     "FAMILY_NAMES",
     "SOLVE_METHODS",
@@ -571,6 +572,21 @@ class Curve:
         path, bound = self._c.to_quadratics(_float(tolerance, "tolerance", "to_quadratics"))
         path = Curve._wrap(path)
         return (path, bound) if with_error else path
+
+    def split(self, t: float) -> Tuple["Curve", "Curve"]:
+        """The curve split at ``t`` (inside the domain) into the curves before and after
+        it, exactly: a Bézier or rational Bézier curve into two of its family (de
+        Casteljau), a path into two paths, any other family into two :class:`Path` curves
+        of its exact segments."""
+        a, b = self._c.split(_float(t, "t", "split"))
+        return Curve._wrap(a), Curve._wrap(b)
+
+    def reverse(self) -> "Curve":
+        """The curve traced the other way: the same points, ``reversed(a + b − t) ==
+        C(t)`` for Bézier, rational Bézier, B-spline and NURBS curves (which keep their
+        family, a spline's knots mirrored); others as the reversed :class:`Path` of their
+        exact segments."""
+        return Curve._wrap(self._c.reverse())
 
     def intersect_line(self, p: ArrayLike, q: ArrayLike) -> Tuple[np.ndarray, List[str]]:
         """Where the curve meets the line through ``p`` and ``q`` (2D): ``(K, 2)`` pairs
@@ -1434,6 +1450,15 @@ def eval_many(curves: Sequence[Curve], n: int) -> np.ndarray:
     sample limit)."""
     natives = [_curve(c, f"curves[{i}]") for i, c in enumerate(curves)]
     return _native.eval_many(natives, _int(n, "n", 2, 2**64 - 1, "eval_many"))
+
+
+def join(curves: Sequence[Curve], closed: bool = False) -> Curve:
+    """``curves`` joined end to end into one :class:`Path` of their exact segments, in
+    order; each must start where the one before ends (else a :class:`CurveError` naming
+    the joint); ``closed=True`` for a closed path (the last must end where the first
+    starts)."""
+    natives = [_curve(c, f"curves[{i}]") for i, c in enumerate(curves)]
+    return Curve._wrap(_native.join(natives, _bool(closed, "closed", "join")))
 
 
 def intersections(curves: Sequence[Curve], errors: bool = False) -> List[Dict[str, Any]]:
