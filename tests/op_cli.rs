@@ -109,3 +109,73 @@ fn op_refuses_bad_arguments_and_writes_nothing() {
     let run = common::run(&["op", &paths(), "--to-cubics", "1", "-o", &paths()]);
     assert!(String::from_utf8_lossy(&run.stderr).contains("the output is the scene being read"));
 }
+
+#[test]
+fn op_removes_a_knot_within_the_tolerance_or_names_the_bound() {
+    let dir = common::out_dir("op_cli");
+    let scene = format!("{}/scenes/bsplines.json", env!("CARGO_MANIFEST_DIR"));
+    let out = dir.join("removed.json");
+    let o = out.to_str().expect("utf-8");
+    let run = common::run(&[
+        "op",
+        &scene,
+        "--curve",
+        "0",
+        "--remove-knot",
+        "0.2",
+        "--tolerance",
+        "2",
+        "-o",
+        o,
+    ]);
+    assert!(run.status.success(), "{}", common::text(&run));
+    let original = Scene::load(std::path::Path::new(&scene)).expect("scene");
+    let made = Scene::load(&out).expect("written");
+    let (before, after) = (&original.curves[0].curve, &made.curves[1].curve);
+    assert_eq!(
+        after.control_points().len(),
+        before.control_points().len() - 1
+    );
+    // It moved by at most the tolerance (dense samples at the same parameters).
+    let (t0, t1) = before.domain();
+    let moved = (0..=1000)
+        .map(|i| {
+            let t = t0 + (t1 - t0) * f64::from(i) / 1000.0;
+            (before.eval(t) - after.eval(t)).length()
+        })
+        .fold(0.0, f64::max);
+    assert!(moved <= 2.0, "{moved}");
+    let run = common::run(&[
+        "op",
+        &scene,
+        "--curve",
+        "0",
+        "--remove-knot",
+        "0.2",
+        "--tolerance",
+        "0.01",
+        "-o",
+        o,
+    ]);
+    assert!(!run.status.success());
+    assert!(
+        String::from_utf8_lossy(&run.stderr).contains("would move the curve by up to"),
+        "{}",
+        common::text(&run)
+    );
+    let run = common::run(&[
+        "op",
+        &scene,
+        "--curve",
+        "0",
+        "--remove-knot",
+        "0.5",
+        "-o",
+        o,
+    ]);
+    assert!(
+        String::from_utf8_lossy(&run.stderr).contains("not an interior knot"),
+        "{}",
+        common::text(&run)
+    );
+}

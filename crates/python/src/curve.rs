@@ -664,6 +664,22 @@ impl PyCurve {
         Ok((self.with_curve(l), self.with_curve(r)))
     }
 
+    /// The curve (B-spline or NURBS) with the knot `u` removed `times` times when it
+    /// moves by at most `tolerance` (a proven bound), with that bound.
+    fn remove_knot(&self, u: f64, times: usize, tolerance: f64) -> PyResult<(PyCurve, f64)> {
+        let r = splinescope_core::ops::remove_knot(&self.curve.curve, u, times, tolerance)
+            .map_err(|e| {
+                let what = match e {
+                    splinescope_core::ops::OpError::Tolerance(_)
+                    | splinescope_core::ops::OpError::WouldMove { .. } => "tolerance",
+                    splinescope_core::ops::OpError::NotAKnot { .. } => "u",
+                    _ => "",
+                };
+                raise::<CurveError>(e.to_string(), what)
+            })?;
+        Ok((self.with_curve(r.curve), r.error))
+    }
+
     /// The curve traced the other way.
     fn reverse(&self) -> PyResult<PyCurve> {
         let r = splinescope_core::ops::reverse(&self.curve.curve)

@@ -1,5 +1,6 @@
 //! `splinescope op`: operations that make curves from a scene's curves — approximation
-//! by cubics or quadratics within a tolerance (with a proven bound) — written as a scene:
+//! by cubics or quadratics, knot removal, each within a tolerance (with a proven bound) —
+//! written as a scene:
 //! each result after its original, named after it and the operation, or in its place
 //! with `--replace`.
 
@@ -10,14 +11,14 @@ use anyhow::{Context, Result, bail};
 
 use splinescope::geom::Curve;
 use splinescope::num::Num;
-use splinescope::ops::{Approximation, to_cubics, to_quadratics};
+use splinescope::ops::{Approximation, remove_knot, to_cubics, to_quadratics};
 use splinescope::scene::SceneCurve;
 
 use crate::{say, select_curves};
 
 /// The arguments of `splinescope op`.
 #[derive(Debug, clap::Args)]
-#[command(group(clap::ArgGroup::new("operation").required(true).args(["to_cubics", "to_quadratics"])))]
+#[command(group(clap::ArgGroup::new("operation").required(true).args(["to_cubics", "to_quadratics", "remove_knot"])))]
 pub struct OpArgs {
     /// Scene file (JSON), or a file splinescope imports.
     pub scene: PathBuf,
@@ -31,6 +32,17 @@ pub struct OpArgs {
     /// Each curve as a path of quadratic segments within this tolerance.
     #[arg(long, value_name = "T", value_parser = parse_tolerance, allow_hyphen_values = true)]
     pub to_quadratics: Option<f64>,
+    /// Each curve (B-spline or NURBS) with the knot U removed (`--times` times) when it
+    /// moves by at most `--tolerance` (a proven bound; else refused naming the bound).
+    #[arg(long, value_name = "U", allow_hyphen_values = true)]
+    pub remove_knot: Option<f64>,
+    /// How many times to remove the knot.
+    #[arg(long, default_value_t = 1, requires = "remove_knot")]
+    pub times: usize,
+    /// How far `--remove-knot` may move the curve (scene units; 0: only where it does not
+    /// move, up to rounding).
+    #[arg(long, default_value_t = 0.0, requires = "remove_knot", value_parser = parse_nonnegative, allow_hyphen_values = true)]
+    pub tolerance: f64,
     /// Put each result in its original's place (by default it is added after it).
     #[arg(long)]
     pub replace: bool,
@@ -55,6 +67,22 @@ fn parse_tolerance(s: &str) -> Result<f64, String> {
     }
 }
 
+/// A finite number at least 0.
+fn parse_nonnegative(s: &str) -> Result<f64, String> {
+    let v: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("{s:?} is not a number"))?;
+    if v.is_finite() && v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(format!(
+            "tolerance {}: must be a finite number at least 0",
+            Num(v)
+        ))
+    }
+}
+
 /// Runs `splinescope op`.
 ///
 /// # Errors
@@ -69,28 +97,45 @@ pub fn run(a: &OpArgs) -> Result<()> {
     }
     let mut scene = crate::load::scene(&a.scene)?;
     let indices = select_curves(&scene, a.curve)?;
-    type Op = fn(&Curve, f64) -> Result<Approximation, splinescope::ops::OpError>;
-    let (what, tolerance, op): (&str, f64, Op) = match (a.to_cubics, a.to_quadratics) {
-        (Some(t), _) => ("to cubics", t, to_cubics),
-        (_, Some(t)) => ("to quadratics", t, to_quadratics),
+    let (what, tolerance) = match (a.to_cubics, a.to_quadratics, a.remove_knot) {
+        (Some(t), _, _) => ("to cubics".to_owned(), t),
+        (_, Some(t), _) => ("to quadratics".to_owned(), t),
+        (_, _, Some(u)) => (format!("knot {} removed", Num(u)), a.tolerance),
         _ => unreachable!("clap requires one operation"),
     };
     let mut made: Vec<(usize, SceneCurve, f64)> = Vec::with_capacity(indices.len());
     for &i in &indices {
         let sc = &scene.curves[i];
-        let Approximation { path, error } = op(&sc.curve, tolerance)
-            .with_context(|| format!("curves[{i}]: --{}", what.replace(' ', "-")))?;
+        let (curve, error) = if let Some(u) = a.remove_knot {
+            let r = remove_knot(&sc.curve, u, a.times, a.tolerance)
+                .with_context(|| format!("curves[{i}]: --remove-knot {}", Num(u)))?;
+            (r.curve, r.error)
+        } else {
+            let op = if a.to_cubics.is_some() {
+                to_cubics
+            } else {
+                to_quadratics
+            };
+            let Approximation { path, error } = op(&sc.curve, tolerance)
+                .with_context(|| format!("curves[{i}]: --{}", what.replace(' ', "-")))?;
+            (Curve::Path(path), error)
+        };
         let base = sc
             .name
             .clone()
             .unwrap_or_else(|| format!("{} {i}", sc.curve.family()));
         let mut style = sc.style.clone();
-        style.show_polygon = false;
+        style.show_polygon = a.remove_knot.is_some() && style.show_polygon;
+        let name = if a.remove_knot.is_some() {
+            format!("{base} · {what}")
+        } else {
+            format!("{base} · {what} {}", Num(tolerance))
+        };
         made.push((
             i,
             SceneCurve {
-                name: Some(format!("{base} · {what} {}", Num(tolerance))),
-                curve: Curve::Path(path),
+                name: Some(name),
+                curve,
                 style,
             },
             error,
@@ -111,12 +156,12 @@ pub fn run(a: &OpArgs) -> Result<()> {
     splinescope::files::write_atomic(&a.output, text.as_bytes())
         .with_context(|| format!("{}: cannot write the scene", a.output.display()))?;
     for (i, curve, error) in &made {
-        let segments = match &curve.curve {
-            Curve::Path(p) => p.segments().len(),
-            _ => 0,
+        let parts = match &curve.curve {
+            Curve::Path(p) => format!("{} segment(s)", p.segments().len()),
+            other => format!("{} control points", other.control_points().len()),
         };
         say!(
-            "curves[{i}] {what}: {segments} segment(s), within {error:.3e} (tolerance {})",
+            "curves[{i}] {what}: {parts}, within {error:.3e} (tolerance {})",
             Num(tolerance)
         );
     }

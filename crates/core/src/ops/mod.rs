@@ -9,9 +9,11 @@ use crate::geom::{Curve, GeomError, Lower};
 use crate::num::Num;
 
 pub mod approx;
+pub mod knots;
 pub mod structure;
 
 pub use approx::{Approximation, Target};
+pub use knots::{Removed, remove_knot};
 pub use structure::{as_path, join, reverse, split};
 
 /// Why an operation cannot be done.
@@ -30,6 +32,46 @@ pub enum OpError {
         limit: usize,
         /// The tolerance asked for.
         tolerance: f64,
+    },
+    /// A knot that is not an interior knot of the curve, or is there fewer times than
+    /// asked.
+    #[error(
+        "knot {}: {} (remove it at most as many times as it is there)",
+        Num(*u),
+        if *present == 0 { "not an interior knot of the curve".to_owned() } else { format!("there {present} time(s), not {times}") }
+    )]
+    NotAKnot {
+        /// The knot asked for.
+        u: f64,
+        /// How many times to remove it.
+        times: usize,
+        /// How many times it is there (0: not an interior knot).
+        present: usize,
+    },
+    /// A removal that would move the curve more than the tolerance.
+    #[error(
+        "removing knot {} {times} time(s) would move the curve by up to {} (a proven bound), more than the tolerance {}",
+        Num(*u), Num(*bound), Num(*tolerance)
+    )]
+    WouldMove {
+        /// The knot.
+        u: f64,
+        /// How many times.
+        times: usize,
+        /// The bound on how far the curve would move.
+        bound: f64,
+        /// The tolerance asked for.
+        tolerance: f64,
+    },
+    /// An operation for other families.
+    #[error("{operation} is for {families}, not {family} curves")]
+    Unsupported {
+        /// The operation.
+        operation: &'static str,
+        /// The curve's family.
+        family: &'static str,
+        /// The families it is for.
+        families: &'static str,
     },
     /// A join of no curves.
     #[error("nothing to join: give at least one curve")]

@@ -581,6 +581,23 @@ class Curve:
         a, b = self._c.split(_float(t, "t", "split"))
         return Curve._wrap(a), Curve._wrap(b)
 
+    def remove_knot(
+        self, u: float, *, times: int = 1, tolerance: float = 0.0, with_error: bool = False
+    ) -> Any:
+        """The curve (:class:`BSpline` or :class:`Nurbs`) with the knot ``u`` removed
+        ``times`` times (Tiller's algorithm) when it moves by at most ``tolerance`` — a
+        proven bound: the knot inserted back, the control points compared on one basis —
+        else a :class:`CurveError` naming the bound it would reach. ``tolerance=0`` removes
+        only a knot whose removal does not move the curve (up to rounding). With
+        ``with_error=True``, ``(curve, bound)``."""
+        c, bound = self._c.remove_knot(
+            _float(u, "u", "remove_knot"),
+            _int(times, "times", 1, 2**31, "remove_knot"),
+            _float(tolerance, "tolerance", "remove_knot"),
+        )
+        c = Curve._wrap(c)
+        return (c, bound) if with_error else c
+
     def reverse(self) -> "Curve":
         """The curve traced the other way: the same points, ``reversed(a + b − t) ==
         C(t)`` for Bézier, rational Bézier, B-spline and NURBS curves (which keep their
