@@ -179,3 +179,55 @@ fn op_removes_a_knot_within_the_tolerance_or_names_the_bound() {
         common::text(&run)
     );
 }
+
+#[test]
+fn op_reduces_a_bezier_curves_degree_or_names_the_best_bound() {
+    let dir = common::out_dir("op_cli");
+    let gallery = format!("{}/scenes/gallery.json", env!("CARGO_MANIFEST_DIR"));
+    let out = dir.join("reduced.json");
+    let o = out.to_str().expect("utf-8");
+    // The gallery's degree-5 curve: degree 4 is within 0.06 of it, not within 0.05.
+    let run = common::run(&[
+        "op",
+        &gallery,
+        "--curve",
+        "3",
+        "--reduce-degree",
+        "0.06",
+        "-o",
+        o,
+    ]);
+    assert!(run.status.success(), "{}", common::text(&run));
+    let made = Scene::load(&out).expect("written");
+    assert_eq!(made.curves[4].curve.control_points().len(), 5);
+    let run = common::run(&[
+        "op",
+        &gallery,
+        "--curve",
+        "3",
+        "--reduce-degree",
+        "0.05",
+        "-o",
+        o,
+    ]);
+    assert!(
+        String::from_utf8_lossy(&run.stderr).contains("the closest, degree 4"),
+        "{}",
+        common::text(&run)
+    );
+    let run = common::run(&[
+        "op",
+        &gallery,
+        "--curve",
+        "4",
+        "--reduce-degree",
+        "0.05",
+        "-o",
+        o,
+    ]);
+    assert!(
+        String::from_utf8_lossy(&run.stderr).contains("is for Bézier curves"),
+        "{}",
+        common::text(&run)
+    );
+}

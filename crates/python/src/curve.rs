@@ -680,6 +680,23 @@ impl PyCurve {
         Ok((self.with_curve(r.curve), r.error))
     }
 
+    /// The Bézier curve at the lowest degree within `tolerance` (a proven bound), its
+    /// ends kept, with that bound.
+    fn reduce_degree(&self, tolerance: f64) -> PyResult<(PyCurve, f64)> {
+        let Curve::Bezier(b) = &self.curve.curve else {
+            return Err(raise::<CurveError>(
+                format!(
+                    "reduce_degree is for Bézier curves, not {} curves (to_cubics approximates any curve)",
+                    self.curve.curve.family()
+                ),
+                "",
+            ));
+        };
+        let r = splinescope_core::ops::reduce_degree(b, tolerance)
+            .map_err(|e| raise::<CurveError>(e.to_string(), "tolerance"))?;
+        Ok((self.with_curve(Curve::Bezier(r.curve)), r.error))
+    }
+
     /// The curve traced the other way.
     fn reverse(&self) -> PyResult<PyCurve> {
         let r = splinescope_core::ops::reverse(&self.curve.curve)

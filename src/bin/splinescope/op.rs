@@ -11,14 +11,14 @@ use anyhow::{Context, Result, bail};
 
 use splinescope::geom::Curve;
 use splinescope::num::Num;
-use splinescope::ops::{Approximation, remove_knot, to_cubics, to_quadratics};
+use splinescope::ops::{Approximation, reduce_degree, remove_knot, to_cubics, to_quadratics};
 use splinescope::scene::SceneCurve;
 
 use crate::{say, select_curves};
 
 /// The arguments of `splinescope op`.
 #[derive(Debug, clap::Args)]
-#[command(group(clap::ArgGroup::new("operation").required(true).args(["to_cubics", "to_quadratics", "remove_knot"])))]
+#[command(group(clap::ArgGroup::new("operation").required(true).args(["to_cubics", "to_quadratics", "reduce_degree", "remove_knot"])))]
 pub struct OpArgs {
     /// Scene file (JSON), or a file splinescope imports.
     pub scene: PathBuf,
@@ -32,6 +32,10 @@ pub struct OpArgs {
     /// Each curve as a path of quadratic segments within this tolerance.
     #[arg(long, value_name = "T", value_parser = parse_tolerance, allow_hyphen_values = true)]
     pub to_quadratics: Option<f64>,
+    /// Each Bézier curve at the lowest degree within this tolerance (its ends kept; a
+    /// proven bound).
+    #[arg(long, value_name = "T", value_parser = parse_tolerance, allow_hyphen_values = true)]
+    pub reduce_degree: Option<f64>,
     /// Each curve (B-spline or NURBS) with the knot U removed (`--times` times) when it
     /// moves by at most `--tolerance` (a proven bound; else refused naming the bound).
     #[arg(long, value_name = "U", allow_hyphen_values = true)]
@@ -97,16 +101,27 @@ pub fn run(a: &OpArgs) -> Result<()> {
     }
     let mut scene = crate::load::scene(&a.scene)?;
     let indices = select_curves(&scene, a.curve)?;
-    let (what, tolerance) = match (a.to_cubics, a.to_quadratics, a.remove_knot) {
-        (Some(t), _, _) => ("to cubics".to_owned(), t),
-        (_, Some(t), _) => ("to quadratics".to_owned(), t),
-        (_, _, Some(u)) => (format!("knot {} removed", Num(u)), a.tolerance),
+    let (what, tolerance) = match (a.to_cubics, a.to_quadratics, a.reduce_degree, a.remove_knot) {
+        (Some(t), ..) => ("to cubics".to_owned(), t),
+        (_, Some(t), ..) => ("to quadratics".to_owned(), t),
+        (_, _, Some(t), _) => ("degree reduced".to_owned(), t),
+        (.., Some(u)) => (format!("knot {} removed", Num(u)), a.tolerance),
         _ => unreachable!("clap requires one operation"),
     };
     let mut made: Vec<(usize, SceneCurve, f64)> = Vec::with_capacity(indices.len());
     for &i in &indices {
         let sc = &scene.curves[i];
-        let (curve, error) = if let Some(u) = a.remove_knot {
+        let (curve, error) = if a.reduce_degree.is_some() {
+            let Curve::Bezier(b) = &sc.curve else {
+                bail!(
+                    "curves[{i}]: --reduce-degree is for Bézier curves, not {} curves (--to-cubics approximates any curve)",
+                    sc.curve.family()
+                );
+            };
+            let r = reduce_degree(b, tolerance)
+                .with_context(|| format!("curves[{i}]: --reduce-degree"))?;
+            (Curve::Bezier(r.curve), r.error)
+        } else if let Some(u) = a.remove_knot {
             let r = remove_knot(&sc.curve, u, a.times, a.tolerance)
                 .with_context(|| format!("curves[{i}]: --remove-knot {}", Num(u)))?;
             (r.curve, r.error)
@@ -126,7 +141,7 @@ pub fn run(a: &OpArgs) -> Result<()> {
             .unwrap_or_else(|| format!("{} {i}", sc.curve.family()));
         let mut style = sc.style.clone();
         style.show_polygon = a.remove_knot.is_some() && style.show_polygon;
-        let name = if a.remove_knot.is_some() {
+        let name = if a.remove_knot.is_some() || a.reduce_degree.is_some() {
             format!("{base} · {what}")
         } else {
             format!("{base} · {what} {}", Num(tolerance))

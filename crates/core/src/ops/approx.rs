@@ -193,6 +193,27 @@ fn difference_bound(piece: &Piece, b: &[DVec3], tolerance: f64) -> Option<f64> {
     bound_rec(&num, w.as_deref(), tolerance, 0)
 }
 
+/// A proven bound on `max |N(u)| / W(u)` over `[0, 1]` within `tolerance`, or `None`
+/// when it exceeds it (see the module docs); `N` per coordinate, `W` (when given) positive.
+pub(super) fn bound_within(num: &[Vec<f64>; 3], w: Option<&[f64]>, tolerance: f64) -> Option<f64> {
+    bound_rec(num, w, tolerance, 0)
+}
+
+/// A proven bound on `max |N(u)|` over `[0, 1]` with no tolerance to stop at: the largest
+/// hull of `N`'s coefficients over `2^depth` equal parts.
+pub(super) fn hull_bound(num: &[Vec<f64>; 3], depth: u32) -> f64 {
+    let parts = 1usize << depth;
+    (0..parts)
+        .map(|j| {
+            let (lo, hi) = (j as f64 / parts as f64, (j + 1) as f64 / parts as f64);
+            let part = [0, 1, 2].map(|k| poly::restrict(&num[k], lo, hi));
+            (0..part[0].len())
+                .map(|i| DVec3::new(part[0][i], part[1][i], part[2][i]).length())
+                .fold(0.0, f64::max)
+        })
+        .fold(0.0, f64::max)
+}
+
 fn bound_rec(num: &[Vec<f64>; 3], w: Option<&[f64]>, tolerance: f64, depth: u32) -> Option<f64> {
     let len = num[0].len();
     let w_min = w.map_or(1.0, |w| w.iter().copied().fold(f64::INFINITY, f64::min));

@@ -10,10 +10,12 @@ use crate::num::Num;
 
 pub mod approx;
 pub mod knots;
+pub mod reduce;
 pub mod structure;
 
 pub use approx::{Approximation, Target};
 pub use knots::{Removed, remove_knot};
+pub use reduce::{Reduced, reduce_degree};
 pub use structure::{as_path, join, reverse, split};
 
 /// Why an operation cannot be done.
@@ -72,6 +74,22 @@ pub enum OpError {
         family: &'static str,
         /// The families it is for.
         families: &'static str,
+    },
+    /// No lower degree is within the tolerance.
+    #[error(
+        "degree {degree}: {}",
+        match best {
+            Some(b) => format!("no lower degree is within the tolerance {}; the closest, degree {} ends kept, is within {} (a proven bound)", Num(*tolerance), degree - 1, Num(*b)),
+            None => "a line has no lower degree with both its ends".to_owned(),
+        }
+    )]
+    NoLowerDegree {
+        /// The curve's degree.
+        degree: usize,
+        /// The least bound reached (at degree − 1).
+        best: Option<f64>,
+        /// The tolerance asked for.
+        tolerance: f64,
     },
     /// A join of no curves.
     #[error("nothing to join: give at least one curve")]

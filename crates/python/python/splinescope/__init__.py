@@ -598,6 +598,16 @@ class Curve:
         c = Curve._wrap(c)
         return (c, bound) if with_error else c
 
+    def reduce_degree(self, tolerance: float, with_error: bool = False) -> Any:
+        """The :class:`Bezier` curve at the lowest degree within ``tolerance`` of it
+        (Hausdorff, a proven bound), its ends kept: for each lower degree in turn, the
+        least-squares curve over the whole range with the same ends, until one is within
+        the tolerance; else a :class:`CurveError` naming the best bound reached. With
+        ``with_error=True``, ``(curve, bound)``."""
+        c, bound = self._c.reduce_degree(_float(tolerance, "tolerance", "reduce_degree"))
+        c = Curve._wrap(c)
+        return (c, bound) if with_error else c
+
     def reverse(self) -> "Curve":
         """The curve traced the other way: the same points, ``reversed(a + b − t) ==
         C(t)`` for Bézier, rational Bézier, B-spline and NURBS curves (which keep their
