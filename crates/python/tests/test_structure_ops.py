@@ -59,3 +59,26 @@ def test_join_makes_one_path_and_refuses_a_gap():
         ss.join([a, ss.Bezier([[9, 9], [10, 9]])])
     with pytest.raises(ss.CurveError, match="nothing to join"):
         ss.join([])
+
+
+def test_remove_knot_and_reduce_degree_from_python():
+    # A knot inserted comes out again; a removal that would move the curve is refused
+    # naming the bound.
+    b = ss.BSpline([0, 0, 0, 0, 0.3, 0.5, 1, 1, 1, 1], [[-4, 2.5], [-3, 3.5], [-2, 2], [-1, 3.5], [0, 2.5], [1, 0]], 4)
+    more = b.insert_knot(0.7)
+    back, bound = more.remove_knot(0.7, with_error=True)
+    ts = np.linspace(0, 1, 201)
+    assert np.abs(np.asarray(back.eval(ts)) - np.asarray(b.eval(ts))).max() <= 1e-9
+    assert bound <= 1e-9
+    with pytest.raises(ss.CurveError, match="would move the curve by up to"):
+        b.remove_knot(0.3, tolerance=1e-6)
+    with pytest.raises(ss.CurveError, match="not an interior knot"):
+        b.remove_knot(0.4)
+    # An elevated cubic reduces back to degree 3 within the tolerance (NumPy samples).
+    cubic = ss.Bezier([[0, 0], [1, 2], [3, 2], [4, 0]])
+    high = cubic.elevate(3)
+    low, err = high.reduce_degree(1e-9, with_error=True)
+    assert len(low.control_points) == 4 and err <= 1e-9
+    assert np.abs(np.asarray(low.eval(ts)) - np.asarray(cubic.eval(ts))).max() <= 1e-9
+    with pytest.raises(ss.CurveError, match="is for Bézier curves"):
+        b.reduce_degree(0.1)
