@@ -40,17 +40,6 @@ fn random_spline(rng: &mut Rng, rational: bool) -> Curve {
     }
 }
 
-fn interior_knots(c: &Curve) -> Vec<f64> {
-    let (k, order) = match c {
-        Curve::BSpline(b) => (b.knots().knots().to_vec(), b.order()),
-        Curve::Nurbs(n) => (n.knots().knots().to_vec(), n.order()),
-        _ => unreachable!(),
-    };
-    let mut v: Vec<f64> = k[order..k.len() - order].to_vec();
-    v.dedup();
-    v
-}
-
 /// The largest distance between the two curves at the same parameters (dense samples).
 fn moved(a: &Curve, b: &Curve) -> f64 {
     let (t0, t1) = a.domain();

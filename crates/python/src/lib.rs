@@ -12,6 +12,7 @@
 mod arrays;
 mod curve;
 mod errors;
+mod fit;
 mod many;
 mod regression;
 mod scene;
@@ -26,6 +27,8 @@ fn _splinescope(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<scene::PyScene>()?;
     m.add_function(wrap_pyfunction!(many::eval_many, m)?)?;
     m.add_function(wrap_pyfunction!(many::join, m)?)?;
+    m.add_function(wrap_pyfunction!(fit::fit_bezier, m)?)?;
+    m.add_function(wrap_pyfunction!(fit::fit_bspline, m)?)?;
     m.add_function(wrap_pyfunction!(many::intersections, m)?)?;
     m.add_function(wrap_pyfunction!(regression::compare_images, m)?)?;
     m.add_function(wrap_pyfunction!(many::rust_eval_seconds, m)?)?;

@@ -73,10 +73,10 @@ fn remove_once(
     let alpha = |i: usize| (u - knots[i]) / (knots[i + p + 1] - knots[i]);
     // From the left: Q_{first−1} = P_{first−1}, then Q_i for i = first … last − 1.
     let mut left = vec![points[first - 1]];
-    for i in first..last {
+    for (i, &point) in points.iter().enumerate().take(last).skip(first) {
         let a = alpha(i);
         let prev = left[left.len() - 1];
-        left.push((points[i] - (1.0 - a) * prev) / a);
+        left.push((point - (1.0 - a) * prev) / a);
     }
     // From the right: Q_last = P_{last+1}, then Q_{j−1} for j = last … first + 1.
     let mut right = vec![DVec4::ZERO; last - first + 1];
@@ -233,7 +233,7 @@ pub fn remove_knot(
     }
     let geom = OpError::Geom;
     let curve = if rational {
-        if let Some(i) = q.iter().position(|h| !(h.w > 0.0)) {
+        if let Some(i) = q.iter().position(|h| h.w <= 0.0 || h.w.is_nan()) {
             return Err(OpError::Geom(GeomError::BadWeight {
                 index: i,
                 value: q[i].w,

@@ -9,11 +9,13 @@ use crate::geom::{Curve, GeomError, Lower};
 use crate::num::Num;
 
 pub mod approx;
+pub mod fit;
 pub mod knots;
 pub mod reduce;
 pub mod structure;
 
 pub use approx::{Approximation, Target};
+pub use fit::{Fit, Params, fit_bezier, fit_bspline};
 pub use knots::{Removed, remove_knot};
 pub use reduce::{Reduced, reduce_degree};
 pub use structure::{as_path, join, reverse, split};
@@ -91,6 +93,9 @@ pub enum OpError {
         /// The tolerance asked for.
         tolerance: f64,
     },
+    /// A fit's input that cannot be fitted (named in the message).
+    #[error("{0}")]
+    Fit(String),
     /// A join of no curves.
     #[error("nothing to join: give at least one curve")]
     NothingToJoin,

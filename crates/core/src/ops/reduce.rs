@@ -53,10 +53,10 @@ fn least_squares(p: &[DVec3], m: usize) -> Vec<DVec3> {
     let k = m - 1;
     let mut a = vec![vec![0.0; k]; k];
     let mut rhs = vec![DVec3::ZERO; k];
-    for r in 0..k {
+    for (r, row) in a.iter_mut().enumerate() {
         let i = r + 1;
-        for c in 0..k {
-            a[r][c] = inner(m, i, m, c + 1);
+        for (c, entry) in row.iter_mut().enumerate() {
+            *entry = inner(m, i, m, c + 1);
         }
         let mut b = DVec3::ZERO;
         for (j, pj) in p.iter().enumerate() {
@@ -72,10 +72,11 @@ fn least_squares(p: &[DVec3], m: usize) -> Vec<DVec3> {
             .unwrap_or(col);
         a.swap(col, piv);
         rhs.swap(col, piv);
+        let pivot_row = a[col].clone();
         for r in col + 1..k {
-            let f = a[r][col] / a[col][col];
-            for c in col..k {
-                a[r][c] -= f * a[col][c];
+            let f = a[r][col] / pivot_row[col];
+            for (entry, &p) in a[r].iter_mut().zip(&pivot_row).skip(col) {
+                *entry -= f * p;
             }
             rhs[r] = rhs[r] - rhs[col] * f;
         }

@@ -57,6 +57,8 @@ __all__ = [
     "eval_many",
     "intersections",
     "join",
+    "fit_bezier",
+    "fit_bspline",
     "compare_images",
     "FAMILY_NAMES",
     "SOLVE_METHODS",
@@ -1486,6 +1488,57 @@ def join(curves: Sequence[Curve], closed: bool = False) -> Curve:
     starts)."""
     natives = [_curve(c, f"curves[{i}]") for i, c in enumerate(curves)]
     return Curve._wrap(_native.join(natives, _bool(closed, "closed", "join")))
+
+
+def _params_arg(params: Any) -> Any:
+    if isinstance(params, str):
+        return params
+    return np.asarray(_numbers(params, "params"), dtype=np.float64)
+
+
+def fit_bezier(
+    points: ArrayLike, degree: int, params: Any = "chord", weights: Optional[ArrayLike] = None
+) -> Tuple[Curve, np.ndarray]:
+    """The :class:`Bezier` curve of ``degree`` nearest to ``points`` (``(N, dim)``) in the
+    weighted least-squares sense, ``min Σ w_i² |C(t_i) − p_i|²``, at parameters
+    ``"chord"`` (by the distances between points), ``"centripetal"`` (by their square
+    roots) or given (one per point, non-decreasing) — the machinery of paper 000's
+    solver, its normal equations solved exactly; and the residuals ``|C(t_i) − p_i|``."""
+    c, r = _native.fit_bezier(
+        np.asarray(points, dtype=np.float64),
+        _int(degree, "degree", 1, 64, "fit_bezier"),
+        _params_arg(params),
+        None if weights is None else _numbers(weights, "weights"),
+    )
+    return Curve._wrap(c), r
+
+
+def fit_bspline(
+    points: ArrayLike,
+    degree: int = 3,
+    smoothing: Optional[float] = None,
+    knots: Optional[ArrayLike] = None,
+    params: Any = "chord",
+    weights: Optional[ArrayLike] = None,
+) -> Tuple[Curve, np.ndarray]:
+    """A clamped :class:`BSpline` of ``degree`` fitted to ``points`` (``(N, dim)``,
+    parametric, any dimension), and the residuals ``|C(t_i) − p_i|``: with ``knots``
+    (interior, in ``(0, 1)`` of the normalised parameters) the weighted least-squares
+    spline on them; with ``smoothing=s`` one whose weighted sum of squared residuals
+    ``Σ (w_i r_i)²`` is at most ``s`` (scipy's ``make_splprep``/``splprep`` meaning),
+    knots added where the residuals are largest until it is (``s = 0``: through every
+    point). Exactly one of ``knots`` and ``smoothing``; with neither, ``smoothing=0``."""
+    if knots is None and smoothing is None:
+        smoothing = 0.0
+    c, r = _native.fit_bspline(
+        np.asarray(points, dtype=np.float64),
+        _int(degree, "degree", 1, 64, "fit_bspline"),
+        None if knots is None else _numbers(knots, "knots"),
+        None if smoothing is None else _float(smoothing, "smoothing", "fit_bspline"),
+        _params_arg(params),
+        None if weights is None else _numbers(weights, "weights"),
+    )
+    return Curve._wrap(c), r
 
 
 def intersections(curves: Sequence[Curve], errors: bool = False) -> List[Dict[str, Any]]:

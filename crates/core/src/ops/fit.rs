@@ -1,0 +1,409 @@
+//! Fitting curves to points: a Bézier curve or a B-spline by weighted least squares at
+//! given, chord-length or centripetal parameters; a B-spline with the fewest knots this
+//! search finds whose sum of squared residuals is within a smoothing budget (scipy's
+//! `make_splprep` meaning of `s`), or through every point (`s = 0`).
+//!
+//! The least-squares problem `min Σ w_i² |C(t_i) − p_i|²` over the control points is
+//! linear; its normal equations `(Bᵀ W² B) P = Bᵀ W² p` are banded for a B-spline
+//! (bandwidth `p + 1`: each row of `B` has at most `p + 1` nonzero basis values) and are
+//! solved by a banded Cholesky factorisation, in `O(N p² + n p²)` for `N` points and `n`
+//! control points. With a smoothing budget the interior knots are added where the
+//! residuals are largest — the span whose squared residuals sum highest is cut at its
+//! middle data parameter, as many spans at once as the budget is far from met — until
+//! the budget holds or the knots reach the points (interpolation).
+
+use glam::DVec3;
+
+use crate::geom::{BSpline, Bezier};
+
+use super::OpError;
+
+/// How the points are given parameters.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Params {
+    /// Proportional to the distances between consecutive points, from 0 to 1.
+    Chord,
+    /// Proportional to the square roots of those distances (Lee's centripetal
+    /// parametrisation: fewer loops and cusps on sharp turns).
+    Centripetal,
+    /// Given, one per point, non-decreasing.
+    Given(Vec<f64>),
+}
+
+/// A fitted curve: the curve, each point's parameter and residual `|C(t_i) − p_i|`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fit<C> {
+    /// The curve.
+    pub curve: C,
+    /// The points' parameters.
+    pub params: Vec<f64>,
+    /// The residuals, one per point.
+    pub residuals: Vec<f64>,
+}
+
+impl<C> Fit<C> {
+    /// The weighted sum of squared residuals `Σ w_i² r_i²` (`weights` as given to the
+    /// fit; `None` for 1 each).
+    #[must_use]
+    pub fn sum_of_squares(&self, weights: Option<&[f64]>) -> f64 {
+        self.residuals
+            .iter()
+            .enumerate()
+            .map(|(i, r)| weights.map_or(1.0, |w| w[i] * w[i]) * r * r)
+            .sum()
+    }
+}
+
+fn fit_error(message: String) -> OpError {
+    OpError::Fit(message)
+}
+
+/// Checks points and weights, and the parameters for them.
+fn prepare(
+    points: &[DVec3],
+    params: &Params,
+    weights: Option<&[f64]>,
+    min: usize,
+) -> Result<Vec<f64>, OpError> {
+    if points.len() < min {
+        return Err(fit_error(format!(
+            "{} point(s): this fit needs at least {min}",
+            points.len()
+        )));
+    }
+    if let Some(i) = points.iter().position(|p| !p.is_finite()) {
+        return Err(fit_error(format!(
+            "points[{i}] = {}: not a finite point",
+            points[i]
+        )));
+    }
+    if let Some(w) = weights {
+        if w.len() != points.len() {
+            return Err(fit_error(format!(
+                "weights: {} for {} points (one weight per point)",
+                w.len(),
+                points.len()
+            )));
+        }
+        if let Some(i) = w.iter().position(|x| !(x.is_finite() && *x > 0.0)) {
+            return Err(fit_error(format!(
+                "weights[{i}] = {}: a weight must be a finite number greater than 0",
+                w[i]
+            )));
+        }
+    }
+    let t = match params {
+        Params::Given(t) => {
+            if t.len() != points.len() {
+                return Err(fit_error(format!(
+                    "params: {} for {} points (one parameter per point)",
+                    t.len(),
+                    points.len()
+                )));
+            }
+            if let Some(i) = (0..t.len()).find(|&i| !t[i].is_finite() || (i > 0 && t[i] < t[i - 1]))
+            {
+                return Err(fit_error(format!(
+                    "params[{i}] = {}: parameters must be finite and non-decreasing",
+                    t[i]
+                )));
+            }
+            let (a, b) = (t[0], t[t.len() - 1]);
+            if b <= a || b.is_nan() {
+                return Err(fit_error(
+                    "params: all equal (the points need a range of parameters)".into(),
+                ));
+            }
+            t.iter().map(|x| (x - a) / (b - a)).collect()
+        }
+        Params::Chord | Params::Centripetal => {
+            let power = if *params == Params::Chord { 1.0 } else { 0.5 };
+            let mut t = Vec::with_capacity(points.len());
+            let mut s = 0.0;
+            t.push(0.0);
+            for w in points.windows(2) {
+                s += (w[1] - w[0]).length().powf(power);
+                t.push(s);
+            }
+            if s <= 0.0 || s.is_nan() {
+                return Err(fit_error(
+                    "points: all the same (no distance to parametrise by)".into(),
+                ));
+            }
+            t.iter().map(|x| x / s).collect()
+        }
+    };
+    Ok(t)
+}
+
+/// The least-squares Bézier curve of `degree` through `points` at their parameters.
+///
+/// # Errors
+/// [`OpError::Fit`] naming the offending input: fewer points than `degree + 1`, a point
+/// or weight that is not finite (or a weight not above 0), parameters that are not
+/// non-decreasing or all equal, a degree of 0 or above 64.
+pub fn fit_bezier(
+    points: &[DVec3],
+    degree: usize,
+    params: &Params,
+    weights: Option<&[f64]>,
+) -> Result<Fit<Bezier>, OpError> {
+    if degree == 0 || degree > 64 {
+        return Err(fit_error(format!("degree {degree}: from 1 to 64")));
+    }
+    let t = prepare(points, params, weights, degree + 1)?;
+    // A Bézier curve is the B-spline with no interior knots.
+    let knots: Vec<f64> = std::iter::repeat_n(0.0, degree + 1)
+        .chain(std::iter::repeat_n(1.0, degree + 1))
+        .collect();
+    let ctrl = least_squares(points, &t, weights, &knots, degree)?;
+    let curve = Bezier::new(ctrl);
+    let residuals = points
+        .iter()
+        .zip(&t)
+        .map(|(p, &u)| (curve.eval(u) - *p).length())
+        .collect();
+    Ok(Fit {
+        curve,
+        params: t,
+        residuals,
+    })
+}
+
+/// A B-spline of `degree` fitted to `points`: with `knots` (interior, inside `(0, 1)` of
+/// the normalised parameters, non-decreasing) a plain least-squares fit; else with
+/// `smoothing = s` the fewest knots found whose weighted sum of squared residuals is at
+/// most `s` (`s = 0`: through every point).
+///
+/// # Errors
+/// [`OpError::Fit`] naming the offending input (as [`fit_bezier`]; knots outside `(0, 1)`
+/// or decreasing; a negative or non-finite smoothing; both or neither of `knots` and
+/// `smoothing`; knots the data cannot pin down — a span with no parameter in it).
+pub fn fit_bspline(
+    points: &[DVec3],
+    degree: usize,
+    knots: Option<&[f64]>,
+    smoothing: Option<f64>,
+    params: &Params,
+    weights: Option<&[f64]>,
+) -> Result<Fit<BSpline>, OpError> {
+    if degree == 0 || degree > 64 {
+        return Err(fit_error(format!("degree {degree}: from 1 to 64")));
+    }
+    let t = prepare(points, params, weights, degree + 1)?;
+    let clamped = |interior: &[f64]| -> Vec<f64> {
+        std::iter::repeat_n(0.0, degree + 1)
+            .chain(interior.iter().copied())
+            .chain(std::iter::repeat_n(1.0, degree + 1))
+            .collect()
+    };
+    let finish = |full: Vec<f64>, ctrl: Vec<DVec3>| -> Result<Fit<BSpline>, OpError> {
+        let curve = BSpline::try_new(ctrl, full, degree + 1).map_err(OpError::Geom)?;
+        let residuals = points
+            .iter()
+            .zip(&t)
+            .map(|(p, &u)| (curve.eval(u) - *p).length())
+            .collect();
+        Ok(Fit {
+            curve,
+            params: t.clone(),
+            residuals,
+        })
+    };
+    match (knots, smoothing) {
+        (Some(k), None) => {
+            if let Some(i) = (0..k.len()).find(|&i| !(k[i] > 0.0 && k[i] < 1.0) || (i > 0 && k[i] < k[i - 1])) {
+                return Err(fit_error(format!(
+                    "knots[{i}] = {}: interior knots lie inside (0, 1) of the parameters, non-decreasing",
+                    k[i]
+                )));
+            }
+            let full = clamped(k);
+            let ctrl = least_squares(points, &t, weights, &full, degree)?;
+            finish(full, ctrl)
+        }
+        (None, Some(s)) => {
+            if !(s.is_finite() && s >= 0.0) {
+                return Err(fit_error(format!("smoothing {s}: a finite number at least 0")));
+            }
+            let w2 = |i: usize| weights.map_or(1.0, |w| w[i] * w[i]);
+            let most = points.len() - degree - 1;
+            // Through every point: de Boor's averaged knots (each interior knot the mean
+            // of `p` consecutive parameters), one control point per point.
+            let interpolating = || -> Result<Fit<BSpline>, OpError> {
+                let interior: Vec<f64> = (1..=most)
+                    .map(|j| t[j..j + degree].iter().sum::<f64>() / degree as f64)
+                    .collect();
+                let full = clamped(&interior);
+                let ctrl = least_squares(points, &t, weights, &full, degree)?;
+                finish(full, ctrl)
+            };
+            if s == 0.0 {
+                return interpolating();
+            }
+            let mut interior: Vec<f64> = Vec::new();
+            loop {
+                let full = clamped(&interior);
+                let ctrl = least_squares(points, &t, weights, &full, degree)?;
+                let spline = BSpline::try_new(ctrl.clone(), full.clone(), degree + 1).map_err(OpError::Geom)?;
+                // Squared residuals by knot span.
+                let mut spans: Vec<(f64, Vec<usize>)> = vec![(0.0, Vec::new()); interior.len() + 1];
+                let mut total = 0.0;
+                for (i, (p, &u)) in points.iter().zip(&t).enumerate() {
+                    let r2 = w2(i) * (spline.eval(u) - *p).length_squared();
+                    total += r2;
+                    let k = interior.partition_point(|&x| x <= u).min(interior.len());
+                    spans[k].0 += r2;
+                    spans[k].1.push(i);
+                }
+                if total <= s {
+                    return finish(full, ctrl);
+                }
+                if interior.len() >= most {
+                    return interpolating();
+                }
+                // Cut the worst spans at their middle data parameter: one at first, more
+                // as the budget stays far off (at most doubling the knots per round).
+                let mut order: Vec<usize> = (0..spans.len()).collect();
+                order.sort_by(|&a, &b| spans[b].0.total_cmp(&spans[a].0));
+                let want = ((total / s.max(f64::MIN_POSITIVE)).log2().ceil().max(1.0) as usize)
+                    .min(interior.len() + 1)
+                    .min(most - interior.len());
+                let mut added = 0;
+                for &k in &order {
+                    if added >= want {
+                        break;
+                    }
+                    let idx = &spans[k].1;
+                    if idx.len() < 2 {
+                        continue;
+                    }
+                    let u = t[idx[idx.len() / 2]];
+                    let lo = if k == 0 { 0.0 } else { interior[k - 1] };
+                    let hi = if k == interior.len() { 1.0 } else { interior[k] };
+                    if u > lo && u < hi && u > 0.0 && u < 1.0 {
+                        interior.push(u);
+                        added += 1;
+                    }
+                }
+                if added == 0 {
+                    // No span left to cut: the points themselves, which meet any budget.
+                    return interpolating();
+                }
+                interior.sort_by(f64::total_cmp);
+            }
+        }
+        _ => Err(fit_error(
+            "give either knots (a least-squares fit on them) or smoothing (the knots found), not both or neither".into(),
+        )),
+    }
+}
+
+/// The control points minimising `Σ w_i² |C(t_i) − p_i|²` on the clamped knot vector
+/// `knots` of `degree`, by the banded normal equations.
+fn least_squares(
+    points: &[DVec3],
+    t: &[f64],
+    weights: Option<&[f64]>,
+    knots: &[f64],
+    degree: usize,
+) -> Result<Vec<DVec3>, OpError> {
+    let p = degree;
+    let n = knots.len() - p - 1;
+    let band = p + 1;
+    // Lower band of the symmetric matrix: a[i][j] for j in 0..band is entry (i, i − j).
+    let mut a = vec![vec![0.0; band]; n];
+    let mut rhs = vec![DVec3::ZERO; n];
+    let mut basis = vec![0.0; p + 1];
+    for (k, (pt, &u)) in points.iter().zip(t).enumerate() {
+        let span = find_span(knots, n, p, u);
+        basis_funs(knots, span, u, p, &mut basis);
+        let w2 = weights.map_or(1.0, |w| w[k] * w[k]);
+        for r in 0..=p {
+            let i = span - p + r;
+            rhs[i] += *pt * (w2 * basis[r]);
+            for c in 0..=r {
+                let j = span - p + c;
+                a[i][i - j] += w2 * basis[r] * basis[c];
+            }
+        }
+    }
+    // Banded Cholesky: A = L Lᵀ, L stored in the same band.
+    for i in 0..n {
+        for j in i.saturating_sub(p)..=i {
+            let mut sum = a[i][i - j];
+            for k in i.saturating_sub(p).max(j.saturating_sub(p))..j {
+                sum -= a[i][i - k] * a[j][j - k];
+            }
+            if i == j {
+                if sum <= 1e-300 || sum.is_nan() {
+                    return Err(fit_error(format!(
+                        "the data cannot pin down control point {i}: no point's parameter lies where it acts (put fewer knots, or knots where the points are)"
+                    )));
+                }
+                a[i][0] = sum.sqrt();
+            } else {
+                a[i][i - j] = sum / a[j][0];
+            }
+        }
+    }
+    // Solve L y = rhs, then Lᵀ x = y.
+    let mut y = rhs;
+    for i in 0..n {
+        let mut v = y[i];
+        for k in i.saturating_sub(p)..i {
+            v -= y[k] * a[i][i - k];
+        }
+        y[i] = v / a[i][0];
+    }
+    for i in (0..n).rev() {
+        let mut v = y[i];
+        for k in i + 1..(i + p + 1).min(n) {
+            v -= y[k] * a[k][k - i];
+        }
+        y[i] = v / a[i][0];
+    }
+    if let Some(i) = y.iter().position(|v| !v.is_finite()) {
+        return Err(fit_error(format!(
+            "control point {i} is not finite: the fit is singular"
+        )));
+    }
+    Ok(y)
+}
+
+/// The knot span holding `u` (`n` control points, degree `p`; `u = 1` in the last).
+fn find_span(knots: &[f64], n: usize, p: usize, u: f64) -> usize {
+    if u >= knots[n] {
+        return n - 1;
+    }
+    let mut lo = p;
+    let mut hi = n;
+    while hi - lo > 1 {
+        let mid = (lo + hi) / 2;
+        if u < knots[mid] {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    lo
+}
+
+/// The `p + 1` nonzero basis functions at `u` in `span` (Cox–de Boor, *The NURBS Book*
+/// A2.2).
+fn basis_funs(knots: &[f64], span: usize, u: f64, p: usize, out: &mut [f64]) {
+    let mut left = vec![0.0; p + 1];
+    let mut right = vec![0.0; p + 1];
+    out[0] = 1.0;
+    for j in 1..=p {
+        left[j] = u - knots[span + 1 - j];
+        right[j] = knots[span + j] - u;
+        let mut saved = 0.0;
+        for r in 0..j {
+            let temp = out[r] / (right[r + 1] + left[j - r]);
+            out[r] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        out[j] = saved;
+    }
+}
