@@ -266,7 +266,13 @@ pub fn fit_bspline(
                 // as the budget stays far off (at most doubling the knots per round).
                 let mut order: Vec<usize> = (0..spans.len()).collect();
                 order.sort_by(|&a, &b| spans[b].0.total_cmp(&spans[a].0));
-                let want = ((total / s.max(f64::MIN_POSITIVE)).log2().ceil().max(1.0) as usize)
+                // As many as the budget is far off: log₂(RSS / s) spans while far, and
+                // near it a share of the knots there are (a residual dominated by noise
+                // approaches the budget slowly, one knot at a time would take as many
+                // rounds as knots).
+                let far = (total / s.max(f64::MIN_POSITIVE)).log2();
+                let want = (far.ceil().max(1.0) as usize)
+                    .max((interior.len() as f64 * far.min(1.0) * 0.25).ceil() as usize)
                     .min(interior.len() + 1)
                     .min(most - interior.len());
                 let mut added = 0;
