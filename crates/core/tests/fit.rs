@@ -76,3 +76,69 @@ fn a_smoothing_budget_is_met_and_zero_interpolates() {
         "{e}"
     );
 }
+
+#[test]
+fn a_polyline_becomes_a_few_cubics_within_the_tolerance_with_its_corners_kept() {
+    use splinescope_core::analysis::CurveAnalysis;
+    use splinescope_core::geom::{Curve, ParamCurve};
+    use splinescope_core::ops::fit_path;
+    // A pen stroke: a line, a right-angled corner, a half circle, another corner, a line;
+    // dense, free of noise.
+    let mut pts = Vec::new();
+    // Up to (5, 0), then the half circle about (5, 2) leaves along +x: a 90° corner.
+    for i in 0..=100 {
+        pts.push(DVec3::new(5.0, -5.0 + f64::from(i) * 0.05, 0.0));
+    }
+    for i in 1..=200 {
+        let a = std::f64::consts::PI * f64::from(i) / 200.0;
+        pts.push(DVec3::new(5.0 + 2.0 * a.sin(), 2.0 - 2.0 * a.cos(), 0.0));
+    }
+    // It arrives at (5, 4) along −x; the line leaves upwards: another 90° corner.
+    for i in 1..=100 {
+        pts.push(DVec3::new(5.0, 4.0 + f64::from(i) * 0.05, 0.0));
+    }
+    for tol in [1e-2, 1e-3] {
+        let fit = fit_path(&pts, tol, 30.0).expect("fit");
+        assert!(fit.residuals.iter().all(|r| *r <= tol), "{tol}");
+        // Every point within the tolerance of the path itself (its nearest point).
+        let a = CurveAnalysis::new(&Curve::Path(fit.curve.clone()));
+        for p in &pts {
+            assert!(a.nearest(*p).expect("nearest").distance <= tol * (1.0 + 1e-9));
+        }
+        let k = fit.curve.segments().len();
+        assert!(k <= 14, "{tol}: {k} segments");
+        // The two corners are joints with a turn of 90°; the others are smooth.
+        let c = Curve::Path(fit.curve.clone());
+        let segs = fit.curve.segments();
+        let mut kinks = 0;
+        for j in 1..segs.len() {
+            let (s, n) = (&segs[j - 1].points, &segs[j].points);
+            let out = (s[3] - s[2]).normalize();
+            let inn = (n[1] - n[0]).normalize();
+            let angle = out.dot(inn).clamp(-1.0, 1.0).acos().to_degrees();
+            if angle > 1e-6 {
+                kinks += 1;
+                assert!((angle - 90.0).abs() < 1.0, "{angle}");
+            }
+        }
+        assert_eq!(kinks, 2, "{tol}");
+        assert!((c.eval(0.0) - pts[0]).length() == 0.0);
+    }
+    // A closed polyline (a circle) gives a closed, smooth path.
+    let circle: Vec<DVec3> = (0..=360)
+        .map(|i| {
+            let a = f64::from(i).to_radians();
+            DVec3::new(a.cos(), a.sin(), 0.0)
+        })
+        .collect();
+    let mut circle = circle;
+    let first = circle[0];
+    *circle.last_mut().expect("points") = first;
+    let fit = fit_path(&circle, 1e-4, 30.0).expect("fit");
+    assert!(fit.curve.is_closed());
+    assert!(fit.residuals.iter().all(|r| *r <= 1e-4));
+    // Bad arguments.
+    assert!(fit_path(&circle, 0.0, 30.0).is_err());
+    assert!(fit_path(&circle, 1e-3, 200.0).is_err());
+    assert!(fit_path(&circle[..1], 1e-3, 30.0).is_err());
+}

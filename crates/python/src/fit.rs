@@ -5,7 +5,9 @@ use numpy::PyUntypedArrayMethods;
 use pyo3::prelude::*;
 
 use splinescope_core::geom::Curve;
-use splinescope_core::ops::{Fit, Params, fit_bezier as core_bezier, fit_bspline as core_bspline};
+use splinescope_core::ops::{
+    Fit, Params, fit_bezier as core_bezier, fit_bspline as core_bspline, fit_path as core_path,
+};
 use splinescope_scene::format::{SceneCurve, Style};
 
 use crate::arrays;
@@ -124,5 +126,23 @@ pub fn fit_bspline<'py>(
         })
         .map_err(|e| raise::<CurveError>(e.to_string(), "points"))?;
     let curve = Curve::BSpline(fit.curve.clone());
+    out(py, fit, curve, dim)
+}
+
+/// A cubic path through `points` within `tolerance`, corners sharper than `corner_angle`
+/// degrees kept, and the residuals.
+#[pyfunction]
+#[pyo3(signature = (points, tolerance, corner_angle=30.0))]
+pub fn fit_path<'py>(
+    py: Python<'py>,
+    points: &Bound<'py, PyAny>,
+    tolerance: f64,
+    corner_angle: f64,
+) -> PyResult<(PyCurve, Bound<'py, PyAny>)> {
+    let (pts, dim) = points_of(points)?;
+    let fit = py
+        .detach(|| core_path(&pts, tolerance, corner_angle))
+        .map_err(|e| raise::<CurveError>(e.to_string(), "points"))?;
+    let curve = Curve::Path(fit.curve.clone());
     out(py, fit, curve, dim)
 }

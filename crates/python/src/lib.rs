@@ -29,6 +29,7 @@ fn _splinescope(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(many::join, m)?)?;
     m.add_function(wrap_pyfunction!(fit::fit_bezier, m)?)?;
     m.add_function(wrap_pyfunction!(fit::fit_bspline, m)?)?;
+    m.add_function(wrap_pyfunction!(fit::fit_path, m)?)?;
     m.add_function(wrap_pyfunction!(many::intersections, m)?)?;
     m.add_function(wrap_pyfunction!(regression::compare_images, m)?)?;
     m.add_function(wrap_pyfunction!(many::rust_eval_seconds, m)?)?;

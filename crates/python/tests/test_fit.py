@@ -76,3 +76,24 @@ def test_bad_inputs_are_refused_naming_them():
         ss.fit_bezier(PARABOLA, 2, params="uniformish")
     with pytest.raises(ss.CurveError, match="cannot pin down"):
         ss.fit_bspline(PARABOLA[:10], 3, knots=[0.001, 0.002, 0.003])
+
+
+def test_fit_path_keeps_the_points_within_the_tolerance_and_the_corners():
+    # A square drawn by a pen: four sides, densely sampled; four corners kept.
+    side = np.linspace(0, 1, 60, endpoint=False)
+    square = np.concatenate([
+        np.c_[side, 0 * side], np.c_[1 + 0 * side, side], np.c_[1 - side, 1 + 0 * side], np.c_[0 * side, 1 - side]
+    ])
+    square = np.vstack([square, square[:1]])
+    path, res = ss.fit_path(square, 1e-6)
+    assert res.max() <= 1e-6
+    assert len(path.segments()) == 4
+    # Measured independently: NumPy samples of each cubic lie on the square's sides.
+    for s in path.segments():
+        c = np.asarray(s[2])[:, :2]
+        t = np.linspace(0, 1, 50)[:, None]
+        pts = (1 - t) ** 3 * c[0] + 3 * (1 - t) ** 2 * t * c[1] + 3 * (1 - t) * t**2 * c[2] + t**3 * c[3]
+        off = np.minimum.reduce([np.abs(pts[:, 0]), np.abs(pts[:, 0] - 1), np.abs(pts[:, 1]), np.abs(pts[:, 1] - 1)])
+        assert off.max() <= 1e-6
+    with pytest.raises(ss.CurveError, match="tolerance"):
+        ss.fit_path(square, -1.0)

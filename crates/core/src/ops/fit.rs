@@ -413,3 +413,250 @@ fn basis_funs(knots: &[f64], span: usize, u: f64, p: usize, out: &mut [f64]) {
         out[j] = saved;
     }
 }
+
+/// The most segments [`fit_path`] makes (a guard against a tolerance far below the data's
+/// rounding).
+pub const MAX_PATH_SEGMENTS: usize = 1 << 16;
+
+/// A path of cubic segments through `points` (a polyline from a pen or a scan, free of
+/// noise) within `tolerance` of every point, its corners kept: where the polyline turns by
+/// more than `corner_angle` degrees the path has a corner (a joint without a common
+/// tangent); elsewhere segments meet with one tangent (G1). Each stretch between corners
+/// is fitted by Schneider's algorithm: a cubic with the stretch's end points and end
+/// tangent directions, its two tangent lengths by least squares, the points' parameters
+/// refined by Newton's method, and the stretch cut at its worst point (the tangent there
+/// the chord of its neighbours) until every point is within the tolerance of its point on
+/// the curve — so within it of the curve. A polyline whose last point is its first gives a
+/// closed path.
+///
+/// # Errors
+/// [`OpError::Fit`] for fewer than 2 points, a point that is not finite, a tolerance that
+/// is not a finite number greater than 0, a corner angle outside `[0, 180]`, or more than
+/// [`MAX_PATH_SEGMENTS`] segments.
+pub fn fit_path(
+    points: &[DVec3],
+    tolerance: f64,
+    corner_angle: f64,
+) -> Result<Fit<crate::geom::Path>, OpError> {
+    use crate::geom::{Path, PathSegment};
+    if !(tolerance.is_finite() && tolerance > 0.0) {
+        return Err(fit_error(format!(
+            "tolerance {tolerance}: a finite number greater than 0"
+        )));
+    }
+    if !(0.0..=180.0).contains(&corner_angle) {
+        return Err(fit_error(format!(
+            "corner_angle {corner_angle}: degrees from 0 to 180"
+        )));
+    }
+    // Consecutive repeats add nothing: dropped (their residuals are their twins').
+    let mut pts: Vec<DVec3> = Vec::with_capacity(points.len());
+    let mut owner: Vec<usize> = Vec::with_capacity(points.len());
+    prepare(points, &Params::Chord, None, 2)?;
+    for p in points {
+        if pts.last() != Some(p) {
+            pts.push(*p);
+        }
+        owner.push(pts.len() - 1);
+    }
+    if pts.len() < 2 {
+        return Err(fit_error("points: all the same (nothing to fit)".into()));
+    }
+    let closed = pts.len() > 2 && pts[0] == pts[pts.len() - 1];
+    let n = pts.len();
+    let cos_corner = corner_angle.to_radians().cos();
+    let dir = |a: DVec3, b: DVec3| (b - a).normalize_or_zero();
+    // Corners: interior points (and a closed polyline's start) where it turns too far.
+    let turns = |i: usize, prev: usize, next: usize| {
+        dir(pts[prev], pts[i]).dot(dir(pts[i], pts[next])) < cos_corner
+    };
+    let mut corners: Vec<usize> = vec![0];
+    for i in 1..n - 1 {
+        if turns(i, i - 1, i + 1) {
+            corners.push(i);
+        }
+    }
+    corners.push(n - 1);
+    let seam_smooth = closed && !turns(0, n - 2, 1);
+    let mut segments: Vec<[DVec3; 4]> = Vec::new();
+    let mut params: Vec<f64> = vec![0.0; n];
+    for w in corners.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let t0 = if a == 0 && seam_smooth {
+            dir(pts[n - 2], pts[1])
+        } else {
+            dir(pts[a], pts[a + 1])
+        };
+        let t1 = if b == n - 1 && seam_smooth {
+            dir(pts[1], pts[n - 2])
+        } else {
+            dir(pts[b], pts[b - 1])
+        };
+        schneider(&pts, a, b, t0, t1, tolerance, &mut segments, &mut params, 0)?;
+    }
+    if segments.len() > MAX_PATH_SEGMENTS {
+        return Err(fit_error(format!(
+            "more than {MAX_PATH_SEGMENTS} segments within tolerance {tolerance}: ask for a larger tolerance"
+        )));
+    }
+    let path_segments: Vec<PathSegment> = segments
+        .iter()
+        .map(|s| PathSegment::polynomial(s.to_vec()))
+        .collect();
+    let path = Path::try_new(path_segments, closed).map_err(OpError::Geom)?;
+    let curve_points: Vec<DVec3> = (0..n).map(|i| eval_path_at(&segments, params[i])).collect();
+    let residuals = owner
+        .iter()
+        .map(|&k| (curve_points[k] - pts[k]).length())
+        .collect();
+    let params = owner.iter().map(|&k| params[k]).collect();
+    Ok(Fit {
+        curve: path,
+        params,
+        residuals,
+    })
+}
+
+/// A cubic at `u`.
+fn cubic_at(c: &[DVec3; 4], u: f64) -> DVec3 {
+    let s = 1.0 - u;
+    c[0] * (s * s * s) + c[1] * (3.0 * s * s * u) + c[2] * (3.0 * s * u * u) + c[3] * (u * u * u)
+}
+
+/// The path of cubics at parameter `t` (segment `⌊t⌋`).
+fn eval_path_at(segments: &[[DVec3; 4]], t: f64) -> DVec3 {
+    let k = (t.floor() as usize).min(segments.len() - 1);
+    cubic_at(&segments[k], t - k as f64)
+}
+
+/// Schneider's fit of `pts[a..=b]` with end tangent directions `t0` (out of `a`) and `t1`
+/// (out of `b`, pointing back), appending cubics and setting each point's path parameter.
+#[allow(clippy::too_many_arguments)]
+fn schneider(
+    pts: &[DVec3],
+    a: usize,
+    b: usize,
+    t0: DVec3,
+    t1: DVec3,
+    tolerance: f64,
+    out: &mut Vec<[DVec3; 4]>,
+    params: &mut [f64],
+    depth: usize,
+) -> Result<(), OpError> {
+    if out.len() > MAX_PATH_SEGMENTS || depth > 200 {
+        return Err(fit_error(format!(
+            "more than {MAX_PATH_SEGMENTS} segments within tolerance {tolerance}: ask for a larger tolerance"
+        )));
+    }
+    let (p0, p3) = (pts[a], pts[b]);
+    let chord = (p3 - p0).length();
+    if b == a + 1 {
+        let c = [p0, p0 + t0 * chord / 3.0, p3 + t1 * chord / 3.0, p3];
+        params[a] = out.len() as f64;
+        out.push(c);
+        params[b] = out.len() as f64;
+        return Ok(());
+    }
+    // Chord-length parameters.
+    let mut u: Vec<f64> = Vec::with_capacity(b - a + 1);
+    let mut s = 0.0;
+    u.push(0.0);
+    for i in a + 1..=b {
+        s += (pts[i] - pts[i - 1]).length();
+        u.push(s);
+    }
+    for x in &mut u {
+        *x /= s;
+    }
+    let mut best: Option<([DVec3; 4], f64, usize)> = None;
+    for _ in 0..5 {
+        let c = tangent_fit(pts, a, b, &u, t0, t1);
+        let (worst, at) = (a..=b)
+            .map(|i| ((cubic_at(&c, u[i - a]) - pts[i]).length(), i))
+            .fold((0.0, a), |m, x| if x.0 > m.0 { x } else { m });
+        if best.as_ref().is_none_or(|bst| worst < bst.1) {
+            best = Some((c, worst, at));
+        }
+        if worst <= tolerance || worst > 4.0 * tolerance {
+            break;
+        }
+        // Newton's step for each parameter toward its point's foot on the curve.
+        for i in a + 1..b {
+            let v = u[i - a];
+            let (q, d1, d2) = (cubic_at(&c, v), deriv(&c, v), deriv2(&c, v));
+            let f = (q - pts[i]).dot(d1);
+            let g = d1.dot(d1) + (q - pts[i]).dot(d2);
+            if g.abs() > 1e-300 {
+                u[i - a] = (v - f / g).clamp(0.0, 1.0);
+            }
+        }
+    }
+    let (c, worst, at) = best.unwrap_or_else(|| unreachable!("at least one fit"));
+    if worst <= tolerance {
+        let base = out.len() as f64;
+        for i in a..b {
+            params[i] = base + u[i - a];
+        }
+        out.push(c);
+        params[b] = out.len() as f64;
+        return Ok(());
+    }
+    // Cut at the worst point, the tangent there the chord of its neighbours.
+    let split = at.clamp(a + 1, b - 1);
+    let centre = (pts[split - 1] - pts[split + 1]).normalize_or_zero();
+    schneider(pts, a, split, t0, centre, tolerance, out, params, depth + 1)?;
+    schneider(
+        pts,
+        split,
+        b,
+        -centre,
+        t1,
+        tolerance,
+        out,
+        params,
+        depth + 1,
+    )
+}
+
+fn deriv(c: &[DVec3; 4], u: f64) -> DVec3 {
+    let s = 1.0 - u;
+    (c[1] - c[0]) * (3.0 * s * s) + (c[2] - c[1]) * (6.0 * s * u) + (c[3] - c[2]) * (3.0 * u * u)
+}
+
+fn deriv2(c: &[DVec3; 4], u: f64) -> DVec3 {
+    let s = 1.0 - u;
+    (c[2] - c[1] * 2.0 + c[0]) * (6.0 * s) + (c[3] - c[2] * 2.0 + c[1]) * (6.0 * u)
+}
+
+/// The cubic with ends `pts[a]`, `pts[b]` and inner points along `t0`, `t1` whose two
+/// lengths minimise the squared distances at `u` (a 2 × 2 system; a degenerate one falls
+/// back to a third of the chord).
+fn tangent_fit(pts: &[DVec3], a: usize, b: usize, u: &[f64], t0: DVec3, t1: DVec3) -> [DVec3; 4] {
+    let (p0, p3) = (pts[a], pts[b]);
+    let (mut c00, mut c01, mut c11, mut x0, mut x1) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for i in a..=b {
+        let v = u[i - a];
+        let s = 1.0 - v;
+        let (b0, b1, b2, b3) = (s * s * s, 3.0 * s * s * v, 3.0 * s * v * v, v * v * v);
+        let (a1, a2) = (t0 * b1, t1 * b2);
+        c00 += a1.dot(a1);
+        c01 += a1.dot(a2);
+        c11 += a2.dot(a2);
+        let tmp = pts[i] - (p0 * (b0 + b1) + p3 * (b2 + b3));
+        x0 += a1.dot(tmp);
+        x1 += a2.dot(tmp);
+    }
+    let det = c00 * c11 - c01 * c01;
+    let chord = (p3 - p0).length();
+    let (mut l0, mut l1) = if det.abs() > 1e-12 * (c00 * c11).max(f64::MIN_POSITIVE) {
+        ((x0 * c11 - x1 * c01) / det, (c00 * x1 - c01 * x0) / det)
+    } else {
+        (chord / 3.0, chord / 3.0)
+    };
+    // A negative or vanishing length would loop or cusp: a third of the chord instead.
+    if !(l0 > 1e-6 * chord && l1 > 1e-6 * chord) {
+        l0 = chord / 3.0;
+        l1 = chord / 3.0;
+    }
+    [p0, p0 + t0 * l0, p3 + t1 * l1, p3]
+}

@@ -15,7 +15,7 @@ pub mod reduce;
 pub mod structure;
 
 pub use approx::{Approximation, Target};
-pub use fit::{Fit, Params, fit_bezier, fit_bspline};
+pub use fit::{Fit, Params, fit_bezier, fit_bspline, fit_path};
 pub use knots::{Removed, remove_knot};
 pub use reduce::{Reduced, reduce_degree};
 pub use structure::{as_path, join, reverse, split};

@@ -59,6 +59,7 @@ __all__ = [
     "join",
     "fit_bezier",
     "fit_bspline",
+    "fit_path",
     "compare_images",
     "FAMILY_NAMES",
     "SOLVE_METHODS",
@@ -1537,6 +1538,24 @@ def fit_bspline(
         None if smoothing is None else _float(smoothing, "smoothing", "fit_bspline"),
         _params_arg(params),
         None if weights is None else _numbers(weights, "weights"),
+    )
+    return Curve._wrap(c), r
+
+
+def fit_path(
+    points: ArrayLike, tolerance: float, corner_angle: float = 30.0
+) -> Tuple[Curve, np.ndarray]:
+    """A :class:`Path` of cubic segments through ``points`` (a noise-free polyline from a
+    pen or a scan, ``(N, dim)``) with every point within ``tolerance`` of it, corners —
+    turns sharper than ``corner_angle`` degrees — kept as corners and the rest smooth
+    (Schneider's algorithm: end tangents fixed, tangent lengths by least squares,
+    parameters refined by Newton, cut at the worst point); a polyline that ends where it
+    starts gives a closed path. With the residuals (each point's distance to its point on
+    the path)."""
+    c, r = _native.fit_path(
+        np.asarray(points, dtype=np.float64),
+        _float(tolerance, "tolerance", "fit_path"),
+        _float(corner_angle, "corner_angle", "fit_path"),
     )
     return Curve._wrap(c), r
 
