@@ -19,6 +19,7 @@ mod check;
 mod diff;
 mod eval;
 mod export;
+mod fit;
 mod import;
 mod inspect;
 mod load;
@@ -208,6 +209,10 @@ enum Command {
     /// proven Hausdorff bound) — and write the scene with the results after their
     /// originals (or in their place with --replace).
     Op(op::OpArgs),
+    /// Fit a curve to points (CSV or JSON) and write it as a scene: a B-spline within a
+    /// smoothing budget (--smoothing, 0 through every point) or a path of cubics within a
+    /// tolerance of every point, corners kept (--tolerance).
+    Fit(fit::FitArgs),
     /// Print the JSON Schema of a format (scene, request, report, inspect, analyze, eval,
     /// check); without a name, list them; write them all with --write DIR.
     Schema(schema::SchemaArgs),
@@ -263,6 +268,7 @@ fn run(cli: Cli) -> Result<()> {
         Some(Command::Check(a)) => check::run(&a),
         Some(Command::Import(a)) => import::run(&a),
         Some(Command::Op(a)) => op::run(&a),
+        Some(Command::Fit(a)) => fit::run(&a),
         Some(Command::Schema(a)) => schema::run(&a),
         Some(Command::Regress(a)) => regress::run(&a),
         Some(Command::Diff(a)) => diff::run(&a),
