@@ -9,8 +9,8 @@
 //! coordinates `(w P, w)`). The knot is exactly removable when both sides agree; otherwise
 //! the curve moves.
 //!
-//! **The bound.** The knot is inserted back (`times` times, by Boehm's algorithm, which does
-//! not move a curve) into the result: it then has the original's knot vector, so the two
+//! **The bound.** The knot is inserted back (`times` times, by the family's own knot
+//! insertion, which does not move a curve) into the result: it then has the original's knot vector, so the two
 //! differ by `Σ N_i (A_i − A′_i)` with the same basis `N_i ≥ 0`, `Σ N_i = 1`. For a
 //! B-spline, `|C(t) − C′(t)| ≤ max_i |P_i − P′_i|`. For a NURBS curve with `C = A / W`,
 //! `C − C′ = ((A − A′) − C′ (W − W′)) / W`, so `|C − C′| ≤ (max_i |ΔA_i| + max_j |P′_j| ·
@@ -33,30 +33,28 @@ pub struct Removed {
     pub error: f64,
 }
 
-/// One Boehm insertion of `u` into `(knots, points)` (degree `p`).
-fn insert(knots: &[f64], points: &[DVec4], p: usize, u: f64) -> (Vec<f64>, Vec<DVec4>) {
-    // The span: the last `k` with knots[k] ≤ u (u inside the domain).
-    let mu = knots
-        .iter()
-        .rposition(|&k| k <= u)
-        .unwrap_or(0)
-        .min(points.len() - 1);
-    let mut q = Vec::with_capacity(points.len() + 1);
-    for i in 0..=points.len() {
-        let alpha = if i + p <= mu {
-            1.0
-        } else if i > mu {
-            0.0
-        } else {
-            (u - knots[i]) / (knots[i + p] - knots[i])
-        };
-        let right = points.get(i).copied().unwrap_or(DVec4::ZERO);
-        let left = if i > 0 { points[i - 1] } else { DVec4::ZERO };
-        q.push(alpha * right + (1.0 - alpha) * left);
+/// A B-spline's or NURBS curve's knots, order and homogeneous control points `(w P, w)`
+/// (`w = 1` for a B-spline), and whether it is rational; `None` for another family.
+fn homogeneous(curve: &Curve) -> Option<(Vec<f64>, usize, Vec<DVec4>, bool)> {
+    match curve {
+        Curve::BSpline(b) => Some((
+            b.knots().knots().to_vec(),
+            b.order(),
+            b.points().iter().map(|p| p.extend(1.0)).collect(),
+            false,
+        )),
+        Curve::Nurbs(n) => Some((
+            n.knots().knots().to_vec(),
+            n.order(),
+            n.points()
+                .iter()
+                .zip(n.weights())
+                .map(|(p, &w)| (*p * w).extend(w))
+                .collect(),
+            true,
+        )),
+        _ => None,
     }
-    let mut k = knots.to_vec();
-    k.insert(mu + 1, u);
-    (k, q)
 }
 
 /// One removal of the knot at index `r` (its last occurrence), multiplicity `s`.
@@ -117,30 +115,12 @@ pub fn remove_knot(
     if !(tolerance.is_finite() && tolerance >= 0.0) {
         return Err(OpError::Tolerance(tolerance));
     }
-    let (knots, order, points, rational): (Vec<f64>, usize, Vec<DVec4>, bool) = match curve {
-        Curve::BSpline(b) => (
-            b.knots().knots().to_vec(),
-            b.order(),
-            b.points().iter().map(|p| p.extend(1.0)).collect(),
-            false,
-        ),
-        Curve::Nurbs(n) => (
-            n.knots().knots().to_vec(),
-            n.order(),
-            n.points()
-                .iter()
-                .zip(n.weights())
-                .map(|(p, &w)| (*p * w).extend(w))
-                .collect(),
-            true,
-        ),
-        other => {
-            return Err(OpError::Unsupported {
-                operation: "remove_knot",
-                family: other.family(),
-                families: "B-spline and NURBS curves (a NUBMP curve through its B-spline)",
-            });
-        }
+    let Some((knots, order, points, rational)) = homogeneous(curve) else {
+        return Err(OpError::Unsupported {
+            operation: "remove_knot",
+            family: curve.family(),
+            families: "B-spline and NURBS curves (a NUBMP curve through its B-spline)",
+        });
     };
     let p = order - 1;
     let (a, b) = (knots[p], knots[knots.len() - 1 - p]);
@@ -176,34 +156,51 @@ pub fn remove_knot(
             .unwrap_or_else(|| unreachable!("present"));
         (k, q) = remove_once(&k, &q, p, r, s - m);
     }
-    // Back in: the original's knot vector, the difference on one basis.
-    let (mut k2, mut q2) = (k.clone(), q.clone());
+    let geom = OpError::Geom;
+    let removed = if rational {
+        if let Some(i) = q.iter().position(|h| h.w <= 0.0 || h.w.is_nan()) {
+            return Err(OpError::Geom(GeomError::BadWeight {
+                index: i,
+                value: q[i].w,
+            }));
+        }
+        let pts: Vec<DVec3> = q.iter().map(|h| h.truncate() / h.w + centre).collect();
+        let w: Vec<f64> = q.iter().map(|h| h.w).collect();
+        Curve::Nurbs(Nurbs::try_new(pts, w, k, order).map_err(geom)?)
+    } else {
+        let pts: Vec<DVec3> = q.iter().map(|h| h.truncate() + centre).collect();
+        Curve::BSpline(BSpline::try_new(pts, k, order).map_err(geom)?)
+    };
+    // Back in (the families' own knot insertion): the original's knot vector, the
+    // difference on one basis, taken about the centre (`ΔA − c ΔW`).
+    let mut back = removed.clone();
     for _ in 0..times {
-        (k2, q2) = insert(&k2, &q2, p, u);
+        back = match &back {
+            Curve::BSpline(b) => Curve::BSpline(b.insert_knot(u).map_err(geom)?),
+            Curve::Nurbs(n) => Curve::Nurbs(n.insert_knot(u).map_err(geom)?),
+            _ => unreachable!("a B-spline or NURBS curve"),
+        };
     }
-    debug_assert_eq!(k2, knots);
+    let (_, _, again, _) = homogeneous(&back).unwrap_or_else(|| unreachable!("the same family"));
+    let da = again
+        .iter()
+        .zip(&points)
+        .map(|(x, y)| ((x.truncate() - y.truncate()) - centre * (x.w - y.w)).length())
+        .fold(0.0, f64::max);
     let error = if rational {
-        let da = q2
+        let dw = again
             .iter()
-            .zip(&shifted)
-            .map(|(x, y)| (x.truncate() - y.truncate()).length())
-            .fold(0.0, f64::max);
-        let dw = q2
-            .iter()
-            .zip(&shifted)
+            .zip(&points)
             .map(|(x, y)| (x.w - y.w).abs())
             .fold(0.0, f64::max);
         let size = q
             .iter()
             .map(|h| (h.truncate() / h.w).length())
             .fold(0.0, f64::max);
-        let w_min = shifted.iter().map(|h| h.w).fold(f64::INFINITY, f64::min);
+        let w_min = points.iter().map(|h| h.w).fold(f64::INFINITY, f64::min);
         (da + size * dw) / w_min
     } else {
-        q2.iter()
-            .zip(&shifted)
-            .map(|(x, y)| (x.truncate() - y.truncate()).length())
-            .fold(0.0, f64::max)
+        da
     };
     // The rounding of the solve and the check themselves (the solve divides by the α's,
     // which can be small): a removal within this of exact counts as exact.
@@ -231,20 +228,8 @@ pub fn remove_knot(
             tolerance,
         });
     }
-    let geom = OpError::Geom;
-    let curve = if rational {
-        if let Some(i) = q.iter().position(|h| h.w <= 0.0 || h.w.is_nan()) {
-            return Err(OpError::Geom(GeomError::BadWeight {
-                index: i,
-                value: q[i].w,
-            }));
-        }
-        let pts: Vec<DVec3> = q.iter().map(|h| h.truncate() / h.w + centre).collect();
-        let w: Vec<f64> = q.iter().map(|h| h.w).collect();
-        Curve::Nurbs(Nurbs::try_new(pts, w, k, order).map_err(geom)?)
-    } else {
-        let pts: Vec<DVec3> = q.iter().map(|h| h.truncate() + centre).collect();
-        Curve::BSpline(BSpline::try_new(pts, k, order).map_err(geom)?)
-    };
-    Ok(Removed { curve, error })
+    Ok(Removed {
+        curve: removed,
+        error,
+    })
 }
