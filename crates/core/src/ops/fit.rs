@@ -14,7 +14,8 @@
 
 use glam::DVec3;
 
-use crate::geom::{BSpline, Bezier};
+use crate::geom::bezier::{de_casteljau, deriv_at, second_deriv_at};
+use crate::geom::{BSpline, Bezier, KnotVector};
 
 use super::OpError;
 
@@ -148,25 +149,12 @@ pub fn fit_bezier(
     params: &Params,
     weights: Option<&[f64]>,
 ) -> Result<Fit<Bezier>, OpError> {
-    if degree == 0 || degree > 64 {
-        return Err(fit_error(format!("degree {degree}: from 1 to 64")));
-    }
-    let t = prepare(points, params, weights, degree + 1)?;
     // A Bézier curve is the B-spline with no interior knots.
-    let knots: Vec<f64> = std::iter::repeat_n(0.0, degree + 1)
-        .chain(std::iter::repeat_n(1.0, degree + 1))
-        .collect();
-    let ctrl = least_squares(points, &t, weights, &knots, degree)?;
-    let curve = Bezier::new(ctrl);
-    let residuals = points
-        .iter()
-        .zip(&t)
-        .map(|(p, &u)| (curve.eval(u) - *p).length())
-        .collect();
+    let fit = fit_bspline(points, degree, Some(&[]), None, params, weights)?;
     Ok(Fit {
-        curve,
-        params: t,
-        residuals,
+        curve: Bezier::new(fit.curve.points().to_vec()),
+        params: fit.params,
+        residuals: fit.residuals,
     })
 }
 
@@ -316,14 +304,13 @@ fn least_squares(
 ) -> Result<Vec<DVec3>, OpError> {
     let p = degree;
     let n = knots.len() - p - 1;
+    let kv = KnotVector::try_new(knots.to_vec(), p + 1, n).map_err(OpError::Geom)?;
     let band = p + 1;
     // Lower band of the symmetric matrix: a[i][j] for j in 0..band is entry (i, i − j).
     let mut a = vec![vec![0.0; band]; n];
     let mut rhs = vec![DVec3::ZERO; n];
-    let mut basis = vec![0.0; p + 1];
     for (k, (pt, &u)) in points.iter().zip(t).enumerate() {
-        let span = find_span(knots, n, p, u);
-        basis_funs(knots, span, u, p, &mut basis);
+        let (span, basis) = kv.basis(u);
         let w2 = weights.map_or(1.0, |w| w[k] * w[k]);
         for r in 0..=p {
             let i = span - p + r;
@@ -375,43 +362,6 @@ fn least_squares(
         )));
     }
     Ok(y)
-}
-
-/// The knot span holding `u` (`n` control points, degree `p`; `u = 1` in the last).
-fn find_span(knots: &[f64], n: usize, p: usize, u: f64) -> usize {
-    if u >= knots[n] {
-        return n - 1;
-    }
-    let mut lo = p;
-    let mut hi = n;
-    while hi - lo > 1 {
-        let mid = (lo + hi) / 2;
-        if u < knots[mid] {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    lo
-}
-
-/// The `p + 1` nonzero basis functions at `u` in `span` (Cox–de Boor, *The NURBS Book*
-/// A2.2).
-fn basis_funs(knots: &[f64], span: usize, u: f64, p: usize, out: &mut [f64]) {
-    let mut left = vec![0.0; p + 1];
-    let mut right = vec![0.0; p + 1];
-    out[0] = 1.0;
-    for j in 1..=p {
-        left[j] = u - knots[span + 1 - j];
-        right[j] = knots[span + j] - u;
-        let mut saved = 0.0;
-        for r in 0..j {
-            let temp = out[r] / (right[r + 1] + left[j - r]);
-            out[r] = saved + right[r + 1] * temp;
-            saved = left[j - r] * temp;
-        }
-        out[j] = saved;
-    }
 }
 
 /// The most segments [`fit_path`] makes (a guard against a tolerance far below the data's
@@ -517,10 +467,9 @@ pub fn fit_path(
     })
 }
 
-/// A cubic at `u`.
+/// A cubic at `u` (de Casteljau).
 fn cubic_at(c: &[DVec3; 4], u: f64) -> DVec3 {
-    let s = 1.0 - u;
-    c[0] * (s * s * s) + c[1] * (3.0 * s * s * u) + c[2] * (3.0 * s * u * u) + c[3] * (u * u * u)
+    de_casteljau(c, u)
 }
 
 /// The path of cubics at parameter `t` (segment `⌊t⌋`).
@@ -583,7 +532,7 @@ fn schneider(
         // Newton's step for each parameter toward its point's foot on the curve.
         for i in a + 1..b {
             let v = u[i - a];
-            let (q, d1, d2) = (cubic_at(&c, v), deriv(&c, v), deriv2(&c, v));
+            let (q, d1, d2) = (cubic_at(&c, v), deriv_at(&c, v), second_deriv_at(&c, v));
             let f = (q - pts[i]).dot(d1);
             let g = d1.dot(d1) + (q - pts[i]).dot(d2);
             if g.abs() > 1e-300 {
@@ -616,16 +565,6 @@ fn schneider(
         params,
         depth + 1,
     )
-}
-
-fn deriv(c: &[DVec3; 4], u: f64) -> DVec3 {
-    let s = 1.0 - u;
-    (c[1] - c[0]) * (3.0 * s * s) + (c[2] - c[1]) * (6.0 * s * u) + (c[3] - c[2]) * (3.0 * u * u)
-}
-
-fn deriv2(c: &[DVec3; 4], u: f64) -> DVec3 {
-    let s = 1.0 - u;
-    (c[2] - c[1] * 2.0 + c[0]) * (6.0 * s) + (c[3] - c[2] * 2.0 + c[1]) * (6.0 * u)
 }
 
 /// The cubic with ends `pts[a]`, `pts[b]` and inner points along `t0`, `t1` whose two
