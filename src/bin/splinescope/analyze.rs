@@ -30,7 +30,7 @@ pub struct AnalyzeArgs {
     #[arg(long)]
     pub intersections: bool,
     /// Absolute accuracy of arc lengths, in scene units.
-    #[arg(long, default_value_t = splinescope::analysis::DEFAULT_ACCURACY, value_parser = parse_accuracy, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = splinescope::analysis::DEFAULT_ACCURACY, value_parser = crate::words::number("accuracy", true), allow_hyphen_values = true)]
     pub accuracy: f64,
     /// Also each curve's point nearest to this one (`X,Y` or `X,Y,Z`): the global
     /// minimum of the distance, its parameter and a bound on the distance's error.
@@ -60,22 +60,6 @@ fn parse_point(s: &str) -> Result<glam::DVec3, String> {
         xyz[k] = v;
     }
     Ok(glam::DVec3::from_array(xyz))
-}
-
-/// An accuracy: a finite number greater than 0.
-fn parse_accuracy(s: &str) -> Result<f64, String> {
-    let v: f64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("{s:?} is not a number"))?;
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
-    } else {
-        Err(format!(
-            "accuracy {}: must be a finite number greater than 0",
-            Num(v)
-        ))
-    }
 }
 
 /// Runs `splinescope analyze`.

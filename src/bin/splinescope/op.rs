@@ -27,14 +27,14 @@ pub struct OpArgs {
     pub curve: Option<usize>,
     /// Each curve as a path of cubic segments within this tolerance (scene units; the
     /// Hausdorff distance, a proven bound).
-    #[arg(long, value_name = "T", value_parser = parse_tolerance, allow_hyphen_values = true)]
+    #[arg(long, value_name = "T", value_parser = crate::words::number("tolerance", true), allow_hyphen_values = true)]
     pub to_cubics: Option<f64>,
     /// Each curve as a path of quadratic segments within this tolerance.
-    #[arg(long, value_name = "T", value_parser = parse_tolerance, allow_hyphen_values = true)]
+    #[arg(long, value_name = "T", value_parser = crate::words::number("tolerance", true), allow_hyphen_values = true)]
     pub to_quadratics: Option<f64>,
     /// Each Bézier curve at the lowest degree within this tolerance (its ends kept; a
     /// proven bound).
-    #[arg(long, value_name = "T", value_parser = parse_tolerance, allow_hyphen_values = true)]
+    #[arg(long, value_name = "T", value_parser = crate::words::number("tolerance", true), allow_hyphen_values = true)]
     pub reduce_degree: Option<f64>,
     /// Each curve (B-spline or NURBS) with the knot U removed (`--times` times) when it
     /// moves by at most `--tolerance` (a proven bound; else refused naming the bound).
@@ -45,7 +45,7 @@ pub struct OpArgs {
     pub times: usize,
     /// How far `--remove-knot` may move the curve (scene units; 0: only where it does not
     /// move, up to rounding).
-    #[arg(long, default_value_t = 0.0, requires = "remove_knot", value_parser = parse_nonnegative, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 0.0, requires = "remove_knot", value_parser = crate::words::number("tolerance", false), allow_hyphen_values = true)]
     pub tolerance: f64,
     /// Put each result in its original's place (by default it is added after it).
     #[arg(long)]
@@ -53,38 +53,6 @@ pub struct OpArgs {
     /// Where to write the scene (JSON); replaced atomically.
     #[arg(short, long, value_name = "OUT.json")]
     pub output: PathBuf,
-}
-
-/// A tolerance: a finite number greater than 0.
-fn parse_tolerance(s: &str) -> Result<f64, String> {
-    let v: f64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("{s:?} is not a number"))?;
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
-    } else {
-        Err(format!(
-            "tolerance {}: must be a finite number greater than 0",
-            Num(v)
-        ))
-    }
-}
-
-/// A finite number at least 0.
-fn parse_nonnegative(s: &str) -> Result<f64, String> {
-    let v: f64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("{s:?} is not a number"))?;
-    if v.is_finite() && v >= 0.0 {
-        Ok(v)
-    } else {
-        Err(format!(
-            "tolerance {}: must be a finite number at least 0",
-            Num(v)
-        ))
-    }
 }
 
 /// Runs `splinescope op`.
