@@ -10,6 +10,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyFloat;
 use rayon::prelude::*;
 
+use crate::errors::{CurveError, raise};
+
 /// Past this many values, work runs with the GIL released (other Python threads run).
 pub const DETACH_ABOVE: usize = 4096;
 
@@ -306,4 +308,43 @@ pub(crate) fn fill_into(
             .zip(out.chunks_mut(BLOCK * dim))
             .fold(true, |ok, pair| block(&mut buf, pair) & ok)
     }
+}
+
+/// Points from an array-like of shape `(N, 2)` or `(N, 3)` (or, with `single`, one point
+/// of shape `(2,)` or `(3,)`): the points (`z = 0` for 2 coordinates), their dimension,
+/// and whether one point was given. `what` names the argument in the refusal (a
+/// `CurveError`).
+pub fn point_rows(
+    obj: &Bound<'_, PyAny>,
+    what: &str,
+    single: bool,
+) -> PyResult<(Vec<DVec3>, usize, bool)> {
+    let a = float_array(obj, what)?;
+    let shape = a.shape().to_vec();
+    let v = a
+        .as_slice()
+        .map_err(|e| raise::<CurveError>(format!("{what}: {e}"), what))?;
+    let (dim, one) = match shape.as_slice() {
+        [d] if single && (*d == 2 || *d == 3) => (*d, true),
+        [_, d] if *d == 2 || *d == 3 => (*d, false),
+        _ => {
+            return Err(raise::<CurveError>(
+                format!(
+                    "{what} must be {}an array of shape (N, 2) or (N, 3); got shape {}",
+                    if single {
+                        "a point of 2 or 3 coordinates or "
+                    } else {
+                        ""
+                    },
+                    shape_text(&shape)
+                ),
+                what,
+            ));
+        }
+    };
+    let pts = v
+        .chunks_exact(dim)
+        .map(|r| DVec3::new(r[0], r[1], if dim == 3 { r[2] } else { 0.0 }))
+        .collect();
+    Ok((pts, dim, one))
 }

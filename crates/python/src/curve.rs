@@ -585,30 +585,8 @@ impl PyCurve {
     /// a local one — as `(t, distance)`; for `(N, dim)` points, `(N,)` parameters and
     /// `(N,)` distances, computed on every core.
     fn nearest<'py>(&self, py: Python<'py>, p: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
-        let a = arrays::float_array(p, "p")?;
-        let shape = a.shape().to_vec();
-        let v = a
-            .as_slice()
-            .map_err(|e| raise::<CurveError>(format!("p: {e}"), "p"))?;
-        let (rows, dim, single) = match shape.as_slice() {
-            [d] if *d == 2 || *d == 3 => (1, *d, true),
-            [n, d] if *d == 2 || *d == 3 => (*n, *d, false),
-            _ => {
-                return Err(raise::<CurveError>(
-                    format!(
-                        "p must be a point of 2 or 3 coordinates or an array of shape (N, 2) or (N, 3); got shape {}",
-                        arrays::shape_text(&shape)
-                    ),
-                    "p",
-                ));
-            }
-        };
-        let points: Vec<DVec3> = (0..rows)
-            .map(|i| {
-                let r = &v[i * dim..(i + 1) * dim];
-                DVec3::new(r[0], r[1], if dim == 3 { r[2] } else { 0.0 })
-            })
-            .collect();
+        let (points, dim, single) = arrays::point_rows(p, "p", true)?;
+        let rows = points.len();
         if let Some(i) = points.iter().position(|q| !q.is_finite()) {
             let what = if single {
                 "p".to_owned()
@@ -618,7 +596,7 @@ impl PyCurve {
             return Err(raise::<CurveError>(
                 format!(
                     "{what} = {}: not a finite point",
-                    arrays::row_text(&v[i * dim..(i + 1) * dim])
+                    arrays::row_text(&points[i].to_array()[..dim])
                 ),
                 "p",
             ));

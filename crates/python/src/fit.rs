@@ -1,7 +1,6 @@
 //! Fitting curves to points from Python: `fit_bezier`, `fit_bspline`.
 
 use glam::DVec3;
-use numpy::PyUntypedArrayMethods;
 use pyo3::prelude::*;
 
 use splinescope_core::geom::Curve;
@@ -16,27 +15,7 @@ use crate::errors::{CurveError, raise};
 
 /// `(N, dim)` points from an array-like (dim 2 or 3).
 fn points_of(obj: &Bound<'_, PyAny>) -> PyResult<(Vec<DVec3>, usize)> {
-    let a = arrays::float_array(obj, "points")?;
-    let shape = a.shape().to_vec();
-    let v = a
-        .as_slice()
-        .map_err(|e| raise::<CurveError>(format!("points: {e}"), "points"))?;
-    let dim = match shape.as_slice() {
-        [_, d] if *d == 2 || *d == 3 => *d,
-        _ => {
-            return Err(raise::<CurveError>(
-                format!(
-                    "points must be an array of shape (N, 2) or (N, 3); got shape {}",
-                    arrays::shape_text(&shape)
-                ),
-                "points",
-            ));
-        }
-    };
-    let pts = v
-        .chunks_exact(dim)
-        .map(|r| DVec3::new(r[0], r[1], if dim == 3 { r[2] } else { 0.0 }))
-        .collect();
+    let (pts, dim, _) = arrays::point_rows(obj, "points", false)?;
     Ok((pts, dim))
 }
 
