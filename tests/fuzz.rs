@@ -1285,6 +1285,60 @@ impl Fuzz {
         }
     }
 
+    /// One mutated points file (CSV, or JSON) through `splinescope fit`, with a random
+    /// smoothing budget or tolerance (0, huge, tiny, negative): a clean refusal (nothing
+    /// written) or a finite scene, never a panic, in bounded time.
+    fn fit_case(&mut self) {
+        let n = self.rng.int(1, 300);
+        let json = self.rng.unit() < 0.3;
+        let mut text = if json {
+            String::from("[")
+        } else {
+            String::from("x,y\n")
+        };
+        for i in 0..n {
+            let (x, y) = (self.rng.range(-10.0, 10.0), self.rng.range(-10.0, 10.0));
+            if json {
+                text.push_str(&format!("{}[{x}, {y}]", if i > 0 { ", " } else { "" }));
+            } else {
+                text.push_str(&format!("{x},{y}\n"));
+            }
+        }
+        if json {
+            text.push(']');
+        }
+        let text = mutate_svg(&text, &mut self.rng);
+        let file = self.dir.join(if json {
+            "fuzz-points.json"
+        } else {
+            "fuzz-points.csv"
+        });
+        let out = self.dir.join("fuzz-fit.json");
+        if std::fs::write(&file, &text).is_err() {
+            return;
+        }
+        let value = ["0", "1e-300", "1e300", "-1", "0.5", "NaN", "1e-9"][self.rng.int(0, 6)];
+        let flag = if self.rng.unit() < 0.5 {
+            "--smoothing"
+        } else {
+            "--tolerance"
+        };
+        let short: String = text.chars().take(300).collect();
+        self.cli(
+            vec![
+                "fit".into(),
+                file.display().to_string(),
+                flag.into(),
+                value.into(),
+                "-o".into(),
+                out.display().to_string(),
+            ],
+            Some(&out),
+            "fit",
+            &short,
+        );
+    }
+
     /// One mutated file of an imported format (SVG, DXF in ASCII and binary, STEP): read
     /// by the library (no panic, within the time bound, every curve finite) and by the
     /// command line (`check`, no panic or signal).
@@ -1329,6 +1383,9 @@ impl Fuzz {
         }
         if self.rng.unit() < 0.15 {
             self.font_case();
+        }
+        if self.rng.unit() < 0.1 {
+            self.fit_case();
         }
         if self.rng.unit() < 0.2 {
             let file = self.dir.join(format!("fuzz.{ext}"));
