@@ -570,7 +570,14 @@ fn schneider(
 /// The cubic with ends `pts[a]`, `pts[b]` and inner points along `t0`, `t1` whose two
 /// lengths minimise the squared distances at `u` (a 2 × 2 system; a degenerate one falls
 /// back to a third of the chord).
-fn tangent_fit(pts: &[DVec3], a: usize, b: usize, u: &[f64], t0: DVec3, t1: DVec3) -> [DVec3; 4] {
+pub(super) fn tangent_fit(
+    pts: &[DVec3],
+    a: usize,
+    b: usize,
+    u: &[f64],
+    t0: DVec3,
+    t1: DVec3,
+) -> [DVec3; 4] {
     let (p0, p3) = (pts[a], pts[b]);
     let (mut c00, mut c01, mut c11, mut x0, mut x1) = (0.0, 0.0, 0.0, 0.0, 0.0);
     for i in a..=b {

@@ -11,12 +11,14 @@ use crate::num::Num;
 pub mod approx;
 pub mod fit;
 pub mod knots;
+pub mod offset;
 pub mod reduce;
 pub mod structure;
 
 pub use approx::{Approximation, Target};
 pub use fit::{Fit, Params, fit_bezier, fit_bspline, fit_path};
 pub use knots::{Removed, remove_knot};
+pub use offset::{Cap, Join, Offset, OffsetOptions, offset};
 pub use reduce::{Reduced, reduce_degree};
 pub use structure::{as_path, join, reverse, split};
 
@@ -96,6 +98,29 @@ pub enum OpError {
     /// A fit's input that cannot be fitted (named in the message).
     #[error("{0}")]
     Fit(String),
+    /// An offset distance that is not finite (or 0 for a stroke outline).
+    #[error("offset distance {}: must be a finite number (not 0 for a stroke outline)", Num(*.0))]
+    Distance(f64),
+    /// A miter limit below 1 or not finite.
+    #[error("miter limit {}: must be a finite number of at least 1", Num(*.0))]
+    MiterLimit(f64),
+    /// A planar operation asked of a curve that leaves the plane.
+    #[error("{operation} is defined for planar (2D) curves; this curve leaves the plane z = 0")]
+    NotPlanar {
+        /// The operation.
+        operation: &'static str,
+    },
+    /// A curve the operation cannot be done on (named in the message).
+    #[error("{0}")]
+    Degenerate(&'static str),
+    /// Trimming asked together with caps.
+    #[error(
+        "trim removes an offset's loops; a stroke outline (caps given) is not trimmed: ask for one or the other"
+    )]
+    TrimWithCaps,
+    /// The analysis an operation relies on failed (its message).
+    #[error("{0}")]
+    Analysis(String),
     /// A join of no curves.
     #[error("nothing to join: give at least one curve")]
     NothingToJoin,
