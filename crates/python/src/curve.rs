@@ -675,6 +675,75 @@ impl PyCurve {
         Ok((self.with_curve(Curve::Bezier(r.curve)), r.error))
     }
 
+    /// The curve's offset by `d` (a list of paths of cubic segments) within `tolerance`
+    /// of the true offset (a proven bound), with that bound and the number of cusps.
+    /// `join` is "round", "miter" or "bevel"; `caps` None (an offset) or "butt",
+    /// "round", "square" (a stroke outline).
+    #[pyo3(signature = (d, tolerance, join, miter_limit, caps, trim))]
+    #[allow(clippy::too_many_arguments)]
+    fn offset(
+        &self,
+        py: Python<'_>,
+        d: f64,
+        tolerance: f64,
+        join: &str,
+        miter_limit: f64,
+        caps: Option<&str>,
+        trim: bool,
+    ) -> PyResult<(Vec<PyCurve>, f64, usize)> {
+        use splinescope_core::ops::{Cap, Join, OffsetOptions, OpError};
+        let join = match join {
+            "round" => Join::Round,
+            "miter" => Join::Miter,
+            "bevel" => Join::Bevel,
+            other => {
+                return Err(raise::<CurveError>(
+                    format!("offset: join = {other:?}: one of \"round\", \"miter\", \"bevel\""),
+                    "join",
+                ));
+            }
+        };
+        let caps = match caps {
+            None => None,
+            Some("butt") => Some(Cap::Butt),
+            Some("round") => Some(Cap::Round),
+            Some("square") => Some(Cap::Square),
+            Some(other) => {
+                return Err(raise::<CurveError>(
+                    format!(
+                        "offset: caps = {other:?}: one of \"butt\", \"round\", \"square\" (or None)"
+                    ),
+                    "caps",
+                ));
+            }
+        };
+        let options = OffsetOptions {
+            join,
+            miter_limit,
+            caps,
+            trim,
+        };
+        let curve = &self.curve.curve;
+        let o = py
+            .detach(|| splinescope_core::ops::offset(curve, d, tolerance, &options))
+            .map_err(|e| {
+                let what = match e {
+                    OpError::Tolerance(_) | OpError::TooManyPieces { .. } => "tolerance",
+                    OpError::Distance(_) => "d",
+                    OpError::MiterLimit(_) => "miter_limit",
+                    OpError::TrimWithCaps => "trim",
+                    _ => "",
+                };
+                raise::<CurveError>(format!("offset: {e}"), what)
+            })?;
+        let paths = o
+            .paths
+            .into_iter()
+            .map(|p| self.with_curve(Curve::Path(p)))
+            .collect();
+        Ok((paths, o.error, o.cusps))
+    }
+
     /// The curve traced the other way.
     fn reverse(&self) -> PyResult<PyCurve> {
         let r = splinescope_core::ops::reverse(&self.curve.curve)

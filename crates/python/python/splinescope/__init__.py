@@ -576,6 +576,40 @@ class Curve:
         path = Curve._wrap(path)
         return (path, bound) if with_error else path
 
+    def offset(
+        self,
+        d: float,
+        tolerance: float,
+        *,
+        join: str = "round",
+        miter_limit: float = 4.0,
+        caps: Optional[str] = None,
+        trim: bool = False,
+        with_error: bool = False,
+    ) -> Any:
+        """The offset (parallel curve) at signed distance ``d`` — ``C(t) + d n(t)``, ``n``
+        the left unit normal (``d > 0`` to the left of the direction of travel, y up) — as
+        a :class:`Path` of cubic segments within ``tolerance`` of the true offset in the
+        Hausdorff sense, shown by a computed bound (``docs/math.md`` §14), for every
+        family (2D). Where ``|d|`` passes the radius of curvature the offset has cusps
+        (kept; ``trim=True`` removes the loops they make, and the inner side of kinks,
+        returning a list of the paths left). Kinks get ``join`` ("round", "miter" — past
+        ``miter_limit`` times ``|d|`` a bevel — or "bevel") on their outer side.
+        ``caps`` ("butt", "round", "square") gives the outline of a stroke of half width
+        ``|d|`` instead: a list of one closed path (open curve) or two (closed curve).
+        With ``with_error=True``, ``(result, bound)``."""
+        paths, bound, _cusps = self._c.offset(
+            _float(d, "d", "offset"),
+            _float(tolerance, "tolerance", "offset"),
+            str(join),
+            _float(miter_limit, "miter_limit", "offset"),
+            None if caps is None else str(caps),
+            bool(trim),
+        )
+        wrapped = [Curve._wrap(p) for p in paths]
+        result: Any = wrapped if (trim or caps is not None) else wrapped[0]
+        return (result, bound) if with_error else result
+
     def split(self, t: float) -> Tuple["Curve", "Curve"]:
         """The curve split at ``t`` (inside the domain) into the curves before and after
         it, exactly: a Bézier or rational Bézier curve into two of its family (de
