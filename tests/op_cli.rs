@@ -95,6 +95,69 @@ fn op_refuses_bad_arguments_and_writes_nothing() {
             vec!["op", &paths(), "--to-cubics", "1e-300", "-o", o],
             "pieces within tolerance",
         ),
+        (
+            vec!["op", &paths(), "--offset", "0.5", "-o", o],
+            "needs --tolerance",
+        ),
+        (
+            vec![
+                "op",
+                &paths(),
+                "--offset",
+                "inf",
+                "--tolerance",
+                "0.01",
+                "-o",
+                o,
+            ],
+            "offset distance inf",
+        ),
+        (
+            vec![
+                "op",
+                &paths(),
+                "--offset",
+                "0.1",
+                "--tolerance",
+                "0.01",
+                "--join",
+                "miter",
+                "--miter-limit",
+                "0.5",
+                "-o",
+                o,
+            ],
+            "miter limit 0.5",
+        ),
+        (
+            vec![
+                "op",
+                &paths(),
+                "--offset",
+                "0.1",
+                "--tolerance",
+                "0.01",
+                "--trim",
+                "--caps",
+                "round",
+                "-o",
+                o,
+            ],
+            "cannot be used with",
+        ),
+        (
+            vec![
+                "op",
+                &paths(),
+                "--to-cubics",
+                "0.1",
+                "--tolerance",
+                "0.01",
+                "-o",
+                o,
+            ],
+            "--tolerance is for --offset and --remove-knot",
+        ),
     ] {
         let _ = std::fs::remove_file(&out);
         let run = common::run(&args);
@@ -230,4 +293,73 @@ fn op_reduces_a_bezier_curves_degree_or_names_the_best_bound() {
         "{}",
         common::text(&run)
     );
+}
+
+#[test]
+fn op_offsets_each_curve_within_the_tolerance_and_outlines_strokes() {
+    let dir = common::out_dir("op_cli");
+    let out = dir.join("offsets.json");
+    let run = common::run(&[
+        "op",
+        &paths(),
+        "--offset",
+        "-0.25",
+        "--tolerance",
+        "0.001",
+        "-o",
+        out.to_str().expect("utf-8"),
+    ]);
+    assert!(run.status.success(), "{}", common::text(&run));
+    let original = Scene::load(std::path::Path::new(&paths())).expect("paths");
+    let made = Scene::load(&out).expect("written");
+    assert_eq!(made.curves.len(), 2 * original.curves.len());
+    for (k, o) in original.curves.iter().enumerate() {
+        let b = &made.curves[2 * k + 1];
+        assert_eq!(
+            b.name.as_deref(),
+            Some(format!("{} · offset -0.25", o.name.as_deref().expect("named")).as_str())
+        );
+        // Every sample of the offset is 0.25 from the original, within the tolerance
+        // (away from kinks, where a round join keeps that distance too).
+        let ao = CurveAnalysis::new(&o.curve);
+        let (t0, t1) = b.curve.domain();
+        for i in 0..=300 {
+            let t = t0 + (t1 - t0) * f64::from(i) / 300.0;
+            let d = ao.nearest(b.curve.eval(t)).expect("nearest").distance;
+            assert!(d <= 0.25 + 0.001, "{:?} at {t}: {d}", b.name);
+        }
+    }
+    // A stroke outline of a closed curve is two paths, both after their original.
+    let ring = dir.join("ring.json");
+    let run = common::run(&[
+        "op",
+        &paths(),
+        "--curve",
+        "0",
+        "--offset",
+        "0.2",
+        "--tolerance",
+        "0.001",
+        "--caps",
+        "butt",
+        "--replace",
+        "-o",
+        ring.to_str().expect("utf-8"),
+    ]);
+    assert!(run.status.success(), "{}", common::text(&run));
+    let made = Scene::load(&ring).expect("written");
+    assert_eq!(made.curves.len(), original.curves.len() + 1);
+    assert!(
+        made.curves[0]
+            .name
+            .as_deref()
+            .is_some_and(|n| n.ends_with("stroke outline 0.2 (1 of 2)"))
+    );
+    assert!(
+        made.curves[1]
+            .name
+            .as_deref()
+            .is_some_and(|n| n.ends_with("stroke outline 0.2 (2 of 2)"))
+    );
+    assert_eq!(made.curves[2].curve, original.curves[1].curve);
 }
