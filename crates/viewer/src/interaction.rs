@@ -222,6 +222,8 @@ pub struct Interaction {
     pub toggles: Toggles,
     /// The curvature comb and the shape markers (the panel's "shape" section).
     pub shape: crate::shape::ShapeView,
+    /// The selected curve's offset, computed off the frame thread.
+    pub offset: crate::shape::OffsetWorker,
     /// The window size in physical pixels.
     pub viewport: DVec2,
     /// Physical pixels per logical pixel (pick radius scales with it).
@@ -280,6 +282,7 @@ impl Interaction {
             camera,
             toggles: Toggles::default(),
             shape: crate::shape::ShapeView::default(),
+            offset: crate::shape::OffsetWorker::default(),
             viewport,
             scale_factor,
             panel_width_px,

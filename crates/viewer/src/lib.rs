@@ -483,6 +483,18 @@ impl Running {
             (&self.model.shape, view_height),
             self.model.editor.selected,
         );
+        let request = crate::shape::OffsetRequest::for_view(
+            &self.model.shape,
+            self.model.editor.selected,
+            view_height,
+            self.model.viewport.y,
+        );
+        self.model.offset.poll(
+            self.model.editor.scene(),
+            !changed.is_empty(),
+            request,
+            Instant::now(),
+        );
         if let Some(s) = &mut self.stress {
             s.step(
                 self.started.elapsed().as_secs_f64(),
@@ -619,6 +631,15 @@ impl Running {
             camera: &camera,
             solving: self.stress.as_ref().map(|s| (s.curves, s.last_solve_ms)),
             markers: &self.view.markers.markers,
+            offset_status: self.model.offset.current().map(|found| match found {
+                Ok(o) => format!(
+                    "{} segment(s) within {:.1e} (a proven bound), {} cusp(s)",
+                    o.paths.iter().map(|p| p.segments().len()).sum::<usize>(),
+                    o.error,
+                    o.cusps
+                ),
+                Err(e) => e.clone(),
+            }),
         };
         let tolerance_before = self.model.tolerance_px;
         let model = &mut self.model;

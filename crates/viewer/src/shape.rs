@@ -9,6 +9,7 @@ use std::time::{Duration, Instant};
 
 use splinescope_core::analysis::{CurveAnalysis, DEFAULT_ACCURACY};
 use splinescope_core::geom::Aabb;
+use splinescope_core::ops::{Offset, OffsetOptions, offset};
 
 use crate::scene::Scene;
 use crate::scene::shape::{CombCap, CombScale, Marker, MarkerKind, ShapeOptions, markers};
@@ -36,6 +37,11 @@ pub struct ShapeView {
     pub joints: bool,
     /// The selected curve's tight bounding box.
     pub bbox: bool,
+    /// The selected curve's offset drawn (recomputed off the frame thread after edits).
+    pub offset: bool,
+    /// The offset's signed distance (world units; > 0 to the left of the direction of
+    /// travel, y up).
+    pub offset_distance: f64,
 }
 
 impl Default for ShapeView {
@@ -51,6 +57,8 @@ impl Default for ShapeView {
             intersections: false,
             joints: false,
             bbox: false,
+            offset: false,
+            offset_distance: 0.0,
         }
     }
 }
@@ -187,6 +195,131 @@ impl MarkerWorker {
     }
 }
 
+/// An offset to compute: of which curve, how far, within what tolerance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OffsetRequest {
+    /// The curve's index.
+    pub curve: usize,
+    /// The signed distance.
+    pub distance: f64,
+    /// The tolerance (world units).
+    pub tolerance: f64,
+}
+
+impl OffsetRequest {
+    /// The request for the selected curve at the panel's distance, drawn within a quarter
+    /// pixel of a view `view_height` world units tall in `height_px` pixels (the tolerance
+    /// rounded down to a power of two, so that a zoom recomputes it only now and then).
+    #[must_use]
+    pub fn for_view(
+        shape: &ShapeView,
+        selected: Option<usize>,
+        view_height: f64,
+        height_px: f64,
+    ) -> Option<OffsetRequest> {
+        let curve = selected.filter(|_| shape.offset && shape.offset_distance != 0.0)?;
+        let px = view_height / height_px.max(1.0);
+        let tolerance = 2f64.powf((0.25 * px).log2().floor());
+        (tolerance.is_finite() && tolerance > 0.0).then_some(OffsetRequest {
+            curve,
+            distance: shape.offset_distance,
+            tolerance,
+        })
+    }
+}
+
+/// The selected curve's offset computed on a worker thread, as the markers are: after an
+/// edit or a new request at most one computation runs, one starts at most every
+/// [`MARKER_THROTTLE`], and the frame only polls.
+#[derive(Debug, Default)]
+pub struct OffsetWorker {
+    /// The latest offset and the request it answers (an error's message when refused).
+    pub latest: Option<(OffsetRequest, Result<Offset, String>)>,
+    running: Option<Receiver<(OffsetRequest, Result<Offset, String>)>>,
+    dirty: bool,
+    started: Option<Instant>,
+    request: Option<OffsetRequest>,
+}
+
+impl OffsetWorker {
+    /// After an edit (`changed`) or with a new `request`: starts a computation when one is
+    /// due, takes a finished one's result; with no request, the offset is dropped.
+    pub fn poll(
+        &mut self,
+        scene: &Scene,
+        changed: bool,
+        request: Option<OffsetRequest>,
+        now: Instant,
+    ) {
+        if request != self.request {
+            self.request = request;
+            self.dirty = true;
+        }
+        self.dirty |= changed;
+        if let Some(rx) = &self.running {
+            match rx.try_recv() {
+                Ok(found) => {
+                    self.latest = Some(found);
+                    self.running = None;
+                }
+                Err(TryRecvError::Empty) => return,
+                Err(TryRecvError::Disconnected) => self.running = None,
+            }
+        }
+        let Some(request) = request else {
+            self.latest = None;
+            self.dirty = false;
+            return;
+        };
+        let due = self
+            .started
+            .is_none_or(|t| now.duration_since(t) >= MARKER_THROTTLE);
+        if self.dirty && due {
+            self.dirty = false;
+            self.started = Some(now);
+            let Some(sc) = scene.curves.get(request.curve) else {
+                self.latest = None;
+                return;
+            };
+            let (tx, rx) = channel();
+            let curve = sc.curve.clone();
+            std::thread::spawn(move || {
+                let found = offset(
+                    &curve,
+                    request.distance,
+                    request.tolerance,
+                    &OffsetOptions::default(),
+                )
+                .map_err(|e| e.to_string());
+                let _ = tx.send((request, found));
+            });
+            self.running = Some(rx);
+        }
+    }
+
+    /// Whether a computation is running or due.
+    #[must_use]
+    pub fn busy(&self) -> bool {
+        self.running.is_some() || self.dirty
+    }
+
+    /// The offset to draw: the latest, when it is of the curve asked for now.
+    #[must_use]
+    pub fn current(&self) -> Option<&Result<Offset, String>> {
+        let (req, found) = self.latest.as_ref()?;
+        (Some(req.curve) == self.request.map(|r| r.curve)).then_some(found)
+    }
+
+    /// Waits (up to `limit`) for the running computation: for tests and screenshots.
+    pub fn wait(&mut self, scene: &Scene, limit: Duration) {
+        let end = Instant::now() + limit;
+        while self.busy() && Instant::now() < end {
+            self.poll(scene, false, self.request, Instant::now() + MARKER_THROTTLE);
+            std::thread::sleep(Duration::from_millis(2));
+        }
+    }
+}
+
 /// What the panel says about the selected curve's shape.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Readouts {
@@ -285,6 +418,63 @@ mod tests {
         assert_eq!((r.inflections, r.intersections), (Some(1), Some(3)));
         w.poll(&scene, false, ShapeOptions::default(), Instant::now());
         assert_eq!(w.take_fresh().map(<[Marker]>::len), Some(0));
+    }
+
+    #[test]
+    fn the_offset_arrives_from_the_worker_follows_edits_and_goes_when_off() {
+        let r = 1.5;
+        let mut scene =
+            Scene::of_curves([Curve::Nurbs(Nurbs::circle(DVec3::ZERO, r).expect("circle"))]);
+        let shape = ShapeView {
+            offset: true,
+            offset_distance: 0.5,
+            ..ShapeView::default()
+        };
+        let request = OffsetRequest::for_view(&shape, Some(0), 10.0, 1000.0).expect("asked");
+        assert!(
+            request.tolerance <= 0.25 * 10.0 / 1000.0 && request.tolerance > 0.125 * 10.0 / 1000.0
+        );
+        let radius_of = |w: &OffsetWorker| {
+            let o = w.current().expect("an offset").as_ref().expect("computed");
+            let path = &o.paths[0];
+            path.segments()[0].points[0].length()
+        };
+        let mut w = OffsetWorker::default();
+        w.poll(&scene, false, Some(request), Instant::now());
+        w.wait(&scene, Duration::from_secs(10));
+        // A counter-clockwise circle's left offset is inside it: radius r − d.
+        assert!((radius_of(&w) - (r - 0.5)).abs() < 1e-9);
+        // An edit (a bigger circle) is followed.
+        scene.curves[0].curve = Curve::Nurbs(Nurbs::circle(DVec3::ZERO, 3.0).expect("circle"));
+        w.poll(
+            &scene,
+            true,
+            Some(request),
+            Instant::now() + MARKER_THROTTLE,
+        );
+        w.wait(&scene, Duration::from_secs(10));
+        assert!((radius_of(&w) - 2.5).abs() < 1e-9);
+        // A refusal is kept as its message; off drops it.
+        let spatial = Scene::of_curves([Curve::Bezier(Bezier::new(vec![
+            DVec3::ZERO,
+            DVec3::new(1.0, 0.0, 1.0),
+        ]))]);
+        w.poll(
+            &spatial,
+            true,
+            Some(request),
+            Instant::now() + 2 * MARKER_THROTTLE,
+        );
+        w.wait(&spatial, Duration::from_secs(10));
+        let message = w
+            .current()
+            .expect("answered")
+            .as_ref()
+            .expect_err("refused");
+        assert!(message.contains("planar"), "{message}");
+        w.poll(&spatial, false, None, Instant::now() + 3 * MARKER_THROTTLE);
+        assert!(w.current().is_none() && w.latest.is_none());
+        assert!(OffsetRequest::for_view(&ShapeView::default(), Some(0), 10.0, 1000.0).is_none());
     }
 
     #[test]

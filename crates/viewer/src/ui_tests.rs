@@ -51,6 +51,7 @@ impl Viewer {
             camera: &camera,
             solving: None,
             markers: &[],
+            offset_status: None,
         };
         let mut actions = Actions::default();
         ui::draw(ui, &info, &mut self.model, &mut actions);

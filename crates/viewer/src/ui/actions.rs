@@ -27,6 +27,8 @@ pub(crate) struct PanelInfo<'a> {
     pub solving: Option<(usize, f64)>,
     /// The latest shape markers.
     pub markers: &'a [crate::scene::shape::Marker],
+    /// What the selected curve's offset came to: its segments and bound, or why not.
+    pub offset_status: Option<String>,
 }
 
 /// What the user asked for this frame.

@@ -54,6 +54,7 @@ pub(crate) fn shape_section(
             ui.checkbox(&mut s.joints, "joints (kinks, curvature jumps)")
                 .on_hover_text("where segments meet: a kink (G0) or a curvature jump (G1)");
             ui.checkbox(&mut s.bbox, "selected curve's box");
+            offset_rows(ui, info, s, editor);
             let kinds = s.marker_options().marker_kinds();
             for kind in kinds {
                 let count = info.markers.iter().filter(|m| m.kind == kind).count();
@@ -66,6 +67,69 @@ pub(crate) fn shape_section(
             }
             readouts(ui, info, shape, editor);
         });
+}
+
+/// The selected curve's offset: on/off, its distance (typed or dragged), what it came to.
+fn offset_rows(
+    ui: &mut egui::Ui,
+    info: &PanelInfo<'_>,
+    shape: &mut ShapeView,
+    editor: &mut Editor,
+) {
+    let mut on = shape.offset;
+    if ui
+        .checkbox(&mut on, "selected curve's offset")
+        .on_hover_text("the parallel curve at a distance (> 0: left of the direction of travel), within a quarter pixel, with its cusps; recomputed as you edit")
+        .changed()
+    {
+        shape.offset = on;
+        if on && shape.offset_distance == 0.0 {
+            // A first distance: a twentieth of the selected curve's box.
+            let size = editor
+                .selected
+                .and_then(|i| editor.scene().curves.get(i))
+                .map(|c| {
+                    let b = splinescope_core::analysis::CurveAnalysis::new(&c.curve).bounding_box();
+                    (b.max - b.min).length()
+                })
+                .filter(|s| s.is_finite() && *s > 0.0)
+                .unwrap_or(1.0);
+            shape.offset_distance = 0.05 * size;
+        }
+    }
+    if !shape.offset {
+        return;
+    }
+    ui.horizontal(|ui| {
+        let mut d = shape.offset_distance;
+        let response = ui
+            .add(
+                egui::DragValue::new(&mut d)
+                    .speed(0.01 * shape.offset_distance.abs().max(1e-6))
+                    .max_decimals(6)
+                    .update_while_editing(false),
+            )
+            .on_hover_text("the signed distance in world units: drag, or type");
+        if accepted(ui.ctx(), &response) && d != shape.offset_distance {
+            if d.is_finite() {
+                shape.offset_distance = d;
+            } else {
+                editor.message = Some(format!("offset distance {d}: must be a finite number"));
+            }
+        }
+        ui.small("distance");
+    });
+    match (&editor.selected, &info.offset_status) {
+        (None, _) => {
+            ui.small("select a curve to see its offset");
+        }
+        (Some(_), Some(status)) => {
+            ui.small(status);
+        }
+        (Some(_), None) => {
+            ui.small("computing…");
+        }
+    }
 }
 
 /// The comb's switches and scale.
@@ -194,6 +258,52 @@ fn readouts(ui: &mut egui::Ui, info: &PanelInfo<'_>, shape: &ShapeView, editor: 
     });
 }
 
+/// In 2D, with a curve selected and the pointer on the canvas (not dragging): the nearest
+/// point of the selected curve to the pointer, a line to it and the distance.
+fn nearest_to_pointer(
+    painter: &egui::Painter,
+    model: &Interaction,
+    pixel: &dyn Fn(DVec3) -> Option<egui::Pos2>,
+    pointer: egui::Pos2,
+) {
+    if model.is_editing()
+        || model.pointer_over_ui()
+        || !matches!(model.camera, crate::camera::Camera::Ortho2d(_))
+    {
+        return;
+    }
+    let Some(index) = model.editor.selected else {
+        return;
+    };
+    let Some(sc) = model.scene().curves.get(index) else {
+        return;
+    };
+    let at = model.cursor_world();
+    let Ok(near) = splinescope_core::analysis::CurveAnalysis::new(&sc.curve).nearest(at) else {
+        return;
+    };
+    let foot = splinescope_core::geom::ParamCurve::eval(&sc.curve, near.t);
+    let Some(f) = pixel(foot) else {
+        return;
+    };
+    painter.line_segment(
+        [pointer, f],
+        egui::Stroke::new(1.0, SELECTION.gamma_multiply(0.7)),
+    );
+    painter.circle_stroke(f, 4.0, egui::Stroke::new(1.5, SELECTION));
+    painter.text(
+        f + egui::vec2(8.0, -8.0),
+        egui::Align2::LEFT_BOTTOM,
+        format!(
+            "{} at t = {}",
+            splinescope_core::num::fixed(near.distance, 6),
+            splinescope_core::num::fixed(near.t, 4)
+        ),
+        egui::FontId::monospace(11.0),
+        SELECTION,
+    );
+}
+
 /// The canvas's shape feedback: the selected curve's tight box, and the signed curvature
 /// of the curvature-extremum marker under the pointer.
 pub(crate) fn canvas_shape(ui: &mut egui::Ui, info: &PanelInfo<'_>, model: &Interaction) {
@@ -226,9 +336,34 @@ pub(crate) fn canvas_shape(ui: &mut egui::Ui, info: &PanelInfo<'_>, model: &Inte
             4.0,
         ));
     }
+    // The selected curve's offset, dashed in the selection's colour.
+    if model.shape.offset
+        && let Some(Ok(o)) = model.offset.current()
+    {
+        for path in &o.paths {
+            let curve = crate::geom::Curve::Path(path.clone());
+            let (a, b) = splinescope_core::geom::ParamCurve::domain(&curve);
+            let n = 32 * path.segments().len().max(1);
+            let points: Vec<egui::Pos2> = (0..=n)
+                .filter_map(|j| {
+                    pixel(splinescope_core::geom::ParamCurve::eval(
+                        &curve,
+                        a + (b - a) * j as f64 / n as f64,
+                    ))
+                })
+                .collect();
+            painter.add(egui::Shape::dashed_line(
+                &points,
+                egui::Stroke::new(1.5, SELECTION),
+                8.0,
+                4.0,
+            ));
+        }
+    }
     let Some(pointer) = ctx.pointer_hover_pos() else {
         return;
     };
+    nearest_to_pointer(&painter, model, &pixel, pointer);
     let near = info
         .markers
         .iter()
