@@ -153,3 +153,49 @@ fn what_cannot_be_removed_is_refused_naming_it() {
     let e = remove_knot(&bez, 0.5, 1, 1.0).unwrap_err();
     assert!(e.to_string().contains("not bezier curves"), "{e}");
 }
+
+/// A standard NUBMP curve (paper 001) is its B-spline: a knot inserted there comes out
+/// again through it, the result a standard NUBMP curve on the original's points; with a
+/// shape parameter set, the removal is refused until it is reset.
+#[test]
+fn a_standard_nubmp_curve_loses_a_knot_through_its_b_spline() {
+    use splinescope_core::geom::Nubmp;
+    let pts: Vec<DVec3> = [(0.0, 0.0), (1.0, 2.0), (2.0, -1.0), (3.0, 2.0), (4.0, 0.0)]
+        .iter()
+        .map(|&(x, y)| DVec3::new(x, y, 0.0))
+        .collect();
+    let knots = vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0];
+    let original = Nubmp::try_new(pts.clone(), knots.clone(), 4).expect("nubmp");
+    let spline = BSpline::try_new(pts.clone(), knots, 4).expect("spline");
+    let inserted = spline.insert_knot(0.3).expect("insert");
+    let with_knot = Nubmp::try_new(
+        inserted.points().to_vec(),
+        inserted.knots().knots().to_vec(),
+        4,
+    )
+    .expect("nubmp with the knot");
+    let r = remove_knot(&Curve::Nubmp(with_knot.clone()), 0.3, 1, 0.0).expect("removable");
+    let Curve::Nubmp(back) = &r.curve else {
+        panic!("a NUBMP curve comes back: {:?}", r.curve.family())
+    };
+    assert!(back.is_standard());
+    for (a, b) in back.points().iter().zip(&pts) {
+        assert!((*a - *b).length() <= 1e-12, "{a} vs {b}");
+    }
+    assert!(moved(&r.curve, &Curve::Nubmp(original)) <= 1e-12);
+    // A knot that moves it: refused naming the bound, as for a B-spline.
+    assert!(matches!(
+        remove_knot(&Curve::Nubmp(with_knot.clone()), 0.5, 1, 0.0),
+        Err(OpError::WouldMove { .. })
+    ));
+    // Shape parameters set: refused, saying to reset them.
+    let mut shaped = with_knot;
+    let j = (0..shaped.groups().len())
+        .find(|&j| shaped.groups()[j].members.len() > 1)
+        .expect("a group with a free parameter");
+    let (i, absorber) = (shaped.groups()[j].members[0], shaped.groups()[j].members[1]);
+    let value = shaped.group(j).expect("group").values[0] * 0.5;
+    shaped.set_parameter(j, i, value, absorber).expect("set");
+    let e = remove_knot(&Curve::Nubmp(shaped), 0.3, 1, 0.0).expect_err("refused");
+    assert!(e.to_string().contains("reset the shape parameters"), "{e}");
+}

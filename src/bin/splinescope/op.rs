@@ -58,7 +58,7 @@ pub struct OpArgs {
     /// proven bound).
     #[arg(long, value_name = "T", value_parser = crate::words::number("tolerance", true), allow_hyphen_values = true)]
     pub reduce_degree: Option<f64>,
-    /// Each curve (B-spline or NURBS) with the knot U removed (`--times` times) when it
+    /// Each curve (B-spline, NURBS or standard NUBMP) with the knot U removed (`--times` times) when it
     /// moves by at most `--tolerance` (a proven bound; else refused naming the bound).
     #[arg(long, value_name = "U", allow_hyphen_values = true)]
     pub remove_knot: Option<f64>,

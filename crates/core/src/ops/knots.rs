@@ -1,4 +1,5 @@
-//! Knot removal (Tiller's algorithm, *The NURBS Book* §5.4) for B-spline and NURBS curves,
+//! Knot removal (Tiller's algorithm, *The NURBS Book* §5.4) for B-spline and NURBS curves
+//! (and a standard NUBMP curve, through its B-spline),
 //! within a tolerance, with the distance the curve moves **proven**, not estimated.
 //!
 //! Removing a knot once solves for the `p − s` new control points around it (`p` the
@@ -20,7 +21,7 @@
 
 use glam::{DVec3, DVec4};
 
-use crate::geom::{BSpline, Curve, GeomError, Nurbs};
+use crate::geom::{BSpline, Curve, GeomError, Nubmp, Nurbs};
 
 use super::OpError;
 
@@ -103,7 +104,8 @@ fn remove_once(
 /// [`OpError::Tolerance`] for a tolerance that is negative or not finite (0 removes only a
 /// knot whose removal does not move the curve, up to rounding);
 /// [`OpError::NotAKnot`] when `u` is not an interior knot of the curve or is there fewer
-/// than `times` times; [`OpError::Unsupported`] for another family;
+/// than `times` times; [`OpError::Unsupported`] for another family; [`OpError::Geom`]
+/// for a NUBMP curve whose shape parameters are set (it is refused until they are reset);
 /// [`OpError::WouldMove`] naming the bound when it exceeds the tolerance;
 /// [`OpError::Geom`] when the result is not a valid curve.
 pub fn remove_knot(
@@ -114,6 +116,29 @@ pub fn remove_knot(
 ) -> Result<Removed, OpError> {
     if !(tolerance.is_finite() && tolerance >= 0.0) {
         return Err(OpError::Tolerance(tolerance));
+    }
+    // A standard NUBMP curve is its B-spline (paper 001): the knot is removed there and
+    // the result is the standard curve of the new spline; with shape parameters set the
+    // groups of the new knot vector would not correspond to the old ones.
+    if let Curve::Nubmp(n) = curve {
+        if !n.is_standard() {
+            return Err(OpError::Geom(GeomError::refused(
+                "nubmp",
+                "reset the shape parameters to the standard curve before removing a knot (the groups of the new knot vector differ)",
+            )));
+        }
+        let spline =
+            BSpline::from_parts(n.points().to_vec(), n.knots().clone()).map_err(OpError::Geom)?;
+        let r = remove_knot(&Curve::BSpline(spline), u, times, tolerance)?;
+        let Curve::BSpline(b) = r.curve else {
+            unreachable!("a B-spline's knot removal gives a B-spline")
+        };
+        let back =
+            Nubmp::standard(b.points().to_vec(), b.knots().clone()).map_err(OpError::Geom)?;
+        return Ok(Removed {
+            curve: Curve::Nubmp(back),
+            error: r.error,
+        });
     }
     let Some((knots, order, points, rational)) = homogeneous(curve) else {
         return Err(OpError::Unsupported {

@@ -621,8 +621,9 @@ class Curve:
     def remove_knot(
         self, u: float, *, times: int = 1, tolerance: float = 0.0, with_error: bool = False
     ) -> Any:
-        """The curve (:class:`BSpline` or :class:`Nurbs`) with the knot ``u`` removed
-        ``times`` times (Tiller's algorithm) when it moves by at most ``tolerance`` — a
+        """The curve (:class:`BSpline`, :class:`Nurbs`, or a standard :class:`Nubmp` through
+        its B-spline — refused while its shape parameters are set) with the knot ``u``
+        removed ``times`` times (Tiller's algorithm) when it moves by at most ``tolerance`` — a
         proven bound: the knot inserted back, the control points compared on one basis —
         else a :class:`CurveError` naming the bound it would reach. ``tolerance=0`` removes
         only a knot whose removal does not move the curve (up to rounding). With
