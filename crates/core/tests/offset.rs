@@ -27,28 +27,35 @@ fn true_offset(c: &Curve, t: f64, d: f64) -> DVec3 {
 }
 
 /// The distance from `q` to the true offset: dense samples, then golden-section search
-/// around the nearest.
+/// around every local minimum of the sampled distance that comes near the least (near a
+/// cusp the offset folds back, and the nearest sample need not bracket the nearest point).
 fn distance_to_offset(c: &Curve, d: f64, q: DVec3, samples: &[(f64, DVec3)]) -> f64 {
-    let (i, _) = samples
-        .iter()
-        .enumerate()
-        .map(|(i, (_, s))| (i, (*s - q).length()))
-        .fold((0, f64::INFINITY), |m, x| if x.1 < m.1 { x } else { m });
-    let (mut lo, mut hi) = (
-        samples[i.saturating_sub(1)].0,
-        samples[(i + 1).min(samples.len() - 1)].0,
-    );
+    let dist: Vec<f64> = samples.iter().map(|(_, s)| (*s - q).length()).collect();
+    let least = dist.iter().copied().fold(f64::INFINITY, f64::min);
     let f = |t: f64| (true_offset(c, t, d) - q).length();
     let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..60 {
-        let (x1, x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
-        if f(x1) < f(x2) {
-            hi = x2;
-        } else {
-            lo = x1;
+    let n = dist.len();
+    let mut best = least;
+    for i in 0..n {
+        let local = (i == 0 || dist[i] <= dist[i - 1]) && (i + 1 == n || dist[i] <= dist[i + 1]);
+        if !local || dist[i] > least + 0.05 * (1.0 + d.abs()) {
+            continue;
         }
+        let (mut lo, mut hi) = (
+            samples[i.saturating_sub(1)].0,
+            samples[(i + 1).min(n - 1)].0,
+        );
+        for _ in 0..60 {
+            let (x1, x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
+            if f(x1) < f(x2) {
+                hi = x2;
+            } else {
+                lo = x1;
+            }
+        }
+        best = best.min(f(0.5 * (lo + hi)));
     }
-    f(0.5 * (lo + hi)).min(samples[i].1.distance(q))
+    best
 }
 
 /// Checks an offset both ways against the true one; returns the largest distance seen.
@@ -138,6 +145,18 @@ fn random_cubics_both_ways_within_the_bound() {
         let d = (0.01 + 0.2 * rng.next()) * if k % 2 == 0 { 1.0 } else { -1.0 };
         check_both_ways(&bezier(&pts), d, 1e-3);
     }
+    // Farther out, where most offsets have cusps, and tighter.
+    let mut cusps = 0;
+    for k in 0..30 {
+        let pts: Vec<(f64, f64)> = (0..4).map(|_| (rng.next(), rng.next())).collect();
+        let d = (0.2 + 0.8 * rng.next()) * if k % 2 == 0 { 1.0 } else { -1.0 };
+        let c = bezier(&pts);
+        cusps += offset(&c, d, 1e-4, &OffsetOptions::default())
+            .expect("offset")
+            .cusps;
+        check_both_ways(&c, d, 1e-4);
+    }
+    assert!(cusps >= 10, "the cases reach cusps ({cusps})");
 }
 
 #[test]

@@ -10,11 +10,14 @@
 //! homogeneous `A/W`, `Q = |H|²`, `K = H × H′`, so that `κ = K W² / Q^{3/2}`), and each
 //! part runs with `s = sign(1 − dκ)` fixed: forward, or backward in a loop.
 //!
-//! **The pieces.** Each part is covered greedily by the longest pieces that fit: a cubic
-//! `B` with the offset's end points and end tangent directions (`s C′/|C′|`), its two
-//! handle lengths fitted by least squares to samples of the offset — first at the
-//! samples' orthogonal feet on `B` (a geometric fit, Newton-corrected parameters), else
-//! at the offset's own parameters (a parametric fit).
+//! **The pieces.** Each part is covered greedily by the longest pieces that fit (the
+//! longest whose error at a few points is within the tolerance, found by bisection, then
+//! shortened until its bound is proven): a cubic `B` with the offset's end points and end
+//! tangent directions (`s C′/|C′|`), its two handle lengths (at least 0) fitted to 20
+//! samples of the offset — first at the samples' orthogonal feet on `B` (a geometric fit:
+//! parameters Newton-corrected each round, the weights then reweighted by Lawson's rule
+//! toward the least largest distance rather than the least squares), else at the
+//! offset's own parameters (a parametric fit, by least squares).
 //!
 //! **The bound of a geometric fit** (every point of `B` and of the offset within `ε` of
 //! the other). Let `G(u, t) = s (W(t) B(u) − A(t)) · H(t)`, zero exactly where `B(u)`
@@ -66,7 +69,6 @@ use crate::analysis::{poly, roots};
 use crate::geom::{BezierSegment, Curve, Lower, ParamCurve, Path, PathSegment};
 
 use super::OpError;
-use super::fit::tangent_fit;
 
 /// How the outer side of a kink is joined.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -136,7 +138,9 @@ pub struct Offset {
 pub const MAX_OFFSET_PIECES: usize = 1 << 16;
 
 /// Samples of the offset each fit uses.
-const SAMPLES: usize = 12;
+const SAMPLES: usize = 20;
+/// Rounds of a geometric fit (parameters corrected, then reweighted toward minimax).
+const FIT_ROUNDS: usize = 24;
 /// How deep a piece's bound may cut its parameter.
 const VERIFY_DEPTH: u32 = 9;
 /// How deep at an end next to a cusp (the ball there shrinks with the box).
@@ -809,9 +813,10 @@ impl Piece {
         let t0 = self.s * self.g.tangent(0.0);
         let t1 = -self.s * self.g.tangent(1.0);
         let mut u = us.clone();
-        let mut c = tangent_fit(&pts, 0, SAMPLES - 1, &u, t0, t1);
+        let mut w = vec![1.0; SAMPLES];
+        let mut c = handles(&pts, &u, &w, t0, t1);
         if geometric {
-            for _ in 0..4 {
+            for round in 0..FIT_ROUNDS {
                 for j in 1..SAMPLES - 1 {
                     let v = u[j];
                     let (q, d1, d2) = (cubic_at(&c, v), cubic_deriv(&c, v), cubic_second(&c, v));
@@ -821,7 +826,20 @@ impl Piece {
                         u[j] = (v - f / df).clamp(0.0, 1.0);
                     }
                 }
-                c = tangent_fit(&pts, 0, SAMPLES - 1, &u, t0, t1);
+                // After a few plain rounds, Lawson's reweighting toward the least largest
+                // distance (minimax) rather than the least squares.
+                if round >= 2 {
+                    let r: Vec<f64> = (0..SAMPLES)
+                        .map(|j| (cubic_at(&c, u[j]) - pts[j]).length())
+                        .collect();
+                    let total: f64 = w.iter().zip(&r).map(|(a, b)| a * b).sum();
+                    if total > 0.0 {
+                        for j in 0..SAMPLES {
+                            w[j] = (w[j] * r[j] / total).max(1e-12);
+                        }
+                    }
+                }
+                c = handles(&pts, &u, &w, t0, t1);
             }
         }
         c[0] = pts[0];
@@ -854,6 +872,40 @@ impl Piece {
         let b = self.fit(false);
         self.check_parametric(&b, tol).map(|e| (b, e))
     }
+}
+
+/// The cubic from `pts[0]` to the last point with inner points along `t0`, `t1` whose two
+/// lengths minimise `Σ w_j² |B(u_j) − p_j|²` (a 2 × 2 system), each at least a billionth
+/// of the chord (a vanishing handle suits an end at a cusp; a negative one would loop).
+fn handles(pts: &[DVec3], u: &[f64], w: &[f64], t0: DVec3, t1: DVec3) -> [DVec3; 4] {
+    let (p0, p3) = (pts[0], pts[pts.len() - 1]);
+    let (mut c00, mut c01, mut c11, mut x0, mut x1) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for ((p, &v), &wj) in pts.iter().zip(u).zip(w) {
+        let s = 1.0 - v;
+        let (b0, b1, b2, b3) = (s * s * s, 3.0 * s * s * v, 3.0 * s * v * v, v * v * v);
+        let w2 = wj * wj;
+        let (a1, a2) = (t0 * b1, t1 * b2);
+        c00 += w2 * a1.dot(a1);
+        c01 += w2 * a1.dot(a2);
+        c11 += w2 * a2.dot(a2);
+        let rest = *p - (p0 * (b0 + b1) + p3 * (b2 + b3));
+        x0 += w2 * a1.dot(rest);
+        x1 += w2 * a2.dot(rest);
+    }
+    let chord = (p3 - p0).length();
+    let det = c00 * c11 - c01 * c01;
+    let (l0, l1) = if det.abs() > 1e-14 * (c00 * c11).max(f64::MIN_POSITIVE) {
+        ((x0 * c11 - x1 * c01) / det, (c00 * x1 - c01 * x0) / det)
+    } else {
+        (chord / 3.0, chord / 3.0)
+    };
+    let floor = 1e-9 * chord;
+    let (l0, l1) = if l0.is_finite() && l1.is_finite() {
+        (l0.max(floor), l1.max(floor))
+    } else {
+        (chord / 3.0, chord / 3.0)
+    };
+    [p0, p0 + t0 * l0, p3 + t1 * l1, p3]
 }
 
 /// `max |X Y − k V|` over the tensor coefficients (`X`, `Y` of degrees `(nu, nt)`,
