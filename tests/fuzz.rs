@@ -463,8 +463,54 @@ impl Fuzz {
         std::fs::write(&path, &text).expect("write case");
         let p = path.to_string_lossy().into_owned();
         let s = |x: &str| x.to_owned();
-        let command = self.rng.int(0, 3);
+        let command = self.rng.int(0, 4);
         match command {
+            4 => {
+                // An operation that makes curves (offsets above all: a new path through
+                // every family's lowering), its result checked.
+                let value =
+                    ["0.5", "-0.25", "1e-9", "1e9", "0", "NaN", "-1e300"][self.rng.int(0, 6)];
+                let tolerance = ["1e-3", "1e-9", "1", "1e300", "0"][self.rng.int(0, 4)];
+                let out = self.dir.join("op.json");
+                let mut args = vec![s("op"), p];
+                match self.rng.int(0, 3) {
+                    0 => args.extend([s("--offset"), s(value), s("--tolerance"), s(tolerance)]),
+                    1 => args.extend([
+                        s("--offset"),
+                        s(value),
+                        s("--tolerance"),
+                        s(tolerance),
+                        s("--caps"),
+                        s(["butt", "round", "square"][self.rng.int(0, 2)]),
+                        s("--join"),
+                        s(["round", "miter", "bevel"][self.rng.int(0, 2)]),
+                    ]),
+                    2 => args.extend([
+                        s("--offset"),
+                        s(value),
+                        s("--tolerance"),
+                        s(tolerance),
+                        s("--trim"),
+                    ]),
+                    _ => args.extend([s("--to-cubics"), s(tolerance)]),
+                }
+                args.extend([s("-o"), out.to_string_lossy().into_owned()]);
+                self.cli(args, Some(&out), &case, &text);
+                if out.exists() {
+                    let (checked, _) = run_bounded(
+                        &[s("check"), out.to_string_lossy().into_owned()],
+                        Duration::from_secs(30),
+                    );
+                    // The input may already be beyond the GPU's range; anything else
+                    // refused is a bad scene written.
+                    let stderr = String::from_utf8_lossy(&checked.stderr);
+                    if !checked.status.success() && !stderr.contains("not drawable on the GPU") {
+                        self.fail(format!(
+                            "{case}: op wrote a scene that check fails on: {stderr}\ninput: {text}"
+                        ));
+                    }
+                }
+            }
             0 => {
                 self.cli(vec![s("check"), p], None, &case, &text);
             }

@@ -519,6 +519,22 @@ fn bad_arguments_are_refused_by_name() {
     let e = offset(&point, 0.1, 0.1, &o).expect_err("a point");
     assert!(matches!(e, OpError::Degenerate(_)), "{e}");
     assert!(e.to_string().contains("single point"));
+    // Within half the tolerance the curve itself is the offset, as cubics (each point of
+    // either |d| from the other): a curve, a closed one, and outlines of both.
+    for (curve, d) in [(&c, 1e-9), (&c, -4e-4)] {
+        let o = offset(curve, d, 1e-3, &o).expect("tiny");
+        assert!(o.error <= 1e-3);
+        check_both_ways(curve, d, 1e-3);
+    }
+    let circle = Curve::Nurbs(Nurbs::circle(p(0.0, 0.0), 1.0).expect("circle"));
+    for caps in [None, Some(Cap::Round)] {
+        let opts = OffsetOptions { caps, ..o };
+        for curve in [&c, &circle] {
+            let r = offset(curve, 1e-9, 1e-3, &opts).expect("tiny");
+            assert!(r.error <= 1e-3);
+            assert!(r.paths.iter().all(|p| p.is_closed() || caps.is_none()));
+        }
+    }
     // d = 0 is the curve itself, as cubics.
     let same = offset(&c, 0.0, 1e-9, &o).expect("zero");
     assert!(same.error <= 1e-9);

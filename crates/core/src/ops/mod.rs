@@ -98,6 +98,18 @@ pub enum OpError {
     /// A fit's input that cannot be fitted (named in the message).
     #[error("{0}")]
     Fit(String),
+    /// A tolerance finer than an offset can be proven to in `f64` for this curve (a
+    /// relative floor of its size and distance).
+    #[error(
+        "tolerance {}: finer than an offset of this curve can be proven to ({} of its size and distance: {}); ask for at least that",
+        Num(*tolerance), Num(super::ops::offset::RELATIVE_FLOOR), Num(*floor)
+    )]
+    BelowPrecision {
+        /// The tolerance asked for.
+        tolerance: f64,
+        /// The least tolerance allowed for this curve.
+        floor: f64,
+    },
     /// An offset distance that is not finite (or 0 for a stroke outline).
     #[error("offset distance {}: must be a finite number (not 0 for a stroke outline)", Num(*.0))]
     Distance(f64),

@@ -135,7 +135,11 @@ pub struct Offset {
 }
 
 /// The most pieces one offset may have (the work is refused past it).
-pub const MAX_OFFSET_PIECES: usize = 1 << 16;
+pub const MAX_OFFSET_PIECES: usize = 1 << 14;
+
+/// The finest tolerance an offset is proven to, relative to the curve's size plus `|d|`
+/// (the bounds' own rounding is far below it; finer asks would only cost time).
+pub const RELATIVE_FLOOR: f64 = 1e-9;
 
 /// Samples of the offset each fit uses.
 const SAMPLES: usize = 20;
@@ -1143,7 +1147,7 @@ fn offset_segment(
                     break;
                 }
                 guard += 1;
-                if t1 - t0 < 1e-13 || guard > 200 {
+                if t1 - t0 < 1e-13 || guard > 80 {
                     return Err(too_many());
                 }
                 t1 = t0 + SHRINK * (t1 - t0);
@@ -1321,6 +1325,19 @@ fn cap(
     }
 }
 
+/// A path of cubic segments as their control points.
+fn cubics_of(path: &Path) -> Vec<[DVec3; 4]> {
+    path.segments()
+        .iter()
+        .map(|s| std::array::from_fn(|i| s.points[i]))
+        .collect()
+}
+
+/// A path of cubic segments traced the other way.
+fn reverse_path(path: &Path) -> Result<Path, OpError> {
+    path_of(reversed(cubics_of(path)), path.is_closed())
+}
+
 /// The pieces reversed (each cubic's points in reverse order).
 fn reversed(pieces: Vec<[DVec3; 4]>) -> Vec<[DVec3; 4]> {
     pieces
@@ -1338,8 +1355,9 @@ fn reversed(pieces: Vec<[DVec3; 4]>) -> Vec<[DVec3; 4]> {
 /// [`OpError::Distance`] for a `d` that is not finite, or 0 with caps; [`OpError::MiterLimit`]
 /// for a limit below 1 or not finite; [`OpError::NotPlanar`] for a curve that leaves the
 /// plane `z = 0`; [`OpError::Degenerate`] for a curve that is a single point;
-/// [`OpError::TrimWithCaps`] for both at once; [`OpError::TooManyPieces`] past
-/// [`MAX_OFFSET_PIECES`].
+/// [`OpError::TrimWithCaps`] for both at once; [`OpError::BelowPrecision`] for a
+/// tolerance below [`RELATIVE_FLOOR`] times the curve's size plus `|d|`;
+/// [`OpError::TooManyPieces`] past [`MAX_OFFSET_PIECES`].
 pub fn offset(
     curve: &Curve,
     d: f64,
@@ -1368,16 +1386,51 @@ pub fn offset(
     let (start, end) = (curve.eval(ta), curve.eval(tb));
     let closed = super::closed(curve)
         || (start - end).length() <= 1e-12 * (1.0 + start.length().max(end.length()));
-    if d == 0.0 {
-        let a = super::to_cubics(curve, tolerance)?;
+    // Within half the tolerance of the curve: every point of the offset (joins included)
+    // is |d| from one of the curve's and back, so the curve's own cubics within the rest of
+    // the tolerance are within it of the offset (a stroke outline of such a width: the
+    // curve there and back).
+    if d.abs() <= 0.5 * tolerance {
+        let a = super::to_cubics(curve, tolerance - d.abs())?;
+        let error = a.error + d.abs();
+        let own = if closed {
+            let mut c = cubics_of(&a.path);
+            let start = c[0][0];
+            if let Some(last) = c.last_mut() {
+                last[3] = start;
+            }
+            path_of(c, true)?
+        } else {
+            a.path
+        };
+        let paths = match options.caps {
+            None => vec![own],
+            Some(_) if closed => vec![own.clone(), reverse_path(&own)?],
+            Some(_) => {
+                let there: Vec<[DVec3; 4]> = cubics_of(&own);
+                let back = reversed(there.clone());
+                let mut all = there;
+                all.extend(back);
+                vec![path_of(all, true)?]
+            }
+        };
         return Ok(Offset {
-            paths: vec![a.path],
-            error: a.error,
+            paths,
+            error,
             cusps: 0,
         });
     }
+    let lowered = curve.lower();
+    let size = lowered.iter().flat_map(|s| s.bezier.points().iter()).fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    let floor = RELATIVE_FLOOR * ((size.1 - size.0).length() + d.abs());
+    if tolerance < floor || !floor.is_finite() {
+        return Err(OpError::BelowPrecision { tolerance, floor });
+    }
     let delta = tolerance * 1e-3;
-    let geos = prepare(&curve.lower(), delta);
+    let geos = prepare(&lowered, delta);
     if geos.is_empty() {
         return Err(OpError::Degenerate(
             "the curve is a single point: it has no normal to offset along",
@@ -1387,9 +1440,13 @@ pub fn offset(
     // The pieces' own bounds get what is left after the ends' moves and the seams.
     let tol = 0.99 * tolerance - moved;
     let stroke = options.caps.is_some();
+    let asked = |e: OpError| match e {
+        OpError::TooManyPieces { limit, .. } => OpError::TooManyPieces { limit, tolerance },
+        other => other,
+    };
     let (paths, error, cusps) = match options.caps {
         None => {
-            let s = side(&geos, closed, d, tol, options, false)?;
+            let s = side(&geos, closed, d, tol, options, false).map_err(asked)?;
             let error = s.error;
             let paths = if options.trim {
                 trim(curve, s.pieces, closed, d, tolerance)?
@@ -1400,8 +1457,8 @@ pub fn offset(
         }
         Some(kind) => {
             let half = d.abs();
-            let left = side(&geos, closed, half, tol, options, stroke)?;
-            let right = side(&geos, closed, -half, tol, options, stroke)?;
+            let left = side(&geos, closed, half, tol, options, stroke).map_err(asked)?;
+            let right = side(&geos, closed, -half, tol, options, stroke).map_err(asked)?;
             let error = left.error.max(right.error);
             let cusps = left.cusps + right.cusps;
             if closed {
