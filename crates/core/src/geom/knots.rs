@@ -245,13 +245,26 @@ impl KnotVector {
     /// triangular form), with the span `μ`.
     #[must_use]
     pub fn basis(&self, t: f64) -> (usize, Vec<f64>) {
+        let p = self.degree();
+        let mut n = vec![0.0; p + 1];
+        let mut left = vec![0.0; p + 1];
+        let mut right = vec![0.0; p + 1];
+        let mu = self.basis_into(t, &mut n, &mut left, &mut right);
+        (mu, n)
+    }
+
+    /// [`KnotVector::basis`] into `n` (its `p + 1` values), with `left` and `right` as
+    /// scratch (each at least `p + 1` long): no allocation, for loops over many
+    /// parameters. Returns the span.
+    ///
+    /// # Panics
+    /// If a slice is shorter than `p + 1`.
+    pub fn basis_into(&self, t: f64, n: &mut [f64], left: &mut [f64], right: &mut [f64]) -> usize {
         let mu = self.span(t);
         let p = self.degree();
         let tk = &self.knots;
-        let mut n = vec![0.0; p + 1];
+        n[..=p].fill(0.0);
         n[0] = 1.0;
-        let mut left = vec![0.0; p + 1];
-        let mut right = vec![0.0; p + 1];
         for j in 1..=p {
             left[j] = t - tk[mu + 1 - j];
             right[j] = tk[mu + j] - t;
@@ -264,7 +277,7 @@ impl KnotVector {
             }
             n[j] = saved;
         }
-        (mu, n)
+        mu
     }
 
     /// The knot vector with `t` inserted once more.

@@ -185,12 +185,15 @@ pub fn fit_bspline(
             .chain(std::iter::repeat_n(1.0, degree + 1))
             .collect()
     };
-    let finish = |full: Vec<f64>, ctrl: Vec<DVec3>| -> Result<Fit<BSpline>, OpError> {
+    // The residuals from the fitted points the least squares computed (the same basis).
+    let finish = |full: Vec<f64>,
+                  (ctrl, fitted): (Vec<DVec3>, Vec<DVec3>)|
+     -> Result<Fit<BSpline>, OpError> {
         let curve = BSpline::try_new(ctrl, full, degree + 1).map_err(OpError::Geom)?;
         let residuals = points
             .iter()
-            .zip(&t)
-            .map(|(p, &u)| (curve.eval(u) - *p).length())
+            .zip(&fitted)
+            .map(|(p, q)| (*q - *p).length())
             .collect();
         Ok(Fit {
             curve,
@@ -232,20 +235,19 @@ pub fn fit_bspline(
             let mut interior: Vec<f64> = Vec::new();
             loop {
                 let full = clamped(&interior);
-                let ctrl = least_squares(points, &t, weights, &full, degree)?;
-                let spline = BSpline::try_new(ctrl.clone(), full.clone(), degree + 1).map_err(OpError::Geom)?;
+                let solved = least_squares(points, &t, weights, &full, degree)?;
                 // Squared residuals by knot span.
                 let mut spans: Vec<(f64, Vec<usize>)> = vec![(0.0, Vec::new()); interior.len() + 1];
                 let mut total = 0.0;
                 for (i, (p, &u)) in points.iter().zip(&t).enumerate() {
-                    let r2 = w2(i) * (spline.eval(u) - *p).length_squared();
+                    let r2 = w2(i) * (solved.1[i] - *p).length_squared();
                     total += r2;
                     let k = interior.partition_point(|&x| x <= u).min(interior.len());
                     spans[k].0 += r2;
                     spans[k].1.push(i);
                 }
                 if total <= s {
-                    return finish(full, ctrl);
+                    return finish(full, solved);
                 }
                 if interior.len() >= most {
                     return interpolating();
@@ -294,14 +296,15 @@ pub fn fit_bspline(
 }
 
 /// The control points minimising `Σ w_i² |C(t_i) − p_i|²` on the clamped knot vector
-/// `knots` of `degree`, by the banded normal equations.
+/// `knots` of `degree`, by the banded normal equations, and the fitted points `C(t_i)`
+/// (from the same basis values).
 fn least_squares(
     points: &[DVec3],
     t: &[f64],
     weights: Option<&[f64]>,
     knots: &[f64],
     degree: usize,
-) -> Result<Vec<DVec3>, OpError> {
+) -> Result<(Vec<DVec3>, Vec<DVec3>), OpError> {
     let p = degree;
     let n = knots.len() - p - 1;
     let kv = KnotVector::try_new(knots.to_vec(), p + 1, n).map_err(OpError::Geom)?;
@@ -309,8 +312,15 @@ fn least_squares(
     // Lower band of the symmetric matrix: a[i][j] for j in 0..band is entry (i, i − j).
     let mut a = vec![vec![0.0; band]; n];
     let mut rhs = vec![DVec3::ZERO; n];
+    // Each point's span and basis values, kept for the fitted points.
+    let mut spans = Vec::with_capacity(points.len());
+    let mut values = vec![0.0; points.len() * band];
+    let (mut left, mut right) = (vec![0.0; band], vec![0.0; band]);
     for (k, (pt, &u)) in points.iter().zip(t).enumerate() {
-        let (span, basis) = kv.basis(u);
+        let basis = &mut values[k * band..(k + 1) * band];
+        let span = kv.basis_into(u, basis, &mut left, &mut right);
+        spans.push(span);
+        let basis = &values[k * band..(k + 1) * band];
         let w2 = weights.map_or(1.0, |w| w[k] * w[k]);
         for r in 0..=p {
             let i = span - p + r;
@@ -361,7 +371,16 @@ fn least_squares(
             "control point {i} is not finite: the fit is singular"
         )));
     }
-    Ok(y)
+    let fitted = spans
+        .iter()
+        .enumerate()
+        .map(|(k, &span)| {
+            (0..=p).fold(DVec3::ZERO, |acc, r| {
+                acc + y[span - p + r] * values[k * band + r]
+            })
+        })
+        .collect();
+    Ok((y, fitted))
 }
 
 /// The most segments [`fit_path`] makes (a guard against a tolerance far below the data's
