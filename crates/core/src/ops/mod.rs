@@ -102,11 +102,13 @@ pub enum OpError {
     /// relative floor of its size and distance).
     #[error(
         "tolerance {}: finer than an offset of this curve can be proven to ({} of its size and distance: {}); ask for at least that",
-        Num(*tolerance), Num(super::ops::offset::RELATIVE_FLOOR), Num(*floor)
+        Num(*tolerance), Num(*relative), Num(*floor)
     )]
     BelowPrecision {
         /// The tolerance asked for.
         tolerance: f64,
+        /// The floor relative to the curve's size and distance.
+        relative: f64,
         /// The least tolerance allowed for this curve.
         floor: f64,
     },

@@ -69,6 +69,7 @@ use crate::analysis::{poly, roots};
 use crate::geom::{BezierSegment, Curve, Lower, ParamCurve, Path, PathSegment};
 
 use super::OpError;
+use super::approx;
 
 /// How the outer side of a kink is joined.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -967,7 +968,7 @@ fn arc_piece(center: DVec3, r: f64, a0: f64, sweep: f64) -> ([DVec3; 4], f64) {
         &[r * r],
     );
     let zeros = vec![0.0; z.len()];
-    let e = super::approx::hull_bound(&[z, zeros.clone(), zeros], 4);
+    let e = approx::hull_bound(&[z, zeros.clone(), zeros], 4);
     let err = normal_error(e, r).unwrap_or(r);
     (b, err)
 }
@@ -1384,14 +1385,19 @@ pub fn offset(
     // Closed: a closed path, or a curve that ends where it starts (a closed NURBS curve).
     let (ta, tb) = curve.domain();
     let (start, end) = (curve.eval(ta), curve.eval(tb));
-    let closed = super::closed(curve)
+    let closed = matches!(curve, Curve::Path(p) if p.is_closed())
         || (start - end).length() <= 1e-12 * (1.0 + start.length().max(end.length()));
     // Within half the tolerance of the curve: every point of the offset (joins included)
     // is |d| from one of the curve's and back, so the curve's own cubics within the rest of
     // the tolerance are within it of the offset (a stroke outline of such a width: the
     // curve there and back).
     if d.abs() <= 0.5 * tolerance {
-        let a = super::to_cubics(curve, tolerance - d.abs())?;
+        let a = approx::approximate(
+            &curve.lower(),
+            closed,
+            approx::Target::Cubic,
+            tolerance - d.abs(),
+        )?;
         let error = a.error + d.abs();
         let own = if closed {
             let mut c = cubics_of(&a.path);
@@ -1427,7 +1433,11 @@ pub fn offset(
     );
     let floor = RELATIVE_FLOOR * ((size.1 - size.0).length() + d.abs());
     if tolerance < floor || !floor.is_finite() {
-        return Err(OpError::BelowPrecision { tolerance, floor });
+        return Err(OpError::BelowPrecision {
+            tolerance,
+            relative: RELATIVE_FLOOR,
+            floor,
+        });
     }
     let delta = tolerance * 1e-3;
     let geos = prepare(&lowered, delta);
