@@ -586,42 +586,47 @@ fn schneider(
     )
 }
 
-/// The cubic with ends `pts[a]`, `pts[b]` and inner points along `t0`, `t1` whose two
-/// lengths minimise the squared distances at `u` (a 2 × 2 system; a degenerate one falls
-/// back to a third of the chord).
-pub(super) fn tangent_fit(
+/// The two handle lengths `(l₀, l₁)` of the cubic from `pts[0]` to the last point with
+/// inner points `P₀ + l₀ t₀` and `P₃ + l₁ t₁` that minimise `Σ w_j² |B(u_j) − p_j|²` (a
+/// 2 × 2 system; `w` all 1 when `None`), or `None` when the system is singular.
+pub(super) fn handle_lengths(
     pts: &[DVec3],
-    a: usize,
-    b: usize,
     u: &[f64],
+    w: Option<&[f64]>,
     t0: DVec3,
     t1: DVec3,
-) -> [DVec3; 4] {
-    let (p0, p3) = (pts[a], pts[b]);
+) -> Option<(f64, f64)> {
+    let (p0, p3) = (pts[0], pts[pts.len() - 1]);
     let (mut c00, mut c01, mut c11, mut x0, mut x1) = (0.0, 0.0, 0.0, 0.0, 0.0);
-    for i in a..=b {
-        let v = u[i - a];
+    for (j, (p, &v)) in pts.iter().zip(u).enumerate() {
         let s = 1.0 - v;
         let (b0, b1, b2, b3) = (s * s * s, 3.0 * s * s * v, 3.0 * s * v * v, v * v * v);
+        let w2 = w.map_or(1.0, |w| w[j] * w[j]);
         let (a1, a2) = (t0 * b1, t1 * b2);
-        c00 += a1.dot(a1);
-        c01 += a1.dot(a2);
-        c11 += a2.dot(a2);
-        let tmp = pts[i] - (p0 * (b0 + b1) + p3 * (b2 + b3));
-        x0 += a1.dot(tmp);
-        x1 += a2.dot(tmp);
+        c00 += w2 * a1.dot(a1);
+        c01 += w2 * a1.dot(a2);
+        c11 += w2 * a2.dot(a2);
+        let rest = *p - (p0 * (b0 + b1) + p3 * (b2 + b3));
+        x0 += w2 * a1.dot(rest);
+        x1 += w2 * a2.dot(rest);
     }
     let det = c00 * c11 - c01 * c01;
+    let solved = ((x0 * c11 - x1 * c01) / det, (c00 * x1 - c01 * x0) / det);
+    (det.abs() > 1e-12 * (c00 * c11).max(f64::MIN_POSITIVE)
+        && solved.0.is_finite()
+        && solved.1.is_finite())
+    .then_some(solved)
+}
+
+/// The cubic with ends `pts[a]`, `pts[b]` and inner points along `t0`, `t1` whose two
+/// lengths minimise the squared distances at `u` ([`handle_lengths`]; a singular system,
+/// or a negative or vanishing length, which would loop or cusp, falls back to a third of
+/// the chord).
+fn tangent_fit(pts: &[DVec3], a: usize, b: usize, u: &[f64], t0: DVec3, t1: DVec3) -> [DVec3; 4] {
+    let (p0, p3) = (pts[a], pts[b]);
     let chord = (p3 - p0).length();
-    let (mut l0, mut l1) = if det.abs() > 1e-12 * (c00 * c11).max(f64::MIN_POSITIVE) {
-        ((x0 * c11 - x1 * c01) / det, (c00 * x1 - c01 * x0) / det)
-    } else {
-        (chord / 3.0, chord / 3.0)
-    };
-    // A negative or vanishing length would loop or cusp: a third of the chord instead.
-    if !(l0 > 1e-6 * chord && l1 > 1e-6 * chord) {
-        l0 = chord / 3.0;
-        l1 = chord / 3.0;
-    }
+    let (l0, l1) = handle_lengths(&pts[a..=b], u, None, t0, t1)
+        .filter(|&(l0, l1)| l0 > 1e-6 * chord && l1 > 1e-6 * chord)
+        .unwrap_or((chord / 3.0, chord / 3.0));
     [p0, p0 + t0 * l0, p3 + t1 * l1, p3]
 }

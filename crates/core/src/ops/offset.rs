@@ -70,6 +70,8 @@ use crate::geom::{BezierSegment, Curve, Lower, ParamCurve, Path, PathSegment};
 
 use super::OpError;
 use super::approx;
+use super::fit::handle_lengths;
+use crate::geom::bezier::{de_casteljau, deriv_at, second_deriv_at};
 
 /// How the outer side of a kink is joined.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -367,20 +369,6 @@ fn cubic_restricted(b: &[DVec3; 4], u0: f64, u1: f64) -> [DVec3; 4] {
     std::array::from_fn(|i| DVec3::new(c[0][i], c[1][i], 0.0))
 }
 
-fn cubic_at(b: &[DVec3; 4], u: f64) -> DVec3 {
-    let s = 1.0 - u;
-    b[0] * (s * s * s) + b[1] * (3.0 * s * s * u) + b[2] * (3.0 * s * u * u) + b[3] * (u * u * u)
-}
-
-fn cubic_deriv(b: &[DVec3; 4], u: f64) -> DVec3 {
-    let s = 1.0 - u;
-    3.0 * ((b[1] - b[0]) * (s * s) + (b[2] - b[1]) * (2.0 * s * u) + (b[3] - b[2]) * (u * u))
-}
-
-fn cubic_second(b: &[DVec3; 4], u: f64) -> DVec3 {
-    6.0 * ((b[2] - 2.0 * b[1] + b[0]) * (1.0 - u) + (b[3] - 2.0 * b[2] + b[1]) * u)
-}
-
 /// `|λ − d|` from `e ≥ |λ² − d²|`, or `None` when `e ≥ d²` (λ could vanish).
 fn normal_error(e: f64, d: f64) -> Option<f64> {
     (e < d * d).then(|| e / (d.abs() + (d * d - e).sqrt()))
@@ -467,7 +455,7 @@ impl Piece {
         let cusp_start = ua == 0.0 && self.cusp.0;
         let cusp_end = ub == 1.0 && self.cusp.1;
         let um = 0.5 * (ua + ub);
-        let pm = cubic_at(b, um);
+        let pm = de_casteljau(b, um);
         let fm = self.foot(pm, 0.5 * (fa + fb));
         let foot_ok = fm > fa && fm < fb;
         if foot_ok && (pm - self.g.offset_at(fm, self.d)).length() > tol {
@@ -824,7 +812,8 @@ impl Piece {
             for round in 0..FIT_ROUNDS {
                 for j in 1..SAMPLES - 1 {
                     let v = u[j];
-                    let (q, d1, d2) = (cubic_at(&c, v), cubic_deriv(&c, v), cubic_second(&c, v));
+                    let (q, d1, d2) =
+                        (de_casteljau(&c, v), deriv_at(&c, v), second_deriv_at(&c, v));
                     let f = (q - pts[j]).dot(d1);
                     let df = d1.dot(d1) + (q - pts[j]).dot(d2);
                     if df.abs() > 1e-300 {
@@ -835,7 +824,7 @@ impl Piece {
                 // distance (minimax) rather than the least squares.
                 if round >= 2 {
                     let r: Vec<f64> = (0..SAMPLES)
-                        .map(|j| (cubic_at(&c, u[j]) - pts[j]).length())
+                        .map(|j| (de_casteljau(&c, u[j]) - pts[j]).length())
                         .collect();
                     let total: f64 = w.iter().zip(&r).map(|(a, b)| a * b).sum();
                     if total > 0.0 {
@@ -859,7 +848,7 @@ impl Piece {
         (1..16)
             .map(|j| {
                 let u = j as f64 / 16.0;
-                let p = cubic_at(&b, u);
+                let p = de_casteljau(&b, u);
                 (p - self.g.offset_at(self.foot(p, u), self.d)).length()
             })
             .fold(0.0, f64::max)
@@ -879,37 +868,18 @@ impl Piece {
     }
 }
 
-/// The cubic from `pts[0]` to the last point with inner points along `t0`, `t1` whose two
-/// lengths minimise `Σ w_j² |B(u_j) − p_j|²` (a 2 × 2 system), each at least a billionth
-/// of the chord (a vanishing handle suits an end at a cusp; a negative one would loop).
+/// The cubic from `pts[0]` to the last point with inner points along `t0`, `t1`, its two
+/// handle lengths by weighted least squares ([`handle_lengths`]), each at least a
+/// billionth of the chord (a vanishing handle suits an end at a cusp; a negative one would
+/// loop); a singular system gives a third of the chord.
 fn handles(pts: &[DVec3], u: &[f64], w: &[f64], t0: DVec3, t1: DVec3) -> [DVec3; 4] {
     let (p0, p3) = (pts[0], pts[pts.len() - 1]);
-    let (mut c00, mut c01, mut c11, mut x0, mut x1) = (0.0, 0.0, 0.0, 0.0, 0.0);
-    for ((p, &v), &wj) in pts.iter().zip(u).zip(w) {
-        let s = 1.0 - v;
-        let (b0, b1, b2, b3) = (s * s * s, 3.0 * s * s * v, 3.0 * s * v * v, v * v * v);
-        let w2 = wj * wj;
-        let (a1, a2) = (t0 * b1, t1 * b2);
-        c00 += w2 * a1.dot(a1);
-        c01 += w2 * a1.dot(a2);
-        c11 += w2 * a2.dot(a2);
-        let rest = *p - (p0 * (b0 + b1) + p3 * (b2 + b3));
-        x0 += w2 * a1.dot(rest);
-        x1 += w2 * a2.dot(rest);
-    }
     let chord = (p3 - p0).length();
-    let det = c00 * c11 - c01 * c01;
-    let (l0, l1) = if det.abs() > 1e-14 * (c00 * c11).max(f64::MIN_POSITIVE) {
-        ((x0 * c11 - x1 * c01) / det, (c00 * x1 - c01 * x0) / det)
-    } else {
-        (chord / 3.0, chord / 3.0)
-    };
     let floor = 1e-9 * chord;
-    let (l0, l1) = if l0.is_finite() && l1.is_finite() {
-        (l0.max(floor), l1.max(floor))
-    } else {
-        (chord / 3.0, chord / 3.0)
-    };
+    let (l0, l1) = handle_lengths(pts, u, Some(w), t0, t1)
+        .map_or((chord / 3.0, chord / 3.0), |(l0, l1)| {
+            (l0.max(floor), l1.max(floor))
+        });
     [p0, p0 + t0 * l0, p3 + t1 * l1, p3]
 }
 
