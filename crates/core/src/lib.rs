@@ -1,6 +1,6 @@
 //! splinescope's core layer: the exact curve math in `f64` ([`geom`]) and the solvers
 //! ([`solve`]), with the number formatting both use in messages ([`num`]) and the
-//! per-curve report of `splinescope inspect` ([`inspect`]).
+//! per-curve report of `splinescope inspect`.
 //!
 //! What it may use: glam, nalgebra, rayon, exact rationals, and — behind the `serde`
 //! feature, on by default — serde and schemars (reports and details serialise; with

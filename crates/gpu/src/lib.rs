@@ -4,7 +4,7 @@
 //! [`splinescope_image::RgbaImage`]) and GPU evaluation.
 //!
 //! What it may use: [`splinescope_core`], [`splinescope_io`], [`splinescope_image`] and
-//! [`splinescope_scene`], wgpu, naga. No
+//! [`splinescope_encoding`] (the scene format's types), wgpu, naga. No
 //! window or command-line crate: the viewer and the command line build on it.
 
 #![forbid(unsafe_code)]

@@ -11,7 +11,7 @@
 //! Paper space, text, hatches, dimensions, meshes and the rest are left out with one
 //! warning that counts them.
 //!
-//! Out ([`write`]): every curve of a scene as one exact `SPLINE` (its [`NurbsForm`]: the
+//! Out ([`write()`]): every curve of a scene as one exact `SPLINE` (its [`NurbsForm`]: the
 //! knots and weights the curve has; a family that is not a B-spline lowers exactly to
 //! one), on a layer named after the curve, in its colour. The file is binary DXF, which
 //! holds each `f64` as its 8 bytes, so a scene written and read back evaluates to the same
@@ -675,7 +675,7 @@ pub fn write(scene: &Scene) -> Result<Vec<u8>, WriteError> {
     save(scene, false)
 }
 
-/// [`write`] as ASCII DXF (numbers to 12 decimals, so not bit for bit).
+/// [`write()`] as ASCII DXF (numbers to 12 decimals, so not bit for bit).
 ///
 /// # Errors
 /// [`WriteError`] when the `dxf` crate cannot write the drawing.

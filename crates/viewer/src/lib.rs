@@ -10,7 +10,7 @@
 //! `I` insert a point, `Delete` delete, `Ctrl+D` duplicate, `]` / `[` select the next /
 //! previous curve, `Ctrl+Z` undo, `Ctrl+Shift+Z` / `Ctrl+Y` redo, `Ctrl+S` save,
 //! `Ctrl+Shift+S` save as, `Ctrl+O` open (or drop a file on the window), `Ctrl+N` new,
-//! `Esc` cancel, `Ctrl+Q` quit, `F1` / `?` the list of shortcuts ([`ui::SHORTCUTS`]).
+//! `Esc` cancel, `Ctrl+Q` quit, `F1` / `?` the list of shortcuts.
 //! Closing or replacing a scene with unsaved changes asks first; a recovery file holds
 //! unsaved edits until they are saved or discarded; saving keeps the file's form.
 

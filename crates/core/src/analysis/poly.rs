@@ -354,7 +354,7 @@ fn triangle2(cx: &[f64], cy: &[f64], t: f64, s: f64, levels: usize) -> [[f64; 2]
 }
 
 /// [`eval`] of two polynomials of one degree (a planar curve's `x` and `y`) in one
-/// triangle ([`triangle2`] for degrees 4 to 7): the same operations on each, so the same
+/// triangle (`triangle2` for degrees 4 to 7): the same operations on each, so the same
 /// values.
 #[must_use]
 #[inline]
@@ -368,7 +368,7 @@ pub fn eval2(cx: &[f64], cy: &[f64], t: f64) -> (f64, f64) {
 }
 
 /// [`eval_with_derivative`] of two polynomials of one degree (a planar curve's `x` and
-/// `y`) in one triangle (written out for cubics, [`triangle2`] for degrees 4 to 7): the
+/// `y`) in one triangle (written out for cubics, `triangle2` for degrees 4 to 7): the
 /// same operations on each, so the same values.
 #[must_use]
 #[inline]

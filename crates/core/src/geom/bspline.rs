@@ -1,6 +1,6 @@
 //! Non-uniform B-spline curves of any order (paper 001, §2), and exact degree elevation.
 //! Formulas (extraction by blossoms, elevation coefficients by dual functionals):
-//! `docs/math.md` §3. A B-spline's [`Family`](super::Family) side — its report is the
+//! `docs/math.md` §3. A B-spline's [`Family`] side — its report is the
 //! structure of the standard NUBMP curve on its knots — is in [`super::nubmp`], which
 //! builds on this file (never the other way round).
 

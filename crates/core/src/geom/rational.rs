@@ -93,7 +93,7 @@ fn project(weighted: &[DVec3], weights: &[DVec3], e: i32) -> (Vec<DVec3>, Vec<f6
 }
 
 /// `weights` scaled alike by a power of two (exactly) so that they lie around 1
-/// ([`weight_exponent`]): what a lowered rational segment carries.
+/// (`weight_exponent`): what a lowered rational segment carries.
 #[must_use]
 pub fn normalised_weights(weights: &[f64]) -> Vec<f64> {
     let e = weight_exponent(weights);

@@ -126,7 +126,7 @@ fn refine(
 }
 
 /// The parameter of the point of `points` nearest `target`: `8(n + 1) + 1` samples, then
-/// the local minima among them refined by [`refine`] within their neighbours, best sample
+/// the local minima among them refined by `refine` within their neighbours, best sample
 /// first. A minimum is skipped when even the fastest the curve can move between samples
 /// (`n · max|P_{i+1} − P_i|`) cannot bring it below the best found: sound pruning, so the
 /// result is the best of all the sampled basins. [`Projector`] is the same search with its

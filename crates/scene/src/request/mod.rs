@@ -71,7 +71,7 @@ const METHOD_TABLE: [Method; 7] = [
     },
 ];
 
-/// The methods a request may name (from [`METHOD_TABLE`]).
+/// The methods a request may name (from `METHOD_TABLE`).
 pub const METHODS: [&str; METHOD_TABLE.len()] = {
     let mut names = [""; METHOD_TABLE.len()];
     let mut i = 0;

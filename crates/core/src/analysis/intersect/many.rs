@@ -9,7 +9,7 @@
 //!    a candidate pair, reported once — in the cell that holds the lower corner of their
 //!    common part. Boxes spanning many cells are paired with every other box directly.
 //! 3. **Pairs of segments** are intersected on every core (rayon), gathered per pair of
-//!    curves, cleaned ([`super::tidy`], [`super::settle`]), and the pairs of the groups'
+//!    curves, cleaned (`tidy`, `settle`), and the pairs of the groups'
 //!    first curves passed on to every member of the groups.
 
 use std::borrow::Borrow;

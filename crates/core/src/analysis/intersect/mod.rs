@@ -1,7 +1,7 @@
 //! Intersections of planar curves: two curves, a curve with itself, and every pair among
 //! many — on their lowered segments, polynomial or rational.
 //!
-//! **Two segments** ([`pair`]): the ends of each tested against the other explicitly;
+//! **Two segments** (`pair`): the ends of each tested against the other explicitly;
 //! coincident stretches between such ends; the rest subdivided to candidates refined by
 //! Newton's method; each point classified as a crossing or a tangency (parallel tangents,
 //! a contact of any order), with a bound on its parameters' error.

@@ -1,6 +1,6 @@
 //! One codec per curve family: how its object in a scene file is read (with the path of
 //! the first offending value) and written. Each family's file implements [`Written`] and
-//! [`Codec`]; the reader's table [`CODECS`] and the written forms' enum
+//! `Codec`; the reader's table `CODECS` and the written forms' enum
 //! ([`super::doc::FamilyDoc`]) are generated from the core's family table
 //! (`splinescope_core::family_table!`), so a family without a codec does not compile.
 
