@@ -12,7 +12,7 @@
 //               one workgroup per segment writes exactly its samples there
 //
 // The line pipeline then draws `instance_count` pieces with one indirect draw. The CPU
-// twins are `wang_count`, `scan_and_place` and `tessellate_adaptive` in src/gpu/twin.rs.
+// twins are `wang_count`, `scan_and_place` and `tessellate_adaptive` in crates/gpu/src/twin.rs.
 // The bound (docs/math.md §5): with H_i = (x, y, w) the control points in homogeneous
 // pixel coordinates (a rational segment's weights multiply its points' w), M_xy and M_w
 // their largest second differences (x and y taken about the centre of the projected
@@ -26,7 +26,7 @@
 @group(0) @binding(1) var<uniform> range: TessParams;
 @group(0) @binding(2) var<storage, read> points: array<ControlPoint>;
 @group(0) @binding(3) var<storage, read> segments: array<Segment>;
-// Twin: the WORK_* constants in src/gpu/layout.rs. [0, 8): the indirect draw arguments and
+// Twin: the WORK_* constants in crates/gpu/src/layout.rs. [0, 8): the indirect draw arguments and
 // the frame's statistics (FrameStats); then counts[S], scan pairs[2 S], block pairs[2 B].
 @group(0) @binding(4) var<storage, read_write> work: array<u32>;
 @group(0) @binding(5) var<storage, read_write> samples: array<Vertex>;
@@ -105,7 +105,7 @@ fn wang_count(seg: Segment) -> u32 {
     // its coefficients), the k-th of each half 2⁻ᵏ Σ_j C(k, j) w_j (from its own end), less
     // WEIGHT_ROUNDING of itself for the rounding. (Written as sums, not as de Casteljau's
     // averages in place: GL on llvmpipe lost those writes to a local array in the nested
-    // loop.) Twin: w_floor in src/gpu/twin.rs.
+    // loop.) Twin: w_floor in crates/gpu/src/twin.rs.
     // Equal weights (a polynomial segment seen orthographically) are their own floor.
     var low = min(h[0].z, h[n].z);
     var half_k = 1.0;
@@ -143,7 +143,7 @@ fn comb_floor(seg: Segment) -> u32 {
 // The hairs of a segment: one every COMB_SPACING_PX pixels of its projected control
 // polygon and one more, from 2 to COMB_HAIRS (the most when a point is at or behind the
 // eye, or the length is not finite). Twin: hairs_for in the core's comb module (figures)
-// and comb_hairs_of in src/gpu/twin.rs.
+// and comb_hairs_of in crates/gpu/src/twin.rs.
 fn comb_hairs_of(seg: Segment) -> u32 {
     let n = min(seg.degree, MAX_DEGREE);
     let half = 0.5 * frame.viewport_px;
@@ -167,7 +167,7 @@ fn comb_hairs_of(seg: Segment) -> u32 {
     return clamp(u32(ceil(length / COMB_SPACING_PX)) + 1u, 2u, COMB_HAIRS);
 }
 
-// Twin: WEIGHT_ROUNDING in src/gpu/twin.rs. Above (n + 3) · 2⁻²⁴ for every degree up to
+// Twin: WEIGHT_ROUNDING in crates/gpu/src/twin.rs. Above (n + 3) · 2⁻²⁴ for every degree up to
 // 31: the relative rounding of a sum of n + 1 positive terms whose binomials are rounded.
 const WEIGHT_ROUNDING: f32 = 4e-6;
 
@@ -286,7 +286,7 @@ struct AdaptiveWork {
     ok: bool,
 }
 
-// Twin: ADAPTIVE_SEGMENT_LANES in src/gpu/layout.rs. The invocations that share one
+// Twin: ADAPTIVE_SEGMENT_LANES in crates/gpu/src/layout.rs. The invocations that share one
 // segment in the cubic and quartic kernels, whose workgroups tessellate
 // TESSELLATE_WORKGROUP_SIZE / SEGMENT_LANES segments each. The general kernel keeps a
 // whole workgroup per segment: its loops over the degree are long, and llvmpipe ends every

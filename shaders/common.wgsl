@@ -1,13 +1,13 @@
 // Shared declarations of every splinescope pipeline. Each struct mirrors a #[repr(C)]
-// Pod struct in src/gpu/layout.rs (named there with a `Gpu` prefix); a test checks with
+// Pod struct in crates/gpu/src/layout.rs (named there with a `Gpu` prefix); a test checks with
 // naga that sizes and member offsets agree. This file is prepended to each pipeline's
 // shader (WGSL has no includes).
 
-// Twin: MAX_GPU_DEGREE in src/gpu/layout.rs.
+// Twin: MAX_GPU_DEGREE in crates/gpu/src/layout.rs.
 const MAX_DEGREE: u32 = 31u;
-// Twin: TESSELLATE_WORKGROUP_SIZE in src/gpu/layout.rs.
+// Twin: TESSELLATE_WORKGROUP_SIZE in crates/gpu/src/layout.rs.
 const TESSELLATE_WORKGROUP_SIZE: u32 = 64u;
-// Twins: LAYER_WORKGROUP, LAYER_GROUPS and LAYER_RUN in src/gpu/layout.rs. The layer's
+// Twins: LAYER_WORKGROUP, LAYER_GROUPS and LAYER_RUN in crates/gpu/src/layout.rs. The layer's
 // rasterizers: invocations per workgroup, the most workgroups one dispatches (the rest by
 // stride: idle workgroups are not free on a CPU rasterizer, and 16,384 invocations keep a
 // GPU busy), and the curve pieces one invocation draws in a row.
@@ -122,7 +122,7 @@ fn half_width_px(style: LineStyle, cam: Camera, w: f32) -> f32 {
     return 0.5 * style.width_px * cam.width_scale;
 }
 
-// Twin: EYE_W in src/gpu/layer_twin.rs. Clip-space w below which a drawn point counts as
+// Twin: EYE_W in crates/gpu/src/layer_twin.rs. Clip-space w below which a drawn point counts as
 // behind the eye (the line pipelines and the layer; adaptive.wgsl's bound has its own).
 const EYE_W: f32 = 1e-6;
 

@@ -114,7 +114,7 @@ pub struct GpuSegment {
     pub rational: u32,
 }
 
-/// The curvature comb's uniform, one per chunk (`comb_hairs` in `shaders/adaptive.wgsl`).
+/// The curvature comb's uniform, one per chunk (`Comb` and `comb` in `shaders/adaptive.wgsl`).
 /// Twin: `Comb` in `shaders/adaptive.wgsl`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
