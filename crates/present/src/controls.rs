@@ -5,10 +5,38 @@
 use glam::DVec3;
 use splinescope_core::geom::GeomError;
 
+/// Why a control cannot be set.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ControlError {
+    /// A control the curve does not have, or a value of the wrong kind for it.
+    #[error("{family} curves have no control {control}")]
+    Unknown {
+        /// The curve's family.
+        family: &'static str,
+        /// The control and the value given.
+        control: String,
+    },
+    /// A value the family refuses (its message names it).
+    #[error(transparent)]
+    Geom(#[from] GeomError),
+}
+
+impl ControlError {
+    /// The field a refused value belongs to (as [`GeomError::field`] names it), or empty
+    /// for an unknown control.
+    #[must_use]
+    pub fn field(&self) -> String {
+        match self {
+            ControlError::Unknown { .. } => String::new(),
+            ControlError::Geom(e) => e.field(),
+        }
+    }
+}
+
 /// The error for a control a family does not have (or a value of the wrong kind).
 #[must_use]
-pub fn unknown_control(family: &'static str, id: ControlId, value: ControlValue) -> GeomError {
-    GeomError::UnknownControl {
+pub fn unknown_control(family: &'static str, id: ControlId, value: ControlValue) -> ControlError {
+    ControlError::Unknown {
         family,
         control: format!("{id} = {value:?}"),
     }

@@ -38,7 +38,7 @@ use serde::Serialize;
 use splinescope_core::geom::{Curve, GeomError};
 pub use splinescope_encoding::draw::{OverlayKind, OverlayPolyline};
 
-pub use controls::{Control, ControlId, ControlKind, ControlValue};
+pub use controls::{Control, ControlError, ControlId, ControlKind, ControlValue};
 
 /// What a family says to a person: its summary and parameters as labels write them, its
 /// panel controls (and how a change through one is applied), the templates the editor
@@ -80,10 +80,10 @@ pub trait Present: Sized {
     /// The curve with control `id` set to `value`.
     ///
     /// # Errors
-    /// [`GeomError::UnknownControl`] for a control the curve does not have or a value of
-    /// the wrong kind; otherwise the family's error for a value it refuses (nothing is
-    /// clamped).
-    fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Self, GeomError>;
+    /// [`ControlError::Unknown`] for a control the curve does not have or a value of the
+    /// wrong kind; otherwise the family's error for a value it refuses
+    /// ([`ControlError::Geom`]; nothing is clamped).
+    fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Self, ControlError>;
 
     /// The starting curves the editor offers (label and curve), centred on `center`,
     /// about `size` wide, in the plane `z = center.z`.
@@ -126,7 +126,7 @@ macro_rules! define_details {
                 splinescope_core::each_family!(self, c => c.controls())
             }
 
-            fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Curve, GeomError> {
+            fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Curve, ControlError> {
                 splinescope_core::each_family!(self, c => c.apply_control(id, value).map(Into::into))
             }
 

@@ -429,7 +429,10 @@ fn weight_controls_apply_refuse_and_elevation_keeps_the_curve() {
     for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
         let e = c.apply_control(id, ControlValue::Number(bad)).unwrap_err();
         assert!(
-            matches!(e, GeomError::BadWeight { index: 1, .. }),
+            matches!(
+                e,
+                splinescope_present::ControlError::Geom(GeomError::BadWeight { index: 1, .. })
+            ),
             "{bad}: {e}"
         );
         assert_eq!(e.field(), "weights[1]");

@@ -340,7 +340,7 @@ impl Editor {
         let result = self.scene.curves[index]
             .curve
             .apply_control(control.id, value)
-            .and_then(|c| c.check_derived().map(|()| c));
+            .and_then(|c| Ok(c.check_derived().map(|()| c)?));
         match result {
             Ok(curve) => {
                 self.set_curve(index, curve, &control.id.to_string());

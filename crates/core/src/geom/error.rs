@@ -288,6 +288,12 @@ pub enum GeomError {
         gap: f64,
     },
     /// A panel control the curve does not have, or a value of the wrong kind for it.
+    /// No longer made: the panel's controls live in the presentation layer, whose
+    /// `splinescope_present::ControlError::Unknown` says this.
+    #[deprecated(
+        since = "0.1.0",
+        note = "panel controls are the presentation layer's: splinescope_present::ControlError::Unknown"
+    )]
     #[error("{family} curves have no control {control}")]
     UnknownControl {
         /// The curve's family.
@@ -309,6 +315,7 @@ impl GeomError {
 
     /// The field this error concerns, relative to the curve (e.g. `points[2]`, `knots[5]`).
     #[must_use]
+    #[allow(deprecated)] // the deprecated variant is matched, not made
     pub fn field(&self) -> String {
         match self {
             GeomError::TooFewPoints { .. } => "points".to_owned(),

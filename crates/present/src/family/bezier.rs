@@ -11,7 +11,7 @@ use splinescope_core::geom::Family;
 
 use crate::OverlayPolyline;
 use crate::Present;
-use crate::controls::{Control, ControlId, ControlValue, unknown_control};
+use crate::controls::{Control, ControlError, ControlId, ControlValue, unknown_control};
 
 impl Present for Bezier {
     type Details = BezierDetails;
@@ -71,7 +71,7 @@ impl Present for Bezier {
         vec![Control::elevate()]
     }
 
-    fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Bezier, GeomError> {
+    fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Bezier, ControlError> {
         match (id.key, value) {
             ("elevate", ControlValue::Press) => Ok(self.elevate()),
             _ => Err(unknown_control(Self::NAME, id, value)),

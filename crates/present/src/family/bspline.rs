@@ -10,7 +10,7 @@ use splinescope_core::geom::Family;
 
 use crate::OverlayPolyline;
 use crate::Present;
-use crate::controls::{ControlId, ControlValue, unknown_control};
+use crate::controls::{ControlError, ControlId, ControlValue, unknown_control};
 use crate::family::nubmp::{NubmpDetails, NubmpStructure, SplineDetails};
 
 impl Present for BSpline {
@@ -45,7 +45,7 @@ impl Present for BSpline {
     }
 
     /// A B-spline has no controls of its own (its points are dragged, its knots typed).
-    fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<BSpline, GeomError> {
+    fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<BSpline, ControlError> {
         Err(unknown_control(Self::NAME, id, value))
     }
 }

@@ -9,7 +9,9 @@ use splinescope_core::geom::{CubicInterpolation, GeomError, Modification, Readin
 use splinescope_core::geom::Family;
 
 use crate::Present;
-use crate::controls::{Control, ControlId, ControlKind, ControlValue, unknown_control};
+use crate::controls::{
+    Control, ControlError, ControlId, ControlKind, ControlValue, unknown_control,
+};
 use crate::{OverlayKind, OverlayPolyline};
 
 impl Present for CubicInterpolation {
@@ -114,7 +116,7 @@ impl Present for CubicInterpolation {
         &self,
         id: ControlId,
         value: ControlValue,
-    ) -> Result<CubicInterpolation, GeomError> {
+    ) -> Result<CubicInterpolation, ControlError> {
         let current = self.modification();
         let next = match (id.key, value, current) {
             ("modified", ControlValue::Toggle(on), _) => on.then_some(Modification {
@@ -134,7 +136,11 @@ impl Present for CubicInterpolation {
             }),
             _ => return Err(unknown_control(Self::NAME, id, value)),
         };
-        CubicInterpolation::try_new(self.points().to_vec(), Some(self.params().to_vec()), next)
+        Ok(CubicInterpolation::try_new(
+            self.points().to_vec(),
+            Some(self.params().to_vec()),
+            next,
+        )?)
     }
 }
 

@@ -9,7 +9,9 @@ use splinescope_core::geom::{Bezier, GeomError, ModifiedBezier, ParamCurve, Xyz}
 use splinescope_core::geom::Family;
 
 use crate::Present;
-use crate::controls::{Control, ControlId, ControlKind, ControlValue, unknown_control};
+use crate::controls::{
+    Control, ControlError, ControlId, ControlKind, ControlValue, unknown_control,
+};
 use crate::{OverlayKind, OverlayPolyline};
 
 impl Present for ModifiedBezier {
@@ -80,14 +82,16 @@ impl Present for ModifiedBezier {
         &self,
         id: ControlId,
         value: ControlValue,
-    ) -> Result<ModifiedBezier, GeomError> {
+    ) -> Result<ModifiedBezier, ControlError> {
         match (id.key, value) {
             ("t_star", ControlValue::Number(t)) => {
-                ModifiedBezier::try_new(self.base().clone(), t, self.v())
+                Ok(ModifiedBezier::try_new(self.base().clone(), t, self.v())?)
             }
-            ("v", ControlValue::Vector(v)) => {
-                ModifiedBezier::try_new(self.base().clone(), self.t_star(), v)
-            }
+            ("v", ControlValue::Vector(v)) => Ok(ModifiedBezier::try_new(
+                self.base().clone(),
+                self.t_star(),
+                v,
+            )?),
             _ => Err(unknown_control(Self::NAME, id, value)),
         }
     }

@@ -11,7 +11,9 @@ use splinescope_core::geom::{GeomError, KnotVector, Nubmp, Xyz, xyz};
 use splinescope_core::geom::Family;
 
 use crate::Present;
-use crate::controls::{Control, ControlId, ControlKind, ControlValue, unknown_control};
+use crate::controls::{
+    Control, ControlError, ControlId, ControlKind, ControlValue, unknown_control,
+};
 use crate::{OverlayKind, OverlayPolyline};
 
 impl Present for Nubmp {
@@ -149,11 +151,12 @@ impl Present for Nubmp {
         out
     }
 
-    fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Nubmp, GeomError> {
+    fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Nubmp, ControlError> {
         match (id.key, value) {
-            ("reset", ControlValue::Press) => {
-                Nubmp::standard(self.points().to_vec(), self.knots().clone())
-            }
+            ("reset", ControlValue::Press) => Ok(Nubmp::standard(
+                self.points().to_vec(),
+                self.knots().clone(),
+            )?),
             ("a", ControlValue::Number(a)) => {
                 let [i, j] = id.index;
                 let last = *self.group(j)?.members.last().unwrap_or(&i);

@@ -9,7 +9,7 @@ use splinescope_core::geom::{Family, GeomError, Path, PathSegment};
 
 use crate::OverlayPolyline;
 use crate::Present;
-use crate::controls::{ControlId, ControlValue, unknown_control};
+use crate::controls::{ControlError, ControlId, ControlValue, unknown_control};
 
 impl Present for Path {
     type Details = PathDetails;
@@ -48,7 +48,7 @@ impl Present for Path {
         })
     }
 
-    fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Path, GeomError> {
+    fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Path, ControlError> {
         Err(unknown_control(Self::NAME, id, value))
     }
 

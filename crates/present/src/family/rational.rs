@@ -10,7 +10,9 @@ use splinescope_core::geom::Family;
 
 use crate::OverlayPolyline;
 use crate::Present;
-use crate::controls::{Control, ControlId, ControlKind, ControlValue, unknown_control};
+use crate::controls::{
+    Control, ControlError, ControlId, ControlKind, ControlValue, unknown_control,
+};
 use crate::family::nubmp::SplineDetails;
 
 impl Present for RationalBezier {
@@ -58,12 +60,12 @@ impl Present for RationalBezier {
         &self,
         id: ControlId,
         value: ControlValue,
-    ) -> Result<RationalBezier, GeomError> {
+    ) -> Result<RationalBezier, ControlError> {
         match (id.key, value) {
-            ("w", ControlValue::Number(w)) => RationalBezier::try_new(
+            ("w", ControlValue::Number(w)) => Ok(RationalBezier::try_new(
                 self.points().to_vec(),
                 with_weight(self.weights(), id.index[0], w)?,
-            ),
+            )?),
             ("elevate", ControlValue::Press) => Ok(self.elevate()),
             _ => Err(unknown_control(Self::NAME, id, value)),
         }
@@ -109,13 +111,13 @@ impl Present for Nurbs {
         weight_controls(self.weights())
     }
 
-    fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Nurbs, GeomError> {
+    fn apply_control(&self, id: ControlId, value: ControlValue) -> Result<Nurbs, ControlError> {
         match (id.key, value) {
-            ("w", ControlValue::Number(w)) => Nurbs::from_knot_vector(
+            ("w", ControlValue::Number(w)) => Ok(Nurbs::from_knot_vector(
                 self.points().to_vec(),
                 with_weight(self.weights(), id.index[0], w)?,
                 self.knots().clone(),
-            ),
+            )?),
             ("elevate", ControlValue::Press) => Ok(self.elevate()),
             _ => Err(unknown_control(Self::NAME, id, value)),
         }
