@@ -255,6 +255,7 @@ fn saving_the_gallery_asks_where_and_never_replaces_a_file_unasked() {
         source: None,
         comb: None,
         comb_cap: splinescope::scene::shape::CombCap::default(),
+        lose_device_after_frames: None,
     };
     let editor = editor_for(&opts, gallery.clone());
     assert_eq!(editor.path(), None, "the gallery is no file's");

@@ -96,6 +96,10 @@ pub struct ViewOptions {
     pub comb: Option<Option<f64>>,
     /// The longest comb hair, a fraction of the view's height.
     pub comb_cap: crate::scene::shape::CombCap,
+    /// Destroy the device after this many presented frames, to exercise the viewer's
+    /// device-failure path (`view --lose-device-after-frames N`, for its smoke test);
+    /// `None` normally.
+    pub lose_device_after_frames: Option<u64>,
 }
 
 pub use file_dialog::DEFAULT_SAVE_NAME;
@@ -217,14 +221,6 @@ struct Running {
     title: String,
 }
 
-/// `SPLINESCOPE_LOSE_DEVICE_AFTER_FRAMES=N`: destroy the device after `N` presented
-/// frames, to exercise the viewer's device-failure path.
-fn lose_device_after() -> Option<u64> {
-    std::env::var("SPLINESCOPE_LOSE_DEVICE_AFTER_FRAMES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-}
-
 impl App {
     fn fail(&mut self, event_loop: &ActiveEventLoop, e: AppError) {
         self.error = Some(e);
@@ -243,7 +239,11 @@ impl App {
                 r.last_presented = Some(now);
                 // Forcing the device-failure path (tests and diagnosis): lose the device
                 // after N frames; the next frame must stop with a clear error.
-                if lose_device_after().is_some_and(|n| r.frames_presented == n) {
+                if self
+                    .opts
+                    .lose_device_after_frames
+                    .is_some_and(|n| r.frames_presented == n)
+                {
                     r.ctx.device.destroy();
                 }
             }

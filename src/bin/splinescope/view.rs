@@ -18,6 +18,10 @@ pub struct ViewArgs {
     /// Exit after this many presented frames (smoke tests).
     #[arg(long, value_parser = crate::words::at_least::<u64>(1), allow_hyphen_values = true)]
     pub frames: Option<u64>,
+    /// Destroy the GPU device after this many presented frames: the device-failure path's
+    /// smoke test (not for use).
+    #[arg(long, hide = true, value_name = "N", value_parser = crate::words::at_least::<u64>(1))]
+    pub lose_device_after_frames: Option<u64>,
     /// Instead of a scene, show this many random curves (stress mode; Bézier unless
     /// --family says otherwise).
     #[arg(long, value_parser = crate::words::between::<u64>(1, 10_000_000), conflicts_with = "scene", allow_hyphen_values = true)]
@@ -60,7 +64,7 @@ pub struct ViewArgs {
 pub fn run(a: &ViewArgs) -> Result<()> {
     view(
         a.scene.clone(),
-        a.frames,
+        (a.frames, a.lose_device_after_frames),
         (a.stress, a.degree, a.family),
         (a.solve, a.stats),
         (a.tolerance_px, a.comb, a.comb_cap.unwrap_or_default()),
@@ -71,7 +75,7 @@ pub fn run(a: &ViewArgs) -> Result<()> {
 /// `view`: a scene (or the gallery, or a generated stress scene) in a window.
 fn view(
     scene: Option<PathBuf>,
-    frames: Option<u64>,
+    (frames, lose_device_after_frames): (Option<u64>, Option<u64>),
     (stress, degree, family): (Option<u64>, u64, splinescope::scene::generate::StressFamily),
     (solve, print_stats): (bool, bool),
     (tolerance_px, comb, comb_cap): (
@@ -154,6 +158,7 @@ fn view(
         path: save_to,
         comb,
         comb_cap,
+        lose_device_after_frames,
     })?;
     if print_stats {
         say!("{}", serde_json::to_string(&stats)?);
@@ -176,6 +181,7 @@ pub fn default_job() -> Result<()> {
             source: None,
             comb: None,
             comb_cap: splinescope::scene::shape::CombCap::default(),
+            lose_device_after_frames: None,
         })?;
         return Ok(());
     }
