@@ -92,30 +92,9 @@ pub fn auto_samples(points: &[glam::DVec3]) -> u32 {
     rung.min(MAX_SAMPLES_PER_SEGMENT)
 }
 
-/// How an open stroke's two ends are drawn (SVG's `stroke-linecap`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Cap {
-    /// A half disc of the stroke's width beyond each end (the default).
-    #[default]
-    Round,
-    /// Cut square at the end point.
-    Butt,
-    /// Cut square half the width beyond the end point.
-    Square,
-}
-
-/// How a stroke turns where its direction changes (SVG's `stroke-linejoin`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Join {
-    /// A disc of the stroke's width at the corner (the default).
-    #[default]
-    Round,
-    /// The stroke's outer edges extended until they meet, unless the spike would be
-    /// longer than the miter limit times the width: then [`Join::Bevel`].
-    Miter,
-    /// The outer corners joined by a straight line.
-    Bevel,
-}
+/// A stroke's ends ([`Cap`], SVG's `stroke-linecap`) and corners ([`Join`], SVG's
+/// `stroke-linejoin`): the core's own, which its offsets and stroke outlines take too.
+pub use splinescope_core::ops::{Cap, Join};
 
 /// The largest miter limit a stroke takes (a limit this long draws a spike 1,000 widths
 /// long only where the stroke turns back by less than 0.12°).

@@ -73,26 +73,31 @@ use super::approx;
 use super::fit::handle_lengths;
 use crate::geom::bezier::{de_casteljau, deriv_at, second_deriv_at};
 
-/// How the outer side of a kink is joined.
+/// How a stroke turns where its direction changes (SVG's `stroke-linejoin`), and how an
+/// offset's outer side is joined at a kink: what the renderer draws and what
+/// [`offset`] makes are the same join.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Join {
-    /// A circular arc around the kink.
+    /// A circular arc (a disc of the stroke's width) around the corner (the default).
     #[default]
     Round,
-    /// The two sides extended until they meet (a bevel past the miter limit).
+    /// The outer edges extended until they meet, unless the spike would be longer than
+    /// the miter limit times the width (`|d|` for an offset): then [`Join::Bevel`].
     Miter,
-    /// A straight line.
+    /// The outer corners joined by a straight line.
     Bevel,
 }
 
-/// How a stroke outline's open ends are closed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// How an open stroke's two ends are drawn (SVG's `stroke-linecap`), and how a stroke
+/// outline closes them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Cap {
-    /// A straight line across the end.
-    Butt,
-    /// A half circle.
+    /// A half disc of the stroke's width beyond each end (the default).
+    #[default]
     Round,
-    /// A half square: the sides extended by the half width.
+    /// Cut square at the end point.
+    Butt,
+    /// Cut square half the width beyond the end point.
     Square,
 }
 
