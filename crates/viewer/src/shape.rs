@@ -109,7 +109,90 @@ impl ShapeView {
 /// The least time between two marker computations started by edits.
 pub const MARKER_THROTTLE: Duration = Duration::from_millis(100);
 
-/// Markers computed on a worker thread: after an edit or a switch, at most one
+/// One background computation at a time for what the frame shows: after an edit or a new
+/// `key` it is due, it starts at most every [`MARKER_THROTTLE`], and the frame only polls.
+#[derive(Debug)]
+struct Job<K, T> {
+    running: Option<Receiver<T>>,
+    /// Asked for again (an edit or a new key) since the running or last computation began.
+    dirty: bool,
+    started: Option<Instant>,
+    key: K,
+}
+
+impl<K: Default, T> Default for Job<K, T> {
+    fn default() -> Self {
+        Job {
+            running: None,
+            dirty: false,
+            started: None,
+            key: K::default(),
+        }
+    }
+}
+
+/// What a poll of a [`Job`] found.
+enum Polled<T> {
+    /// A computation is still running.
+    Running,
+    /// One finished with this.
+    Done(T),
+    /// None is running.
+    Idle,
+}
+
+impl<K: PartialEq, T: Send + 'static> Job<K, T> {
+    /// Notes an edit (`changed`) or a new `key`, and takes a finished computation's result.
+    fn poll(&mut self, changed: bool, key: K) -> Polled<T> {
+        if key != self.key {
+            self.key = key;
+            self.dirty = true;
+        }
+        self.dirty |= changed;
+        let Some(rx) = &self.running else {
+            return Polled::Idle;
+        };
+        match rx.try_recv() {
+            Ok(found) => {
+                self.running = None;
+                Polled::Done(found)
+            }
+            Err(TryRecvError::Empty) => Polled::Running,
+            Err(TryRecvError::Disconnected) => {
+                self.running = None;
+                Polled::Idle
+            }
+        }
+    }
+
+    /// Starts `work` on a thread when one is due (asked for, and past the throttle).
+    fn start_if_due(&mut self, now: Instant, work: impl FnOnce() -> T + Send + 'static) {
+        let due = self
+            .started
+            .is_none_or(|t| now.duration_since(t) >= MARKER_THROTTLE);
+        if self.dirty && due {
+            self.dirty = false;
+            self.started = Some(now);
+            let (tx, rx) = channel();
+            std::thread::spawn(move || {
+                let _ = tx.send(work());
+            });
+            self.running = Some(rx);
+        }
+    }
+
+    /// Nothing is asked for: none is due.
+    fn settle(&mut self) {
+        self.dirty = false;
+    }
+
+    /// Whether a computation is running or due.
+    fn busy(&self) -> bool {
+        self.running.is_some() || self.dirty
+    }
+}
+
+/// Markers computed on a worker thread ([`Job`]): after an edit or a switch, at most one
 /// computation runs at a time and one starts at most every [`MARKER_THROTTLE`]; the frame
 /// only polls.
 #[derive(Debug, Default)]
@@ -118,11 +201,7 @@ pub struct MarkerWorker {
     pub markers: Vec<Marker>,
     /// Whether `markers` changed since it was last taken ([`MarkerWorker::take_fresh`]).
     fresh: bool,
-    running: Option<Receiver<Vec<Marker>>>,
-    /// The scene changed (or the switches) since the running or last computation began.
-    dirty: bool,
-    started: Option<Instant>,
-    options: ShapeOptions,
+    job: Job<ShapeOptions, Vec<Marker>>,
 }
 
 impl MarkerWorker {
@@ -130,49 +209,31 @@ impl MarkerWorker {
     /// due, takes a finished one's result. With no marker asked for, the markers are
     /// cleared at once.
     pub fn poll(&mut self, scene: &Scene, changed: bool, options: ShapeOptions, now: Instant) {
-        if options != self.options {
-            self.options = options;
-            self.dirty = true;
-        }
-        self.dirty |= changed;
-        if let Some(rx) = &self.running {
-            match rx.try_recv() {
-                Ok(found) => {
-                    self.markers = found;
-                    self.fresh = true;
-                    self.running = None;
-                }
-                Err(TryRecvError::Empty) => return,
-                Err(TryRecvError::Disconnected) => self.running = None,
+        match self.job.poll(changed, options) {
+            Polled::Running => return,
+            Polled::Done(found) => {
+                self.markers = found;
+                self.fresh = true;
             }
+            Polled::Idle => {}
         }
         if !options.any_marker() {
             if !self.markers.is_empty() {
                 self.markers.clear();
                 self.fresh = true;
             }
-            self.dirty = false;
+            self.job.settle();
             return;
         }
-        let due = self
-            .started
-            .is_none_or(|t| now.duration_since(t) >= MARKER_THROTTLE);
-        if self.dirty && due {
-            self.dirty = false;
-            self.started = Some(now);
-            let (tx, rx) = channel();
-            let scene = scene.clone();
-            std::thread::spawn(move || {
-                let _ = tx.send(markers(&scene, &options));
-            });
-            self.running = Some(rx);
-        }
+        let scene = scene.clone();
+        self.job
+            .start_if_due(now, move || markers(&scene, &options));
     }
 
     /// Whether a computation is running or due.
     #[must_use]
     pub fn busy(&self) -> bool {
-        self.running.is_some() || self.dirty
+        self.job.busy()
     }
 
     /// The markers when they changed since the last call.
@@ -189,7 +250,7 @@ impl MarkerWorker {
         let end = Instant::now() + limit;
         while self.busy() && Instant::now() < end {
             // Past the throttle, so that a due computation starts.
-            self.poll(scene, false, self.options, Instant::now() + MARKER_THROTTLE);
+            self.poll(scene, false, self.job.key, Instant::now() + MARKER_THROTTLE);
             std::thread::sleep(Duration::from_millis(2));
         }
     }
@@ -228,17 +289,12 @@ impl OffsetRequest {
     }
 }
 
-/// The selected curve's offset computed on a worker thread, as the markers are: after an
-/// edit or a new request at most one computation runs, one starts at most every
-/// [`MARKER_THROTTLE`], and the frame only polls.
+/// The selected curve's offset computed on a worker thread, as the markers are ([`Job`]).
 #[derive(Debug, Default)]
 pub struct OffsetWorker {
     /// The latest offset and the request it answers (an error's message when refused).
     pub latest: Option<(OffsetRequest, Result<Offset, String>)>,
-    running: Option<Receiver<(OffsetRequest, Result<Offset, String>)>>,
-    dirty: bool,
-    started: Option<Instant>,
-    request: Option<OffsetRequest>,
+    job: Job<Option<OffsetRequest>, (OffsetRequest, Result<Offset, String>)>,
 }
 
 impl OffsetWorker {
@@ -251,70 +307,52 @@ impl OffsetWorker {
         request: Option<OffsetRequest>,
         now: Instant,
     ) {
-        if request != self.request {
-            self.request = request;
-            self.dirty = true;
-        }
-        self.dirty |= changed;
-        if let Some(rx) = &self.running {
-            match rx.try_recv() {
-                Ok(found) => {
-                    self.latest = Some(found);
-                    self.running = None;
-                }
-                Err(TryRecvError::Empty) => return,
-                Err(TryRecvError::Disconnected) => self.running = None,
-            }
+        match self.job.poll(changed, request) {
+            Polled::Running => return,
+            Polled::Done(found) => self.latest = Some(found),
+            Polled::Idle => {}
         }
         let Some(request) = request else {
             self.latest = None;
-            self.dirty = false;
+            self.job.settle();
             return;
         };
-        let due = self
-            .started
-            .is_none_or(|t| now.duration_since(t) >= MARKER_THROTTLE);
-        if self.dirty && due {
-            self.dirty = false;
-            self.started = Some(now);
-            let Some(sc) = scene.curves.get(request.curve) else {
-                self.latest = None;
-                return;
-            };
-            let (tx, rx) = channel();
-            let curve = sc.curve.clone();
-            std::thread::spawn(move || {
-                let found = offset(
-                    &curve,
-                    request.distance,
-                    request.tolerance,
-                    &OffsetOptions::default(),
-                )
-                .map_err(|e| e.to_string());
-                let _ = tx.send((request, found));
-            });
-            self.running = Some(rx);
-        }
+        let Some(sc) = scene.curves.get(request.curve) else {
+            self.latest = None;
+            self.job.settle();
+            return;
+        };
+        let curve = sc.curve.clone();
+        self.job.start_if_due(now, move || {
+            let found = offset(
+                &curve,
+                request.distance,
+                request.tolerance,
+                &OffsetOptions::default(),
+            )
+            .map_err(|e| e.to_string());
+            (request, found)
+        });
     }
 
     /// Whether a computation is running or due.
     #[must_use]
     pub fn busy(&self) -> bool {
-        self.running.is_some() || self.dirty
+        self.job.busy()
     }
 
     /// The offset to draw: the latest, when it is of the curve asked for now.
     #[must_use]
     pub fn current(&self) -> Option<&Result<Offset, String>> {
         let (req, found) = self.latest.as_ref()?;
-        (Some(req.curve) == self.request.map(|r| r.curve)).then_some(found)
+        (Some(req.curve) == self.job.key.map(|r| r.curve)).then_some(found)
     }
 
     /// Waits (up to `limit`) for the running computation: for tests and screenshots.
     pub fn wait(&mut self, scene: &Scene, limit: Duration) {
         let end = Instant::now() + limit;
         while self.busy() && Instant::now() < end {
-            self.poll(scene, false, self.request, Instant::now() + MARKER_THROTTLE);
+            self.poll(scene, false, self.job.key, Instant::now() + MARKER_THROTTLE);
             std::thread::sleep(Duration::from_millis(2));
         }
     }
