@@ -192,7 +192,7 @@ impl<K: PartialEq, T: Send + 'static> Job<K, T> {
     }
 }
 
-/// Markers computed on a worker thread ([`Job`]): after an edit or a switch, at most one
+/// Markers computed on a worker thread: after an edit or a switch, at most one
 /// computation runs at a time and one starts at most every [`MARKER_THROTTLE`]; the frame
 /// only polls.
 #[derive(Debug, Default)]
@@ -289,7 +289,7 @@ impl OffsetRequest {
     }
 }
 
-/// The selected curve's offset computed on a worker thread, as the markers are ([`Job`]).
+/// The selected curve's offset computed on a worker thread, as the markers are.
 #[derive(Debug, Default)]
 pub struct OffsetWorker {
     /// The latest offset and the request it answers (an error's message when refused).
