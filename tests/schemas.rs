@@ -113,8 +113,17 @@ fn every_example_scene_and_request_validates() {
     }
     // The docs' examples: scenes have a "version", requests a "method".
     let mut seen = (0, 0);
-    for doc in ["docs/scene-format.md", "docs/solve-format.md", "README.md"] {
-        for block in json_blocks(&root().join(doc)) {
+    let mut docs = vec![root().join("README.md")];
+    let mut guide: Vec<_> = std::fs::read_dir(root().join("docs"))
+        .expect("docs/ is readable")
+        .map(|entry| entry.expect("docs/ entry").path())
+        .filter(|path| path.extension().is_some_and(|ext| ext == "md"))
+        .collect();
+    guide.sort();
+    docs.extend(guide);
+    for path in &docs {
+        let doc = path.display();
+        for block in json_blocks(path) {
             let is_request = match &block {
                 Value::Array(items) => items.iter().all(|r| r.get("method").is_some()),
                 other => other.get("method").is_some(),

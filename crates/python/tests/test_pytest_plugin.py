@@ -117,6 +117,18 @@ def test_bless_into_a_directory_and_the_summary_page(pytester):
     assert (pytester.path / "splinescope-results" / "test_scenes.py__test_circle.reference.png").is_file()
 
 
+def test_a_test_path_after_bless_is_refused_not_taken_for_a_directory(pytester):
+    pytester.makepyfile(test_scenes=TESTS)
+    out = run(pytester, "--splinescope-bless", "test_scenes.py")
+    assert out.ret == pytest.ExitCode.USAGE_ERROR
+    out.stderr.fnmatch_lines(["*--splinescope-bless took 'test_scenes.py' as the directory*"])
+    assert not list(pytester.path.rglob("*.png"))
+    assert (pytester.path / "test_scenes.py").is_file()
+    # After the paths, or with `=`, it blesses as asked.
+    run(pytester, "test_scenes.py", "--splinescope-bless").assert_outcomes(passed=2)
+    assert len(list((pytester.path / "baseline").glob("*.png"))) == 2
+
+
 def test_without_flags_scenes_are_only_checked_to_render(pytester):
     pytester.makepyfile(
         test_scenes=TESTS

@@ -125,6 +125,14 @@ class _Regression:
         self.config = config
         self.compare = bool(config.getoption("--splinescope"))
         bless = config.getoption("--splinescope-bless")
+        if bless and (bless.endswith(".py") or "::" in bless or Path(bless).is_file()):
+            # `--splinescope-bless test_x.py` reads the test file as the directory to bless
+            # into (the option's value is optional); refuse rather than write there.
+            raise pytest.UsageError(
+                f"--splinescope-bless took {bless!r} as the directory to write baselines into; "
+                f"write --splinescope-bless=DIR for a directory, or put --splinescope-bless "
+                f"after the test paths"
+            )
         self.bless = bless is not None
         self.bless_dir = Path(bless) if bless else None
         base = config.getoption("--splinescope-baseline")
