@@ -132,7 +132,8 @@ pub enum LimitError {
     /// The environment variable is set but is not a whole number: refused rather than
     /// silently replaced by the default.
     #[error(
-        "the environment variable {var}={value:?} is not a whole number (it sets the limit of {what})"
+        "the environment variable {var}={value:?} is not a whole number (it sets the limit of {})",
+        what.strip_prefix("for ").unwrap_or(what)
     )]
     BadVariable {
         /// What the variable limits.
@@ -249,5 +250,26 @@ mod tests {
         );
         let vars: std::collections::HashSet<_> = ALL.iter().map(|l| l.var).collect();
         assert_eq!(vars.len(), ALL.len(), "one variable per limit");
+    }
+
+    #[test]
+    fn a_bad_variable_is_named_with_the_limit_it_sets_in_words() {
+        for (limit, words) in [
+            (&ORDER, "the order of a B-spline or NUBMP curve"),
+            (&CURVES, "curves per scene"),
+        ] {
+            let e = LimitError::BadVariable {
+                what: limit.what,
+                var: limit.var,
+                value: "1e9".into(),
+            };
+            assert_eq!(
+                e.to_string(),
+                format!(
+                    "the environment variable {}=\"1e9\" is not a whole number (it sets the limit of {words})",
+                    limit.var
+                )
+            );
+        }
     }
 }

@@ -143,6 +143,7 @@ class _Regression:
         self.pending: List[Tuple[Path, bytes]] = []
         self.errors: List[str] = []
         self.rows: List[Tuple[str, str, str, str, List[Any]]] = []
+        self.messages: List[str] = []
 
     # -- where things go -----------------------------------------------------------
 
@@ -237,11 +238,8 @@ class _Regression:
     # -- the end of the session ----------------------------------------------------
 
     def pytest_sessionfinish(self, session: Any) -> None:
-        reporter = session.config.pluginmanager.get_plugin("terminalreporter")
-
         def say(text: str) -> None:
-            if reporter is not None:
-                reporter.write_line(text)
+            self.messages.append(text)
 
         if self.bless:
             if self.errors:
@@ -264,3 +262,8 @@ class _Regression:
             summary = ", ".join(f"{n} {s}" for s, n in sorted(counts.items())) or "no marked tests"
             native.write_report(str(self.results), summary, [tuple(r) for r in self.rows])
             say(f"splinescope: report in {self.results / 'index.html'}")
+
+    def pytest_terminal_summary(self, terminalreporter: Any) -> None:
+        # Said here, after the progress line has ended, each on a line of its own.
+        for text in self.messages:
+            terminalreporter.write_line(text)
