@@ -18,11 +18,12 @@
 //! * [`splinescope_gpu`] ([`gpu`]) — the only layer that names `wgpu`: device setup, the
 //!   WGSL kernels and their CPU twin, the renderer, offscreen capture; handed an
 //!   encoding, never a scene file.
+//! * [`splinescope_render`] ([`render`]) — a scene drawn offscreen: one
+//!   [`render::RenderRequest`] (size, tolerance, camera, shape overlays, text) taken by
+//!   [`render::render`], which every caller uses.
 //! * [`splinescope_viewer`] ([`app`]) — the interactive winit + egui viewer.
 //! * this package — the command line, and what only it prints or writes: [`outputs`] of
-//!   `eval`/`check`, [`regress`]ion runs, the JSON [`schemas`], and drawing a scene
-//!   offscreen ([`offscreen`]:
-//!   its encoding and camera handed to the GPU layer). It re-exports the layers under their module
+//!   `eval`/`check`, [`regress`]ion runs and the JSON [`schemas`]. It re-exports the layers under their module
 //!   names, so `splinescope::geom`, `splinescope::gpu` and the rest name one thing each.
 //!
 //! The road through the program: scene → curve families → lowering to Bézier segments →
@@ -37,6 +38,7 @@ pub use splinescope_import as import;
 pub use splinescope_io::{files, limits};
 pub use splinescope_present as present;
 pub use splinescope_present::inspect;
+pub use splinescope_render as render;
 pub use splinescope_scene::{camera, format as scene, request};
 pub use splinescope_viewer as app;
 
@@ -46,6 +48,7 @@ pub mod image {
     pub use splinescope_image::compare::*;
     pub use splinescope_image::{ImageError, RgbaImage};
 }
+#[deprecated(note = "use splinescope::render (RenderRequest and render)")]
 pub mod offscreen;
 pub mod outputs;
 pub mod regress;

@@ -1,6 +1,8 @@
-//! A scene drawn offscreen: its encoding ([`crate::scene::encoding::Encoding`]) handed to
-//! the GPU layer, seen by the scene's own camera for the image size (or the one given) —
-//! the GPU layer neither reads scenes nor chooses cameras.
+//! The old names of drawing a scene offscreen, kept for one release: use
+//! [`crate::render::render`] with a [`crate::render::RenderRequest`], which every caller
+//! (the command line, the Python module, the pytest plugin) now goes through
+//! (`CHANGELOG.md`).
+#![allow(deprecated)]
 
 use glam::DVec2;
 
@@ -10,14 +12,16 @@ use crate::gpu::context::GpuContext;
 use crate::gpu::{GpuError, Pipelines};
 use crate::image::RgbaImage;
 use crate::scene::Scene;
-use crate::scene::encoding::encode;
 use crate::scene::shape::{ShapeOptions, encode_shaped};
+
+pub use splinescope_figure::TextOptions;
 
 /// Draws `scene` into a `width × height` image with `camera` (the scene's own view for
 /// that size when `None`), at the default tolerance.
 ///
 /// # Errors
-/// As [`crate::gpu::capture::render`].
+/// The GPU's failure.
+#[deprecated(note = "use splinescope::render::render with RenderRequest::new(width, height)")]
 pub fn render_scene(
     ctx: &GpuContext,
     pipelines: &Pipelines,
@@ -26,20 +30,22 @@ pub fn render_scene(
     width: u32,
     height: u32,
 ) -> Result<RgbaImage, GpuError> {
-    render_scene_with(
+    render_scene_shaped(
         ctx,
         pipelines,
         scene,
         camera,
         (width, height),
         crate::gpu::adaptive::DEFAULT_TOLERANCE_PX,
+        &ShapeOptions::default(),
     )
 }
 
 /// [`render_scene`] for a tolerance of `tolerance_px` pixels.
 ///
 /// # Errors
-/// As [`crate::gpu::capture::render`].
+/// The GPU's failure.
+#[deprecated(note = "use splinescope::render::render with RenderRequest::with_tolerance_px")]
 pub fn render_scene_with(
     ctx: &GpuContext,
     pipelines: &Pipelines,
@@ -48,24 +54,22 @@ pub fn render_scene_with(
     (width, height): (u32, u32),
     tolerance_px: f64,
 ) -> Result<RgbaImage, GpuError> {
-    let camera =
-        camera.unwrap_or_else(|| scene.camera(DVec2::new(f64::from(width), f64::from(height))));
-    render_with(
+    render_scene_shaped(
         ctx,
         pipelines,
-        &encode(scene),
-        &camera,
+        scene,
+        camera,
         (width, height),
         tolerance_px,
+        &ShapeOptions::default(),
     )
 }
 
-/// [`render_scene_with`] with the shape overlays of `shape`: the curvature comb (its
-/// scale resolved for the view when automatic) drawn by the GPU, and the markers as
-/// points over the curves.
+/// [`render_scene_with`] with the shape overlays of `shape`.
 ///
 /// # Errors
-/// As [`crate::gpu::capture::render`].
+/// The GPU's failure.
+#[deprecated(note = "use splinescope::render::render with RenderRequest::with_shape")]
 pub fn render_scene_shaped(
     ctx: &GpuContext,
     pipelines: &Pipelines,
@@ -88,11 +92,12 @@ pub fn render_scene_shaped(
     )
 }
 
-/// Draws `opts`' guides and text (labels, legend, axes, grid) over `image`, a render of
-/// `scene` with the scene's camera at the image's size ([`splinescope_figure::raster::annotate`]).
+/// Draws `opts`' guides and text over `image`, a render of `scene` with the scene's
+/// camera at the image's size.
 ///
 /// # Errors
 /// [`splinescope_figure::FigureError`] (axes or a grid asked of a 3D view).
+#[deprecated(note = "use splinescope::render::render with RenderRequest::with_text")]
 pub fn annotate(
     image: &mut RgbaImage,
     scene: &Scene,
@@ -105,6 +110,7 @@ pub fn annotate(
 ///
 /// # Errors
 /// As [`annotate`].
+#[deprecated(note = "use splinescope::render::render with RenderRequest::with_text and with_shape")]
 pub fn annotate_shaped(
     image: &mut RgbaImage,
     scene: &Scene,
@@ -122,5 +128,3 @@ pub fn annotate_shaped(
         shape,
     )
 }
-
-pub use splinescope_figure::TextOptions;

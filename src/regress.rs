@@ -338,8 +338,13 @@ fn compare_one(
         Scene::load(path).map_err(|e| format!("{}: {e}", path.display()))
     };
     let rendered = loaded.and_then(|scene| {
-        crate::offscreen::render_scene(ctx, pipelines, &scene, None, opts.width, opts.height)
-            .map_err(|e| format!("{}: {e}", path.display()))
+        crate::render::render(
+            ctx,
+            pipelines,
+            &scene,
+            &crate::render::RenderRequest::new(opts.width, opts.height),
+        )
+        .map_err(|e| format!("{}: {e}", path.display()))
     });
     let actual = match rendered {
         Ok(image) => image,

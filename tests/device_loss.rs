@@ -6,9 +6,9 @@ mod common;
 
 use std::time::{Duration, Instant};
 
+use common::render_scene;
 use splinescope::geom::Lower;
 use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext, GpuError, Pipelines};
-use splinescope::offscreen::render_scene;
 use splinescope::scene::gallery;
 
 fn fresh(backend: &common::Backend) -> (GpuContext, Pipelines) {

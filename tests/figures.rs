@@ -106,13 +106,11 @@ fn svg_and_pdf_figures_look_like_the_rendered_png() {
     common::on_each_gpu("figures look like render", |backend| {
         let dir = tempdir();
         for (name, scene) in scenes() {
-            let png = splinescope::offscreen::render_scene(
+            let png = splinescope::render::render(
                 &backend.ctx,
                 &backend.pipelines,
                 &scene,
-                None,
-                w,
-                h,
+                &splinescope::render::RenderRequest::new(w, h),
             )
             .expect("render");
             let fig = build(&scene, &FigureOptions::new(w, h)).expect("figure");
@@ -516,23 +514,23 @@ fn rendered_png_carries_the_labels() {
     let scene = gallery::gallery();
     let (w, h) = (900, 600);
     common::on_each_gpu("rendered labels", |backend| {
-        let plain = splinescope::offscreen::render_scene(
+        let plain = splinescope::render::render(
             &backend.ctx,
             &backend.pipelines,
             &scene,
-            None,
-            w,
-            h,
+            &splinescope::render::RenderRequest::new(w, h),
         )
         .expect("render");
-        let mut labelled = plain.clone();
-        splinescope::offscreen::annotate(
-            &mut labelled,
+        let labelled = splinescope::render::render(
+            &backend.ctx,
+            &backend.pipelines,
             &scene,
-            &splinescope::offscreen::TextOptions {
-                labels: true,
-                ..Default::default()
-            },
+            &splinescope::render::RenderRequest::new(w, h).with_text(
+                splinescope::render::TextOptions {
+                    labels: true,
+                    ..Default::default()
+                },
+            ),
         )
         .expect("labels");
         let mut opts = FigureOptions::new(w, h);
@@ -955,23 +953,23 @@ fn png_labels_apart(what: &str, mut scene: Scene, (w, h): (u32, u32)) {
     common::on_each_gpu(
         &format!("rendered labels never overlap ({what})"),
         |backend| {
-            let plain = splinescope::offscreen::render_scene(
+            let plain = splinescope::render::render(
                 &backend.ctx,
                 &backend.pipelines,
                 &scene,
-                None,
-                w,
-                h,
+                &splinescope::render::RenderRequest::new(w, h),
             )
             .expect("render");
-            let mut labelled = plain.clone();
-            splinescope::offscreen::annotate(
-                &mut labelled,
+            let labelled = splinescope::render::render(
+                &backend.ctx,
+                &backend.pipelines,
                 &scene,
-                &splinescope::offscreen::TextOptions {
-                    labels: true,
-                    ..Default::default()
-                },
+                &splinescope::render::RenderRequest::new(w, h).with_text(
+                    splinescope::render::TextOptions {
+                        labels: true,
+                        ..Default::default()
+                    },
+                ),
             )
             .expect("labels");
             // SPLINESCOPE_DUMP=DIR keeps the labelled picture there, to look at.

@@ -12,11 +12,11 @@ mod common;
 
 use std::path::PathBuf;
 
+use common::render_scene;
 use glam::{DVec2, DVec3};
 use splinescope::camera::Camera;
 use splinescope::geom::{Bezier, Curve};
 use splinescope::image::{ComparisonImages, RgbaImage, Tolerance, compare_images};
-use splinescope::offscreen::render_scene;
 use splinescope::scene::{Color, Scene, SceneCurve, Style, ViewSpec, gallery};
 
 /// The golden references are compared with the same code as `splinescope regress`, at

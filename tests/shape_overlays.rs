@@ -349,14 +349,11 @@ fn the_galleries_comb_is_the_same_in_the_png_and_the_svg_and_stays_within_its_ca
     let cap_px = CombCap::default().get() * f64::from(h);
     common::on_each_gpu("the gallery's comb in the PNG and the SVG", |backend| {
         let render = |shape: &ShapeOptions| {
-            splinescope::offscreen::render_scene_shaped(
+            splinescope::render::render(
                 &backend.ctx,
                 &backend.pipelines,
                 &scene,
-                None,
-                (w, h),
-                splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX,
-                shape,
+                &splinescope::render::RenderRequest::new(w, h).with_shape(*shape),
             )
             .expect("render")
         };

@@ -164,13 +164,11 @@ fn drawn_as_resvg_draws(file: &str, name: &str, curves: Option<usize>) {
     let reference = rasterise(file, w, h);
     let theirs = ink(&reference);
     common::on_each_gpu("svg import against resvg", |backend| {
-        let ours_img = splinescope::offscreen::render_scene(
+        let ours_img = splinescope::render::render(
             &backend.ctx,
             &backend.pipelines,
             &scene,
-            None,
-            w,
-            h,
+            &splinescope::render::RenderRequest::new(w, h),
         )
         .expect("renders");
         let ours = ink(&ours_img);

@@ -239,3 +239,23 @@ pub fn rasterise_svg(text: &str, w: u32, h: u32) -> splinescope::image::RgbaImag
         data: pixmap.data().to_vec(),
     }
 }
+
+/// `scene` drawn through the one render entry point ([`splinescope::render::render`]) at
+/// `width × height`, through `camera` (the scene's own view when `None`), with no
+/// overlays or text; the GPU's error as such (a request of these values can fail no
+/// other way).
+pub fn render_scene(
+    ctx: &GpuContext,
+    pipelines: &Pipelines,
+    scene: &splinescope::scene::Scene,
+    camera: Option<splinescope::camera::Camera>,
+    width: u32,
+    height: u32,
+) -> Result<splinescope::image::RgbaImage, GpuError> {
+    let mut request = splinescope::render::RenderRequest::new(width, height);
+    request.camera = camera;
+    splinescope::render::render(ctx, pipelines, scene, &request).map_err(|e| match e {
+        splinescope::render::RenderError::Gpu(e) => e,
+        other => panic!("a render request of {width}×{height} was refused: {other}"),
+    })
+}

@@ -1,43 +1,4 @@
-//! splinescope's encoding: what the GPU layer is handed to draw — every curve's exact
-//! Bézier segments with its sample count and stroke ([`Encoding`], [`EncodedCurve`]), the
-//! overlays with their resolved strokes ([`draw`]), the annotations' points, the
-//! background ([`Color`]) — and the [`camera`] it is drawn through. Points are `f64`
-//! here; the GPU layer packs them into `f32`.
-//!
-//! What it may use: [`splinescope_core`] (the segments) and glam — no file format, no
-//! serde, no GPU. The scene layer builds an encoding from a scene
-//! (`splinescope_scene::format::encoding::encode`); the GPU layer packs and draws it, and
-//! so compiles without the scene format (as vello keeps `vello_encoding`).
-//!
-//! ```
-//! use glam::DVec3;
-//! use splinescope_core::geom::{Bezier, Lower};
-//! use splinescope_encoding::{Color, EncodedCurve, Encoding, auto_samples};
-//!
-//! let arch = Bezier::new(vec![DVec3::ZERO, DVec3::new(1.0, 2.0, 0.0), DVec3::new(3.0, 0.0, 0.0)]);
-//! let segments = arch.lower();
-//! let samples = auto_samples(segments[0].points());
-//! assert!((2..=64).contains(&samples));
-//! let encoding = Encoding {
-//!     curves: vec![EncodedCurve {
-//!         segments,
-//!         samples: Some(samples),
-//!         color: Color::WHITE,
-//!         width: 2.0,
-//!         width_in_scene: false,
-//!         stroke: Default::default(),
-//!         closed: false,
-//!     }],
-//!     overlays: Default::default(),
-//!     switches: splinescope_encoding::draw::Switches::ALL,
-//!     annotations: Vec::new(),
-//!     background: Color([0.0, 0.0, 0.0, 1.0]),
-//!     comb: None,
-//!     comb_cap: f64::INFINITY,
-//! };
-//! assert_eq!(encoding.curves.len(), 1);
-//! ```
-
+#![doc = include_str!("../README.md")]
 #![forbid(unsafe_code)]
 
 pub mod camera;

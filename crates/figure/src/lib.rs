@@ -1,32 +1,4 @@
-//! splinescope's figure layer: a scene as a vector figure — SVG and PDF — with exact
-//! curves where exact is possible, everything the renderer draws styled as drawn.
-//!
-//! [`build`] turns a scene seen by a camera at an output size (in points, one per pixel
-//! of `render`'s image) into a [`Figure`]: a display list of paths, discs and text in
-//! output coordinates (y down). Each curve is one path: its lowered Bézier segments of
-//! degree ≤ 3 under the 2D (affine) view keep their exact control points, other segments
-//! and every 3D view become cubic pieces within the tolerance by a computed bound
-//! ([`fit`]). [`svg::write`] and [`pdf::write`] write it.
-//!
-//! What it may use: [`splinescope_core`], [`splinescope_scene`] and pdf-writer — no GPU,
-//! window or command-line crate: the command line, the viewer and the Python module
-//! build on it.
-//!
-//! ```
-//! use splinescope_figure::{FigureOptions, build, svg};
-//! use splinescope_scene::format::from_json_str;
-//!
-//! let scene = from_json_str(
-//!     r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1, 2], [3, 2], [4, 0]]}]}"#,
-//! )
-//! .unwrap();
-//! let figure = build(&scene, &FigureOptions::new(400, 300)).unwrap();
-//! let text = svg::write(&figure);
-//! // The cubic under the 2D view is one exact cubic command: its control points mapped
-//! // into the 400×300 page (margins included), not a polyline.
-//! assert!(text.contains("C110 60 290 60 380 240"), "{text}");
-//! ```
-
+#![doc = include_str!("../README.md")]
 #![forbid(unsafe_code)]
 
 pub mod annotate;

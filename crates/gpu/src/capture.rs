@@ -25,6 +25,9 @@ pub const OFFSCREEN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unor
 /// # Errors
 /// [`GpuError::ImageSize`] for a size the device cannot hold, [`GpuError::Pack`] for a
 /// scene over the GPU limits, [`GpuError::Readback`] when reading fails.
+#[deprecated(
+    note = "a scene is drawn by splinescope_render::render; an encoding by capture::render_with"
+)]
 pub fn render(
     ctx: &GpuContext,
     pipelines: &Pipelines,
@@ -42,10 +45,13 @@ pub fn render(
     )
 }
 
-/// [`render`] for a tolerance of `tolerance_px` pixels.
+/// Draws `encoding` seen by `camera` into a `width × height` image, tessellated as the
+/// window does for a tolerance of `tolerance_px` pixels: what `splinescope_render::render`
+/// draws a scene's encoding with. The camera is the caller's.
 ///
 /// # Errors
-/// As [`render`].
+/// [`GpuError::ImageSize`] for a size the device cannot hold, [`GpuError::Pack`] for a
+/// scene over the GPU limits, [`GpuError::Readback`] when reading fails.
 pub fn render_with(
     ctx: &GpuContext,
     pipelines: &Pipelines,

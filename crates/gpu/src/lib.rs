@@ -1,12 +1,4 @@
-//! splinescope's GPU layer, the only one that names `wgpu` and `naga`: device setup, the
-//! data layout shared with the WGSL shaders, packing, the compute tessellator and its CPU
-//! twin, the renderer, offscreen capture ([`capture`], into a
-//! [`splinescope_image::RgbaImage`]) and GPU evaluation.
-//!
-//! What it may use: [`splinescope_core`], [`splinescope_io`], [`splinescope_image`] and
-//! [`splinescope_encoding`] (the scene format's types), wgpu, naga. No
-//! window or command-line crate: the viewer and the command line build on it.
-
+#![doc = include_str!("../README.md")]
 #![forbid(unsafe_code)]
 
 pub mod adaptive;

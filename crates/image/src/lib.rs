@@ -1,26 +1,4 @@
-//! splinescope's images: RGBA8 images as offscreen renders come back, PNG reading
-//! (untrusted input, checked against [`limits::IMAGE_PIXELS`] before anything is
-//! allocated) and atomic writing ([`RgbaImage`]), and their comparison for image tests,
-//! `regress`, `diff` and the Python module ([`compare`]: per channel and NVIDIA FLIP).
-//!
-//! What it may use: `splinescope-io` (the limits, atomic files), png, nv-flip, serde (a
-//! comparison serializes into reports) — no GPU:
-//! comparing two PNGs does not pull in wgpu.
-//!
-//! ```
-//! use splinescope_image::RgbaImage;
-//! use splinescope_image::compare::{Tolerance, compare_images};
-//!
-//! let a = RgbaImage { width: 2, height: 1, data: vec![255, 0, 0, 255, 0, 0, 255, 255] };
-//! let mut b = a.clone();
-//! b.data[0] = 250; // one channel of one pixel off by 5
-//! let strict: Tolerance = "channel=4,pixels=0%".parse().unwrap();
-//! let (c, _pictures) = compare_images(&b, &a, &strict).unwrap();
-//! assert!(!c.matches && c.differing_pixels == 1 && c.max_channel_diff == 5);
-//! let loose: Tolerance = "channel=8".parse().unwrap();
-//! assert!(compare_images(&b, &a, &loose).unwrap().0.matches);
-//! ```
-
+#![doc = include_str!("../README.md")]
 #![forbid(unsafe_code)]
 
 pub mod compare;

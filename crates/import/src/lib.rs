@@ -1,14 +1,4 @@
-//! Reading the curves people already have: files of other formats become scenes of
-//! [`splinescope_core::geom::Path`] curves (the family every format's curves are: Bézier
-//! segments of mixed degree, some rational, joined end to end), so that everything
-//! downstream — the GPU, the analysis, figures, Python — works on them unchanged.
-//!
-//! [`load`] reads a file by its extension: a splinescope scene (`.json`) as it is, SVG
-//! (`.svg`) through [`svg::read`], fonts through [`font::read`], DXF through
-//! [`dxf::read`] and STEP through [`step::read`]; [`dxf::write`] writes a scene as DXF. Every reader checks the documented limits
-//! ([`splinescope_scene::limits`]) and names the file and the place (line, element) of
-//! what it refuses; what it leaves out it says in [`Imported::warnings`].
-
+#![doc = include_str!("../README.md")]
 #![forbid(unsafe_code)]
 
 pub mod dxf;

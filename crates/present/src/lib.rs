@@ -1,29 +1,4 @@
-//! What splinescope says about a curve to a person, above the math of
-//! [`splinescope_core`]: each family's panel controls with their labels and hints
-//! ([`controls`]), its one-line summary and its shape parameters as labels write them, the
-//! starting curves the editor offers, and the family's part of the `inspect` report
-//! ([`inspect`]). The viewer, the command line, figures and the Python module all read
-//! them from here, so a curve is described the same way everywhere, and core stays math.
-//!
-//! Each family's words live in one file of [`family`], behind one trait, [`Present`],
-//! which [`Curve`] also implements by dispatching to its family.
-//!
-//! ```
-//! use glam::DVec3;
-//! use splinescope_core::geom::{Bezier, Curve};
-//! use splinescope_present::Present;
-//!
-//! let cubic = Curve::from(Bezier::new(vec![
-//!     DVec3::ZERO,
-//!     DVec3::new(1.0, 2.0, 0.0),
-//!     DVec3::new(3.0, 2.0, 0.0),
-//!     DVec3::new(4.0, 0.0, 0.0),
-//! ]));
-//! assert_eq!(cubic.summary(), "degree 3");
-//! let elevate = &cubic.controls()[0];
-//! assert_eq!(elevate.label, "elevate degree");
-//! ```
-
+#![doc = include_str!("../README.md")]
 #![forbid(unsafe_code)]
 
 pub mod controls;

@@ -1,13 +1,4 @@
-//! splinescope's Python module (`splinescope._splinescope`, wrapped by the pure-Python
-//! package `splinescope` in `crates/python/python/`): curves of every family read from
-//! the scene format's curve objects and evaluated on numpy arrays, scenes with their
-//! solve requests, the GPU picture of a scene, and image comparison.
-//!
-//! What it may use: the library crates ([`splinescope_core`], [`splinescope_scene`],
-//! [`splinescope_gpu`]), pyo3 and numpy — no window or command-line crate, so the wheel
-//! carries no winit, egui or clap. Every error becomes a Python exception (a subclass
-//! of `ValueError`, or `GpuError`) with the command line's message; nothing panics into
-//! Python.
+#![doc = include_str!("../README.md")]
 
 mod arrays;
 mod curve;

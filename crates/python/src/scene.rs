@@ -5,13 +5,13 @@ use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, PoisonError};
 
-use glam::DVec2;
 use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
 use splinescope_gpu::{BackendChoice, ContextOptions, GpuContext, Pipelines};
 use splinescope_image::RgbaImage;
-use splinescope_scene::format::shape::{CombCap, CombScale, ShapeOptions, encode_shaped};
+use splinescope_render::{RenderError, RenderRequest};
+use splinescope_scene::format::shape::{CombCap, CombScale, ShapeOptions};
 use splinescope_scene::format::{Scene, from_json_str, to_json_string};
 use splinescope_scene::request::apply_text;
 
@@ -366,27 +366,28 @@ impl PyScene {
                 .map_err(|e: splinescope_gpu::context::UnknownBackend| {
                     raise::<GpuError>(e.to_string(), "backend")
                 })?;
-        let tolerance_px = splinescope_gpu::adaptive::check_tolerance(tolerance_px)
-            .map_err(|e| raise::<GpuError>(e.to_string(), "tolerance_px"))?;
-        splinescope_scene::limits::IMAGE_PIXELS
-            .check(u64::from(width) * u64::from(height))
-            .map_err(|e| raise::<GpuError>(e.to_string(), "width"))?;
+        let request = RenderRequest::new(width, height)
+            .with_tolerance_px(tolerance_px)
+            .with_shape(*shape);
+        // The request's values first, each named as the Python argument.
+        request.check().map_err(|e| {
+            let argument = match &e {
+                RenderError::Tolerance(_) => "tolerance_px",
+                RenderError::EmptySize { name } => name,
+                _ => "width",
+            };
+            raise::<GpuError>(e.to_string(), argument)
+        })?;
         let gpu = device(py, choice)?;
         let scene = &self.scene;
         py.detach(|| {
             let (ctx, pipelines) = &*gpu;
-            let viewport = DVec2::new(f64::from(width), f64::from(height));
-            let camera = scene.camera(viewport);
-            splinescope_gpu::capture::render_with(
-                ctx,
-                pipelines,
-                &encode_shaped(scene, camera.view_height(viewport), shape),
-                &camera,
-                (width, height),
-                tolerance_px,
-            )
+            splinescope_render::render(ctx, pipelines, scene, &request)
         })
-        .map_err(|e| gpu_error(&e))
+        .map_err(|e| match e {
+            RenderError::Gpu(e) => gpu_error(&e),
+            other => raise::<GpuError>(other.to_string(), ""),
+        })
     }
 }
 

@@ -1,28 +1,4 @@
-//! splinescope's scene layer: the JSON scene and solve-request formats with their typed,
-//! path-naming errors and form-keeping writer ([`format`](mod@format), [`request`]) and the camera
-//! ([`camera`]); the input limits and output-path policy it checks and follows are
-//! `splinescope-io`'s ([`limits`], [`files`], re-exported).
-//!
-//! What it may use: [`splinescope_core`] (curves and solvers), `splinescope-io`,
-//! `splinescope-encoding` (what it encodes a scene into), serde, serde_json and
-//! schemars — no GPU, window or command-line crate. The GPU and viewer layers build on it.
-//!
-//! ```
-//! use splinescope_scene::format::{from_json_str, to_json_string};
-//!
-//! let text = r#"{"version": 1, "curves": [
-//!     {"type": "bezier", "name": "arch", "points": [[0, 0], [1, 2], [3, 2], [4, 0]]}
-//! ]}"#;
-//! let scene = from_json_str(text).unwrap();
-//! assert_eq!(scene.curves[0].name.as_deref(), Some("arch"));
-//! // Read back what it writes: the same scene.
-//! assert_eq!(from_json_str(&to_json_string(&scene)).unwrap().curves.len(), 1);
-//! // Bad input is an error naming the offending value's path.
-//! let e = from_json_str(r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1, "x"]]}]}"#)
-//!     .unwrap_err();
-//! assert!(e.to_string().contains("curves[0].points[1]"), "{e}");
-//! ```
-
+#![doc = include_str!("../README.md")]
 #![forbid(unsafe_code)]
 
 pub mod format;

@@ -1,18 +1,4 @@
-//! The interactive viewer: a winit window that tessellates and draws the scene every
-//! frame, with pan / zoom / fit (2D) or orbit / pan / dolly (3D), an egui side panel, and
-//! editing.
-//!
-//! Mouse: left drag on a control point moves it; left drag on a Bézier curve pulls the
-//! curve through the pointer (paper 000's least-squares single-target modification);
-//! elsewhere left drag pans (2D) or orbits (3D); right or middle drag pans, a right click
-//! opens a menu (add a curve there, insert or delete a point, duplicate); the wheel zooms
-//! at the cursor. Keys: `F` fit, `P` control polygons, `C` control points, `H` panel,
-//! `I` insert a point, `Delete` delete, `Ctrl+D` duplicate, `]` / `[` select the next /
-//! previous curve, `Ctrl+Z` undo, `Ctrl+Shift+Z` / `Ctrl+Y` redo, `Ctrl+S` save,
-//! `Ctrl+Shift+S` save as, `Ctrl+O` open (or drop a file on the window), `Ctrl+N` new,
-//! `Esc` cancel, `Ctrl+Q` quit, `F1` / `?` the list of shortcuts.
-//! Closing or replacing a scene with unsaved changes asks first; a recovery file holds
-//! unsaved edits until they are saved or discarded; saving keeps the file's form.
+#![doc = include_str!("../README.md")]
 
 //!
 //! Rooms: [`interaction`] is the window-free model (camera, editing, switches) that tests

@@ -367,7 +367,7 @@ fn gpu_rates(
                 .upload(&ctx.device, c, wgpu::BufferUsages::COPY_SRC)
         })
         .collect();
-    let (wall, pass) = gpu_compute_rates(
+    let (wall, pass, pass_note) = gpu_compute_rates(
         ctx,
         pipelines,
         &records,
@@ -375,7 +375,7 @@ fn gpu_rates(
         args.iterations,
         Kernel::Tessellate,
     )?;
-    let (limit_wall, limit_pass) = gpu_compute_rates(
+    let (limit_wall, limit_pass, limit_note) = gpu_compute_rates(
         ctx,
         pipelines,
         &records,
@@ -384,6 +384,7 @@ fn gpu_rates(
         Kernel::WriteOnly,
     )?;
     drop(records);
+    report.notes.extend(pass_note.into_iter().chain(limit_note));
     report.gpu_compute_wall_samples_per_s = Some(wall);
     report.gpu_compute_timestamp_samples_per_s = pass;
     report.gpu_write_limit_samples_per_s = Some(limit_pass.unwrap_or(limit_wall));
@@ -516,6 +517,9 @@ fn print_report(r: &BenchReport) -> Result<()> {
     say!("  GPU compute (wall, submit+wait)    {}", m(wall));
     match r.gpu_compute_timestamp_samples_per_s {
         Some(v) => say!("  GPU compute (timestamps)           {}", m(v)),
+        None if r.notes.iter().any(|n| n.contains("timestamps put")) => {
+            say!("  GPU compute (timestamps)           none: they do not bracket the work (above)");
+        }
         None => say!("  GPU compute (timestamps)           not supported by this adapter"),
     }
     say!(
@@ -621,7 +625,7 @@ fn gpu_compute_rates(
     total: u64,
     iterations: u32,
     kernel: Kernel,
-) -> Result<(f64, Option<f64>)> {
+) -> Result<(f64, Option<f64>, Option<String>)> {
     let timestamps = Timestamps::new(ctx);
     let mut gpu_pass_ns = Vec::new();
     let mut wall = Duration::ZERO;
@@ -653,11 +657,39 @@ fn gpu_compute_rates(
         }
     }
     let gpu_wall = rate(total * u64::from(iterations), wall);
-    let gpu_pass = (!gpu_pass_ns.is_empty()).then(|| {
+    let mut note = None;
+    let gpu_pass = if gpu_pass_ns.is_empty() {
+        None
+    } else {
         let mean = gpu_pass_ns.iter().sum::<f64>() / gpu_pass_ns.len() as f64;
-        total as f64 / (mean * 1e-9)
-    });
-    Ok((gpu_wall, gpu_pass))
+        let wall_ns = wall.as_secs_f64() * 1e9 / f64::from(iterations.max(1));
+        if timestamps_bracket_the_work(mean, wall_ns) {
+            Some(total as f64 / (mean * 1e-9))
+        } else {
+            note = Some(format!(
+                "the adapter's timestamps put the {} pass at {:.3} ms against {:.1} ms by the wall clock: they do not bracket its work, so no timestamp rate is given",
+                match kernel {
+                    Kernel::Tessellate => "kernel",
+                    Kernel::WriteOnly => "write-only",
+                },
+                mean * 1e-6,
+                wall_ns * 1e-6
+            ));
+            None
+        }
+    };
+    Ok((gpu_wall, gpu_pass, note))
+}
+
+/// Whether a pass's timestamped duration can be the duration of its work, given the wall
+/// clock around its submission and wait (`wall_ns`, which also holds the submission and
+/// the readback of the timestamps). Where the wall clock is long enough not to be
+/// overhead (over 5 ms) and the timestamps account for less than a tenth of it, they did
+/// not bracket the work: software adapters (lavapipe) run large dispatches on worker
+/// threads the timestamps do not wait for, and report a duration that does not grow with
+/// the work.
+fn timestamps_bracket_the_work(pass_ns: f64, wall_ns: f64) -> bool {
+    pass_ns.is_finite() && pass_ns > 0.0 && (wall_ns <= 5e6 || pass_ns * 10.0 >= wall_ns)
 }
 
 fn draw_frames(
@@ -757,5 +789,24 @@ impl Timestamps {
         encoder.resolve_query_set(&self.set, 0..2, &self.resolve, 0);
         let ticks: Vec<u64> = read_buffer(&ctx.device, &ctx.queue, &mut encoder, &self.resolve)?;
         Ok(ticks[1].saturating_sub(ticks[0]) as f64 * f64::from(self.period_ns))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::timestamps_bracket_the_work;
+
+    #[test]
+    fn timestamps_that_do_not_grow_with_the_work_are_not_taken() {
+        // lavapipe, 100,000 cubics: 0.09 ms by timestamps against 140 ms by the wall.
+        assert!(!timestamps_bracket_the_work(0.09e6, 140e6));
+        // A hardware adapter: the pass is most of a long wall clock.
+        assert!(timestamps_bracket_the_work(4.0e6, 6.0e6));
+        assert!(timestamps_bracket_the_work(0.7e6, 7.0e6));
+        // A short dispatch: the wall clock is mostly submission and readback.
+        assert!(timestamps_bracket_the_work(0.05e6, 1.5e6));
+        // No duration at all is never a measurement.
+        assert!(!timestamps_bracket_the_work(0.0, 1.0e6));
+        assert!(!timestamps_bracket_the_work(f64::NAN, 1.0e6));
     }
 }

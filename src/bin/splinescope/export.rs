@@ -126,22 +126,10 @@ pub fn run(a: &ExportArgs) -> Result<()> {
         Format::Dxf => splinescope::import::dxf::write(&scene)?,
         Format::Png => {
             let (ctx, pipelines) = a.gpu.context()?;
-            let mut image = splinescope::offscreen::render_scene_shaped(
-                &ctx,
-                &pipelines,
-                &scene,
-                None,
-                (a.width, a.height),
-                splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX,
-                &a.shape.options(),
-            )?;
-            splinescope::offscreen::annotate_shaped(
-                &mut image,
-                &scene,
-                &a.text.options(),
-                &a.shape.options(),
-            )?;
-            image.png_bytes(&a.output)?
+            let request = splinescope::render::RenderRequest::new(a.width, a.height)
+                .with_shape(a.shape.options())
+                .with_text(a.text.options());
+            splinescope::render::render(&ctx, &pipelines, &scene, &request)?.png_bytes(&a.output)?
         }
         Format::Svg | Format::Pdf => {
             let mut opts = splinescope_figure::FigureOptions::new(a.width, a.height)

@@ -69,8 +69,8 @@ struct TextArgs {
 }
 
 impl TextArgs {
-    fn options(self) -> splinescope::offscreen::TextOptions {
-        splinescope::offscreen::TextOptions {
+    fn options(self) -> splinescope::render::TextOptions {
+        splinescope::render::TextOptions {
             labels: self.labels,
             legend: self.legend,
             axes: self.axes,

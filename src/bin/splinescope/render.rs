@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 
+use splinescope::render::RenderRequest;
 use splinescope::scene::{Scene, gallery};
 
 use crate::{GpuArgs, ShapeArgs, TextArgs, parse_tolerance_px, say};
@@ -60,16 +61,11 @@ fn render(
 ) -> Result<()> {
     let scene = load_scene_or_gallery(scene)?;
     let (ctx, pipelines) = gpu.context()?;
-    let mut image = splinescope::offscreen::render_scene_shaped(
-        &ctx,
-        &pipelines,
-        &scene,
-        None,
-        (width, height),
-        tolerance_px,
-        &shape.options(),
-    )?;
-    splinescope::offscreen::annotate_shaped(&mut image, &scene, &text.options(), &shape.options())?;
+    let request = RenderRequest::new(width, height)
+        .with_tolerance_px(tolerance_px)
+        .with_shape(shape.options())
+        .with_text(text.options());
+    let image = splinescope::render::render(&ctx, &pipelines, &scene, &request)?;
     image.write_png(output)?;
     say!(
         "rendered {} curve(s) to {} ({width}×{height}, {})",

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result, bail};
 
 use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext, Pipelines};
+use splinescope::render::{RenderRequest, TextOptions};
 use splinescope::scene::{Scene, gallery};
 
 use crate::{GpuArgs, parse_tolerance_px, say};
@@ -207,17 +208,11 @@ fn render_to(
     width: u32,
     height: u32,
 ) -> Result<()> {
-    let mut image =
-        splinescope::offscreen::render_scene(ctx, pipelines, scene, None, width, height)?;
     // The headless gallery names its curves.
-    splinescope::offscreen::annotate(
-        &mut image,
-        scene,
-        &splinescope::offscreen::TextOptions {
-            labels: true,
-            ..Default::default()
-        },
-    )?;
-    image.write_png(path)?;
+    let request = RenderRequest::new(width, height).with_text(TextOptions {
+        labels: true,
+        ..Default::default()
+    });
+    splinescope::render::render(ctx, pipelines, scene, &request)?.write_png(path)?;
     Ok(())
 }

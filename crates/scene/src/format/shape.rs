@@ -295,7 +295,19 @@ pub fn encode_shaped(
     view_height: f64,
     options: &ShapeOptions,
 ) -> splinescope_encoding::Encoding {
-    let mut encoding = super::encoding::encode(scene);
+    encode_shaped_with(scene, view_height, options, super::draw::Switches::ALL)
+}
+
+/// [`encode_shaped`] with the curves' overlays further limited by `switches` (the
+/// window's `P` and `C`).
+#[must_use]
+pub fn encode_shaped_with(
+    scene: &Scene,
+    view_height: f64,
+    options: &ShapeOptions,
+    switches: super::draw::Switches,
+) -> splinescope_encoding::Encoding {
+    let mut encoding = super::encoding::encode_with(scene, switches);
     encoding.comb = options.comb.map(|c| c.resolve(scene, view_height));
     encoding.comb_cap = options.comb_cap.world(view_height);
     if options.any_marker() {
