@@ -5,5 +5,6 @@ pub mod analysis;
 pub mod geom;
 pub mod num;
 pub mod ops;
+pub mod poly;
 pub mod rng;
 pub mod solve;

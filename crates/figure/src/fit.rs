@@ -13,7 +13,7 @@
 
 use glam::{DVec2, DVec3};
 
-use splinescope_core::analysis::poly::{elevate_to, product};
+use splinescope_core::poly::{elevate_to, product};
 use splinescope_core::geom::Bezier;
 
 /// One path command after the current point.

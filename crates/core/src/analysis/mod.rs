@@ -4,7 +4,8 @@
 //! family lowers to (polynomial or rational), so they hold for every family in 2D and 3D.
 //!
 //! The engine under them is one root finder for polynomials in Bernstein form
-//! ([`roots::bernstein_roots`]) on the Bernstein arithmetic of [`poly`]. The algorithms and
+//! ([`crate::poly::roots::bernstein_roots`]) on the Bernstein arithmetic of
+//! [`crate::poly`] — below `geom`, which uses them too. The algorithms and
 //! their bounds are stated in `docs/math.md` §7.
 
 pub mod comb;
@@ -13,10 +14,8 @@ pub mod gauss;
 pub mod intersect;
 pub mod joints;
 pub mod piece;
-pub mod poly;
 pub mod quadrature;
 pub mod report;
-pub mod roots;
 
 pub use curve::{
     AnalysisError, CurvatureExtremum, CurveAnalysis, DEFAULT_ACCURACY, Extremum, ExtremumKind,
@@ -24,4 +23,16 @@ pub use curve::{
 };
 pub use intersect::{Hit, Intersections, Overlap, PairIntersections, all_intersections};
 pub use joints::{Joint, JointClass};
-pub use roots::{Root, Roots, bernstein_roots, bernstein_roots_with_noise};
+pub use crate::poly::roots::{Root, Roots, bernstein_roots, bernstein_roots_with_noise};
+
+/// Moved below `geom`: [`crate::poly`].
+#[deprecated(note = "moved to splinescope_core::poly")]
+pub mod poly {
+    pub use crate::poly::*;
+}
+
+/// Moved below `geom`: [`crate::poly::roots`].
+#[deprecated(note = "moved to splinescope_core::poly::roots")]
+pub mod roots {
+    pub use crate::poly::roots::*;
+}

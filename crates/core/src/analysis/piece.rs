@@ -2,12 +2,12 @@
 //! coefficients of the homogeneous numerator `A_k(u) = Σ w_i P_{i,k} B_i(u)` and, for a
 //! rational segment, of the weight `W(u) = Σ w_i B_i(u)`; the curve there is `A / W`
 //! (`W ≡ 1` for a polynomial segment). The polynomials every analysis needs are built
-//! from these by [`super::poly`]: the quotient rule's numerators, `C′ × C″`, `|C′|²`.
+//! from these by [`crate::poly`]: the quotient rule's numerators, `C′ × C″`, `|C′|²`.
 
 use glam::{DVec2, DVec3};
 
 use super::gauss::PlanarSpeed;
-use super::poly;
+use crate::poly;
 use crate::geom::BezierSegment;
 
 /// A segment in homogeneous Bernstein form, with the curve parameters it covers.
@@ -766,7 +766,7 @@ impl Piece {
         let g = self.speed_squared_numerator(if self.planar { 2 } else { 3 });
         let slope = poly::derivative(&g);
         let curve = poly::derivative(&slope);
-        super::roots::bernstein_roots(&slope)
+        crate::poly::roots::bernstein_roots(&slope)
             .roots
             .iter()
             .filter(|r| r.t > 0.0 && r.t < 1.0 && r.multiplicity % 2 == 1)

@@ -281,7 +281,7 @@ impl Bezier {
 
     /// The tight bounding box of the curve on `[0, 1]`: the end points and the points where
     /// a coordinate's derivative vanishes, found by the analysis' Bernstein root finder
-    /// ([`crate::analysis::roots::bernstein_roots`], polished to full precision).
+    /// ([`crate::poly::roots::bernstein_roots`], polished to full precision).
     #[must_use]
     pub fn bounding_box(&self) -> Aabb {
         let n = self.degree();
@@ -292,7 +292,7 @@ impl Bezier {
         let hodograph = self.deriv();
         for axis in 0..3 {
             let coeffs: Vec<f64> = hodograph.points.iter().map(|p| p[axis]).collect();
-            for root in crate::analysis::roots::bernstein_roots(&coeffs).roots {
+            for root in crate::poly::roots::bernstein_roots(&coeffs).roots {
                 bbox = bbox.including(self.eval(root.t));
             }
         }

@@ -23,7 +23,7 @@
 
 use glam::DVec3;
 
-use crate::analysis::poly;
+use crate::poly;
 use crate::geom::{BezierSegment, GeomError, Path, PathSegment};
 
 use super::OpError;

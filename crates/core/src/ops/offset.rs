@@ -65,7 +65,7 @@
 use glam::DVec3;
 
 use crate::analysis::curve::CurveAnalysis;
-use crate::analysis::{poly, roots};
+use crate::poly::{self, roots};
 use crate::geom::{BezierSegment, Curve, Lower, ParamCurve, Path, PathSegment};
 
 use super::OpError;

@@ -14,7 +14,7 @@
 
 use glam::DVec3;
 
-use crate::analysis::poly;
+use crate::poly;
 use crate::geom::Bezier;
 
 use super::OpError;

@@ -11,9 +11,9 @@ pub use length::bezier_length;
 pub use nearest::Nearest;
 
 use super::piece::Piece;
-use super::poly;
+use crate::poly;
 use super::quadrature::integrate;
-use super::roots::{bernstein_roots, bernstein_roots_with_noise};
+use crate::poly::roots::{bernstein_roots, bernstein_roots_with_noise};
 use crate::geom::{Aabb, BezierSegment, Lower};
 use crate::num::Num;
 

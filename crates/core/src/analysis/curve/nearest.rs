@@ -21,7 +21,7 @@
 
 use glam::{DVec2, DVec3};
 
-use super::super::roots::bernstein_roots_with_noise;
+use crate::poly::roots::bernstein_roots_with_noise;
 use super::{AnalysisError, CurveAnalysis};
 
 /// The nearest point of a curve to a point.

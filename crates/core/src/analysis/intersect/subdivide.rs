@@ -6,7 +6,7 @@
 use glam::DVec2;
 
 use crate::analysis::piece::Piece;
-use crate::analysis::poly;
+use crate::poly;
 
 /// Homogeneous control points, on the stack up to degree 7 (large on purpose: the
 /// subdivision makes thousands of them and must not allocate each).

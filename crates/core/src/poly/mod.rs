@@ -1,10 +1,12 @@
 //! Polynomials in Bernstein form over `[0, 1]`: `p(t) = Σ_{i=0}^{n} c_i B_{i,n}(t)`, as
 //! slices of coefficients. Products, derivatives, elevation, subdivision and evaluation
-//! with a running error bound — what the root finder ([`super::roots`]) and the analyses
+//! with a running error bound — what the root finder ([`roots`]) and the analyses
 //! built on it (extrema, inflections, curvature, areas, intersections with lines) need.
 //!
 //! Every operation forms convex combinations or products of binomial ratios that are at
 //! most 1, so coefficients never grow by more than the degree (docs/math.md §7).
+
+pub mod roots;
 
 pub use crate::geom::bernstein::binomial;
 

@@ -27,7 +27,7 @@
 //! cluster, the half-width of its interval.
 //! Roots exactly at 0 or 1 (a zero end coefficient) are exact, with their multiplicity.
 
-use super::poly;
+use crate::poly;
 
 /// One root.
 #[derive(Debug, Clone, Copy, PartialEq)]
