@@ -393,6 +393,10 @@ fn the_write_only_kernel_writes_exactly_the_kernels_samples() {
             };
             let chunks = pack(&cases, limits);
             let tess = Tessellator::new(&ctx.device);
+            assert!(
+                !tess.write_only_built(),
+                "{name}: a tessellator that only draws builds no write-only kernel"
+            );
             for chunk in &chunks {
                 let buffers = tess.upload(
                     &ctx.device,
@@ -403,7 +407,8 @@ fn the_write_only_kernel_writes_exactly_the_kernels_samples() {
                 ctx.queue
                     .write_buffer(&buffers.samples, 0, bytemuck::cast_slice(&poison));
                 let mut encoder = ctx.device.create_command_encoder(&Default::default());
-                tess.encode_write_only(&mut encoder, [&buffers], None);
+                tess.encode_write_only(&ctx.device, &mut encoder, [&buffers], None);
+                assert!(tess.write_only_built(), "{name}: built when first asked for");
                 ctx.queue.submit([encoder.finish()]);
                 let mut encoder = ctx.device.create_command_encoder(&Default::default());
                 let got: Vec<splinescope::gpu::layout::GpuVertex> =

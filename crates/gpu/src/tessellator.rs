@@ -11,7 +11,11 @@ use super::shaders;
 pub struct Tessellator {
     layout: wgpu::BindGroupLayout,
     pipelines: Vec<wgpu::ComputePipeline>,
-    write_only: wgpu::ComputePipeline,
+    /// The module the kernels come from, for the write-only kernel.
+    module: wgpu::ShaderModule,
+    /// The write-only kernel, built the first time a benchmark asks for it (a device that
+    /// only draws never compiles it).
+    write_only: std::sync::Arc<std::sync::OnceLock<wgpu::ComputePipeline>>,
     max_groups_per_dim: u32,
 }
 
@@ -101,27 +105,48 @@ impl Tessellator {
     /// (the kernel self-test's own tests hand it a deliberately wrong kernel).
     #[must_use]
     pub fn with_module(device: &wgpu::Device, module: &wgpu::ShaderModule) -> Tessellator {
-        let entries: Vec<&str> = TESSELLATE_KERNELS
-            .iter()
-            .map(|(e, _, _)| *e)
-            .chain([WRITE_ONLY])
-            .collect();
-        let (layout, mut pipelines) = compute_pipelines(
+        let entries: Vec<&str> = TESSELLATE_KERNELS.iter().map(|(e, _, _)| *e).collect();
+        let (layout, pipelines) = compute_pipelines(
             device,
             "tessellate",
             module,
             &super::bindings::tessellate()[0],
             &entries,
         );
-        let write_only = pipelines
-            .pop()
-            .unwrap_or_else(|| unreachable!("the write-only kernel"));
         Tessellator {
             layout,
             pipelines,
-            write_only,
+            module: module.clone(),
+            write_only: std::sync::Arc::default(),
             max_groups_per_dim: device.limits().max_compute_workgroups_per_dimension,
         }
+    }
+
+    /// Whether the write-only kernel has been built (only a benchmark's first
+    /// [`Tessellator::encode_write_only`] builds it).
+    #[must_use]
+    pub fn write_only_built(&self) -> bool {
+        self.write_only.get().is_some()
+    }
+
+    /// The write-only kernel's pipeline, built on the first call with the kernels' own
+    /// bind group layout.
+    fn write_only(&self, device: &wgpu::Device) -> &wgpu::ComputePipeline {
+        self.write_only.get_or_init(|| {
+            let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some(WRITE_ONLY),
+                bind_group_layouts: &[Some(&self.layout)],
+                immediate_size: 0,
+            });
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(WRITE_ONLY),
+                layout: Some(&layout),
+                module: &self.module,
+                entry_point: Some(WRITE_ONLY),
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+                cache: None,
+            })
+        })
     }
 
     /// Uploads one chunk. `sample_usage` is added to the samples buffer's `STORAGE` usage
@@ -215,11 +240,12 @@ impl Tessellator {
     /// which the kernels are measured. Sample `j` of a record gets `(u_j, 0, 0)`.
     pub fn encode_write_only<'a>(
         &self,
+        device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         chunks: impl IntoIterator<Item = &'a ChunkBuffers>,
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
-        self.record(encoder, chunks, timestamp_writes, Some(&self.write_only));
+        self.record(encoder, chunks, timestamp_writes, Some(self.write_only(device)));
     }
 
     /// One pass over every dispatch of `chunks`, each with its class's kernel or with

@@ -637,7 +637,7 @@ fn gpu_compute_rates(
             Kernel::WriteOnly => {
                 pipelines
                     .tessellator
-                    .encode_write_only(&mut encoder, records, writes)
+                    .encode_write_only(&ctx.device, &mut encoder, records, writes)
             }
         }
         let started = Instant::now();
