@@ -1,18 +1,18 @@
 //! The old names of drawing a scene offscreen, kept for one release: use
-//! [`crate::render::render`] with a [`crate::render::RenderRequest`], which every caller
+//! [`splinescope_render::render`] with a [`splinescope_render::RenderRequest`], which every caller
 //! (the command line, the Python module, the pytest plugin) now goes through
 //! (`CHANGELOG.md`).
 #![allow(deprecated)]
 
 use glam::DVec2;
 
-use crate::camera::Camera;
-use crate::gpu::capture::render_with;
-use crate::gpu::context::GpuContext;
-use crate::gpu::{GpuError, Pipelines};
-use crate::image::RgbaImage;
-use crate::scene::Scene;
-use crate::scene::shape::{ShapeOptions, encode_shaped};
+use splinescope_gpu::capture::render_with;
+use splinescope_gpu::context::GpuContext;
+use splinescope_gpu::{GpuError, Pipelines};
+use splinescope_image::RgbaImage;
+use splinescope_scene::camera::Camera;
+use splinescope_scene::format::Scene;
+use splinescope_scene::format::shape::{ShapeOptions, encode_shaped};
 
 pub use splinescope_figure::TextOptions;
 
@@ -36,7 +36,7 @@ pub fn render_scene(
         scene,
         camera,
         (width, height),
-        crate::gpu::adaptive::DEFAULT_TOLERANCE_PX,
+        splinescope_gpu::adaptive::DEFAULT_TOLERANCE_PX,
         &ShapeOptions::default(),
     )
 }

@@ -4,9 +4,9 @@
 use schemars::JsonSchema;
 use serde::Serialize;
 
-use crate::geom::family::Xyz;
-use crate::geom::{Lower, ParamCurve};
-use crate::scene::Scene;
+use splinescope_core::geom::family::Xyz;
+use splinescope_core::geom::{Lower, ParamCurve};
+use splinescope_scene::format::Scene;
 
 /// What `eval` prints: `{"curves": [...]}` (streamed curve by curve).
 #[derive(Debug, Clone, Serialize, JsonSchema)]
@@ -81,7 +81,7 @@ impl CheckOutput {
             .enumerate()
             .map(|(index, c)| {
                 let segments = c.curve.lower();
-                if let Err(e) = crate::gpu::pack::check_gpu_fit(index, &segments) {
+                if let Err(e) = splinescope_gpu::pack::check_gpu_fit(index, &segments) {
                     gpu_problems.push(e.to_string());
                 }
                 let (a, b) = c.curve.domain();
@@ -91,13 +91,13 @@ impl CheckOutput {
                     name: c.name.clone(),
                     domain: [a, b],
                     segments: segments.len(),
-                    max_degree: crate::geom::max_degree(&segments),
+                    max_degree: splinescope_core::geom::max_degree(&segments),
                 }
             })
             .collect();
-        if let Err(e) =
-            crate::gpu::pack::check_annotations(&crate::scene::encoding::annotation_points(scene))
-        {
+        if let Err(e) = splinescope_gpu::pack::check_annotations(
+            &splinescope_scene::format::encoding::annotation_points(scene),
+        ) {
             gpu_problems.push(e.to_string());
         }
         CheckOutput {

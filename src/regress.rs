@@ -1,6 +1,6 @@
 //! Image regression for users' own scenes (`splinescope regress`): render every scene of a
 //! directory offscreen, compare each with its reference PNG by the per-channel rule and
-//! NVIDIA FLIP ([`crate::image::compare_images`]), bless new references on request, and
+//! NVIDIA FLIP ([`splinescope_image::compare::compare_images`]), bless new references on request, and
 //! write an HTML report with the actual, reference, diff and FLIP images.
 //!
 //! A run writes all or nothing: the references it blesses are staged beside their
@@ -15,10 +15,11 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 use thiserror::Error;
 
-use crate::gpu::{GpuContext, Pipelines};
-use crate::image::{Comparison, ComparisonImages, RgbaImage, Tolerance, compare_images};
-use crate::scene::Scene;
+use splinescope_gpu::{GpuContext, Pipelines};
+use splinescope_image::RgbaImage;
+use splinescope_image::compare::{Comparison, ComparisonImages, Tolerance, compare_images};
 use splinescope_image::report::{ReportRow, figures_text, write_report};
+use splinescope_scene::format::Scene;
 
 /// How to run a regression.
 #[derive(Debug, Clone, PartialEq)]
@@ -176,9 +177,9 @@ pub enum RegressError {
         /// That directory, as given.
         other: PathBuf,
     },
-    /// The render size is over [`crate::limits::IMAGE_PIXELS`].
+    /// The render size is over [`splinescope_io::limits::IMAGE_PIXELS`].
     #[error("--width × --height: {0}")]
-    TooLarge(crate::limits::LimitError),
+    TooLarge(splinescope_io::limits::LimitError),
     /// The blessed references could not be written (none was).
     #[error("{0}; nothing was written")]
     Bless(std::io::Error),
@@ -266,7 +267,7 @@ fn check_report_apart(
     dirs: [(&'static str, &Path); 2],
 ) -> Result<(), RegressError> {
     for (what, dir) in dirs {
-        let other = crate::files::resolved(dir);
+        let other = splinescope_io::files::resolved(dir);
         let relation = if other == resolved_report {
             "is"
         } else if resolved_report.starts_with(&other) {
@@ -338,11 +339,11 @@ fn compare_one(
         Scene::load(path).map_err(|e| format!("{}: {e}", path.display()))
     };
     let rendered = loaded.and_then(|scene| {
-        crate::render::render(
+        splinescope_render::render(
             ctx,
             pipelines,
             &scene,
-            &crate::render::RenderRequest::new(opts.width, opts.height),
+            &splinescope_render::RenderRequest::new(opts.width, opts.height),
         )
         .map_err(|e| format!("{}: {e}", path.display()))
     });
@@ -417,7 +418,7 @@ fn compare_one(
 /// # Errors
 /// No scenes, a references path that is not a directory, a report directory that is in
 /// use, is, contains or lies inside the references or scenes directory, or a render size
-/// over [`crate::limits::IMAGE_PIXELS`].
+/// over [`splinescope_io::limits::IMAGE_PIXELS`].
 pub fn check_options(
     scenes: &Path,
     refs: &Path,
@@ -432,7 +433,7 @@ pub fn check_options(
             let target = report_target(report)?;
             check_report_apart(
                 report,
-                &crate::files::resolved(&target),
+                &splinescope_io::files::resolved(&target),
                 [("references", refs), ("scenes", scenes)],
             )?;
             check_report_dir(&target)?;
@@ -440,7 +441,7 @@ pub fn check_options(
         }
         None => None,
     };
-    crate::limits::IMAGE_PIXELS
+    splinescope_io::limits::IMAGE_PIXELS
         .check(u64::from(opts.width) * u64::from(opts.height))
         .map_err(RegressError::TooLarge)?;
     Ok((files, report_dir))
@@ -486,7 +487,7 @@ pub fn run(
         .iter()
         .map(|(p, b)| (p.as_path(), b.as_slice()))
         .collect();
-    let staged = crate::files::stage_all(&pairs).map_err(|e| {
+    let staged = splinescope_io::files::stage_all(&pairs).map_err(|e| {
         undo_refs();
         RegressError::Bless(e)
     })?;

@@ -14,13 +14,22 @@ use serde_json::Value;
 #[must_use]
 pub fn all() -> Vec<(&'static str, Value)> {
     vec![
-        ("scene", input::<crate::scene::doc::SceneDoc>()),
-        ("request", input::<crate::request::types::RequestDocument>()),
-        ("report", output::<crate::request::types::SolveOutput>()),
-        ("inspect", output::<crate::inspect::InspectOutput>()),
+        ("scene", input::<splinescope_scene::format::doc::SceneDoc>()),
+        (
+            "request",
+            input::<splinescope_scene::request::types::RequestDocument>(),
+        ),
+        (
+            "report",
+            output::<splinescope_scene::request::types::SolveOutput>(),
+        ),
+        (
+            "inspect",
+            output::<splinescope_present::inspect::InspectOutput>(),
+        ),
         (
             "analyze",
-            output::<crate::analysis::report::AnalyzeOutput>(),
+            output::<splinescope_core::analysis::report::AnalyzeOutput>(),
         ),
         ("eval", output::<crate::outputs::EvalOutput>()),
         ("check", output::<crate::outputs::CheckOutput>()),

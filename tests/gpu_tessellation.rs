@@ -408,7 +408,10 @@ fn the_write_only_kernel_writes_exactly_the_kernels_samples() {
                     .write_buffer(&buffers.samples, 0, bytemuck::cast_slice(&poison));
                 let mut encoder = ctx.device.create_command_encoder(&Default::default());
                 tess.encode_write_only(&ctx.device, &mut encoder, [&buffers], None);
-                assert!(tess.write_only_built(), "{name}: built when first asked for");
+                assert!(
+                    tess.write_only_built(),
+                    "{name}: built when first asked for"
+                );
                 ctx.queue.submit([encoder.finish()]);
                 let mut encoder = ctx.device.create_command_encoder(&Default::default());
                 let got: Vec<splinescope::gpu::layout::GpuVertex> =

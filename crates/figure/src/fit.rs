@@ -13,8 +13,8 @@
 
 use glam::{DVec2, DVec3};
 
-use splinescope_core::poly::{elevate_to, product};
 use splinescope_core::geom::Bezier;
+use splinescope_core::poly::{elevate_to, product};
 
 /// One path command after the current point.
 #[derive(Debug, Clone, Copy, PartialEq)]

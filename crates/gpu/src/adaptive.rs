@@ -24,7 +24,7 @@ pub const MIN_TOLERANCE_PX: f64 = 0.01;
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 #[error(
     "tolerance {} px: must be a finite number of at least {MIN_TOLERANCE_PX} px",
-    crate::num::Num(*.0)
+    splinescope_core::num::Num(*.0)
 )]
 pub struct ToleranceError(pub f64);
 

@@ -10,8 +10,8 @@ use super::pack::{ChunkLimits, prepare};
 use super::pipelines::Pipelines;
 use super::renderer::{GpuScene, Renderer, camera_uniform};
 use super::tessellator::read_buffer;
-use crate::camera::Camera;
-use crate::encoding::Encoding;
+use splinescope_encoding::Encoding;
+use splinescope_encoding::camera::Camera;
 use splinescope_image::RgbaImage;
 
 /// The texture format offscreen images are drawn in: 8-bit RGBA, colours stored as given

@@ -79,7 +79,7 @@ pub fn gpu_control_points(points: &[DVec3], weights: Option<&[f64]>) -> Vec<GpuC
         Some(w) => {
             let largest = w.iter().copied().fold(0.0, f64::max);
             let e = if largest > 0.0 && largest.is_finite() {
-                crate::num::split_exponent(largest).1 + 1
+                splinescope_core::num::split_exponent(largest).1 + 1
             } else {
                 0
             };
@@ -87,7 +87,7 @@ pub fn gpu_control_points(points: &[DVec3], weights: Option<&[f64]>) -> Vec<GpuC
                 .iter()
                 .zip(w)
                 .map(|(p, &w)| {
-                    let w = crate::num::scale_by_power_of_two(w, -e);
+                    let w = splinescope_core::num::scale_by_power_of_two(w, -e);
                     GpuControlPoint {
                         position: (*p * w).as_vec3().to_array(),
                         weight: w as f32,

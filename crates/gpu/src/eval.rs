@@ -16,9 +16,9 @@ use super::context::GpuContext;
 use super::layout::GpuVertex;
 use super::pack::{ChunkBuilder, ChunkLimits, check_gpu_fit};
 use super::pipelines::Pipelines;
-use crate::encoding::Color;
-use crate::geom::{BezierSegment, locate};
-use crate::num::{scale_by_power_of_two, split_exponent};
+use splinescope_core::geom::{BezierSegment, locate};
+use splinescope_core::num::{scale_by_power_of_two, split_exponent};
+use splinescope_encoding::Color;
 
 /// Evaluates each curve (given as its lowered segments, with its scene index for error
 /// messages) at its parameters, on the GPU.
@@ -109,7 +109,7 @@ pub fn evaluate_with_limits(
 /// `points` divided by the power of two `2^e` that brings their largest coordinate
 /// magnitude into `[1, 2)`, and `e` (0 for all-zero points). Exact (barring points below
 /// `2^e · 2⁻¹⁰⁷⁴`, which no `f32` result could show anyway); a value of the scaled points
-/// is scaled back with [`crate::num::scale_by_power_of_two`].
+/// is scaled back with [`splinescope_core::num::scale_by_power_of_two`].
 #[must_use]
 pub fn unit_scaled(points: &[DVec3]) -> (Vec<DVec3>, i32) {
     let largest = points

@@ -202,7 +202,7 @@ pub struct GpuFrame {
 
 /// The most samples adaptive tessellation gives one segment (a scene's fixed counts have
 /// the same maximum).
-pub const MAX_SAMPLES_PER_SEGMENT: u32 = crate::encoding::MAX_SAMPLES_PER_SEGMENT;
+pub const MAX_SAMPLES_PER_SEGMENT: u32 = splinescope_encoding::MAX_SAMPLES_PER_SEGMENT;
 
 /// The most segments of one chunk in adaptive tessellation: the prefix sum scans blocks of
 /// [`SCAN_BLOCK`] and then at most [`SCAN_BLOCK`] block totals in one workgroup.
@@ -349,8 +349,8 @@ pub fn stroke_reach(flags: u32) -> f32 {
 /// The stroke bits of a curve style: cap, join, miter limit and closedness (the
 /// continuation bits are the chunk builder's).
 #[must_use]
-pub fn stroke_flags(shape: &crate::encoding::StrokeShape, closed: bool) -> u32 {
-    use crate::encoding::{Cap, Join};
+pub fn stroke_flags(shape: &splinescope_encoding::StrokeShape, closed: bool) -> u32 {
+    use splinescope_encoding::{Cap, Join};
     let cap = match shape.cap {
         Cap::Round => 0,
         Cap::Butt => 1,
@@ -364,7 +364,7 @@ pub fn stroke_flags(shape: &crate::encoding::StrokeShape, closed: bool) -> u32 {
     // At most 1000 × 1024 < 2²⁴: the limit fits its 24 bits.
     let limit = (shape
         .miter_limit
-        .clamp(1.0, crate::encoding::MAX_MITER_LIMIT)
+        .clamp(1.0, splinescope_encoding::MAX_MITER_LIMIT)
         * 1024.0)
         .round() as u32;
     (cap << LINE_CAP_SHIFT)

@@ -21,10 +21,7 @@ pub mod twin;
 
 use thiserror::Error;
 
-// The lower layers' modules under the names the code of this layer uses (`crate::geom`).
-use splinescope_core::{geom, num};
-use splinescope_encoding::{self as encoding, camera};
-use splinescope_io::limits;
+// The lower layers' modules under the names the code of this layer uses (`splinescope_core::geom`).
 
 /// A buffer holding `contents` (like wgpu's `create_buffer_init`, which panics when the
 /// device is lost: here the failure goes to the device's error handler and shows in

@@ -1,12 +1,12 @@
-//! Packing the scene's draw list ([`crate::encoding::draw`]) for the GPU: strokes become
+//! Packing the scene's draw list ([`splinescope_encoding::draw`]) for the GPU: strokes become
 //! [`GpuLineStyle`] table entries, polylines and points binding-sized batches.
 
 use std::ops::Range;
 
 use super::chunks::{BatchBuilder, BatchPiece, ChunkLimits, LineBatch};
 use super::layout::{GpuLineStyle, GpuVertex};
-use crate::encoding::Color;
-use crate::encoding::draw::{CurveOverlays, DrawList, Stroke, Switches};
+use splinescope_encoding::Color;
+use splinescope_encoding::draw::{CurveOverlays, DrawList, Stroke, Switches};
 
 impl GpuLineStyle {
     /// A solid style.
@@ -161,8 +161,8 @@ fn write_entries(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::ParamCurve;
     use glam::DVec3;
+    use splinescope_core::geom::ParamCurve;
     use splinescope_scene::format::Scene;
     use splinescope_scene::format::draw::{axis_lines, curve_overlays, draw_list};
 
@@ -234,7 +234,7 @@ mod tests {
             };
             assert!(map.rewrite(&edit(&scene, off, c)).is_none());
             let mut recoloured = scene.clone();
-            recoloured.curves[c].style.color = crate::encoding::Color([0.1, 0.2, 0.3, 1.0]);
+            recoloured.curves[c].style.color = splinescope_encoding::Color([0.1, 0.2, 0.3, 1.0]);
             assert!(map.rewrite(&edit(&recoloured, Switches::ALL, c)).is_none());
         }
     }

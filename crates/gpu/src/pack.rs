@@ -13,9 +13,9 @@ pub use super::chunks::{BatchBuilder, ChunkBuilder, ChunkLimits, LineBatch, Plac
 use super::layout::{GpuControlPoint, GpuLineStyle, MAX_GPU_DEGREE};
 pub use super::overlays::{OverlayEdit, OverlayMap, prepare_overlays_mapped};
 pub use super::pack_error::{GPU_COORDINATE_LIMIT, GPU_WEIGHT_RATIO, PackError};
-use crate::encoding::Encoding;
-use crate::encoding::{Color, auto_samples};
-use crate::geom::BezierSegment;
+use splinescope_core::geom::BezierSegment;
+use splinescope_encoding::Encoding;
+use splinescope_encoding::{Color, auto_samples};
 
 /// Checks that the kernel can evaluate every segment: its degree is at most
 /// [`MAX_GPU_DEGREE`], every coordinate is within [`GPU_COORDINATE_LIMIT`] and every
@@ -152,7 +152,7 @@ pub fn repack_points(
 /// join between two pieces, drawn like every other; the repeat covers pixels already
 /// covered, which the layer does not blend twice).
 fn drawn_segments(
-    curve: &crate::encoding::EncodedCurve,
+    curve: &splinescope_encoding::EncodedCurve,
 ) -> impl Iterator<Item = &BezierSegment> + '_ {
     let wrap = (curve.closed && !curve.stroke.is_round())
         .then(|| curve.segments.first())
@@ -161,7 +161,7 @@ fn drawn_segments(
 }
 
 /// Packs an [`Encoding`] for the GPU: every curve's segments into chunks (the sample
-/// total checked against [`crate::limits::SAMPLES`] before any buffer is built), the
+/// total checked against [`splinescope_io::limits::SAMPLES`] before any buffer is built), the
 /// overlays into batches, with where everything went (for in-place updates).
 ///
 /// # Errors
@@ -183,7 +183,7 @@ pub fn prepare(encoding: &Encoding, limits: ChunkLimits) -> Result<PreparedScene
         total += counts.iter().map(|&c| u64::from(c)).sum::<u64>();
         counts_all.push(counts);
     }
-    crate::limits::SAMPLES
+    splinescope_io::limits::SAMPLES
         .check(total)
         .map_err(|e| PackError::TooManySamples(e.to_string()))?;
     let mut chunks = ChunkBuilder::new(limits);
@@ -239,7 +239,7 @@ pub fn curve_tags(prepared: &PreparedScene, curve: usize) -> Vec<(usize, u32)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::{Bezier, Lower};
+    use splinescope_core::geom::{Bezier, Lower};
     use splinescope_scene::format::Scene;
 
     fn style() -> GpuLineStyle {
@@ -389,7 +389,7 @@ mod tests {
 
     #[test]
     fn rational_weights_are_scaled_exactly_and_a_vanishing_one_is_refused() {
-        use crate::geom::RationalBezier;
+        use splinescope_core::geom::RationalBezier;
         let pts = vec![DVec3::ZERO, DVec3::new(1.0, 2.0, 0.0), DVec3::X * 2.0];
         // Weights scaled by a power of two into [1/2, 1): the products exact in f32 here.
         let gpu = super::gpu_control_points(&pts, Some(&[1.0, 3.0, 0.5]));
@@ -457,7 +457,7 @@ mod tests {
 
     #[test]
     fn repacking_an_edited_curve_in_place_equals_packing_it_anew() {
-        use crate::geom::{Curve, Nubmp};
+        use splinescope_core::geom::{Curve, Nubmp};
         use splinescope_scene::format::{SceneCurve, Style, ViewSpec};
         let pts: Vec<DVec3> = (0..7)
             .map(|i| DVec3::new(f64::from(i), f64::from(i % 2), 0.0))

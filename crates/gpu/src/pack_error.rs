@@ -79,7 +79,7 @@ pub enum PackError {
         /// [`GPU_COORDINATE_LIMIT`].
         limit: f64,
     },
-    /// The scene needs more samples than [`crate::limits::SAMPLES`] allows.
+    /// The scene needs more samples than [`splinescope_io::limits::SAMPLES`] allows.
     #[error("the scene's curves need {0}")]
     TooManySamples(String),
     /// The chunk limits are too small to hold even one segment.

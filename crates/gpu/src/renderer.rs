@@ -17,8 +17,8 @@ use super::layout::{
 use super::pack::{LineBatch, PreparedScene};
 use super::pipelines::Pipelines;
 use super::shaders;
-use crate::camera::Camera;
-use crate::encoding::draw::{COMB_ENVELOPE_ALPHA, COMB_HAIR_ALPHA, COMB_WIDTH_PX};
+use splinescope_encoding::camera::Camera;
+use splinescope_encoding::draw::{COMB_ENVELOPE_ALPHA, COMB_HAIR_ALPHA, COMB_WIDTH_PX};
 
 pub use super::layout::LINE_CORNERS;
 
@@ -138,7 +138,7 @@ pub struct CombRequest {
 }
 
 /// The style of a comb's hairs and envelope over a curve of style `curve`
-/// ([`crate::encoding::draw::comb_strokes`]): one pixel, the curve's colour, the hairs
+/// ([`splinescope_encoding::draw::comb_strokes`]): one pixel, the curve's colour, the hairs
 /// fainter.
 #[must_use]
 pub fn comb_styles(curve: &[GpuLineStyle]) -> (Vec<GpuLineStyle>, Vec<GpuLineStyle>) {
@@ -991,7 +991,7 @@ impl Renderer {
         &self,
         ctx: &GpuContext,
         scene: &mut GpuScene,
-        points: &[(Vec<glam::DVec3>, crate::encoding::draw::Stroke)],
+        points: &[(Vec<glam::DVec3>, splinescope_encoding::draw::Stroke)],
     ) {
         let limits = super::pack::ChunkLimits::for_binding_size(ctx.max_binding_bytes());
         scene.markers = super::overlays::prepare_points(points, limits)

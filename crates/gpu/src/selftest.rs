@@ -14,7 +14,7 @@ use super::layout::{GpuVertex, MAX_GPU_DEGREE, TESSELLATE_KERNELS, kernel_class}
 use super::pack::{ChunkBuilder, ChunkLimits};
 use super::tessellator::Tessellator;
 use super::twin;
-use crate::encoding::Color;
+use splinescope_encoding::Color;
 
 /// Samples per test curve: both ends and three interior parameters.
 const SAMPLES: u32 = 5;

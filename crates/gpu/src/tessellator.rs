@@ -245,7 +245,12 @@ impl Tessellator {
         chunks: impl IntoIterator<Item = &'a ChunkBuffers>,
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
-        self.record(encoder, chunks, timestamp_writes, Some(self.write_only(device)));
+        self.record(
+            encoder,
+            chunks,
+            timestamp_writes,
+            Some(self.write_only(device)),
+        );
     }
 
     /// One pass over every dispatch of `chunks`, each with its class's kernel or with

@@ -22,5 +22,4 @@ pub use splinescope_io::{files, limits};
 // The camera is the encoding's (what the GPU layer draws through).
 pub use splinescope_encoding::camera;
 
-// The core's modules under the names the code of this layer uses (`crate::geom`).
-use splinescope_core::{geom, solve};
+// The core's modules under the names the code of this layer uses (`splinescope_core::geom`).

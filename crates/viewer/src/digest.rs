@@ -2,8 +2,8 @@
 use std::collections::VecDeque;
 use std::time::Instant;
 
-use crate::geom::{BezierSegment, Lower, ParamCurve};
-use crate::scene::{Scene, SceneCurve};
+use splinescope_core::geom::{BezierSegment, Lower, ParamCurve};
+use splinescope_scene::format::{Scene, SceneCurve};
 
 /// One listed curve's label and hover text, computed once per scene (not per frame).
 pub(crate) struct CurveSummary {
@@ -53,7 +53,7 @@ pub(crate) fn summarize_lowered(
     c: &SceneCurve,
     segments: &[BezierSegment],
 ) -> CurveSummary {
-    let degree = crate::geom::max_degree(segments);
+    let degree = splinescope_core::geom::max_degree(segments);
     let (a, b) = c.curve.domain();
     let [r, g, bl, _] = c.style.color.0.map(|v| (v * 255.0).round() as u8);
     let name = label(c);
@@ -109,7 +109,7 @@ pub(crate) struct SceneFacts {
     /// Every point has z = 0 (no z fields, 2D coordinates).
     pub planar: bool,
     /// The 3D axis triad to label (empty in planar scenes).
-    pub axes: Vec<crate::scene::draw::Axis>,
+    pub axes: Vec<splinescope_scene::format::draw::Axis>,
     /// What the scene is made of, when it has more curves than the panel lists
     /// ([`family_counts`]); empty otherwise.
     pub families: String,
@@ -128,7 +128,7 @@ impl SceneFacts {
             axes: if planar {
                 Vec::new()
             } else {
-                crate::scene::draw::axis_triad(scene).to_vec()
+                splinescope_scene::format::draw::axis_triad(scene).to_vec()
             },
         }
     }
@@ -208,12 +208,12 @@ pub(crate) const LISTED_CURVES: usize = 200;
 #[cfg(test)]
 mod tests {
     use super::{refresh, summarize};
-    use crate::geom::{Bezier, Curve, Lower};
     use glam::DVec3;
+    use splinescope_core::geom::{Bezier, Curve, Lower};
 
     #[test]
     fn refresh_matches_a_full_summary_after_an_edit() {
-        let mut scene = crate::scene::gallery::gallery();
+        let mut scene = splinescope_scene::format::gallery::gallery();
         let mut summaries = summarize(&scene);
         // Replace curve 1 by a line: its family, segment count and degree all change.
         scene.curves[1].curve = Curve::Bezier(Bezier::new(vec![DVec3::ZERO, DVec3::X]));
@@ -234,7 +234,7 @@ mod tests {
             summaries[1].details
         );
         // Given the curve's lowering (as a drag has it), the summary is the same.
-        let mut given = summarize(&crate::scene::gallery::gallery());
+        let mut given = summarize(&splinescope_scene::format::gallery::gallery());
         refresh(
             &mut given,
             &scene,
@@ -248,9 +248,9 @@ mod tests {
     #[test]
     fn labels_show_the_parameters_as_they_are_now() {
         use crate::edit::Editor;
-        use crate::geom::Nubmp;
+        use splinescope_core::geom::Nubmp;
         use splinescope_present::{ControlValue, Present};
-        let scene = crate::scene::gallery::gallery();
+        let scene = splinescope_scene::format::gallery::gallery();
         let i = scene
             .curves
             .iter()

@@ -9,9 +9,9 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 
-use crate::geom::Curve;
-use crate::scene::{Scene, SceneCurve};
+use splinescope_core::geom::Curve;
 use splinescope_present::{Control, ControlValue, Present};
+use splinescope_scene::format::{Scene, SceneCurve};
 
 mod gesture;
 mod recovery;
@@ -33,7 +33,7 @@ pub enum EditError {
         /// The curve.
         index: usize,
         /// What the family said.
-        reason: crate::geom::GeomError,
+        reason: splinescope_core::geom::GeomError,
     },
     /// A typed control point the curve refused.
     #[error("curves[{index}].points[{point}]: {reason}")]
@@ -43,7 +43,7 @@ pub enum EditError {
         /// The point.
         point: usize,
         /// What the family said.
-        reason: crate::geom::GeomError,
+        reason: splinescope_core::geom::GeomError,
     },
     /// An edit that would leave a curve the renderer cannot draw (its degree over the
     /// GPU's maximum): refused where it is made, the curve kept as it was.
@@ -72,7 +72,7 @@ pub enum EditError {
     },
     /// The pull's solve refused the target (its message says why).
     #[error(transparent)]
-    Pull(#[from] crate::solve::SolveError),
+    Pull(#[from] splinescope_core::solve::SolveError),
     /// The grab was at an end point (fixed by the solve) or the curve is a line.
     #[error("grab the curve away from its fixed end points (and degree ≥ 2)")]
     PullAtEnd,
@@ -187,7 +187,7 @@ pub struct Editor {
     list_changed: bool,
     path: Option<PathBuf>,
     /// The text of the file the scene came from (or was last saved as): saving keeps
-    /// its form ([`crate::scene::to_json_string_keeping`]).
+    /// its form ([`splinescope_scene::format::to_json_string_keeping`]).
     source: Option<String>,
     /// The selected curve, if any.
     pub selected: Option<usize>,
@@ -243,7 +243,7 @@ impl Editor {
     }
 
     /// An editor of the scene read from `path` as `text` ([`Scene::read`]): saving keeps
-    /// that text's form ([`crate::scene::to_json_string_keeping`]).
+    /// that text's form ([`splinescope_scene::format::to_json_string_keeping`]).
     #[must_use]
     pub fn of_file(scene: Scene, path: PathBuf, text: String) -> Editor {
         Editor {
@@ -485,10 +485,10 @@ impl Editor {
             .ok_or(EditError::NoFile)?;
         // Unchanged curves, styles and shorthands are written as the file had them.
         let text = match &self.source {
-            Some(source) => crate::scene::to_json_string_keeping(&self.scene, source),
-            None => crate::scene::to_json_string(&self.scene),
+            Some(source) => splinescope_scene::format::to_json_string_keeping(&self.scene, source),
+            None => splinescope_scene::format::to_json_string(&self.scene),
         };
-        if let Err(reason) = crate::file_output::write_atomic(&path, text.as_bytes()) {
+        if let Err(reason) = splinescope_io::files::write_atomic(&path, text.as_bytes()) {
             // Said where it cannot be missed, with where the edits are kept.
             let kept = match self.path.as_deref() {
                 None => " — the edits are kept in this window only (the scene has no file yet)"

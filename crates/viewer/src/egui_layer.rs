@@ -4,7 +4,7 @@
 use winit::event::WindowEvent;
 use winit::window::Window;
 
-use crate::gpu::GpuContext;
+use splinescope_gpu::GpuContext;
 
 /// egui's state for one window.
 pub(crate) struct EguiLayer {

@@ -274,7 +274,7 @@ impl RecentFiles {
             if let Some(dir) = store.parent() {
                 std::fs::create_dir_all(dir)?;
             }
-            crate::file_output::write_atomic(store, text.as_bytes())
+            splinescope_io::files::write_atomic(store, text.as_bytes())
         };
         write().map_err(|reason| RecentError {
             store: store.to_path_buf(),

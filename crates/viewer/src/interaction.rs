@@ -11,8 +11,8 @@ mod file_actions;
 
 use super::edit::{Editor, Hit};
 use super::file_dialog::{FileDialog, RecentFiles};
-use crate::camera::Camera;
-use crate::scene::{Scene, SceneCurve, Style};
+use splinescope_scene::camera::Camera;
+use splinescope_scene::format::{Scene, SceneCurve, Style};
 
 /// Why the view could not be exported from the viewer's file dialog.
 #[derive(Debug, thiserror::Error)]
@@ -129,7 +129,7 @@ pub enum Answer {
 }
 
 /// A starting curve a new curve can be added from ([`Interaction::add_curve`]): one of
-/// the families' templates ([`crate::geom::Curve::templates`]), by position, with its
+/// the families' templates ([`splinescope_core::geom::Curve::templates`]), by position, with its
 /// menu label.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Template {
@@ -141,7 +141,7 @@ pub struct Template {
 fn template_labels() -> &'static [&'static str] {
     static LABELS: std::sync::OnceLock<Vec<&'static str>> = std::sync::OnceLock::new();
     LABELS.get_or_init(|| {
-        crate::geom::Curve::templates(DVec3::ZERO, 1.0)
+        splinescope_core::geom::Curve::templates(DVec3::ZERO, 1.0)
             .into_iter()
             .map(|(label, _)| label)
             .collect()
@@ -162,7 +162,7 @@ impl Template {
     /// The first template of family `name` (a name of `Curve::FAMILY_NAMES`).
     #[must_use]
     pub fn of_family(name: &str) -> Option<Template> {
-        crate::geom::Curve::templates(DVec3::ZERO, 1.0)
+        splinescope_core::geom::Curve::templates(DVec3::ZERO, 1.0)
             .iter()
             .position(|(_, c)| c.family() == name)
             .and_then(|index| Template::all().get(index).copied())
@@ -177,8 +177,8 @@ impl Template {
     /// The template's curve centred on `center`, about `size` wide, in the plane z =
     /// `center.z`.
     #[must_use]
-    pub fn curve(self, center: DVec3, size: f64) -> crate::geom::Curve {
-        let mut all = crate::geom::Curve::templates(center, size);
+    pub fn curve(self, center: DVec3, size: f64) -> splinescope_core::geom::Curve {
+        let mut all = splinescope_core::geom::Curve::templates(center, size);
         all.swap_remove(self.index).1
     }
 }
@@ -276,7 +276,7 @@ impl Interaction {
     #[must_use]
     pub fn new(editor: Editor, viewport: DVec2, scale_factor: f64, panel_width_px: f64) -> Self {
         let camera = editor.scene().camera(viewport);
-        let auto_fit = editor.scene().view == crate::scene::ViewSpec::Auto;
+        let auto_fit = editor.scene().view == splinescope_scene::format::ViewSpec::Auto;
         let mut model = Interaction {
             editor,
             camera,
@@ -289,7 +289,7 @@ impl Interaction {
             ui_rects: Vec::new(),
             auto_fit,
             editable: true,
-            tolerance_px: crate::gpu::adaptive::DEFAULT_TOLERANCE_PX,
+            tolerance_px: splinescope_gpu::adaptive::DEFAULT_TOLERANCE_PX,
             overlays_locked: None,
             prompt: None,
             show_help: false,

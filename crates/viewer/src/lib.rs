@@ -38,18 +38,14 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{Key, ModifiersState, NamedKey};
 use winit::window::WindowId;
 
-// The lower layers' modules under the names the code of this layer uses (`crate::gpu`).
-use splinescope_core::{geom, solve};
-use splinescope_gpu as gpu;
-use splinescope_io::files as file_output;
-use splinescope_scene::{camera, format as scene};
+// The lower layers' modules under the names the code of this layer uses (`splinescope_gpu`).
 
-use crate::gpu::renderer::camera_uniform;
-use crate::gpu::{BackendChoice, ContextOptions, GpuContext, GpuError};
-use crate::scene::Scene;
 use egui_layer::EguiLayer;
 use interaction::{Button, Input, Interaction, Toggles};
 use scene_view::SceneView;
+use splinescope_gpu::renderer::camera_uniform;
+use splinescope_gpu::{BackendChoice, ContextOptions, GpuContext, GpuError};
+use splinescope_scene::format::Scene;
 use surface::WindowSurface;
 
 /// What to show and how.
@@ -65,7 +61,7 @@ pub struct ViewOptions {
     /// target circling the curve's midpoint. Needs a scene of Bézier curves of one degree.
     /// Editing is off in this mode.
     pub solve: bool,
-    /// The tessellation tolerance in pixels (see [`crate::gpu::adaptive`]).
+    /// The tessellation tolerance in pixels (see [`splinescope_gpu::adaptive`]).
     pub tolerance_px: f64,
     /// Start with control polygons and points hidden (`P`, `C` show them): the stress
     /// scenes, whose overlays would cover the curves.
@@ -81,7 +77,7 @@ pub struct ViewOptions {
     /// (`None`: chosen for the view).
     pub comb: Option<Option<f64>>,
     /// The longest comb hair, a fraction of the view's height.
-    pub comb_cap: crate::scene::shape::CombCap,
+    pub comb_cap: splinescope_scene::format::shape::CombCap,
     /// Destroy the device after this many presented frames, to exercise the viewer's
     /// device-failure path (`view --lose-device-after-frames N`, for its smoke test);
     /// `None` normally.
@@ -505,7 +501,7 @@ impl Running {
                 label: Some("frame"),
             });
         let (panel, actions) = self.run_panel(&mut encoder);
-        let settings = crate::gpu::adaptive::FrameSettings {
+        let settings = splinescope_gpu::adaptive::FrameSettings {
             camera,
             tolerance_px: self.model.tolerance_px as f32,
             min_count: self.view.gpu_min_count(),
@@ -592,7 +588,7 @@ impl Running {
     }
 
     /// Sets the renderer's camera for this frame and returns it.
-    fn renderer_camera(&self, scale: f32) -> crate::gpu::layout::GpuCamera {
+    fn renderer_camera(&self, scale: f32) -> splinescope_gpu::layout::GpuCamera {
         let camera = camera_uniform(&self.model.camera, self.model.viewport, scale);
         self.view.renderer.set_camera(&self.ctx.queue, &camera);
         camera
@@ -650,10 +646,10 @@ impl Running {
             })
             .collect();
         let t = self.model.tolerance_px;
-        if !(t.is_finite() && t >= crate::gpu::adaptive::MIN_TOLERANCE_PX) {
+        if !(t.is_finite() && t >= splinescope_gpu::adaptive::MIN_TOLERANCE_PX) {
             self.model.editor.message = Some(format!(
                 "tolerance {t} px refused: it must be at least {} px",
-                crate::gpu::adaptive::MIN_TOLERANCE_PX
+                splinescope_gpu::adaptive::MIN_TOLERANCE_PX
             ));
             self.model.tolerance_px = tolerance_before;
         }

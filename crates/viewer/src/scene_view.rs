@@ -7,21 +7,21 @@ use super::digest;
 use super::edit::Changes;
 use super::interaction::Toggles;
 use super::readback::Readback;
-use crate::geom::BezierSegment;
-use crate::geom::Lower;
-use crate::gpu::adaptive::FrameSettings;
-use crate::gpu::layout::{FrameStats, WORK_HEADER};
-use crate::gpu::pack::curve_tags;
-use crate::gpu::pack::{
+use crate::shape::{MarkerWorker, ShapeView};
+use splinescope_core::geom::BezierSegment;
+use splinescope_core::geom::Lower;
+use splinescope_gpu::adaptive::FrameSettings;
+use splinescope_gpu::layout::{FrameStats, WORK_HEADER};
+use splinescope_gpu::pack::curve_tags;
+use splinescope_gpu::pack::{
     ChunkLimits, OverlayEdit, PreparedScene, prepare, prepare_overlays_mapped, repack_points,
 };
-use crate::gpu::renderer::{CombRequest, GpuScene, Renderer};
-use crate::gpu::{GpuContext, GpuError, Pipelines};
-use crate::scene::Scene;
-use crate::scene::draw::{Switches, axis_polylines, curve_overlays, draw_list_with};
-use crate::scene::encoding::encode_with;
-use crate::scene::shape::marker_points;
-use crate::shape::{MarkerWorker, ShapeView};
+use splinescope_gpu::renderer::{CombRequest, GpuScene, Renderer};
+use splinescope_gpu::{GpuContext, GpuError, Pipelines};
+use splinescope_scene::format::Scene;
+use splinescope_scene::format::draw::{Switches, axis_polylines, curve_overlays, draw_list_with};
+use splinescope_scene::format::encoding::encode_with;
+use splinescope_scene::format::shape::marker_points;
 use std::time::Instant;
 
 /// What the GPU holds of the scene, and the panel's per-curve summaries.
@@ -290,8 +290,8 @@ impl SceneView {
         settings: &FrameSettings,
         timestamps: Option<(
             [Option<wgpu::ComputePassTimestampWrites<'_>>; 3],
-            crate::gpu::renderer::PassSpan<'_>,
-            crate::gpu::renderer::PassSpan<'_>,
+            splinescope_gpu::renderer::PassSpan<'_>,
+            splinescope_gpu::renderer::PassSpan<'_>,
         )>,
     ) -> bool {
         self.gpu.prepare_frame(ctx, &self.renderer, settings);

@@ -7,12 +7,12 @@ use std::time::Instant;
 
 use glam::DVec3;
 
-use crate::geom::Curve;
-use crate::gpu::layout::GpuControlPoint;
-use crate::gpu::pack::Placement;
-use crate::gpu::renderer::GpuScene;
-use crate::scene::Scene;
-use crate::solve::batch::{BatchResult, BatchSingleTarget};
+use splinescope_core::geom::Curve;
+use splinescope_core::solve::batch::{BatchResult, BatchSingleTarget};
+use splinescope_gpu::layout::GpuControlPoint;
+use splinescope_gpu::pack::Placement;
+use splinescope_gpu::renderer::GpuScene;
+use splinescope_scene::format::Scene;
 
 /// Re-solves a stress scene every frame.
 pub(crate) struct StressSolver {

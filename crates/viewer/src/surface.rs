@@ -8,7 +8,7 @@ use winit::event_loop::ActiveEventLoop;
 use winit::window::Window;
 
 use super::AppError;
-use crate::gpu::{ContextOptions, GpuContext, Pipelines};
+use splinescope_gpu::{ContextOptions, GpuContext, Pipelines};
 
 /// A window with its configured surface.
 pub(crate) struct WindowSurface {

@@ -4,7 +4,7 @@
 //! waiting, like the frame statistics.
 
 use super::readback::Readback;
-use crate::gpu::GpuContext;
+use splinescope_gpu::GpuContext;
 
 /// The stages timed, in the order of their timestamp pairs (the comb's: its comb pass, or
 /// an empty pass when no comb is drawn; the raster's: curves and combs into the layer, or
@@ -85,8 +85,8 @@ impl StageTimer {
     }
 
     /// The comb pass's timestamps.
-    pub fn comb_span(&self) -> crate::gpu::renderer::PassSpan<'_> {
-        crate::gpu::renderer::PassSpan {
+    pub fn comb_span(&self) -> splinescope_gpu::renderer::PassSpan<'_> {
+        splinescope_gpu::renderer::PassSpan {
             query_set: &self.set,
             begin: 8,
             end: 9,
@@ -94,8 +94,8 @@ impl StageTimer {
     }
 
     /// The layer pass's timestamps.
-    pub fn raster_span(&self) -> crate::gpu::renderer::PassSpan<'_> {
-        crate::gpu::renderer::PassSpan {
+    pub fn raster_span(&self) -> splinescope_gpu::renderer::PassSpan<'_> {
+        splinescope_gpu::renderer::PassSpan {
             query_set: &self.set,
             begin: 10,
             end: 11,

@@ -14,8 +14,8 @@ use super::digest::SceneDigest;
 use super::edit::Editor;
 use super::interaction::{Interaction, Pending, Prompt};
 use super::ui::{self, Actions, PanelInfo};
-use crate::geom::{Bezier, Curve, ModifiedBezier};
-use crate::scene::Scene;
+use splinescope_core::geom::{Bezier, Curve, ModifiedBezier};
+use splinescope_scene::format::Scene;
 
 /// What the window keeps between frames, for the harness.
 struct Viewer {
@@ -359,7 +359,7 @@ fn escape_in_a_number_field_changes_nothing() {
 /// show their legend.
 #[test]
 fn the_shape_section_turns_the_comb_on_scales_it_caps_it_and_refuses_bad_values() {
-    use crate::geom::Nurbs;
+    use splinescope_core::geom::Nurbs;
     let r = 2.0;
     let mut h = harness(
         Scene::of_curves([Curve::Nurbs(Nurbs::circle(DVec3::ZERO, r).expect("circle"))]),
@@ -394,7 +394,7 @@ fn the_shape_section_turns_the_comb_on_scales_it_caps_it_and_refuses_bad_values(
     h.run();
     assert!((h.state().model.shape.comb_scale - want).abs() <= 1e-9 * want);
     // The cap: typed as a fraction of the view, refused whole when not above 0, off.
-    use crate::scene::shape::CombCap;
+    use splinescope_scene::format::shape::CombCap;
     assert_eq!(h.state().model.shape.comb_cap, CombCap::default());
     type_into(&mut h, "0.050", "0");
     assert_eq!(
@@ -447,7 +447,7 @@ fn drawn_texts(h: &Harness<'static, Viewer>) -> Vec<(String, egui::Rect)> {
 /// where they were (no jumping while a point is dragged).
 #[test]
 fn window_labels_never_overlap_and_stay_put() {
-    let scene = crate::scene::gallery::gallery();
+    let scene = splinescope_scene::format::gallery::gallery();
     let names: Vec<String> = SceneDigest::of(&scene)
         .summaries
         .iter()

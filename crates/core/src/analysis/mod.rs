@@ -17,13 +17,13 @@ pub mod piece;
 pub mod quadrature;
 pub mod report;
 
+pub use crate::poly::roots::{Root, Roots, bernstein_roots, bernstein_roots_with_noise};
 pub use curve::{
     AnalysisError, CurvatureExtremum, CurveAnalysis, DEFAULT_ACCURACY, Extremum, ExtremumKind,
     HitKind, Length, LineHit, LineIntersections, Nearest, bezier_length,
 };
 pub use intersect::{Hit, Intersections, Overlap, PairIntersections, all_intersections};
 pub use joints::{Joint, JointClass};
-pub use crate::poly::roots::{Root, Roots, bernstein_roots, bernstein_roots_with_noise};
 
 /// Moved below `geom`: [`crate::poly`].
 #[deprecated(note = "moved to splinescope_core::poly")]

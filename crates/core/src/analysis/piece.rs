@@ -7,8 +7,8 @@
 use glam::{DVec2, DVec3};
 
 use super::gauss::PlanarSpeed;
-use crate::poly;
 use crate::geom::BezierSegment;
+use crate::poly;
 
 /// A segment in homogeneous Bernstein form, with the curve parameters it covers.
 #[derive(Debug, Clone, PartialEq)]

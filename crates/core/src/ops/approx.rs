@@ -23,8 +23,8 @@
 
 use glam::DVec3;
 
-use crate::poly;
 use crate::geom::{BezierSegment, GeomError, Path, PathSegment};
+use crate::poly;
 
 use super::OpError;
 

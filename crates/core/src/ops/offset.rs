@@ -65,8 +65,8 @@
 use glam::DVec3;
 
 use crate::analysis::curve::CurveAnalysis;
-use crate::poly::{self, roots};
 use crate::geom::{BezierSegment, Curve, Lower, ParamCurve, Path, PathSegment};
+use crate::poly::{self, roots};
 
 use super::OpError;
 use super::approx;

@@ -14,8 +14,8 @@
 
 use glam::DVec3;
 
-use crate::poly;
 use crate::geom::Bezier;
+use crate::poly;
 
 use super::OpError;
 use super::approx::{bound_within, hull_bound};

@@ -10,7 +10,7 @@ use serde::Serialize;
 pub use super::point_doc::PointDoc;
 
 use super::codec::Written;
-use crate::geom::Curve;
+use splinescope_core::geom::Curve;
 
 /// A scene document (format version 1, `docs/scene-format.md`).
 #[derive(Debug, Clone, Serialize, JsonSchema)]

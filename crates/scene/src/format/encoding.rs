@@ -9,7 +9,7 @@ use glam::DVec3;
 
 use super::draw::{Switches, draw_list_with};
 use super::{AnnotationShape, Scene};
-use crate::geom::Lower;
+use splinescope_core::geom::Lower;
 
 pub use splinescope_encoding::{EncodedCurve, Encoding};
 
@@ -28,7 +28,7 @@ pub fn encode_curve(scene: &Scene, index: usize) -> EncodedCurve {
         width_in_scene: sc.style.width_in_scene,
         stroke: sc.style.stroke,
         // A closed path's ends join; every other family's are its two ends.
-        closed: matches!(&sc.curve, crate::geom::Curve::Path(p) if p.is_closed()),
+        closed: matches!(&sc.curve, splinescope_core::geom::Curve::Path(p) if p.is_closed()),
     }
 }
 

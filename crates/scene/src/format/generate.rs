@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::{Color, DEFAULT_SAMPLES_PER_SEGMENT, Scene, SceneCurve, Style, ViewSpec};
-use crate::geom::Curve;
+use splinescope_core::geom::Curve;
 
 pub use splinescope_core::rng::Rng;
 
@@ -27,7 +27,7 @@ pub struct StressOptions {
 
 /// The family of generated curves: a name of the core's family table
 /// ([`Curve::FAMILY_NAMES`]), each family's curves made by its
-/// [`crate::geom::Family::generated`].
+/// [`splinescope_core::geom::Family::generated`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct StressFamily(&'static str);
 
@@ -87,14 +87,16 @@ impl StressFamily {
     /// Bézier segments one curve of `degree` lowers to.
     #[must_use]
     pub fn segments(self, degree: usize) -> usize {
-        crate::geom::Lower::lower(&self.sample(degree)).len()
+        splinescope_core::geom::Lower::lower(&self.sample(degree)).len()
     }
 
     /// The highest degree of those segments for curves of `degree` (a NUBMP curve lowers
     /// through its dual, one degree higher).
     #[must_use]
     pub fn segment_degree(self, degree: usize) -> usize {
-        crate::geom::max_degree(&crate::geom::Lower::lower(&self.sample(degree)))
+        splinescope_core::geom::max_degree(&splinescope_core::geom::Lower::lower(
+            &self.sample(degree),
+        ))
     }
 
     /// Control points of one curve of `degree`.

@@ -22,7 +22,7 @@ use glam::{DVec2, DVec3};
 use thiserror::Error;
 
 use crate::camera::{Camera, Camera2d, Camera3d};
-use crate::geom::{Aabb, Curve};
+use splinescope_core::geom::{Aabb, Curve};
 
 pub use json::{
     curve_from_value, curve_to_value, from_json_str, pretty_json, to_doc, to_json_string,
@@ -271,7 +271,7 @@ impl Scene {
     /// A scene of `curves` with the defaults of a file that gives nothing else: white
     /// background, automatic samples and view, each curve in its palette style.
     #[must_use]
-    pub fn of_curves(curves: impl IntoIterator<Item = crate::geom::Curve>) -> Scene {
+    pub fn of_curves(curves: impl IntoIterator<Item = splinescope_core::geom::Curve>) -> Scene {
         Scene {
             name: None,
             unit: None,
@@ -379,7 +379,7 @@ impl Scene {
 mod tests {
     use super::*;
     use crate::format::generate::Rng;
-    use crate::geom::Bezier;
+    use splinescope_core::geom::Bezier;
 
     /// The largest distance from dense points of the curve to the polyline of `samples`
     /// uniform samples.

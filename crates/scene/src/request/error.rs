@@ -5,7 +5,7 @@ use thiserror::Error;
 
 use crate::format::SceneError;
 use crate::jsonread::Node;
-use crate::solve::SolveError;
+use splinescope_core::solve::SolveError;
 
 /// Why a request could not be applied: the path of the offending value in the request
 /// document (`[1].target`, `first`) and what is wrong.

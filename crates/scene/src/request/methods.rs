@@ -11,15 +11,15 @@ use super::types::{
     TangentKeptRequest,
 };
 use crate::format::{Annotation, AnnotationShape, Color, Scene, SceneError, SceneErrorKind};
-use crate::geom::family::xyz;
-use crate::geom::{Bezier, Curve, Nubmp, Nurbs, ParamCurve, RationalBezier};
 use crate::jsonread::{Node, Obj};
-use crate::solve::rational::{self, RationalCurve};
-use crate::solve::region::cubic_region;
-use crate::solve::shape::{
+use splinescope_core::geom::family::xyz;
+use splinescope_core::geom::{Bezier, Curve, Nubmp, Nurbs, ParamCurve, RationalBezier};
+use splinescope_core::solve::rational::{self, RationalCurve};
+use splinescope_core::solve::region::cubic_region;
+use splinescope_core::solve::shape::{
     PolygonType, SingleTargetOptions, multi_target, single_target, tangent_kept,
 };
-use crate::solve::{SolveError, nearest, nubmp};
+use splinescope_core::solve::{SolveError, nearest, nubmp};
 
 /// A request object being read: its node (for error paths) and its fields.
 pub(super) struct Fields<'n, 'a> {

@@ -8,7 +8,7 @@ use schemars::JsonSchema;
 use serde::Serialize;
 
 use crate::format::doc::PointDoc;
-use crate::geom::family::Xyz;
+use splinescope_core::geom::family::Xyz;
 
 /// A request document: one request, or an array applied in order.
 #[derive(Debug, Clone, JsonSchema)]

@@ -5,11 +5,11 @@
 use glam::{DVec2, DVec3};
 
 use super::{EditError, Editor, Gesture, Hit, Open};
-use crate::camera::Camera;
-use crate::geom::{Curve, ParamCurve};
-use crate::solve::nearest;
-use crate::solve::rational;
-use crate::solve::shape::{SingleTargetOptions, single_target};
+use splinescope_core::geom::{Curve, ParamCurve};
+use splinescope_core::solve::nearest;
+use splinescope_core::solve::rational;
+use splinescope_core::solve::shape::{SingleTargetOptions, single_target};
+use splinescope_scene::camera::Camera;
 
 impl Editor {
     /// The nearest control point within `radius_px` of `pixel` (only where `points_shown`),

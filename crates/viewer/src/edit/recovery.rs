@@ -8,7 +8,7 @@
 use std::path::{Path, PathBuf};
 
 use super::Editor;
-use crate::scene::Scene;
+use splinescope_scene::format::Scene;
 
 /// Where recovery files are kept: `$SPLINESCOPE_STATE_DIR/recovery`, else
 /// `$XDG_STATE_HOME/splinescope/recovery`, else `$HOME/.local/state/splinescope/recovery`;
@@ -108,7 +108,12 @@ impl Editor {
     /// The recovery file left by an earlier session of this file (unsaved edits), if
     /// any: its path and the scene it holds, or why it cannot be read.
     #[must_use]
-    pub fn find_recovery(&self) -> Option<(PathBuf, Result<Scene, crate::scene::SceneError>)> {
+    pub fn find_recovery(
+        &self,
+    ) -> Option<(
+        PathBuf,
+        Result<Scene, splinescope_scene::format::SceneError>,
+    )> {
         let path = self.path.as_deref()?;
         let recovery = [recovery_path(path), legacy_recovery_path(path)]
             .into_iter()

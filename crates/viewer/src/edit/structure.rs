@@ -4,9 +4,9 @@
 use glam::DVec3;
 
 use super::{Change, EditError, Editor};
-use crate::geom::Curve;
-use crate::scene::SceneCurve;
-use crate::solve::nearest;
+use splinescope_core::geom::Curve;
+use splinescope_core::solve::nearest;
+use splinescope_scene::format::SceneCurve;
 
 impl Editor {
     /// Curve `index`, or a message saying it does not exist.
@@ -110,13 +110,14 @@ impl Editor {
         };
         // A Bézier curve gains a degree with each point: past the GPU's maximum the
         // renderer could not draw it, so the edit is refused here.
-        let degree = crate::geom::max_degree(&crate::geom::Lower::lower(&curve));
-        if degree > crate::gpu::layout::MAX_GPU_DEGREE {
+        let degree =
+            splinescope_core::geom::max_degree(&splinescope_core::geom::Lower::lower(&curve));
+        if degree > splinescope_gpu::layout::MAX_GPU_DEGREE {
             return Err(EditError::Undrawable {
                 index,
                 what: "inserting a point",
                 degree,
-                max: crate::gpu::layout::MAX_GPU_DEGREE,
+                max: splinescope_gpu::layout::MAX_GPU_DEGREE,
             });
         }
         self.edit_curve(index, curve);

@@ -3,9 +3,9 @@
 use super::*;
 use glam::DVec2;
 
-use crate::camera::{Camera, Camera2d};
-use crate::geom::{Bezier, Nubmp, ParamCurve};
-use crate::scene::{Color, Style, ViewSpec};
+use splinescope_core::geom::{Bezier, Nubmp, ParamCurve};
+use splinescope_scene::camera::{Camera, Camera2d};
+use splinescope_scene::format::{Color, Style, ViewSpec};
 
 fn scene() -> Scene {
     let cubic = Bezier::new(vec![
@@ -138,7 +138,7 @@ fn pulling_a_curve_passes_it_through_the_pointer() {
 #[test]
 fn pulling_a_rational_curve_keeps_its_weights_and_undoes() {
     let mut sc = scene();
-    let circle = crate::geom::Nurbs::circle(DVec3::ZERO, 2.0).unwrap();
+    let circle = splinescope_core::geom::Nurbs::circle(DVec3::ZERO, 2.0).unwrap();
     sc.curves[1].curve = Curve::Nurbs(circle.clone());
     let mut e = Editor::new(sc, None);
     assert!(e.can_pull(1));
@@ -194,7 +194,7 @@ fn invalid_drags_leave_the_curve_and_say_why() {
 #[test]
 fn a_point_past_the_gpu_maximum_degree_is_refused_where_it_is_inserted() {
     let mut ed = Editor::new(scene(), None);
-    let max = crate::gpu::layout::MAX_GPU_DEGREE;
+    let max = splinescope_gpu::layout::MAX_GPU_DEGREE;
     // Insert points until the cubic reaches the maximum: each is accepted.
     for _ in 3..max {
         ed.insert_point(0, DVec3::new(2.0, 1.5, 0.0))

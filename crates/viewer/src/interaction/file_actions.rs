@@ -5,10 +5,10 @@
 use std::path::{Path, PathBuf};
 
 use super::{Answer, ExportError, Interaction, Pending, Prompt, Response};
-use crate::camera::Camera;
 use crate::edit::Editor;
 use crate::file_dialog::{self, DialogMode, FileDialog};
-use crate::scene::Scene;
+use splinescope_scene::camera::Camera;
+use splinescope_scene::format::Scene;
 
 impl Interaction {
     /// Offers the recovery file of an earlier session, if the editor's file has one
@@ -158,7 +158,7 @@ impl Interaction {
         self.context_menu = None;
         self.dialog = None;
         self.camera = self.editor.scene().camera(self.viewport);
-        self.auto_fit = self.editor.scene().view == crate::scene::ViewSpec::Auto;
+        self.auto_fit = self.editor.scene().view == splinescope_scene::format::ViewSpec::Auto;
         if self.auto_fit {
             self.fit();
         }
@@ -255,7 +255,7 @@ impl Interaction {
         let (width, height, camera) = self.export_frame();
         let mut opts = splinescope_figure::FigureOptions::new(width, height);
         opts.camera = Some(camera);
-        opts.switches = crate::scene::draw::Switches {
+        opts.switches = splinescope_scene::format::draw::Switches {
             polygons: self.toggles.show_polygons,
             points: self.toggles.show_points,
         };
@@ -263,7 +263,9 @@ impl Interaction {
         // The shape overlays as shown: the comb at the panel's scale, the markers.
         opts.shape = self.shape.marker_options();
         if self.shape.comb && (!self.shape.comb_selected_only || self.editor.selected.is_some()) {
-            opts.shape.comb = Some(crate::scene::shape::CombScale::Fixed(self.shape.comb_scale));
+            opts.shape.comb = Some(splinescope_scene::format::shape::CombScale::Fixed(
+                self.shape.comb_scale,
+            ));
             opts.comb_only = self
                 .editor
                 .selected
@@ -278,7 +280,7 @@ impl Interaction {
         } else {
             splinescope_figure::svg::write(&fig).into_bytes()
         };
-        crate::file_output::write_atomic(path, &bytes).map_err(|source| ExportError::Write {
+        splinescope_io::files::write_atomic(path, &bytes).map_err(|source| ExportError::Write {
             path: path.to_owned(),
             source,
         })

@@ -2,8 +2,8 @@
 
 use glam::DVec3;
 
-use crate::camera::Camera;
 use crate::digest::SceneDigest;
+use splinescope_scene::camera::Camera;
 
 use crate::interaction::{Answer, Template};
 
@@ -26,7 +26,7 @@ pub(crate) struct PanelInfo<'a> {
     /// Stress solving: curves re-solved per frame and the last batch's milliseconds.
     pub solving: Option<(usize, f64)>,
     /// The latest shape markers.
-    pub markers: &'a [crate::scene::shape::Marker],
+    pub markers: &'a [splinescope_scene::format::shape::Marker],
     /// What the selected curve's offset came to: its segments and bound, or why not.
     pub offset_status: Option<String>,
 }

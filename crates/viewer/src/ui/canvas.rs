@@ -2,10 +2,10 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::camera::Camera;
 use crate::digest::{CurveSummary, LISTED_CURVES, SceneDigest};
-use crate::geom::ParamCurve;
-use crate::scene::{Scene, SceneCurve};
+use splinescope_core::geom::ParamCurve;
+use splinescope_scene::camera::Camera;
+use splinescope_scene::format::{Scene, SceneCurve};
 
 use crate::edit::Hit;
 use crate::interaction::{Interaction, Template};
@@ -162,7 +162,7 @@ fn axis_labels(
 
 /// Each curve's name (and live parameters) in its colour on a translucent plate of the
 /// scene's background, placed by the search figures use
-/// ([`crate::scene::labels`]): along its curve, clear of every other label, off the
+/// ([`splinescope_scene::format::labels`]): along its curve, clear of every other label, off the
 /// curves where a free spot exists, inside the canvas, with a leader line where it stands
 /// off; kept where it was last frame while that place stays good (no jumping during a
 /// drag); hidden, and counted in the canvas's corner, where no place is free.
@@ -173,8 +173,8 @@ pub(crate) fn curve_labels(
     pixel: &dyn Fn(DVec3) -> Option<egui::Pos2>,
     plate: egui::Color32,
 ) {
-    use crate::scene::labels::{ANCHORS, Choice, Ink, LabelRequest, place};
     use splinescope_core::geom::Lower;
+    use splinescope_scene::format::labels::{ANCHORS, Choice, Ink, LabelRequest, place};
     let screen = painter.clip_rect();
     let origin = screen.min;
     let local = |p: egui::Pos2| DVec2::new(f64::from(p.x - origin.x), f64::from(p.y - origin.y));
@@ -270,7 +270,7 @@ pub(crate) fn curve_labels(
             egui::Color32::WHITE,
         );
     }
-    if let Some(text) = crate::scene::labels::hidden_note(hidden) {
+    if let Some(text) = splinescope_scene::format::labels::hidden_note(hidden) {
         painter.text(
             screen.left_bottom() + egui::vec2(8.0, -6.0),
             egui::Align2::LEFT_BOTTOM,

@@ -2,9 +2,9 @@
 
 use glam::DVec3;
 
-use crate::camera::Camera;
 use crate::digest::{LISTED_CURVES, label};
 use splinescope_present::{Control, ControlKind, ControlValue, Present};
+use splinescope_scene::camera::Camera;
 
 use crate::edit::Editor;
 use crate::interaction::{Interaction, Template};
@@ -120,7 +120,7 @@ pub(crate) fn panel(
 
 /// The scene's name and what the frame costs: curves, samples, fps, the adapter, GPU
 /// stage times and the re-solve rate while solving.
-fn header(ui: &mut egui::Ui, info: &PanelInfo<'_>, scene: &crate::scene::Scene) {
+fn header(ui: &mut egui::Ui, info: &PanelInfo<'_>, scene: &splinescope_scene::format::Scene) {
     ui.heading(scene.name.as_deref().unwrap_or("splinescope"));
     ui.label(format!(
         "{} curve(s){} · {} samples/frame · {:.1} fps",
@@ -165,7 +165,7 @@ fn point_row(
     ui: &mut egui::Ui,
     editor: &mut Editor,
     index: usize,
-    sc: &crate::scene::SceneCurve,
+    sc: &splinescope_scene::format::SceneCurve,
     planar: bool,
 ) {
     if let Some(point) = editor.selected_point

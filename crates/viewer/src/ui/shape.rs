@@ -9,14 +9,14 @@ use super::actions::{SELECTION, accepted};
 use super::{Actions, PanelInfo};
 use crate::edit::Editor;
 use crate::interaction::Interaction;
-use crate::scene::draw::marker_style;
-use crate::scene::shape::{CombCap, MarkerKind};
 use crate::shape::{Readouts, ShapeView};
+use splinescope_scene::format::draw::marker_style;
+use splinescope_scene::format::shape::{CombCap, MarkerKind};
 
 /// The colour a legend's markers are shown in (each marker takes its curve's).
 const LEGEND_CURVE: egui::Color32 = egui::Color32::from_rgb(31, 119, 180);
 
-fn color32(c: crate::scene::Color) -> egui::Color32 {
+fn color32(c: splinescope_scene::format::Color) -> egui::Color32 {
     let [r, g, b, a] = c.0.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8);
     egui::Color32::from_rgba_unmultiplied(r, g, b, a)
 }
@@ -24,7 +24,7 @@ fn color32(c: crate::scene::Color) -> egui::Color32 {
 /// A marker of `kind` as the renderer draws it (ring, then core), at `at`.
 fn paint_marker(painter: &egui::Painter, at: egui::Pos2, kind: MarkerKind, scale: f32) {
     let [r, g, b, _] = LEGEND_CURVE.to_array();
-    let curve = crate::scene::Color([
+    let curve = splinescope_scene::format::Color([
         f32::from(r) / 255.0,
         f32::from(g) / 255.0,
         f32::from(b) / 255.0,
@@ -268,7 +268,7 @@ fn nearest_to_pointer(
 ) {
     if model.is_editing()
         || model.pointer_over_ui()
-        || !matches!(model.camera, crate::camera::Camera::Ortho2d(_))
+        || !matches!(model.camera, splinescope_scene::camera::Camera::Ortho2d(_))
     {
         return;
     }
@@ -341,7 +341,7 @@ pub(crate) fn canvas_shape(ui: &mut egui::Ui, info: &PanelInfo<'_>, model: &Inte
         && let Some(Ok(o)) = model.offset.current()
     {
         for path in &o.paths {
-            let curve = crate::geom::Curve::Path(path.clone());
+            let curve = splinescope_core::geom::Curve::Path(path.clone());
             let (a, b) = splinescope_core::geom::ParamCurve::domain(&curve);
             let n = 32 * path.segments().len().max(1);
             let points: Vec<egui::Pos2> = (0..=n)

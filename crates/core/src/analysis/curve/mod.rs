@@ -11,11 +11,11 @@ pub use length::bezier_length;
 pub use nearest::Nearest;
 
 use super::piece::Piece;
-use crate::poly;
 use super::quadrature::integrate;
-use crate::poly::roots::{bernstein_roots, bernstein_roots_with_noise};
 use crate::geom::{Aabb, BezierSegment, Lower};
 use crate::num::Num;
+use crate::poly;
+use crate::poly::roots::{bernstein_roots, bernstein_roots_with_noise};
 
 /// Why a question cannot be answered.
 #[derive(Debug, Clone, PartialEq, Error)]

@@ -21,8 +21,8 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::poly::roots::bernstein_roots_with_noise;
 use super::{AnalysisError, CurveAnalysis};
+use crate::poly::roots::bernstein_roots_with_noise;
 
 /// The nearest point of a curve to a point.
 #[derive(Debug, Clone, Copy, PartialEq)]

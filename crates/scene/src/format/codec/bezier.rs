@@ -6,8 +6,8 @@ use serde::Serialize;
 use super::{Codec, Written, geom_error};
 use crate::format::SceneError;
 use crate::format::point_doc::PointDoc;
-use crate::geom::{Bezier, Family};
 use crate::jsonread::{Node, Obj};
+use splinescope_core::geom::{Bezier, Family};
 
 /// A Bézier curve's fields.
 #[derive(Debug, Clone, Serialize, JsonSchema)]

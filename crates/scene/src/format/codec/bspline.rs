@@ -7,9 +7,9 @@ use serde_json::Value;
 use super::{Codec, Written, geom_error};
 use crate::format::SceneError;
 use crate::format::point_doc::PointDoc;
-use crate::geom::exact::{Rational, parse_decimal};
-use crate::geom::{BSpline, Family, KnotVector};
 use crate::jsonread::{Node, Obj};
+use splinescope_core::geom::exact::{Rational, parse_decimal};
+use splinescope_core::geom::{BSpline, Family, KnotVector};
 
 /// A B-spline's fields.
 #[derive(Debug, Clone, Serialize, JsonSchema)]

@@ -6,8 +6,8 @@ use serde::Serialize;
 use super::{Codec, Written, geom_error};
 use crate::format::SceneError;
 use crate::format::point_doc::PointDoc;
-use crate::geom::{CubicInterpolation, GeomError, Modification, Reading};
 use crate::jsonread::{Node, Obj};
+use splinescope_core::geom::{CubicInterpolation, GeomError, Modification, Reading};
 
 /// An interpolating spline's fields.
 #[derive(Debug, Clone, Serialize, JsonSchema)]

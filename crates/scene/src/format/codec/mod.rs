@@ -20,8 +20,8 @@ pub use nubmp::{NubmpDoc, ShapeSettingDoc};
 pub use path::{PathDoc, PathSegmentDoc};
 pub use rational::{NurbsDoc, RationalBezierDoc};
 
-use crate::geom::{Curve, Family, GeomError};
 use crate::jsonread::{Node, Obj};
+use splinescope_core::geom::{Curve, Family, GeomError};
 
 use super::SceneError;
 

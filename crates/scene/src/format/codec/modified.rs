@@ -7,8 +7,8 @@ use super::bezier::bezier_points;
 use super::{Codec, Written, geom_error};
 use crate::format::SceneError;
 use crate::format::point_doc::PointDoc;
-use crate::geom::{Bezier, ModifiedBezier};
 use crate::jsonread::{Node, Obj};
+use splinescope_core::geom::{Bezier, ModifiedBezier};
 
 /// A modified Bézier curve's fields.
 #[derive(Debug, Clone, Serialize, JsonSchema)]

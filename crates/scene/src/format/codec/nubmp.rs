@@ -7,8 +7,8 @@ use super::bspline::{KnotsDoc, decode_spline_parts};
 use super::{Codec, Written, geom_error};
 use crate::format::point_doc::PointDoc;
 use crate::format::{SceneError, SceneErrorKind};
-use crate::geom::{Family, GeomError, Nubmp};
 use crate::jsonread::{Node, Obj};
+use splinescope_core::geom::{Family, GeomError, Nubmp};
 
 /// A NUBMP curve's fields.
 #[derive(Debug, Clone, Serialize, JsonSchema)]

@@ -7,8 +7,8 @@ use serde::Serialize;
 use super::{Codec, Written, geom_error};
 use crate::format::SceneError;
 use crate::format::point_doc::PointDoc;
-use crate::geom::{Path, PathSegment};
 use crate::jsonread::{Node, Obj};
+use splinescope_core::geom::{Path, PathSegment};
 
 /// A path's fields.
 #[derive(Debug, Clone, Serialize, JsonSchema)]

@@ -9,8 +9,8 @@ use super::bspline::{KnotsDoc, decode_spline_parts};
 use super::{Codec, Written, geom_error};
 use crate::format::SceneError;
 use crate::format::point_doc::PointDoc;
-use crate::geom::{Family, Nurbs, RationalBezier};
 use crate::jsonread::{Node, Obj};
+use splinescope_core::geom::{Family, Nurbs, RationalBezier};
 
 /// A rational Bézier curve's fields.
 #[derive(Debug, Clone, Serialize, JsonSchema)]
