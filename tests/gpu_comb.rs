@@ -1,4 +1,4 @@
-//! The curvature comb on the GPU (the `comb_*` kernels of `shaders/adaptive.wgsl`) against
+//! The curvature comb on the GPU (the `comb_*` kernels of `shaders/comb.wgsl`) against
 //! the exact `f64` curvature at the same parameters, on every backend: each hair starts at
 //! the curve's point and ends at `P − s K` (K the curvature vector), cut to the cap and
 //! marked where longer, within the `f32` bound stated below, for every family (rational ones included) in 2D and 3D; a comb for one
@@ -21,7 +21,7 @@ use splinescope::gpu::layout::{
 use splinescope::gpu::pack::{PreparedScene, curve_tags};
 use splinescope::gpu::renderer::{CombRequest, GpuScene, Renderer, camera_uniform};
 use splinescope::gpu::tessellator::read_buffer;
-use splinescope::gpu::twin::comb_hairs_of;
+use splinescope::gpu::twin::{comb_hair, comb_hairs_of, comb_point_and_curvature};
 use splinescope::scene::{Cap, Join, Scene, SceneCurve, StrokeShape, Style, ViewSpec};
 
 const VIEWPORT: DVec2 = DVec2::new(640.0, 480.0);
@@ -296,6 +296,86 @@ fn gpu_hairs_match_the_exact_curvature_on_every_family() {
             );
         },
     );
+}
+
+/// The comb kernels against their CPU twin (`twin::comb_point_and_curvature`, then
+/// `twin::comb_hair`): the same operations in `f32` on the same packed control points at
+/// the kernel's parameters, so every hair's point and tip agree within a few units in the
+/// last place (the GPU may fuse a multiply and an add), and each hair is capped exactly
+/// when the twin's is (but within that noise of the cap) — on every family, through the
+/// cubic kernel (polynomial and rational cubics), the narrow one (quartics, rational
+/// quadratics) and the wide one (degree 7 and the bump's pieces), on every backend.
+#[test]
+fn gpu_hairs_are_their_cpu_twins() {
+    common::on_each_gpu("gpu_hairs_are_their_cpu_twins", |backend| {
+        let mut curves = families();
+        // A quartic: the narrow kernel's polynomial path.
+        curves.push(Curve::Bezier(Bezier::new(vec![
+            p(-4.0, 3.0),
+            p(-3.0, 5.0),
+            p(-2.0, 2.5),
+            p(-1.0, 4.5),
+            p(0.0, 3.5),
+        ])));
+        let scene = scene_of(curves);
+        let (scale, cap) = (0.3_f32, 0.25_f32);
+        let combed = comb_on_gpu(
+            backend,
+            &scene,
+            &CombRequest {
+                scale,
+                cap,
+                only: None,
+            },
+        );
+        let mut checked = [0usize; 3];
+        let mut capped = 0;
+        for (c, (counts, offsets, hairs)) in combed.chunks.iter().enumerate() {
+            let points = &combed.prepared.chunks[c].points;
+            for (s, seg) in combed.prepared.chunks[c].segments.iter().enumerate() {
+                let n = counts[s].min(comb_hairs_of(&combed.frames[c], points, seg));
+                for j in 0..n {
+                    let u = j as f32 / (n - 1) as f32;
+                    let (point, k) =
+                        comb_point_and_curvature(points, seg.first_point, seg.degree, u);
+                    let (tip, twin_capped) = comb_hair(point, k, scale, cap);
+                    let slot = (offsets[s] + j) as usize;
+                    let (gp, gt) = (&hairs[2 * slot], &hairs[2 * slot + 1]);
+                    let got_point = glam::Vec3::from(gp.position);
+                    let got_tip = glam::Vec3::from(gt.position);
+                    let size = point.length() + (tip - point).length() + 1.0;
+                    let what = format!(
+                        "{}: segment {s} (degree {}, rational {}) at u = {u}",
+                        backend.name, seg.degree, seg.rational
+                    );
+                    assert!(
+                        (got_point - point).length() <= 4e-6 * size,
+                        "{what}: point {got_point} vs the twin's {point}"
+                    );
+                    assert!(
+                        (got_tip - tip).length() <= 4e-6 * size,
+                        "{what}: tip {got_tip} vs the twin's {tip}"
+                    );
+                    let length = (scale * k).length();
+                    if (length - cap).abs() > 1e-5 * cap {
+                        let marked = gt.id & COMB_CAPPED != 0;
+                        assert_eq!(marked, twin_capped, "{what}: capped or not as the twin");
+                    }
+                    capped += usize::from(twin_capped);
+                    let class = match seg.degree {
+                        3 => 0,
+                        2 | 4 if seg.degree == 4 || seg.rational != 0 => 1,
+                        _ => 2,
+                    };
+                    checked[class] += 1;
+                }
+            }
+        }
+        assert!(
+            checked.iter().all(|&c| c > 20) && capped > 10,
+            "hairs checked per kernel (cubic, narrow, wide): {checked:?}; capped {capped}"
+        );
+    });
 }
 
 #[test]

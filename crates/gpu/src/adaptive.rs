@@ -163,11 +163,12 @@ impl AdaptiveTessellator {
             bind_group_layouts: &[Some(&layout), Some(&comb_layout)],
             immediate_size: 0,
         });
+        let comb_module = shaders::COMB.module(device);
         let comb = ["comb_cubic", "comb_narrow", "comb_wide"].map(|entry| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(entry),
                 layout: Some(&comb_pipeline_layout),
-                module: &module,
+                module: &comb_module,
                 entry_point: Some(entry),
                 compilation_options: wgpu::PipelineCompilationOptions::default(),
                 cache: None,

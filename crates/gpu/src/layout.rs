@@ -114,8 +114,8 @@ pub struct GpuSegment {
     pub rational: u32,
 }
 
-/// The curvature comb's uniform, one per chunk (`Comb` and `comb` in `shaders/adaptive.wgsl`).
-/// Twin: `Comb` in `shaders/adaptive.wgsl`.
+/// The curvature comb's uniform, one per chunk (`Comb` and `comb` in `shaders/comb.wgsl`).
+/// Twin: `Comb` in `shaders/comb.wgsl`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct GpuComb {
@@ -131,7 +131,7 @@ pub struct GpuComb {
 }
 
 /// [`GpuComb::curve`] for a comb on every curve. Twin: `COMB_ALL` in
-/// `shaders/adaptive.wgsl`.
+/// `shaders/comb.wgsl`.
 pub const COMB_ALL: u32 = u32::MAX;
 
 /// [`GpuComb::curve`] for no comb in the chunk (no curve has this tag).
@@ -143,11 +143,11 @@ pub const COMB_NONE: u32 = u32::MAX - 1;
 pub const COMB_HIDDEN: u32 = 0x8000_0000;
 
 /// The bit a capped hair's tip carries (the hair drawn in the envelope's stroke, its
-/// envelope vertex hidden). Twin: `COMB_CAPPED` in `shaders/adaptive.wgsl`.
+/// envelope vertex hidden). Twin: `COMB_CAPPED` in `shaders/comb.wgsl`.
 pub const COMB_CAPPED: u32 = 0x2000_0000;
 
 /// The bit that alternates along hidden envelope vertices so that no two neighbours'
-/// tags agree. Twin: `COMB_PARITY` in `shaders/adaptive.wgsl`.
+/// tags agree. Twin: `COMB_PARITY` in `shaders/comb.wgsl`.
 pub const COMB_PARITY: u32 = 0x4000_0000;
 
 /// The most hairs per segment. Twin: `COMB_HAIRS` in `shaders/adaptive.wgsl`.

@@ -22,6 +22,9 @@ pub struct ShaderSource {
     pub body: &'static str,
     /// Whether `bezier.wgsl` goes before it (the tessellators).
     pub evaluates: bool,
+    /// Another shader whose text goes before this one's, after the shared files (the
+    /// comb's kernels read the adaptive tessellator's work and bindings).
+    pub follows: Option<&'static ShaderSource>,
 }
 
 /// `shaders/tessellate.wgsl`: the de Casteljau compute kernel.
@@ -29,6 +32,7 @@ pub const TESSELLATE: ShaderSource = ShaderSource {
     file: "tessellate.wgsl",
     body: include_str!("../../../shaders/tessellate.wgsl"),
     evaluates: true,
+    follows: None,
 };
 
 /// `shaders/adaptive.wgsl`: per-frame sample counts, their prefix sum, and the kernels
@@ -37,6 +41,17 @@ pub const ADAPTIVE: ShaderSource = ShaderSource {
     file: "adaptive.wgsl",
     body: include_str!("../../../shaders/adaptive.wgsl"),
     evaluates: true,
+    follows: None,
+};
+
+/// `shaders/comb.wgsl`: the curvature comb's kernels, composed after `adaptive.wgsl`
+/// (whose work ranges and bindings they read). CPU twin: [`crate::twin::comb_point_and_curvature`]
+/// and [`crate::twin::comb_hair`].
+pub const COMB: ShaderSource = ShaderSource {
+    file: "comb.wgsl",
+    body: include_str!("../../../shaders/comb.wgsl"),
+    evaluates: true,
+    follows: Some(&ADAPTIVE),
 };
 
 /// `shaders/lines.wgsl`: anti-aliased polylines.
@@ -44,6 +59,7 @@ pub const LINES: ShaderSource = ShaderSource {
     file: "lines.wgsl",
     body: include_str!("../../../shaders/lines.wgsl"),
     evaluates: false,
+    follows: None,
 };
 
 /// `shaders/points.wgsl`: anti-aliased discs.
@@ -51,6 +67,7 @@ pub const POINTS: ShaderSource = ShaderSource {
     file: "points.wgsl",
     body: include_str!("../../../shaders/points.wgsl"),
     evaluates: false,
+    follows: None,
 };
 
 /// `shaders/layer.wgsl`: curves and curvature combs rasterized into the layer, and the
@@ -59,10 +76,11 @@ pub const LAYER: ShaderSource = ShaderSource {
     file: "layer.wgsl",
     body: include_str!("../../../shaders/layer.wgsl"),
     evaluates: false,
+    follows: None,
 };
 
 /// Every pipeline shader.
-pub const ALL: [ShaderSource; 5] = [TESSELLATE, ADAPTIVE, LINES, POINTS, LAYER];
+pub const ALL: [ShaderSource; 6] = [TESSELLATE, ADAPTIVE, COMB, LINES, POINTS, LAYER];
 
 /// A shader that naga rejects, with the message and source span it printed.
 #[derive(Debug, Clone, Error)]
@@ -81,6 +99,9 @@ impl ShaderSource {
         let mut out = vec![("common.wgsl", COMMON)];
         if self.evaluates {
             out.push(("bezier.wgsl", BEZIER));
+        }
+        if let Some(before) = self.follows {
+            out.push((before.file, before.body));
         }
         out
     }

@@ -444,3 +444,114 @@ mod tests {
         assert!((floor - 1.0).abs() <= 2.0 * WEIGHT_ROUNDING, "{floor}");
     }
 }
+
+/// `difference` of `shaders/comb.wgsl`: the `k`-th forward difference (`k ≤ 2`) of the
+/// homogeneous control points at `first + i`.
+fn comb_difference(points: &[GpuControlPoint], first: u32, i: u32, k: u32) -> Vec4 {
+    let a = control_point4(points, first, i);
+    if k == 0 {
+        return a;
+    }
+    let b = control_point4(points, first, i + 1);
+    if k == 1 {
+        return b - a;
+    }
+    control_point4(points, first, i + 2) - 2.0 * b + a
+}
+
+/// `difference_sum` of `shaders/comb.wgsl`: `Σ Δᵏ H_i B_i^m(u)`, `m = n − k`, by Horner's
+/// rule in `u / v` (or `v / u` past the middle), scaled by `vᵐ` (or `uᵐ`), with the
+/// kernel's operations in its order.
+fn comb_difference_sum(points: &[GpuControlPoint], first: u32, n: u32, k: u32, u: f32) -> Vec4 {
+    let v = 1.0 - u;
+    let m = n - k;
+    let mut scale = 1.0_f32;
+    let mut binomial = 1.0_f32;
+    let mut acc;
+    if u <= 0.5 {
+        let x = u / v;
+        acc = comb_difference(points, first, m, k);
+        for i in (1..=m).rev() {
+            binomial = binomial * i as f32 / (m - i + 1) as f32;
+            acc = acc * x + binomial * comb_difference(points, first, i - 1, k);
+            scale *= v;
+        }
+    } else {
+        let x = v / u;
+        acc = comb_difference(points, first, 0, k);
+        for i in 1..=m {
+            binomial = binomial * (m - i + 1) as f32 / i as f32;
+            acc = acc * x + binomial * comb_difference(points, first, i, k);
+            scale *= u;
+        }
+    }
+    acc * scale
+}
+
+/// `curvature_from` of `shaders/comb.wgsl`: the point and the curvature vector
+/// `K = (P″ − (P″·T) T) / |P′|²` from the homogeneous point and its first two
+/// derivatives; `K = 0` at a cusp (`P′ = 0`).
+fn curvature_from(h: Vec4, h1: Vec4, h2: Vec4) -> (Vec3, Vec3) {
+    let p = h.truncate() / h.w;
+    let d1 = (h1.truncate() - h1.w * p) / h.w;
+    let d2 = (h2.truncate() - h2.w * p - 2.0 * h1.w * d1) / h.w;
+    let speed2 = d1.dot(d1);
+    let k = if speed2 > 0.0 {
+        (d2 - (d2.dot(d1) / speed2) * d1) / speed2
+    } else {
+        Vec3::ZERO
+    };
+    (p, k)
+}
+
+/// The twin of the comb kernels' evaluation (`shaders/comb.wgsl`): the point and the
+/// curvature vector at `u` of the segment of degree `n` whose homogeneous control points
+/// start at `first` — a cubic (polynomial or rational) by `cubic_point_and_curvature`'s
+/// Bernstein sums written out, as `comb_cubic` takes it, any other degree by
+/// `point_and_curvature`'s Horner sums of differences, as `comb_narrow` and `comb_wide`.
+#[must_use]
+pub fn comb_point_and_curvature(
+    points: &[GpuControlPoint],
+    first: u32,
+    n: u32,
+    u: f32,
+) -> (Vec3, Vec3) {
+    if n == 3 {
+        let h: [Vec4; 4] = std::array::from_fn(|i| control_point4(points, first, i as u32));
+        let v = 1.0 - u;
+        let (v2, u2) = (v * v, u * u);
+        let b = cubic_weights(u);
+        let point = b[0] * h[0] + b[1] * h[1] + b[2] * h[2] + b[3] * h[3];
+        let (d0, d1, d2) = (h[1] - h[0], h[2] - h[1], h[3] - h[2]);
+        let h1 = 3.0 * (d0 * v2 + d1 * (2.0 * u * v) + d2 * u2);
+        let h2 = 6.0 * ((d1 - d0) * v + (d2 - d1) * u);
+        return curvature_from(point, h1, h2);
+    }
+    let nf = n as f32;
+    let h = comb_difference_sum(points, first, n, 0, u);
+    let h1 = if n >= 1 {
+        nf * comb_difference_sum(points, first, n, 1, u)
+    } else {
+        Vec4::ZERO
+    };
+    let h2 = if n >= 2 {
+        nf * (nf - 1.0) * comb_difference_sum(points, first, n, 2, u)
+    } else {
+        Vec4::ZERO
+    };
+    curvature_from(h, h1, h2)
+}
+
+/// The twin of `write_hair` in `shaders/comb.wgsl`: the hair's tip from the point and
+/// the curvature vector, `P − scale · K`, cut to `cap` (then `true`: the tip is marked
+/// capped and the envelope breaks there).
+#[must_use]
+pub fn comb_hair(point: Vec3, k: Vec3, scale: f32, cap: f32) -> (Vec3, bool) {
+    let mut hair = -scale * k;
+    let length = hair.dot(hair).sqrt();
+    let capped = length > cap;
+    if capped {
+        hair *= cap / length;
+    }
+    (point + hair, capped)
+}

@@ -64,7 +64,8 @@ fn every_shader_validates() {
 
 #[test]
 fn adaptive_constants_match_their_rust_twins() {
-    let (module, _) = shaders::ADAPTIVE.validate().expect("valid");
+    // The comb's module holds the adaptive tessellator's text too.
+    let (module, _) = shaders::COMB.validate().expect("valid");
     assert_eq!(constant_u32(&module, "SCAN_BLOCK"), SCAN_BLOCK);
     assert_eq!(
         constant_u32(&module, "SEGMENT_LANES"),
@@ -193,7 +194,7 @@ fn kernel_workgroup_and_scratch_match_the_rust_constants() {
         "rational_cubic",
         "general_point",
     ];
-    for source in [shaders::TESSELLATE, shaders::ADAPTIVE] {
+    for source in [shaders::TESSELLATE, shaders::ADAPTIVE, shaders::COMB] {
         let (module, _) = source.validate().expect("valid");
         for ep in module
             .entry_points
@@ -241,6 +242,7 @@ fn a_broken_shader_is_reported_with_its_file_and_span() {
         file: "broken.wgsl",
         body: "fn f() -> f32 { return undefined_name; }",
         evaluates: false,
+        follows: None,
     };
     let err = broken.validate().expect_err("must fail").to_string();
     assert!(err.contains("broken.wgsl"), "{err}");
@@ -256,6 +258,7 @@ fn shader_errors_name_the_right_file_and_line() {
         file: "parse.wgsl",
         body: "// one\n// two\nfn f() -> f32 { return 1.0 +; }\n",
         evaluates: false,
+        follows: None,
     };
     let err = parse.validate().expect_err("must fail").to_string();
     assert!(err.starts_with("shaders/parse.wgsl:3:"), "{err}");
@@ -264,6 +267,7 @@ fn shader_errors_name_the_right_file_and_line() {
         file: "unknown.wgsl",
         body: "// one\n// two\nfn g() -> u32 { return h(); }\n",
         evaluates: false,
+        follows: None,
     };
     let err = unknown.validate().expect_err("must fail").to_string();
     assert!(err.starts_with("shaders/unknown.wgsl:3:24:"), "{err}");
@@ -340,11 +344,17 @@ fn bind_group_layouts_match_the_shaders() {
         );
     }
     assert_eq!(from_shader(&shaders::TESSELLATE).len(), 4);
+    // The comb's kernels use both groups (the adaptive work's and the comb's own); the
+    // adaptive tessellator's module declares the first alone.
     assert_eq!(
         from_layouts(&bindings::adaptive()),
+        from_shader(&shaders::COMB)
+    );
+    assert_eq!(from_shader(&shaders::COMB).len(), 10);
+    assert_eq!(
+        from_layouts(&bindings::adaptive()[..1]),
         from_shader(&shaders::ADAPTIVE)
     );
-    assert_eq!(from_shader(&shaders::ADAPTIVE).len(), 10);
     assert_eq!(
         from_layouts(&bindings::layer()),
         from_shader(&shaders::LAYER)
