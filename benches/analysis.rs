@@ -10,10 +10,10 @@ use std::hint::black_box;
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::DVec3;
 use kurbo::{CubicBez, ParamCurveArclen, ParamCurveExtrema, ParamCurveNearest, Point};
-use splinescope::analysis::{CurveAnalysis, all_intersections, bezier_length};
-use splinescope::geom::Bezier;
-use splinescope::scene::generate::{Rng, StressOptions, random_bezier_scene};
-use splinescope::scene::shape::{ShapeOptions, markers};
+use splinescope_core::analysis::{CurveAnalysis, all_intersections, bezier_length};
+use splinescope_core::geom::Bezier;
+use splinescope_scene::format::generate::{Rng, StressOptions, random_bezier_scene};
+use splinescope_scene::format::shape::{ShapeOptions, markers};
 
 fn cubic(rng: &mut Rng) -> [DVec3; 4] {
     [(); 4].map(|()| DVec3::new(rng.range(0.0, 1.0), rng.range(0.0, 1.0), 0.0))

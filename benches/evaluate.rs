@@ -6,12 +6,12 @@ use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use glam::DVec3;
-use splinescope::geom::{BSpline, Bezier, Curve, Nubmp, ParamCurve};
-use splinescope::gpu::layout::GpuVertex;
-use splinescope::gpu::pack::{ChunkLimits, prepare};
-use splinescope::gpu::twin;
-use splinescope::scene::encoding::encode;
-use splinescope::scene::generate::{Rng, StressOptions, random_bezier_scene};
+use splinescope_core::geom::{BSpline, Bezier, Curve, Nubmp, ParamCurve};
+use splinescope_gpu::layout::GpuVertex;
+use splinescope_gpu::pack::{ChunkLimits, prepare};
+use splinescope_gpu::twin;
+use splinescope_scene::format::encoding::encode;
+use splinescope_scene::format::generate::{Rng, StressOptions, random_bezier_scene};
 
 fn bench(c: &mut Criterion) {
     let mut rng = Rng::new(2);
@@ -71,7 +71,7 @@ fn bench(c: &mut Criterion) {
 /// splinescope's batch evaluator (one thread, then every core), in one run: the ratios
 /// are what BENCHMARKS.md records.
 fn peers(c: &mut Criterion) {
-    use splinescope::geom::batch::{
+    use splinescope_core::geom::batch::{
         CurveSampler, UniformCubicWeights, for_each_sampled, sample_many,
     };
     const CURVES: usize = 100_000;

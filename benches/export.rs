@@ -5,8 +5,8 @@
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 
-use splinescope::scene::generate::{StressOptions, random_bezier_scene};
 use splinescope_figure::{FigureOptions, build, pdf, svg};
+use splinescope_scene::format::generate::{StressOptions, random_bezier_scene};
 
 fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("export 10000 curves at 1280x800");

@@ -8,12 +8,12 @@
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::DVec2;
-use splinescope::gpu::capture::{OFFSCREEN_FORMAT, render_uploaded};
-use splinescope::gpu::pack::{ChunkLimits, prepare};
-use splinescope::gpu::renderer::Renderer;
-use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext};
-use splinescope::scene::encoding::encode;
-use splinescope::scene::generate::{StressOptions, random_bezier_scene};
+use splinescope_gpu::capture::{OFFSCREEN_FORMAT, render_uploaded};
+use splinescope_gpu::pack::{ChunkLimits, prepare};
+use splinescope_gpu::renderer::Renderer;
+use splinescope_gpu::{BackendChoice, ContextOptions, GpuContext};
+use splinescope_scene::format::encoding::encode;
+use splinescope_scene::format::generate::{StressOptions, random_bezier_scene};
 
 fn bench(c: &mut Criterion) {
     let (ctx, pipelines) = GpuContext::new(&ContextOptions::from_env(BackendChoice::Auto))

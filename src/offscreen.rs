@@ -21,7 +21,7 @@ pub use splinescope_figure::TextOptions;
 ///
 /// # Errors
 /// The GPU's failure.
-#[deprecated(note = "use splinescope::render::render with RenderRequest::new(width, height)")]
+#[deprecated(note = "use splinescope_render::render with RenderRequest::new(width, height)")]
 pub fn render_scene(
     ctx: &GpuContext,
     pipelines: &Pipelines,
@@ -45,7 +45,7 @@ pub fn render_scene(
 ///
 /// # Errors
 /// The GPU's failure.
-#[deprecated(note = "use splinescope::render::render with RenderRequest::with_tolerance_px")]
+#[deprecated(note = "use splinescope_render::render with RenderRequest::with_tolerance_px")]
 pub fn render_scene_with(
     ctx: &GpuContext,
     pipelines: &Pipelines,
@@ -69,7 +69,7 @@ pub fn render_scene_with(
 ///
 /// # Errors
 /// The GPU's failure.
-#[deprecated(note = "use splinescope::render::render with RenderRequest::with_shape")]
+#[deprecated(note = "use splinescope_render::render with RenderRequest::with_shape")]
 pub fn render_scene_shaped(
     ctx: &GpuContext,
     pipelines: &Pipelines,
@@ -97,7 +97,7 @@ pub fn render_scene_shaped(
 ///
 /// # Errors
 /// [`splinescope_figure::FigureError`] (axes or a grid asked of a 3D view).
-#[deprecated(note = "use splinescope::render::render with RenderRequest::with_text")]
+#[deprecated(note = "use splinescope_render::render with RenderRequest::with_text")]
 pub fn annotate(
     image: &mut RgbaImage,
     scene: &Scene,
@@ -110,7 +110,7 @@ pub fn annotate(
 ///
 /// # Errors
 /// As [`annotate`].
-#[deprecated(note = "use splinescope::render::render with RenderRequest::with_text and with_shape")]
+#[deprecated(note = "use splinescope_render::render with RenderRequest::with_text and with_shape")]
 pub fn annotate_shaped(
     image: &mut RgbaImage,
     scene: &Scene,

@@ -10,22 +10,22 @@
 mod common;
 
 use glam::{DMat4, DVec2, DVec3, DVec4};
-use splinescope::camera::Camera;
-use splinescope::geom::{Bezier, BezierSegment, Curve, Lower};
-use splinescope::gpu::adaptive::{FrameSettings, Stage, read_work};
-use splinescope::gpu::layout::{GpuVertex, MAX_SAMPLES_PER_SEGMENT, WORK_HEADER};
-use splinescope::gpu::pack::PreparedScene;
-use splinescope::gpu::renderer::camera_uniform;
-use splinescope::gpu::tessellator::read_buffer;
-use splinescope::gpu::twin;
-use splinescope::scene::generate::Rng;
-use splinescope::scene::{Scene, SceneCurve, Style};
+use splinescope_core::geom::{Bezier, BezierSegment, Curve, Lower};
+use splinescope_encoding::camera::Camera;
+use splinescope_gpu::adaptive::{FrameSettings, Stage, read_work};
+use splinescope_gpu::layout::{GpuVertex, MAX_SAMPLES_PER_SEGMENT, WORK_HEADER};
+use splinescope_gpu::pack::PreparedScene;
+use splinescope_gpu::renderer::camera_uniform;
+use splinescope_gpu::tessellator::read_buffer;
+use splinescope_gpu::twin;
+use splinescope_scene::format::generate::Rng;
+use splinescope_scene::format::{Scene, SceneCurve, Style};
 
 const VIEWPORT: DVec2 = DVec2::new(640.0, 480.0);
 
 fn random_scene(seed: u64, three_d: bool) -> Scene {
     let mut rng = Rng::new(seed);
-    let mut scene = splinescope::scene::gallery::gallery();
+    let mut scene = splinescope_scene::format::gallery::gallery();
     scene.curves.clear();
     scene.annotations.clear();
     scene.samples_per_segment = None;
@@ -55,16 +55,16 @@ struct Run {
     counts: Vec<u32>,
     offsets: Vec<u32>,
     finals: Vec<u32>,
-    stats: splinescope::gpu::layout::FrameStats,
+    stats: splinescope_gpu::layout::FrameStats,
     samples: Vec<GpuVertex>,
     requested: Vec<u32>,
     /// The frame uniform the passes read.
-    frame: splinescope::gpu::layout::GpuFrame,
+    frame: splinescope_gpu::layout::GpuFrame,
 }
 
 fn run_chunk(
     backend: &common::Backend,
-    chunk: &splinescope::gpu::pack::TessChunk,
+    chunk: &splinescope_gpu::pack::TessChunk,
     settings: &FrameSettings,
     capacity: u32,
 ) -> Run {
@@ -231,7 +231,7 @@ fn check(backend: &common::Backend, scene: &Scene, camera: &Camera, tolerance_px
 /// `tests/gpu_tessellation.rs`), and carries its curve's tag.
 fn assert_samples_match_twin(
     what: &str,
-    chunk: &splinescope::gpu::pack::TessChunk,
+    chunk: &splinescope_gpu::pack::TessChunk,
     offsets: &[u32],
     finals: &[u32],
     samples: &[GpuVertex],
@@ -250,7 +250,7 @@ fn assert_samples_match_twin(
                 glam::Vec3::from(chunk.points[(seg.first_point + i) as usize].position).as_dvec3()
             })
             .collect();
-        let extent = splinescope::geom::Aabb::from_points(&points).diagonal();
+        let extent = splinescope_core::geom::Aabb::from_points(&points).diagonal();
         let radius = points.iter().map(|p| p.length()).fold(0.0, f64::max);
         let bound =
             8.0 * f64::from(seg.degree.max(1)) * f64::from(f32::EPSILON) / 2.0 * extent.max(radius);
@@ -279,7 +279,7 @@ fn twin_poison() -> GpuVertex {
 /// The camera zoomed by `factor` about a point of the scene's middle curve (so that close
 /// views still show curves).
 fn zoomed(camera: &Camera, factor: f64, scene: &Scene) -> Camera {
-    use splinescope::geom::ParamCurve;
+    use splinescope_core::geom::ParamCurve;
     let curve = &scene.curves[scene.curves.len() / 2].curve;
     let (a, b) = curve.domain();
     let at = camera
@@ -295,7 +295,7 @@ fn gpu_counts_scan_and_samples_match_the_twins_and_stay_within_the_tolerance() {
     common::on_each_gpu(
         "gpu_counts_scan_and_samples_match_the_twins_and_stay_within_the_tolerance",
         |backend| {
-            let gallery = splinescope::scene::gallery::gallery();
+            let gallery = splinescope_scene::format::gallery::gallery();
             let scenes = [
                 ("gallery", gallery),
                 ("random 2D", random_scene(11, false)),
@@ -380,9 +380,9 @@ fn a_full_buffer_coarsens_every_curve_in_proportion_and_writes_nothing_outside()
 
 #[test]
 fn an_offscreen_render_grows_a_buffer_the_view_outgrew_and_draws_uncapped() {
-    use splinescope::gpu::adaptive::{DEFAULT_TOLERANCE_PX, read_stats};
-    use splinescope::gpu::capture::{OFFSCREEN_FORMAT, render_uploaded};
-    use splinescope::gpu::renderer::Renderer;
+    use splinescope_gpu::adaptive::{DEFAULT_TOLERANCE_PX, read_stats};
+    use splinescope_gpu::capture::{OFFSCREEN_FORMAT, render_uploaded};
+    use splinescope_gpu::renderer::Renderer;
     common::on_each_gpu(
         "an_offscreen_render_grows_a_buffer_the_view_outgrew_and_draws_uncapped",
         |backend| {
@@ -413,7 +413,7 @@ fn an_offscreen_render_grows_a_buffer_the_view_outgrew_and_draws_uncapped() {
             // Back to the default tolerance and view: the excess is given back (never below
             // what the buffers started with), and the same view again reallocates nothing.
             let grown = gpu.capacity();
-            let small = |gpu: &mut splinescope::gpu::renderer::GpuScene| {
+            let small = |gpu: &mut splinescope_gpu::renderer::GpuScene| {
                 render_uploaded(
                     ctx,
                     &renderer,
@@ -438,9 +438,9 @@ fn an_offscreen_render_grows_a_buffer_the_view_outgrew_and_draws_uncapped() {
 
 #[test]
 fn buffers_grow_within_the_scene_budget_and_past_it_the_frame_is_capped() {
-    use splinescope::gpu::adaptive::read_stats;
-    use splinescope::gpu::capture::{OFFSCREEN_FORMAT, render_uploaded};
-    use splinescope::gpu::renderer::{Renderer, SAMPLE_BUDGET};
+    use splinescope_gpu::adaptive::read_stats;
+    use splinescope_gpu::capture::{OFFSCREEN_FORMAT, render_uploaded};
+    use splinescope_gpu::renderer::{Renderer, SAMPLE_BUDGET};
     // A zoom into the middle of many curves asks for ever more samples: however far, the
     // buffers stop at the budget (the memory of a session is bounded), and the frames past
     // it are drawn capped, within the buffers, saying so.

@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use splinescope::scene::{Scene, SceneErrorKind};
+use splinescope_scene::format::{Scene, SceneErrorKind};
 
 /// (file, path the error must name — empty for the document as a whole, which the message
 /// then names no path for — fragment its message must contain).

@@ -45,7 +45,7 @@ fn a_matrix_gives_one_row_per_combination_as_json_and_csv() {
         &png_arg,
     ]);
     // The plot: a 1000 × 640 PNG with a white background and coloured lines on it.
-    let plot = splinescope::image::RgbaImage::read_png(&png).expect("plot written");
+    let plot = splinescope_image::RgbaImage::read_png(&png).expect("plot written");
     assert_eq!((plot.width, plot.height), (1000, 640));
     let coloured = plot
         .data

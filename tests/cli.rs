@@ -7,9 +7,9 @@ use std::path::{Path, PathBuf};
 use std::process::Output;
 
 use serde_json::Value;
-use splinescope::geom::{Aabb, ParamCurve};
-use splinescope::image::RgbaImage;
-use splinescope::scene::Scene;
+use splinescope_core::geom::{Aabb, ParamCurve};
+use splinescope_image::RgbaImage;
+use splinescope_scene::format::Scene;
 
 use common::{bin, run};
 
@@ -77,7 +77,7 @@ fn eval_cpu_prints_exact_samples_over_the_domain() {
 /// segments.
 #[test]
 fn eval_gpu_agrees_with_cpu_on_every_scene_and_backend() {
-    use splinescope::geom::Lower;
+    use splinescope_core::geom::Lower;
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
     let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("scenes")
@@ -663,7 +663,7 @@ fn vectors(v: &Value, curve: usize, key: &str) -> Vec<[f64; 3]> {
 /// within the documented bound applied to the hodographs' control points.
 #[test]
 fn eval_derivatives_match_finite_differences_closed_forms_and_the_gpu() {
-    use splinescope::geom::Lower;
+    use splinescope_core::geom::Lower;
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
     for name in [
         "gallery.json",
@@ -719,7 +719,7 @@ fn eval_derivatives_match_finite_differences_closed_forms_and_the_gpu() {
                 for (key, order) in [("d1", 1u32), ("d2", 2)] {
                     let (want, got) = (vectors(&cpu, 0, key), vectors(&gpu, 0, key));
                     for (k, s) in segs.iter().enumerate() {
-                        let h = splinescope::gpu::eval::hodographs(std::slice::from_ref(s), order);
+                        let h = splinescope_gpu::eval::hodographs(std::slice::from_ref(s), order);
                         let pts = h[0].bezier.points();
                         let extent = Aabb::from_points(pts).diagonal();
                         let radius = pts.iter().map(|p| p.length()).fold(0.0, f64::max);

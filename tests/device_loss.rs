@@ -7,9 +7,9 @@ mod common;
 use std::time::{Duration, Instant};
 
 use common::render_scene;
-use splinescope::geom::Lower;
-use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext, GpuError, Pipelines};
-use splinescope::scene::gallery;
+use splinescope_core::geom::Lower;
+use splinescope_gpu::{BackendChoice, ContextOptions, GpuContext, GpuError, Pipelines};
+use splinescope_scene::format::gallery;
 
 fn fresh(backend: &common::Backend) -> (GpuContext, Pipelines) {
     let choice: BackendChoice = backend.name.parse().expect("backend name");
@@ -37,8 +37,7 @@ fn a_destroyed_device_gives_an_error_not_a_panic_or_a_hang() {
         assert_failed_cleanly(&format!("{}: render", backend.name), r, start.elapsed());
         let lowered = vec![(0, scene.curves[0].curve.lower())];
         let start = Instant::now();
-        let r =
-            splinescope::gpu::eval::evaluate(&ctx, &pipelines, &lowered, &[vec![0.0, 0.5, 1.0]]);
+        let r = splinescope_gpu::eval::evaluate(&ctx, &pipelines, &lowered, &[vec![0.0, 0.5, 1.0]]);
         assert_failed_cleanly(&format!("{}: eval", backend.name), r, start.elapsed());
         let e = ctx.check_health().expect_err("the loss is recorded");
         assert!(e.to_string().contains("the GPU device failed"), "{e}");

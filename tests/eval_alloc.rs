@@ -7,7 +7,7 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
 use glam::DVec3;
-use splinescope::geom::batch::CurveSampler;
+use splinescope_core::geom::batch::CurveSampler;
 
 struct Counting;
 
@@ -47,7 +47,7 @@ static GLOBAL: Counting = Counting;
 
 #[test]
 fn batch_evaluation_allocates_nothing_once_the_curves_are_lowered() {
-    let scene = splinescope::scene::gallery::gallery();
+    let scene = splinescope_scene::format::gallery::gallery();
     let samplers: Vec<CurveSampler> = scene
         .curves
         .iter()

@@ -8,14 +8,14 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{ToPrimitive, Zero};
 use proptest::prelude::*;
-use splinescope::geom::bspline::refine_knots;
-use splinescope::geom::exact::{format_rational, parse_decimal};
-use splinescope::geom::modified::bump;
-use splinescope::geom::{
+use splinescope_core::geom::bspline::refine_knots;
+use splinescope_core::geom::exact::{format_rational, parse_decimal};
+use splinescope_core::geom::modified::bump;
+use splinescope_core::geom::{
     BSpline, Bezier, CubicInterpolation, Curve, GeomError, KnotVector, Lower, Modification,
     ModifiedBezier, Nubmp, ParamCurve, Reading, locate,
 };
-use splinescope::scene::generate::Rng;
+use splinescope_scene::format::generate::Rng;
 
 type Q = BigRational;
 
@@ -639,8 +639,8 @@ fn moving_one_control_point_keeps_everything_else_and_rejects_bad_indices() {
 /// `Curve` variant without one of them fails here.
 #[test]
 fn every_family_has_a_codec_a_schema_entry_and_a_template() {
-    use splinescope::app::interaction::Template;
-    use splinescope::geom::Curve;
+    use splinescope_core::geom::Curve;
+    use splinescope_viewer::interaction::Template;
     let names = Curve::FAMILY_NAMES;
     // The core's own list agrees with its variants.
     for t in Template::all() {
@@ -667,7 +667,7 @@ fn every_family_has_a_codec_a_schema_entry_and_a_template() {
     // knows no other (its list of types is exactly the families).
     for name in names {
         let text = format!(r#"{{"version": 1, "curves": [{{"type": "{name}"}}]}}"#);
-        let e = splinescope::scene::from_json_str(&text)
+        let e = splinescope_scene::format::from_json_str(&text)
             .unwrap_err()
             .to_string();
         assert!(
@@ -675,7 +675,7 @@ fn every_family_has_a_codec_a_schema_entry_and_a_template() {
             "{name} has no codec: {e}"
         );
     }
-    let e = splinescope::scene::from_json_str(
+    let e = splinescope_scene::format::from_json_str(
         r#"{"version": 1, "curves": [{"type": "no_such_family"}]}"#,
     )
     .unwrap_err()
@@ -713,11 +713,11 @@ fn every_family_has_a_codec_a_schema_entry_and_a_template() {
 /// segment counts promise.
 #[test]
 fn the_stress_generator_makes_valid_curves_of_every_family() {
-    use splinescope::scene::generate::{StressFamily, StressOptions, random_bezier_scene};
+    use splinescope_scene::format::generate::{StressFamily, StressOptions, random_bezier_scene};
     let all: Vec<StressFamily> = StressFamily::all().collect();
     assert_eq!(
         all.iter().map(|f| f.name()).collect::<Vec<_>>(),
-        splinescope::geom::Curve::FAMILY_NAMES.to_vec()
+        splinescope_core::geom::Curve::FAMILY_NAMES.to_vec()
     );
     for family in all {
         for degree in [2, 3, 5] {

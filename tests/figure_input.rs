@@ -7,10 +7,10 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use glam::{DVec2, DVec3};
-use splinescope::camera::{Camera, Camera2d};
-use splinescope::geom::{Curve, Lower, ParamCurve, RationalBezier};
-use splinescope::scene::{Scene, SceneCurve, Style, ViewSpec, gallery};
+use splinescope_core::geom::{Curve, Lower, ParamCurve, RationalBezier};
+use splinescope_encoding::camera::{Camera, Camera2d};
 use splinescope_figure::{FigureError, FigureOptions, Item, build, pdf, svg};
+use splinescope_scene::format::{Scene, SceneCurve, Style, ViewSpec, gallery};
 
 mod common;
 
@@ -347,7 +347,7 @@ fn names_with_control_characters() {
                 "annotations[0].label",
             ),
         ] {
-            let e = splinescope::scene::from_json_str(&text).expect_err(&text);
+            let e = splinescope_scene::format::from_json_str(&text).expect_err(&text);
             let message = e.to_string();
             assert_eq!(e.path, path, "{message}");
             assert!(message.contains(code), "{message}");
@@ -412,7 +412,7 @@ fn the_fit_has_a_budget() {
     );
     assert!(!out.exists());
     // A deep zoom onto the curve: only the visible pieces are fitted.
-    let curve = Curve::Bezier(splinescope::geom::Bezier::new(vec![
+    let curve = Curve::Bezier(splinescope_core::geom::Bezier::new(vec![
         DVec3::new(0.0, 0.0, 0.0),
         DVec3::new(1.0, 2.0, 0.0),
         DVec3::new(3.0, 0.0, 0.0),
@@ -512,7 +512,7 @@ fn negative_values_are_values() {
 /// unit spans in the figure's view (a 2D view of height 10 on a figure 800 high: 80).
 #[test]
 fn a_width_in_scene_units_scales_with_the_view() {
-    use splinescope::geom::Bezier;
+    use splinescope_core::geom::Bezier;
     let mut scene = scene_of(Curve::Bezier(Bezier::new(vec![
         DVec3::new(-2.0, 0.0, 0.0),
         DVec3::new(0.0, 2.0, 0.0),

@@ -11,11 +11,12 @@ use std::process::Command;
 
 use glam::{DVec2, DVec3};
 
-use splinescope::geom::{Lower, ParamCurve};
-use splinescope::image::{RgbaImage, Tolerance, compare_images};
-use splinescope::scene::{Scene, gallery};
+use splinescope_core::geom::{Lower, ParamCurve};
 use splinescope_figure::fit::Projection;
 use splinescope_figure::{FigureOptions, build, pdf, svg};
+use splinescope_image::RgbaImage;
+use splinescope_image::compare::{Tolerance, compare_images};
+use splinescope_scene::format::{Scene, gallery};
 
 /// Rasterisers differ from the GPU in edge coverage (and PDF viewers in stroke
 /// adjustment: poppler widens thin strokes, where the GPU's layer covers each edge pixel
@@ -106,11 +107,11 @@ fn svg_and_pdf_figures_look_like_the_rendered_png() {
     common::on_each_gpu("figures look like render", |backend| {
         let dir = tempdir();
         for (name, scene) in scenes() {
-            let png = splinescope::render::render(
+            let png = splinescope_render::render(
                 &backend.ctx,
                 &backend.pipelines,
                 &scene,
-                &splinescope::render::RenderRequest::new(w, h),
+                &splinescope_render::RenderRequest::new(w, h),
             )
             .expect("render");
             let fig = build(&scene, &FigureOptions::new(w, h)).expect("figure");
@@ -313,7 +314,7 @@ fn want_end(v: &[f64]) -> Option<DVec2> {
 /// perspective bends even straight lines' parameterisation but keeps lines straight.
 #[test]
 fn pieces_follow_the_tolerance() {
-    let bez = splinescope::geom::Bezier::new(
+    let bez = splinescope_core::geom::Bezier::new(
         (0..=12)
             .map(|i| DVec3::new(f64::from(i), if i % 2 == 0 { 0.0 } else { 4.0 }, 0.0))
             .collect(),
@@ -431,7 +432,7 @@ fn text_is_text_in_svg_and_embedded_in_pdf_and_both_agree() {
         opts.legend = true;
         let planar = matches!(
             scene.camera(DVec2::new(f64::from(w), f64::from(h))),
-            splinescope::camera::Camera::Ortho2d(_)
+            splinescope_encoding::camera::Camera::Ortho2d(_)
         );
         opts.axes = planar;
         opts.grid = planar;
@@ -514,19 +515,19 @@ fn rendered_png_carries_the_labels() {
     let scene = gallery::gallery();
     let (w, h) = (900, 600);
     common::on_each_gpu("rendered labels", |backend| {
-        let plain = splinescope::render::render(
+        let plain = splinescope_render::render(
             &backend.ctx,
             &backend.pipelines,
             &scene,
-            &splinescope::render::RenderRequest::new(w, h),
+            &splinescope_render::RenderRequest::new(w, h),
         )
         .expect("render");
-        let labelled = splinescope::render::render(
+        let labelled = splinescope_render::render(
             &backend.ctx,
             &backend.pipelines,
             &scene,
-            &splinescope::render::RenderRequest::new(w, h).with_text(
-                splinescope::render::TextOptions {
+            &splinescope_render::RenderRequest::new(w, h).with_text(
+                splinescope_render::TextOptions {
                     labels: true,
                     ..Default::default()
                 },
@@ -592,7 +593,7 @@ fn export_takes_a_given_view() {
         String::from_utf8_lossy(&run.stderr)
     );
     let mut scene = Scene::load(&scene_path).expect("scene");
-    scene.view = splinescope::scene::ViewSpec::TwoD {
+    scene.view = splinescope_scene::format::ViewSpec::TwoD {
         center: DVec2::new(3.0, 3.0),
         height: 4.0,
     };
@@ -631,7 +632,7 @@ fn pdf_path_data_keeps_the_tolerance() {
     let (w, h) = (640.0, 400.0);
     for (name, scene) in scenes() {
         let mut opts = FigureOptions::new(w as u32, h as u32);
-        opts.switches = splinescope::scene::draw::Switches {
+        opts.switches = splinescope_scene::format::draw::Switches {
             polygons: false,
             points: false,
         };
@@ -785,7 +786,7 @@ fn svg_text_boxes(svg: &str) -> Vec<(DVec2, DVec2, String, f64)> {
 /// page or counted in the legend's "N labels hidden".
 #[test]
 fn labels_never_overlap_on_the_written_page() {
-    use splinescope::scene::generate::{StressOptions, random_bezier_scene};
+    use splinescope_scene::format::generate::{StressOptions, random_bezier_scene};
     let dir = tempdir();
     let mut cases = vec![
         ("gallery", gallery::gallery(), 1200, 800),
@@ -820,7 +821,7 @@ fn labels_never_overlap_on_the_written_page() {
         if name.contains("axes") {
             opts.axes = true;
             opts.grid = true;
-            opts.shape.comb = Some(splinescope::scene::shape::CombScale::Auto);
+            opts.shape.comb = Some(splinescope_scene::format::shape::CombScale::Auto);
             opts.shape.inflections = true;
             opts.shape.curvature_extrema = true;
             opts.shape.intersections = true;
@@ -898,7 +899,7 @@ fn labels_never_overlap_on_the_written_page() {
 /// and anti-aliased edges), give each label's box — and no two boxes overlap.
 #[test]
 fn rendered_labels_never_overlap_in_the_png() {
-    use splinescope::scene::generate::{StressOptions, random_bezier_scene};
+    use splinescope_scene::format::generate::{StressOptions, random_bezier_scene};
     let mut crowd = random_bezier_scene(StressOptions {
         curves: 18,
         degree: 3,
@@ -924,7 +925,7 @@ fn png_labels_apart(what: &str, mut scene: Scene, (w, h): (u32, u32)) {
             let k = (n + hue / 60.0) % 6.0;
             0.9 - 0.9 * k.min(4.0 - k).clamp(0.0, 1.0)
         };
-        c.style.color = splinescope::scene::Color([f(5.0), f(3.0), f(1.0), 1.0]);
+        c.style.color = splinescope_scene::format::Color([f(5.0), f(3.0), f(1.0), 1.0]);
     }
     // The hue of each label's text (the curve's colour, darkened: the same hue).
     let hue_of = |[r, g, b]: [f32; 3]| -> (f32, f32) {
@@ -953,19 +954,19 @@ fn png_labels_apart(what: &str, mut scene: Scene, (w, h): (u32, u32)) {
     common::on_each_gpu(
         &format!("rendered labels never overlap ({what})"),
         |backend| {
-            let plain = splinescope::render::render(
+            let plain = splinescope_render::render(
                 &backend.ctx,
                 &backend.pipelines,
                 &scene,
-                &splinescope::render::RenderRequest::new(w, h),
+                &splinescope_render::RenderRequest::new(w, h),
             )
             .expect("render");
-            let labelled = splinescope::render::render(
+            let labelled = splinescope_render::render(
                 &backend.ctx,
                 &backend.pipelines,
                 &scene,
-                &splinescope::render::RenderRequest::new(w, h).with_text(
-                    splinescope::render::TextOptions {
+                &splinescope_render::RenderRequest::new(w, h).with_text(
+                    splinescope_render::TextOptions {
                         labels: true,
                         ..Default::default()
                     },

@@ -4,9 +4,9 @@
 
 mod common;
 
-use splinescope::analysis::CurveAnalysis;
-use splinescope::geom::Curve;
-use splinescope::scene::Scene;
+use splinescope_core::analysis::CurveAnalysis;
+use splinescope_core::geom::Curve;
+use splinescope_scene::format::Scene;
 
 fn spiral_csv(dir: &std::path::Path) -> (std::path::PathBuf, Vec<glam::DVec3>) {
     let pts: Vec<glam::DVec3> = (0..400)

@@ -29,9 +29,9 @@ use std::process::{Command, Output};
 use std::time::{Duration, Instant};
 
 use serde_json::{Value, json};
-use splinescope::geom::{Lower, ParamCurve};
-use splinescope::scene::Scene;
-use splinescope::scene::generate::Rng;
+use splinescope_core::geom::{Lower, ParamCurve};
+use splinescope_scene::format::Scene;
+use splinescope_scene::format::generate::Rng;
 
 mod common;
 
@@ -310,7 +310,7 @@ fn symlink(_: &Path, _: &Path) {}
 /// Seed images for the image cases: 8-bit RGBA (the first, also the comparison's other
 /// side), 16-bit RGB, a palette image and 8-bit grey.
 fn image_seeds() -> Vec<Vec<u8>> {
-    let mut rgba = splinescope::image::RgbaImage::filled(6, 5, [30, 60, 90, 255]);
+    let mut rgba = splinescope_image::RgbaImage::filled(6, 5, [30, 60, 90, 255]);
     rgba.data[7] = 200;
     let first = rgba.png_bytes(Path::new("seed.png")).expect("encode seed");
     let palette = [0, 0, 0, 255, 0, 0, 0, 255, 0, 255, 255, 255];
@@ -361,7 +361,7 @@ impl Fuzz {
     /// finite values; inspect's report holds no non-finite number.
     fn library(&mut self, text: &str, case: &str) {
         let result = std::panic::catch_unwind(|| -> Result<(), String> {
-            let Ok(scene) = splinescope::scene::from_json_str(text) else {
+            let Ok(scene) = splinescope_scene::format::from_json_str(text) else {
                 return Ok(());
             };
             for (i, c) in scene.curves.iter().enumerate() {
@@ -379,7 +379,7 @@ impl Fuzz {
                 }
                 if c.curve.control_points().len() <= 200
                     && let Ok(report) =
-                        splinescope::inspect::curve_report(i, c.name.as_deref(), &c.curve)
+                        splinescope_present::inspect::curve_report(i, c.name.as_deref(), &c.curve)
                     && let Some(at) =
                         non_finite_in(&serde_json::to_string(&report).unwrap_or_default())
                 {
@@ -992,7 +992,7 @@ impl Fuzz {
     ) {
         let started = Instant::now();
         let result = std::panic::catch_unwind(|| -> Result<(), String> {
-            let Ok(scene) = splinescope::scene::from_json_str(text) else {
+            let Ok(scene) = splinescope_scene::format::from_json_str(text) else {
                 return Ok(());
             };
             let text_opts = splinescope_figure::TextOptions {
@@ -1014,7 +1014,7 @@ impl Fuzz {
                         _ => 0,
                     })
                     .sum();
-                let budget = splinescope::limits::FIGURE_PIECES.default as usize;
+                let budget = splinescope_io::limits::FIGURE_PIECES.default as usize;
                 let overlays = scene
                     .curves
                     .iter()
@@ -1290,7 +1290,7 @@ impl Fuzz {
             &mut self.rng,
         );
         let opts = if variable {
-            splinescope::import::font::FontOptions {
+            splinescope_import::font::FontOptions {
                 glyphs: Some(vec!["A".into(), "B".into(), "AB".into()]),
                 variations: vec![
                     ("wght".into(), 100.0 + 800.0 * self.rng.unit()),
@@ -1299,19 +1299,19 @@ impl Fuzz {
                 ..Default::default()
             }
         } else if self.rng.unit() < 0.5 {
-            splinescope::import::font::FontOptions {
+            splinescope_import::font::FontOptions {
                 text: Some("Ag&é".into()),
                 ..Default::default()
             }
         } else {
-            splinescope::import::font::FontOptions {
+            splinescope_import::font::FontOptions {
                 glyphs: Some(vec!["gid3".into(), "a".into(), "gid300".into()]),
                 ..Default::default()
             }
         };
         let start = Instant::now();
         let result = std::panic::catch_unwind(|| -> Result<(), String> {
-            let Ok(imported) = splinescope::import::font::read(&b, "fuzz.ttf", &opts) else {
+            let Ok(imported) = splinescope_import::font::read(&b, "fuzz.ttf", &opts) else {
                 return Ok(());
             };
             for (i, c) in imported.scene.curves.iter().enumerate() {
@@ -1401,9 +1401,9 @@ impl Fuzz {
         let result = std::panic::catch_unwind(|| -> Result<(), String> {
             let file = format!("fuzz.{ext}");
             let read = match ext.as_str() {
-                "dxf" => splinescope::import::dxf::read(&bytes, &file),
-                "step" => splinescope::import::step::read(&text, &file),
-                _ => splinescope::import::svg::read(&text, &file),
+                "dxf" => splinescope_import::dxf::read(&bytes, &file),
+                "step" => splinescope_import::step::read(&text, &file),
+                _ => splinescope_import::svg::read(&text, &file),
             };
             let Ok(imported) = read else {
                 return Ok(());
@@ -1565,7 +1565,8 @@ fn mutations_cover_every_kind() {
     assert!(
         duplicate_a_key(&seed.to_string()).is_some_and(|t| t.matches("\"points\"").count() == 2)
     );
-    let parsed: Result<Scene, _> =
-        splinescope::scene::from_json_str(&duplicate_a_key(&seed.to_string()).unwrap_or_default());
+    let parsed: Result<Scene, _> = splinescope_scene::format::from_json_str(
+        &duplicate_a_key(&seed.to_string()).unwrap_or_default(),
+    );
     assert!(parsed.is_err());
 }

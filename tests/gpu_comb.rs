@@ -8,21 +8,21 @@
 mod common;
 
 use glam::{DVec2, DVec3};
-use splinescope::analysis::CurveAnalysis;
-use splinescope::analysis::comb::curvature_vector;
-use splinescope::geom::{
+use splinescope_core::analysis::CurveAnalysis;
+use splinescope_core::analysis::comb::curvature_vector;
+use splinescope_core::geom::{
     BSpline, Bezier, BezierSegment, Curve, Lower, ModifiedBezier, Nurbs, ParamCurve, RationalBezier,
 };
-use splinescope::gpu::adaptive::{FrameSettings, read_work};
-use splinescope::gpu::capture::OFFSCREEN_FORMAT;
-use splinescope::gpu::layout::{
+use splinescope_gpu::adaptive::{FrameSettings, read_work};
+use splinescope_gpu::capture::OFFSCREEN_FORMAT;
+use splinescope_gpu::layout::{
     COMB_CAPPED, COMB_HAIRS, COMB_HIDDEN, GpuFrame, GpuVertex, WORK_HEADER,
 };
-use splinescope::gpu::pack::{PreparedScene, curve_tags};
-use splinescope::gpu::renderer::{CombRequest, GpuScene, Renderer, camera_uniform};
-use splinescope::gpu::tessellator::read_buffer;
-use splinescope::gpu::twin::{comb_hair, comb_hairs_of, comb_point_and_curvature};
-use splinescope::scene::{Cap, Join, Scene, SceneCurve, StrokeShape, Style, ViewSpec};
+use splinescope_gpu::pack::{PreparedScene, curve_tags};
+use splinescope_gpu::renderer::{CombRequest, GpuScene, Renderer, camera_uniform};
+use splinescope_gpu::tessellator::read_buffer;
+use splinescope_gpu::twin::{comb_hair, comb_hairs_of, comb_point_and_curvature};
+use splinescope_scene::format::{Cap, Join, Scene, SceneCurve, StrokeShape, Style, ViewSpec};
 
 const VIEWPORT: DVec2 = DVec2::new(640.0, 480.0);
 
@@ -78,7 +78,7 @@ fn families() -> Vec<Curve> {
 }
 
 fn scene_of(curves: Vec<Curve>) -> Scene {
-    let mut scene = splinescope::scene::gallery::gallery();
+    let mut scene = splinescope_scene::format::gallery::gallery();
     scene.annotations.clear();
     scene.samples_per_segment = None;
     scene.curves = curves
@@ -483,7 +483,7 @@ fn a_planar_comb_changes_side_exactly_at_the_inflections() {
 }
 
 fn read_back<T: bytemuck::Pod>(
-    ctx: &splinescope::gpu::context::GpuContext,
+    ctx: &splinescope_gpu::context::GpuContext,
     buffer: &wgpu::Buffer,
 ) -> Vec<T> {
     let mut encoder = ctx.device.create_command_encoder(&Default::default());
@@ -618,12 +618,15 @@ fn the_layer_holds_what_its_twin_rasterizes() {
 }
 
 /// A closed path of straight segments through `corners`.
-fn polygon(corners: &[DVec3]) -> splinescope::geom::Path {
+fn polygon(corners: &[DVec3]) -> splinescope_core::geom::Path {
     let n = corners.len();
-    splinescope::geom::Path::try_new(
+    splinescope_core::geom::Path::try_new(
         (0..n)
             .map(|i| {
-                splinescope::geom::PathSegment::polynomial(vec![corners[i], corners[(i + 1) % n]])
+                splinescope_core::geom::PathSegment::polynomial(vec![
+                    corners[i],
+                    corners[(i + 1) % n],
+                ])
             })
             .collect(),
         true,
@@ -640,8 +643,8 @@ fn layer_against_twin(
     renderer: &Renderer,
     only: Option<Vec<(usize, u32)>>,
 ) -> usize {
-    use splinescope::gpu::layer_twin::{CombLines, layer_size, raster_comb, raster_curves};
-    use splinescope::gpu::renderer::comb_styles;
+    use splinescope_gpu::layer_twin::{CombLines, layer_size, raster_comb, raster_curves};
+    use splinescope_gpu::renderer::comb_styles;
     let ctx = &backend.ctx;
     let mut gpu: GpuScene = renderer.upload(ctx, prepared);
     gpu.set_comb(
@@ -697,7 +700,7 @@ fn layer_against_twin(
     // The same kind and curve, the alpha within one step and the core bit free (a
     // coverage computed in f32 on either side of a rounding boundary).
     let same = |a: u32, b: u32| {
-        let rest = !(0x3f | splinescope::gpu::layer_twin::CORE_BIT);
+        let rest = !(0x3f | splinescope_gpu::layer_twin::CORE_BIT);
         a == b || ((a & rest) == (b & rest) && (a & 0x3f).abs_diff(b & 0x3f) <= 1)
     };
     let near = |layer: &[u32], i: usize, key: u32| {
@@ -753,7 +756,7 @@ fn layer_against_twin(
 /// layer keeps the larger coverage — 3.9 % on llvmpipe). The renders are written under `target/test-output/gpu_comb`.
 #[test]
 fn the_layer_draws_what_line_lists_and_quads_draw() {
-    use splinescope::gpu::capture::render_uploaded;
+    use splinescope_gpu::capture::render_uploaded;
     common::on_each_gpu(
         "the_layer_draws_what_line_lists_and_quads_draw",
         |backend| {
@@ -817,8 +820,8 @@ fn the_layer_draws_what_line_lists_and_quads_draw() {
                 "{}: the layer's curves and the quads differ on {unlike} of {covered} pixels",
                 backend.name
             );
-            let changed = |img: &splinescope::image::RgbaImage,
-                           base: &splinescope::image::RgbaImage| {
+            let changed = |img: &splinescope_image::RgbaImage,
+                           base: &splinescope_image::RgbaImage| {
                 img.data
                     .chunks(4)
                     .zip(base.data.chunks(4))

@@ -11,14 +11,14 @@ mod common;
 use std::path::Path;
 
 use glam::DVec3;
-use splinescope::geom::{
+use splinescope_core::geom::{
     Aabb, BSpline, Bezier, CubicInterpolation, Curve, Lower, Modification, ModifiedBezier, Nubmp,
     Nurbs, ParamCurve, PathSegment, RationalBezier, Reading,
 };
-use splinescope::gpu::GpuContext;
-use splinescope::gpu::eval::evaluate;
-use splinescope::scene::Scene;
-use splinescope::scene::generate::Rng;
+use splinescope_gpu::GpuContext;
+use splinescope_gpu::eval::evaluate;
+use splinescope_scene::format::Scene;
+use splinescope_scene::format::generate::Rng;
 
 fn bound(curve: &Curve) -> f64 {
     let segs = curve.lower();
@@ -242,7 +242,9 @@ fn random_curves_of_every_family_match_up_to_the_maximum_degree() {
             }
             curves.push((
                 format!("path of degrees {degrees:?}, closed {closed}"),
-                Curve::Path(splinescope::geom::Path::try_new(segments, closed).expect("valid")),
+                Curve::Path(
+                    splinescope_core::geom::Path::try_new(segments, closed).expect("valid"),
+                ),
             ));
         }
     }

@@ -8,8 +8,8 @@
 mod common;
 
 use glam::DVec3;
-use splinescope::geom::{Curve, Lower, Nurbs, ParamCurve, RationalBezier};
-use splinescope::gpu::eval::{evaluate, evaluate_derivative};
+use splinescope_core::geom::{Curve, Lower, Nurbs, ParamCurve, RationalBezier};
+use splinescope_gpu::eval::{evaluate, evaluate_derivative};
 
 const HALF_SQRT2: f64 = std::f64::consts::FRAC_1_SQRT_2;
 

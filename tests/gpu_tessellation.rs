@@ -14,18 +14,18 @@
 mod common;
 
 use glam::{DVec3, Vec3};
-use splinescope::geom::{Bezier, ParamCurve};
-use splinescope::gpu::layout::{GpuLineStyle, MAX_GPU_DEGREE};
-use splinescope::gpu::pack::{ChunkBuilder, ChunkLimits, TessChunk, prepare};
-use splinescope::gpu::tessellator::{POISON, Tessellator, plan, read_buffer};
-use splinescope::gpu::twin;
-use splinescope::scene::Color;
-use splinescope::scene::encoding::encode;
-use splinescope::scene::generate::{Rng, StressOptions, random_bezier_scene};
+use splinescope_core::geom::{Bezier, ParamCurve};
+use splinescope_gpu::layout::{GpuLineStyle, MAX_GPU_DEGREE};
+use splinescope_gpu::pack::{ChunkBuilder, ChunkLimits, TessChunk, prepare};
+use splinescope_gpu::tessellator::{POISON, Tessellator, plan, read_buffer};
+use splinescope_gpu::twin;
+use splinescope_scene::format::Color;
+use splinescope_scene::format::encoding::encode;
+use splinescope_scene::format::generate::{Rng, StressOptions, random_bezier_scene};
 
 /// The bound for a curve of `degree` with control points `points` (see the module doc).
 fn bound(degree: usize, points: &[DVec3]) -> f64 {
-    let extent = splinescope::geom::Aabb::from_points(points).diagonal();
+    let extent = splinescope_core::geom::Aabb::from_points(points).diagonal();
     let radius = points.iter().map(|p| p.length()).fold(0.0, f64::max);
     1e-6 * extent.max(radius) * (degree.max(12) as f64 / 12.0)
 }
@@ -36,7 +36,7 @@ fn bound(degree: usize, points: &[DVec3]) -> f64 {
 /// (moving the sample by at most `|P′| · 2.5 ε ≤ 2.5 n E ε`): `8 · n · ε · S` with
 /// `ε = 2⁻²⁴`, orders of magnitude below the bound against the exact curve.
 fn twin_bound(degree: usize, points: &[DVec3]) -> f64 {
-    let extent = splinescope::geom::Aabb::from_points(points).diagonal();
+    let extent = splinescope_core::geom::Aabb::from_points(points).diagonal();
     let radius = points.iter().map(|p| p.length()).fold(0.0, f64::max);
     8.0 * degree.max(1) as f64 * f64::from(f32::EPSILON) / 2.0 * extent.max(radius)
 }
@@ -209,7 +209,7 @@ fn tiny_chunks_split_runs_and_still_write_every_sample() {
 
 #[test]
 fn dispatch_grid_covers_more_segments_than_one_dimension_allows() {
-    use splinescope::gpu::tessellator::dispatch_grid;
+    use splinescope_gpu::tessellator::dispatch_grid;
     assert_eq!(dispatch_grid(0, 65535), (0, 0));
     assert_eq!(dispatch_grid(10, 65535), (10, 1));
     let (x, y) = dispatch_grid(1_000_000, 65535);
@@ -326,8 +326,8 @@ fn one_million_cubics_tessellate_correctly_in_chunks() {
 /// GL compiler once produced. The real kernels pass it on every backend.
 #[test]
 fn the_kernel_self_test_refuses_a_wrong_kernel() {
-    use splinescope::gpu::selftest;
-    use splinescope::gpu::shaders::TESSELLATE;
+    use splinescope_gpu::selftest;
+    use splinescope_gpu::shaders::TESSELLATE;
     common::on_each_gpu("the_kernel_self_test_refuses_a_wrong_kernel", |backend| {
         let ctx = &backend.ctx;
         let good = Tessellator::new(&ctx.device);
@@ -414,7 +414,7 @@ fn the_write_only_kernel_writes_exactly_the_kernels_samples() {
                 );
                 ctx.queue.submit([encoder.finish()]);
                 let mut encoder = ctx.device.create_command_encoder(&Default::default());
-                let got: Vec<splinescope::gpu::layout::GpuVertex> =
+                let got: Vec<splinescope_gpu::layout::GpuVertex> =
                     read_buffer(&ctx.device, &ctx.queue, &mut encoder, &buffers.samples)
                         .expect("readback");
                 // Every sample the kernels write, and nothing else, holds its parameter.

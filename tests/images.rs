@@ -14,10 +14,11 @@ use std::path::PathBuf;
 
 use common::render_scene;
 use glam::{DVec2, DVec3};
-use splinescope::camera::Camera;
-use splinescope::geom::{Bezier, Curve};
-use splinescope::image::{ComparisonImages, RgbaImage, Tolerance, compare_images};
-use splinescope::scene::{Color, Scene, SceneCurve, Style, ViewSpec, gallery};
+use splinescope_core::geom::{Bezier, Curve};
+use splinescope_encoding::camera::Camera;
+use splinescope_image::RgbaImage;
+use splinescope_image::compare::{ComparisonImages, Tolerance, compare_images};
+use splinescope_scene::format::{Color, Scene, SceneCurve, Style, ViewSpec, gallery};
 
 /// The golden references are compared with the same code as `splinescope regress`, at
 /// its default tolerance.
@@ -257,12 +258,12 @@ fn curve_pixels_hug_the_exact_curve() {
 
 #[test]
 fn an_edit_written_in_place_renders_like_a_fresh_upload() {
-    use splinescope::geom::Lower;
-    use splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX;
-    use splinescope::gpu::capture::{OFFSCREEN_FORMAT, render_uploaded};
-    use splinescope::gpu::pack::{ChunkLimits, prepare, repack_points};
-    use splinescope::gpu::renderer::Renderer;
-    use splinescope::scene::encoding::encode;
+    use splinescope_core::geom::Lower;
+    use splinescope_gpu::adaptive::DEFAULT_TOLERANCE_PX;
+    use splinescope_gpu::capture::{OFFSCREEN_FORMAT, render_uploaded};
+    use splinescope_gpu::pack::{ChunkLimits, prepare, repack_points};
+    use splinescope_gpu::renderer::Renderer;
+    use splinescope_scene::format::encoding::encode;
     common::on_each_gpu(
         "an_edit_written_in_place_renders_like_a_fresh_upload",
         |backend| {
@@ -323,17 +324,17 @@ fn an_edit_written_in_place_renders_like_a_fresh_upload() {
             }
             // The overlays (control polygon, dual polygon, points) are written in place
             // too, as the viewer does during a drag.
-            let edit = splinescope::gpu::pack::OverlayEdit {
-                switches: splinescope::scene::draw::Switches::ALL,
+            let edit = splinescope_gpu::pack::OverlayEdit {
+                switches: splinescope_scene::format::draw::Switches::ALL,
                 curve_count: edited.curves.len(),
                 curves: vec![(
                     0,
-                    splinescope::scene::draw::curve_overlays(
+                    splinescope_scene::format::draw::curve_overlays(
                         &edited.curves[0],
-                        splinescope::scene::draw::Switches::ALL,
+                        splinescope_scene::format::draw::Switches::ALL,
                     ),
                 )],
-                axes: splinescope::scene::draw::axis_lines(&edited),
+                axes: splinescope_scene::format::draw::axis_lines(&edited),
             };
             let (lines, points) = prepared
                 .overlay_map

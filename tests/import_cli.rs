@@ -37,8 +37,8 @@ fn export_writes_dxf_that_reads_back_and_ascii_is_for_dxf_only() {
             .expect("written")
             .starts_with(b"AutoCAD Binary DXF")
     );
-    let back = splinescope::import::load(&dxf).expect("reads back").scene;
-    let gallery = splinescope::scene::gallery::gallery();
+    let back = splinescope_import::load(&dxf).expect("reads back").scene;
+    let gallery = splinescope_scene::format::gallery::gallery();
     assert_eq!(back.curves.len(), gallery.curves.len());
     let out = common::run(&["check", dxf.to_str().expect("utf-8")]);
     assert!(out.status.success(), "{}", common::text(&out));

@@ -4,11 +4,11 @@
 //! pixel↔world maps and from the scene before the input.
 
 use glam::{DVec2, DVec3};
-use splinescope::app::edit::Editor;
-use splinescope::app::interaction::{Button, Input, Interaction, Key};
-use splinescope::camera::Camera;
-use splinescope::geom::{Bezier, Curve};
-use splinescope::scene::{Color, Scene, SceneCurve, Style, ViewSpec};
+use splinescope_core::geom::{Bezier, Curve};
+use splinescope_encoding::camera::Camera;
+use splinescope_scene::format::{Color, Scene, SceneCurve, Style, ViewSpec};
+use splinescope_viewer::edit::Editor;
+use splinescope_viewer::interaction::{Button, Input, Interaction, Key};
 
 const VIEWPORT: DVec2 = DVec2::new(1000.0, 700.0);
 
@@ -150,8 +150,8 @@ fn keys_toggle_the_overlays_and_panel_save_and_quit() {
     let saved = Scene::load(&path).expect("Ctrl+S wrote the scene");
     // Colours are written as 8-bit hex: compare what the file says.
     assert_eq!(
-        splinescope::scene::to_json_string(&saved),
-        splinescope::scene::to_json_string(m.scene())
+        splinescope_scene::format::to_json_string(&saved),
+        splinescope_scene::format::to_json_string(m.scene())
     );
     assert_eq!(saved.curves[0].curve, m.scene().curves[0].curve);
     assert!(!m.handle(key('q', false)).exit);
@@ -241,20 +241,20 @@ fn presses_and_the_wheel_over_the_panel_or_a_menu_do_not_reach_the_canvas() {
 /// name (someone else's scene) is replaced only when the user confirms a second time.
 #[test]
 fn saving_the_gallery_asks_where_and_never_replaces_a_file_unasked() {
-    use splinescope::app::file_dialog::DialogMode;
-    use splinescope::app::{DEFAULT_SAVE_NAME, ViewOptions, editor_for};
-    let gallery = splinescope::scene::gallery::gallery();
+    use splinescope_viewer::file_dialog::DialogMode;
+    use splinescope_viewer::{DEFAULT_SAVE_NAME, ViewOptions, editor_for};
+    let gallery = splinescope_scene::format::gallery::gallery();
     let opts = ViewOptions {
         scene: gallery.clone(),
         frames: None,
-        backend: splinescope::gpu::BackendChoice::Auto,
+        backend: splinescope_gpu::BackendChoice::Auto,
         solve: false,
         tolerance_px: 0.25,
         overlays_hidden: false,
         path: None,
         source: None,
         comb: None,
-        comb_cap: splinescope::scene::shape::CombCap::default(),
+        comb_cap: splinescope_scene::format::shape::CombCap::default(),
         lose_device_after_frames: None,
     };
     let editor = editor_for(&opts, gallery.clone());
@@ -294,7 +294,8 @@ fn saving_the_gallery_asks_where_and_never_replaces_a_file_unasked() {
     );
     m.confirm_dialog();
     assert!(m.dialog.is_none());
-    let saved = splinescope::scene::Scene::load(&theirs).expect("our scene, replaced on request");
+    let saved =
+        splinescope_scene::format::Scene::load(&theirs).expect("our scene, replaced on request");
     assert_eq!(saved.curves.len(), m.scene().curves.len());
     assert_eq!(
         saved.curves[0].curve.control_points()[1],

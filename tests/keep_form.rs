@@ -7,8 +7,8 @@
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
-use splinescope::app::edit::Editor;
-use splinescope::scene::{Scene, from_json_str, to_json_string, to_json_string_keeping};
+use splinescope_scene::format::{Scene, from_json_str, to_json_string, to_json_string_keeping};
+use splinescope_viewer::edit::Editor;
 
 /// Two scenes as their files would say (colours are written as 8-bit hex).
 fn same_file(a: &Scene, b: &Scene) -> bool {
@@ -93,7 +93,7 @@ fn every_shipped_scene_edited_at_one_point_differs_in_that_point_only() {
             // A point is written once, except where a path's segments meet: there each
             // segment writes it.
             let copies = match &sc.curve {
-                splinescope::geom::Curve::Path(path) => path
+                splinescope_core::geom::Curve::Path(path) => path
                     .segments()
                     .iter()
                     .map(|s| s.points.iter().filter(|&&q| q == p).count())

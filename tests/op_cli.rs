@@ -4,9 +4,9 @@
 
 mod common;
 
-use splinescope::analysis::CurveAnalysis;
-use splinescope::geom::{Curve, ParamCurve};
-use splinescope::scene::Scene;
+use splinescope_core::analysis::CurveAnalysis;
+use splinescope_core::geom::{Curve, ParamCurve};
+use splinescope_scene::format::Scene;
 
 fn paths() -> String {
     format!("{}/scenes/paths.json", env!("CARGO_MANIFEST_DIR"))

@@ -3,9 +3,9 @@
 
 use std::f64::consts::PI;
 
-use splinescope::analysis::CurveAnalysis;
-use splinescope::geom::{Curve, Family, Lower, ParamCurve};
-use splinescope::scene::{Scene, from_json_str, to_json_string};
+use splinescope_core::analysis::CurveAnalysis;
+use splinescope_core::geom::{Curve, Family, Lower, ParamCurve};
+use splinescope_scene::format::{Scene, from_json_str, to_json_string};
 
 fn paths() -> Scene {
     Scene::load(std::path::Path::new(concat!(

@@ -8,8 +8,8 @@ mod common;
 
 use std::path::PathBuf;
 
-use splinescope::image::{ImageError, RgbaImage};
-use splinescope::limits::LimitError;
+use splinescope_image::{ImageError, RgbaImage};
+use splinescope_io::limits::LimitError;
 
 use common::{
     PNG_SIGNATURE as SIGNATURE, crafted_png_header as crafted_header, encode_png,

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::Output;
 
 use serde_json::Value;
-use splinescope::image::RgbaImage;
+use splinescope_image::RgbaImage;
 
 use common::{bin, run, text};
 

@@ -97,9 +97,9 @@ fn every_example_scene_and_request_validates() {
         let doc = read_json(path);
         assert_valid(&scene, &doc, &path.display().to_string());
         // Read and written back: still valid.
-        let loaded = splinescope::scene::Scene::load(path).expect("example loads");
+        let loaded = splinescope_scene::format::Scene::load(path).expect("example loads");
         let written: Value =
-            serde_json::from_str(&splinescope::scene::to_json_string(&loaded)).unwrap();
+            serde_json::from_str(&splinescope_scene::format::to_json_string(&loaded)).unwrap();
         assert_valid(
             &scene,
             &written,
@@ -139,8 +139,8 @@ fn every_example_scene_and_request_validates() {
     }
     assert!(seen.0 >= 2 && seen.1 >= 1, "doc examples found: {seen:?}");
     // The built-in gallery as written.
-    let gallery: Value = serde_json::from_str(&splinescope::scene::to_json_string(
-        &splinescope::scene::gallery::gallery(),
+    let gallery: Value = serde_json::from_str(&splinescope_scene::format::to_json_string(
+        &splinescope_scene::format::gallery::gallery(),
     ))
     .unwrap();
     assert_valid(&scene, &gallery, "the gallery");
@@ -163,7 +163,7 @@ fn documents_the_reader_refuses_for_their_shape_the_schema_refuses() {
     ];
     for text in bad_scenes {
         assert!(
-            splinescope::scene::from_json_str(text).is_err(),
+            splinescope_scene::format::from_json_str(text).is_err(),
             "the reader accepts {text}"
         );
         let doc: Value = serde_json::from_str(text).unwrap();
@@ -175,10 +175,10 @@ fn documents_the_reader_refuses_for_their_shape_the_schema_refuses() {
         r#"{"curve": 0, "method": "project", "target": [0, 0], "t": 0.5}"#,
         r#"[{"curve": -1, "method": "project", "target": [0, 0]}]"#,
     ];
-    let scene_doc = splinescope::scene::gallery::gallery();
+    let scene_doc = splinescope_scene::format::gallery::gallery();
     for text in bad_requests {
         assert!(
-            splinescope::request::apply_text(&scene_doc, text).is_err(),
+            splinescope_scene::request::apply_text(&scene_doc, text).is_err(),
             "the reader accepts {text}"
         );
         let doc: Value = serde_json::from_str(text).unwrap();

@@ -10,11 +10,11 @@
 mod common;
 
 use glam::{DVec2, DVec3};
-use splinescope::geom::{Bezier, Curve, Nurbs};
-use splinescope::image::RgbaImage;
-use splinescope::scene::Scene;
-use splinescope::scene::shape::{CombCap, CombScale, ShapeOptions};
+use splinescope_core::geom::{Bezier, Curve, Nurbs};
 use splinescope_figure::{FigureOptions, Item, build};
+use splinescope_image::RgbaImage;
+use splinescope_scene::format::Scene;
+use splinescope_scene::format::shape::{CombCap, CombScale, ShapeOptions};
 
 fn p(x: f64, y: f64) -> DVec3 {
     DVec3::new(x, y, 0.0)
@@ -164,9 +164,9 @@ fn render_draws_the_comb_on_the_gpu_where_the_hairs_are() {
     let scene = bare(vec![Curve::Nurbs(
         Nurbs::circle(DVec3::ZERO, r).expect("circle"),
     )]);
-    splinescope::files::write_atomic(
+    splinescope_io::files::write_atomic(
         &scene_path,
-        splinescope::scene::to_json_string(&scene).as_bytes(),
+        splinescope_scene::format::to_json_string(&scene).as_bytes(),
     )
     .expect("scene");
     for backend in gpus {
@@ -330,7 +330,7 @@ fn dilated(mask: &[bool], w: u32, h: u32) -> Vec<bool> {
 #[test]
 fn the_galleries_comb_is_the_same_in_the_png_and_the_svg_and_stays_within_its_cap() {
     let (w, h) = (1200_u32, 800_u32);
-    let scene = splinescope::scene::gallery::gallery();
+    let scene = splinescope_scene::format::gallery::gallery();
     let combed = ShapeOptions {
         comb: Some(CombScale::Auto),
         ..ShapeOptions::default()
@@ -349,11 +349,11 @@ fn the_galleries_comb_is_the_same_in_the_png_and_the_svg_and_stays_within_its_ca
     let cap_px = CombCap::default().get() * f64::from(h);
     common::on_each_gpu("the gallery's comb in the PNG and the SVG", |backend| {
         let render = |shape: &ShapeOptions| {
-            splinescope::render::render(
+            splinescope_render::render(
                 &backend.ctx,
                 &backend.pipelines,
                 &scene,
-                &splinescope::render::RenderRequest::new(w, h).with_shape(*shape),
+                &splinescope_render::RenderRequest::new(w, h).with_shape(*shape),
             )
             .expect("render")
         };
@@ -449,7 +449,7 @@ fn the_galleries_comb_is_the_same_in_the_png_and_the_svg_and_stays_within_its_ca
 /// double knot's point and no other marker; the legend names both kinds.
 #[test]
 fn joint_markers_sit_at_the_kink_and_the_curvature_jump() {
-    let s = splinescope::geom::BSpline::try_new(
+    let s = splinescope_core::geom::BSpline::try_new(
         vec![
             p(0.0, 0.0),
             p(1.0, 1.5),

@@ -8,8 +8,8 @@ use std::process::Command;
 
 use glam::DVec3;
 use serde_json::Value;
-use splinescope::geom::ParamCurve;
-use splinescope::scene::{AnnotationShape, Scene};
+use splinescope_core::geom::ParamCurve;
+use splinescope_scene::format::{AnnotationShape, Scene};
 
 fn corpus() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad_requests")
@@ -273,8 +273,8 @@ fn solve_modifies_rational_curves_keeping_their_weights() {
     let after = Scene::load(&out).expect("solved scene reloads");
     let weights = |s: &Scene, i: usize| -> Vec<f64> {
         match &s.curves[i].curve {
-            splinescope::geom::Curve::Nurbs(n) => n.weights().to_vec(),
-            splinescope::geom::Curve::RationalBezier(r) => r.weights().to_vec(),
+            splinescope_core::geom::Curve::Nurbs(n) => n.weights().to_vec(),
+            splinescope_core::geom::Curve::RationalBezier(r) => r.weights().to_vec(),
             other => panic!("curves[{i}] is {}", other.family()),
         }
     };

@@ -7,8 +7,8 @@
 mod common;
 
 use glam::DVec2;
-use splinescope::image::RgbaImage;
-use splinescope::scene::{Scene, ViewSpec};
+use splinescope_image::RgbaImage;
+use splinescope_scene::format::{Scene, ViewSpec};
 
 /// A file with every kind of element the reader takes: arcs (rotated, large, swept,
 /// relative), rounded rectangles, circles and ellipses under transforms, `<use>`, every
@@ -122,7 +122,7 @@ fn caps_joins_and_dashes_are_drawn_as_resvg_draws_them() {
 
 #[test]
 fn strokes_keep_their_width_in_user_units_scaled_by_the_transform() {
-    let imported = splinescope::import::svg::read(WIDE, "wide.svg").expect("reads");
+    let imported = splinescope_import::svg::read(WIDE, "wide.svg").expect("reads");
     let widths: Vec<f32> = imported
         .scene
         .curves
@@ -139,7 +139,7 @@ fn strokes_keep_their_width_in_user_units_scaled_by_the_transform() {
 
 /// Reads `file` (`curves` curves, when given) and compares its picture with resvg's.
 fn drawn_as_resvg_draws(file: &str, name: &str, curves: Option<usize>) {
-    let imported = splinescope::import::svg::read(file, &format!("{name}.svg")).expect("reads");
+    let imported = splinescope_import::svg::read(file, &format!("{name}.svg")).expect("reads");
     if let Some(curves) = curves {
         assert_eq!(
             imported.scene.curves.len(),
@@ -164,11 +164,11 @@ fn drawn_as_resvg_draws(file: &str, name: &str, curves: Option<usize>) {
     let reference = rasterise(file, w, h);
     let theirs = ink(&reference);
     common::on_each_gpu("svg import against resvg", |backend| {
-        let ours_img = splinescope::render::render(
+        let ours_img = splinescope_render::render(
             &backend.ctx,
             &backend.pipelines,
             &scene,
-            &splinescope::render::RenderRequest::new(w, h),
+            &splinescope_render::RenderRequest::new(w, h),
         )
         .expect("renders");
         let ours = ink(&ours_img);
@@ -225,7 +225,7 @@ fn the_command_line_reads_svg_where_it_reads_a_scene_and_import_writes_one() {
     ]);
     assert!(out.status.success(), "{}", common::text(&out));
     let scene = Scene::load(&json).expect("the written scene reads");
-    let direct = splinescope::import::load(&svg).expect("reads").scene;
+    let direct = splinescope_import::load(&svg).expect("reads").scene;
     assert_eq!(scene.curves.len(), direct.curves.len());
     for (a, b) in scene.curves.iter().zip(&direct.curves) {
         assert_eq!(a.curve, b.curve, "written exactly");

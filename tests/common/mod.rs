@@ -3,7 +3,7 @@
 
 use std::sync::OnceLock;
 
-use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext, GpuError, Pipelines};
+use splinescope_gpu::{BackendChoice, ContextOptions, GpuContext, GpuError, Pipelines};
 
 /// The environment variable that lets GPU tests skip (and say so) when no adapter exists.
 pub const SKIP_VAR: &str = "SPLINESCOPE_SKIP_GPU_TESTS";
@@ -213,17 +213,17 @@ pub fn encode_png(
 /// `scene` encoded and packed into chunks that fit `ctx`'s storage bindings.
 pub fn pack(
     ctx: &GpuContext,
-    scene: &splinescope::scene::Scene,
-) -> splinescope::gpu::pack::PreparedScene {
-    splinescope::gpu::pack::prepare(
-        &splinescope::scene::encoding::encode(scene),
-        splinescope::gpu::pack::ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
+    scene: &splinescope_scene::format::Scene,
+) -> splinescope_gpu::pack::PreparedScene {
+    splinescope_gpu::pack::prepare(
+        &splinescope_scene::format::encoding::encode(scene),
+        splinescope_gpu::pack::ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )
     .expect("pack")
 }
 
 /// An SVG rasterised by resvg (the figures' independent renderer), `w × h` pixels.
-pub fn rasterise_svg(text: &str, w: u32, h: u32) -> splinescope::image::RgbaImage {
+pub fn rasterise_svg(text: &str, w: u32, h: u32) -> splinescope_image::RgbaImage {
     let tree = resvg::usvg::Tree::from_str(text, &resvg::usvg::Options::default())
         .expect("the SVG parses");
     let mut pixmap = resvg::tiny_skia::Pixmap::new(w, h).expect("pixmap");
@@ -233,29 +233,29 @@ pub fn rasterise_svg(text: &str, w: u32, h: u32) -> splinescope::image::RgbaImag
         &mut pixmap.as_mut(),
     );
     // The background is opaque: premultiplied equals straight alpha.
-    splinescope::image::RgbaImage {
+    splinescope_image::RgbaImage {
         width: w,
         height: h,
         data: pixmap.data().to_vec(),
     }
 }
 
-/// `scene` drawn through the one render entry point ([`splinescope::render::render`]) at
+/// `scene` drawn through the one render entry point ([`splinescope_render::render`]) at
 /// `width × height`, through `camera` (the scene's own view when `None`), with no
 /// overlays or text; the GPU's error as such (a request of these values can fail no
 /// other way).
 pub fn render_scene(
     ctx: &GpuContext,
     pipelines: &Pipelines,
-    scene: &splinescope::scene::Scene,
-    camera: Option<splinescope::camera::Camera>,
+    scene: &splinescope_scene::format::Scene,
+    camera: Option<splinescope_encoding::camera::Camera>,
     width: u32,
     height: u32,
-) -> Result<splinescope::image::RgbaImage, GpuError> {
-    let mut request = splinescope::render::RenderRequest::new(width, height);
+) -> Result<splinescope_image::RgbaImage, GpuError> {
+    let mut request = splinescope_render::RenderRequest::new(width, height);
     request.camera = camera;
-    splinescope::render::render(ctx, pipelines, scene, &request).map_err(|e| match e {
-        splinescope::render::RenderError::Gpu(e) => e,
+    splinescope_render::render(ctx, pipelines, scene, &request).map_err(|e| match e {
+        splinescope_render::RenderError::Gpu(e) => e,
         other => panic!("a render request of {width}×{height} was refused: {other}"),
     })
 }

@@ -391,60 +391,6 @@ pub fn tessellate_adaptive(
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// `Σ w_i B_i(t)` in `f64`, by de Casteljau.
-    fn weight_at(w: &[f32], t: f64) -> f64 {
-        let mut v: Vec<f64> = w.iter().map(|&x| f64::from(x)).collect();
-        for level in 1..v.len() {
-            for i in 0..v.len() - level {
-                v[i] = (1.0 - t) * v[i] + t * v[i + 1];
-            }
-        }
-        v[0]
-    }
-
-    #[test]
-    fn the_weight_floor_stays_under_the_weight_and_above_the_smallest_one() {
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 40) as f32 / (1u64 << 24) as f32
-        };
-        for n in 1..=MAX_GPU_DEGREE {
-            for _ in 0..20 {
-                // Positive weights over three orders of magnitude.
-                let w: Vec<f32> = (0..=n).map(|_| 0.02 * 1000f32.powf(next())).collect();
-                let h: Vec<Vec3> = w.iter().map(|&x| Vec3::new(0.0, 0.0, x)).collect();
-                let w_min = w.iter().copied().fold(f32::MAX, f32::min);
-                let floor = w_floor(&h, n, w_min, w.iter().copied().fold(0.0, f32::max));
-                assert!(floor >= w_min, "degree {n}: {floor} below {w_min}");
-                for s in 0..=4000 {
-                    let t = f64::from(s) / 4000.0;
-                    let v = weight_at(&w, t);
-                    assert!(
-                        f64::from(floor) <= v,
-                        "degree {n}: {floor} above w({t}) = {v} ({w:?})"
-                    );
-                }
-            }
-        }
-        // Where the smallest weight is an inner one, the floor is well above it: for
-        // (1, 4, ¼, 2) the halves' coefficients are (1, 5/2, 37/16, 63/32) and
-        // (63/32, 13/8, 9/8, 2), so the floor is 1 (the weight's own minimum, at t = 0).
-        let h: Vec<Vec3> = [1.0, 4.0, 0.25, 2.0]
-            .iter()
-            .map(|&x| Vec3::new(0.0, 0.0, x))
-            .collect();
-        let floor = w_floor(&h, 3, 0.25, 4.0);
-        assert!((floor - 1.0).abs() <= 2.0 * WEIGHT_ROUNDING, "{floor}");
-    }
-}
-
 /// `difference` of `shaders/comb.wgsl`: the `k`-th forward difference (`k ≤ 2`) of the
 /// homogeneous control points at `first + i`.
 fn comb_difference(points: &[GpuControlPoint], first: u32, i: u32, k: u32) -> Vec4 {
@@ -554,4 +500,58 @@ pub fn comb_hair(point: Vec3, k: Vec3, scale: f32, cap: f32) -> (Vec3, bool) {
         hair *= cap / length;
     }
     (point + hair, capped)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `Σ w_i B_i(t)` in `f64`, by de Casteljau.
+    fn weight_at(w: &[f32], t: f64) -> f64 {
+        let mut v: Vec<f64> = w.iter().map(|&x| f64::from(x)).collect();
+        for level in 1..v.len() {
+            for i in 0..v.len() - level {
+                v[i] = (1.0 - t) * v[i] + t * v[i + 1];
+            }
+        }
+        v[0]
+    }
+
+    #[test]
+    fn the_weight_floor_stays_under_the_weight_and_above_the_smallest_one() {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 40) as f32 / (1u64 << 24) as f32
+        };
+        for n in 1..=MAX_GPU_DEGREE {
+            for _ in 0..20 {
+                // Positive weights over three orders of magnitude.
+                let w: Vec<f32> = (0..=n).map(|_| 0.02 * 1000f32.powf(next())).collect();
+                let h: Vec<Vec3> = w.iter().map(|&x| Vec3::new(0.0, 0.0, x)).collect();
+                let w_min = w.iter().copied().fold(f32::MAX, f32::min);
+                let floor = w_floor(&h, n, w_min, w.iter().copied().fold(0.0, f32::max));
+                assert!(floor >= w_min, "degree {n}: {floor} below {w_min}");
+                for s in 0..=4000 {
+                    let t = f64::from(s) / 4000.0;
+                    let v = weight_at(&w, t);
+                    assert!(
+                        f64::from(floor) <= v,
+                        "degree {n}: {floor} above w({t}) = {v} ({w:?})"
+                    );
+                }
+            }
+        }
+        // Where the smallest weight is an inner one, the floor is well above it: for
+        // (1, 4, ¼, 2) the halves' coefficients are (1, 5/2, 37/16, 63/32) and
+        // (63/32, 13/8, 9/8, 2), so the floor is 1 (the weight's own minimum, at t = 0).
+        let h: Vec<Vec3> = [1.0, 4.0, 0.25, 2.0]
+            .iter()
+            .map(|&x| Vec3::new(0.0, 0.0, x))
+            .collect();
+        let floor = w_floor(&h, 3, 0.25, 4.0);
+        assert!((floor - 1.0).abs() <= 2.0 * WEIGHT_ROUNDING, "{floor}");
+    }
 }

@@ -186,6 +186,18 @@ pub struct Options {
 /// Reads `path` by its extension: a scene (`.json`), SVG (`.svg`) or a font (`.ttf`,
 /// `.otf`, `.ttc`, `.otc`: every glyph on a grid) as path curves.
 ///
+/// ```
+/// let dir = std::env::temp_dir().join(format!("splinescope-import-doc-{}", std::process::id()));
+/// std::fs::create_dir_all(&dir).unwrap();
+/// let path = dir.join("wave.svg");
+/// std::fs::write(&path, r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 50">
+///   <path d="M0 25 C 25 0, 75 50, 100 25" fill="none" stroke="black"/>
+/// </svg>"#).unwrap();
+/// let imported = splinescope_import::load(&path).unwrap();
+/// assert_eq!(imported.scene.curves.len(), 1);
+/// std::fs::remove_dir_all(&dir).unwrap();
+/// ```
+///
 /// # Errors
 /// [`ImportError`] naming the file and where in it.
 pub fn load(path: &Path) -> Result<Imported, ImportError> {

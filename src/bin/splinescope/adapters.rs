@@ -4,7 +4,7 @@ use std::io::Write;
 
 use anyhow::{Result, bail};
 
-use splinescope::gpu::ContextOptions;
+use splinescope_gpu::ContextOptions;
 
 use crate::{GpuArgs, say};
 
@@ -36,13 +36,13 @@ struct AdaptersOutput<'a, A: serde::Serialize> {
 
 fn adapters(json: bool, gpu: &GpuArgs) -> Result<()> {
     let opts = ContextOptions::from_env(gpu.gpu_backend);
-    let found = splinescope::gpu::context::survey(&opts);
+    let found = splinescope_gpu::context::survey(&opts);
     let chosen = found.iter().find(|a| a.chosen);
     if json {
         say!(
             "{}",
             serde_json::to_string_pretty(&AdaptersOutput {
-                backends: splinescope::gpu::context::backend_names(opts.backend.backends()),
+                backends: splinescope_gpu::context::backend_names(opts.backend.backends()),
                 adapter_name_filter: opts.adapter_name.clone(),
                 adapters: &found,
             })?
@@ -50,7 +50,7 @@ fn adapters(json: bool, gpu: &GpuArgs) -> Result<()> {
     } else {
         say!(
             "adapters for backends {}{} (most preferred first; * = chosen):",
-            splinescope::gpu::context::backend_names(opts.backend.backends()),
+            splinescope_gpu::context::backend_names(opts.backend.backends()),
             opts.adapter_name
                 .as_ref()
                 .map(|n| format!(", name containing {n:?}"))
@@ -91,7 +91,7 @@ fn adapters(json: bool, gpu: &GpuArgs) -> Result<()> {
     if found.is_empty() {
         bail!(
             "no GPU adapter found; {}",
-            splinescope::gpu::context::INSTALL_HINT
+            splinescope_gpu::context::INSTALL_HINT
         );
     }
     if chosen.is_none() {

@@ -8,12 +8,12 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 
-use splinescope::analysis::CurveAnalysis;
-use splinescope::analysis::report::{
+use splinescope_core::analysis::CurveAnalysis;
+use splinescope_core::analysis::report::{
     AnalyzeOutput, CurveAnalysisReport, IntersectionsReport, NearestReport, curve_analysis_report,
     pair_reports,
 };
-use splinescope::num::{Num, shortest_within};
+use splinescope_core::num::{Num, shortest_within};
 
 use crate::{say, select_curves};
 
@@ -30,7 +30,7 @@ pub struct AnalyzeArgs {
     #[arg(long)]
     pub intersections: bool,
     /// Absolute accuracy of arc lengths, in scene units.
-    #[arg(long, default_value_t = splinescope::analysis::DEFAULT_ACCURACY, value_parser = crate::words::number("accuracy", true), allow_hyphen_values = true)]
+    #[arg(long, default_value_t = splinescope_core::analysis::DEFAULT_ACCURACY, value_parser = crate::words::number("accuracy", true), allow_hyphen_values = true)]
     pub accuracy: f64,
     /// Also each curve's point nearest to this one (`X,Y` or `X,Y,Z`): the global
     /// minimum of the distance, its parameter and a bound on the distance's error.
@@ -115,7 +115,7 @@ pub fn run(a: &AnalyzeArgs) -> Result<()> {
     };
     if a.json {
         let value = serde_json::to_value(&out)?;
-        say!("{}", splinescope::scene::pretty_json(&value));
+        say!("{}", splinescope_scene::format::pretty_json(&value));
     } else {
         say!("{}", text(&out));
     }
@@ -258,15 +258,16 @@ fn curve_text(out: &mut String, c: &CurveAnalysisReport) {
             shortest_within(area, 1e-12 * d.size * d.size)
         );
     }
-    let at = |items: &Option<Vec<splinescope::analysis::report::PointReport>>| -> Option<String> {
-        items.as_ref().map(|v| {
-            list(
-                &v.iter()
-                    .map(|p| format!("t = {} {}", d.param(p.t), d.point(p.point, planar)))
-                    .collect::<Vec<_>>(),
-            )
-        })
-    };
+    let at =
+        |items: &Option<Vec<splinescope_core::analysis::report::PointReport>>| -> Option<String> {
+            items.as_ref().map(|v| {
+                list(
+                    &v.iter()
+                        .map(|p| format!("t = {} {}", d.param(p.t), d.point(p.point, planar)))
+                        .collect::<Vec<_>>(),
+                )
+            })
+        };
     if let Some(s) = at(&c.inflections) {
         let _ = writeln!(out, "  inflections     {s}");
     }

@@ -10,16 +10,16 @@ use glam::DVec2;
 
 use super::say;
 
-use splinescope::gpu::capture::OFFSCREEN_FORMAT;
-use splinescope::gpu::layout::GpuVertex;
-use splinescope::gpu::layout::{MAX_GPU_DEGREE, TESSELLATE_WORKGROUP_SIZE};
-use splinescope::gpu::pack::{ChunkLimits, prepare};
-use splinescope::gpu::renderer::{Renderer, camera_uniform};
-use splinescope::gpu::tessellator::read_buffer;
-use splinescope::gpu::twin;
-use splinescope::gpu::{GpuContext, Pipelines};
-use splinescope::scene::encoding::encode;
-use splinescope::scene::generate::{StressFamily, StressOptions, random_bezier_scene};
+use splinescope_gpu::capture::OFFSCREEN_FORMAT;
+use splinescope_gpu::layout::GpuVertex;
+use splinescope_gpu::layout::{MAX_GPU_DEGREE, TESSELLATE_WORKGROUP_SIZE};
+use splinescope_gpu::pack::{ChunkLimits, prepare};
+use splinescope_gpu::renderer::{Renderer, camera_uniform};
+use splinescope_gpu::tessellator::read_buffer;
+use splinescope_gpu::twin;
+use splinescope_gpu::{GpuContext, Pipelines};
+use splinescope_scene::format::encoding::encode;
+use splinescope_scene::format::generate::{StressFamily, StressOptions, random_bezier_scene};
 
 mod compare;
 mod plot;
@@ -73,7 +73,7 @@ pub struct BenchArgs {
 pub(crate) fn parse_family(s: &str) -> Result<StressFamily, String> {
     s.trim()
         .parse()
-        .map_err(|e: splinescope::scene::generate::UnknownFamily| e.to_string())
+        .map_err(|e: splinescope_scene::format::generate::UnknownFamily| e.to_string())
 }
 
 /// A count such as `100000` or `1e5` (a whole number of at least 1).
@@ -168,10 +168,10 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     }
     // Every row is checked before the first one allocates anything.
     for row in &rows {
-        splinescope::limits::SAMPLES
+        splinescope_io::limits::SAMPLES
             .check(row.total_samples())
             .with_context(|| format!("bench row {row}: {} samples", row.total_samples()))?;
-        splinescope::limits::CURVES
+        splinescope_io::limits::CURVES
             .check(row.curves)
             .with_context(|| format!("bench row {row}"))?;
     }
@@ -216,7 +216,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     }
     let files: Vec<(&std::path::Path, &[u8])> =
         outputs.iter().map(|(p, b)| (*p, b.as_slice())).collect();
-    splinescope::files::write_all_atomic(&files).context("nothing was written")?;
+    splinescope_io::files::write_all_atomic(&files).context("nothing was written")?;
     if let Some(previous) = previous {
         let regressions = compare::print(&previous, &reports, args.threshold)?;
         if !regressions.is_empty() {
@@ -346,7 +346,7 @@ fn run_row(
 fn gpu_rates(
     ctx: &GpuContext,
     pipelines: &Pipelines,
-    scene: &splinescope::scene::Scene,
+    scene: &splinescope_scene::format::Scene,
     row: Row,
     args: &BenchArgs,
     report: &mut BenchReport,
@@ -541,8 +541,8 @@ const CPU_PASSES: usize = 3;
 /// every core, `per_curve` uniform samples of each curve; each the best of
 /// [`CPU_PASSES`] timed passes after an untimed one (one pass of a few milliseconds moves
 /// by a fifth between runs on a busy machine).
-fn cpu_rates(scene: &splinescope::scene::Scene, per_curve: usize) -> (f64, f64) {
-    use splinescope::geom::batch::{CurveSampler, UniformCubicWeights, for_each_sampled};
+fn cpu_rates(scene: &splinescope_scene::format::Scene, per_curve: usize) -> (f64, f64) {
+    use splinescope_core::geom::batch::{CurveSampler, UniformCubicWeights, for_each_sampled};
     let cpu_curves = (2_000_000 / per_curve).clamp(1, scene.curves.len());
     let samplers: Vec<CurveSampler> = scene.curves[..cpu_curves]
         .iter()
@@ -577,10 +577,10 @@ fn cpu_rates(scene: &splinescope::scene::Scene, per_curve: usize) -> (f64, f64) 
 }
 
 /// The `f32` twin of the kernel, one thread, over at most 2M samples of the first chunk.
-fn twin_rate(prepared: &splinescope::gpu::pack::PreparedScene) -> f64 {
+fn twin_rate(prepared: &splinescope_gpu::pack::PreparedScene) -> f64 {
     let chunk = &prepared.chunks[0];
     // A record writes at most one workgroup's worth of its segment's samples.
-    let written = |r: &splinescope::gpu::layout::GpuRecord| {
+    let written = |r: &splinescope_gpu::layout::GpuRecord| {
         u64::from((r.sample_count - r.sample_offset).min(TESSELLATE_WORKGROUP_SIZE))
     };
     let mut samples = 0u64;
@@ -621,7 +621,7 @@ enum Kernel {
 fn gpu_compute_rates(
     ctx: &GpuContext,
     pipelines: &Pipelines,
-    records: &[splinescope::gpu::tessellator::ChunkBuffers],
+    records: &[splinescope_gpu::tessellator::ChunkBuffers],
     total: u64,
     iterations: u32,
     kernel: Kernel,
@@ -695,8 +695,8 @@ fn timestamps_bracket_the_work(pass_ns: f64, wall_ns: f64) -> bool {
 fn draw_frames(
     ctx: &GpuContext,
     renderer: &Renderer,
-    gpu_scene: &mut splinescope::gpu::renderer::GpuScene,
-    scene: &splinescope::scene::Scene,
+    gpu_scene: &mut splinescope_gpu::renderer::GpuScene,
+    scene: &splinescope_scene::format::Scene,
     frames: u32,
 ) -> Result<f64> {
     let (w, h) = (1920, 1080);
@@ -706,9 +706,9 @@ fn draw_frames(
     gpu_scene.prepare_frame(
         ctx,
         renderer,
-        &splinescope::gpu::adaptive::FrameSettings {
+        &splinescope_gpu::adaptive::FrameSettings {
             camera,
-            tolerance_px: splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX as f32,
+            tolerance_px: splinescope_gpu::adaptive::DEFAULT_TOLERANCE_PX as f32,
             min_count: gpu_scene.min_count(),
         },
     );

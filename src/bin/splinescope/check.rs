@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Result, bail};
 
-use splinescope::num::Num;
+use splinescope_core::num::Num;
 
 use crate::say;
 

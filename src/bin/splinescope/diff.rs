@@ -22,7 +22,7 @@ pub struct DiffArgs {
     pub flip_map: Option<PathBuf>,
     /// As for `regress`.
     #[arg(long, default_value = "channel=24,pixels=0.1%", value_parser = parse_tolerance, allow_hyphen_values = true)]
-    pub tolerance: splinescope::image::Tolerance,
+    pub tolerance: splinescope_image::compare::Tolerance,
     /// Print the figures as JSON.
     #[arg(long)]
     pub json: bool,
@@ -49,10 +49,11 @@ fn diff(
     reference: &Path,
     output: Option<&Path>,
     flip_map: Option<&Path>,
-    tolerance: &splinescope::image::Tolerance,
+    tolerance: &splinescope_image::compare::Tolerance,
     json: bool,
 ) -> Result<()> {
-    use splinescope::image::{RgbaImage, compare_images};
+    use splinescope_image::RgbaImage;
+    use splinescope_image::compare::compare_images;
     let a = RgbaImage::read_png(actual)?;
     let b = RgbaImage::read_png(reference)?;
     let (c, pictures) = compare_images(&a, &b, tolerance)
@@ -66,7 +67,7 @@ fn diff(
         files.push((out, pictures.flip.png_bytes(out)?));
     }
     let borrowed: Vec<(&Path, &[u8])> = files.iter().map(|(p, b)| (*p, b.as_slice())).collect();
-    splinescope::files::write_all_atomic(&borrowed).context("nothing was written")?;
+    splinescope_io::files::write_all_atomic(&borrowed).context("nothing was written")?;
     if json {
         say!("{}", serde_json::to_string_pretty(&c)?);
     } else {

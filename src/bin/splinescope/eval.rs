@@ -6,9 +6,9 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result, bail};
 use glam::DVec3;
 
-use splinescope::geom::{Lower, ParamCurve};
-use splinescope::num::Num;
-use splinescope::scene::Scene;
+use splinescope_core::geom::{Lower, ParamCurve};
+use splinescope_core::num::Num;
+use splinescope_scene::format::Scene;
 
 use crate::{GpuArgs, select_curves};
 
@@ -111,7 +111,7 @@ fn eval(path: &Path, req: &EvalRequest<'_>, gpu: &GpuArgs) -> Result<()> {
 
 /// Each selected curve's parameters: the `--params` given (each checked against the
 /// curve's domain) or `--samples` uniform ones, after the total is checked against
-/// [`splinescope::limits::SAMPLES`].
+/// [`splinescope_io::limits::SAMPLES`].
 fn parameters(scene: &Scene, indices: &[usize], req: &EvalRequest<'_>) -> Result<Vec<Vec<f64>>> {
     let given = req.params.map(parse_params).transpose()?;
     let per = match (&given, req.samples) {
@@ -119,7 +119,7 @@ fn parameters(scene: &Scene, indices: &[usize], req: &EvalRequest<'_>) -> Result
         (None, Some(n)) => u64::from(n),
         (None, None) => bail!("give --samples N or --params T0,T1,..."),
     };
-    splinescope::limits::SAMPLES
+    splinescope_io::limits::SAMPLES
         .check(per.saturating_mul(indices.len() as u64))
         .with_context(|| {
             format!(
@@ -145,7 +145,7 @@ fn parameters(scene: &Scene, indices: &[usize], req: &EvalRequest<'_>) -> Result
             None => {
                 let n = per as usize;
                 (0..n)
-                    .map(|j| splinescope::geom::batch::uniform(a, b, j, n))
+                    .map(|j| splinescope_core::geom::batch::uniform(a, b, j, n))
                     .collect()
             }
         };
@@ -171,7 +171,7 @@ fn cpu_values(
                     let c = &scene.curves[i].curve;
                     if k == 0 {
                         let mut out = vec![DVec3::ZERO; ts.len()];
-                        splinescope::geom::batch::CurveSampler::new(c).eval_into(ts, &mut out);
+                        splinescope_core::geom::batch::CurveSampler::new(c).eval_into(ts, &mut out);
                         return out;
                     }
                     ts.iter()
@@ -200,11 +200,11 @@ fn gpu_values(
         .iter()
         .map(|&i| (i, scene.curves[i].curve.lower()))
         .collect();
-    let mut v = vec![splinescope::gpu::eval::evaluate(
+    let mut v = vec![splinescope_gpu::eval::evaluate(
         &ctx, &pipelines, &lowered, per_curve,
     )?];
     for k in 1..=derivatives {
-        v.push(splinescope::gpu::eval::evaluate_derivative(
+        v.push(splinescope_gpu::eval::evaluate_derivative(
             &ctx, &pipelines, &lowered, per_curve, k,
         )?);
     }
@@ -249,7 +249,7 @@ fn curvatures(
         .map(|(d1s, d2s)| {
             d1s.iter()
                 .zip(d2s)
-                .map(|(a, b)| splinescope::geom::curvature(*a, *b))
+                .map(|(a, b)| splinescope_core::geom::curvature(*a, *b))
                 .collect()
         })
         .collect();
@@ -318,7 +318,7 @@ fn write_eval_json(
 /// power of two to keep it out of `f32`'s subnormal range) prints as few digits as an `f32`
 /// does, whatever its magnitude.
 fn shortest_f32_precision(v: f64) -> f64 {
-    use splinescope::num::{scale_by_power_of_two, split_exponent};
+    use splinescope_core::num::{scale_by_power_of_two, split_exponent};
     if v == 0.0 || !v.is_finite() {
         return v;
     }

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 
-use splinescope::scene::{Scene, gallery};
+use splinescope_scene::format::{Scene, gallery};
 
 use crate::{GpuArgs, ShapeArgs, TextArgs, say};
 
@@ -62,9 +62,9 @@ fn with_view(scene: &Scene, view: &str) -> Result<Scene> {
     let value: serde_json::Value =
         serde_json::from_str(view).with_context(|| format!("--view: {view:?} is not JSON"))?;
     let mut doc: serde_json::Value =
-        serde_json::from_str(&splinescope::scene::to_json_string(scene))?;
+        serde_json::from_str(&splinescope_scene::format::to_json_string(scene))?;
     doc["view"] = value;
-    splinescope::scene::from_json_str(&doc.to_string()).map_err(|e| {
+    splinescope_scene::format::from_json_str(&doc.to_string()).map_err(|e| {
         anyhow::anyhow!(
             "--view: {}",
             e.to_string()
@@ -122,14 +122,14 @@ pub fn run(a: &ExportArgs) -> Result<()> {
         scene = with_view(&scene, view)?;
     }
     let bytes = match format {
-        Format::Dxf if a.ascii => splinescope::import::dxf::write_ascii(&scene)?,
-        Format::Dxf => splinescope::import::dxf::write(&scene)?,
+        Format::Dxf if a.ascii => splinescope_import::dxf::write_ascii(&scene)?,
+        Format::Dxf => splinescope_import::dxf::write(&scene)?,
         Format::Png => {
             let (ctx, pipelines) = a.gpu.context()?;
-            let request = splinescope::render::RenderRequest::new(a.width, a.height)
+            let request = splinescope_render::RenderRequest::new(a.width, a.height)
                 .with_shape(a.shape.options())
                 .with_text(a.text.options());
-            splinescope::render::render(&ctx, &pipelines, &scene, &request)?.png_bytes(&a.output)?
+            splinescope_render::render(&ctx, &pipelines, &scene, &request)?.png_bytes(&a.output)?
         }
         Format::Svg | Format::Pdf => {
             let mut opts = splinescope_figure::FigureOptions::new(a.width, a.height)
@@ -144,7 +144,7 @@ pub fn run(a: &ExportArgs) -> Result<()> {
             }
         }
     };
-    splinescope::files::write_atomic(&a.output, &bytes)
+    splinescope_io::files::write_atomic(&a.output, &bytes)
         .with_context(|| format!("cannot write {}", a.output.display()))?;
     if format == Format::Dxf {
         say!(

@@ -8,10 +8,10 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result, bail};
 use glam::DVec3;
 
-use splinescope::geom::Curve;
-use splinescope::num::Num;
-use splinescope::ops::{Params, fit_bspline, fit_path};
-use splinescope::scene::{Scene, SceneCurve, Style};
+use splinescope_core::geom::Curve;
+use splinescope_core::num::Num;
+use splinescope_core::ops::{Params, fit_bspline, fit_path};
+use splinescope_scene::format::{Scene, SceneCurve, Style};
 
 use crate::say;
 
@@ -51,13 +51,13 @@ pub struct FitArgs {
 
 /// The points of a CSV or JSON file, each error naming the file and the line.
 fn read_points(path: &Path) -> Result<Vec<DVec3>> {
-    let text =
-        splinescope::limits::read_bounded(path).with_context(|| format!("{}", path.display()))?;
+    let text = splinescope_io::limits::read_bounded(path)
+        .with_context(|| format!("{}", path.display()))?;
     let is_json = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("json"));
     let mut out = Vec::new();
-    let max = splinescope::limits::POINTS
+    let max = splinescope_io::limits::POINTS
         .value()
         .map_err(|e| anyhow::anyhow!("{e}"))?;
     if is_json {
@@ -175,13 +175,13 @@ pub fn run(a: &FitArgs) -> Result<()> {
             style,
         }],
         unit: None,
-        background: splinescope::scene::Color::WHITE,
+        background: splinescope_scene::format::Color::WHITE,
         samples_per_segment: None,
-        view: splinescope::scene::ViewSpec::Auto,
+        view: splinescope_scene::format::ViewSpec::Auto,
         annotations: Vec::new(),
     };
-    let text = splinescope::scene::to_json_string(&scene);
-    splinescope::files::write_atomic(&a.output, text.as_bytes())
+    let text = splinescope_scene::format::to_json_string(&scene);
+    splinescope_io::files::write_atomic(&a.output, text.as_bytes())
         .with_context(|| format!("{}: cannot write the scene", a.output.display()))?;
     let worst = residuals.iter().copied().fold(0.0, f64::max);
     let rss: f64 = residuals.iter().map(|r| r * r).sum();

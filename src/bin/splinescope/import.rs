@@ -47,9 +47,9 @@ pub struct FontArgs {
 
 impl FontArgs {
     /// The importer's options.
-    pub fn options(&self) -> splinescope::import::Options {
-        splinescope::import::Options {
-            font: splinescope::import::font::FontOptions {
+    pub fn options(&self) -> splinescope_import::Options {
+        splinescope_import::Options {
+            font: splinescope_import::font::FontOptions {
                 index: self.font_index,
                 glyphs: self.glyphs.clone(),
                 text: self.text.clone(),
@@ -91,21 +91,21 @@ pub fn run(a: &ImportArgs) -> Result<()> {
     import(&a.file, &a.output, &crate::load::options())
 }
 
-fn import(file: &Path, output: &Path, options: &splinescope::import::Options) -> Result<()> {
-    if splinescope::files::resolved(file) == splinescope::files::resolved(output) {
+fn import(file: &Path, output: &Path, options: &splinescope_import::Options) -> Result<()> {
+    if splinescope_io::files::resolved(file) == splinescope_io::files::resolved(output) {
         bail!(
             "{}: the output is the file being read; write the scene to another file (e.g. {})",
             output.display(),
             file.with_extension("json").display()
         );
     }
-    let imported = splinescope::import::load_with(file, options)?;
+    let imported = splinescope_import::load_with(file, options)?;
     for w in &imported.warnings {
         eprintln!("warning: {w}");
     }
     let scene = imported.scene;
-    let text = splinescope::scene::to_json_string(&scene);
-    splinescope::files::write_atomic(output, text.as_bytes())
+    let text = splinescope_scene::format::to_json_string(&scene);
+    splinescope_io::files::write_atomic(output, text.as_bytes())
         .with_context(|| format!("{}: cannot write the scene", output.display()))?;
     say!(
         "{}: {} curve(s) written to {}",

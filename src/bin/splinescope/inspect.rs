@@ -5,8 +5,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 
-use splinescope::geom::GeomError;
-use splinescope::num::Num;
+use splinescope_core::geom::GeomError;
+use splinescope_core::num::Num;
 
 use crate::select_curves;
 
@@ -47,7 +47,7 @@ fn inspect(path: &Path, only: Option<usize>, tau: Option<f64>) -> Result<()> {
     write!(out, "{{\n  \"curves\": [")?;
     for (k, i) in select_curves(&scene, only)?.into_iter().enumerate() {
         let c = &scene.curves[i];
-        let mut report = splinescope::inspect::curve_report(i, c.name.as_deref(), &c.curve)
+        let mut report = splinescope_present::inspect::curve_report(i, c.name.as_deref(), &c.curve)
             .with_context(|| format!("{}: curves[{i}]", path.display()))?;
         if let Some(t) = tau {
             report.at_tau = c.curve.at_tau(t).map_err(|e| match e {
@@ -63,7 +63,7 @@ fn inspect(path: &Path, only: Option<usize>, tau: Option<f64>) -> Result<()> {
             })?;
         }
         let report = serde_json::to_value(&report)?;
-        let text = splinescope::scene::pretty_json(&report);
+        let text = splinescope_scene::format::pretty_json(&report);
         writeln!(out, "{}", if k == 0 { "" } else { "," })?;
         for (l, line) in text.lines().enumerate() {
             if l > 0 {

@@ -9,8 +9,8 @@ use std::process::ExitCode;
 use anyhow::{Result, bail};
 use clap::{Parser, Subcommand};
 
-use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext, Pipelines};
-use splinescope::scene::Scene;
+use splinescope_gpu::{BackendChoice, ContextOptions, GpuContext, Pipelines};
+use splinescope_scene::format::Scene;
 
 mod adapters;
 mod analyze;
@@ -69,8 +69,8 @@ struct TextArgs {
 }
 
 impl TextArgs {
-    fn options(self) -> splinescope::render::TextOptions {
-        splinescope::render::TextOptions {
+    fn options(self) -> splinescope_render::TextOptions {
+        splinescope_render::TextOptions {
             labels: self.labels,
             legend: self.legend,
             axes: self.axes,
@@ -86,12 +86,12 @@ struct ShapeArgs {
     /// Draw each curve's curvature comb: hairs along the normal, their length SCALE world
     /// units per unit of curvature (omit SCALE for one chosen for the view).
     #[arg(long, value_name = "SCALE", num_args = 0..=1, default_missing_value = "auto", value_parser = parse_comb, allow_negative_numbers = true)]
-    comb: Option<splinescope::scene::shape::CombScale>,
+    comb: Option<splinescope_scene::format::shape::CombScale>,
     /// The longest a comb hair is drawn, as a fraction of the view's height (default
     /// 0.08), or `none`: a longer hair is cut to it, drawn in the envelope's stroke, and
     /// the envelope is broken there.
     #[arg(long, value_name = "FRACTION", value_parser = parse_comb_cap, allow_negative_numbers = true)]
-    comb_cap: Option<splinescope::scene::shape::CombCap>,
+    comb_cap: Option<splinescope_scene::format::shape::CombCap>,
     /// Mark inflections and cusps (2D curves).
     #[arg(long)]
     inflections: bool,
@@ -107,8 +107,8 @@ struct ShapeArgs {
 }
 
 impl ShapeArgs {
-    fn options(self) -> splinescope::scene::shape::ShapeOptions {
-        splinescope::scene::shape::ShapeOptions {
+    fn options(self) -> splinescope_scene::format::shape::ShapeOptions {
+        splinescope_scene::format::shape::ShapeOptions {
             comb: self.comb,
             comb_cap: self.comb_cap.unwrap_or_default(),
             inflections: self.inflections,
@@ -131,8 +131,8 @@ fn keyword_or_number(s: &str, keyword: &str) -> Result<Option<f64>, String> {
 }
 
 /// `--comb`'s value: `auto`, or a finite number above 0.
-fn parse_comb(s: &str) -> Result<splinescope::scene::shape::CombScale, String> {
-    use splinescope::scene::shape::CombScale;
+fn parse_comb(s: &str) -> Result<splinescope_scene::format::shape::CombScale, String> {
+    use splinescope_scene::format::shape::CombScale;
     match keyword_or_number(s, "auto")? {
         None => Ok(CombScale::Auto),
         Some(v) => CombScale::fixed(v).map_err(|e| e.to_string()),
@@ -140,8 +140,8 @@ fn parse_comb(s: &str) -> Result<splinescope::scene::shape::CombScale, String> {
 }
 
 /// `--comb-cap`'s value: `none`, or a finite number above 0.
-fn parse_comb_cap(s: &str) -> Result<splinescope::scene::shape::CombCap, String> {
-    use splinescope::scene::shape::CombCap;
+fn parse_comb_cap(s: &str) -> Result<splinescope_scene::format::shape::CombCap, String> {
+    use splinescope_scene::format::shape::CombCap;
     match keyword_or_number(s, "none")? {
         None => Ok(CombCap::NONE),
         Some(v) => CombCap::fraction(v).map_err(|e| e.to_string()),
@@ -157,18 +157,18 @@ struct GpuArgs {
 
 fn parse_backend(s: &str) -> Result<BackendChoice, String> {
     s.parse()
-        .map_err(|e: splinescope::gpu::context::UnknownBackend| e.to_string())
+        .map_err(|e: splinescope_gpu::context::UnknownBackend| e.to_string())
 }
 
 /// Parses `--tolerance-px`.
 fn parse_tolerance_px(s: &str) -> Result<f64, String> {
     let v: f64 = s.parse().map_err(|_| format!("{s:?} is not a number"))?;
-    splinescope::gpu::adaptive::check_tolerance(v).map_err(|e| e.to_string())
+    splinescope_gpu::adaptive::check_tolerance(v).map_err(|e| e.to_string())
 }
 
-fn parse_tolerance(s: &str) -> Result<splinescope::image::Tolerance, String> {
+fn parse_tolerance(s: &str) -> Result<splinescope_image::compare::Tolerance, String> {
     s.parse()
-        .map_err(|e: splinescope::image::ToleranceError| e.to_string())
+        .map_err(|e: splinescope_image::compare::ToleranceError| e.to_string())
 }
 
 impl GpuArgs {

@@ -9,13 +9,13 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
 
-use splinescope::geom::Curve;
-use splinescope::num::Num;
-use splinescope::ops::{
+use splinescope_core::geom::Curve;
+use splinescope_core::num::Num;
+use splinescope_core::ops::{
     Approximation, Cap, Join, OffsetOptions, offset, reduce_degree, remove_knot, to_cubics,
     to_quadratics,
 };
-use splinescope::scene::SceneCurve;
+use splinescope_scene::format::SceneCurve;
 
 use crate::{say, select_curves};
 
@@ -106,7 +106,7 @@ pub enum CapArg {
 /// A scene that does not load, a curve index out of range, an operation that cannot be
 /// done on a curve (naming it), the output being the input, or a write that fails.
 pub fn run(a: &OpArgs) -> Result<()> {
-    if splinescope::files::resolved(&a.scene) == splinescope::files::resolved(&a.output) {
+    if splinescope_io::files::resolved(&a.scene) == splinescope_io::files::resolved(&a.output) {
         bail!(
             "{}: the output is the scene being read; write the result to another file",
             a.output.display()
@@ -255,11 +255,11 @@ pub fn run(a: &OpArgs) -> Result<()> {
         }
         k = first;
     }
-    splinescope::limits::CURVES
+    splinescope_io::limits::CURVES
         .check(scene.curves.len() as u64)
         .map_err(|e| anyhow::anyhow!("{}: {e}", a.output.display()))?;
-    let text = splinescope::scene::to_json_string(&scene);
-    splinescope::files::write_atomic(&a.output, text.as_bytes())
+    let text = splinescope_scene::format::to_json_string(&scene);
+    splinescope_io::files::write_atomic(&a.output, text.as_bytes())
         .with_context(|| format!("{}: cannot write the scene", a.output.display()))?;
     for (i, curve, error) in &made {
         let parts = match &curve.curve {

@@ -27,7 +27,7 @@ pub struct RegressArgs {
     /// count), pixels=P% (largest share of differing pixels), flip=F (largest FLIP mean;
     /// unset: reported, not gated).
     #[arg(long, default_value = "channel=24,pixels=0.1%", value_parser = parse_tolerance, allow_hyphen_values = true)]
-    pub tolerance: splinescope::image::Tolerance,
+    pub tolerance: splinescope_image::compare::Tolerance,
     /// Write an HTML report with the actual, reference, diff and FLIP images here.
     #[arg(long, value_name = "OUT_DIR")]
     pub report: Option<PathBuf>,

@@ -5,8 +5,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 
-use splinescope::render::RenderRequest;
-use splinescope::scene::{Scene, gallery};
+use splinescope_render::RenderRequest;
+use splinescope_scene::format::{Scene, gallery};
 
 use crate::{GpuArgs, ShapeArgs, TextArgs, parse_tolerance_px, say};
 
@@ -25,7 +25,7 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 800, value_parser = crate::words::between::<u32>(1, 16384), allow_hyphen_values = true)]
     pub height: u32,
     /// How far, in pixels, a drawn polyline may stray from its curve.
-    #[arg(long, default_value_t = splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX, value_parser = parse_tolerance_px, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = splinescope_gpu::adaptive::DEFAULT_TOLERANCE_PX, value_parser = parse_tolerance_px, allow_hyphen_values = true)]
     pub tolerance_px: f64,
     #[command(flatten)]
     pub text: TextArgs,
@@ -65,7 +65,7 @@ fn render(
         .with_tolerance_px(tolerance_px)
         .with_shape(shape.options())
         .with_text(text.options());
-    let image = splinescope::render::render(&ctx, &pipelines, &scene, &request)?;
+    let image = splinescope_render::render(&ctx, &pipelines, &scene, &request)?;
     image.write_png(output)?;
     say!(
         "rendered {} curve(s) to {} ({width}×{height}, {})",

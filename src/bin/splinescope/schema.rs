@@ -46,7 +46,7 @@ fn schema(name: Option<&str>, write: Option<&Path>) -> Result<()> {
             .iter()
             .map(|(p, t)| (p.as_path(), t.as_bytes()))
             .collect();
-        if let Err(e) = splinescope::files::write_all_atomic(&files) {
+        if let Err(e) = splinescope_io::files::write_all_atomic(&files) {
             if made {
                 let _ = std::fs::remove_dir(dir);
             }

@@ -37,21 +37,21 @@ pub fn run(a: &SolveArgs) -> Result<()> {
 
 fn solve(path: &Path, request: &Path, output: Option<&Path>, report: Option<&Path>) -> Result<()> {
     let scene = crate::load::scene(path)?;
-    let text = splinescope::limits::read_bounded(request)
+    let text = splinescope_io::limits::read_bounded(request)
         .with_context(|| format!("{}: cannot read the request", request.display()))?;
-    let outcome = splinescope::request::apply_text(&scene, &text)
+    let outcome = splinescope_scene::request::apply_text(&scene, &text)
         .with_context(|| format!("{}", request.display()))?;
-    let solved = splinescope::request::types::SolveOutput {
+    let solved = splinescope_scene::request::types::SolveOutput {
         reports: outcome.reports,
     };
-    let text = splinescope::scene::pretty_json(&serde_json::to_value(&solved)?);
+    let text = splinescope_scene::format::pretty_json(&serde_json::to_value(&solved)?);
     // The scene and the report are written all or none.
-    let scene_text = splinescope::scene::to_json_string(&outcome.scene);
+    let scene_text = splinescope_scene::format::to_json_string(&outcome.scene);
     if let Some(out) = output {
         // The scene written must be one that `check` passes: it reads back, and the GPU
         // can draw it (a target far beyond f32 would put an annotation there).
         let name = out.display().to_string();
-        let reread = splinescope::scene::from_json_str(&scene_text).with_context(|| {
+        let reread = splinescope_scene::format::from_json_str(&scene_text).with_context(|| {
             format!("{name}: the solved scene would not read back; nothing was written")
         })?;
         let problems = splinescope::outputs::CheckOutput::of(&name, &reread).gpu_problems;
@@ -70,7 +70,7 @@ fn solve(path: &Path, request: &Path, output: Option<&Path>, report: Option<&Pat
     if let Some(r) = report {
         files.push((r, report_text.as_bytes()));
     }
-    splinescope::files::write_all_atomic(&files).context("nothing was written")?;
+    splinescope_io::files::write_all_atomic(&files).context("nothing was written")?;
     say!("{text}");
     Ok(())
 }

@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 
-use splinescope::gpu::{BackendChoice, ContextOptions, GpuContext, Pipelines};
-use splinescope::render::{RenderRequest, TextOptions};
-use splinescope::scene::{Scene, gallery};
+use splinescope_gpu::{BackendChoice, ContextOptions, GpuContext, Pipelines};
+use splinescope_render::{RenderRequest, TextOptions};
+use splinescope_scene::format::{Scene, gallery};
 
 use crate::{GpuArgs, parse_tolerance_px, say};
 
@@ -30,7 +30,7 @@ pub struct ViewArgs {
     /// Family of the stress curves (a name of the family table: bezier, modified_bezier,
     /// interpolation, bspline, nubmp, rational_bezier, nurbs).
     #[arg(long, default_value = "bezier", value_parser = crate::bench::parse_family, requires = "stress")]
-    pub family: splinescope::scene::generate::StressFamily,
+    pub family: splinescope_scene::format::generate::StressFamily,
     /// Degree of the stress curves.
     #[arg(long, default_value_t = 3, value_parser = crate::words::between::<u64>(1, 31), requires = "stress", allow_hyphen_values = true)]
     pub degree: u64,
@@ -40,7 +40,7 @@ pub struct ViewArgs {
     pub solve: bool,
     /// How far, in pixels, a drawn polyline may stray from its curve (sample counts
     /// are chosen every frame for it; a scene's fixed `samples` still win).
-    #[arg(long, default_value_t = splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX, value_parser = parse_tolerance_px, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = splinescope_gpu::adaptive::DEFAULT_TOLERANCE_PX, value_parser = parse_tolerance_px, allow_hyphen_values = true)]
     pub tolerance_px: f64,
     /// At exit, print one JSON object: frames, fps, samples and line pieces per frame,
     /// milliseconds per stage, adapter (for benchmarking the viewer by script).
@@ -49,11 +49,11 @@ pub struct ViewArgs {
     /// Start with every curve's curvature comb on (`K` toggles it): hairs SCALE world
     /// units long per unit of curvature (omit SCALE for one chosen for the view).
     #[arg(long, value_name = "SCALE", num_args = 0..=1, default_missing_value = "auto", value_parser = crate::parse_comb, allow_negative_numbers = true)]
-    pub comb: Option<splinescope::scene::shape::CombScale>,
+    pub comb: Option<splinescope_scene::format::shape::CombScale>,
     /// The longest a comb hair is drawn, as a fraction of the view's height (default
     /// 0.08), or `none` (the panel's "cap" field changes it).
     #[arg(long, value_name = "FRACTION", value_parser = crate::parse_comb_cap, allow_negative_numbers = true)]
-    pub comb_cap: Option<splinescope::scene::shape::CombCap>,
+    pub comb_cap: Option<splinescope_scene::format::shape::CombCap>,
     #[command(flatten)]
     pub gpu: GpuArgs,
 }
@@ -77,21 +77,25 @@ pub fn run(a: &ViewArgs) -> Result<()> {
 fn view(
     scene: Option<PathBuf>,
     (frames, lose_device_after_frames): (Option<u64>, Option<u64>),
-    (stress, degree, family): (Option<u64>, u64, splinescope::scene::generate::StressFamily),
+    (stress, degree, family): (
+        Option<u64>,
+        u64,
+        splinescope_scene::format::generate::StressFamily,
+    ),
     (solve, print_stats): (bool, bool),
     (tolerance_px, comb, comb_cap): (
         f64,
-        Option<splinescope::scene::shape::CombScale>,
-        splinescope::scene::shape::CombCap,
+        Option<splinescope_scene::format::shape::CombScale>,
+        splinescope_scene::format::shape::CombCap,
     ),
     gpu: &GpuArgs,
 ) -> Result<()> {
-    use splinescope::scene::shape::CombScale;
+    use splinescope_scene::format::shape::CombScale;
     let comb = comb.map(|c| match c {
         CombScale::Auto => None,
         CombScale::Fixed(s) => Some(s),
     });
-    if !splinescope::app::display_available() {
+    if !splinescope_viewer::display_available() {
         bail!(
             "no display found (DISPLAY and WAYLAND_DISPLAY are unset); use `splinescope render` for a PNG, or run under xvfb-run"
         );
@@ -109,13 +113,13 @@ fn view(
     let mut save_to = scene.clone();
     let loaded = match stress {
         Some(n) => {
-            splinescope::limits::SAMPLES
+            splinescope_io::limits::SAMPLES
                 .check(n.saturating_mul(u64::from(
-                    splinescope::scene::generate::StressOptions::default().samples,
+                    splinescope_scene::format::generate::StressOptions::default().samples,
                 )))
                 .with_context(|| format!("view --stress {n}"))?;
-            let mut generated = splinescope::scene::generate::random_bezier_scene(
-                splinescope::scene::generate::StressOptions {
+            let mut generated = splinescope_scene::format::generate::random_bezier_scene(
+                splinescope_scene::format::generate::StressOptions {
                     curves: n as usize,
                     degree: degree as usize,
                     family,
@@ -132,7 +136,7 @@ fn view(
             generated
         }
         None => match scene.as_deref() {
-            Some(p) if splinescope::import::is_scene_file(p) => {
+            Some(p) if splinescope_import::is_scene_file(p) => {
                 let (read, text) = Scene::read(p).with_context(|| format!("{}", p.display()))?;
                 source = Some(text);
                 read
@@ -148,7 +152,7 @@ fn view(
             None => gallery::gallery(),
         },
     };
-    let stats = splinescope::app::run(splinescope::app::ViewOptions {
+    let stats = splinescope_viewer::run(splinescope_viewer::ViewOptions {
         scene: loaded,
         source,
         frames,
@@ -170,18 +174,18 @@ fn view(
 /// No arguments: the gallery in a window, or with no display a PNG of it.
 pub fn default_job() -> Result<()> {
     let scene = gallery::gallery();
-    if splinescope::app::display_available() {
-        splinescope::app::run(splinescope::app::ViewOptions {
+    if splinescope_viewer::display_available() {
+        splinescope_viewer::run(splinescope_viewer::ViewOptions {
             scene,
             frames: None,
             backend: BackendChoice::Auto,
             solve: false,
-            tolerance_px: splinescope::gpu::adaptive::DEFAULT_TOLERANCE_PX,
+            tolerance_px: splinescope_gpu::adaptive::DEFAULT_TOLERANCE_PX,
             overlays_hidden: false,
             path: None,
             source: None,
             comb: None,
-            comb_cap: splinescope::scene::shape::CombCap::default(),
+            comb_cap: splinescope_scene::format::shape::CombCap::default(),
             lose_device_after_frames: None,
         })?;
         return Ok(());
@@ -213,6 +217,6 @@ fn render_to(
         labels: true,
         ..Default::default()
     });
-    splinescope::render::render(ctx, pipelines, scene, &request)?.write_png(path)?;
+    splinescope_render::render(ctx, pipelines, scene, &request)?.write_png(path)?;
     Ok(())
 }

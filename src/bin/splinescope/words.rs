@@ -52,7 +52,7 @@ pub fn number(
         } else {
             Err(format!(
                 "{what} {}: must be a finite number {}",
-                splinescope::num::Num(v),
+                splinescope_core::num::Num(v),
                 if positive {
                     "greater than 0"
                 } else {

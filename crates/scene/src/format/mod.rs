@@ -293,6 +293,24 @@ impl Scene {
 
     /// Reads and validates a scene file.
     ///
+    /// ```
+    /// use splinescope_scene::format::Scene;
+    ///
+    /// let dir = std::env::temp_dir().join(format!("splinescope-load-doc-{}", std::process::id()));
+    /// std::fs::create_dir_all(&dir).unwrap();
+    /// let path = dir.join("arch.json");
+    /// std::fs::write(&path, r#"{"version": 1, "curves": [
+    ///     {"type": "bezier", "name": "arch", "points": [[0, 0], [1, 2], [3, 2], [4, 0]]}
+    /// ]}"#).unwrap();
+    /// let scene = Scene::load(&path).unwrap();
+    /// assert_eq!(scene.curves[0].name.as_deref(), Some("arch"));
+    /// // A bad value is refused, its path in the file named.
+    /// std::fs::write(&path, r#"{"version": 1, "curves": [{"type": "bezier", "points": [[0, 0], [1]]}]}"#).unwrap();
+    /// let e = Scene::load(&path).unwrap_err();
+    /// assert!(e.to_string().contains("curves[0].points[1]"), "{e}");
+    /// std::fs::remove_dir_all(&dir).unwrap();
+    /// ```
+    ///
     /// # Errors
     /// A [`SceneError`] naming the offending value (or the I/O problem).
     pub fn load(path: &Path) -> Result<Scene, SceneError> {

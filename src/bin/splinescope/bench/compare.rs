@@ -15,7 +15,7 @@ use crate::say;
 /// # Errors
 /// An unreadable file, or JSON that is not `bench --json` output (naming what is wrong).
 pub fn read(path: &Path) -> Result<Vec<Value>> {
-    let text = splinescope::limits::read_bounded(path)
+    let text = splinescope_io::limits::read_bounded(path)
         .with_context(|| format!("reading --compare {}", path.display()))?;
     // As every file the program reads: a key given twice is refused, not last-wins.
     let value: Value = splinescope_scene::parse_json(&text)

@@ -83,7 +83,7 @@ pub fn encode(path: &Path, reports: &[BenchReport]) -> Result<Vec<u8>> {
                 BitMapBackend::with_buffer(&mut rgb, size).into_drawing_area(),
                 reports,
             )?;
-            let image = splinescope::image::RgbaImage {
+            let image = splinescope_image::RgbaImage {
                 width: size.0,
                 height: size.1,
                 data: rgb

@@ -47,6 +47,25 @@ impl CurveAnalysis {
     /// distance and the bound on how far that distance may exceed the least one. A 2D
     /// curve and a point off its plane: the distance counts the point's `z`.
     ///
+    /// The middle of this arch is nearest to `(2, 0)`, at distance 1.5:
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use splinescope_core::analysis::CurveAnalysis;
+    /// use splinescope_core::geom::Bezier;
+    ///
+    /// let arch = Bezier::new(vec![
+    ///     DVec3::ZERO,
+    ///     DVec3::new(1.0, 2.0, 0.0),
+    ///     DVec3::new(3.0, 2.0, 0.0),
+    ///     DVec3::new(4.0, 0.0, 0.0),
+    /// ]);
+    /// let analysis = CurveAnalysis::new(&arch);
+    /// let near = analysis.nearest(DVec3::new(2.0, 0.0, 0.0)).unwrap();
+    /// assert!((near.t - 0.5).abs() < 1e-12 && (near.distance - 1.5).abs() < 1e-12);
+    /// assert!(near.error <= 1e-12);
+    /// ```
+    ///
     /// # Errors
     /// [`AnalysisError::NotFinitePoint`] for a point with a coordinate that is not
     /// finite.
