@@ -6,11 +6,11 @@
 
 use glam::DVec2;
 
+use splinescope_encoding::camera::Camera;
 use splinescope_gpu::capture::render_with;
 use splinescope_gpu::context::GpuContext;
 use splinescope_gpu::{GpuError, Pipelines};
 use splinescope_image::RgbaImage;
-use splinescope_scene::camera::Camera;
 use splinescope_scene::format::Scene;
 use splinescope_scene::format::shape::{ShapeOptions, encode_shaped};
 

@@ -527,7 +527,7 @@ fn rendered_png_carries_the_labels() {
             &backend.pipelines,
             &scene,
             &splinescope_render::RenderRequest::new(w, h).with_text(
-                splinescope_render::TextOptions {
+                splinescope_figure::TextOptions {
                     labels: true,
                     ..Default::default()
                 },
@@ -966,7 +966,7 @@ fn png_labels_apart(what: &str, mut scene: Scene, (w, h): (u32, u32)) {
                 &backend.pipelines,
                 &scene,
                 &splinescope_render::RenderRequest::new(w, h).with_text(
-                    splinescope_render::TextOptions {
+                    splinescope_figure::TextOptions {
                         labels: true,
                         ..Default::default()
                     },

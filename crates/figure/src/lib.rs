@@ -11,7 +11,7 @@ pub mod text;
 use glam::{DVec2, DVec3};
 use thiserror::Error;
 
-use splinescope_scene::camera::Camera;
+use splinescope_encoding::camera::Camera;
 use splinescope_scene::format::draw::{COMB_WIDTH_PX, Stroke, Switches, comb_strokes};
 use splinescope_scene::format::encoding::{Encoding, encode_with};
 use splinescope_scene::format::labels::Ink;
@@ -360,7 +360,7 @@ fn check_projection(
 
 /// The budget of path pieces per figure, from the limit in force.
 fn budget() -> Result<Budget, FigureError> {
-    let limit = splinescope_scene::limits::FIGURE_PIECES
+    let limit = splinescope_io::limits::FIGURE_PIECES
         .value()
         .map_err(|e| FigureError::Limit(e.to_string()))?;
     Ok(Budget::new(usize::try_from(limit).unwrap_or(usize::MAX)))
@@ -458,7 +458,7 @@ pub fn build(scene: &Scene, opts: &FigureOptions) -> Result<Figure, FigureError>
 }
 
 /// The most hairs of a comb on one lowered segment (the GPU's; fewer on a short one).
-pub use splinescope_core::analysis::comb::COMB_HAIRS_PER_SEGMENT;
+use splinescope_core::analysis::comb::COMB_HAIRS_PER_SEGMENT;
 
 /// Each curve's curvature comb ([`splinescope_core::analysis::comb::comb`]): its hairs as
 /// one path of straight runs, then its envelope, in the curve's colour
@@ -592,7 +592,7 @@ fn curve_items(
                 FitError::Budget { limit } => FigureError::Budget {
                     tolerance,
                     limit: limit as u64,
-                    var: splinescope_scene::limits::FIGURE_PIECES.var,
+                    var: splinescope_io::limits::FIGURE_PIECES.var,
                 },
                 FitError::Precision { magnitude } => FigureError::Precision {
                     curve: index,

@@ -25,8 +25,8 @@ use skrifa::raw::ps::cs::CommandSink;
 use skrifa::raw::types::{Fixed, Tag};
 use skrifa::{FontRef, GlyphId, MetadataProvider, outline::DrawSettings, outline::OutlinePen};
 use splinescope_core::geom::{Curve, Path, PathSegment, SegmentPoints};
+use splinescope_io::limits;
 use splinescope_scene::format::{Color, SceneCurve, Style};
-use splinescope_scene::limits;
 
 use crate::{ImportError, Imported};
 

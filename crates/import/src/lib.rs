@@ -8,8 +8,8 @@ pub mod svg;
 
 use std::path::Path;
 
+use splinescope_io::limits::{self, LimitError};
 use splinescope_scene::format::{Scene, SceneError};
-use splinescope_scene::limits::{self, LimitError};
 use thiserror::Error;
 
 /// A scene read from a file, and what the reader left out (one line each).

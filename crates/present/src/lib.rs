@@ -11,7 +11,13 @@ use glam::DVec3;
 use schemars::JsonSchema;
 use serde::Serialize;
 use splinescope_core::geom::{Curve, GeomError};
-pub use splinescope_encoding::draw::{OverlayKind, OverlayPolyline};
+/// Deprecated: the overlay kinds are the encoding's, `splinescope_encoding::draw::OverlayKind`.
+#[deprecated(note = "use splinescope_encoding::draw::OverlayKind")]
+pub type OverlayKind = splinescope_encoding::draw::OverlayKind;
+
+/// Deprecated: `splinescope_encoding::draw::OverlayPolyline`.
+#[deprecated(note = "use splinescope_encoding::draw::OverlayPolyline")]
+pub type OverlayPolyline = splinescope_encoding::draw::OverlayPolyline;
 
 pub use controls::{Control, ControlError, ControlId, ControlKind, ControlValue};
 
@@ -30,7 +36,7 @@ pub trait Present: Sized {
     /// The polylines that explain the curve, drawn over it when control polygons are
     /// shown: its control polygon, and the family's own (a NUBMP curve's dual polygon, an
     /// interpolation's tangent handles, a modified curve's bump vector).
-    fn overlays(&self) -> Vec<OverlayPolyline>;
+    fn overlays(&self) -> Vec<splinescope_encoding::draw::OverlayPolyline>;
 
     /// The curve's shape parameters as they are now, for labels that must not go stale
     /// when they are edited (`t* = 0.3, v = (1, 2)`; a NUBMP curve's parameters that
@@ -83,7 +89,7 @@ macro_rules! define_details {
                 splinescope_core::each_family!(self, c => c.summary())
             }
 
-            fn overlays(&self) -> Vec<OverlayPolyline> {
+            fn overlays(&self) -> Vec<splinescope_encoding::draw::OverlayPolyline> {
                 splinescope_core::each_family!(self, c => c.overlays())
             }
 

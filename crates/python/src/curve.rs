@@ -512,11 +512,11 @@ impl PyCurve {
     fn elevate(&self, times: usize) -> PyResult<PyCurve> {
         // The limit is checked on the degree asked for, before any work.
         let (limit, now) = match &self.curve.curve {
-            Curve::Bezier(b) => (splinescope_scene::limits::DEGREE, b.degree()),
-            Curve::RationalBezier(b) => (splinescope_scene::limits::DEGREE, b.degree()),
-            Curve::BSpline(b) => (splinescope_scene::limits::ORDER, b.order()),
-            Curve::Nurbs(b) => (splinescope_scene::limits::ORDER, b.order()),
-            _ => (splinescope_scene::limits::DEGREE, 0),
+            Curve::Bezier(b) => (splinescope_io::limits::DEGREE, b.degree()),
+            Curve::RationalBezier(b) => (splinescope_io::limits::DEGREE, b.degree()),
+            Curve::BSpline(b) => (splinescope_io::limits::ORDER, b.order()),
+            Curve::Nurbs(b) => (splinescope_io::limits::ORDER, b.order()),
+            _ => (splinescope_io::limits::DEGREE, 0),
         };
         limit
             .check((now as u64).saturating_add(times as u64))
@@ -544,7 +544,7 @@ impl PyCurve {
                 }
             };
         }
-        splinescope_scene::limits::DEGREE
+        splinescope_io::limits::DEGREE
             .check(
                 c.lower()
                     .iter()
@@ -1014,14 +1014,12 @@ pub(crate) fn check_sample_count(n: usize, curves: usize) -> PyResult<()> {
         ));
     }
     let total = (n as u64).saturating_mul(curves.max(1) as u64);
-    splinescope_scene::limits::SAMPLES
-        .check(total)
-        .map_err(|e| {
-            let what = if curves > 1 {
-                format!("{curves} curves × {n} samples")
-            } else {
-                format!("n = {n}")
-            };
-            raise::<CurveError>(format!("{what}: {e}"), "n")
-        })
+    splinescope_io::limits::SAMPLES.check(total).map_err(|e| {
+        let what = if curves > 1 {
+            format!("{curves} curves × {n} samples")
+        } else {
+            format!("n = {n}")
+        };
+        raise::<CurveError>(format!("{what}: {e}"), "n")
+    })
 }

@@ -142,7 +142,7 @@ impl PyScene {
         } else {
             self.to_json().into_bytes()
         };
-        py.detach(|| splinescope_scene::files::write_atomic(&path, &bytes))
+        py.detach(|| splinescope_io::files::write_atomic(&path, &bytes))
             .map_err(|e| raise::<SceneError>(format!("cannot write {}: {e}", path.display()), ""))
     }
 
@@ -321,7 +321,7 @@ impl PyScene {
                 ));
             }
         };
-        py.detach(|| splinescope_scene::files::write_atomic(&path, &bytes))
+        py.detach(|| splinescope_io::files::write_atomic(&path, &bytes))
             .map_err(|e| {
                 raise::<ImageError>(format!("cannot write {}: {e}", path.display()), "path")
             })
@@ -517,7 +517,7 @@ pub fn stress_scene(curves: usize, family: &str, degree: usize, seed: u64) -> Py
             "degree",
         ));
     }
-    splinescope_scene::limits::CURVES
+    splinescope_io::limits::CURVES
         .check(curves as u64)
         .map_err(|e| raise::<SceneError>(e.to_string(), "curves"))?;
     Ok(PyScene {

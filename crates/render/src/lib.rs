@@ -7,7 +7,7 @@ use thiserror::Error;
 use splinescope_encoding::camera::Camera;
 use splinescope_encoding::draw::Switches;
 use splinescope_figure::raster::{Canvas, draw_guides};
-use splinescope_figure::{FigureError, FigureOptions};
+use splinescope_figure::{FigureError, FigureOptions, TextOptions};
 use splinescope_gpu::adaptive::{DEFAULT_TOLERANCE_PX, ToleranceError, check_tolerance};
 use splinescope_gpu::capture::render_with;
 use splinescope_gpu::{GpuContext, GpuError, Pipelines};
@@ -15,8 +15,6 @@ use splinescope_image::RgbaImage;
 use splinescope_io::limits::{IMAGE_PIXELS, LimitError};
 use splinescope_scene::format::Scene;
 use splinescope_scene::format::shape::{ShapeOptions, encode_shaped_with};
-
-pub use splinescope_figure::TextOptions;
 
 /// What to draw: the image's size, the tolerance, the camera, the shape overlays and the
 /// text. [`RenderRequest::new`] gives the defaults every caller shares (the scene's own

@@ -370,7 +370,7 @@ impl<'a> Node<'a> {
 
     pub(crate) fn points(&self, min: usize) -> Result<Vec<DVec3>, SceneError> {
         if let Value::Array(a) = self.value {
-            crate::limits::POINTS
+            splinescope_io::limits::POINTS
                 .check(a.len() as u64)
                 .map_err(|e| self.invalid(e.to_string()))?;
         }

@@ -16,7 +16,7 @@ pub mod request;
 pub mod text;
 
 // The I/O policy's modules, re-exported under the names this layer's users know
-// (`splinescope_scene::limits`).
+// (`splinescope_io::limits`).
 pub use splinescope_io::{files, limits};
 
 // The camera is the encoding's (what the GPU layer draws through).

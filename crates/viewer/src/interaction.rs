@@ -11,7 +11,7 @@ mod file_actions;
 
 use super::edit::{Editor, Hit};
 use super::file_dialog::{FileDialog, RecentFiles};
-use splinescope_scene::camera::Camera;
+use splinescope_encoding::camera::Camera;
 use splinescope_scene::format::{Scene, SceneCurve, Style};
 
 /// Why the view could not be exported from the viewer's file dialog.

@@ -69,8 +69,8 @@ struct TextArgs {
 }
 
 impl TextArgs {
-    fn options(self) -> splinescope_render::TextOptions {
-        splinescope_render::TextOptions {
+    fn options(self) -> splinescope_figure::TextOptions {
+        splinescope_figure::TextOptions {
             labels: self.labels,
             legend: self.legend,
             axes: self.axes,

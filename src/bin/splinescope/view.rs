@@ -5,8 +5,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 
+use splinescope_figure::TextOptions;
 use splinescope_gpu::{BackendChoice, ContextOptions, GpuContext, Pipelines};
-use splinescope_render::{RenderRequest, TextOptions};
+use splinescope_render::RenderRequest;
 use splinescope_scene::format::{Scene, gallery};
 
 use crate::{GpuArgs, parse_tolerance_px, say};

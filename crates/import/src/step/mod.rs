@@ -27,8 +27,8 @@ use std::collections::{BTreeMap, HashMap, HashSet};
 
 use glam::{DVec2, DVec3};
 use splinescope_core::geom::{BSpline, Curve, Lower, Nurbs, ParamCurve, Path, PathSegment};
+use splinescope_io::limits;
 use splinescope_scene::format::{SceneCurve, Style};
-use splinescope_scene::limits;
 
 use crate::{ImportError, Imported};
 use part21::{Instance, Record, Value};

@@ -9,9 +9,9 @@ use splinescope_core::geom::{Bezier, GeomError, Xyz};
 
 use splinescope_core::geom::Family;
 
-use crate::OverlayPolyline;
 use crate::Present;
 use crate::controls::{Control, ControlError, ControlId, ControlValue, unknown_control};
+use splinescope_encoding::draw::OverlayPolyline;
 
 impl Present for Bezier {
     type Details = BezierDetails;

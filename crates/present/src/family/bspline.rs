@@ -8,10 +8,10 @@ use splinescope_core::geom::{BSpline, GeomError};
 
 use splinescope_core::geom::Family;
 
-use crate::OverlayPolyline;
 use crate::Present;
 use crate::controls::{ControlError, ControlId, ControlValue, unknown_control};
 use crate::family::nubmp::{NubmpDetails, NubmpStructure, SplineDetails};
+use splinescope_encoding::draw::OverlayPolyline;
 
 impl Present for BSpline {
     type Details = BSplineDetails;

@@ -14,7 +14,7 @@ use crate::Present;
 use crate::controls::{
     Control, ControlError, ControlId, ControlKind, ControlValue, unknown_control,
 };
-use crate::{OverlayKind, OverlayPolyline};
+use splinescope_encoding::draw::{OverlayKind, OverlayPolyline};
 
 impl Present for Nubmp {
     type Details = NubmpDetails;

@@ -7,9 +7,9 @@ use schemars::JsonSchema;
 use serde::Serialize;
 use splinescope_core::geom::{Family, GeomError, Path, PathSegment};
 
-use crate::OverlayPolyline;
 use crate::Present;
 use crate::controls::{ControlError, ControlId, ControlValue, unknown_control};
+use splinescope_encoding::draw::OverlayPolyline;
 
 impl Present for Path {
     type Details = PathDetails;

@@ -8,12 +8,12 @@ use splinescope_core::geom::{Conic, GeomError, Nurbs, RationalBezier};
 
 use splinescope_core::geom::Family;
 
-use crate::OverlayPolyline;
 use crate::Present;
 use crate::controls::{
     Control, ControlError, ControlId, ControlKind, ControlValue, unknown_control,
 };
 use crate::family::nubmp::SplineDetails;
+use splinescope_encoding::draw::OverlayPolyline;
 
 impl Present for RationalBezier {
     type Details = RationalBezierDetails;

@@ -64,7 +64,7 @@ fn decode_scene(root: &Node<'_>) -> Result<Scene, SceneError> {
     let view = obj.get("view").map(|n| decode_view(&n)).transpose()?;
     let curves_node = obj.req("curves")?;
     if let Value::Array(a) = curves_node.value {
-        crate::limits::CURVES
+        splinescope_io::limits::CURVES
             .check(a.len() as u64)
             .map_err(|e| curves_node.invalid(e.to_string()))?;
     }
@@ -197,7 +197,12 @@ fn decode_view(node: &Node<'_>) -> Result<ViewSpec, SceneError> {
                 distance: obj.req("distance")?.positive_f64()?,
                 yaw_deg: angle("yaw_deg", 30.0, -1e6, 1e6)?,
                 pitch_deg: angle("pitch_deg", 20.0, -89.0, 89.0)?,
-                fov_deg: angle("fov_deg", crate::camera::DEFAULT_FOV_DEG, 1.0, 179.0)?,
+                fov_deg: angle(
+                    "fov_deg",
+                    splinescope_encoding::camera::DEFAULT_FOV_DEG,
+                    1.0,
+                    179.0,
+                )?,
             })
         }
         other => Err(kind.invalid(format!(

@@ -21,8 +21,8 @@ use std::path::Path;
 use glam::{DVec2, DVec3};
 use thiserror::Error;
 
-use crate::camera::{Camera, Camera2d, Camera3d};
 use splinescope_core::geom::{Aabb, Curve};
+use splinescope_encoding::camera::{Camera, Camera2d, Camera3d};
 
 pub use json::{
     curve_from_value, curve_to_value, from_json_str, pretty_json, to_doc, to_json_string,
@@ -323,7 +323,7 @@ impl Scene {
     /// # Errors
     /// A [`SceneError`] naming the offending value (or the I/O problem).
     pub fn read(path: &Path) -> Result<(Scene, String), SceneError> {
-        let text = crate::limits::read_bounded(path)
+        let text = splinescope_io::limits::read_bounded(path)
             .map_err(|e| SceneError::new("", SceneErrorKind::Io(e.to_string())))?;
         let scene = from_json_str(&text)?;
         Ok((scene, text))
@@ -334,7 +334,7 @@ impl Scene {
     /// # Errors
     /// The I/O error.
     pub fn save(&self, path: &Path) -> std::io::Result<()> {
-        crate::files::write_atomic(path, to_json_string(self).as_bytes())
+        splinescope_io::files::write_atomic(path, to_json_string(self).as_bytes())
     }
 
     /// Samples per segment for curve `index` (its own, else the scene's); `None`:

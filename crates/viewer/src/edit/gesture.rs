@@ -9,7 +9,7 @@ use splinescope_core::geom::{Curve, ParamCurve};
 use splinescope_core::solve::nearest;
 use splinescope_core::solve::rational;
 use splinescope_core::solve::shape::{SingleTargetOptions, single_target};
-use splinescope_scene::camera::Camera;
+use splinescope_encoding::camera::Camera;
 
 impl Editor {
     /// The nearest control point within `radius_px` of `pixel` (only where `points_shown`),

@@ -4,7 +4,7 @@ use super::*;
 use glam::DVec2;
 
 use splinescope_core::geom::{Bezier, Nubmp, ParamCurve};
-use splinescope_scene::camera::{Camera, Camera2d};
+use splinescope_encoding::camera::{Camera, Camera2d};
 use splinescope_scene::format::{Color, Style, ViewSpec};
 
 fn scene() -> Scene {

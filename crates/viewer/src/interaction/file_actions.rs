@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use super::{Answer, ExportError, Interaction, Pending, Prompt, Response};
 use crate::edit::Editor;
 use crate::file_dialog::{self, DialogMode, FileDialog};
-use splinescope_scene::camera::Camera;
+use splinescope_encoding::camera::Camera;
 use splinescope_scene::format::Scene;
 
 impl Interaction {

@@ -3,7 +3,7 @@
 use glam::DVec3;
 
 use crate::digest::SceneDigest;
-use splinescope_scene::camera::Camera;
+use splinescope_encoding::camera::Camera;
 
 use crate::interaction::{Answer, Template};
 

@@ -4,7 +4,7 @@ use glam::{DVec2, DVec3};
 
 use crate::digest::{CurveSummary, LISTED_CURVES, SceneDigest};
 use splinescope_core::geom::ParamCurve;
-use splinescope_scene::camera::Camera;
+use splinescope_encoding::camera::Camera;
 use splinescope_scene::format::{Scene, SceneCurve};
 
 use crate::edit::Hit;

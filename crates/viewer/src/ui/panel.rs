@@ -3,8 +3,8 @@
 use glam::DVec3;
 
 use crate::digest::{LISTED_CURVES, label};
+use splinescope_encoding::camera::Camera;
 use splinescope_present::{Control, ControlKind, ControlValue, Present};
-use splinescope_scene::camera::Camera;
 
 use crate::edit::Editor;
 use crate::interaction::{Interaction, Template};

@@ -268,7 +268,10 @@ fn nearest_to_pointer(
 ) {
     if model.is_editing()
         || model.pointer_over_ui()
-        || !matches!(model.camera, splinescope_scene::camera::Camera::Ortho2d(_))
+        || !matches!(
+            model.camera,
+            splinescope_encoding::camera::Camera::Ortho2d(_)
+        )
     {
         return;
     }

@@ -36,11 +36,11 @@ impl Written for Bezier {
     }
 }
 
-/// A Bézier curve's points, its degree checked against [`crate::limits::DEGREE`].
+/// A Bézier curve's points, its degree checked against [`splinescope_io::limits::DEGREE`].
 pub(super) fn bezier_points(obj: &Obj<'_>) -> Result<Vec<glam::DVec3>, SceneError> {
     let node = obj.req("points")?;
     let points = node.points(2)?;
-    crate::limits::DEGREE
+    splinescope_io::limits::DEGREE
         .check(points.len() as u64 - 1)
         .map_err(|e| node.invalid(e.to_string()))?;
     Ok(points)

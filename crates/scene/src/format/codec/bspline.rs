@@ -71,7 +71,7 @@ pub(super) fn decode_spline_parts(
     let points = obj.req("points")?.points(2)?;
     let order_node = obj.req("order")?;
     let order = order_node.u32_in(0, u32::MAX)? as usize;
-    crate::limits::ORDER
+    splinescope_io::limits::ORDER
         .check(order as u64)
         .map_err(|e| order_node.invalid(e.to_string()))?;
     let knots_node = obj.req("knots")?;

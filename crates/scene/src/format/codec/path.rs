@@ -33,12 +33,12 @@ pub struct PathSegmentDoc {
     pub weights: Option<Vec<f64>>,
 }
 
-/// One segment object, its degree checked against [`crate::limits::DEGREE`].
+/// One segment object, its degree checked against [`splinescope_io::limits::DEGREE`].
 fn segment(node: &Node<'_>) -> Result<PathSegment, SceneError> {
     let obj = node.object(&["points", "weights"])?;
     let points_node = obj.req("points")?;
     let points = points_node.points(2)?;
-    crate::limits::DEGREE
+    splinescope_io::limits::DEGREE
         .check(points.len() as u64 - 1)
         .map_err(|e| points_node.invalid(e.to_string()))?;
     let weights = match obj.get("weights") {
@@ -61,12 +61,12 @@ impl Codec for Path {
             return Err(list.invalid("needs at least 1 segment, found 0"));
         }
         // Every segment has a point of its own besides the one it shares.
-        crate::limits::POINTS
+        splinescope_io::limits::POINTS
             .check(items.len() as u64)
             .map_err(|e| list.invalid(e.to_string()))?;
         let segments = items.iter().map(segment).collect::<Result<Vec<_>, _>>()?;
         let total: usize = segments.iter().map(|s| s.points.len()).sum();
-        crate::limits::POINTS
+        splinescope_io::limits::POINTS
             .check(total as u64)
             .map_err(|e| list.invalid(e.to_string()))?;
         let closed = match obj.get("closed") {
