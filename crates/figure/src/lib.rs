@@ -124,6 +124,17 @@ impl FigureOptions {
         self.grid = text.grid;
         self
     }
+
+    /// The text and guides these options ask for.
+    #[must_use]
+    pub fn text(&self) -> TextOptions {
+        TextOptions {
+            labels: self.labels,
+            legend: self.legend,
+            axes: self.axes,
+            grid: self.grid,
+        }
+    }
 }
 
 /// Why a figure cannot be made.

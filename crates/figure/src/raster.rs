@@ -230,13 +230,28 @@ pub fn annotate_shaped(
     text: TextOptions,
     shape: &ShapeOptions,
 ) -> Result<(), FigureError> {
-    if !text.any() {
+    let mut opts = FigureOptions::new(canvas.width, canvas.height).with_text(text);
+    opts.shape = *shape;
+    annotate_with(canvas, scene, opts)
+}
+
+/// Draws the guides and text `opts` asks for onto `canvas`, a render of `scene` through
+/// `opts`' camera (the scene's own when `None`) at the canvas's size — `opts`' size, shape
+/// overlays (the legend's marker rows) and switches as the picture was drawn; its curves
+/// are the picture's already and are not drawn again. Nothing when `opts` asks for no
+/// text.
+///
+/// # Errors
+/// As [`annotate`].
+pub fn annotate_with(
+    canvas: &mut Canvas<'_>,
+    scene: &Scene,
+    mut opts: FigureOptions,
+) -> Result<(), FigureError> {
+    if !opts.text().any() {
         return Ok(());
     }
-    // Only the guides and text: the curves are the GPU's picture already.
-    let mut opts = FigureOptions::new(canvas.width, canvas.height).with_text(text);
     opts.curves = false;
-    opts.shape = *shape;
     let fig = super::build(scene, &opts)?;
     draw_guides(&fig, canvas);
     Ok(())

@@ -6,7 +6,7 @@ use thiserror::Error;
 
 use splinescope_encoding::camera::Camera;
 use splinescope_encoding::draw::Switches;
-use splinescope_figure::raster::{Canvas, draw_guides};
+use splinescope_figure::raster::{Canvas, annotate_with};
 use splinescope_figure::{FigureError, FigureOptions, TextOptions};
 use splinescope_gpu::adaptive::{DEFAULT_TOLERANCE_PX, ToleranceError, check_tolerance};
 use splinescope_gpu::capture::render_with;
@@ -168,36 +168,22 @@ pub fn render(
         (request.width, request.height),
         request.tolerance_px,
     )?;
-    write_text(&mut image, scene, &camera, request)?;
-    Ok(image)
-}
-
-/// Writes the request's guides and text (and the legend's marker rows for the markers
-/// it shows) onto `image`, a picture of `scene` through `camera` at the request's size.
-fn write_text(
-    image: &mut RgbaImage,
-    scene: &Scene,
-    camera: &Camera,
-    request: &RenderRequest,
-) -> Result<(), FigureError> {
-    if !request.text.any() {
-        return Ok(());
-    }
+    // The guides and text through the same camera (the legend's marker rows for the
+    // markers drawn).
     let mut opts = FigureOptions::new(request.width, request.height).with_text(request.text);
-    opts.curves = false;
     opts.shape = request.shape;
-    opts.camera = Some(*camera);
+    opts.camera = Some(camera);
     opts.switches = request.switches;
-    let figure = splinescope_figure::build(scene, &opts)?;
-    draw_guides(
-        &figure,
+    annotate_with(
         &mut Canvas {
             data: &mut image.data,
             width: image.width,
             height: image.height,
         },
-    );
-    Ok(())
+        scene,
+        opts,
+    )?;
+    Ok(image)
 }
 
 #[cfg(test)]

@@ -517,7 +517,7 @@ fn print_report(r: &BenchReport) -> Result<()> {
     say!("  GPU compute (wall, submit+wait)    {}", m(wall));
     match r.gpu_compute_timestamp_samples_per_s {
         Some(v) => say!("  GPU compute (timestamps)           {}", m(v)),
-        None if r.notes.iter().any(|n| n.contains("timestamps put")) => {
+        None if r.notes.iter().any(|n| n.starts_with(TIMESTAMPS_REFUSED)) => {
             say!("  GPU compute (timestamps)           none: they do not bracket the work (above)");
         }
         None => say!("  GPU compute (timestamps)           not supported by this adapter"),
@@ -667,7 +667,7 @@ fn gpu_compute_rates(
             Some(total as f64 / (mean * 1e-9))
         } else {
             note = Some(format!(
-                "the adapter's timestamps put the {} pass at {:.3} ms against {:.1} ms by the wall clock: they do not bracket its work, so no timestamp rate is given",
+                "{TIMESTAMPS_REFUSED} the {} pass at {:.3} ms against {:.1} ms by the wall clock: they do not bracket its work, so no timestamp rate is given",
                 match kernel {
                     Kernel::Tessellate => "kernel",
                     Kernel::WriteOnly => "write-only",
@@ -680,6 +680,9 @@ fn gpu_compute_rates(
     };
     Ok((gpu_wall, gpu_pass, note))
 }
+
+/// How a row's note refusing the adapter's timestamps begins (the summary refers to it).
+const TIMESTAMPS_REFUSED: &str = "the adapter's timestamps put";
 
 /// Whether a pass's timestamped duration can be the duration of its work, given the wall
 /// clock around its submission and wait (`wall_ns`, which also holds the submission and
