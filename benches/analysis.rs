@@ -12,7 +12,8 @@ use glam::DVec3;
 use kurbo::{CubicBez, ParamCurveArclen, ParamCurveExtrema, ParamCurveNearest, Point};
 use splinescope_core::analysis::{CurveAnalysis, all_intersections, bezier_length};
 use splinescope_core::geom::Bezier;
-use splinescope_scene::format::generate::{Rng, StressOptions, random_bezier_scene};
+use splinescope_core::rng::Rng;
+use splinescope_scene::format::generate::{StressOptions, random_bezier_scene};
 use splinescope_scene::format::shape::{ShapeOptions, markers};
 
 fn cubic(rng: &mut Rng) -> [DVec3; 4] {

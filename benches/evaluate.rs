@@ -7,11 +7,13 @@ use std::hint::black_box;
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use glam::DVec3;
 use splinescope_core::geom::{BSpline, Bezier, Curve, Nubmp, ParamCurve};
+use splinescope_core::rng::Rng;
+use splinescope_gpu::chunks::ChunkLimits;
 use splinescope_gpu::layout::GpuVertex;
-use splinescope_gpu::pack::{ChunkLimits, prepare};
+use splinescope_gpu::pack::prepare;
 use splinescope_gpu::twin;
 use splinescope_scene::format::encoding::encode;
-use splinescope_scene::format::generate::{Rng, StressOptions, random_bezier_scene};
+use splinescope_scene::format::generate::{StressOptions, random_bezier_scene};
 
 fn bench(c: &mut Criterion) {
     let mut rng = Rng::new(2);

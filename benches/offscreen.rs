@@ -9,7 +9,8 @@
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::DVec2;
 use splinescope_gpu::capture::{OFFSCREEN_FORMAT, render_uploaded};
-use splinescope_gpu::pack::{ChunkLimits, prepare};
+use splinescope_gpu::chunks::ChunkLimits;
+use splinescope_gpu::pack::prepare;
 use splinescope_gpu::renderer::Renderer;
 use splinescope_gpu::{BackendChoice, ContextOptions, GpuContext};
 use splinescope_scene::format::encoding::encode;

@@ -11,7 +11,7 @@ use kurbo::offset::CubicOffset;
 use kurbo::{CubicBez, Point, fit_to_bezpath, fit_to_bezpath_opt};
 use splinescope_core::geom::{Bezier, Curve};
 use splinescope_core::ops::{OffsetOptions, offset};
-use splinescope_scene::format::generate::Rng;
+use splinescope_core::rng::Rng;
 
 /// The same cases for both: a cubic in the unit square and a distance in ±[0.01, 0.2].
 fn cases(count: usize) -> Vec<([DVec3; 4], f64)> {

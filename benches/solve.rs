@@ -6,12 +6,12 @@ use std::hint::black_box;
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::DVec3;
 use splinescope_core::geom::Bezier;
+use splinescope_core::rng::Rng;
 use splinescope_core::solve::batch::{BatchResult, BatchSingleTarget};
 use splinescope_core::solve::nearest;
 use splinescope_core::solve::shape::{
     SingleTargetOptions, multi_target, single_target, tangent_kept,
 };
-use splinescope_scene::format::generate::Rng;
 
 fn curve(rng: &mut Rng, n: usize) -> Bezier {
     Bezier::new(

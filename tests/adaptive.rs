@@ -11,6 +11,7 @@ mod common;
 
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use splinescope_core::geom::{Bezier, BezierSegment, Curve, Lower};
+use splinescope_core::rng::Rng;
 use splinescope_encoding::camera::Camera;
 use splinescope_gpu::adaptive::{FrameSettings, Stage, read_work};
 use splinescope_gpu::layout::{GpuVertex, MAX_SAMPLES_PER_SEGMENT, WORK_HEADER};
@@ -18,7 +19,6 @@ use splinescope_gpu::pack::PreparedScene;
 use splinescope_gpu::renderer::camera_uniform;
 use splinescope_gpu::tessellator::read_buffer;
 use splinescope_gpu::twin;
-use splinescope_scene::format::generate::Rng;
 use splinescope_scene::format::{Scene, SceneCurve, Style};
 
 const VIEWPORT: DVec2 = DVec2::new(640.0, 480.0);
@@ -64,7 +64,7 @@ struct Run {
 
 fn run_chunk(
     backend: &common::Backend,
-    chunk: &splinescope_gpu::pack::TessChunk,
+    chunk: &splinescope_gpu::chunks::TessChunk,
     settings: &FrameSettings,
     capacity: u32,
 ) -> Run {
@@ -231,7 +231,7 @@ fn check(backend: &common::Backend, scene: &Scene, camera: &Camera, tolerance_px
 /// `tests/gpu_tessellation.rs`), and carries its curve's tag.
 fn assert_samples_match_twin(
     what: &str,
-    chunk: &splinescope_gpu::pack::TessChunk,
+    chunk: &splinescope_gpu::chunks::TessChunk,
     offsets: &[u32],
     finals: &[u32],
     samples: &[GpuVertex],

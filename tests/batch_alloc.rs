@@ -7,8 +7,8 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use glam::DVec3;
+use splinescope_core::rng::Rng;
 use splinescope_core::solve::batch::{BatchResult, BatchSingleTarget};
-use splinescope_scene::format::generate::Rng;
 
 struct Counting;
 

@@ -15,7 +15,7 @@ use splinescope_core::geom::{
     BSpline, Bezier, CubicInterpolation, Curve, GeomError, KnotVector, Lower, Modification,
     ModifiedBezier, Nubmp, ParamCurve, Reading, locate,
 };
-use splinescope_scene::format::generate::Rng;
+use splinescope_core::rng::Rng;
 
 type Q = BigRational;
 

@@ -632,7 +632,7 @@ fn pdf_path_data_keeps_the_tolerance() {
     let (w, h) = (640.0, 400.0);
     for (name, scene) in scenes() {
         let mut opts = FigureOptions::new(w as u32, h as u32);
-        opts.switches = splinescope_scene::format::draw::Switches {
+        opts.switches = splinescope_encoding::draw::Switches {
             polygons: false,
             points: false,
         };
@@ -925,7 +925,7 @@ fn png_labels_apart(what: &str, mut scene: Scene, (w, h): (u32, u32)) {
             let k = (n + hue / 60.0) % 6.0;
             0.9 - 0.9 * k.min(4.0 - k).clamp(0.0, 1.0)
         };
-        c.style.color = splinescope_scene::format::Color([f(5.0), f(3.0), f(1.0), 1.0]);
+        c.style.color = splinescope_encoding::Color([f(5.0), f(3.0), f(1.0), 1.0]);
     }
     // The hue of each label's text (the curve's colour, darkened: the same hue).
     let hue_of = |[r, g, b]: [f32; 3]| -> (f32, f32) {

@@ -30,8 +30,8 @@ use std::time::{Duration, Instant};
 
 use serde_json::{Value, json};
 use splinescope_core::geom::{Lower, ParamCurve};
+use splinescope_core::rng::Rng;
 use splinescope_scene::format::Scene;
-use splinescope_scene::format::generate::Rng;
 
 mod common;
 

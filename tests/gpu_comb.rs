@@ -13,6 +13,8 @@ use splinescope_core::analysis::comb::curvature_vector;
 use splinescope_core::geom::{
     BSpline, Bezier, BezierSegment, Curve, Lower, ModifiedBezier, Nurbs, ParamCurve, RationalBezier,
 };
+use splinescope_core::ops::{Cap, Join};
+use splinescope_encoding::StrokeShape;
 use splinescope_gpu::adaptive::{FrameSettings, read_work};
 use splinescope_gpu::capture::OFFSCREEN_FORMAT;
 use splinescope_gpu::layout::{
@@ -22,7 +24,7 @@ use splinescope_gpu::pack::{PreparedScene, curve_tags};
 use splinescope_gpu::renderer::{CombRequest, GpuScene, Renderer, camera_uniform};
 use splinescope_gpu::tessellator::read_buffer;
 use splinescope_gpu::twin::{comb_hair, comb_hairs_of, comb_point_and_curvature};
-use splinescope_scene::format::{Cap, Join, Scene, SceneCurve, StrokeShape, Style, ViewSpec};
+use splinescope_scene::format::{Scene, SceneCurve, Style, ViewSpec};
 
 const VIEWPORT: DVec2 = DVec2::new(640.0, 480.0);
 

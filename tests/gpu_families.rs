@@ -15,10 +15,10 @@ use splinescope_core::geom::{
     Aabb, BSpline, Bezier, CubicInterpolation, Curve, Lower, Modification, ModifiedBezier, Nubmp,
     Nurbs, ParamCurve, PathSegment, RationalBezier, Reading,
 };
+use splinescope_core::rng::Rng;
 use splinescope_gpu::GpuContext;
 use splinescope_gpu::eval::evaluate;
 use splinescope_scene::format::Scene;
-use splinescope_scene::format::generate::Rng;
 
 fn bound(curve: &Curve) -> f64 {
     let segs = curve.lower();

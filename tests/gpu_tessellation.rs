@@ -15,13 +15,15 @@ mod common;
 
 use glam::{DVec3, Vec3};
 use splinescope_core::geom::{Bezier, ParamCurve};
+use splinescope_core::rng::Rng;
+use splinescope_encoding::Color;
+use splinescope_gpu::chunks::{ChunkBuilder, ChunkLimits, TessChunk};
 use splinescope_gpu::layout::{GpuLineStyle, MAX_GPU_DEGREE};
-use splinescope_gpu::pack::{ChunkBuilder, ChunkLimits, TessChunk, prepare};
+use splinescope_gpu::pack::prepare;
 use splinescope_gpu::tessellator::{POISON, Tessellator, plan, read_buffer};
 use splinescope_gpu::twin;
-use splinescope_scene::format::Color;
 use splinescope_scene::format::encoding::encode;
-use splinescope_scene::format::generate::{Rng, StressOptions, random_bezier_scene};
+use splinescope_scene::format::generate::{StressOptions, random_bezier_scene};
 
 /// The bound for a curve of `degree` with control points `points` (see the module doc).
 fn bound(degree: usize, points: &[DVec3]) -> f64 {

@@ -15,10 +15,11 @@ use std::path::PathBuf;
 use common::render_scene;
 use glam::{DVec2, DVec3};
 use splinescope_core::geom::{Bezier, Curve};
+use splinescope_encoding::Color;
 use splinescope_encoding::camera::Camera;
 use splinescope_image::RgbaImage;
 use splinescope_image::compare::{ComparisonImages, Tolerance, compare_images};
-use splinescope_scene::format::{Color, Scene, SceneCurve, Style, ViewSpec, gallery};
+use splinescope_scene::format::{Scene, SceneCurve, Style, ViewSpec, gallery};
 
 /// The golden references are compared with the same code as `splinescope regress`, at
 /// its default tolerance.
@@ -261,7 +262,8 @@ fn an_edit_written_in_place_renders_like_a_fresh_upload() {
     use splinescope_core::geom::Lower;
     use splinescope_gpu::adaptive::DEFAULT_TOLERANCE_PX;
     use splinescope_gpu::capture::{OFFSCREEN_FORMAT, render_uploaded};
-    use splinescope_gpu::pack::{ChunkLimits, prepare, repack_points};
+    use splinescope_gpu::chunks::ChunkLimits;
+    use splinescope_gpu::pack::{prepare, repack_points};
     use splinescope_gpu::renderer::Renderer;
     use splinescope_scene::format::encoding::encode;
     common::on_each_gpu(
@@ -324,14 +326,14 @@ fn an_edit_written_in_place_renders_like_a_fresh_upload() {
             }
             // The overlays (control polygon, dual polygon, points) are written in place
             // too, as the viewer does during a drag.
-            let edit = splinescope_gpu::pack::OverlayEdit {
-                switches: splinescope_scene::format::draw::Switches::ALL,
+            let edit = splinescope_gpu::overlays::OverlayEdit {
+                switches: splinescope_encoding::draw::Switches::ALL,
                 curve_count: edited.curves.len(),
                 curves: vec![(
                     0,
                     splinescope_scene::format::draw::curve_overlays(
                         &edited.curves[0],
-                        splinescope_scene::format::draw::Switches::ALL,
+                        splinescope_encoding::draw::Switches::ALL,
                     ),
                 )],
                 axes: splinescope_scene::format::draw::axis_lines(&edited),

@@ -5,8 +5,9 @@
 
 use glam::{DVec2, DVec3};
 use splinescope_core::geom::{Bezier, Curve};
+use splinescope_encoding::Color;
 use splinescope_encoding::camera::Camera;
-use splinescope_scene::format::{Color, Scene, SceneCurve, Style, ViewSpec};
+use splinescope_scene::format::{Scene, SceneCurve, Style, ViewSpec};
 use splinescope_viewer::edit::Editor;
 use splinescope_viewer::interaction::{Button, Input, Interaction, Key};
 

@@ -217,7 +217,7 @@ pub fn pack(
 ) -> splinescope_gpu::pack::PreparedScene {
     splinescope_gpu::pack::prepare(
         &splinescope_scene::format::encoding::encode(scene),
-        splinescope_gpu::pack::ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
+        splinescope_gpu::chunks::ChunkLimits::for_binding_size(ctx.max_binding_bytes()),
     )
     .expect("pack")
 }

@@ -12,10 +12,10 @@ use num_traits::{One, ToPrimitive, Zero};
 use proptest::prelude::*;
 
 use splinescope_core::analysis::{
-    AnalysisError, CurveAnalysis, ExtremumKind, HitKind, all_intersections, bernstein_roots,
-    bezier_length,
+    AnalysisError, CurveAnalysis, ExtremumKind, HitKind, all_intersections, bezier_length,
 };
 use splinescope_core::geom::{BSpline, Bezier, Curve, Lower, Nurbs, ParamCurve, RationalBezier};
+use splinescope_core::poly::roots::bernstein_roots;
 use splinescope_core::rng::Rng;
 
 fn p2(x: f64, y: f64) -> DVec3 {

@@ -8,6 +8,7 @@ use glam::{DVec2, DVec3};
 use nalgebra::DMatrix;
 use proptest::prelude::*;
 use splinescope_core::geom::bernstein::bernstein_all;
+use splinescope_core::geom::cubic_region::PolygonType;
 use splinescope_core::geom::{BSpline, Bezier, Curve, Nubmp, ParamCurve};
 use splinescope_core::rng::Rng;
 use splinescope_core::solve::batch::{BatchResult, BatchSingleTarget};
@@ -15,7 +16,7 @@ use splinescope_core::solve::linalg::min_norm_solve;
 use splinescope_core::solve::nubmp::{constrained, find_tau};
 use splinescope_core::solve::region::cubic_region;
 use splinescope_core::solve::shape::{
-    PolygonType, SingleTargetOptions, multi_target, single_target, tangent_kept,
+    SingleTargetOptions, multi_target, single_target, tangent_kept,
 };
 use splinescope_core::solve::{SolveError, nearest};
 

@@ -53,9 +53,16 @@ pub fn auto_samples(points: &[glam::DVec3]) -> u32 {
     rung.min(MAX_SAMPLES_PER_SEGMENT)
 }
 
-/// A stroke's ends ([`Cap`], SVG's `stroke-linecap`) and corners ([`Join`], SVG's
-/// `stroke-linejoin`): the core's own, which its offsets and stroke outlines take too.
-pub use splinescope_core::ops::{Cap, Join};
+// A stroke's ends (`Cap`, SVG's `stroke-linecap`) and corners (`Join`, SVG's
+// `stroke-linejoin`) are the core's own, which its offsets and stroke outlines take too.
+use splinescope_core::ops;
+
+/// Deprecated: a stroke's ends are `splinescope_core::ops::Cap`.
+#[deprecated(note = "use splinescope_core::ops::Cap")]
+pub type Cap = ops::Cap;
+/// Deprecated: a stroke's corners are `splinescope_core::ops::Join`.
+#[deprecated(note = "use splinescope_core::ops::Join")]
+pub type Join = ops::Join;
 
 /// The largest miter limit a stroke takes (a limit this long draws a spike 1,000 widths
 /// long only where the stroke turns back by less than 0.12°).
@@ -67,9 +74,9 @@ pub const MAX_MITER_LIMIT: f64 = 1000.0;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StrokeShape {
     /// The ends of an open curve.
-    pub cap: Cap,
+    pub cap: ops::Cap,
     /// The corners.
-    pub join: Join,
+    pub join: ops::Join,
     /// The miter limit.
     pub miter_limit: f64,
 }
@@ -78,8 +85,8 @@ impl Default for StrokeShape {
     /// Round ends and corners (what the renderer always drew), SVG's miter limit 4.
     fn default() -> StrokeShape {
         StrokeShape {
-            cap: Cap::Round,
-            join: Join::Round,
+            cap: ops::Cap::Round,
+            join: ops::Join::Round,
             miter_limit: 4.0,
         }
     }
@@ -89,7 +96,7 @@ impl StrokeShape {
     /// Whether this is the all-round shape (ends and corners drawn as discs).
     #[must_use]
     pub fn is_round(&self) -> bool {
-        self.cap == Cap::Round && self.join == Join::Round
+        self.cap == ops::Cap::Round && self.join == ops::Join::Round
     }
 }
 

@@ -3,13 +3,13 @@
 //! scene units, a grid at the ticks. Axes and grid need the 2D (affine) view.
 
 use glam::DVec2;
-use splinescope_scene::format::StrokeShape;
+use splinescope_encoding::StrokeShape;
 
 use splinescope_core::geom::ParamCurve;
-
-use splinescope_scene::format::draw::{MarkerKind, Stroke, marker_style};
+use splinescope_encoding::Color;
+use splinescope_encoding::draw::{MarkerKind, Stroke, marker_style};
+use splinescope_scene::format::Scene;
 use splinescope_scene::format::labels::{ANCHORS, Ink, LabelRequest, corner, hidden_note, place};
-use splinescope_scene::format::{Color, Scene};
 
 use super::fit::{Piece, Projection, Seg};
 use super::text::width;

@@ -12,11 +12,12 @@ use glam::{DVec2, DVec3};
 use thiserror::Error;
 
 use splinescope_encoding::camera::Camera;
-use splinescope_scene::format::draw::{COMB_WIDTH_PX, Stroke, Switches, comb_strokes};
-use splinescope_scene::format::encoding::{Encoding, encode_with};
+use splinescope_encoding::draw::{COMB_WIDTH_PX, Stroke, Switches, comb_strokes};
+use splinescope_encoding::{Color, Encoding, StrokeShape};
+use splinescope_scene::format::Scene;
+use splinescope_scene::format::encoding::encode_with;
 use splinescope_scene::format::labels::Ink;
 use splinescope_scene::format::shape::{ShapeOptions, marker_points, markers};
-use splinescope_scene::format::{Cap, Color, Join, Scene, StrokeShape};
 
 use fit::{Budget, FitError, Page, Piece, Projection, segment_pieces};
 
@@ -705,10 +706,7 @@ impl Figure {
 /// scene units times the points one unit spans (the length of the projection's y row,
 /// over `W` at the curve's first point in a perspective view: a figure's stroke has one
 /// width).
-fn stroke_width(
-    curve: &splinescope_scene::format::encoding::EncodedCurve,
-    proj: &Projection,
-) -> f32 {
+fn stroke_width(curve: &splinescope_encoding::EncodedCurve, proj: &Projection) -> f32 {
     if !curve.width_in_scene {
         return curve.width;
     }

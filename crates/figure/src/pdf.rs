@@ -15,7 +15,8 @@ use splinescope_core::num::fixed as num;
 
 use super::fit::{Piece, Seg};
 use super::svg::step;
-use super::{Anchor, Cap, Figure, Item, Join, SubPath};
+use super::{Anchor, Figure, Item, SubPath};
+use splinescope_core::ops::{Cap, Join};
 
 /// The magic of the four-arc circle: a cubic arc of a quarter circle has its control
 /// points at this fraction of the radius along the tangents.
@@ -65,7 +66,7 @@ impl Content {
         num(x, self.exact)
     }
 
-    fn rgb(c: super::Color) -> [String; 4] {
+    fn rgb(c: splinescope_encoding::Color) -> [String; 4] {
         c.0.map(|v| num(f64::from(v).clamp(0.0, 1.0), 4))
     }
 

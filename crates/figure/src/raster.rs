@@ -6,8 +6,7 @@
 
 use ab_glyph::{Font, FontRef, PxScale, point};
 use glam::DVec2;
-
-use splinescope_scene::format::Color;
+use splinescope_encoding::Color;
 
 use super::fit::Seg;
 use super::text::FONT;

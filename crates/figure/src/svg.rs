@@ -9,7 +9,9 @@ use std::fmt::Write as _;
 use splinescope_core::num::trim_zeros as trim;
 
 use super::fit::{Piece, Seg};
-use super::{Anchor, Cap, Figure, Item, Join, StrokeShape, SubPath, hex};
+use super::{Anchor, Figure, Item, SubPath, hex};
+use splinescope_core::ops::{Cap, Join};
+use splinescope_encoding::StrokeShape;
 
 /// The decimal step approximated pieces are rounded to: the largest power of ten at most
 /// a quarter of the tolerance (a point moves at most `step/√2` by it).

@@ -9,9 +9,9 @@ use super::layout::{
     GpuVertex, MAX_SAMPLES_PER_SEGMENT, SCAN_BLOCK, TESSELLATE_KERNELS, TESSELLATE_WORKGROUP_SIZE,
     WORK_HEADER,
 };
-use super::pack::TessChunk;
 use super::tessellator::{compute_pipelines, control_points_buffer, dispatch_grid};
 use super::{GpuError, shaders};
+use crate::chunks::TessChunk;
 
 /// The default tolerance: a drawn polyline stays within this many pixels of its curve.
 pub const DEFAULT_TOLERANCE_PX: f64 = 0.25;

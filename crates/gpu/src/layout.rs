@@ -350,7 +350,7 @@ pub fn stroke_reach(flags: u32) -> f32 {
 /// continuation bits are the chunk builder's).
 #[must_use]
 pub fn stroke_flags(shape: &splinescope_encoding::StrokeShape, closed: bool) -> u32 {
-    use splinescope_encoding::{Cap, Join};
+    use splinescope_core::ops::{Cap, Join};
     let cap = match shape.cap {
         Cap::Round => 0,
         Cap::Butt => 1,

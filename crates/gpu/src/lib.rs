@@ -48,8 +48,8 @@ pub fn init_buffer(
     buffer
 }
 
+use crate::pack_error::PackError;
 pub use context::{AdapterReport, BackendChoice, ContextOptions, GpuContext};
-pub use pack::PackError;
 pub use pipelines::Pipelines;
 
 /// Why GPU work failed.

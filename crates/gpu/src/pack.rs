@@ -8,11 +8,10 @@
 
 use glam::DVec3;
 
+use super::chunks;
 use super::chunks::gpu_control_points;
-pub use super::chunks::{BatchBuilder, ChunkBuilder, ChunkLimits, LineBatch, Placement, TessChunk};
 use super::layout::{GpuControlPoint, GpuLineStyle, MAX_GPU_DEGREE};
-pub use super::overlays::{OverlayEdit, OverlayMap, prepare_overlays_mapped};
-pub use super::pack_error::{GPU_COORDINATE_LIMIT, GPU_WEIGHT_RATIO, PackError};
+use super::{overlays, pack_error};
 use splinescope_core::geom::BezierSegment;
 use splinescope_encoding::Encoding;
 use splinescope_encoding::{Color, auto_samples};
@@ -24,11 +23,14 @@ use splinescope_encoding::{Color, auto_samples};
 /// # Errors
 /// [`PackError::DegreeTooHigh`], [`PackError::WeightRange`] or
 /// [`PackError::CoordinateTooLarge`] naming the curve, the segment and the point.
-pub fn check_gpu_fit(curve: usize, segments: &[BezierSegment]) -> Result<(), PackError> {
+pub fn check_gpu_fit(
+    curve: usize,
+    segments: &[BezierSegment],
+) -> Result<(), pack_error::PackError> {
     for (segment, s) in segments.iter().enumerate() {
         let degree = s.bezier.degree();
         if degree > MAX_GPU_DEGREE {
-            return Err(PackError::DegreeTooHigh {
+            return Err(pack_error::PackError::DegreeTooHigh {
                 curve,
                 segment,
                 degree,
@@ -40,24 +42,24 @@ pub fn check_gpu_fit(curve: usize, segments: &[BezierSegment]) -> Result<(), Pac
             if let Some((point, &value)) = w
                 .iter()
                 .enumerate()
-                .find(|(_, w)| **w < GPU_WEIGHT_RATIO * largest)
+                .find(|(_, w)| **w < pack_error::GPU_WEIGHT_RATIO * largest)
             {
-                return Err(PackError::WeightRange {
+                return Err(pack_error::PackError::WeightRange {
                     curve,
                     segment,
                     point,
                     ratio: value / largest,
-                    limit: GPU_WEIGHT_RATIO,
+                    limit: pack_error::GPU_WEIGHT_RATIO,
                 });
             }
         }
         if let Some((point, value)) = first_too_large(s.bezier.points()) {
-            return Err(PackError::CoordinateTooLarge {
+            return Err(pack_error::PackError::CoordinateTooLarge {
                 curve,
                 segment,
                 point,
                 value,
-                limit: GPU_COORDINATE_LIMIT,
+                limit: pack_error::GPU_COORDINATE_LIMIT,
             });
         }
     }
@@ -70,7 +72,7 @@ fn first_too_large(points: &[DVec3]) -> Option<(usize, f64)> {
     points.iter().enumerate().find_map(|(i, p)| {
         p.to_array()
             .into_iter()
-            .find(|c| c.abs() > GPU_COORDINATE_LIMIT)
+            .find(|c| c.abs() > pack_error::GPU_COORDINATE_LIMIT)
             .map(|c| (i, c))
     })
 }
@@ -80,14 +82,14 @@ fn first_too_large(points: &[DVec3]) -> Option<(usize, f64)> {
 ///
 /// # Errors
 /// [`PackError::AnnotationTooLarge`] naming the annotation and the point.
-pub fn check_annotations(annotations: &[Vec<DVec3>]) -> Result<(), PackError> {
+pub fn check_annotations(annotations: &[Vec<DVec3>]) -> Result<(), pack_error::PackError> {
     for (annotation, points) in annotations.iter().enumerate() {
         if let Some((point, value)) = first_too_large(points) {
-            return Err(PackError::AnnotationTooLarge {
+            return Err(pack_error::PackError::AnnotationTooLarge {
                 annotation,
                 point,
                 value,
-                limit: GPU_COORDINATE_LIMIT,
+                limit: pack_error::GPU_COORDINATE_LIMIT,
             });
         }
     }
@@ -98,19 +100,19 @@ pub fn check_annotations(annotations: &[Vec<DVec3>]) -> Result<(), PackError> {
 #[derive(Debug, Clone, PartialEq)]
 pub struct PreparedScene {
     /// Curve tessellation work.
-    pub chunks: Vec<TessChunk>,
+    pub chunks: Vec<chunks::TessChunk>,
     /// Overlay polylines (control polygons, …).
-    pub lines: Vec<LineBatch>,
+    pub lines: Vec<chunks::LineBatch>,
     /// Overlay points (control points, …).
-    pub points: Vec<LineBatch>,
+    pub points: Vec<chunks::LineBatch>,
     /// The clear colour.
     pub background: Color,
     /// Per curve, where its lowered control points are (for in-place updates).
-    pub placements: Vec<Vec<Placement>>,
+    pub placements: Vec<Vec<chunks::Placement>>,
     /// Per curve, the sample count each of its segments was packed with.
     pub sample_counts: Vec<Vec<u32>>,
     /// Where the overlays' vertices are (for in-place updates).
-    pub overlay_map: OverlayMap,
+    pub overlay_map: overlays::OverlayMap,
 }
 
 /// The new control points of a curve whose lowering kept its structure (the same number
@@ -121,7 +123,7 @@ pub struct PreparedScene {
 /// must be packed again.
 #[must_use]
 pub fn repack_points(
-    placements: &[Placement],
+    placements: &[chunks::Placement],
     packed_counts: &[u32],
     segments: &[BezierSegment],
     samples: Option<u32>,
@@ -167,7 +169,10 @@ fn drawn_segments(
 /// # Errors
 /// A degree over the GPU maximum, a coordinate beyond the `f32` range, too many samples,
 /// or chunk limits too small for one segment.
-pub fn prepare(encoding: &Encoding, limits: ChunkLimits) -> Result<PreparedScene, PackError> {
+pub fn prepare(
+    encoding: &Encoding,
+    limits: chunks::ChunkLimits,
+) -> Result<PreparedScene, pack_error::PackError> {
     // Check and count first: the sample total is checked before any buffer is built.
     let mut counts_all = Vec::with_capacity(encoding.curves.len());
     let mut total = 0u64;
@@ -185,8 +190,8 @@ pub fn prepare(encoding: &Encoding, limits: ChunkLimits) -> Result<PreparedScene
     }
     splinescope_io::limits::SAMPLES
         .check(total)
-        .map_err(|e| PackError::TooManySamples(e.to_string()))?;
-    let mut chunks = ChunkBuilder::new(limits);
+        .map_err(|e| pack_error::PackError::TooManySamples(e.to_string()))?;
+    let mut chunks = chunks::ChunkBuilder::new(limits);
     for (index, (curve, counts)) in encoding.curves.iter().zip(&counts_all).enumerate() {
         let mut style = GpuLineStyle::solid(curve.color, curve.width);
         if curve.width_in_scene {
@@ -203,7 +208,7 @@ pub fn prepare(encoding: &Encoding, limits: ChunkLimits) -> Result<PreparedScene
     }
     check_annotations(&encoding.annotations)?;
     let (lines, points, overlay_map) =
-        prepare_overlays_mapped(&encoding.overlays, encoding.switches, limits);
+        overlays::prepare_overlays_mapped(&encoding.overlays, encoding.switches, limits);
     let (chunks, placements) = chunks.finish_with_placements();
     Ok(PreparedScene {
         chunks,
@@ -236,6 +241,65 @@ pub fn curve_tags(prepared: &PreparedScene, curve: usize) -> Vec<(usize, u32)> {
     out
 }
 
+/// Deprecated: `splinescope_gpu::chunks::BatchBuilder`.
+#[deprecated(note = "use splinescope_gpu::chunks::BatchBuilder")]
+pub type BatchBuilder = chunks::BatchBuilder;
+
+/// Deprecated: `splinescope_gpu::chunks::ChunkBuilder`.
+#[deprecated(note = "use splinescope_gpu::chunks::ChunkBuilder")]
+pub type ChunkBuilder = chunks::ChunkBuilder;
+
+/// Deprecated: `splinescope_gpu::chunks::ChunkLimits`.
+#[deprecated(note = "use splinescope_gpu::chunks::ChunkLimits")]
+pub type ChunkLimits = chunks::ChunkLimits;
+
+/// Deprecated: `splinescope_gpu::chunks::LineBatch`.
+#[deprecated(note = "use splinescope_gpu::chunks::LineBatch")]
+pub type LineBatch = chunks::LineBatch;
+
+/// Deprecated: `splinescope_gpu::chunks::Placement`.
+#[deprecated(note = "use splinescope_gpu::chunks::Placement")]
+pub type Placement = chunks::Placement;
+
+/// Deprecated: `splinescope_gpu::chunks::TessChunk`.
+#[deprecated(note = "use splinescope_gpu::chunks::TessChunk")]
+pub type TessChunk = chunks::TessChunk;
+
+/// Deprecated: `splinescope_gpu::overlays::OverlayEdit`.
+#[deprecated(note = "use splinescope_gpu::overlays::OverlayEdit")]
+pub type OverlayEdit = overlays::OverlayEdit;
+
+/// Deprecated: `splinescope_gpu::overlays::OverlayMap`.
+#[deprecated(note = "use splinescope_gpu::overlays::OverlayMap")]
+pub type OverlayMap = overlays::OverlayMap;
+
+/// Deprecated: `splinescope_gpu::overlays::prepare_overlays_mapped`.
+#[deprecated(note = "use splinescope_gpu::overlays::prepare_overlays_mapped")]
+#[must_use]
+pub fn prepare_overlays_mapped(
+    list: &splinescope_encoding::draw::DrawList,
+    switches: splinescope_encoding::draw::Switches,
+    limits: chunks::ChunkLimits,
+) -> (
+    Vec<chunks::LineBatch>,
+    Vec<chunks::LineBatch>,
+    overlays::OverlayMap,
+) {
+    overlays::prepare_overlays_mapped(list, switches, limits)
+}
+
+/// Deprecated: `splinescope_gpu::pack_error::GPU_COORDINATE_LIMIT`.
+#[deprecated(note = "use splinescope_gpu::pack_error::GPU_COORDINATE_LIMIT")]
+pub const GPU_COORDINATE_LIMIT: f64 = pack_error::GPU_COORDINATE_LIMIT;
+
+/// Deprecated: `splinescope_gpu::pack_error::GPU_WEIGHT_RATIO`.
+#[deprecated(note = "use splinescope_gpu::pack_error::GPU_WEIGHT_RATIO")]
+pub const GPU_WEIGHT_RATIO: f64 = pack_error::GPU_WEIGHT_RATIO;
+
+/// Deprecated: `splinescope_gpu::pack_error::PackError`.
+#[deprecated(note = "use splinescope_gpu::pack_error::PackError")]
+pub type PackError = pack_error::PackError;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -248,13 +312,13 @@ mod tests {
 
     #[test]
     fn runs_spill_into_new_chunks_repeating_the_joint_sample() {
-        let limits = ChunkLimits {
+        let limits = chunks::ChunkLimits {
             max_samples: 10,
             max_points: 100,
             max_records: 100,
             max_styles: 100,
         };
-        let mut b = ChunkBuilder::new(limits);
+        let mut b = chunks::ChunkBuilder::new(limits);
         let cubic = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::ONE];
         b.begin_segment(0, style(), &cubic, None).unwrap();
         b.add_samples(25, 0.0, 1.0);
@@ -274,7 +338,7 @@ mod tests {
 
     #[test]
     fn long_runs_become_one_record_per_workgroup() {
-        let mut b = ChunkBuilder::new(ChunkLimits::for_binding_size(1 << 20));
+        let mut b = chunks::ChunkBuilder::new(chunks::ChunkLimits::for_binding_size(1 << 20));
         b.begin_segment(0, style(), &[DVec3::ZERO, DVec3::X], None)
             .unwrap();
         b.add_samples(150, 0.0, 1.0);
@@ -303,7 +367,7 @@ mod tests {
 
     #[test]
     fn records_are_grouped_by_kernel_class() {
-        let mut b = ChunkBuilder::new(ChunkLimits::for_binding_size(1 << 20));
+        let mut b = chunks::ChunkBuilder::new(chunks::ChunkLimits::for_binding_size(1 << 20));
         let weights = [1.0, 2.0, 1.0, 0.5];
         let curves = [
             (5usize, false),
@@ -349,7 +413,7 @@ mod tests {
     /// whose segments share a class keeps it.
     #[test]
     fn a_curve_of_mixed_degrees_keeps_its_segments_together_and_in_order() {
-        let mut b = ChunkBuilder::new(ChunkLimits::for_binding_size(1 << 20));
+        let mut b = chunks::ChunkBuilder::new(chunks::ChunkLimits::for_binding_size(1 << 20));
         // Curve 0: a line, a quadratic, a cubic and a quintic; curve 1: two cubics.
         let curves: [&[usize]; 2] = [&[1, 2, 3, 5], &[3, 3]];
         for (curve, degrees) in curves.into_iter().enumerate() {
@@ -375,7 +439,7 @@ mod tests {
         let err = check_gpu_fit(4, &b.lower()).unwrap_err();
         assert_eq!(
             err,
-            PackError::DegreeTooHigh {
+            pack_error::PackError::DegreeTooHigh {
                 curve: 4,
                 segment: 0,
                 degree: 32,
@@ -401,7 +465,7 @@ mod tests {
         assert!(
             matches!(
                 err,
-                PackError::WeightRange {
+                pack_error::PackError::WeightRange {
                     curve: 2,
                     segment: 0,
                     point: 1,
@@ -424,18 +488,18 @@ mod tests {
                 DVec3::new(0.0, x, 0.0),
             ])
         };
-        assert!(check_gpu_fit(0, &at(GPU_COORDINATE_LIMIT).lower()).is_ok());
-        assert!(check_gpu_fit(0, &at(-GPU_COORDINATE_LIMIT).lower()).is_ok());
+        assert!(check_gpu_fit(0, &at(pack_error::GPU_COORDINATE_LIMIT).lower()).is_ok());
+        assert!(check_gpu_fit(0, &at(-pack_error::GPU_COORDINATE_LIMIT).lower()).is_ok());
         for x in [1e308, -2e38, f64::from(f32::MAX)] {
             let err = check_gpu_fit(7, &at(x).lower()).unwrap_err();
             assert_eq!(
                 err,
-                PackError::CoordinateTooLarge {
+                pack_error::PackError::CoordinateTooLarge {
                     curve: 7,
                     segment: 0,
                     point: 2,
                     value: x,
-                    limit: GPU_COORDINATE_LIMIT
+                    limit: pack_error::GPU_COORDINATE_LIMIT
                 }
             );
             assert!(
@@ -445,7 +509,7 @@ mod tests {
         }
         // The limit keeps every de Casteljau step finite in f32: two coordinates at the
         // limit, of opposite signs and the same sign, at every parameter tried.
-        let lim = GPU_COORDINATE_LIMIT as f32;
+        let lim = pack_error::GPU_COORDINATE_LIMIT as f32;
         for (a, b) in [(lim, lim), (lim, -lim), (-lim, -lim)] {
             for k in 0..=64 {
                 let u = k as f32 / 64.0;
@@ -485,7 +549,7 @@ mod tests {
             annotations: Vec::new(),
         };
         // Small chunks so that segments spill and are placed twice.
-        let limits = ChunkLimits {
+        let limits = chunks::ChunkLimits {
             max_samples: 100,
             max_points: 1000,
             max_records: 1000,
@@ -554,13 +618,13 @@ mod tests {
 
     #[test]
     fn batches_split_long_polylines_and_keep_them_joined() {
-        let limits = ChunkLimits {
+        let limits = chunks::ChunkLimits {
             max_samples: 4,
             max_points: 4,
             max_records: 4,
             max_styles: 4,
         };
-        let mut b = BatchBuilder::new(limits);
+        let mut b = chunks::BatchBuilder::new(limits);
         let pts: Vec<DVec3> = (0..6).map(|i| DVec3::new(f64::from(i), 0.0, 0.0)).collect();
         b.push(&pts, style());
         let batches = b.finish();

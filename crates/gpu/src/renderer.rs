@@ -14,13 +14,14 @@ use super::layout::{
     COMB_ALL, COMB_NONE, COMB_RASTER_ARGS_OFFSET, FrameStats, GpuCamera, GpuControlPoint,
     GpuLineStyle, GpuVertex, LAYER_GROUPS, LAYER_RUN, LAYER_WORKGROUP,
 };
-use super::pack::{LineBatch, PreparedScene};
+use super::pack::PreparedScene;
 use super::pipelines::Pipelines;
 use super::shaders;
+use crate::chunks::LineBatch;
 use splinescope_encoding::camera::Camera;
 use splinescope_encoding::draw::{COMB_ENVELOPE_ALPHA, COMB_HAIR_ALPHA, COMB_WIDTH_PX};
 
-pub use super::layout::LINE_CORNERS;
+use super::layout;
 
 /// Line and point pipelines for one colour target format, the camera uniform, and a
 /// handle to the adaptive tessellation passes it runs before drawing.
@@ -993,7 +994,7 @@ impl Renderer {
         scene: &mut GpuScene,
         points: &[(Vec<glam::DVec3>, splinescope_encoding::draw::Stroke)],
     ) {
-        let limits = super::pack::ChunkLimits::for_binding_size(ctx.max_binding_bytes());
+        let limits = crate::chunks::ChunkLimits::for_binding_size(ctx.max_binding_bytes());
         scene.markers = super::overlays::prepare_points(points, limits)
             .iter()
             .map(|b| self.overlay_batch(&ctx.device, b))
@@ -1112,5 +1113,9 @@ fn draw_lines(pass: &mut wgpu::RenderPass<'_>, batch: &DrawBatch) {
         return;
     }
     pass.set_bind_group(1, &batch.bind_group, &[]);
-    pass.draw(0..LINE_CORNERS, 0..batch.vertex_count - 1);
+    pass.draw(0..layout::LINE_CORNERS, 0..batch.vertex_count - 1);
 }
+
+/// Deprecated: `splinescope_gpu::layout::LINE_CORNERS`.
+#[deprecated(note = "use splinescope_gpu::layout::LINE_CORNERS")]
+pub const LINE_CORNERS: u32 = layout::LINE_CORNERS;

@@ -11,9 +11,9 @@ use glam::{DVec3, Vec3};
 
 use super::GpuError;
 use super::layout::{GpuVertex, MAX_GPU_DEGREE, TESSELLATE_KERNELS, kernel_class};
-use super::pack::{ChunkBuilder, ChunkLimits};
 use super::tessellator::Tessellator;
 use super::twin;
+use crate::chunks::{ChunkBuilder, ChunkLimits};
 use splinescope_encoding::Color;
 
 /// Samples per test curve: both ends and three interior parameters.

@@ -3,8 +3,8 @@
 
 use super::GpuError;
 use super::layout::{GpuTessParams, GpuVertex, TESSELLATE_KERNELS};
-use super::pack::TessChunk;
 use super::shaders;
+use crate::chunks::TessChunk;
 
 /// The tessellation compute pipelines, one per kernel of [`TESSELLATE_KERNELS`].
 #[derive(Debug, Clone)]

@@ -24,8 +24,9 @@ use dxf::entities::{Entity, EntityType};
 use dxf::{Color as DxfColor, Drawing, Point};
 use glam::{DAffine3, DMat3, DVec2, DVec3};
 use splinescope_core::geom::{BSpline, Curve, Nurbs, NurbsForm, Path, PathSegment};
+use splinescope_encoding::Color;
 use splinescope_io::limits;
-use splinescope_scene::format::{Color, Scene, SceneCurve, Style};
+use splinescope_scene::format::{Scene, SceneCurve, Style};
 
 use crate::svg::geometry::{Seg, svg_arc, unit_arc};
 use crate::{ImportError, Imported};

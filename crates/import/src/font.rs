@@ -25,8 +25,9 @@ use skrifa::raw::ps::cs::CommandSink;
 use skrifa::raw::types::{Fixed, Tag};
 use skrifa::{FontRef, GlyphId, MetadataProvider, outline::DrawSettings, outline::OutlinePen};
 use splinescope_core::geom::{Curve, Path, PathSegment, SegmentPoints};
+use splinescope_encoding::Color;
 use splinescope_io::limits;
-use splinescope_scene::format::{Color, SceneCurve, Style};
+use splinescope_scene::format::{SceneCurve, Style};
 
 use crate::{ImportError, Imported};
 

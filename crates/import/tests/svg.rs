@@ -276,7 +276,7 @@ fn length(c: &Curve) -> f64 {
 
 #[test]
 fn caps_joins_and_miter_limits_are_the_strokes_with_svgs_defaults() {
-    use splinescope_scene::format::{Cap, Join};
+    use splinescope_core::ops::{Cap, Join};
     let i = read(
         r#"<g fill="none" stroke="black">
         <line x1="0" y1="0" x2="10" y2="0"/>

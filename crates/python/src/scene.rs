@@ -104,7 +104,7 @@ impl PyScene {
             scene: Scene {
                 name,
                 unit: None,
-                background: splinescope_scene::format::Color::WHITE,
+                background: splinescope_encoding::Color::WHITE,
                 samples_per_segment: None,
                 view: splinescope_scene::format::ViewSpec::Auto,
                 curves: curves.iter().map(|c| c.curve.clone()).collect(),

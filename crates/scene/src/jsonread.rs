@@ -12,7 +12,8 @@ use glam::DVec3;
 use serde::de::{DeserializeSeed, Error as _, MapAccess, SeqAccess, Visitor};
 use serde_json::{Map, Number, Value};
 
-use crate::format::{Color, SceneError, SceneErrorKind};
+use crate::format::{SceneError, SceneErrorKind};
+use splinescope_encoding::Color;
 
 /// The number literals that stand for `NaN`, `Infinity` and `-Infinity` once rewritten
 /// (numbers so large that they are not finite as `f64` either, so a value that happens to

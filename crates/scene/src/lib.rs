@@ -15,11 +15,20 @@ pub fn parse_json(text: &str) -> Result<serde_json::Value, format::SceneError> {
 pub mod request;
 pub mod text;
 
-// The I/O policy's modules, re-exported under the names this layer's users know
-// (`splinescope_io::limits`).
-pub use splinescope_io::{files, limits};
+/// Deprecated: the input limits are `splinescope_io::limits`.
+#[deprecated(note = "use splinescope_io::limits")]
+pub mod limits {
+    pub use splinescope_io::limits::*;
+}
 
-// The camera is the encoding's (what the GPU layer draws through).
-pub use splinescope_encoding::camera;
+/// Deprecated: the file helpers are `splinescope_io::files`.
+#[deprecated(note = "use splinescope_io::files")]
+pub mod files {
+    pub use splinescope_io::files::*;
+}
 
-// The core's modules under the names the code of this layer uses (`splinescope_core::geom`).
+/// Deprecated: the camera is the encoding's, `splinescope_encoding::camera`.
+#[deprecated(note = "use splinescope_encoding::camera")]
+pub mod camera {
+    pub use splinescope_encoding::camera::*;
+}

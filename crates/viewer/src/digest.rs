@@ -109,7 +109,7 @@ pub(crate) struct SceneFacts {
     /// Every point has z = 0 (no z fields, 2D coordinates).
     pub planar: bool,
     /// The 3D axis triad to label (empty in planar scenes).
-    pub axes: Vec<splinescope_scene::format::draw::Axis>,
+    pub axes: Vec<splinescope_encoding::draw::Axis>,
     /// What the scene is made of, when it has more curves than the panel lists
     /// ([`family_counts`]); empty otherwise.
     pub families: String,

@@ -2,24 +2,23 @@
 //! the panel's switches (curves rewritten in place when their structure is unchanged),
 //! tessellated and drawn every frame.
 
-use super::AppError;
-use super::digest;
 use super::edit::Changes;
 use super::interaction::Toggles;
 use super::readback::Readback;
+use super::{AppError, digest};
 use crate::shape::{MarkerWorker, ShapeView};
-use splinescope_core::geom::BezierSegment;
-use splinescope_core::geom::Lower;
+use splinescope_core::geom::{BezierSegment, Lower};
+use splinescope_encoding::draw::{Switches, axis_polylines};
 use splinescope_gpu::adaptive::FrameSettings;
+use splinescope_gpu::chunks::ChunkLimits;
 use splinescope_gpu::layout::{FrameStats, WORK_HEADER};
+use splinescope_gpu::overlays::{OverlayEdit, prepare_overlays_mapped};
 use splinescope_gpu::pack::curve_tags;
-use splinescope_gpu::pack::{
-    ChunkLimits, OverlayEdit, PreparedScene, prepare, prepare_overlays_mapped, repack_points,
-};
+use splinescope_gpu::pack::{PreparedScene, prepare, repack_points};
 use splinescope_gpu::renderer::{CombRequest, GpuScene, Renderer};
 use splinescope_gpu::{GpuContext, GpuError, Pipelines};
 use splinescope_scene::format::Scene;
-use splinescope_scene::format::draw::{Switches, axis_polylines, curve_overlays, draw_list_with};
+use splinescope_scene::format::draw::{curve_overlays, draw_list_with};
 use splinescope_scene::format::encoding::encode_with;
 use splinescope_scene::format::shape::marker_points;
 use std::time::Instant;

@@ -11,10 +11,9 @@ use splinescope_core::analysis::{CurveAnalysis, DEFAULT_ACCURACY};
 use splinescope_core::geom::Aabb;
 use splinescope_core::ops::{Offset, OffsetOptions, offset};
 
+use splinescope_encoding::draw::MarkerKind;
 use splinescope_scene::format::Scene;
-use splinescope_scene::format::shape::{
-    CombCap, CombScale, Marker, MarkerKind, ShapeOptions, markers,
-};
+use splinescope_scene::format::shape::{CombCap, CombScale, Marker, ShapeOptions, markers};
 
 /// The panel's shape switches and the comb's scale.
 #[derive(Debug, Clone, Copy, PartialEq)]

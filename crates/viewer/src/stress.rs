@@ -9,8 +9,8 @@ use glam::DVec3;
 
 use splinescope_core::geom::Curve;
 use splinescope_core::solve::batch::{BatchResult, BatchSingleTarget};
+use splinescope_gpu::chunks::Placement;
 use splinescope_gpu::layout::GpuControlPoint;
-use splinescope_gpu::pack::Placement;
 use splinescope_gpu::renderer::GpuScene;
 use splinescope_scene::format::Scene;
 

@@ -411,7 +411,7 @@ fn export_view_writes_the_figure_of_the_screen() {
     );
     let mut opts = splinescope_figure::FigureOptions::new(380, 400);
     opts.camera = Some(camera);
-    opts.switches = splinescope_scene::format::draw::Switches {
+    opts.switches = splinescope_encoding::draw::Switches {
         polygons: m.toggles.show_polygons,
         points: false,
     };

@@ -11,9 +11,10 @@ use glam::DVec2;
 use super::say;
 
 use splinescope_gpu::capture::OFFSCREEN_FORMAT;
+use splinescope_gpu::chunks::ChunkLimits;
 use splinescope_gpu::layout::GpuVertex;
 use splinescope_gpu::layout::{MAX_GPU_DEGREE, TESSELLATE_WORKGROUP_SIZE};
-use splinescope_gpu::pack::{ChunkLimits, prepare};
+use splinescope_gpu::pack::prepare;
 use splinescope_gpu::renderer::{Renderer, camera_uniform};
 use splinescope_gpu::tessellator::read_buffer;
 use splinescope_gpu::twin;

@@ -175,7 +175,7 @@ pub fn run(a: &FitArgs) -> Result<()> {
             style,
         }],
         unit: None,
-        background: splinescope_scene::format::Color::WHITE,
+        background: splinescope_encoding::Color::WHITE,
         samples_per_segment: None,
         view: splinescope_scene::format::ViewSpec::Auto,
         annotations: Vec::new(),

@@ -17,7 +17,7 @@ pub mod piece;
 pub mod quadrature;
 pub mod report;
 
-pub use crate::poly::roots::{Root, Roots, bernstein_roots, bernstein_roots_with_noise};
+use crate::poly::roots as poly_roots;
 pub use curve::{
     AnalysisError, CurvatureExtremum, CurveAnalysis, DEFAULT_ACCURACY, Extremum, ExtremumKind,
     HitKind, Length, LineHit, LineIntersections, Nearest, bezier_length,
@@ -35,4 +35,26 @@ pub mod poly {
 #[deprecated(note = "moved to splinescope_core::poly::roots")]
 pub mod roots {
     pub use crate::poly::roots::*;
+}
+
+/// Deprecated: `splinescope_core::poly::roots::Root`.
+#[deprecated(note = "use splinescope_core::poly::roots::Root")]
+pub type Root = poly_roots::Root;
+
+/// Deprecated: `splinescope_core::poly::roots::Roots`.
+#[deprecated(note = "use splinescope_core::poly::roots::Roots")]
+pub type Roots = poly_roots::Roots;
+
+/// Deprecated: `splinescope_core::poly::roots::bernstein_roots`.
+#[deprecated(note = "use splinescope_core::poly::roots::bernstein_roots")]
+#[must_use]
+pub fn bernstein_roots(c: &[f64]) -> poly_roots::Roots {
+    poly_roots::bernstein_roots(c)
+}
+
+/// Deprecated: `splinescope_core::poly::roots::bernstein_roots_with_noise`.
+#[deprecated(note = "use splinescope_core::poly::roots::bernstein_roots_with_noise")]
+#[must_use]
+pub fn bernstein_roots_with_noise(c: &[f64], noise: f64) -> poly_roots::Roots {
+    poly_roots::bernstein_roots_with_noise(c, noise)
 }

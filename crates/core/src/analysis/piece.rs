@@ -322,7 +322,7 @@ impl Piece {
         let mut top = f64::NEG_INFINITY;
         let mut heavy = 0;
         for (i, e) in exps.iter_mut().enumerate() {
-            *e = ln_w(i) + poly::binomial(n, i).ln() + i as f64 * sigma;
+            *e = ln_w(i) + crate::geom::bernstein::binomial(n, i).ln() + i as f64 * sigma;
             if *e > top {
                 top = *e;
                 heavy = i;
@@ -370,7 +370,7 @@ impl Piece {
         let mut top = f64::NEG_INFINITY;
         for (i, e) in out.iter_mut().enumerate() {
             let ln_w = self.w().map_or(0.0, |w| w[i].ln());
-            *e = ln_w + poly::binomial(n, i).ln() + i as f64 * sigma;
+            *e = ln_w + crate::geom::bernstein::binomial(n, i).ln() + i as f64 * sigma;
             top = top.max(*e);
         }
         let mut total = 0.0;
@@ -571,7 +571,7 @@ impl Piece {
         let ln: Vec<f64> = w
             .iter()
             .enumerate()
-            .map(|(i, &x)| x.ln() + poly::binomial(n, i).ln())
+            .map(|(i, &x)| x.ln() + crate::geom::bernstein::binomial(n, i).ln())
             .collect();
         let mut out = Vec::new();
         for i in 0..=n {

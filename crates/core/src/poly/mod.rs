@@ -8,7 +8,7 @@
 
 pub mod roots;
 
-pub use crate::geom::bernstein::binomial;
+use crate::geom::bernstein;
 
 /// `ln k!` for `k = 0..=n`.
 fn ln_factorials(n: usize) -> Vec<f64> {
@@ -35,7 +35,11 @@ struct ProductWeights {
 impl ProductWeights {
     fn new(m: usize, n: usize) -> ProductWeights {
         if m + n <= 1000 {
-            let row = |d: usize| (0..=d).map(|k| binomial(d, k)).collect::<Vec<_>>();
+            let row = |d: usize| {
+                (0..=d)
+                    .map(|k| bernstein::binomial(d, k))
+                    .collect::<Vec<_>>()
+            };
             ProductWeights {
                 m,
                 n,
@@ -485,6 +489,13 @@ pub fn restrict(c: &[f64], a: f64, b: f64) -> Vec<f64> {
     out
 }
 
+/// Deprecated: `splinescope_core::geom::bernstein::binomial`.
+#[deprecated(note = "use splinescope_core::geom::bernstein::binomial")]
+#[must_use]
+pub fn binomial(n: usize, k: usize) -> f64 {
+    bernstein::binomial(n, k)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -493,7 +504,9 @@ mod tests {
         let n = c.len() - 1;
         c.iter()
             .enumerate()
-            .map(|(i, ci)| binomial(n, i) * t.powi(i as i32) * (1.0 - t).powi((n - i) as i32) * ci)
+            .map(|(i, ci)| {
+                bernstein::binomial(n, i) * t.powi(i as i32) * (1.0 - t).powi((n - i) as i32) * ci
+            })
             .sum()
     }
 

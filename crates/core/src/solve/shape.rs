@@ -12,7 +12,7 @@ use super::SolveError;
 use super::linalg::min_norm_solve;
 use super::project::nearest;
 use crate::geom::bernstein::bernstein_all;
-pub use crate::geom::cubic_region::{CubicRegion, PolygonType};
+use crate::geom::cubic_region;
 use crate::geom::{Bezier, Lower, ParamCurve};
 
 /// How [`single_target`] chooses its start point and moved control points.
@@ -583,3 +583,11 @@ pub(crate) fn point_moves(
         rank: sol.rank,
     }
 }
+
+/// Deprecated: `splinescope_core::geom::cubic_region::CubicRegion`.
+#[deprecated(note = "use splinescope_core::geom::cubic_region::CubicRegion")]
+pub type CubicRegion = cubic_region::CubicRegion;
+
+/// Deprecated: `splinescope_core::geom::cubic_region::PolygonType`.
+#[deprecated(note = "use splinescope_core::geom::cubic_region::PolygonType")]
+pub type PolygonType = cubic_region::PolygonType;

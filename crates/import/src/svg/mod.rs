@@ -17,10 +17,10 @@ use std::collections::{BTreeMap, HashMap};
 use glam::{DAffine2, DVec2};
 use roxmltree::{Document, Node};
 use splinescope_core::geom::{Curve, Path, PathSegment};
+use splinescope_core::ops::{Cap, Join};
+use splinescope_encoding::{Color, MAX_MITER_LIMIT, StrokeShape};
 use splinescope_io::limits;
-use splinescope_scene::format::{
-    Cap, Color, Join, MAX_MITER_LIMIT, SceneCurve, StrokeShape, Style,
-};
+use splinescope_scene::format::{SceneCurve, Style};
 
 use crate::{ImportError, Imported};
 use geometry::{Subpath, path_data};

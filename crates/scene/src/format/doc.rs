@@ -7,7 +7,7 @@
 use schemars::JsonSchema;
 use serde::Serialize;
 
-pub use super::point_doc::PointDoc;
+use super::point_doc;
 
 use super::codec::Written;
 use splinescope_core::geom::Curve;
@@ -97,7 +97,7 @@ pub enum CameraDoc {
     #[serde(rename = "3d")]
     ThreeD {
         /// The point looked at.
-        target: PointDoc,
+        target: point_doc::PointDoc,
         /// The distance from it (> 0).
         #[schemars(range(min = 0.0))]
         distance: f64,
@@ -259,8 +259,18 @@ pub struct AnnotationDoc {
 pub enum AnnotationShapeDoc {
     /// At least 2 points joined in order.
     #[serde(rename = "polyline")]
-    Polyline(#[schemars(length(min = 2))] Vec<PointDoc>),
+    Polyline(#[schemars(length(min = 2))] Vec<point_doc::PointDoc>),
     /// At least 1 point, drawn as discs.
     #[serde(rename = "points")]
-    Points(#[schemars(length(min = 1))] Vec<PointDoc>),
+    Points(#[schemars(length(min = 1))] Vec<point_doc::PointDoc>),
+}
+/// Deprecated: `splinescope_scene::format::point_doc::PointDoc`.
+#[deprecated(note = "use splinescope_scene::format::point_doc::PointDoc")]
+pub type PointDoc = point_doc::PointDoc;
+/// Deprecated: the constructor `splinescope_scene::format::point_doc::PointDoc(coordinates)`.
+#[deprecated(note = "use splinescope_scene::format::point_doc::PointDoc")]
+#[allow(non_snake_case)] // the tuple struct's constructor, which the type alias does not carry
+#[must_use]
+pub fn PointDoc(coordinates: Vec<f64>) -> point_doc::PointDoc {
+    point_doc::PointDoc(coordinates)
 }

@@ -5,28 +5,24 @@
 
 use glam::DVec3;
 
-use super::{AnnotationShape, Color, Scene, SceneCurve};
+use super::{AnnotationShape, Scene, SceneCurve};
+use splinescope_encoding::Color;
 
 // The list's types are the encoding's; what is built from a scene is here.
-pub use splinescope_encoding::draw::{
-    Axis, COMB_ENVELOPE_ALPHA, COMB_HAIR_ALPHA, COMB_WIDTH_PX, CurveOverlays,
-    DERIVED_POINT_DIAMETER_PX, DUAL_COLOR, DrawList, MarkerKind, POINT_DIAMETER_PX,
-    POLYGON_WIDTH_PX, Stroke, Switches, axis_polylines, comb_strokes, marker_style,
-    overlay_point_style, overlay_style,
-};
+use splinescope_encoding::draw as ed;
 
 /// Curve `sc`'s overlay polylines and point sets under `switches` (its entries of
 /// [`draw_list_with`]).
 #[must_use]
-pub fn curve_overlays(sc: &SceneCurve, switches: Switches) -> CurveOverlays {
+pub fn curve_overlays(sc: &SceneCurve, switches: ed::Switches) -> ed::CurveOverlays {
     let (mut lines, mut points) = (Vec::new(), Vec::new());
     if sc.style.show_polygon && switches.polygons {
         for overlay in splinescope_present::Present::overlays(&sc.curve) {
             lines.push((
                 overlay.points.clone(),
-                overlay_style(overlay.kind, sc.style.color),
+                ed::overlay_style(overlay.kind, sc.style.color),
             ));
-            if let Some(style) = overlay_point_style(overlay.kind, sc.style.color) {
+            if let Some(style) = ed::overlay_point_style(overlay.kind, sc.style.color) {
                 points.push((overlay.points.clone(), style));
             }
         }
@@ -35,7 +31,7 @@ pub fn curve_overlays(sc: &SceneCurve, switches: Switches) -> CurveOverlays {
         let dot = sc.style.color.mix(Color([0.0, 0.0, 0.0, 1.0]), 0.15);
         points.push((
             sc.curve.control_points().to_vec(),
-            Stroke::solid(dot, POINT_DIAMETER_PX),
+            ed::Stroke::solid(dot, ed::POINT_DIAMETER_PX),
         ));
     }
     (lines, points)
@@ -43,19 +39,19 @@ pub fn curve_overlays(sc: &SceneCurve, switches: Switches) -> CurveOverlays {
 
 /// The 3D axis triad's polylines (none for a planar scene).
 #[must_use]
-pub fn axis_lines(scene: &Scene) -> Vec<(Vec<DVec3>, Stroke)> {
+pub fn axis_lines(scene: &Scene) -> Vec<(Vec<DVec3>, ed::Stroke)> {
     if scene.is_planar() {
         return Vec::new();
     }
-    axis_polylines(&axis_triad(scene))
+    ed::axis_polylines(&axis_triad(scene))
 }
 
 /// The axis triad at the lowest corner of `scene`'s bounds.
 #[must_use]
-pub fn axis_triad(scene: &Scene) -> [Axis; 3] {
+pub fn axis_triad(scene: &Scene) -> [ed::Axis; 3] {
     let bounds = scene.bounds();
     let length = 0.2 * bounds.diagonal();
-    let axis = |name, dir: DVec3, color| Axis {
+    let axis = |name, dir: DVec3, color| ed::Axis {
         name,
         from: bounds.min,
         to: bounds.min + dir * length,
@@ -72,15 +68,15 @@ pub fn axis_triad(scene: &Scene) -> [Axis; 3] {
 /// families' explaining polylines, 3D axes, annotations), each with its resolved stroke,
 /// in one pass over the scene.
 #[must_use]
-pub fn draw_list(scene: &Scene) -> DrawList {
-    draw_list_with(scene, Switches::ALL)
+pub fn draw_list(scene: &Scene) -> ed::DrawList {
+    draw_list_with(scene, ed::Switches::ALL)
 }
 
 /// [`draw_list`] with the curves' overlays further limited by `switches` (the scene is
 /// not copied to apply them).
 #[must_use]
-pub fn draw_list_with(scene: &Scene, switches: Switches) -> DrawList {
-    let mut list = DrawList::default();
+pub fn draw_list_with(scene: &Scene, switches: ed::Switches) -> ed::DrawList {
+    let mut list = ed::DrawList::default();
     for sc in &scene.curves {
         let (lines, points) = curve_overlays(sc, switches);
         let (l0, p0) = (list.lines.len(), list.points.len());
@@ -94,13 +90,102 @@ pub fn draw_list_with(scene: &Scene, switches: Switches) -> DrawList {
     list.axes = a0..list.lines.len();
     let (lines, points) = (&mut list.lines, &mut list.points);
     for a in &scene.annotations {
-        let style = Stroke::solid(a.color, a.width);
+        let style = ed::Stroke::solid(a.color, a.width);
         match &a.shape {
             AnnotationShape::Polyline(p) => lines.push((p.clone(), style)),
             AnnotationShape::Points(p) => points.push((p.clone(), style)),
         }
     }
     list
+}
+
+// Deprecated forms of the encoding's draw-list items, which this module re-exported.
+
+/// Deprecated: `splinescope_encoding::draw::Axis`.
+#[deprecated(note = "use splinescope_encoding::draw::Axis")]
+pub type Axis = ed::Axis;
+
+/// Deprecated: `splinescope_encoding::draw::CurveOverlays`.
+#[deprecated(note = "use splinescope_encoding::draw::CurveOverlays")]
+pub type CurveOverlays = ed::CurveOverlays;
+
+/// Deprecated: `splinescope_encoding::draw::DrawList`.
+#[deprecated(note = "use splinescope_encoding::draw::DrawList")]
+pub type DrawList = ed::DrawList;
+
+/// Deprecated: `splinescope_encoding::draw::MarkerKind`.
+#[deprecated(note = "use splinescope_encoding::draw::MarkerKind")]
+pub type MarkerKind = ed::MarkerKind;
+
+/// Deprecated: `splinescope_encoding::draw::Stroke`.
+#[deprecated(note = "use splinescope_encoding::draw::Stroke")]
+pub type Stroke = ed::Stroke;
+
+/// Deprecated: `splinescope_encoding::draw::Switches`.
+#[deprecated(note = "use splinescope_encoding::draw::Switches")]
+pub type Switches = ed::Switches;
+
+/// Deprecated: `splinescope_encoding::draw::COMB_ENVELOPE_ALPHA`.
+#[deprecated(note = "use splinescope_encoding::draw::COMB_ENVELOPE_ALPHA")]
+pub const COMB_ENVELOPE_ALPHA: f32 = ed::COMB_ENVELOPE_ALPHA;
+
+/// Deprecated: `splinescope_encoding::draw::COMB_HAIR_ALPHA`.
+#[deprecated(note = "use splinescope_encoding::draw::COMB_HAIR_ALPHA")]
+pub const COMB_HAIR_ALPHA: f32 = ed::COMB_HAIR_ALPHA;
+
+/// Deprecated: `splinescope_encoding::draw::COMB_WIDTH_PX`.
+#[deprecated(note = "use splinescope_encoding::draw::COMB_WIDTH_PX")]
+pub const COMB_WIDTH_PX: f32 = ed::COMB_WIDTH_PX;
+
+/// Deprecated: `splinescope_encoding::draw::DERIVED_POINT_DIAMETER_PX`.
+#[deprecated(note = "use splinescope_encoding::draw::DERIVED_POINT_DIAMETER_PX")]
+pub const DERIVED_POINT_DIAMETER_PX: f32 = ed::DERIVED_POINT_DIAMETER_PX;
+
+/// Deprecated: `splinescope_encoding::draw::DUAL_COLOR`.
+#[deprecated(note = "use splinescope_encoding::draw::DUAL_COLOR")]
+pub const DUAL_COLOR: Color = ed::DUAL_COLOR;
+
+/// Deprecated: `splinescope_encoding::draw::POINT_DIAMETER_PX`.
+#[deprecated(note = "use splinescope_encoding::draw::POINT_DIAMETER_PX")]
+pub const POINT_DIAMETER_PX: f32 = ed::POINT_DIAMETER_PX;
+
+/// Deprecated: `splinescope_encoding::draw::POLYGON_WIDTH_PX`.
+#[deprecated(note = "use splinescope_encoding::draw::POLYGON_WIDTH_PX")]
+pub const POLYGON_WIDTH_PX: f32 = ed::POLYGON_WIDTH_PX;
+
+/// Deprecated: `splinescope_encoding::draw::axis_polylines`.
+#[deprecated(note = "use splinescope_encoding::draw::axis_polylines")]
+#[must_use]
+pub fn axis_polylines(axes: &[ed::Axis]) -> Vec<(Vec<DVec3>, ed::Stroke)> {
+    ed::axis_polylines(axes)
+}
+
+/// Deprecated: `splinescope_encoding::draw::overlay_style`.
+#[deprecated(note = "use splinescope_encoding::draw::overlay_style")]
+#[must_use]
+pub fn overlay_style(kind: ed::OverlayKind, curve: Color) -> ed::Stroke {
+    ed::overlay_style(kind, curve)
+}
+
+/// Deprecated: `splinescope_encoding::draw::overlay_point_style`.
+#[deprecated(note = "use splinescope_encoding::draw::overlay_point_style")]
+#[must_use]
+pub fn overlay_point_style(kind: ed::OverlayKind, curve: Color) -> Option<ed::Stroke> {
+    ed::overlay_point_style(kind, curve)
+}
+
+/// Deprecated: `splinescope_encoding::draw::marker_style`.
+#[deprecated(note = "use splinescope_encoding::draw::marker_style")]
+#[must_use]
+pub fn marker_style(kind: ed::MarkerKind, curve: Color) -> (ed::Stroke, ed::Stroke) {
+    ed::marker_style(kind, curve)
+}
+
+/// Deprecated: `splinescope_encoding::draw::comb_strokes`.
+#[deprecated(note = "use splinescope_encoding::draw::comb_strokes")]
+#[must_use]
+pub fn comb_strokes(curve: Color) -> (ed::Stroke, ed::Stroke) {
+    ed::comb_strokes(curve)
 }
 
 #[cfg(test)]
@@ -126,14 +211,14 @@ mod tests {
             list.lines[0].0,
             scene.curves[0].curve.control_points().to_vec()
         );
-        assert_eq!(list.lines[0].1.width_px, POLYGON_WIDTH_PX);
+        assert_eq!(list.lines[0].1.width_px, ed::POLYGON_WIDTH_PX);
         // Curve 1's control points, then the annotation with its own stroke.
         assert_eq!(list.points.len(), 2);
-        assert_eq!(list.points[0].1.width_px, POINT_DIAMETER_PX);
+        assert_eq!(list.points[0].1.width_px, ed::POINT_DIAMETER_PX);
         assert_eq!(list.points[1].0, vec![DVec3::new(5.0, 5.0, 0.0)]);
         assert_eq!(
             list.points[1].1,
-            Stroke::solid(Color([1.0, 0.0, 0.0, 1.0]), 9.0)
+            ed::Stroke::solid(Color([1.0, 0.0, 0.0, 1.0]), 9.0)
         );
     }
 
@@ -149,7 +234,7 @@ mod tests {
                 c.style.show_points &= points;
             }
             let want = draw_list(&styled);
-            let got = draw_list_with(&scene, Switches { polygons, points });
+            let got = draw_list_with(&scene, ed::Switches { polygons, points });
             assert_eq!(
                 got.lines, want.lines,
                 "polygons {polygons}, points {points}"
@@ -161,7 +246,7 @@ mod tests {
         }
         let none = draw_list_with(
             &scene,
-            Switches {
+            ed::Switches {
                 polygons: false,
                 points: false,
             },

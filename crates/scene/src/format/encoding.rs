@@ -7,20 +7,21 @@
 
 use glam::DVec3;
 
-use super::draw::{Switches, draw_list_with};
+use super::draw::draw_list_with;
 use super::{AnnotationShape, Scene};
 use splinescope_core::geom::Lower;
 
-pub use splinescope_encoding::{EncodedCurve, Encoding};
+use splinescope_encoding as enc;
+use splinescope_encoding::draw::Switches;
 
 /// Curve `index` of `scene`, lowered.
 ///
 /// # Panics
 /// When `index` is not a curve of `scene` (a bug in the caller).
 #[must_use]
-pub fn encode_curve(scene: &Scene, index: usize) -> EncodedCurve {
+pub fn encode_curve(scene: &Scene, index: usize) -> enc::EncodedCurve {
     let sc = &scene.curves[index];
-    EncodedCurve {
+    enc::EncodedCurve {
         segments: sc.curve.lower(),
         samples: scene.samples_for(index),
         color: sc.style.color,
@@ -34,14 +35,14 @@ pub fn encode_curve(scene: &Scene, index: usize) -> EncodedCurve {
 
 /// Everything `scene` draws, its overlays as the curves' styles ask.
 #[must_use]
-pub fn encode(scene: &Scene) -> Encoding {
+pub fn encode(scene: &Scene) -> enc::Encoding {
     encode_with(scene, Switches::ALL)
 }
 
 /// [`encode`] with the curves' overlays further limited by `switches`.
 #[must_use]
-pub fn encode_with(scene: &Scene, switches: Switches) -> Encoding {
-    Encoding {
+pub fn encode_with(scene: &Scene, switches: Switches) -> enc::Encoding {
+    enc::Encoding {
         curves: (0..scene.curves.len())
             .map(|i| encode_curve(scene, i))
             .collect(),
@@ -66,3 +67,9 @@ pub fn annotation_points(scene: &Scene) -> Vec<Vec<DVec3>> {
         })
         .collect()
 }
+/// Deprecated: `splinescope_encoding::EncodedCurve`.
+#[deprecated(note = "use splinescope_encoding::EncodedCurve")]
+pub type EncodedCurve = enc::EncodedCurve;
+/// Deprecated: `splinescope_encoding::Encoding`.
+#[deprecated(note = "use splinescope_encoding::Encoding")]
+pub type Encoding = enc::Encoding;

@@ -3,10 +3,12 @@
 
 use glam::DVec3;
 
-use super::{Color, DEFAULT_SAMPLES_PER_SEGMENT, Scene, SceneCurve, Style, ViewSpec};
+use splinescope_encoding::Color;
+
+use super::{DEFAULT_SAMPLES_PER_SEGMENT, Scene, SceneCurve, Style, ViewSpec};
 use splinescope_core::geom::Curve;
 
-pub use splinescope_core::rng::Rng;
+use splinescope_core::rng;
 
 /// Options of [`random_bezier_scene`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -80,7 +82,7 @@ impl StressFamily {
 
     /// A curve of `degree` on fixed points, for its structure.
     fn sample(self, degree: usize) -> Curve {
-        let mut rng = Rng::new(0);
+        let mut rng = rng::Rng::new(0);
         self.curve(degree, &mut || DVec3::new(rng.unit(), rng.unit(), 0.0))
     }
 
@@ -123,7 +125,7 @@ impl Default for StressOptions {
 /// drawn thin without overlays (the viewer's stress mode and the throughput benchmark).
 #[must_use]
 pub fn random_bezier_scene(opts: StressOptions) -> Scene {
-    let mut rng = Rng::new(opts.seed);
+    let mut rng = rng::Rng::new(opts.seed);
     let side = (opts.curves as f64).sqrt().ceil().max(1.0) as usize;
     let curves = (0..opts.curves)
         .map(|i| {
@@ -169,6 +171,10 @@ pub fn random_bezier_scene(opts: StressOptions) -> Scene {
         annotations: Vec::new(),
     }
 }
+
+/// Deprecated: `splinescope_core::rng::Rng`.
+#[deprecated(note = "use splinescope_core::rng::Rng")]
+pub type Rng = rng::Rng;
 
 #[cfg(test)]
 mod tests {

@@ -9,13 +9,15 @@ use crate::jsonread::{Node, Obj, describe, parse_document};
 use super::codec::{self, geom_error};
 use super::doc::{
     AnnotationDoc, AnnotationShapeDoc, Auto, CameraDoc, CapDoc, ColorDoc, CurveDoc, JoinDoc,
-    PointDoc, SamplesDoc, SceneDoc, StyleDoc, ViewDoc, WidthUnitsDoc,
+    SamplesDoc, SceneDoc, StyleDoc, ViewDoc, WidthUnitsDoc,
 };
+use super::point_doc::PointDoc;
 use super::{
-    Annotation, AnnotationShape, Cap, Color, FORMAT_VERSION, Join, MAX_MITER_LIMIT,
-    MAX_SAMPLES_PER_SEGMENT, Scene, SceneCurve, SceneError, SceneErrorKind, StrokeShape, Style,
-    ViewSpec,
+    Annotation, AnnotationShape, FORMAT_VERSION, Scene, SceneCurve, SceneError, SceneErrorKind,
+    Style, ViewSpec,
 };
+use splinescope_core::ops::{Cap, Join};
+use splinescope_encoding::{Color, MAX_MITER_LIMIT, MAX_SAMPLES_PER_SEGMENT, StrokeShape};
 
 /// Parses and validates a scene from JSON text.
 ///

@@ -29,11 +29,43 @@ pub use json::{
 };
 pub use preserve::to_json_string_keeping;
 
-/// The colour, the sample counts and their limit are the encoding's.
-pub use splinescope_encoding::{
-    AUTO_SAMPLES_TOLERANCE, Cap, Color, Join, MAX_MITER_LIMIT, MAX_SAMPLES_PER_SEGMENT,
-    StrokeShape, auto_samples,
-};
+// The colour, the stroke's shape and the sample counts are the encoding's.
+use splinescope_encoding as enc;
+
+/// Deprecated: `splinescope_encoding::Color`.
+#[deprecated(note = "use splinescope_encoding::Color")]
+pub type Color = enc::Color;
+/// Deprecated: the constructor `splinescope_encoding::Color(rgba)`.
+#[deprecated(note = "use splinescope_encoding::Color")]
+#[allow(non_snake_case)] // the tuple struct's constructor, which the type alias does not carry
+#[must_use]
+pub const fn Color(rgba: [f32; 4]) -> enc::Color {
+    enc::Color(rgba)
+}
+/// Deprecated: `splinescope_encoding::Cap` (the core's `splinescope_core::ops::Cap`).
+#[deprecated(note = "use splinescope_core::ops::Cap")]
+pub type Cap = splinescope_core::ops::Cap;
+/// Deprecated: `splinescope_core::ops::Join`.
+#[deprecated(note = "use splinescope_core::ops::Join")]
+pub type Join = splinescope_core::ops::Join;
+/// Deprecated: `splinescope_encoding::StrokeShape`.
+#[deprecated(note = "use splinescope_encoding::StrokeShape")]
+pub type StrokeShape = enc::StrokeShape;
+/// Deprecated: `splinescope_encoding::AUTO_SAMPLES_TOLERANCE`.
+#[deprecated(note = "use splinescope_encoding::AUTO_SAMPLES_TOLERANCE")]
+pub const AUTO_SAMPLES_TOLERANCE: f64 = enc::AUTO_SAMPLES_TOLERANCE;
+/// Deprecated: `splinescope_encoding::MAX_MITER_LIMIT`.
+#[deprecated(note = "use splinescope_encoding::MAX_MITER_LIMIT")]
+pub const MAX_MITER_LIMIT: f64 = enc::MAX_MITER_LIMIT;
+/// Deprecated: `splinescope_encoding::auto_samples`.
+#[deprecated(note = "use splinescope_encoding::auto_samples")]
+#[must_use]
+pub fn auto_samples(points: &[DVec3]) -> u32 {
+    enc::auto_samples(points)
+}
+/// Deprecated: `splinescope_encoding::MAX_SAMPLES_PER_SEGMENT`.
+#[deprecated(note = "use splinescope_encoding::MAX_SAMPLES_PER_SEGMENT")]
+pub const MAX_SAMPLES_PER_SEGMENT: u32 = enc::MAX_SAMPLES_PER_SEGMENT;
 
 /// The scene format version this build reads and writes.
 pub const FORMAT_VERSION: u32 = 1;
@@ -43,22 +75,22 @@ pub const DEFAULT_SAMPLES_PER_SEGMENT: u32 = 64;
 /// The palette curves take their colour from, by index, when the scene gives none
 /// (tab10's first eight), on the 8-bit grid scene files write: a scene saved and read
 /// back (or pickled) keeps its colours exactly.
-pub const PALETTE: [Color; 8] = [
-    Color::from_rgba8([31, 119, 180, 255]),
-    Color::from_rgba8([214, 39, 40, 255]),
-    Color::from_rgba8([44, 160, 44, 255]),
-    Color::from_rgba8([255, 127, 14, 255]),
-    Color::from_rgba8([148, 103, 189, 255]),
-    Color::from_rgba8([140, 86, 75, 255]),
-    Color::from_rgba8([227, 119, 194, 255]),
-    Color::from_rgba8([23, 190, 207, 255]),
+pub const PALETTE: [enc::Color; 8] = [
+    enc::Color::from_rgba8([31, 119, 180, 255]),
+    enc::Color::from_rgba8([214, 39, 40, 255]),
+    enc::Color::from_rgba8([44, 160, 44, 255]),
+    enc::Color::from_rgba8([255, 127, 14, 255]),
+    enc::Color::from_rgba8([148, 103, 189, 255]),
+    enc::Color::from_rgba8([140, 86, 75, 255]),
+    enc::Color::from_rgba8([227, 119, 194, 255]),
+    enc::Color::from_rgba8([23, 190, 207, 255]),
 ];
 
 /// How one curve is drawn.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Style {
     /// The curve's colour.
-    pub color: Color,
+    pub color: enc::Color,
     /// The curve's width (> 0): pixels, or scene units when `width_in_scene`.
     pub width: f32,
     /// Whether `width` is in scene units — the line then zooms with the view, as an SVG
@@ -72,7 +104,7 @@ pub struct Style {
     /// Samples per Bézier segment; `None` takes the scene's.
     pub samples: Option<u32>,
     /// The stroke's ends and corners (round, unless a scene or an SVG says otherwise).
-    pub stroke: StrokeShape,
+    pub stroke: enc::StrokeShape,
 }
 
 impl Style {
@@ -87,7 +119,7 @@ impl Style {
             show_polygon: true,
             show_points: true,
             samples: None,
-            stroke: StrokeShape::default(),
+            stroke: enc::StrokeShape::default(),
         }
     }
 }
@@ -152,7 +184,7 @@ pub struct Scene {
     /// (a STEP file's `millimetre`); `None`: unitless.
     pub unit: Option<String>,
     /// The background colour.
-    pub background: Color,
+    pub background: enc::Color,
     /// Samples per Bézier segment for curves that do not say; `None`: automatic (see
     /// [`auto_samples`]).
     pub samples_per_segment: Option<u32>,
@@ -180,7 +212,7 @@ pub struct Annotation {
     /// What to draw.
     pub shape: AnnotationShape,
     /// Its colour.
-    pub color: Color,
+    pub color: enc::Color,
     /// Line width or disc diameter in pixels (> 0).
     pub width: f32,
     /// An optional label.
@@ -275,7 +307,7 @@ impl Scene {
         Scene {
             name: None,
             unit: None,
-            background: Color::WHITE,
+            background: enc::Color::WHITE,
             samples_per_segment: None,
             view: ViewSpec::Auto,
             curves: curves
@@ -396,8 +428,8 @@ impl Scene {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::format::generate::Rng;
     use splinescope_core::geom::Bezier;
+    use splinescope_core::rng::Rng;
 
     /// The largest distance from dense points of the curve to the polyline of `samples`
     /// uniform samples.
@@ -437,12 +469,12 @@ mod tests {
                         })
                         .collect(),
                 );
-                let samples = auto_samples(b.points());
+                let samples = enc::auto_samples(b.points());
                 let size = b.control_box().diagonal();
                 let err = polyline_error(&b, samples);
-                if samples < MAX_SAMPLES_PER_SEGMENT {
+                if samples < enc::MAX_SAMPLES_PER_SEGMENT {
                     assert!(
-                        err <= AUTO_SAMPLES_TOLERANCE * size,
+                        err <= enc::AUTO_SAMPLES_TOLERANCE * size,
                         "n={n}: {samples} samples, error {err:e}"
                     );
                 }
@@ -456,16 +488,16 @@ mod tests {
                     .map(|i| DVec3::new(i as f64, ((i * i) % 7) as f64, 0.0))
                     .collect(),
             );
-            seen.insert(auto_samples(b.points()));
+            seen.insert(enc::auto_samples(b.points()));
         }
         for s in &seen {
             let on_ladder = s.is_power_of_two()
                 || (s % 3 == 0 && (s / 3).is_power_of_two())
-                || *s == MAX_SAMPLES_PER_SEGMENT;
+                || *s == enc::MAX_SAMPLES_PER_SEGMENT;
             assert!(on_ladder, "{s}");
         }
         let line = Bezier::new(vec![DVec3::ZERO, DVec3::X, DVec3::X * 2.0]);
-        assert_eq!(auto_samples(line.points()), 2);
-        assert_eq!(auto_samples(&[DVec3::ZERO, DVec3::ONE]), 2);
+        assert_eq!(enc::auto_samples(line.points()), 2);
+        assert_eq!(enc::auto_samples(&[DVec3::ZERO, DVec3::ONE]), 2);
     }
 }

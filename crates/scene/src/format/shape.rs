@@ -11,9 +11,9 @@ use glam::DVec3;
 use splinescope_core::analysis::comb::{auto_scale, reference_curvature, reference_length};
 use splinescope_core::analysis::{CurveAnalysis, ExtremumKind, JointClass, all_intersections};
 
-use super::Color;
 use super::Scene;
-pub use splinescope_encoding::draw::MarkerKind;
+use splinescope_encoding::Color;
+use splinescope_encoding::draw as ed;
 use splinescope_encoding::draw::{Stroke, marker_style};
 
 /// How long a comb's hairs are.
@@ -141,14 +141,18 @@ pub struct ShapeOptions {
 impl ShapeOptions {
     /// The marker kinds these options show, in the legend's order.
     #[must_use]
-    pub fn marker_kinds(&self) -> Vec<MarkerKind> {
-        MarkerKind::ALL
+    pub fn marker_kinds(&self) -> Vec<ed::MarkerKind> {
+        ed::MarkerKind::ALL
             .into_iter()
             .filter(|k| match k {
-                MarkerKind::Inflection | MarkerKind::Cusp => self.inflections,
-                MarkerKind::CurvatureMax | MarkerKind::CurvatureMin => self.curvature_extrema,
-                MarkerKind::Intersection | MarkerKind::SelfIntersection => self.intersections,
-                MarkerKind::Kink | MarkerKind::CurvatureJump => self.joints,
+                ed::MarkerKind::Inflection | ed::MarkerKind::Cusp => self.inflections,
+                ed::MarkerKind::CurvatureMax | ed::MarkerKind::CurvatureMin => {
+                    self.curvature_extrema
+                }
+                ed::MarkerKind::Intersection | ed::MarkerKind::SelfIntersection => {
+                    self.intersections
+                }
+                ed::MarkerKind::Kink | ed::MarkerKind::CurvatureJump => self.joints,
             })
             .collect()
     }
@@ -164,7 +168,7 @@ impl ShapeOptions {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Marker {
     /// What it marks.
-    pub kind: MarkerKind,
+    pub kind: ed::MarkerKind,
     /// The curve (the first one, for an intersection).
     pub curve: usize,
     /// Its parameter on that curve.
@@ -207,17 +211,17 @@ pub fn markers_of(analyses: &[CurveAnalysis], options: &ShapeOptions) -> Vec<Mar
     for (i, a) in analyses.iter().enumerate().filter(|(_, a)| a.is_planar()) {
         if options.inflections {
             for t in a.inflections().unwrap_or_default() {
-                out.push(at(MarkerKind::Inflection, i, t, a.point(t)));
+                out.push(at(ed::MarkerKind::Inflection, i, t, a.point(t)));
             }
             for t in a.cusps().unwrap_or_default() {
-                out.push(at(MarkerKind::Cusp, i, t, a.point(t)));
+                out.push(at(ed::MarkerKind::Cusp, i, t, a.point(t)));
             }
         }
         if options.curvature_extrema {
             for e in a.curvature_extrema().unwrap_or_default() {
                 let kind = match e.kind {
-                    ExtremumKind::Maximum => MarkerKind::CurvatureMax,
-                    ExtremumKind::Minimum => MarkerKind::CurvatureMin,
+                    ExtremumKind::Maximum => ed::MarkerKind::CurvatureMax,
+                    ExtremumKind::Minimum => ed::MarkerKind::CurvatureMin,
                 };
                 out.push(Marker {
                     curvature: Some(e.curvature),
@@ -229,7 +233,7 @@ pub fn markers_of(analyses: &[CurveAnalysis], options: &ShapeOptions) -> Vec<Mar
             for h in a.self_intersections().map(|f| f.hits).unwrap_or_default() {
                 out.push(Marker {
                     other: Some((i, h.t)),
-                    ..at(MarkerKind::SelfIntersection, i, h.s, h.point)
+                    ..at(ed::MarkerKind::SelfIntersection, i, h.s, h.point)
                 });
             }
         }
@@ -237,8 +241,8 @@ pub fn markers_of(analyses: &[CurveAnalysis], options: &ShapeOptions) -> Vec<Mar
             for j in a.joints().unwrap_or_default() {
                 let kind = match j.class {
                     JointClass::G2 => continue,
-                    JointClass::G1 => MarkerKind::CurvatureJump,
-                    JointClass::G0 | JointClass::Gap => MarkerKind::Kink,
+                    JointClass::G1 => ed::MarkerKind::CurvatureJump,
+                    JointClass::G0 | JointClass::Gap => ed::MarkerKind::Kink,
                 };
                 out.push(Marker {
                     joint: Some((j.angle, j.curvature_jump)),
@@ -264,7 +268,7 @@ pub fn markers_of(analyses: &[CurveAnalysis], options: &ShapeOptions) -> Vec<Mar
             for h in pair.found.hits {
                 out.push(Marker {
                     other: Some((j, h.t)),
-                    ..at(MarkerKind::Intersection, i, h.s, h.point)
+                    ..at(ed::MarkerKind::Intersection, i, h.s, h.point)
                 });
             }
         }
@@ -274,7 +278,7 @@ pub fn markers_of(analyses: &[CurveAnalysis], options: &ShapeOptions) -> Vec<Mar
             let t = g.domain.0;
             out.push(Marker {
                 other: Some((j, t)),
-                ..at(MarkerKind::Intersection, i, t, analyses[i].point(t))
+                ..at(ed::MarkerKind::Intersection, i, t, analyses[i].point(t))
             });
         }
     }
@@ -295,7 +299,7 @@ pub fn encode_shaped(
     view_height: f64,
     options: &ShapeOptions,
 ) -> splinescope_encoding::Encoding {
-    encode_shaped_with(scene, view_height, options, super::draw::Switches::ALL)
+    encode_shaped_with(scene, view_height, options, ed::Switches::ALL)
 }
 
 /// [`encode_shaped`] with the curves' overlays further limited by `switches` (the
@@ -305,7 +309,7 @@ pub fn encode_shaped_with(
     scene: &Scene,
     view_height: f64,
     options: &ShapeOptions,
-    switches: super::draw::Switches,
+    switches: ed::Switches,
 ) -> splinescope_encoding::Encoding {
     let mut encoding = super::encoding::encode_with(scene, switches);
     encoding.comb = options.comb.map(|c| c.resolve(scene, view_height));
@@ -347,6 +351,10 @@ pub fn marker_points(scene: &Scene, markers: &[Marker]) -> Vec<(Vec<DVec3>, Stro
     rings
 }
 
+/// Deprecated: `splinescope_encoding::draw::MarkerKind`.
+#[deprecated(note = "use splinescope_encoding::draw::MarkerKind")]
+pub type MarkerKind = ed::MarkerKind;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -381,13 +389,13 @@ mod tests {
             joints: true,
         };
         let found = markers(&scene, &all);
-        let of = |k: MarkerKind| found.iter().filter(|m| m.kind == k).collect::<Vec<_>>();
-        let inflections = of(MarkerKind::Inflection);
+        let of = |k: ed::MarkerKind| found.iter().filter(|m| m.kind == k).collect::<Vec<_>>();
+        let inflections = of(ed::MarkerKind::Inflection);
         assert_eq!(inflections.len(), 1, "{found:?}");
         assert!((inflections[0].t - 0.5).abs() < 1e-12);
         assert!((inflections[0].point - p(1.0, 0.0)).length() < 1e-12);
         // y(t) = 6t(1−t)(1−2t) vanishes at t = 0, 1/2, 1: three crossings with the axis.
-        let crossings = of(MarkerKind::Intersection);
+        let crossings = of(ed::MarkerKind::Intersection);
         assert_eq!(crossings.len(), 3, "{crossings:?}");
         for (m, want) in crossings.iter().zip([0.0, 0.5, 1.0]) {
             assert_eq!((m.curve, m.other.map(|o| o.0)), (0, Some(1)));
@@ -398,7 +406,10 @@ mod tests {
             let on = scene.curves[m.curve].curve.clone();
             let q = splinescope_core::geom::ParamCurve::eval(&on, m.t);
             assert!((q - m.point).length() < 1e-9, "{m:?}");
-            if matches!(m.kind, MarkerKind::CurvatureMax | MarkerKind::CurvatureMin) {
+            if matches!(
+                m.kind,
+                ed::MarkerKind::CurvatureMax | ed::MarkerKind::CurvatureMin
+            ) {
                 assert!(m.curvature.is_some());
             }
         }

@@ -10,16 +10,18 @@ use super::types::{
     ProjectReport, ProjectRequest, SingleTargetReport, SingleTargetRequest, TangentKeptReport,
     TangentKeptRequest,
 };
-use crate::format::{Annotation, AnnotationShape, Color, Scene, SceneError, SceneErrorKind};
+use crate::format::{Annotation, AnnotationShape, Scene, SceneError, SceneErrorKind};
 use crate::jsonread::{Node, Obj};
+use splinescope_core::geom::cubic_region::PolygonType;
 use splinescope_core::geom::family::xyz;
 use splinescope_core::geom::{Bezier, Curve, Nubmp, Nurbs, ParamCurve, RationalBezier};
 use splinescope_core::solve::rational::{self, RationalCurve};
 use splinescope_core::solve::region::cubic_region;
 use splinescope_core::solve::shape::{
-    PolygonType, SingleTargetOptions, multi_target, single_target, tangent_kept,
+    SingleTargetOptions, multi_target, single_target, tangent_kept,
 };
 use splinescope_core::solve::{SolveError, nearest, nubmp};
+use splinescope_encoding::Color;
 
 /// A request object being read: its node (for error paths) and its fields.
 pub(super) struct Fields<'n, 'a> {

@@ -10,11 +10,12 @@ pub mod types;
 use glam::DVec3;
 use serde_json::Value;
 
-use crate::format::{Annotation, AnnotationShape, Color, Scene};
+use crate::format::{Annotation, AnnotationShape, Scene};
 use crate::jsonread::{Node, parse_document};
 pub use error::RequestError;
 use error::field_path;
 use methods::Fields;
+use splinescope_encoding::Color;
 use types::{MethodReport, Report, Request};
 
 /// One solve method: its name in requests, the fields it reads (beyond `curve` and

@@ -7,7 +7,7 @@ use glam::DVec3;
 use schemars::JsonSchema;
 use serde::Serialize;
 
-use crate::format::doc::PointDoc;
+use crate::format::point_doc::PointDoc;
 use splinescope_core::geom::family::Xyz;
 
 /// A request document: one request, or an array applied in order.

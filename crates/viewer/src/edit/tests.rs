@@ -4,8 +4,9 @@ use super::*;
 use glam::DVec2;
 
 use splinescope_core::geom::{Bezier, Nubmp, ParamCurve};
+use splinescope_encoding::Color;
 use splinescope_encoding::camera::{Camera, Camera2d};
-use splinescope_scene::format::{Color, Style, ViewSpec};
+use splinescope_scene::format::{Style, ViewSpec};
 
 fn scene() -> Scene {
     let cubic = Bezier::new(vec![

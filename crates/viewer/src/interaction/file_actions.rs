@@ -255,7 +255,7 @@ impl Interaction {
         let (width, height, camera) = self.export_frame();
         let mut opts = splinescope_figure::FigureOptions::new(width, height);
         opts.camera = Some(camera);
-        opts.switches = splinescope_scene::format::draw::Switches {
+        opts.switches = splinescope_encoding::draw::Switches {
             polygons: self.toggles.show_polygons,
             points: self.toggles.show_points,
         };

@@ -10,13 +10,13 @@ use super::{Actions, PanelInfo};
 use crate::edit::Editor;
 use crate::interaction::Interaction;
 use crate::shape::{Readouts, ShapeView};
-use splinescope_scene::format::draw::marker_style;
-use splinescope_scene::format::shape::{CombCap, MarkerKind};
+use splinescope_encoding::draw::{MarkerKind, marker_style};
+use splinescope_scene::format::shape::CombCap;
 
 /// The colour a legend's markers are shown in (each marker takes its curve's).
 const LEGEND_CURVE: egui::Color32 = egui::Color32::from_rgb(31, 119, 180);
 
-fn color32(c: splinescope_scene::format::Color) -> egui::Color32 {
+fn color32(c: splinescope_encoding::Color) -> egui::Color32 {
     let [r, g, b, a] = c.0.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8);
     egui::Color32::from_rgba_unmultiplied(r, g, b, a)
 }
@@ -24,7 +24,7 @@ fn color32(c: splinescope_scene::format::Color) -> egui::Color32 {
 /// A marker of `kind` as the renderer draws it (ring, then core), at `at`.
 fn paint_marker(painter: &egui::Painter, at: egui::Pos2, kind: MarkerKind, scale: f32) {
     let [r, g, b, _] = LEGEND_CURVE.to_array();
-    let curve = splinescope_scene::format::Color([
+    let curve = splinescope_encoding::Color([
         f32::from(r) / 255.0,
         f32::from(g) / 255.0,
         f32::from(b) / 255.0,

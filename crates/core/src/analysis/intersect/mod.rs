@@ -22,12 +22,11 @@ mod pair;
 mod refine;
 mod subdivide;
 
-use pair::{PairHit, PieceHits, Scale, SpanPair, piece_pair};
-use subdivide::{Sub, boxes_meet};
-
-use super::bernstein_roots;
 use super::curve::{AnalysisError, CurveAnalysis, HitKind};
 use super::piece::Piece;
+use crate::poly::roots::bernstein_roots;
+use pair::{PairHit, PieceHits, Scale, SpanPair, piece_pair};
+use subdivide::{Sub, boxes_meet};
 
 /// One point where two curves meet.
 #[derive(Debug, Clone, Copy, PartialEq)]
