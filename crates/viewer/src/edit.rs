@@ -172,6 +172,9 @@ struct Open {
     curve: usize,
     before: SceneCurve,
     gesture: Gesture,
+    /// The whole list before the gesture began, once curves were replaced from outside
+    /// during it ([`Editor::replace_curves`]): the gesture then commits as one list edit.
+    list_before: Option<Vec<SceneCurve>>,
 }
 
 /// The scene being edited, with its history.
@@ -312,6 +315,7 @@ impl Editor {
                 gesture: Gesture::Control {
                     key: key.to_owned(),
                 },
+                list_before: None,
             });
         }
         let mut sc = self.scene.curves[curve].clone();
@@ -362,6 +366,15 @@ impl Editor {
         let Some(open) = self.open.take() else {
             return;
         };
+        if let Some(before) = open.list_before {
+            if before != self.scene.curves {
+                self.commit(Change::List {
+                    before,
+                    after: self.scene.curves.clone(),
+                });
+            }
+            return;
+        }
         let after = self.scene.curves[open.curve].clone();
         if after != open.before {
             self.commit(Change::Curve {
@@ -378,11 +391,71 @@ impl Editor {
         let Some(open) = self.open.take() else {
             return false;
         };
+        if let Some(before) = open.list_before {
+            self.set_list(before);
+            self.message = Some("edit cancelled".into());
+            return true;
+        }
         if self.scene.curves[open.curve] != open.before {
             self.set(open.curve, open.before);
         }
         self.message = Some("edit cancelled".into());
         true
+    }
+
+    /// Replaces the curves with `curves` (a scene assigned from outside the editor, such
+    /// as a solver run on each drag): one undoable edit. During a drag of a control point
+    /// that `curves` still has, the drag goes on over the new curves and the whole
+    /// gesture, the replacement included, commits as one edit when it finishes; any other
+    /// open edit is committed first. The selection is kept where it still names a curve
+    /// and a point.
+    pub fn replace_curves(&mut self, curves: Vec<SceneCurve>) {
+        let keeps_drag = self.open.as_ref().is_some_and(|open| match open.gesture {
+            Gesture::Point { index } => curves
+                .get(open.curve)
+                .is_some_and(|c| index < c.curve.control_points().len()),
+            _ => false,
+        });
+        if !keeps_drag {
+            self.finish();
+        }
+        let (selected, selected_point) = (self.selected, self.selected_point);
+        let before = self.scene.curves.clone();
+        if before == curves {
+            return;
+        }
+        match self.open.as_mut() {
+            Some(open) => {
+                if open.list_before.is_none() {
+                    let mut list = before;
+                    list[open.curve] = open.before.clone();
+                    open.list_before = Some(list);
+                }
+                self.set_list(curves);
+            }
+            None => {
+                self.set_list(curves.clone());
+                self.commit(Change::List {
+                    before,
+                    after: curves,
+                });
+            }
+        }
+        self.selected = selected.filter(|&i| i < self.scene.curves.len());
+        self.selected_point = selected_point.filter(|&p| {
+            self.selected
+                .is_some_and(|i| p < self.scene.curves[i].curve.control_points().len())
+        });
+    }
+
+    /// Replaces the scene with `scene`: its curves as [`Editor::replace_curves`] does,
+    /// its other fields (name, view, background, annotations) as they are, outside the
+    /// history.
+    pub fn replace_scene(&mut self, mut scene: Scene) {
+        let curves = std::mem::replace(&mut scene.curves, std::mem::take(&mut self.scene.curves));
+        self.scene = scene;
+        self.replace_curves(curves);
+        self.list_changed = true;
     }
 
     /// Whether an edit is open (a drag or a slider not yet committed).

@@ -86,6 +86,7 @@ impl Editor {
             curve,
             before: self.scene.curves[curve].clone(),
             gesture: Gesture::Point { index },
+            list_before: None,
         });
     }
 
@@ -128,6 +129,7 @@ impl Editor {
                 t_s: t,
                 original: Box::new(b.clone()),
             },
+            list_before: None,
         });
         Ok(())
     }

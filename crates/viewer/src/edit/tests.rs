@@ -247,3 +247,69 @@ fn a_failed_save_is_a_warning_that_says_where_the_edits_are() {
     assert!(ed.warning.is_none());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Curves replaced from outside during a drag (a solver run on each move): the drag
+/// goes on over them, and the gesture with the replacement is one undo step back to the
+/// scene before the drag; outside a drag a replacement is its own undo step.
+#[test]
+fn curves_replaced_during_a_drag_fold_into_the_drag() {
+    let mut e = Editor::new(scene(), None);
+    let start = e.scene().curves.clone();
+    e.begin_point_drag(0, 1);
+    e.drag_to(DVec3::new(1.5, 2.5, 0.0));
+    // What a callback hands back: the other end point moved too.
+    let mut replaced = e.scene().curves.clone();
+    replaced[0].curve = replaced[0]
+        .curve
+        .with_control_point(3, DVec3::new(5.0, 0.0, 0.0))
+        .unwrap();
+    e.replace_curves(replaced);
+    assert!(e.is_open(), "the drag goes on");
+    e.drag_to(DVec3::new(2.0, 3.0, 0.0));
+    let pts = e.scene().curves[0].curve.control_points().to_vec();
+    assert_eq!(pts[1], DVec3::new(2.0, 3.0, 0.0), "the drag moved its point");
+    assert_eq!(pts[3], DVec3::new(5.0, 0.0, 0.0), "the replacement stayed");
+    assert_eq!(e.selected, Some(0));
+    assert_eq!(e.selected_point, Some(1));
+    e.finish();
+    assert_eq!(e.history_len(), (1, 0), "one edit for the whole gesture");
+    assert!(e.undo());
+    assert_eq!(e.scene().curves, start, "undo goes back to before the drag");
+    assert!(e.redo());
+    assert_eq!(e.scene().curves[0].curve.control_points()[3], DVec3::new(5.0, 0.0, 0.0));
+
+    // Outside a drag: one edit; replacing with the same curves records nothing.
+    let mut e = Editor::new(scene(), None);
+    let mut fewer = e.scene().curves.clone();
+    fewer.pop();
+    e.selected = Some(1);
+    e.replace_curves(fewer.clone());
+    assert_eq!(e.scene().curves, fewer);
+    assert_eq!(e.selected, None, "the selected curve is gone");
+    e.replace_curves(fewer);
+    assert_eq!(e.history_len(), (1, 0));
+    assert!(e.undo());
+    assert_eq!(e.scene().curves, start);
+
+    // A drag whose point the new curves lack is committed first, then replaced.
+    let mut e = Editor::new(scene(), None);
+    e.begin_point_drag(1, 6);
+    e.drag_to(DVec3::new(6.0, 2.0, 0.0));
+    let mut short = start.clone();
+    short.truncate(1);
+    e.replace_curves(short.clone());
+    assert!(!e.is_open());
+    assert_eq!(e.history_len(), (2, 0));
+    assert_eq!(e.scene().curves, short);
+
+    // Esc during a folded drag restores the scene from before the drag.
+    let mut e = Editor::new(scene(), None);
+    e.begin_point_drag(0, 2);
+    e.drag_to(DVec3::new(3.0, 3.0, 0.0));
+    let mut other = e.scene().curves.clone();
+    other[1].name = Some("renamed".into());
+    e.replace_curves(other);
+    assert!(e.cancel());
+    assert_eq!(e.scene().curves, start);
+    assert_eq!(e.history_len(), (0, 0));
+}
