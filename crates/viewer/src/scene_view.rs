@@ -5,7 +5,8 @@
 use super::edit::Changes;
 use super::interaction::Toggles;
 use super::readback::Readback;
-use super::{AppError, digest};
+use crate::app_error::AppError;
+use crate::digest;
 use crate::shape::{MarkerWorker, ShapeView};
 use splinescope_core::geom::{BezierSegment, Lower};
 use splinescope_encoding::draw::{Switches, axis_polylines};

@@ -7,7 +7,7 @@ use winit::dpi::PhysicalSize;
 use winit::event_loop::ActiveEventLoop;
 use winit::window::Window;
 
-use super::AppError;
+use crate::app_error::AppError;
 use splinescope_gpu::{ContextOptions, GpuContext, Pipelines};
 
 /// A window with its configured surface.
