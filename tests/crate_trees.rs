@@ -143,3 +143,25 @@ fn the_io_policy_uses_only_thiserror() {
         .collect();
     assert!(others.is_empty(), "splinescope-io depends on {others:?}");
 }
+
+#[test]
+fn the_python_module_has_the_viewers_model_but_no_window() {
+    // The notebook widget drives the viewer's window-free model; the window (winit, egui)
+    // is the viewer's `window` feature, which the Python module leaves off.
+    assert!(
+        tree("splinescope-python", &[])
+            .iter()
+            .any(|n| n == "splinescope-viewer")
+    );
+    assert_none(
+        "splinescope-python",
+        &[],
+        &["winit", "egui", "egui-winit", "egui-wgpu", "clap"],
+    );
+    // The viewer alone, without its default feature, has no window either.
+    assert_none(
+        "splinescope-viewer",
+        &["--no-default-features"],
+        &["winit", "egui"],
+    );
+}

@@ -7,6 +7,7 @@ mod fit;
 mod many;
 mod regression;
 mod scene;
+mod widget;
 
 use pyo3::prelude::*;
 
@@ -16,6 +17,7 @@ fn _splinescope(m: &Bound<'_, PyModule>) -> PyResult<()> {
     errors::register(m)?;
     m.add_class::<curve::PyCurve>()?;
     m.add_class::<scene::PyScene>()?;
+    m.add_class::<widget::PyInteraction>()?;
     m.add_function(wrap_pyfunction!(many::eval_many, m)?)?;
     m.add_function(wrap_pyfunction!(many::join, m)?)?;
     m.add_function(wrap_pyfunction!(fit::fit_bezier, m)?)?;
@@ -27,6 +29,7 @@ fn _splinescope(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene::stress_scene, m)?)?;
     m.add_function(wrap_pyfunction!(regression::read_png, m)?)?;
     m.add_function(wrap_pyfunction!(regression::write_png, m)?)?;
+    m.add_function(wrap_pyfunction!(regression::png_bytes, m)?)?;
     m.add_function(wrap_pyfunction!(regression::compare_pictures, m)?)?;
     m.add_function(wrap_pyfunction!(regression::write_report, m)?)?;
     m.add(

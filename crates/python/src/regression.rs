@@ -31,6 +31,14 @@ pub fn write_png(py: Python<'_>, path: PathBuf, image: &Bound<'_, PyAny>) -> PyR
         .map_err(|e| raise::<ImageError>(format!("{}: {e}", path.display()), "path"))
 }
 
+/// A `(H, W, 4)` or `(H, W, 3)` uint8 array encoded as a PNG file's bytes.
+#[pyfunction]
+pub fn png_bytes(py: Python<'_>, image: &Bound<'_, PyAny>) -> PyResult<Vec<u8>> {
+    let image = array_image(image, "image")?;
+    py.detach(|| image.png_bytes(std::path::Path::new("(in memory)")))
+        .map_err(|e| raise::<ImageError>(e.to_string(), "image"))
+}
+
 /// Compares `actual` with `reference` as `splinescope diff` does: the figures (JSON), the
 /// diff picture (differing pixels red on a grey reference) and FLIP's error map.
 #[pyfunction]

@@ -28,6 +28,21 @@ pub struct PyScene {
     original: Option<String>,
 }
 
+impl PyScene {
+    /// A scene made here (read from no text).
+    pub(crate) fn of(scene: Scene) -> PyScene {
+        PyScene {
+            scene,
+            original: None,
+        }
+    }
+
+    /// The scene.
+    pub(crate) fn scene(&self) -> &Scene {
+        &self.scene
+    }
+}
+
 #[pymethods]
 impl PyScene {
     /// Reads and checks a scene file.
@@ -424,10 +439,10 @@ fn shape_options(
     })
 }
 
-type Device = Arc<(GpuContext, Pipelines)>;
+pub(crate) type Device = Arc<(GpuContext, Pipelines)>;
 
 /// The device of each backend, opened on first use and kept for the process.
-fn device(py: Python<'_>, choice: BackendChoice) -> PyResult<Device> {
+pub(crate) fn device(py: Python<'_>, choice: BackendChoice) -> PyResult<Device> {
     static DEVICES: Mutex<Option<HashMap<String, Device>>> = Mutex::new(None);
     let key = choice.to_string();
     if let Some(d) = DEVICES

@@ -1616,3 +1616,13 @@ def compare_images(
     ``differing_fraction``, ``flip_mean``, ``flip_max``, ``width``, ``height``."""
     tolerance = _str(tolerance, "tolerance", "compare_images")
     return json.loads(_native.compare_images(actual, reference, tolerance))
+
+
+def __getattr__(name: str) -> Any:
+    # The notebook widget loads (and needs jupyter_rfb, the `notebook` extra) only when
+    # asked for: `import splinescope` stays free of Jupyter.
+    if name == "Widget":
+        from .widget import Widget
+
+        return Widget
+    raise AttributeError(f"module 'splinescope' has no attribute {name!r}")

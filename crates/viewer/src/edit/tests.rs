@@ -267,7 +267,11 @@ fn curves_replaced_during_a_drag_fold_into_the_drag() {
     assert!(e.is_open(), "the drag goes on");
     e.drag_to(DVec3::new(2.0, 3.0, 0.0));
     let pts = e.scene().curves[0].curve.control_points().to_vec();
-    assert_eq!(pts[1], DVec3::new(2.0, 3.0, 0.0), "the drag moved its point");
+    assert_eq!(
+        pts[1],
+        DVec3::new(2.0, 3.0, 0.0),
+        "the drag moved its point"
+    );
     assert_eq!(pts[3], DVec3::new(5.0, 0.0, 0.0), "the replacement stayed");
     assert_eq!(e.selected, Some(0));
     assert_eq!(e.selected_point, Some(1));
@@ -276,7 +280,10 @@ fn curves_replaced_during_a_drag_fold_into_the_drag() {
     assert!(e.undo());
     assert_eq!(e.scene().curves, start, "undo goes back to before the drag");
     assert!(e.redo());
-    assert_eq!(e.scene().curves[0].curve.control_points()[3], DVec3::new(5.0, 0.0, 0.0));
+    assert_eq!(
+        e.scene().curves[0].curve.control_points()[3],
+        DVec3::new(5.0, 0.0, 0.0)
+    );
 
     // Outside a drag: one edit; replacing with the same curves records nothing.
     let mut e = Editor::new(scene(), None);
