@@ -55,7 +55,8 @@ export default () => {
       line.className = 'splinescope-readout'
       line.style.font = '12px monospace'
       line.style.minHeight = '1.4em'
-      line.style.whiteSpace = 'pre'
+      line.style.whiteSpace = 'pre-wrap'
+      line.style.maxWidth = ctx.model.get('css_width')
       ctx.el.appendChild(line)
       const update = () => { line.textContent = ctx.model.get('readout') }
       ctx.model.on('change:readout', update)
