@@ -228,7 +228,8 @@ impl PyInteraction {
     }
 
     /// A key went down: a character, `Escape`, `Delete`/`Backspace` or `F1`; whether the
-    /// picture changed. Other keys do nothing.
+    /// picture changed. Other keys do nothing, nor do the window's file and window
+    /// commands (`Ctrl+S`, `Ctrl+O`, `Ctrl+N`, `Ctrl+Q`).
     fn key(&self, key: &str, ctrl: bool, shift: bool) -> bool {
         let mut this = self.lock();
         let key = match key {
@@ -238,6 +239,10 @@ impl PyInteraction {
             k => {
                 let mut chars = k.chars();
                 match (chars.next(), chars.next()) {
+                    // The window's file and window commands (save, open, new, quit) have
+                    // no place in a notebook: their dialogs and prompts would stop the
+                    // widget, unseen, until Esc.
+                    (Some(c), None) if ctrl && "sonqSONQ".contains(c) => return false,
                     (Some(c), None) => Key::Char(c),
                     _ => return false,
                 }

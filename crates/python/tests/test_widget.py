@@ -286,3 +286,23 @@ def test_hostile_events_never_break_the_widget():
         w.handle_event(ev("key_down", key="z", modifiers=("Control",)))
     for a, b in zip(w.scene.curves, cubic_scene().curves):
         np.testing.assert_array_equal(a.control_points, b.control_points)
+
+
+def test_the_windows_file_commands_do_nothing_in_a_notebook():
+    """Ctrl+S (a notebook user's reflex), Ctrl+O, Ctrl+N, Ctrl+Q would open the window's
+    dialogs or prompts, unseen here, and stop the widget: they do nothing, and the widget
+    goes on taking edits."""
+    w = widget()
+    at = w.pixel_of([1.0, 2.0])
+    drag(w, at, (at[0] + 10.0, at[1]))  # an unsaved edit: New and Quit would ask first
+    w.get_frame()
+    for key in ["s", "S", "o", "n", "q"]:
+        w.handle_event(ev("key_down", key=key, modifiers=("Control",)))
+        w.handle_event(ev("key_down", key=key, modifiers=("Control", "Shift")))
+    assert w.get_frame() is None, "nothing changed"
+    at = w.pixel_of([3.0, 2.0])
+    drag(w, at, (at[0], at[1] + 20.0))
+    np.testing.assert_allclose(
+        w.scene.curves[0].control_points[2], [3.0, 2.0 - 20.0 * world_per_pixel(w)], atol=1e-9
+    )
+    assert len(w.scene.curves) == 2
