@@ -375,12 +375,7 @@ impl PyScene {
         backend: &str,
         shape: &ShapeOptions,
     ) -> PyResult<RgbaImage> {
-        let choice: BackendChoice =
-            backend
-                .parse()
-                .map_err(|e: splinescope_gpu::context::UnknownBackend| {
-                    raise::<GpuError>(e.to_string(), "backend")
-                })?;
+        let choice = backend_choice(backend)?;
         let request = RenderRequest::new(width, height)
             .with_tolerance_px(tolerance_px)
             .with_shape(*shape);
@@ -393,17 +388,37 @@ impl PyScene {
             };
             raise::<GpuError>(e.to_string(), argument)
         })?;
-        let gpu = device(py, choice)?;
-        let scene = &self.scene;
-        py.detach(|| {
-            let (ctx, pipelines) = &*gpu;
-            splinescope_render::render(ctx, pipelines, scene, &request)
-        })
-        .map_err(|e| match e {
-            RenderError::Gpu(e) => gpu_error(&e),
-            other => raise::<GpuError>(other.to_string(), ""),
-        })
+        render_on(py, choice, &self.scene, &request)
     }
+}
+
+/// The backend Python names (`auto`, `vulkan`, `gl`, …), or a [`GpuError`] naming
+/// `backend`.
+pub(crate) fn backend_choice(backend: &str) -> PyResult<BackendChoice> {
+    backend
+        .parse()
+        .map_err(|e: splinescope_gpu::context::UnknownBackend| {
+            raise::<GpuError>(e.to_string(), "backend")
+        })
+}
+
+/// `scene` drawn as `request` asks on the backend's device (opened once per process),
+/// the GPU work without the GIL.
+pub(crate) fn render_on(
+    py: Python<'_>,
+    choice: BackendChoice,
+    scene: &Scene,
+    request: &RenderRequest,
+) -> PyResult<RgbaImage> {
+    let gpu = device(py, choice)?;
+    py.detach(|| {
+        let (ctx, pipelines) = &*gpu;
+        splinescope_render::render(ctx, pipelines, scene, request)
+    })
+    .map_err(|e| match e {
+        RenderError::Gpu(e) => gpu_error(&e),
+        other => raise::<GpuError>(other.to_string(), ""),
+    })
 }
 
 /// The shape overlays as Python hands them: the comb on, its scale (`None`: chosen for
@@ -439,10 +454,10 @@ fn shape_options(
     })
 }
 
-pub(crate) type Device = Arc<(GpuContext, Pipelines)>;
+type Device = Arc<(GpuContext, Pipelines)>;
 
 /// The device of each backend, opened on first use and kept for the process.
-pub(crate) fn device(py: Python<'_>, choice: BackendChoice) -> PyResult<Device> {
+fn device(py: Python<'_>, choice: BackendChoice) -> PyResult<Device> {
     static DEVICES: Mutex<Option<HashMap<String, Device>>> = Mutex::new(None);
     let key = choice.to_string();
     if let Some(d) = DEVICES

@@ -10,17 +10,18 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use splinescope_core::analysis::CurveAnalysis;
+use splinescope_core::geom::Curve;
 use splinescope_encoding::camera::Camera;
 use splinescope_encoding::draw::Switches;
 use splinescope_figure::TextOptions;
-use splinescope_gpu::BackendChoice;
-use splinescope_render::{RenderError, RenderRequest};
+use splinescope_render::RenderRequest;
 use splinescope_scene::format::shape::{CombScale, ShapeOptions};
 use splinescope_viewer::edit::Editor;
 use splinescope_viewer::interaction::{Button, Input, Interaction, Key};
+use splinescope_viewer::shape::Readouts;
 
-use crate::errors::{GpuError, SceneError, gpu_error, raise};
-use crate::scene::{PyScene, device, image_array};
+use crate::errors::{SceneError, raise};
+use crate::scene::{PyScene, backend_choice, image_array, render_on};
 
 /// The widest and tallest picture, in physical pixels (the texture side every device
 /// takes).
@@ -57,6 +58,9 @@ struct Inner {
     edits: Vec<(Option<usize>, Option<usize>)>,
     /// Whether the picture changed since the last frame.
     stale: bool,
+    /// The selected curve's readouts and the curve they were computed for: a pointer move
+    /// asks only for the nearest point, not for the length and the box again.
+    readouts: Option<(usize, Curve, Readouts)>,
 }
 
 fn check_size(width: f64, height: f64, ratio: f64) -> PyResult<()> {
@@ -157,6 +161,7 @@ impl PyInteraction {
             size: (width, height, pixel_ratio),
             edits: Vec::new(),
             stale: true,
+            readouts: None,
         }));
         Ok(out)
     }
@@ -416,7 +421,8 @@ impl PyInteraction {
     /// closed and planar, and at the point of the curve nearest the pointer its
     /// parameter, distance and signed curvature. `None` with no selection.
     fn readout<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
-        let this = self.lock();
+        let mut this = self.lock();
+        let this = &mut *this;
         let Some(index) = this.model.editor.selected else {
             return Ok(None);
         };
@@ -424,7 +430,11 @@ impl PyInteraction {
         let Some(sc) = scene.curves.get(index) else {
             return Ok(None);
         };
-        let Some(r) = splinescope_viewer::shape::Readouts::of(scene, index, None) else {
+        let fresh = matches!(&this.readouts, Some((i, c, _)) if *i == index && *c == sc.curve);
+        if !fresh {
+            this.readouts = Readouts::of(scene, index, None).map(|r| (index, sc.curve.clone(), r));
+        }
+        let Some((_, _, r)) = &this.readouts else {
             return Ok(None);
         };
         let d = PyDict::new(py);
@@ -454,12 +464,7 @@ impl PyInteraction {
     /// logical size times the pixel ratio.
     #[pyo3(signature = (backend="auto"))]
     fn render<'py>(&self, py: Python<'py>, backend: &str) -> PyResult<Bound<'py, PyAny>> {
-        let choice: BackendChoice =
-            backend
-                .parse()
-                .map_err(|e: splinescope_gpu::context::UnknownBackend| {
-                    raise::<GpuError>(e.to_string(), "backend")
-                })?;
+        let choice = backend_choice(backend)?;
         // What to draw, taken under the lock and drawn without it: the GPU work runs
         // without the GIL, and another thread holding the GIL may be waiting for the lock.
         let (scene, request) = {
@@ -481,16 +486,7 @@ impl PyInteraction {
             this.stale = false;
             (this.model.scene().clone(), request)
         };
-        let gpu = device(py, choice)?;
-        let image = py
-            .detach(|| {
-                let (ctx, pipelines) = &*gpu;
-                splinescope_render::render(ctx, pipelines, &scene, &request)
-            })
-            .map_err(|e| match e {
-                RenderError::Gpu(e) => gpu_error(&e),
-                other => raise::<GpuError>(other.to_string(), ""),
-            })?;
+        let image = render_on(py, choice, &scene, &request)?;
         image_array(py, image)
     }
 }

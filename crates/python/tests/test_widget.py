@@ -219,6 +219,13 @@ def test_readouts_name_the_selected_curve():
     length = w.scene.curves[0].length()
     assert f"length {length:.6g}" in text, text
     assert "κ" in text and "at pointer" in text, text
+    # The readouts follow an edit of the selected curve (they are kept between pointer
+    # moves, not after the curve changes).
+    drag(w, at, (at[0] + 30.0, at[1] - 20.0))
+    w.handle_event(ev("pointer_move", x=at[0], y=at[1] + 40.0, buttons=()))
+    moved = w.scene.curves[0].length()
+    assert abs(moved - length) > 1e-3
+    assert f"length {moved:.6g}" in w.readout, w.readout
 
 
 def test_bad_arguments_are_named():
