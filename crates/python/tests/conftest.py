@@ -41,3 +41,16 @@ def gpu_or_fail(test: str) -> bool:
     """Whether GPU tests run: without an adapter they fail with how to install one,
     unless SPLINESCOPE_SKIP_GPU_TESTS=1 asks to skip (and then say so)."""
     return os.environ.get("SPLINESCOPE_SKIP_GPU_TESTS") != "1"
+
+
+def no_adapter(e: Exception, what: str = "rendering"):
+    """A GPU error in a test: skip when SPLINESCOPE_SKIP_GPU_TESTS=1 asks and there is no
+    adapter (saying so), else fail saying how to install the software adapters."""
+    if os.environ.get("SPLINESCOPE_SKIP_GPU_TESTS") == "1" and "no GPU adapter" in str(e):
+        print(f"SKIPPED: {e}; SPLINESCOPE_SKIP_GPU_TESTS=1 asked to skip")
+        pytest.skip("no GPU adapter and SPLINESCOPE_SKIP_GPU_TESTS=1")
+    pytest.fail(
+        f"{what} needs a GPU adapter: {e}\nInstall the software ones (Debian/Ubuntu: "
+        "sudo apt-get install mesa-vulkan-drivers libvulkan1 libegl1 libgl1-mesa-dri) or "
+        "set SPLINESCOPE_SKIP_GPU_TESTS=1 to skip GPU tests explicitly."
+    )

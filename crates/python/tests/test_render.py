@@ -11,7 +11,7 @@ import pytest
 
 import splinescope as ss
 
-from conftest import SCENES
+from conftest import SCENES, no_adapter
 
 BACKENDS = [
     b.strip() for b in os.environ.get("SPLINESCOPE_TEST_BACKENDS", "auto").split(",") if b.strip()
@@ -24,14 +24,7 @@ def render_or_fail(scene, *args, **kw):
     try:
         return scene.render(*args, **kw)
     except ss.GpuError as e:
-        if os.environ.get("SPLINESCOPE_SKIP_GPU_TESTS") == "1" and "no GPU adapter" in str(e):
-            print(f"SKIPPED: {e}; SPLINESCOPE_SKIP_GPU_TESTS=1 asked to skip")
-            pytest.skip("no GPU adapter and SPLINESCOPE_SKIP_GPU_TESTS=1")
-        pytest.fail(
-            f"rendering needs a GPU adapter: {e}\nInstall the software ones (Debian/Ubuntu: "
-            "sudo apt-get install mesa-vulkan-drivers libvulkan1 libegl1 libgl1-mesa-dri) or "
-            "set SPLINESCOPE_SKIP_GPU_TESTS=1 to skip GPU tests explicitly."
-        )
+        no_adapter(e)
 
 
 def decode_png(data: bytes) -> np.ndarray:

@@ -13,6 +13,8 @@ import pytest
 
 import splinescope as ss
 
+from conftest import no_adapter
+
 jupyter_rfb = pytest.importorskip("jupyter_rfb", reason="the notebook extra (jupyter_rfb)")
 
 BACKEND = [b.strip() for b in os.environ.get("SPLINESCOPE_TEST_BACKENDS", "auto").split(",") if b.strip()][0]
@@ -33,14 +35,7 @@ def widget(scene=None, **kw):
     try:
         w.get_frame()  # the first frame, as the page asks for it
     except ss.GpuError as e:
-        if os.environ.get("SPLINESCOPE_SKIP_GPU_TESTS") == "1" and "no GPU adapter" in str(e):
-            print(f"SKIPPED: {e}; SPLINESCOPE_SKIP_GPU_TESTS=1 asked to skip")
-            pytest.skip("no GPU adapter and SPLINESCOPE_SKIP_GPU_TESTS=1")
-        pytest.fail(
-            f"the widget draws with the GPU: {e}\nInstall the software adapters (Debian/Ubuntu: "
-            "sudo apt-get install mesa-vulkan-drivers libvulkan1 libegl1 libgl1-mesa-dri) or set "
-            "SPLINESCOPE_SKIP_GPU_TESTS=1 to skip GPU tests explicitly."
-        )
+        no_adapter(e, "the widget")
     return w
 
 
